@@ -1,0 +1,1 @@
+//! Decimation algorithms, one module per algorithm, over `mesh` arrays.

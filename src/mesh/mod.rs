@@ -1,0 +1,7 @@
+//! The data model shared by every reader, writer, algorithm and the viewer: a `Scene` of
+//! `Model`s over flat arrays, plus topology (adjacency, vertex classification), normals and
+//! welding built on top of them.
+
+pub mod scene;
+
+pub use scene::{Attribute, Model, Scene};

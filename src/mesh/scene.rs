@@ -1,0 +1,106 @@
+//! `Scene` and `Model`: what a file holds once parsed, as flat arrays.
+//!
+//! A model is one shape of the file: positions in its local frame, triangles as index triples
+//! (counter-clockwise seen from outside), a world transform accumulated from the scene graph,
+//! and optional colours and normals bound per vertex or per face. Every algorithm and the
+//! viewer work on these arrays; nothing here knows about file syntax.
+
+use glam::{Mat4, Vec3};
+
+/// A per-vertex or per-face attribute array (colours, normals).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Attribute<T> {
+    /// One value per vertex, indexed like `Model::positions`.
+    PerVertex(Vec<T>),
+    /// One value per triangle, indexed like `Model::triangles`.
+    PerFace(Vec<T>),
+}
+
+impl<T> Attribute<T> {
+    /// The values, whatever they are bound to.
+    pub fn values(&self) -> &[T] {
+        match self {
+            Self::PerVertex(v) | Self::PerFace(v) => v,
+        }
+    }
+}
+
+/// One triangle mesh of a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Model {
+    /// Name from the file (`DEF` name or the shape's position in the file), for summaries.
+    pub name: String,
+    /// Local-to-world transform accumulated through the scene graph.
+    pub transform: Mat4,
+    /// Vertex positions in the model's local frame.
+    pub positions: Vec<Vec3>,
+    /// Triangles, counter-clockwise when seen from the front.
+    pub triangles: Vec<[u32; 3]>,
+    /// RGB colours in 0..=1, if the file gave any.
+    pub colors: Option<Attribute<[f32; 3]>>,
+    /// Normals from the file, if any; `mesh::normals` computes them when absent.
+    pub normals: Option<Attribute<Vec3>>,
+    /// Diffuse colour of the shape's material (used when there are no per-vertex/face colours).
+    pub diffuse: [f32; 3],
+    /// Crease angle in radians from the file (ShapeHints / IndexedFaceSet), if given.
+    pub crease_angle: Option<f32>,
+    /// True when the file says the shape is a closed solid (back faces may be culled).
+    pub solid: bool,
+}
+
+impl Default for Model {
+    fn default() -> Self {
+        Self {
+            name: String::new(),
+            transform: Mat4::IDENTITY,
+            positions: Vec::new(),
+            triangles: Vec::new(),
+            colors: None,
+            normals: None,
+            diffuse: [0.8, 0.8, 0.8],
+            crease_angle: None,
+            solid: false,
+        }
+    }
+}
+
+impl Model {
+    /// Number of vertices that at least one triangle uses.
+    pub fn used_vertex_count(&self) -> usize {
+        let mut used = vec![false; self.positions.len()];
+        for t in &self.triangles {
+            for &v in t {
+                used[v as usize] = true;
+            }
+        }
+        used.iter().filter(|&&u| u).count()
+    }
+
+    /// Axis-aligned bounds of the positions in the local frame, `None` when empty.
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let first = *self.positions.first()?;
+        Some(
+            self.positions
+                .iter()
+                .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p))),
+        )
+    }
+}
+
+/// Everything read from one file: its models, in file order.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Scene {
+    pub models: Vec<Model>,
+}
+
+impl Scene {
+    /// Total vertices over all models.
+    pub fn vertex_count(&self) -> usize {
+        self.models.iter().map(|m| m.positions.len()).sum()
+    }
+
+    /// Total triangles over all models.
+    pub fn triangle_count(&self) -> usize {
+        self.models.iter().map(|m| m.triangles.len()).sum()
+    }
+}
