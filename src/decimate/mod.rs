@@ -87,11 +87,7 @@ impl Report {
 
 /// Decimates every model of `scene` in place with Schroeder vertex removal. Models left with
 /// fewer than four vertices are dropped. `progress` is called with the fraction done (0..=1).
-pub fn decimate_scene(
-    scene: &mut Scene,
-    params: &Params,
-    progress: &mut dyn FnMut(f32),
-) -> Report {
+pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
     let _ = (scene, params, progress);
     Report::default()
 }

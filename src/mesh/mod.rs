@@ -2,6 +2,8 @@
 //! `Model`s over flat arrays, plus topology (adjacency, vertex classification), normals and
 //! welding built on top of them.
 
+pub mod build;
 pub mod scene;
+pub mod weld;
 
 pub use scene::{Attribute, Model, Scene};
