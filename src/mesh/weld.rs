@@ -7,7 +7,7 @@
 
 use std::collections::HashMap;
 
-use super::{Attribute, Model};
+use super::Model;
 
 /// Merges vertices with bit-identical positions (after `-0.0` → `0.0`); drops unused
 /// vertices and triangles that become degenerate. Returns how many vertices were removed.
@@ -41,37 +41,28 @@ pub fn weld(model: &mut Model) -> usize {
         return 0;
     }
     model.positions = keep.iter().map(|&i| model.positions[i as usize]).collect();
-    let mut kept_faces = Vec::with_capacity(model.triangles.len());
+    let mut kept_faces: Vec<u32> = Vec::with_capacity(model.triangles.len());
     for (f, t) in model.triangles.iter_mut().enumerate() {
         *t = t.map(|v| remap[v as usize]);
         if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
-            kept_faces.push(f);
+            kept_faces.push(f as u32);
         }
     }
-    let faces_dropped = kept_faces.len() != model.triangles.len();
-    if faces_dropped {
-        model.triangles = kept_faces.iter().map(|&f| model.triangles[f]).collect();
+    if kept_faces.len() != model.triangles.len() {
+        model.triangles = kept_faces
+            .iter()
+            .map(|&f| model.triangles[f as usize])
+            .collect();
     }
-    let pick_vertices = |v: &Vec<_>| keep.iter().map(|&i| v[i as usize]).collect();
-    let pick_faces = |v: &Vec<_>| kept_faces.iter().map(|&f| v[f]).collect();
-    if let Some(c) = &mut model.colors {
-        *c = match c {
-            Attribute::PerVertex(v) => Attribute::PerVertex(pick_vertices(v)),
-            Attribute::PerFace(v) => Attribute::PerFace(pick_faces(v)),
-        };
-    }
-    if let Some(nr) = &mut model.normals {
-        *nr = match nr {
-            Attribute::PerVertex(v) => Attribute::PerVertex(pick_vertices(v)),
-            Attribute::PerFace(v) => Attribute::PerFace(pick_faces(v)),
-        };
-    }
+    model.colors = model.colors.as_ref().map(|c| c.select(&keep, &kept_faces));
+    model.normals = model.normals.as_ref().map(|c| c.select(&keep, &kept_faces));
     removed
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::Attribute;
     use glam::Vec3;
 
     #[test]
