@@ -3,6 +3,7 @@
 //! every model of a scene and returns a [`Report`].
 
 pub mod loop_split;
+pub mod queue;
 pub mod schroeder;
 
 use std::time::Instant;
