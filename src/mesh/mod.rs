@@ -3,5 +3,6 @@
 //! welding built on top of them.
 
 pub mod scene;
+pub mod weld;
 
 pub use scene::{Attribute, Model, Scene};
