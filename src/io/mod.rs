@@ -177,14 +177,40 @@ fn parse_bytes_with(
             ),
         )));
     };
-    let mut parser = parse::Parser::new(&bytes, dialect);
-    let roots = parser.parse_file().map_err(syntax)?;
+    parse_on_big_stack(&bytes, dialect).map_err(syntax)
+}
+
+/// Stack for parsing: the node nesting limit (`parse::MAX_DEPTH`) times the deepest
+/// recursion per level, with a wide margin, whatever thread the caller runs on.
+const PARSE_STACK: usize = 256 << 20;
+
+/// Parses and walks the node tree on a thread with a known, large stack (the recursion is
+/// bounded by `parse::MAX_DEPTH`, but callers' threads may have small stacks).
+fn parse_on_big_stack(bytes: &[u8], dialect: parse::Dialect) -> PResult<ReadOutcome> {
+    std::thread::scope(|s| {
+        match std::thread::Builder::new()
+            .name("scene-parser".into())
+            .stack_size(PARSE_STACK)
+            .spawn_scoped(s, || parse_tree(bytes, dialect))
+        {
+            Ok(handle) => handle
+                .join()
+                .unwrap_or_else(|_| Err(ParseError::new(1, "internal error: the parser panicked"))),
+            Err(_) => parse_tree(bytes, dialect),
+        }
+    })
+}
+
+fn parse_tree(bytes: &[u8], dialect: parse::Dialect) -> PResult<ReadOutcome> {
+    let mut parser = parse::Parser::new(bytes, dialect);
+    let roots = parser.parse_file()?;
     let mut warnings = std::mem::take(&mut parser.warnings);
     let models = match dialect {
         parse::Dialect::Vrml1 => vrml1::read(&roots, &mut warnings),
         parse::Dialect::Vrml2 => vrml2::read(&roots, &mut warnings),
-    }
-    .map_err(syntax)?;
+    }?;
+    // The tree (at most MAX_DEPTH deep) is dropped here, on the big stack.
+    drop(roots);
     Ok(ReadOutcome {
         scene: Scene { models },
         warnings,
