@@ -248,14 +248,14 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
                 .get(f)
                 .and_then(|&i| value3(values, i))
                 .unwrap_or(diffuse);
-            fcolors.extend(std::iter::repeat(c).take(made));
+            fcolors.extend(std::iter::repeat_n(c, made));
         }
         if let Bind::PerFace { values, index } = &normals {
             let n = index
                 .get(f)
                 .and_then(|&i| value3(values, i))
                 .unwrap_or([0.0; 3]);
-            fnormals.extend(std::iter::repeat(Vec3::from(n)).take(made));
+            fnormals.extend(std::iter::repeat_n(Vec3::from(n), made));
         }
         start = end;
     }
