@@ -28,7 +28,7 @@ use super::loop_split;
 use super::queue::VertexQueue;
 use crate::mesh::classify::{classify, VertexClass};
 use crate::mesh::topology::{Connectivity, Ring};
-use crate::mesh::{Attribute, Model};
+use crate::mesh::{spatial, Attribute, Model};
 
 /// How far one model may be decimated.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,13 +59,20 @@ pub fn decimate_model(
     limits: &Limits,
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
-    // 1. load
-    let positions = model.positions.clone();
-    let n = positions.len() as u32;
-    let valid: Vec<u32> = (0..model.triangles.len() as u32)
+    // 1. load, renumbered along a Morton curve for memory locality
+    let n = model.positions.len() as u32;
+    let order = spatial::morton_order(&model.positions);
+    let mut internal = vec![0u32; n as usize];
+    for (i, &v) in order.iter().enumerate() {
+        internal[v as usize] = i as u32;
+    }
+    let positions: Vec<Vec3> = order.iter().map(|&v| model.positions[v as usize]).collect();
+    let mut faces: Vec<u32> = (0..model.triangles.len() as u32)
         .filter(|&t| model.triangles[t as usize].iter().all(|&v| v < n))
         .collect();
-    let triangles: Vec<[u32; 3]> = valid.iter().map(|&t| model.triangles[t as usize]).collect();
+    let tri = |t: u32| model.triangles[t as usize].map(|v| internal[v as usize]);
+    faces.sort_by_cached_key(|&t| tri(t).into_iter().min());
+    let triangles: Vec<[u32; 3]> = faces.iter().map(|&t| tri(t)).collect();
 
     // 2. connect
     let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
@@ -105,7 +112,7 @@ pub fn decimate_model(
 
     // 5. compact
     if outcome.removed > 0 {
-        d.write_back(model, &valid);
+        d.write_back(model, &order, &faces);
     }
     outcome
 }
@@ -369,16 +376,19 @@ impl Decimator {
         })
     }
 
-    /// Writes live vertices and triangles back into `model`, keeping the order of both.
-    fn write_back(&self, model: &mut Model, valid: &[u32]) {
+    /// Writes live vertices and triangles back into `model`. `order` maps internal vertex ids
+    /// to the model's, `faces` internal triangle slots to the model's faces. Kept vertices
+    /// keep their relative order from the input.
+    fn write_back(&self, model: &mut Model, order: &[u32], faces: &[u32]) {
         let slots: Vec<u32> = self.conn.alive_ids().collect();
+        // Model vertex id -> new id, u32::MAX while unused.
         let mut remap = vec![u32::MAX; self.positions.len()];
-        let mut kept_vertices: Vec<u32> = Vec::new();
         for &t in &slots {
             for v in self.conn.triangle(t) {
-                remap[v as usize] = 0;
+                remap[order[v as usize] as usize] = 0;
             }
         }
+        let mut kept_vertices: Vec<u32> = Vec::new();
         for (v, r) in remap.iter_mut().enumerate() {
             if *r == 0 {
                 *r = kept_vertices.len() as u32;
@@ -386,13 +396,14 @@ impl Decimator {
             }
         }
         // A reused slot stands in for the original face that first owned it.
-        let faces: Vec<u32> = slots
-            .iter()
-            .map(|&t| valid.get(t as usize).copied().unwrap_or(0))
-            .collect();
+        let faces: Vec<u32> = slots.iter().map(|&t| faces[t as usize]).collect();
         model.triangles = slots
             .iter()
-            .map(|&t| self.conn.triangle(t).map(|v| remap[v as usize]))
+            .map(|&t| {
+                self.conn
+                    .triangle(t)
+                    .map(|v| remap[order[v as usize] as usize])
+            })
             .collect();
         model.positions = kept_vertices
             .iter()
