@@ -193,3 +193,39 @@ fn ply_round_trip_bakes_transforms_and_keeps_vertex_colours() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// For `tools/check-vrml-independent`: writes our VRML 2.0 output for the scene above, a
+/// hand-written file and any `DECIMATE_SAMPLE_INPUTS` (colon-separated) into
+/// `DECIMATE_SAMPLE_DIR`, each with a `.counts` file (`points triangles` per model).
+#[test]
+#[ignore = "run by tools/check-vrml-independent"]
+fn write_samples_for_independent_check() {
+    let Ok(dir) = std::env::var("DECIMATE_SAMPLE_DIR") else {
+        panic!("set DECIMATE_SAMPLE_DIR");
+    };
+    let dir = PathBuf::from(dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut scenes = vec![("synthetic".to_string(), scene())];
+    let inputs = std::env::var("DECIMATE_SAMPLE_INPUTS").unwrap_or_default();
+    for f in ["tests/data/colored_v2.wrl", "tests/data/l_shape_v1.wrl"]
+        .into_iter()
+        .chain(inputs.split(':').filter(|s| !s.is_empty()))
+    {
+        let s = read_scene(std::path::Path::new(f)).unwrap_or_else(|e| panic!("{e}"));
+        let stem = std::path::Path::new(f)
+            .file_stem()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        scenes.push((stem, s.scene));
+    }
+    for (stem, s) in scenes {
+        write_vrml2(&s, &dir.join(format!("{stem}.wrl"))).unwrap();
+        let counts: String = s
+            .models
+            .iter()
+            .map(|m| format!("{} {}\n", m.positions.len(), m.triangles.len()))
+            .collect();
+        std::fs::write(dir.join(format!("{stem}.counts")), counts).unwrap();
+    }
+}

@@ -14,7 +14,9 @@ fn read_speed() {
     if let Ok(list) = std::env::var("DECIMATE_SPEED_FILES") {
         for f in list.split(':') {
             let t = Instant::now();
-            let s = read_scene(Path::new(f)).unwrap_or_else(|e| panic!("{e}")).scene;
+            let s = read_scene(Path::new(f))
+                .unwrap_or_else(|e| panic!("{e}"))
+                .scene;
             println!(
                 "{f}: {} vertices, {} triangles in {:.3} s",
                 s.vertex_count(),
@@ -25,22 +27,39 @@ fn read_speed() {
         return;
     }
     let (nu, nv) = (1001u32, 501u32);
-    let mut src = String::from("#VRML V2.0 utf8\nShape { geometry IndexedFaceSet {\n coord Coordinate { point [\n");
+    let mut src = String::from(
+        "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet {\n coord Coordinate { point [\n",
+    );
     for j in 0..nv {
         for i in 0..nu {
-            let _ = writeln!(src, "{} {} {},", i as f32 * 0.01, j as f32 * 0.01, ((i * j) % 97) as f32 * 0.001);
+            let _ = writeln!(
+                src,
+                "{} {} {},",
+                i as f32 * 0.01,
+                j as f32 * 0.01,
+                ((i * j) % 97) as f32 * 0.001
+            );
         }
     }
     src.push_str("] }\n coordIndex [\n");
     for j in 0..nv - 1 {
         for i in 0..nu - 1 {
             let a = j * nu + i;
-            let _ = writeln!(src, "{a} {} {} -1 {a} {} {} -1", a + 1, a + nu + 1, a + nu + 1, a + nu);
+            let _ = writeln!(
+                src,
+                "{a} {} {} -1 {a} {} {} -1",
+                a + 1,
+                a + nu + 1,
+                a + nu + 1,
+                a + nu
+            );
         }
     }
     src.push_str("] } }\n");
     let t = Instant::now();
-    let s = parse_bytes(src.into_bytes(), Path::new("grid.wrl")).unwrap().scene;
+    let s = parse_bytes(src.into_bytes(), Path::new("grid.wrl"))
+        .unwrap()
+        .scene;
     let secs = t.elapsed().as_secs_f64();
     println!("grid.wrl: {} triangles in {secs:.3} s", s.triangle_count());
     assert_eq!(s.triangle_count(), 1_000_000);
