@@ -4,9 +4,15 @@
 //! The binary `decimate` (src/main.rs) is a thin start-up over this crate: `cli` parses the
 //! original program's usage, `io` reads and writes scenes, `mesh` holds the shared data model
 //! and topology, `decimate` holds one module per algorithm.
-#![warn(rust_2018_idioms, trivial_casts, unused_qualifications, clippy::use_self)]
+#![warn(
+    rust_2018_idioms,
+    trivial_casts,
+    unused_qualifications,
+    clippy::use_self
+)]
 
 pub mod cli;
 pub mod decimate;
 pub mod io;
 pub mod mesh;
+pub mod metro;
