@@ -160,47 +160,11 @@ impl Bvh {
                 }
             })
             .collect();
-        let mut nodes = Vec::with_capacity(2 * triangles.len() / MAX_LEAF + 1);
-        if !items.is_empty() {
-            nodes.push(Node {
-                lo: DVec3::ZERO,
-                hi: DVec3::ZERO,
-                first: 0,
-                count: 0,
-            });
-            // Explicit stack of (node index, item range) so depth never touches the call stack.
-            let mut stack = vec![(0usize, 0usize, items.len())];
-            while let Some((node, start, end)) = stack.pop() {
-                let slice = &mut items[start..end];
-                let (lo, hi) = slice.iter().fold(
-                    (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-                    |(lo, hi), it| (lo.min(it.lo), hi.max(it.hi)),
-                );
-                nodes[node].lo = lo;
-                nodes[node].hi = hi;
-                match split(slice) {
-                    Some(mid) => {
-                        let left = nodes.len();
-                        nodes[node].first = left as u32;
-                        nodes[node].count = 0;
-                        for _ in 0..2 {
-                            nodes.push(Node {
-                                lo: DVec3::ZERO,
-                                hi: DVec3::ZERO,
-                                first: 0,
-                                count: 0,
-                            });
-                        }
-                        stack.push((left, start, start + mid));
-                        stack.push((left + 1, start + mid, end));
-                    }
-                    None => {
-                        nodes[node].first = start as u32;
-                        nodes[node].count = (end - start) as u32;
-                    }
-                }
-            }
-        }
+        let nodes = if items.is_empty() {
+            Vec::new()
+        } else {
+            build_parallel(&mut items, 0)
+        };
         let tris = items
             .iter()
             .map(|it| triangles[it.id as usize].map(|v| positions[v as usize]))
@@ -298,6 +262,98 @@ impl Bvh {
     }
 }
 
+/// Subtrees smaller than this are built on one thread.
+const PARALLEL_MIN: usize = 32 * 1024;
+
+const EMPTY_NODE: Node = Node {
+    lo: DVec3::ZERO,
+    hi: DVec3::ZERO,
+    first: 0,
+    count: 0,
+};
+
+fn bounds(items: &[BuildItem]) -> (DVec3, DVec3) {
+    items.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), it| (lo.min(it.lo), hi.max(it.hi)),
+    )
+}
+
+/// Builds the subtree over `items` (which start at `offset` in the final leaf order), its
+/// root at index 0. Large, balanced splits build their two halves in parallel; anything else
+/// goes to [`build_sequential`], so the recursion stays shallow whatever the input.
+fn build_parallel(items: &mut [BuildItem], offset: usize) -> Vec<Node> {
+    let n = items.len();
+    if n < PARALLEL_MIN {
+        return build_sequential(items, offset);
+    }
+    let (lo, hi) = bounds(items);
+    let Some(mid) = split(items) else {
+        return build_sequential(items, offset);
+    };
+    if mid.min(n - mid) < n / 8 {
+        return build_sequential(items, offset);
+    }
+    let (left, right) = items.split_at_mut(mid);
+    let (l, r) = rayon::join(
+        || build_parallel(left, offset),
+        || build_parallel(right, offset + mid),
+    );
+    // Layout: [root, left root, right root, rest of left, rest of right]; a child pair stays
+    // adjacent, so interior references shift by where their subtree's rest now starts.
+    let mut nodes = Vec::with_capacity(1 + l.len() + r.len());
+    nodes.push(Node {
+        lo,
+        hi,
+        first: 1,
+        count: 0,
+    });
+    let l_shift = 2u32; // left index i >= 1 moves to i + 2
+    let r_shift = l.len() as u32 + 1; // right index j >= 1 moves to j + |left| + 1
+    let fix = |node: &Node, shift: u32| {
+        let mut node = *node;
+        if node.count == 0 {
+            node.first += shift;
+        }
+        node
+    };
+    nodes.push(fix(&l[0], l_shift));
+    nodes.push(fix(&r[0], r_shift));
+    nodes.extend(l[1..].iter().map(|x| fix(x, l_shift)));
+    nodes.extend(r[1..].iter().map(|x| fix(x, r_shift)));
+    nodes
+}
+
+/// Builds the subtree over `items` on this thread with an explicit stack (no recursion, so
+/// no input can exhaust the call stack), its root at index 0.
+fn build_sequential(items: &mut [BuildItem], offset: usize) -> Vec<Node> {
+    let mut nodes = Vec::with_capacity(2 * items.len() / MAX_LEAF + 1);
+    nodes.push(EMPTY_NODE);
+    let mut stack = vec![(0usize, 0usize, items.len())];
+    while let Some((node, start, end)) = stack.pop() {
+        let slice = &mut items[start..end];
+        let (lo, hi) = bounds(slice);
+        nodes[node].lo = lo;
+        nodes[node].hi = hi;
+        match split(slice) {
+            Some(mid) => {
+                let left = nodes.len();
+                nodes[node].first = left as u32;
+                nodes[node].count = 0;
+                nodes.push(EMPTY_NODE);
+                nodes.push(EMPTY_NODE);
+                stack.push((left, start, start + mid));
+                stack.push((left + 1, start + mid, end));
+            }
+            None => {
+                nodes[node].first = (offset + start) as u32;
+                nodes[node].count = (end - start) as u32;
+            }
+        }
+    }
+    nodes
+}
+
 /// Chooses a split of `items` by the binned surface-area heuristic and partitions them in
 /// place; returns the size of the left part, or `None` to make a leaf.
 fn split(items: &mut [BuildItem]) -> Option<usize> {
@@ -310,10 +366,7 @@ fn split(items: &mut [BuildItem]) -> Option<usize> {
         |(lo, hi), it| (lo.min(it.centroid), hi.max(it.centroid)),
     );
     let extent = chi - clo;
-    let (plo, phi) = items.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), it| (lo.min(it.lo), hi.max(it.hi)),
-    );
+    let (plo, phi) = bounds(items);
     let parent_area = half_area(plo, phi);
 
     // Best (cost, axis, bin boundary) over the three axes.
@@ -426,10 +479,8 @@ mod tests {
         assert_eq!(q, DVec3::new(1.5, 0.0, 0.0));
     }
 
-    #[test]
-    fn nearest_matches_brute_force() {
-        // A bumpy 40×40 grid: the hierarchy must find exactly the brute-force minimum.
-        let n = 40;
+    /// A bumpy `n`×`n` grid over the unit square.
+    fn bumpy_grid(n: usize) -> (Vec<DVec3>, Vec<[u32; 3]>) {
         let mut positions = Vec::new();
         for j in 0..=n {
             for i in 0..=n {
@@ -446,6 +497,64 @@ mod tests {
                 triangles.push([v, w + 1, w]);
             }
         }
+        (positions, triangles)
+    }
+
+    #[test]
+    fn tree_holds_every_triangle_once_inside_its_boxes() {
+        // 2 × 130² triangles: above PARALLEL_MIN, so the parallel top and its merge run.
+        let (positions, triangles) = bumpy_grid(130);
+        assert!(triangles.len() > PARALLEL_MIN);
+        let bvh = Bvh::new(&positions, &triangles);
+        let mut seen = vec![0u32; triangles.len()];
+        let mut stack = vec![0usize];
+        let mut leaves = 0;
+        while let Some(i) = stack.pop() {
+            let node = bvh.nodes[i];
+            if node.count == 0 {
+                for child in [node.first as usize, node.first as usize + 1] {
+                    let c = bvh.nodes[child];
+                    assert!(c.lo.cmpge(node.lo).all() && c.hi.cmple(node.hi).all());
+                    stack.push(child);
+                }
+            } else {
+                leaves += 1;
+                assert!(node.count as usize <= MAX_LEAF);
+                for slot in node.first as usize..(node.first + node.count) as usize {
+                    seen[bvh.ids[slot] as usize] += 1;
+                    for p in bvh.tris[slot] {
+                        assert!(p.cmpge(node.lo).all() && p.cmple(node.hi).all());
+                    }
+                }
+            }
+        }
+        assert!(seen.iter().all(|&k| k == 1));
+        assert_eq!(bvh.node_count(), 2 * leaves - 1);
+        let mut stack = Vec::new();
+        for k in 0..20 {
+            let p = DVec3::new(
+                0.05 * k as f64,
+                1.0 - 0.045 * k as f64,
+                0.2 - 0.02 * k as f64,
+            );
+            let brute = triangles
+                .iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|v| positions[v as usize]);
+                    closest_point_on_triangle(p, a, b, c).distance_squared(p)
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert_eq!(
+                bvh.nearest(p, None, &mut stack).map(|h| h.dist2),
+                Some(brute)
+            );
+        }
+    }
+
+    #[test]
+    fn nearest_matches_brute_force() {
+        // The hierarchy must find exactly the brute-force minimum, with or without a hint.
+        let (positions, triangles) = bumpy_grid(40);
         let bvh = Bvh::new(&positions, &triangles);
         let mut stack = Vec::new();
         let mut state = 12345u64;
