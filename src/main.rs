@@ -1,1 +1,53 @@
-fn main() {}
+//! `decimate`: start-up in the original program's six steps — (1) parameter check, (2) parse
+//! the scene file, (3) build the models, then for the viewer (4) build the menus, (5) register
+//! the callbacks and (6) enter the main loop; `nogui` decimates and writes instead.
+
+use std::process::ExitCode;
+
+use decimate::cli::{self, Action, Command};
+use decimate::{batch, io, mesh};
+
+fn main() -> ExitCode {
+    // (1) Parameter check.
+    let args = match cli::parse(std::env::args().skip(1)) {
+        Ok(Command::Run(args)) => args,
+        Ok(Command::Help) => {
+            print!("{}", cli::USAGE);
+            return ExitCode::SUCCESS;
+        }
+        Ok(Command::Version) => {
+            println!("decimate {}", env!("CARGO_PKG_VERSION"));
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            eprintln!("decimate: {e}\n\n{}", cli::USAGE);
+            return ExitCode::from(2);
+        }
+    };
+
+    // (2) Parse the VRML / Open Inventor file.
+    let outcome = match io::read_scene(&args.input) {
+        Ok(outcome) => outcome,
+        Err(e) => {
+            eprintln!("decimate: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    if !args.quiet {
+        for w in &outcome.warnings {
+            eprintln!("decimate: warning: {w}");
+        }
+    }
+
+    // (3) Build the models: weld duplicated vertices, fill in what the file lacks.
+    let scene = mesh::build::build_scene(outcome.scene, args.weld);
+
+    match args.action {
+        Action::NoGui => batch::run(scene, &args),
+        // (4) menus, (5) callbacks, (6) main loop: the viewer.
+        Action::Gui | Action::Shot => {
+            eprintln!("decimate: the viewer is not built yet; use the nogui action");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,1 +1,202 @@
-//! Decimation algorithms, one module per algorithm, over `mesh` arrays.
+//! Decimation algorithms, one module per algorithm, over `mesh` arrays, behind one entry
+//! point: [`decimate_scene`] applies a [`Params`] (target, error bound, feature angle) to
+//! every model of a scene and returns a [`Report`].
+
+pub mod loop_split;
+pub mod schroeder;
+
+use std::time::Instant;
+
+use crate::mesh::Scene;
+
+/// How far to decimate. Counts are over the whole scene and shared among its models in
+/// proportion to their vertex counts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Target {
+    /// Remove this percentage (0–100) of the vertices; 100 means "as far as possible".
+    RemovePercent(f64),
+    /// Remove this many vertices (the original's `-v`).
+    RemoveVertices(usize),
+    /// Stop when this many vertices are left.
+    KeepVertices(usize),
+    /// Stop when this many triangles are left.
+    KeepTriangles(usize),
+    /// No count: remove while the error bound allows (needs `Params::max_error`).
+    ErrorOnly,
+}
+
+/// An error bound: stop before a removal whose error would exceed it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ErrorBound {
+    /// In model units.
+    Absolute(f64),
+    /// As a fraction of the model's bounding-box diagonal (`E%` on the command line / 100).
+    DiagonalFraction(f64),
+}
+
+/// Everything a decimation run needs besides the scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Params {
+    pub target: Target,
+    pub max_error: Option<ErrorBound>,
+    /// Dihedral angle in degrees above which an edge is a feature edge.
+    pub feature_angle_deg: f64,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Self {
+            target: Target::RemovePercent(50.0),
+            max_error: None,
+            feature_angle_deg: 30.0,
+        }
+    }
+}
+
+/// What happened to one model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelReport {
+    pub name: String,
+    pub vertices_before: usize,
+    pub triangles_before: usize,
+    pub vertices_after: usize,
+    pub triangles_after: usize,
+    /// Largest error of any removal made, in model units.
+    pub max_error: f64,
+    /// True when no further vertex of this model can be removed.
+    pub fully_decimated: bool,
+    /// True when the model fell under four vertices and was dropped from the scene.
+    pub dropped: bool,
+}
+
+/// What a decimation run did, model by model.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Report {
+    pub models: Vec<ModelReport>,
+    pub seconds: f64,
+}
+
+impl Report {
+    pub fn vertices_removed(&self) -> usize {
+        self.models
+            .iter()
+            .map(|m| m.vertices_before - m.vertices_after)
+            .sum()
+    }
+
+    /// True when every model that remains is fully decimated.
+    pub fn fully_decimated(&self) -> bool {
+        self.models.iter().all(|m| m.fully_decimated || m.dropped)
+    }
+}
+
+/// Decimates every model of `scene` in place with Schroeder vertex removal. Models left with
+/// fewer than four vertices are dropped. `progress` is called with the fraction done (0..=1).
+pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
+    let start = Instant::now();
+    let vertices: Vec<usize> = scene.models.iter().map(|m| m.used_vertex_count()).collect();
+    let triangles: Vec<usize> = scene.models.iter().map(|m| m.triangles.len()).collect();
+    let total_vertices: usize = vertices.iter().sum();
+    let total_triangles: usize = triangles.iter().sum();
+
+    // Share the scene's target among models in proportion to their size.
+    let removals: Vec<usize> = match params.target {
+        Target::RemovePercent(p) => vertices
+            .iter()
+            .map(|&n| ((p / 100.0) * n as f64).round() as usize)
+            .collect(),
+        Target::RemoveVertices(k) => share(k, &vertices),
+        Target::KeepVertices(k) => share(total_vertices.saturating_sub(k), &vertices),
+        Target::KeepTriangles(_) | Target::ErrorOnly => vec![usize::MAX; vertices.len()],
+    };
+    let keep_triangles: Vec<usize> = match params.target {
+        Target::KeepTriangles(k) => share(k.min(total_triangles), &triangles),
+        _ => vec![0; triangles.len()],
+    };
+    let planned: usize = removals
+        .iter()
+        .zip(&vertices)
+        .map(|(&r, &n)| r.min(n))
+        .sum::<usize>()
+        .max(1);
+
+    let mut reports = Vec::with_capacity(scene.models.len());
+    let mut done = 0usize;
+    for (i, model) in scene.models.iter_mut().enumerate() {
+        let max_error = match params.max_error {
+            None => f64::INFINITY,
+            Some(ErrorBound::Absolute(e)) => e,
+            Some(ErrorBound::DiagonalFraction(f)) => {
+                f * model
+                    .bounds()
+                    .map_or(0.0, |(lo, hi)| (hi - lo).length() as f64)
+            }
+        };
+        let limits = schroeder::Limits {
+            remove: removals[i],
+            keep_triangles: keep_triangles[i],
+            max_error,
+            feature_angle_deg: params.feature_angle_deg,
+        };
+        let outcome = schroeder::decimate_model(model, &limits, &mut |removed| {
+            progress(((done + removed) as f32 / planned as f32).min(1.0));
+        });
+        done += outcome.removed;
+        let vertices_after = model.positions.len().min(vertices[i] - outcome.removed);
+        reports.push(ModelReport {
+            name: model.name.clone(),
+            vertices_before: vertices[i],
+            triangles_before: triangles[i],
+            vertices_after,
+            triangles_after: model.triangles.len(),
+            max_error: outcome.max_error,
+            fully_decimated: outcome.exhausted,
+            dropped: vertices_after < 4,
+        });
+    }
+    // The original program's rule: a model left with fewer than four vertices is dropped.
+    let mut keep = reports.iter().map(|r| !r.dropped);
+    scene.models.retain(|_| keep.next().unwrap_or(true));
+    for r in reports.iter_mut().filter(|r| r.dropped) {
+        r.vertices_after = 0;
+        r.triangles_after = 0;
+    }
+    Report {
+        models: reports,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// Splits `total` into parts proportional to `weights` that add up to exactly `total`
+/// (cumulative rounding).
+fn share(total: usize, weights: &[usize]) -> Vec<usize> {
+    let sum: usize = weights.iter().sum();
+    if sum == 0 {
+        return vec![0; weights.len()];
+    }
+    let mut acc = 0usize;
+    let mut given = 0usize;
+    weights
+        .iter()
+        .map(|&w| {
+            acc += w;
+            let upto = ((total as u128 * acc as u128 + sum as u128 / 2) / sum as u128) as usize;
+            let part = upto - given;
+            given = upto;
+            part
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::share;
+
+    #[test]
+    fn shares_add_up_exactly() {
+        assert_eq!(share(10, &[1, 1, 1]), vec![3, 4, 3]);
+        assert_eq!(share(10, &[0, 5]), vec![0, 10]);
+        assert_eq!(share(7, &[]), Vec::<usize>::new());
+        assert_eq!(share(5, &[0, 0]), vec![0, 0]);
+    }
+}

@@ -23,6 +23,20 @@ impl<T> Attribute<T> {
             Self::PerVertex(v) | Self::PerFace(v) => v,
         }
     }
+
+    /// Keeps the values of the listed old vertices (or old faces), in that order: the
+    /// compaction step after welding or decimation.
+    pub fn select(&self, vertices: &[u32], faces: &[u32]) -> Self
+    where
+        T: Copy,
+    {
+        match self {
+            Self::PerVertex(v) => {
+                Self::PerVertex(vertices.iter().map(|&i| v[i as usize]).collect())
+            }
+            Self::PerFace(v) => Self::PerFace(faces.iter().map(|&i| v[i as usize]).collect()),
+        }
+    }
 }
 
 /// One triangle mesh of a scene.

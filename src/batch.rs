@@ -1,0 +1,136 @@
+//! The `nogui` action: decimate the scene to the command line's target, print a summary
+//! (and a progress bar on long runs) on stderr, and write VRML 2.0 — never over the input
+//! unless `--overwrite` says so.
+
+use std::io::{IsTerminal, Write};
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+use crate::cli::Args;
+use crate::decimate::{decimate_scene, Report};
+use crate::io;
+use crate::mesh::Scene;
+
+/// Runs the nogui job; the exit code says whether the output was written.
+pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
+    if !args.overwrite && same_file(&args.input, &args.output) {
+        eprintln!(
+            "decimate: {}: refusing to write over the input file (add --overwrite to allow it)",
+            args.output.display()
+        );
+        return ExitCode::from(2);
+    }
+    let mut bar = Progress::new(!args.quiet && std::io::stderr().is_terminal());
+    let report = decimate_scene(&mut scene, &args.params, &mut |f| bar.update(f));
+    bar.finish();
+    if !args.quiet {
+        eprint!("{}", summary(&report));
+    }
+    if let Err(e) = io::write_vrml2(&scene, &args.output) {
+        eprintln!("decimate: cannot write {e}");
+        return ExitCode::FAILURE;
+    }
+    if !args.quiet {
+        eprintln!("wrote {}", args.output.display());
+    }
+    ExitCode::SUCCESS
+}
+
+/// True when both paths name the same existing file.
+fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
+}
+
+/// The per-model table printed after a run.
+pub fn summary(report: &Report) -> String {
+    let mut s = String::new();
+    let (mut vb, mut tb, mut va, mut ta) = (0, 0, 0, 0);
+    for m in &report.models {
+        let state = if m.dropped {
+            "  dropped (fewer than 4 vertices left)"
+        } else if m.fully_decimated {
+            "  fully decimated"
+        } else {
+            ""
+        };
+        s += &format!(
+            "{:<24} vertices {:>9} -> {:<9} triangles {:>9} -> {:<9} max error {:.4e}{state}\n",
+            m.name,
+            m.vertices_before,
+            m.vertices_after,
+            m.triangles_before,
+            m.triangles_after,
+            m.max_error
+        );
+        vb += m.vertices_before;
+        tb += m.triangles_before;
+        va += m.vertices_after;
+        ta += m.triangles_after;
+    }
+    let removed = report.vertices_removed();
+    let rate = if report.seconds > 0.0 {
+        removed as f64 / report.seconds
+    } else {
+        0.0
+    };
+    s += &format!(
+        "total: vertices {vb} -> {va}, triangles {tb} -> {ta}; removed {removed} vertices in \
+         {:.3} s ({:.0} vertices/s)\n",
+        report.seconds, rate
+    );
+    if !report.models.is_empty() && report.fully_decimated() {
+        s += "the model is fully decimated: no further vertex can be removed\n";
+    }
+    s
+}
+
+/// A one-line progress bar on stderr, shown only once a run has lasted a second.
+struct Progress {
+    enabled: bool,
+    start: Instant,
+    last: Option<Instant>,
+    shown: bool,
+}
+
+impl Progress {
+    fn new(enabled: bool) -> Self {
+        Self {
+            enabled,
+            start: Instant::now(),
+            last: None,
+            shown: false,
+        }
+    }
+
+    fn update(&mut self, fraction: f32) {
+        if !self.enabled || self.start.elapsed() < Duration::from_secs(1) {
+            return;
+        }
+        if self
+            .last
+            .is_some_and(|t| t.elapsed() < Duration::from_millis(100))
+        {
+            return;
+        }
+        self.last = Some(Instant::now());
+        self.shown = true;
+        let width = 40;
+        let done = ((fraction.clamp(0.0, 1.0) * width as f32) as usize).min(width);
+        eprint!(
+            "\rdecimating [{}{}] {:>3.0}%",
+            "#".repeat(done),
+            " ".repeat(width - done),
+            fraction * 100.0
+        );
+        let _ = std::io::stderr().flush();
+    }
+
+    fn finish(&mut self) {
+        if self.shown {
+            eprintln!();
+        }
+    }
+}
