@@ -14,6 +14,11 @@ log() { printf '\033[1m[evaluate]\033[0m %s\n' "$*" >&2; }
 die() { printf 'evaluate: %s\n' "$*" >&2; exit 1; }
 
 build_release() {
+    if [ "${EVAL_NO_BUILD:-0}" = 1 ]; then
+        [ -x "$BIN/decimate" ] && [ -x "$BIN/metro" ] || die "EVAL_NO_BUILD=1 but no binaries in $BIN"
+        log "using the binaries in $BIN as they are (EVAL_NO_BUILD=1)"
+        return
+    fi
     log "building release binaries (decimate, metro)"
     (cd "$ROOT" && cargo build --release --quiet --bin decimate --bin metro) || die "cargo build failed"
 }
