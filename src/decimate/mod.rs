@@ -3,6 +3,7 @@
 //! every model of a scene and returns a [`Report`].
 
 pub mod loop_split;
+pub mod queue;
 pub mod schroeder;
 
 use std::time::Instant;
@@ -151,7 +152,8 @@ pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnM
             triangles_after: model.triangles.len(),
             max_error: outcome.max_error,
             fully_decimated: outcome.exhausted,
-            dropped: vertices_after < 4,
+            // As the original: only a removal can drop a model, never the input itself.
+            dropped: outcome.removed > 0 && vertices_after < 4,
         });
     }
     // The original program's rule: a model left with fewer than four vertices is dropped.

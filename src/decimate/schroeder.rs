@@ -2,7 +2,8 @@
 //! Triangle Meshes", SIGGRAPH 1992 — the algorithm of the 2002 program, in full.
 //!
 //! The pipeline over flat arrays, one stage per step:
-//! 1. load: positions to f64, drop triangles with out-of-range indices;
+//! 1. load: drop triangles with out-of-range indices (positions stay f32 — vertex removal
+//!    never moves a vertex — and all arithmetic is f64);
 //! 2. connect: vertex → triangle incidence (`mesh::topology`);
 //! 3. classify every vertex (`mesh::classify`) and rank the removable ones by their
 //!    decimation criterion in a priority queue:
@@ -21,12 +22,10 @@
 //! Entries in the queue are invalidated lazily by a per-vertex version number, so each
 //! removal costs O(valence² + log n) and nothing in the loop is quadratic in the mesh size.
 
-use std::cmp::{Ordering, Reverse};
-use std::collections::BinaryHeap;
-
-use glam::DVec3;
+use glam::{DVec3, Vec3};
 
 use super::loop_split;
+use super::queue::VertexQueue;
 use crate::mesh::classify::{classify, VertexClass};
 use crate::mesh::topology::{Connectivity, Ring};
 use crate::mesh::{Attribute, Model};
@@ -61,7 +60,7 @@ pub fn decimate_model(
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
     // 1. load
-    let positions: Vec<DVec3> = model.positions.iter().map(|p| p.as_dvec3()).collect();
+    let positions = model.positions.clone();
     let n = positions.len() as u32;
     let valid: Vec<u32> = (0..model.triangles.len() as u32)
         .filter(|&t| model.triangles[t as usize].iter().all(|&v| v < n))
@@ -86,20 +85,17 @@ pub fn decimate_model(
         if outcome.removed >= limits.remove || d.conn.triangle_count() <= limits.keep_triangles {
             break;
         }
-        let Some(Reverse(entry)) = d.heap.pop() else {
+        let Some((key, v)) = d.queue.peek() else {
             outcome.exhausted = true;
             break;
         };
-        let v = entry.vertex;
-        if d.removed[v as usize] || entry.version != d.version[v as usize] {
-            continue;
-        }
-        if entry.key > limits.max_error {
+        if key > limits.max_error {
             break;
         }
-        if d.try_remove(v, entry.key) {
+        d.queue.remove(v);
+        if d.try_remove(v, key) {
             outcome.removed += 1;
-            outcome.max_error = outcome.max_error.max(entry.key);
+            outcome.max_error = outcome.max_error.max(key);
             if outcome.removed % 4096 == 0 {
                 progress(outcome.removed);
             }
@@ -114,42 +110,13 @@ pub fn decimate_model(
     outcome
 }
 
-/// A queue entry: smallest key first (through `Reverse`), stale when its version is old.
-#[derive(Debug, Clone, Copy)]
-struct Entry {
-    key: f64,
-    vertex: u32,
-    version: u32,
-}
-
-impl PartialEq for Entry {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Entry {
-    fn cmp(&self, other: &Self) -> Ordering {
-        self.key
-            .total_cmp(&other.key)
-            .then(self.vertex.cmp(&other.vertex))
-    }
-}
-
 /// The working state of one model's decimation.
 struct Decimator {
-    positions: Vec<DVec3>,
+    positions: Vec<Vec3>,
     conn: Connectivity,
     /// Error already accumulated around each vertex by earlier removals.
     accumulated: Vec<f64>,
-    version: Vec<u32>,
-    removed: Vec<bool>,
-    heap: BinaryHeap<Reverse<Entry>>,
+    queue: VertexQueue,
     cos_feature: f64,
     ring: Ring,
     crosses: Vec<DVec3>,
@@ -162,15 +129,13 @@ struct Decimator {
 const MIN_RELATIVE_AREA: f64 = 1e-10;
 
 impl Decimator {
-    fn new(positions: Vec<DVec3>, triangles: &[[u32; 3]], feature_angle_deg: f64) -> Self {
+    fn new(positions: Vec<Vec3>, triangles: &[[u32; 3]], feature_angle_deg: f64) -> Self {
         let n = positions.len();
         Self {
             conn: Connectivity::new(n, triangles),
             positions,
             accumulated: vec![0.0; n],
-            version: vec![0; n],
-            removed: vec![false; n],
-            heap: BinaryHeap::with_capacity(n),
+            queue: VertexQueue::new(n),
             cos_feature: feature_angle_deg.to_radians().cos(),
             ring: Ring::default(),
             crosses: Vec::new(),
@@ -190,7 +155,7 @@ impl Decimator {
             &mut self.ring,
             &mut self.crosses,
         );
-        let p = self.positions[v as usize];
+        let p = self.positions[v as usize].as_dvec3();
         let verts = &self.ring.verts;
         let distance = match class {
             VertexClass::Simple => {
@@ -222,8 +187,8 @@ impl Decimator {
             let c = self.crosses[i];
             let a = c.length();
             normal += c;
-            let pa = self.positions[verts[i] as usize];
-            let pb = self.positions[verts[(i + 1) % n] as usize];
+            let pa = self.positions[verts[i] as usize].as_dvec3();
+            let pb = self.positions[verts[(i + 1) % n] as usize].as_dvec3();
             centre += a * (p + pa + pb) / 3.0;
             area += a;
         }
@@ -235,7 +200,10 @@ impl Decimator {
     }
 
     fn line_distance(&self, p: DVec3, a: u32, b: u32) -> f64 {
-        let (a, b) = (self.positions[a as usize], self.positions[b as usize]);
+        let (a, b) = (
+            self.positions[a as usize].as_dvec3(),
+            self.positions[b as usize].as_dvec3(),
+        );
         let dir = b - a;
         let len2 = dir.length_squared();
         if len2 <= 0.0 {
@@ -244,17 +212,13 @@ impl Decimator {
         (p - a).cross(dir).length() / len2.sqrt()
     }
 
-    /// (Re)computes `v`'s queue key and pushes it when `v` is removable.
+    /// (Re)computes `v`'s queue key; queues `v` when removable, takes it out otherwise.
     fn rank(&mut self, v: u32) {
-        self.version[v as usize] = self.version[v as usize].wrapping_add(1);
-        if let Some((class, distance)) = self.evaluate(v) {
-            if class.removable() {
-                self.heap.push(Reverse(Entry {
-                    key: distance + self.accumulated[v as usize],
-                    vertex: v,
-                    version: self.version[v as usize],
-                }));
+        match self.evaluate(v) {
+            Some((class, distance)) if class.removable() => {
+                self.queue.set(v, distance + self.accumulated[v as usize]);
             }
+            _ => self.queue.remove(v),
         }
     }
 
@@ -285,7 +249,6 @@ impl Decimator {
             let tri = self.fill[i];
             self.conn.add_triangle(tri);
         }
-        self.removed[v as usize] = true;
         for i in 0..self.neighbours.len() {
             let u = self.neighbours[i];
             let acc = &mut self.accumulated[u as usize];
@@ -297,7 +260,7 @@ impl Decimator {
 
     /// Interior vertex: triangulate the whole closed loop over its average plane.
     fn fill_closed(&mut self, v: u32) -> bool {
-        let p = self.positions[v as usize];
+        let p = self.positions[v as usize].as_dvec3();
         let Some((normal, _)) = self.average_plane(p, 0..self.crosses.len()) else {
             return false;
         };
@@ -320,7 +283,7 @@ impl Decimator {
         if self.conn.has_edge_avoiding(first, last, v) {
             return false;
         }
-        let p = self.positions[v as usize];
+        let p = self.positions[v as usize].as_dvec3();
         let Some((normal, _)) = self.average_plane(p, 0..self.crosses.len()) else {
             return false;
         };
@@ -338,7 +301,7 @@ impl Decimator {
         if self.conn.has_edge_avoiding(r[first], r[second], v) {
             return false;
         }
-        let p = self.positions[v as usize];
+        let p = self.positions[v as usize].as_dvec3();
         let sides = [(first, second), (second, first + k)];
         for (from, to) in sides {
             let Some((normal, _)) = self.average_plane(p, (from..to).map(|i| i % k)) else {
@@ -373,7 +336,7 @@ impl Decimator {
         // Normal of the old region: the sum of the ring triangles' area vectors.
         let old: DVec3 = self.crosses.iter().copied().sum();
         for tri in &self.fill {
-            let [a, b, c] = tri.map(|i| self.positions[i as usize]);
+            let [a, b, c] = tri.map(|i| self.positions[i as usize].as_dvec3());
             let cross = (b - a).cross(c - a);
             let longest = (b - a)
                 .length_squared()

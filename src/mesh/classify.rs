@@ -13,7 +13,7 @@
 //! the feature angle. Corners and complex vertices are never removed; the "sharp turn" rule
 //! keeps the corners of a plane's outline and of a crease line, which the 2002 program lost.
 
-use glam::DVec3;
+use glam::{DVec3, Vec3};
 
 use super::topology::{Connectivity, Ring, RingShape};
 
@@ -48,7 +48,7 @@ impl VertexClass {
 /// twice-area) normal of each ring triangle, for the caller's error computation.
 pub fn classify(
     conn: &Connectivity,
-    positions: &[DVec3],
+    positions: &[Vec3],
     v: u32,
     cos_feature: f64,
     ring: &mut Ring,
@@ -61,11 +61,11 @@ pub fn classify(
         RingShape::Complex => return VertexClass::Complex,
         RingShape::Closed | RingShape::Open => {}
     }
-    let p = positions[v as usize];
+    let p = positions[v as usize].as_dvec3();
     let n = ring.verts.len();
     for i in 0..ring.triangles.len() {
-        let a = positions[ring.verts[i] as usize];
-        let b = positions[ring.verts[(i + 1) % n] as usize];
+        let a = positions[ring.verts[i] as usize].as_dvec3();
+        let b = positions[ring.verts[(i + 1) % n] as usize].as_dvec3();
         crosses.push((a - p).cross(b - p));
     }
     let is_feature = |i: usize, j: usize| {
@@ -74,8 +74,8 @@ pub fn classify(
         len > 0.0 && ni.dot(nj) / len < cos_feature
     };
     let sharp_turn = |a: u32, b: u32| {
-        let d1 = (p - positions[a as usize]).normalize_or_zero();
-        let d2 = (positions[b as usize] - p).normalize_or_zero();
+        let d1 = (p - positions[a as usize].as_dvec3()).normalize_or_zero();
+        let d2 = (positions[b as usize].as_dvec3() - p).normalize_or_zero();
         d1.dot(d2) < cos_feature
     };
     let k = crosses.len();
@@ -119,7 +119,7 @@ pub fn classify(
 mod tests {
     use super::*;
 
-    fn classify_vertex(positions: &[DVec3], tris: &[[u32; 3]], v: u32) -> VertexClass {
+    fn classify_vertex(positions: &[Vec3], tris: &[[u32; 3]], v: u32) -> VertexClass {
         let conn = Connectivity::new(positions.len(), tris);
         let cos = 30f64.to_radians().cos();
         classify(
@@ -136,11 +136,11 @@ mod tests {
     //   6 7 8
     //   3 4 5
     //   0 1 2
-    fn grid(z: impl Fn(f64, f64) -> f64) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    fn grid(z: impl Fn(f32, f32) -> f32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
         let mut p = Vec::new();
         for y in 0..3 {
             for x in 0..3 {
-                p.push(DVec3::new(x as f64, y as f64, z(x as f64, y as f64)));
+                p.push(Vec3::new(x as f32, y as f32, z(x as f32, y as f32)));
             }
         }
         let mut t = Vec::new();
@@ -176,13 +176,13 @@ mod tests {
     #[test]
     fn cube_corner_is_corner() {
         let p = vec![
-            DVec3::ZERO,
-            DVec3::X,
-            DVec3::Y,
-            DVec3::Z,
-            DVec3::new(1.0, 1.0, 0.0),
-            DVec3::new(0.0, 1.0, 1.0),
-            DVec3::new(1.0, 0.0, 1.0),
+            Vec3::ZERO,
+            Vec3::X,
+            Vec3::Y,
+            Vec3::Z,
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 1.0),
+            Vec3::new(1.0, 0.0, 1.0),
         ];
         // The three faces meeting at the origin, seen from outside.
         let t = [

@@ -11,12 +11,26 @@
 /// Largest valence handled; vertices above it are reported as complex (kept).
 pub const MAX_VALENCE: usize = 256;
 
+/// Incident triangles kept inline per vertex; more spill to a side table.
+const INLINE: usize = 15;
+
+/// One vertex's incident triangles: a cache line holding up to `INLINE` ids inline, so a
+/// lookup costs one memory access instead of two (a `Vec` header, then its heap data).
+#[derive(Debug, Clone, Copy)]
+#[repr(align(64))]
+struct Incidence {
+    len: u32,
+    ids: [u32; INLINE],
+}
+
 /// Triangles with per-vertex incidence, editable in place.
 #[derive(Debug, Clone)]
 pub struct Connectivity {
     triangles: Vec<[u32; 3]>,
     alive: Vec<bool>,
-    vertex_triangles: Vec<Vec<u32>>,
+    incidence: Vec<Incidence>,
+    /// Incident lists of vertices with more than `INLINE` triangles.
+    spilled: std::collections::HashMap<u32, Vec<u32>>,
     free: Vec<u32>,
     alive_count: usize,
 }
@@ -48,27 +62,62 @@ impl Connectivity {
     /// Builds connectivity for `vertex_count` vertices; triangles with an index out of range
     /// must have been rejected by the caller.
     pub fn new(vertex_count: usize, triangles: &[[u32; 3]]) -> Self {
-        let mut degree = vec![0u32; vertex_count];
-        for t in triangles {
-            for &v in t {
-                degree[v as usize] += 1;
-            }
-        }
-        let mut vertex_triangles: Vec<Vec<u32>> = degree
-            .iter()
-            .map(|&d| Vec::with_capacity(d as usize + 2))
-            .collect();
-        for (i, t) in triangles.iter().enumerate() {
-            for &v in t {
-                vertex_triangles[v as usize].push(i as u32);
-            }
-        }
-        Self {
+        let mut conn = Self {
             triangles: triangles.to_vec(),
             alive: vec![true; triangles.len()],
-            vertex_triangles,
+            incidence: vec![
+                Incidence {
+                    len: 0,
+                    ids: [0; INLINE]
+                };
+                vertex_count
+            ],
+            spilled: std::collections::HashMap::new(),
             free: Vec::new(),
             alive_count: triangles.len(),
+        };
+        for (i, t) in triangles.iter().enumerate() {
+            for &v in t {
+                conn.link(v, i as u32);
+            }
+        }
+        conn
+    }
+
+    /// Adds `t` to `v`'s incident list.
+    fn link(&mut self, v: u32, t: u32) {
+        let inc = &mut self.incidence[v as usize];
+        let len = inc.len as usize;
+        if len < INLINE {
+            inc.ids[len] = t;
+        } else {
+            let list = self.spilled.entry(v).or_insert_with(|| inc.ids.to_vec());
+            list.push(t);
+        }
+        inc.len += 1;
+    }
+
+    /// Removes `t` from `v`'s incident list (order is not kept).
+    fn unlink(&mut self, v: u32, t: u32) {
+        let inc = &mut self.incidence[v as usize];
+        let len = inc.len as usize;
+        if len <= INLINE {
+            if let Some(pos) = inc.ids[..len].iter().position(|&x| x == t) {
+                inc.ids[pos] = inc.ids[len - 1];
+                inc.len -= 1;
+            }
+            return;
+        }
+        let Some(list) = self.spilled.get_mut(&v) else {
+            return;
+        };
+        if let Some(pos) = list.iter().position(|&x| x == t) {
+            list.swap_remove(pos);
+            inc.len -= 1;
+        }
+        if list.len() <= INLINE {
+            inc.ids[..list.len()].copy_from_slice(list);
+            self.spilled.remove(&v);
         }
     }
 
@@ -92,7 +141,13 @@ impl Connectivity {
 
     /// Live triangles incident to `v`.
     pub fn incident(&self, v: u32) -> &[u32] {
-        &self.vertex_triangles[v as usize]
+        let inc = &self.incidence[v as usize];
+        let len = inc.len as usize;
+        if len <= INLINE {
+            &inc.ids[..len]
+        } else {
+            self.spilled.get(&v).map_or(&[], Vec::as_slice)
+        }
     }
 
     /// Ids of live triangle slots, ascending.
@@ -108,10 +163,7 @@ impl Connectivity {
         self.alive[t as usize] = false;
         self.alive_count -= 1;
         for v in self.triangles[t as usize] {
-            let list = &mut self.vertex_triangles[v as usize];
-            if let Some(pos) = list.iter().position(|&x| x == t) {
-                list.swap_remove(pos);
-            }
+            self.unlink(v, t);
         }
         self.free.push(t);
     }
@@ -132,7 +184,7 @@ impl Connectivity {
         };
         self.alive_count += 1;
         for v in tri {
-            self.vertex_triangles[v as usize].push(t);
+            self.link(v, t);
         }
         t
     }
@@ -265,6 +317,24 @@ mod tests {
         // Inconsistent orientation.
         let c = Connectivity::new(4, &[[0, 1, 2], [0, 1, 3]]);
         assert_eq!(c.ring(0, &mut r), RingShape::Complex);
+    }
+
+    #[test]
+    fn high_valence_spills_and_comes_back() {
+        // A fan of 40 triangles around vertex 0.
+        let tris: Vec<[u32; 3]> = (1..=40).map(|i| [0, i, i % 40 + 1]).collect();
+        let mut c = Connectivity::new(41, &tris);
+        let mut r = Ring::default();
+        assert_eq!(c.incident(0).len(), 40);
+        assert_eq!(c.ring(0, &mut r), RingShape::Closed);
+        assert_eq!(r.verts.len(), 40);
+        for t in 0..30 {
+            c.remove_triangle(t);
+        }
+        let mut left: Vec<u32> = c.incident(0).to_vec();
+        left.sort_unstable();
+        assert_eq!(left, (30..40).collect::<Vec<u32>>());
+        assert_eq!(c.ring(0, &mut r), RingShape::Open);
     }
 
     #[test]

@@ -414,7 +414,7 @@ fn split(items: &mut [BuildItem]) -> Option<usize> {
                 continue;
             }
             let cost = half_area(lo, hi) * c as f64 + right_area[b] * right_count[b] as f64;
-            if best.map_or(true, |(bc, _, _)| cost < bc) {
+            if best.is_none_or(|(bc, _, _)| cost < bc) {
                 best = Some((cost, axis, b));
             }
         }

@@ -1,0 +1,46 @@
+//! The bundled models in `assets/` are exactly what `tools/gen_models.rs` generates, triangle for triangle (so the
+//! files users open and the shapes the tests decimate never drift apart), with the report's
+//! vertex and triangle counts.
+
+use decimate::io::read_scene;
+use decimate::mesh::shapes;
+
+#[test]
+fn assets_match_the_generator_and_the_report() {
+    let reported = [
+        (5, 6),
+        (26, 48),
+        (121, 200),
+        (602, 1200),
+        (528, 1056),
+        (2402, 4800),
+    ];
+    for (shape, (v, t)) in shapes::all().into_iter().zip(reported) {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("assets")
+            .join(format!("{}.wrl", shape.name));
+        let scene = read_scene(&path)
+            .unwrap_or_else(|e| {
+                panic!("{e} (regenerate: cargo run --bin gen-models -- assets assets)")
+            })
+            .scene;
+        assert_eq!(scene.models.len(), 1, "{}", shape.name);
+        let m = &scene.models[0];
+        assert_eq!(
+            (m.positions.len(), m.triangles.len()),
+            (v, t),
+            "{}",
+            shape.name
+        );
+        // The reader numbers vertices in order of first use: compare corners by position.
+        let corners = |tris: &[[u32; 3]], pos: &[glam::Vec3]| -> Vec<[glam::Vec3; 3]> {
+            tris.iter().map(|t| t.map(|i| pos[i as usize])).collect()
+        };
+        assert_eq!(
+            corners(&m.triangles, &m.positions),
+            corners(&shape.triangles, &shape.positions),
+            "{}: geometry differs",
+            shape.name
+        );
+    }
+}
