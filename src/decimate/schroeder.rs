@@ -26,7 +26,7 @@ use glam::{DVec3, Vec3};
 
 use super::loop_split;
 use super::queue::VertexQueue;
-use crate::mesh::classify::{classify, VertexClass};
+use crate::mesh::classify::{classify, RingGeometry, VertexClass};
 use crate::mesh::topology::{Connectivity, Ring};
 use crate::mesh::{spatial, Attribute, Model};
 
@@ -103,7 +103,7 @@ pub fn decimate_model(
         if d.try_remove(v, key) {
             outcome.removed += 1;
             outcome.max_error = outcome.max_error.max(key);
-            if outcome.removed % 4096 == 0 {
+            if outcome.removed.is_multiple_of(4096) {
                 progress(outcome.removed);
             }
         }
@@ -126,7 +126,7 @@ struct Decimator {
     queue: VertexQueue,
     cos_feature: f64,
     ring: Ring,
-    crosses: Vec<DVec3>,
+    geometry: RingGeometry,
     fill: Vec<[u32; 3]>,
     loop_buf: Vec<u32>,
     neighbours: Vec<u32>,
@@ -145,7 +145,7 @@ impl Decimator {
             queue: VertexQueue::new(n),
             cos_feature: feature_angle_deg.to_radians().cos(),
             ring: Ring::default(),
-            crosses: Vec::new(),
+            geometry: RingGeometry::default(),
             fill: Vec::new(),
             loop_buf: Vec::new(),
             neighbours: Vec::new(),
@@ -160,13 +160,13 @@ impl Decimator {
             v,
             self.cos_feature,
             &mut self.ring,
-            &mut self.crosses,
+            &mut self.geometry,
         );
         let p = self.positions[v as usize].as_dvec3();
         let verts = &self.ring.verts;
         let distance = match class {
             VertexClass::Simple => {
-                let (normal, centre) = self.average_plane(p, 0..self.crosses.len())?;
+                let (normal, centre) = self.average_plane(p, 0..self.geometry.crosses.len())?;
                 normal.dot(p - centre).abs()
             }
             VertexClass::Boundary => self.line_distance(p, verts[0], verts[verts.len() - 1]),
@@ -186,19 +186,19 @@ impl Decimator {
         indices: impl Iterator<Item = usize>,
     ) -> Option<(DVec3, DVec3)> {
         let verts = &self.ring.verts;
-        let n = verts.len();
         let mut normal = DVec3::ZERO;
         let mut centre = DVec3::ZERO;
         let mut area = 0.0;
         for i in indices {
-            let c = self.crosses[i];
-            let a = c.length();
-            normal += c;
+            let a = self.geometry.lengths[i];
+            normal += self.geometry.crosses[i];
             let pa = self.positions[verts[i] as usize].as_dvec3();
-            let pb = self.positions[verts[(i + 1) % n] as usize].as_dvec3();
-            centre += a * (p + pa + pb) / 3.0;
+            let next = verts.get(i + 1).unwrap_or(&verts[0]);
+            let pb = self.positions[*next as usize].as_dvec3();
+            centre += a * (p + pa + pb);
             area += a;
         }
+        let centre = centre / 3.0;
         let len = normal.length();
         if area <= 0.0 || len <= 1e-12 * area {
             return None;
@@ -268,7 +268,7 @@ impl Decimator {
     /// Interior vertex: triangulate the whole closed loop over its average plane.
     fn fill_closed(&mut self, v: u32) -> bool {
         let p = self.positions[v as usize].as_dvec3();
-        let Some((normal, _)) = self.average_plane(p, 0..self.crosses.len()) else {
+        let Some((normal, _)) = self.average_plane(p, 0..self.geometry.crosses.len()) else {
             return false;
         };
         let r = &self.ring.verts;
@@ -291,7 +291,7 @@ impl Decimator {
             return false;
         }
         let p = self.positions[v as usize].as_dvec3();
-        let Some((normal, _)) = self.average_plane(p, 0..self.crosses.len()) else {
+        let Some((normal, _)) = self.average_plane(p, 0..self.geometry.crosses.len()) else {
             return false;
         };
         loop_split::triangulate(&self.positions, &self.ring.verts, normal, &mut self.fill)
@@ -341,7 +341,7 @@ impl Decimator {
             d == 1 || (closed && d == k - 1)
         };
         // Normal of the old region: the sum of the ring triangles' area vectors.
-        let old: DVec3 = self.crosses.iter().copied().sum();
+        let old: DVec3 = self.geometry.crosses.iter().copied().sum();
         for tri in &self.fill {
             let [a, b, c] = tri.map(|i| self.positions[i as usize].as_dvec3());
             let cross = (b - a).cross(c - a);
@@ -370,8 +370,9 @@ impl Decimator {
     fn faces_like_old(&self, cross: DVec3, tri: &[u32; 3]) -> bool {
         let r = &self.ring.verts;
         let k = r.len();
-        self.crosses.iter().enumerate().all(|(i, &c)| {
-            let touches = tri.contains(&r[i]) || tri.contains(&r[(i + 1) % k]);
+        self.geometry.crosses.iter().enumerate().all(|(i, &c)| {
+            let next = if i + 1 == k { r[0] } else { r[i + 1] };
+            let touches = tri.contains(&r[i]) || tri.contains(&next);
             !touches || cross.dot(c) > -0.5 * cross.length() * c.length()
         })
     }
