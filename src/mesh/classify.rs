@@ -142,7 +142,7 @@ mod tests {
             v,
             cos,
             &mut Ring::default(),
-            &mut Vec::new(),
+            &mut RingGeometry::default(),
         )
     }
 
