@@ -16,3 +16,4 @@ pub mod cli;
 pub mod decimate;
 pub mod io;
 pub mod mesh;
+pub mod render;
