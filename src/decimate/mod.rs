@@ -2,6 +2,12 @@
 //! point: [`decimate_scene`] applies a [`Params`] (target, error bound, feature angle) to
 //! every model of a scene and returns a [`Report`].
 
+pub mod loop_split;
+pub mod queue;
+pub mod schroeder;
+
+use std::time::Instant;
+
 use crate::mesh::Scene;
 
 /// How far to decimate. Counts are over the whole scene and shared among its models in
@@ -88,6 +94,110 @@ impl Report {
 /// Decimates every model of `scene` in place with Schroeder vertex removal. Models left with
 /// fewer than four vertices are dropped. `progress` is called with the fraction done (0..=1).
 pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
-    let _ = (scene, params, progress);
-    Report::default()
+    let start = Instant::now();
+    let vertices: Vec<usize> = scene.models.iter().map(|m| m.used_vertex_count()).collect();
+    let triangles: Vec<usize> = scene.models.iter().map(|m| m.triangles.len()).collect();
+    let total_vertices: usize = vertices.iter().sum();
+    let total_triangles: usize = triangles.iter().sum();
+
+    // Share the scene's target among models in proportion to their size.
+    let removals: Vec<usize> = match params.target {
+        Target::RemovePercent(p) => vertices
+            .iter()
+            .map(|&n| ((p / 100.0) * n as f64).round() as usize)
+            .collect(),
+        Target::RemoveVertices(k) => share(k, &vertices),
+        Target::KeepVertices(k) => share(total_vertices.saturating_sub(k), &vertices),
+        Target::KeepTriangles(_) | Target::ErrorOnly => vec![usize::MAX; vertices.len()],
+    };
+    let keep_triangles: Vec<usize> = match params.target {
+        Target::KeepTriangles(k) => share(k.min(total_triangles), &triangles),
+        _ => vec![0; triangles.len()],
+    };
+    let planned: usize = removals
+        .iter()
+        .zip(&vertices)
+        .map(|(&r, &n)| r.min(n))
+        .sum::<usize>()
+        .max(1);
+
+    let mut reports = Vec::with_capacity(scene.models.len());
+    let mut done = 0usize;
+    for (i, model) in scene.models.iter_mut().enumerate() {
+        let max_error = match params.max_error {
+            None => f64::INFINITY,
+            Some(ErrorBound::Absolute(e)) => e,
+            Some(ErrorBound::DiagonalFraction(f)) => {
+                f * model
+                    .bounds()
+                    .map_or(0.0, |(lo, hi)| (hi - lo).length() as f64)
+            }
+        };
+        let limits = schroeder::Limits {
+            remove: removals[i],
+            keep_triangles: keep_triangles[i],
+            max_error,
+            feature_angle_deg: params.feature_angle_deg,
+        };
+        let outcome = schroeder::decimate_model(model, &limits, &mut |removed| {
+            progress(((done + removed) as f32 / planned as f32).min(1.0));
+        });
+        done += outcome.removed;
+        let vertices_after = model.positions.len().min(vertices[i] - outcome.removed);
+        reports.push(ModelReport {
+            name: model.name.clone(),
+            vertices_before: vertices[i],
+            triangles_before: triangles[i],
+            vertices_after,
+            triangles_after: model.triangles.len(),
+            max_error: outcome.max_error,
+            fully_decimated: outcome.exhausted,
+            dropped: vertices_after < 4,
+        });
+    }
+    // The original program's rule: a model left with fewer than four vertices is dropped.
+    let mut keep = reports.iter().map(|r| !r.dropped);
+    scene.models.retain(|_| keep.next().unwrap_or(true));
+    for r in reports.iter_mut().filter(|r| r.dropped) {
+        r.vertices_after = 0;
+        r.triangles_after = 0;
+    }
+    Report {
+        models: reports,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// Splits `total` into parts proportional to `weights` that add up to exactly `total`
+/// (cumulative rounding).
+fn share(total: usize, weights: &[usize]) -> Vec<usize> {
+    let sum: usize = weights.iter().sum();
+    if sum == 0 {
+        return vec![0; weights.len()];
+    }
+    let mut acc = 0usize;
+    let mut given = 0usize;
+    weights
+        .iter()
+        .map(|&w| {
+            acc += w;
+            let upto = ((total as u128 * acc as u128 + sum as u128 / 2) / sum as u128) as usize;
+            let part = upto - given;
+            given = upto;
+            part
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::share;
+
+    #[test]
+    fn shares_add_up_exactly() {
+        assert_eq!(share(10, &[1, 1, 1]), vec![3, 4, 3]);
+        assert_eq!(share(10, &[0, 5]), vec![0, 10]);
+        assert_eq!(share(7, &[]), Vec::<usize>::new());
+        assert_eq!(share(5, &[0, 0]), vec![0, 0]);
+    }
 }

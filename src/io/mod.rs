@@ -1,11 +1,30 @@
 //! Reading and writing scenes. One module per format; all readers produce the same `Scene`.
 //!
-//! Entry points: [`read_scene`] (format sniffed from the header, gzip handled) and
-//! [`write_vrml2`] (temporary file, then rename).
+//! Entry points: [`read_scene`] (format sniffed from the header, gzip handled here) and
+//! [`write_vrml2`] (temporary file, then rename); [`parse_bytes`] / [`parse_str`] read from
+//! memory. Submodules: `lexer` (shared tokens), `parse` (node trees for both VRML families),
+//! `vrml1` (VRML 1.0 / Inventor state machine), `vrml2` (VRML 2.0 tree walk), `build`
+//! (shape to model), `triangulate` (ear clipping), `ply` (PLY read/write), `writer` (VRML 2.0
+//! output).
 
+mod build;
+mod lexer;
+mod parse;
+pub mod ply;
+pub mod triangulate;
+mod vrml1;
+mod vrml2;
+mod writer;
+
+use std::collections::HashSet;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use crate::mesh::Scene;
+use lexer::{PResult, ParseError};
+
+pub use ply::write_ply;
+pub use writer::write_vrml2_to;
 
 /// What went wrong reading a scene: always names the file, and the line where there is one.
 #[derive(Debug, thiserror::Error)]
@@ -42,18 +61,198 @@ pub struct ReadOutcome {
     pub warnings: Vec<String>,
 }
 
-/// Reads a VRML 1.0, VRML 2.0 or Open Inventor ASCII file (optionally gzipped).
+/// Most models one file may expand to (DEF/USE instancing can multiply them).
+pub const MAX_MODELS: usize = 1_000_000;
+/// Most triangles one file may expand to.
+pub const MAX_TRIANGLES: usize = 200_000_000;
+
+/// Limits on what a file may expand to, and once-per-key warnings.
+#[derive(Default)]
+pub(crate) struct Budget {
+    models: usize,
+    triangles: usize,
+    warned: HashSet<String>,
+}
+
+impl Budget {
+    pub(crate) fn spend(&mut self, triangles: usize, line: usize) -> PResult<()> {
+        self.models += 1;
+        self.triangles += triangles;
+        if self.models > MAX_MODELS || self.triangles > MAX_TRIANGLES {
+            return Err(ParseError::new(
+                line,
+                format!(
+                    "the scene expands to more than {MAX_MODELS} shapes or {MAX_TRIANGLES} triangles (DEF/USE instancing?)"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    pub(crate) fn warn_once(&mut self, warnings: &mut Vec<String>, key: &str, message: String) {
+        if self.warned.insert(key.to_string()) {
+            warnings.push(message);
+        }
+    }
+}
+
+/// Reads a VRML 1.0, VRML 2.0, Open Inventor ASCII or PLY file (optionally gzipped).
 pub fn read_scene(path: &Path) -> Result<ReadOutcome, ReadError> {
-    Err(ReadError::Unsupported {
+    let io_err = |source| ReadError::Io {
         file: path.to_path_buf(),
-        message: "readers are not built yet".into(),
+        source,
+    };
+    let bytes = std::fs::read(path).map_err(io_err)?;
+    let is_ply_name = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("ply"));
+    parse_bytes_with(bytes, path, is_ply_name)
+}
+
+/// Reads a scene from memory; `file_name` is used in messages.
+pub fn parse_bytes(bytes: Vec<u8>, file_name: &Path) -> Result<ReadOutcome, ReadError> {
+    parse_bytes_with(bytes, file_name, false)
+}
+
+/// Reads a scene from text (tests, tools); `file_name` is used in messages.
+pub fn parse_str(text: &str, file_name: &str) -> Result<ReadOutcome, ReadError> {
+    parse_bytes(text.as_bytes().to_vec(), Path::new(file_name))
+}
+
+fn parse_bytes_with(
+    mut bytes: Vec<u8>,
+    path: &Path,
+    ply_by_name: bool,
+) -> Result<ReadOutcome, ReadError> {
+    let file = path.to_path_buf();
+    if bytes.starts_with(&[0x1f, 0x8b]) {
+        let mut out = Vec::with_capacity(bytes.len() * 4);
+        flate2::read::MultiGzDecoder::new(&bytes[..])
+            .read_to_end(&mut out)
+            .map_err(|e| ReadError::Syntax {
+                file: file.clone(),
+                line: 1,
+                message: format!("the gzip stream is damaged or truncated: {e}"),
+            })?;
+        bytes = out;
+    }
+    let syntax = |e: ParseError| ReadError::Syntax {
+        file: file.clone(),
+        line: e.line,
+        message: e.message,
+    };
+    if bytes.starts_with(b"ply") && matches!(bytes.get(3), Some(b'\n' | b'\r')) || ply_by_name {
+        let (scene, warnings) = ply::read_ply(&bytes).map_err(syntax)?;
+        return Ok(ReadOutcome { scene, warnings });
+    }
+    let first_line_end = bytes
+        .iter()
+        .position(|&b| b == b'\n')
+        .unwrap_or(bytes.len());
+    let header = String::from_utf8_lossy(&bytes[..first_line_end]);
+    let header = header.trim_end();
+    let dialect = if header.starts_with("#VRML V1.0 ascii") {
+        parse::Dialect::Vrml1
+    } else if header.starts_with("#VRML V2.0 utf8") {
+        parse::Dialect::Vrml2
+    } else if header.starts_with("#Inventor") && header.contains("binary") {
+        return Err(ReadError::Unsupported {
+            file,
+            message: "binary Inventor is not supported (convert it with ivcat)".into(),
+        });
+    } else if header.starts_with("#Inventor V2.") || header.starts_with("#Inventor V1.0 ascii") {
+        parse::Dialect::Vrml1
+    } else if bytes.iter().all(|b| b.is_ascii_whitespace()) {
+        return Err(syntax(ParseError::new(
+            1,
+            "the file is empty: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header",
+        )));
+    } else {
+        let shown: String = header.chars().take(40).collect();
+        return Err(syntax(ParseError::new(
+            1,
+            format!(
+                "not a VRML, Open Inventor or PLY file: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header, found '{shown}'"
+            ),
+        )));
+    };
+    parse_on_big_stack(&bytes, dialect).map_err(syntax)
+}
+
+/// Stack for parsing: the node nesting limit (`parse::MAX_DEPTH`) times the deepest
+/// recursion per level, with a wide margin, whatever thread the caller runs on.
+const PARSE_STACK: usize = 256 << 20;
+
+/// Parses and walks the node tree on a thread with a known, large stack (the recursion is
+/// bounded by `parse::MAX_DEPTH`, but callers' threads may have small stacks).
+fn parse_on_big_stack(bytes: &[u8], dialect: parse::Dialect) -> PResult<ReadOutcome> {
+    std::thread::scope(|s| {
+        match std::thread::Builder::new()
+            .name("scene-parser".into())
+            .stack_size(PARSE_STACK)
+            .spawn_scoped(s, || parse_tree(bytes, dialect))
+        {
+            Ok(handle) => handle
+                .join()
+                .unwrap_or_else(|_| Err(ParseError::new(1, "internal error: the parser panicked"))),
+            Err(_) => parse_tree(bytes, dialect),
+        }
+    })
+}
+
+fn parse_tree(bytes: &[u8], dialect: parse::Dialect) -> PResult<ReadOutcome> {
+    let mut parser = parse::Parser::new(bytes, dialect);
+    let roots = parser.parse_file()?;
+    let mut warnings = std::mem::take(&mut parser.warnings);
+    let models = match dialect {
+        parse::Dialect::Vrml1 => vrml1::read(&roots, &mut warnings),
+        parse::Dialect::Vrml2 => vrml2::read(&roots, &mut warnings),
+    }?;
+    // The tree (at most MAX_DEPTH deep) is dropped here, on the big stack.
+    drop(roots);
+    Ok(ReadOutcome {
+        scene: Scene { models },
+        warnings,
     })
 }
 
 /// Writes `scene` as VRML 2.0 to `path` via a temporary file in the same folder and a rename.
-pub fn write_vrml2(_scene: &Scene, path: &Path) -> Result<(), WriteError> {
-    Err(WriteError {
+pub fn write_vrml2(scene: &Scene, path: &Path) -> Result<(), WriteError> {
+    write_atomically(path, |w| write_vrml2_to(w, scene))
+}
+
+/// Writes through `write` to a temporary file beside `path`, then renames it over `path`; on
+/// any error the temporary file is removed and `path` is left as it was.
+pub(crate) fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> std::io::Result<()>,
+) -> Result<(), WriteError> {
+    let err = |source| WriteError {
         file: path.to_path_buf(),
-        source: std::io::Error::other("writer is not built yet"),
-    })
+        source,
+    };
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let result = (|| {
+        let file = std::fs::File::create(&tmp)?;
+        let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
+        write(&mut w)?;
+        let file = w.into_inner().map_err(|e| e.into_error())?;
+        file.sync_all()?;
+        drop(file);
+        std::fs::rename(&tmp, path)
+    })();
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(err(e));
+    }
+    Ok(())
 }

@@ -12,7 +12,7 @@ pub fn build_scene(mut scene: Scene, weld: bool) -> Scene {
             m.name = format!("shape {}", i + 1);
         }
         if weld {
-            weld::weld(m);
+            weld::weld(m, 0.0);
         }
     }
     scene.models.retain(|m| !m.triangles.is_empty());

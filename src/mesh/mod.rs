@@ -3,7 +3,11 @@
 //! welding built on top of them.
 
 pub mod build;
+pub mod classify;
+pub mod measure;
 pub mod scene;
+pub mod shapes;
+pub mod topology;
 pub mod weld;
 
 pub use scene::{Attribute, Model, Scene};

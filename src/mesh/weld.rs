@@ -1,101 +1,198 @@
-//! Welding: merging vertices that a file repeats per face, so that faces share vertices and
-//! the mesh has the connectivity decimation needs.
+//! Welding: merging coincident vertices of a model so that faces which duplicate their
+//! corners (common in VRML/Inventor files) share vertices, as decimation needs.
 //!
-//! Exact positions are matched through a hash map (linear time); triangles that become
-//! degenerate after the merge are dropped. Per-vertex attributes keep the first vertex's
-//! value.
+//! Exact at tolerance 0 (bit-equal positions, with -0 equal to +0); within a tolerance by
+//! hashing positions into a grid of cells of that size and looking at the 27 cells around
+//! each vertex. Expected linear time either way. The first vertex of a group is kept (with its
+//! per-vertex attributes); triangles are remapped, and those that collapse are dropped along
+//! with their per-face attributes.
 
 use std::collections::HashMap;
 
-use super::Model;
+use glam::Vec3;
 
-/// Merges vertices with bit-identical positions (after `-0.0` → `0.0`); drops unused
-/// vertices and triangles that become degenerate. Returns how many vertices were removed.
-pub fn weld(model: &mut Model) -> usize {
+use super::{Attribute, Model};
+
+fn key_exact(p: Vec3) -> [u32; 3] {
+    // +0.0 folds -0.0 into 0.0; NaNs keep their bits (and never weld with numbers).
+    [
+        (p.x + 0.0).to_bits(),
+        (p.y + 0.0).to_bits(),
+        (p.z + 0.0).to_bits(),
+    ]
+}
+
+fn cell(p: Vec3, inv: f32) -> [i64; 3] {
+    let c = (p * inv).floor();
+    [c.x as i64, c.y as i64, c.z as i64]
+}
+
+/// Merges vertices closer than `tolerance` (exactly equal at 0), remaps the triangles, drops
+/// the triangles that became degenerate; returns how many vertices were merged away.
+pub fn weld(model: &mut Model, tolerance: f32) -> usize {
     let n = model.positions.len();
-    let mut first_of: HashMap<[u32; 3], u32> = HashMap::with_capacity(n);
-    let mut remap = vec![0u32; n];
-    let mut keep: Vec<u32> = Vec::with_capacity(n);
-    let mut used = vec![false; n];
+    // old vertex -> new vertex; `kept` lists the old indices that survive, in order.
+    let mut map = vec![0u32; n];
+    let mut kept: Vec<u32> = Vec::with_capacity(n);
+    if tolerance > 0.0 && tolerance.is_finite() {
+        let inv = 1.0 / tolerance;
+        let tol2 = tolerance * tolerance;
+        // Cell -> most recent kept vertex in it; `chain` links kept vertices of the same cell.
+        let mut heads: HashMap<[i64; 3], u32> = HashMap::with_capacity(n);
+        let mut chain: Vec<u32> = Vec::with_capacity(n);
+        for (i, &p) in model.positions.iter().enumerate() {
+            let c = cell(p, inv);
+            let mut found = None;
+            'search: for dx in -1..=1 {
+                for dy in -1..=1 {
+                    for dz in -1..=1 {
+                        let k = [c[0] + dx, c[1] + dy, c[2] + dz];
+                        let mut at = heads.get(&k).copied();
+                        while let Some(j) = at {
+                            let q = model.positions[kept[j as usize] as usize];
+                            if p.distance_squared(q) <= tol2 {
+                                found = Some(j);
+                                break 'search;
+                            }
+                            at = match chain[j as usize] {
+                                u32::MAX => None,
+                                next => Some(next),
+                            };
+                        }
+                    }
+                }
+            }
+            map[i] = match found {
+                Some(j) => j,
+                None => {
+                    let j = kept.len() as u32;
+                    kept.push(i as u32);
+                    chain.push(heads.insert(c, j).unwrap_or(u32::MAX));
+                    j
+                }
+            };
+        }
+    } else {
+        let mut seen: HashMap<[u32; 3], u32> = HashMap::with_capacity(n);
+        for (i, &p) in model.positions.iter().enumerate() {
+            map[i] = *seen.entry(key_exact(p)).or_insert_with(|| {
+                kept.push(i as u32);
+                kept.len() as u32 - 1
+            });
+        }
+    }
+    let merged = n - kept.len();
+    if merged == 0 {
+        return 0;
+    }
+    model.positions = kept.iter().map(|&i| model.positions[i as usize]).collect();
+    let mut keep_face = Vec::with_capacity(model.triangles.len());
+    let mut triangles = Vec::with_capacity(model.triangles.len());
     for t in &model.triangles {
-        for &v in t {
-            if let Some(u) = used.get_mut(v as usize) {
-                *u = true;
+        let r = t.map(|v| map.get(v as usize).copied().unwrap_or(v));
+        let ok = r[0] != r[1] && r[1] != r[2] && r[0] != r[2];
+        keep_face.push(ok);
+        if ok {
+            triangles.push(r);
+        }
+    }
+    model.triangles = triangles;
+    fn fix<T: Copy>(attr: &mut Option<Attribute<T>>, kept: &[u32], keep_face: &[bool]) {
+        if let Some(a) = attr {
+            match a {
+                Attribute::PerVertex(v) => {
+                    *v = kept
+                        .iter()
+                        .filter_map(|&i| v.get(i as usize).copied())
+                        .collect();
+                }
+                Attribute::PerFace(v) => {
+                    let mut k = keep_face.iter();
+                    v.retain(|_| k.next().copied().unwrap_or(false));
+                }
             }
         }
     }
-    for (i, p) in model.positions.iter().enumerate() {
-        if !used[i] {
-            continue;
-        }
-        let key = [p.x, p.y, p.z].map(|c| (c + 0.0).to_bits());
-        let next = keep.len() as u32;
-        let id = *first_of.entry(key).or_insert(next);
-        if id == next {
-            keep.push(i as u32);
-        }
-        remap[i] = id;
-    }
-    let removed = n - keep.len();
-    if removed == 0 {
-        return 0;
-    }
-    model.positions = keep.iter().map(|&i| model.positions[i as usize]).collect();
-    let mut kept_faces: Vec<u32> = Vec::with_capacity(model.triangles.len());
-    for (f, t) in model.triangles.iter_mut().enumerate() {
-        *t = t.map(|v| remap[v as usize]);
-        if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
-            kept_faces.push(f as u32);
-        }
-    }
-    if kept_faces.len() != model.triangles.len() {
-        model.triangles = kept_faces
-            .iter()
-            .map(|&f| model.triangles[f as usize])
-            .collect();
-    }
-    model.colors = model.colors.as_ref().map(|c| c.select(&keep, &kept_faces));
-    model.normals = model.normals.as_ref().map(|c| c.select(&keep, &kept_faces));
-    removed
+    fix(&mut model.colors, &kept, &keep_face);
+    fix(&mut model.normals, &kept, &keep_face);
+    merged
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::Attribute;
-    use glam::Vec3;
 
-    #[test]
-    fn quad_with_duplicated_corners_welds_to_four_vertices() {
-        // Two triangles of a unit square, each with its own three vertices.
-        let p = |x, y| Vec3::new(x, y, 0.0);
-        let mut m = Model {
-            positions: vec![
-                p(0., 0.),
-                p(1., 0.),
-                p(1., 1.),
-                p(0., 0.),
-                p(1., 1.),
-                p(0., 1.),
-            ],
-            triangles: vec![[0, 1, 2], [3, 4, 5]],
-            colors: Some(Attribute::PerFace(vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])),
-            ..Model::default()
-        };
-        assert_eq!(weld(&mut m), 2);
-        assert_eq!(m.positions.len(), 4);
-        assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
-        assert_eq!(m.colors.as_ref().map(|c| c.values().len()), Some(2));
+    /// A unit cube whose six faces each have their own four corners (24 vertices).
+    fn split_cube() -> Model {
+        let faces: [[usize; 4]; 6] = [
+            [4, 5, 7, 6],
+            [0, 2, 3, 1],
+            [1, 3, 7, 5],
+            [0, 4, 6, 2],
+            [2, 6, 7, 3],
+            [0, 1, 5, 4],
+        ];
+        let corner =
+            |i: usize| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32);
+        let mut m = Model::default();
+        for f in faces {
+            let b = m.positions.len() as u32;
+            m.positions.extend(f.map(corner));
+            m.triangles.push([b, b + 1, b + 2]);
+            m.triangles.push([b, b + 2, b + 3]);
+        }
+        m.colors = Some(Attribute::PerVertex(
+            (0..24).map(|i| [i as f32, 0.0, 0.0]).collect(),
+        ));
+        m
     }
 
     #[test]
-    fn collapsed_triangles_are_dropped() {
+    fn exact_weld_of_a_split_cube_gives_eight_vertices() {
+        let mut m = split_cube();
+        assert_eq!(weld(&mut m, 0.0), 16);
+        assert_eq!(m.positions.len(), 8);
+        assert_eq!(m.triangles.len(), 12);
+        assert_eq!(m.used_vertex_count(), 8);
+        // The first copy's attributes are kept: vertex 0 of the first face is old vertex 0.
+        let Some(Attribute::PerVertex(c)) = &m.colors else {
+            panic!()
+        };
+        assert_eq!(c.len(), 8);
+        assert_eq!(c[0], [0.0, 0.0, 0.0]);
+        assert_eq!(weld(&mut m, 0.0), 0);
+    }
+
+    #[test]
+    fn tolerance_weld_merges_near_points_and_drops_collapsed_triangles() {
         let mut m = Model {
-            positions: vec![Vec3::ZERO, Vec3::X, Vec3::X, Vec3::Y],
-            triangles: vec![[0, 1, 2], [0, 1, 3]],
+            positions: vec![
+                Vec3::ZERO,
+                Vec3::X,
+                Vec3::Y,
+                Vec3::new(1e-4, 0.0, 0.0),   // near 0
+                Vec3::new(1.0, 1e-4, -1e-4), // near 1
+                Vec3::new(-0.0, 1.0, 0.0),   // exactly 2 (-0)
+            ],
+            triangles: vec![[0, 1, 2], [3, 4, 5], [0, 3, 1]],
+            colors: Some(Attribute::PerFace(vec![[1.0; 3], [2.0; 3], [3.0; 3]])),
             ..Model::default()
         };
-        assert_eq!(weld(&mut m), 1);
-        assert_eq!(m.triangles, vec![[0, 1, 2]]);
+        let mut exact = m.clone();
+        assert_eq!(weld(&mut exact, 0.0), 1, "only -0 equals +0 exactly");
+        assert_eq!(weld(&mut m, 1e-3), 3);
+        assert_eq!(m.positions.len(), 3);
+        // The second triangle duplicates the first; the third collapses and goes.
+        assert_eq!(m.triangles, vec![[0, 1, 2], [0, 1, 2]]);
+        assert_eq!(m.colors, Some(Attribute::PerFace(vec![[1.0; 3], [2.0; 3]])));
+    }
+
+    #[test]
+    fn points_across_a_cell_border_still_weld() {
+        let mut m = Model {
+            positions: vec![Vec3::splat(0.999_9), Vec3::splat(1.000_1)],
+            ..Model::default()
+        };
+        assert_eq!(weld(&mut m, 1e-3), 1);
     }
 }

@@ -1,0 +1,459 @@
+//! Turning one parsed shape (polygons over a coordinate array, with bound colours and
+//! normals) into a [`Model`]: index validation, compaction of the coordinate array to the
+//! vertices the shape uses, triangulation, orientation and attribute alignment.
+//!
+//! Attribute bindings are normalised by the readers into [`Bind`]: per face (one value index
+//! per polygon) or per corner (one value index per polygon corner). Per-corner values cannot be
+//! stored exactly per vertex when a vertex has different values in different faces; the value
+//! at the vertex's first use in the file wins (documented behaviour, never an error).
+//! A polygon's per-face value goes to every triangle cut from it.
+
+use std::collections::HashMap;
+
+use glam::{Mat4, Vec3};
+
+use super::lexer::{PResult, ParseError};
+use super::triangulate::{triangulate, Scratch};
+use crate::mesh::{Attribute, Model};
+
+/// How an attribute's values (flat, three floats each) are bound to a shape's polygons.
+#[derive(Debug, Clone)]
+pub enum Bind<'a> {
+    None,
+    /// `index[f]` is the value of polygon `f`.
+    PerFace {
+        values: &'a [f32],
+        index: Vec<u32>,
+    },
+    /// `index[k]` is the value of the `k`-th polygon corner (over all polygons in order).
+    PerCorner {
+        values: &'a [f32],
+        index: Vec<u32>,
+    },
+}
+
+/// One shape to build: polygons as corner lists over `coords` (flat x y z).
+pub struct ShapeSpec<'a> {
+    pub name: String,
+    pub transform: Mat4,
+    pub coords: &'a [f32],
+    /// Corner coordinate indices of all polygons, concatenated.
+    pub corners: Vec<u32>,
+    /// End (exclusive) of each polygon in `corners`.
+    pub ends: Vec<u32>,
+    pub colors: Bind<'a>,
+    pub normals: Bind<'a>,
+    pub ccw: bool,
+    pub solid: bool,
+    pub crease_angle: Option<f32>,
+    pub diffuse: [f32; 3],
+    /// Line of the index field, for errors.
+    pub line: usize,
+    /// Which field held the indices, for errors ("coordIndex", "numVertices"...).
+    pub index_field: &'static str,
+}
+
+/// Splits an MFInt32 index list with `-1` separators into corners and polygon ends. A missing
+/// final `-1` closes the last polygon. Other negative values are errors.
+pub fn split_polygons(
+    raw: &[i32],
+    line: usize,
+    field: &str,
+) -> PResult<(Vec<u32>, Vec<u32>, Vec<usize>)> {
+    let mut corners = Vec::with_capacity(raw.len());
+    let mut ends = Vec::with_capacity(raw.len() / 3 + 1);
+    // Position in `raw` of each corner, to align parallel index lists (normalIndex...).
+    let mut pos = Vec::with_capacity(raw.len());
+    for (p, &i) in raw.iter().enumerate() {
+        if i >= 0 {
+            corners.push(i as u32);
+            pos.push(p);
+        } else if i == -1 {
+            if ends.last().copied().unwrap_or(0) as usize != corners.len() {
+                ends.push(corners.len() as u32);
+            }
+        } else {
+            return Err(ParseError::new(
+                line,
+                format!("negative index {i} in '{field}' (only -1 separates faces)"),
+            ));
+        }
+    }
+    if ends.last().copied().unwrap_or(0) as usize != corners.len() {
+        ends.push(corners.len() as u32);
+    }
+    Ok((corners, ends, pos))
+}
+
+fn value3(values: &[f32], i: u32) -> Option<[f32; 3]> {
+    let i = i as usize * 3;
+    values.get(i..i + 3).map(|s| [s[0], s[1], s[2]])
+}
+
+/// Checks that every index of a binding is in range; a short array drops the attribute with a
+/// warning rather than failing the file.
+fn check_bind<'a>(
+    bind: Bind<'a>,
+    what: &str,
+    spec_name: &str,
+    warnings: &mut Vec<String>,
+) -> Bind<'a> {
+    let (values, index) = match &bind {
+        Bind::None => return bind,
+        Bind::PerFace { values, index } | Bind::PerCorner { values, index } => (values, index),
+    };
+    let count = (values.len() / 3) as u32;
+    if let Some(bad) = index.iter().find(|&&i| i >= count) {
+        warnings.push(format!(
+            "{spec_name}: {what} index {bad} is out of range ({count} values); {what} ignored"
+        ));
+        return Bind::None;
+    }
+    bind
+}
+
+/// Vertex index map old → new, dense for shapes that use much of the array, hashed for small
+/// shapes over a big shared array (so many small shapes stay linear overall).
+enum Remap {
+    Dense(Vec<u32>),
+    Sparse(HashMap<u32, u32>),
+}
+
+impl Remap {
+    fn get_or_insert(&mut self, old: u32, next: u32) -> (u32, bool) {
+        match self {
+            Self::Dense(v) => {
+                let slot = &mut v[old as usize];
+                if *slot == u32::MAX {
+                    *slot = next;
+                    (next, true)
+                } else {
+                    (*slot, false)
+                }
+            }
+            Self::Sparse(m) => {
+                let mut inserted = false;
+                let v = *m.entry(old).or_insert_with(|| {
+                    inserted = true;
+                    next
+                });
+                (v, inserted)
+            }
+        }
+    }
+}
+
+/// Builds the model; out-of-range coordinate indices and non-finite used coordinates are errors.
+pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> {
+    let ShapeSpec {
+        name,
+        transform,
+        coords,
+        corners,
+        ends,
+        colors,
+        normals,
+        ccw,
+        solid,
+        crease_angle,
+        diffuse,
+        line,
+        index_field,
+    } = spec;
+    let npoints = coords.len() / 3;
+    if let Some(&bad) = corners.iter().find(|&&c| c as usize >= npoints) {
+        return Err(ParseError::new(
+            line,
+            format!(
+                "index {bad} in '{index_field}' is out of range: the coordinates have {npoints} points"
+            ),
+        ));
+    }
+    let colors = check_bind(colors, "colour", &name, warnings);
+    let normals = check_bind(normals, "normal", &name, warnings);
+
+    let mut remap = if corners.len() * 4 < npoints {
+        Remap::Sparse(HashMap::with_capacity(corners.len()))
+    } else {
+        Remap::Dense(vec![u32::MAX; npoints])
+    };
+    let mut positions: Vec<Vec3> = Vec::new();
+    let mut local: Vec<u32> = Vec::with_capacity(corners.len());
+    let mut vcolors: Vec<[f32; 3]> = Vec::new();
+    let mut vnormals: Vec<Vec3> = Vec::new();
+    for (k, &c) in corners.iter().enumerate() {
+        let (v, fresh) = remap.get_or_insert(c, positions.len() as u32);
+        if fresh {
+            let i = c as usize * 3;
+            let p = Vec3::new(coords[i], coords[i + 1], coords[i + 2]);
+            if !p.is_finite() {
+                return Err(ParseError::new(
+                    line,
+                    format!("coordinate {c} used by '{index_field}' is not a finite number"),
+                ));
+            }
+            positions.push(p);
+            if let Bind::PerCorner { values, index } = &colors {
+                vcolors.push(
+                    index
+                        .get(k)
+                        .and_then(|&i| value3(values, i))
+                        .unwrap_or(diffuse),
+                );
+            }
+            if let Bind::PerCorner { values, index } = &normals {
+                let n = index
+                    .get(k)
+                    .and_then(|&i| value3(values, i))
+                    .unwrap_or([0.0; 3]);
+                vnormals.push(Vec3::from(n));
+            }
+        }
+        local.push(v);
+    }
+
+    let mut triangles: Vec<[u32; 3]> =
+        Vec::with_capacity(corners.len().saturating_sub(ends.len() * 2));
+    let mut fcolors: Vec<[f32; 3]> = Vec::new();
+    let mut fnormals: Vec<Vec3> = Vec::new();
+    let mut scratch = Scratch::default();
+    let mut pts: Vec<Vec3> = Vec::new();
+    let mut cut: Vec<[u32; 3]> = Vec::new();
+    let mut degenerate = 0usize;
+    let mut start = 0usize;
+    for (f, &end) in ends.iter().enumerate() {
+        let end = end as usize;
+        let face = &local[start..end];
+        let before = triangles.len();
+        match face.len() {
+            0..=2 => degenerate += 1,
+            3 => triangles.push([face[0], face[1], face[2]]),
+            _ => {
+                pts.clear();
+                pts.extend(face.iter().map(|&v| positions[v as usize]));
+                cut.clear();
+                triangulate(&pts, &mut cut, &mut scratch);
+                triangles.extend(cut.iter().map(|t| {
+                    [
+                        face[t[0] as usize],
+                        face[t[1] as usize],
+                        face[t[2] as usize],
+                    ]
+                }));
+            }
+        }
+        let made = triangles.len() - before;
+        if let Bind::PerFace { values, index } = &colors {
+            let c = index
+                .get(f)
+                .and_then(|&i| value3(values, i))
+                .unwrap_or(diffuse);
+            fcolors.extend(std::iter::repeat(c).take(made));
+        }
+        if let Bind::PerFace { values, index } = &normals {
+            let n = index
+                .get(f)
+                .and_then(|&i| value3(values, i))
+                .unwrap_or([0.0; 3]);
+            fnormals.extend(std::iter::repeat(Vec3::from(n)).take(made));
+        }
+        start = end;
+    }
+    if degenerate > 0 {
+        warnings.push(format!(
+            "{name}: {degenerate} face(s) with fewer than 3 corners skipped"
+        ));
+    }
+    if !ccw {
+        for t in &mut triangles {
+            t.swap(1, 2);
+        }
+    }
+    let colors = match colors {
+        Bind::None => None,
+        Bind::PerFace { .. } => Some(Attribute::PerFace(fcolors)),
+        Bind::PerCorner { .. } => Some(Attribute::PerVertex(vcolors)),
+    };
+    let normals = match normals {
+        Bind::None => None,
+        Bind::PerFace { .. } => Some(Attribute::PerFace(fnormals)),
+        Bind::PerCorner { .. } => Some(Attribute::PerVertex(vnormals)),
+    };
+    Ok(Model {
+        name,
+        transform,
+        positions,
+        triangles,
+        colors,
+        normals,
+        diffuse,
+        crease_angle,
+        solid,
+    })
+}
+
+/// Builds the triangles of triangle strips (`strips` as corner lists) as 3-corner polygons,
+/// alternating the winding so every triangle has the strip's orientation. Returns corners,
+/// ends, and for each triangle the strip it came from and its position in the corners of the
+/// strip list (to map per-face / per-part / per-vertex bindings).
+pub struct Strips {
+    pub corners: Vec<u32>,
+    pub ends: Vec<u32>,
+    /// Strip index of each triangle.
+    pub part: Vec<u32>,
+    /// For each output corner, the position of its source corner in the strips' corner list.
+    pub source: Vec<u32>,
+}
+
+pub fn strips_to_triangles(strip_corners: &[u32], strip_ends: &[u32]) -> Strips {
+    let mut s = Strips {
+        corners: Vec::new(),
+        ends: Vec::new(),
+        part: Vec::new(),
+        source: Vec::new(),
+    };
+    let mut start = 0usize;
+    for (part, &end) in strip_ends.iter().enumerate() {
+        let end = end as usize;
+        for i in start..end.saturating_sub(2) {
+            let (a, b, c) = if (i - start) % 2 == 0 {
+                (i, i + 1, i + 2)
+            } else {
+                (i + 1, i, i + 2)
+            };
+            for k in [a, b, c] {
+                s.corners.push(strip_corners[k]);
+                s.source.push(k as u32);
+            }
+            s.ends.push(s.corners.len() as u32);
+            s.part.push(part as u32);
+        }
+        start = end;
+    }
+    s
+}
+
+/// A shape's polygons plus what each binding mode indexes by.
+pub struct Geo {
+    /// Coordinate index of each polygon corner.
+    pub corners: Vec<u32>,
+    /// End (exclusive) of each polygon in `corners`.
+    pub ends: Vec<u32>,
+    /// PER_FACE number of each polygon (triangle number for strips).
+    pub face_no: Vec<u32>,
+    /// PER_PART number of each polygon (strip or row number; the face for face sets).
+    pub part_no: Vec<u32>,
+    /// PER_VERTEX number of each corner (sequential, or the vertex number for non-indexed
+    /// shapes).
+    pub seq_no: Vec<u32>,
+    /// Position of each corner in the raw index lists (for materialIndex / normalIndex /
+    /// colorIndex that parallel coordIndex).
+    pub raw_pos: Vec<u32>,
+}
+
+impl Geo {
+    /// Polygons from an indexed face set's split coordIndex.
+    pub fn faces(corners: Vec<u32>, ends: Vec<u32>, pos: Vec<usize>) -> Self {
+        let nf = ends.len() as u32;
+        Self {
+            seq_no: (0..corners.len() as u32).collect(),
+            raw_pos: pos.into_iter().map(|p| p as u32).collect(),
+            corners,
+            ends,
+            face_no: (0..nf).collect(),
+            part_no: (0..nf).collect(),
+        }
+    }
+}
+
+/// Inventor / VRML 1.0 binding values (MaterialBinding, NormalBinding).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Binding {
+    Default,
+    Overall,
+    PerPart,
+    PerPartIndexed,
+    PerFace,
+    PerFaceIndexed,
+    PerVertex,
+    PerVertexIndexed,
+}
+
+impl Binding {
+    pub fn parse(word: &str) -> Option<Self> {
+        Some(match word {
+            "DEFAULT" => Self::Default,
+            "OVERALL" | "NONE" => Self::Overall,
+            "PER_PART" => Self::PerPart,
+            "PER_PART_INDEXED" => Self::PerPartIndexed,
+            "PER_FACE" => Self::PerFace,
+            "PER_FACE_INDEXED" => Self::PerFaceIndexed,
+            "PER_VERTEX" => Self::PerVertex,
+            "PER_VERTEX_INDEXED" => Self::PerVertexIndexed,
+            _ => return None,
+        })
+    }
+}
+
+/// An index list that is absent, empty or just `[-1]` (Inventor's default) means "use the
+/// natural order".
+pub fn explicit(index: Option<&[i32]>) -> Option<&[i32]> {
+    index.filter(|i| !(i.is_empty() || *i == [-1]))
+}
+
+fn lookup(index: &[i32], at: u32) -> u32 {
+    match index.get(at as usize) {
+        Some(&v) if v >= 0 => v as u32,
+        _ => u32::MAX,
+    }
+}
+
+/// Resolves a binding over `geo` into per-face / per-corner value indices. `index` is the
+/// explicit index list (materialIndex, normalIndex, colorIndex) if the file gave one.
+pub fn resolve<'a>(
+    binding: Binding,
+    values: &'a [f32],
+    index: Option<&[i32]>,
+    geo: &Geo,
+) -> Bind<'a> {
+    if values.len() < 3 {
+        return Bind::None;
+    }
+    let index = explicit(index);
+    let per_poly = |nums: &[u32]| -> Vec<u32> {
+        match index {
+            Some(ix) => nums.iter().map(|&n| lookup(ix, n)).collect(),
+            None => nums.to_vec(),
+        }
+    };
+    match binding {
+        Binding::Default | Binding::Overall => Bind::None,
+        Binding::PerPart => Bind::PerFace {
+            values,
+            index: geo.part_no.clone(),
+        },
+        Binding::PerFace => Bind::PerFace {
+            values,
+            index: geo.face_no.clone(),
+        },
+        Binding::PerPartIndexed => Bind::PerFace {
+            values,
+            index: per_poly(&geo.part_no),
+        },
+        Binding::PerFaceIndexed => Bind::PerFace {
+            values,
+            index: per_poly(&geo.face_no),
+        },
+        Binding::PerVertex => Bind::PerCorner {
+            values,
+            index: geo.seq_no.clone(),
+        },
+        Binding::PerVertexIndexed => Bind::PerCorner {
+            values,
+            index: match index {
+                Some(ix) => geo.raw_pos.iter().map(|&p| lookup(ix, p)).collect(),
+                None => geo.corners.clone(),
+            },
+        },
+    }
+}

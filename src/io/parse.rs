@@ -1,0 +1,877 @@
+//! The node-tree parser shared by VRML 1.0 / Open Inventor and VRML 2.0.
+//!
+//! It turns tokens into a tree of [`Node`]s with typed field values for the fields the
+//! readers use (see [`field_kind`]); every other field is skipped by structure. Node kinds the
+//! readers do not know are skipped by structure (iteratively, so depth cannot overflow the
+//! stack) and give one warning per kind. DEF/USE share nodes through `Rc`; a USE of a name
+//! not yet defined is an error. Nesting of known nodes is limited to [`MAX_DEPTH`].
+//! Semantics (state, transforms, shapes) live in `vrml1.rs` and `vrml2.rs`.
+
+use std::collections::{HashMap, HashSet};
+use std::rc::Rc;
+
+use super::lexer::{parse_f32, parse_int, Lexer, PResult, ParseError, Tok, Token};
+
+/// Deepest nesting of nodes accepted; deeper files are rejected rather than overflowing.
+pub const MAX_DEPTH: usize = 256;
+
+/// Which grammar the file follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dialect {
+    /// VRML 1.0 and Open Inventor ASCII: children inline in group nodes.
+    Vrml1,
+    /// VRML 2.0: children in `children [ ]` fields, SFNode fields.
+    Vrml2,
+}
+
+/// A parsed field value.
+#[derive(Debug, Clone)]
+pub enum Value {
+    Floats(Vec<f32>),
+    Ints(Vec<i32>),
+    Bool(bool),
+    Word(String),
+    Node(Option<Rc<Node>>),
+    Nodes(Vec<Rc<Node>>),
+}
+
+/// One field of a node: name, the line its value starts on, the value.
+#[derive(Debug, Clone)]
+pub struct Field {
+    pub name: String,
+    pub line: usize,
+    pub value: Value,
+}
+
+/// One node of the scene graph.
+#[derive(Debug, Clone)]
+pub struct Node {
+    pub kind: String,
+    /// The DEF name, if the node was defined with one.
+    pub def: Option<String>,
+    pub line: usize,
+    pub fields: Vec<Field>,
+    /// VRML 1.0 / Inventor inline children, in file order.
+    pub children: Vec<Rc<Self>>,
+    /// True when the node was skipped by structure (its fields and children are empty).
+    pub skipped: bool,
+}
+
+impl Node {
+    pub fn field(&self, name: &str) -> Option<&Field> {
+        self.fields.iter().find(|f| f.name == name)
+    }
+    pub fn floats(&self, name: &str) -> Option<&[f32]> {
+        match &self.field(name)?.value {
+            Value::Floats(v) => Some(v),
+            _ => None,
+        }
+    }
+    pub fn ints(&self, name: &str) -> Option<&[i32]> {
+        match &self.field(name)?.value {
+            Value::Ints(v) => Some(v),
+            _ => None,
+        }
+    }
+    pub fn int(&self, name: &str) -> Option<i32> {
+        self.ints(name).and_then(|v| v.first().copied())
+    }
+    pub fn float(&self, name: &str) -> Option<f32> {
+        self.floats(name).and_then(|v| v.first().copied())
+    }
+    pub fn boolean(&self, name: &str) -> Option<bool> {
+        match &self.field(name)?.value {
+            Value::Bool(b) => Some(*b),
+            _ => None,
+        }
+    }
+    pub fn word(&self, name: &str) -> Option<&str> {
+        match &self.field(name)?.value {
+            Value::Word(w) => Some(w),
+            _ => None,
+        }
+    }
+    pub fn node(&self, name: &str) -> Option<&Rc<Self>> {
+        match &self.field(name)?.value {
+            Value::Node(n) => n.as_ref(),
+            Value::Nodes(v) => v.first(),
+            _ => None,
+        }
+    }
+    pub fn nodes(&self, name: &str) -> &[Rc<Self>] {
+        match self.field(name).map(|f| &f.value) {
+            Some(Value::Nodes(v)) => v,
+            Some(Value::Node(Some(n))) => std::slice::from_ref(n),
+            _ => &[],
+        }
+    }
+    /// The line of a field's value, or the node's line when the field is absent.
+    pub fn line_of(&self, name: &str) -> usize {
+        self.field(name).map_or(self.line, |f| f.line)
+    }
+}
+
+/// How a field's value is read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FieldKind {
+    /// Any number of floats, bracketed or not (SFFloat, SFVec3f, MFVec3f, SFRotation...).
+    Floats,
+    /// Any number of integers, bracketed or not (MFInt32 with -1 separators, SFInt32).
+    Ints,
+    Bool,
+    /// An enum name or an Inventor bit mask `( A | B )`.
+    Word,
+    /// SFNode: a node, `USE name` or `NULL`.
+    Node,
+    /// MFNode: `[ nodes ]` or a single node.
+    Nodes,
+}
+
+/// The typed fields the readers use; `None` means skip by structure.
+pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind> {
+    use FieldKind::*;
+    match dialect {
+        Dialect::Vrml1 => Some(match (node, field) {
+            ("Coordinate3", "point") => Floats,
+            ("Normal", "vector") => Floats,
+            ("Material", "diffuseColor") => Floats,
+            ("BaseColor", "rgb") => Floats,
+            ("MaterialBinding" | "NormalBinding", "value") => Word,
+            ("ShapeHints", "vertexOrdering" | "shapeType" | "faceType") => Word,
+            ("ShapeHints", "creaseAngle") => Floats,
+            (
+                "Transform",
+                "translation" | "rotation" | "scaleFactor" | "scaleOrientation" | "center",
+            ) => Floats,
+            ("Translation", "translation") => Floats,
+            ("Rotation" | "Rotor" | "Pendulum", "rotation") => Floats,
+            ("Scale", "scaleFactor") => Floats,
+            ("RotationXYZ", "axis") => Word,
+            ("RotationXYZ", "angle") => Floats,
+            ("MatrixTransform", "matrix") => Floats,
+            ("Switch" | "Blinker", "whichChild") => Ints,
+            (
+                "IndexedFaceSet" | "IndexedTriangleStripSet",
+                "coordIndex" | "materialIndex" | "normalIndex",
+            ) => Ints,
+            ("FaceSet" | "TriangleStripSet", "startIndex" | "numVertices") => Ints,
+            ("QuadMesh", "startIndex" | "verticesPerColumn" | "verticesPerRow") => Ints,
+            (
+                "IndexedFaceSet"
+                | "IndexedTriangleStripSet"
+                | "FaceSet"
+                | "TriangleStripSet"
+                | "QuadMesh",
+                "vertexProperty",
+            ) => Node,
+            ("VertexProperty", "vertex" | "normal") => Floats,
+            ("VertexProperty", "orderedRGBA") => Ints,
+            ("VertexProperty", "materialBinding" | "normalBinding") => Word,
+            ("Cube", "width" | "height" | "depth") => Floats,
+            ("ResetTransform", "whatToReset") => Word,
+            _ => return None,
+        }),
+        Dialect::Vrml2 => Some(match (node, field) {
+            ("Transform", "translation" | "rotation" | "scale" | "scaleOrientation" | "center") => {
+                Floats
+            }
+            ("Transform" | "Group" | "Collision" | "Anchor" | "Billboard", "children") => Nodes,
+            ("Switch", "choice") => Nodes,
+            ("Switch", "whichChoice") => Ints,
+            ("LOD", "level") => Nodes,
+            ("Shape", "appearance" | "geometry") => Node,
+            ("Appearance", "material") => Node,
+            ("Material", "diffuseColor") => Floats,
+            ("IndexedFaceSet", "coord" | "color" | "normal") => Node,
+            ("IndexedFaceSet", "coordIndex" | "colorIndex" | "normalIndex") => Ints,
+            (
+                "IndexedFaceSet",
+                "colorPerVertex" | "normalPerVertex" | "ccw" | "solid" | "convex",
+            ) => Bool,
+            ("IndexedFaceSet", "creaseAngle") => Floats,
+            ("Coordinate", "point") => Floats,
+            ("Color", "color") => Floats,
+            ("Normal", "vector") => Floats,
+            ("Box", "size") => Floats,
+            _ => return None,
+        }),
+    }
+}
+
+/// Node kinds whose fields are parsed (the rest are skipped by structure).
+fn is_known(dialect: Dialect, kind: &str) -> bool {
+    match dialect {
+        Dialect::Vrml1 => matches!(
+            kind,
+            "Separator"
+                | "TransformSeparator"
+                | "Group"
+                | "Switch"
+                | "Blinker"
+                | "LOD"
+                | "LevelOfDetail"
+                | "Selection"
+                | "Annotation"
+                | "WWWAnchor"
+                | "Array"
+                | "MultipleCopy"
+                | "Transform"
+                | "MatrixTransform"
+                | "Translation"
+                | "Rotation"
+                | "Rotor"
+                | "Pendulum"
+                | "Scale"
+                | "RotationXYZ"
+                | "ResetTransform"
+                | "Coordinate3"
+                | "Normal"
+                | "Material"
+                | "BaseColor"
+                | "MaterialBinding"
+                | "NormalBinding"
+                | "ShapeHints"
+                | "IndexedFaceSet"
+                | "IndexedTriangleStripSet"
+                | "FaceSet"
+                | "TriangleStripSet"
+                | "QuadMesh"
+                | "VertexProperty"
+                | "Cube"
+        ),
+        Dialect::Vrml2 => matches!(
+            kind,
+            "Transform"
+                | "Group"
+                | "Collision"
+                | "Anchor"
+                | "Billboard"
+                | "Switch"
+                | "LOD"
+                | "Shape"
+                | "Appearance"
+                | "Material"
+                | "IndexedFaceSet"
+                | "Coordinate"
+                | "Color"
+                | "Normal"
+                | "Box"
+        ),
+    }
+}
+
+/// Node kinds that are skipped without a warning: they carry nothing a mesh needs.
+fn is_ignorable(dialect: Dialect, kind: &str) -> bool {
+    match dialect {
+        Dialect::Vrml1 => matches!(
+            kind,
+            "Info"
+                | "Label"
+                | "PerspectiveCamera"
+                | "OrthographicCamera"
+                | "DirectionalLight"
+                | "PointLight"
+                | "SpotLight"
+                | "ComplexityEnvironment"
+                | "Complexity"
+                | "Environment"
+                | "DrawStyle"
+                | "LightModel"
+                | "Texture2"
+                | "Texture2Transform"
+                | "TextureCoordinate2"
+                | "TextureCoordinateBinding"
+                | "TextureCoordinatePlane"
+                | "TextureCoordinateDefault"
+                | "FontStyle"
+                | "Font"
+                | "PickStyle"
+                | "EventCallback"
+                | "Callback"
+                | "IndexedLineSet"
+                | "LineSet"
+                | "PointSet"
+                | "ProfileCoordinate2"
+                | "LinearProfile"
+                | "NurbsProfile"
+        ),
+        Dialect::Vrml2 => matches!(
+            kind,
+            "WorldInfo"
+                | "Viewpoint"
+                | "NavigationInfo"
+                | "Background"
+                | "Fog"
+                | "DirectionalLight"
+                | "PointLight"
+                | "SpotLight"
+                | "TimeSensor"
+                | "TouchSensor"
+                | "ProximitySensor"
+                | "VisibilitySensor"
+                | "PlaneSensor"
+                | "SphereSensor"
+                | "CylinderSensor"
+                | "PositionInterpolator"
+                | "OrientationInterpolator"
+                | "ColorInterpolator"
+                | "ScalarInterpolator"
+                | "CoordinateInterpolator"
+                | "NormalInterpolator"
+                | "Script"
+                | "Sound"
+                | "AudioClip"
+                | "IndexedLineSet"
+                | "PointSet"
+                | "ImageTexture"
+                | "PixelTexture"
+                | "MovieTexture"
+                | "TextureTransform"
+                | "TextureCoordinate"
+                | "FontStyle"
+        ),
+    }
+}
+
+/// Inventor writes unnamed shared nodes as `DEF +0 ...`: names may look like numbers.
+fn is_name(t: &Token) -> bool {
+    matches!(t.kind, Tok::Word | Tok::Number)
+}
+
+/// The parser: lexer, dialect, DEF table, nesting depth and warnings.
+pub struct Parser<'a> {
+    lex: Lexer<'a>,
+    dialect: Dialect,
+    defs: HashMap<String, Rc<Node>>,
+    depth: usize,
+    warned: HashSet<String>,
+    pub warnings: Vec<String>,
+}
+
+impl<'a> Parser<'a> {
+    pub fn new(src: &'a [u8], dialect: Dialect) -> Self {
+        Self {
+            lex: Lexer::new(src),
+            dialect,
+            defs: HashMap::new(),
+            depth: 0,
+            warned: HashSet::new(),
+            warnings: Vec::new(),
+        }
+    }
+
+    fn warn_once(&mut self, key: &str, message: String) {
+        if self.warned.insert(key.to_string()) {
+            self.warnings.push(message);
+        }
+    }
+
+    fn unexpected(&self, t: &Token, expected: &str) -> ParseError {
+        ParseError::new(
+            t.line,
+            format!("expected {expected}, found {}", self.lex.describe(t)),
+        )
+    }
+
+    fn is_word(&self, t: &Token, w: &[u8]) -> bool {
+        t.kind == Tok::Word && self.lex.bytes(t) == w
+    }
+
+    /// Parses the whole file: a sequence of top-level nodes (and VRML 2.0 statements).
+    pub fn parse_file(&mut self) -> PResult<Vec<Rc<Node>>> {
+        let mut out = Vec::new();
+        loop {
+            let t = self.lex.peek()?;
+            match t.kind {
+                Tok::Eof => return Ok(out),
+                Tok::Word => {
+                    if let Some(n) = self.parse_statement()? {
+                        out.push(n);
+                    }
+                }
+                _ => {
+                    self.lex.next()?;
+                    return Err(self.unexpected(&t, "a node name"));
+                }
+            }
+        }
+    }
+
+    /// A node, `DEF name node`, `USE name`, or (VRML 2.0) PROTO/EXTERNPROTO/ROUTE, which are
+    /// skipped (returning `None`).
+    fn parse_statement(&mut self) -> PResult<Option<Rc<Node>>> {
+        let t = self.lex.next()?;
+        if t.kind != Tok::Word {
+            return Err(self.unexpected(&t, "a node name"));
+        }
+        let word = self.lex.bytes(&t);
+        match word {
+            b"DEF" => {
+                let name_tok = self.lex.next()?;
+                if !is_name(&name_tok) {
+                    return Err(self.unexpected(&name_tok, "a name after 'DEF'"));
+                }
+                let name = self.lex.text(&name_tok);
+                let kind_tok = self.lex.next()?;
+                if kind_tok.kind != Tok::Word {
+                    return Err(
+                        self.unexpected(&kind_tok, &format!("a node name after 'DEF {name}'"))
+                    );
+                }
+                let node = self.parse_node_body(kind_tok, Some(name.clone()))?;
+                self.defs.insert(name, node.clone());
+                Ok(Some(node))
+            }
+            b"USE" => {
+                let name_tok = self.lex.next()?;
+                if !is_name(&name_tok) {
+                    return Err(self.unexpected(&name_tok, "a name after 'USE'"));
+                }
+                let name = self.lex.text(&name_tok);
+                match self.defs.get(&name) {
+                    Some(n) => Ok(Some(n.clone())),
+                    None => Err(ParseError::new(
+                        name_tok.line,
+                        format!("USE of undefined name '{name}' (no DEF {name} before it)"),
+                    )),
+                }
+            }
+            b"PROTO" | b"EXTERNPROTO" if self.dialect == Dialect::Vrml2 => {
+                let what = self.lex.text(&t);
+                self.warn_once(
+                    &what,
+                    format!(
+                        "line {}: {what} declarations are not supported; skipped",
+                        t.line
+                    ),
+                );
+                let name_tok = self.lex.next()?;
+                if name_tok.kind != Tok::Word {
+                    return Err(self.unexpected(&name_tok, &format!("a name after '{what}'")));
+                }
+                let open = self.lex.next()?;
+                if open.kind != Tok::LBracket {
+                    return Err(self.unexpected(&open, "'[' to start the interface"));
+                }
+                self.skip_balanced(open)?;
+                if what == "PROTO" {
+                    let body = self.lex.next()?;
+                    if body.kind != Tok::LBrace {
+                        return Err(self.unexpected(&body, "'{' to start the PROTO body"));
+                    }
+                    self.skip_balanced(body)?;
+                } else {
+                    self.skip_value()?;
+                }
+                // A later instance of the prototype is an unknown node, skipped by structure.
+                Ok(None)
+            }
+            b"ROUTE" if self.dialect == Dialect::Vrml2 => {
+                self.warn_once(
+                    "ROUTE",
+                    format!("line {}: ROUTE statements are ignored", t.line),
+                );
+                for expected in ["a source after 'ROUTE'", "'TO'", "a destination after 'TO'"] {
+                    let w = self.lex.next()?;
+                    if w.kind != Tok::Word {
+                        return Err(self.unexpected(&w, expected));
+                    }
+                }
+                Ok(None)
+            }
+            _ => Ok(Some(self.parse_node_body(t, None)?)),
+        }
+    }
+
+    /// Parses `{ ... }` after a node's kind name.
+    fn parse_node_body(&mut self, kind_tok: Token, def: Option<String>) -> PResult<Rc<Node>> {
+        let kind = self.lex.text(&kind_tok);
+        let open = self.lex.next()?;
+        if open.kind != Tok::LBrace {
+            return Err(self.unexpected(&open, &format!("'{{' after '{kind}'")));
+        }
+        if !is_known(self.dialect, &kind) {
+            if !is_ignorable(self.dialect, &kind) {
+                let msg = match kind.as_str() {
+                    "Inline" | "WWWInline" => format!(
+                        "line {}: {kind} nodes are not followed (the inlined file is not read)",
+                        kind_tok.line
+                    ),
+                    _ => format!(
+                        "line {}: unsupported node '{kind}' skipped (and any others like it)",
+                        kind_tok.line
+                    ),
+                };
+                self.warn_once(&kind, msg);
+            }
+            self.skip_balanced(open)?;
+            return Ok(Rc::new(Node {
+                kind,
+                def,
+                line: kind_tok.line,
+                fields: Vec::new(),
+                children: Vec::new(),
+                skipped: true,
+            }));
+        }
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(ParseError::new(
+                kind_tok.line,
+                format!("nodes nested deeper than {MAX_DEPTH} levels"),
+            ));
+        }
+        let mut node = Node {
+            kind,
+            def,
+            line: kind_tok.line,
+            fields: Vec::new(),
+            children: Vec::new(),
+            skipped: false,
+        };
+        loop {
+            let t = self.lex.peek()?;
+            match t.kind {
+                Tok::RBrace => {
+                    self.lex.next()?;
+                    break;
+                }
+                Tok::Eof => {
+                    return Err(ParseError::new(
+                        self.lex.line(),
+                        format!(
+                            "unexpected end of file: expected '}}' to close '{}' opened at line {}",
+                            node.kind, node.line
+                        ),
+                    ))
+                }
+                Tok::Word => {
+                    let v1 = self.dialect == Dialect::Vrml1;
+                    if v1 && (self.is_word(&t, b"DEF") || self.is_word(&t, b"USE")) {
+                        if let Some(c) = self.parse_statement()? {
+                            node.children.push(c);
+                        }
+                        continue;
+                    }
+                    if !v1
+                        && (self.is_word(&t, b"ROUTE")
+                            || self.is_word(&t, b"PROTO")
+                            || self.is_word(&t, b"EXTERNPROTO"))
+                    {
+                        self.parse_statement()?;
+                        continue;
+                    }
+                    self.lex.next()?;
+                    if self.is_word(&t, b"~") {
+                        continue;
+                    }
+                    if v1 && self.lex.peek()?.kind == Tok::LBrace {
+                        let child = self.parse_node_body(t, None)?;
+                        node.children.push(child);
+                        continue;
+                    }
+                    self.parse_field(&mut node, t)?;
+                }
+                _ => {
+                    self.lex.next()?;
+                    return Err(
+                        self.unexpected(&t, &format!("a field name or '}}' in '{}'", node.kind))
+                    );
+                }
+            }
+        }
+        self.depth -= 1;
+        Ok(Rc::new(node))
+    }
+
+    /// Parses the value of field `name_tok` (already consumed) into `node`.
+    fn parse_field(&mut self, node: &mut Node, name_tok: Token) -> PResult<()> {
+        let name = self.lex.text(&name_tok);
+        let Some(kind) = field_kind(self.dialect, &node.kind, &name) else {
+            // VRML 2.0 "IS" in PROTO bodies never reaches here (bodies are skipped).
+            return self.skip_value();
+        };
+        let line = self.lex.peek()?.line;
+        let value = match kind {
+            FieldKind::Floats => Value::Floats(self.parse_floats(&name)?),
+            FieldKind::Ints => Value::Ints(self.parse_ints(&name)?),
+            FieldKind::Bool => {
+                let t = self.lex.next()?;
+                let b = self.lex.bytes(&t);
+                match (t.kind, b) {
+                    (Tok::Word, b"TRUE") | (Tok::Number, b"1") => Value::Bool(true),
+                    (Tok::Word, b"FALSE") | (Tok::Number, b"0") => Value::Bool(false),
+                    _ => return Err(self.unexpected(&t, &format!("TRUE or FALSE for '{name}'"))),
+                }
+            }
+            FieldKind::Word => Value::Word(self.parse_word(&name)?),
+            FieldKind::Node => {
+                let t = self.lex.peek()?;
+                if self.is_word(&t, b"NULL") {
+                    self.lex.next()?;
+                    Value::Node(None)
+                } else if t.kind == Tok::Word {
+                    Value::Node(self.parse_statement()?)
+                } else {
+                    self.lex.next()?;
+                    return Err(self.unexpected(&t, &format!("a node or NULL for '{name}'")));
+                }
+            }
+            FieldKind::Nodes => {
+                let t = self.lex.peek()?;
+                let mut nodes = Vec::new();
+                if t.kind == Tok::LBracket {
+                    self.lex.next()?;
+                    loop {
+                        let t = self.lex.peek()?;
+                        match t.kind {
+                            Tok::RBracket => {
+                                self.lex.next()?;
+                                break;
+                            }
+                            Tok::Word => {
+                                if let Some(n) = self.parse_statement()? {
+                                    nodes.push(n);
+                                }
+                            }
+                            _ => {
+                                self.lex.next()?;
+                                return Err(
+                                    self.unexpected(&t, &format!("a node or ']' in '{name}'"))
+                                );
+                            }
+                        }
+                    }
+                } else if t.kind == Tok::Word {
+                    if let Some(n) = self.parse_statement()? {
+                        nodes.push(n);
+                    }
+                } else {
+                    self.lex.next()?;
+                    return Err(self.unexpected(&t, &format!("'[' or a node for '{name}'")));
+                }
+                Value::Nodes(nodes)
+            }
+        };
+        node.fields.retain(|f| f.name != name);
+        // Inventor marks ignored fields with a trailing `~`: the value does not apply.
+        let t = self.lex.peek()?;
+        if self.is_word(&t, b"~") {
+            self.lex.next()?;
+            return Ok(());
+        }
+        node.fields.push(Field { name, line, value });
+        Ok(())
+    }
+
+    fn parse_word(&mut self, name: &str) -> PResult<String> {
+        let t = self.lex.next()?;
+        match t.kind {
+            Tok::Word => Ok(self.lex.text(&t)),
+            Tok::LParen => {
+                // Inventor bit mask: ( A | B ).
+                let mut out = String::new();
+                loop {
+                    let t = self.lex.next()?;
+                    match t.kind {
+                        Tok::RParen => return Ok(out),
+                        Tok::Pipe => out.push('|'),
+                        Tok::Word => out.push_str(&self.lex.text(&t)),
+                        _ => return Err(self.unexpected(&t, "a name, '|' or ')'")),
+                    }
+                }
+            }
+            _ => Err(self.unexpected(&t, &format!("a value name for '{name}'"))),
+        }
+    }
+
+    /// Numbers, bracketed or not; brackets may be empty.
+    fn parse_floats(&mut self, name: &str) -> PResult<Vec<f32>> {
+        let mut out = Vec::new();
+        let first = self.lex.peek()?;
+        if first.kind == Tok::LBracket {
+            self.lex.next()?;
+            loop {
+                let t = self.lex.next()?;
+                match t.kind {
+                    Tok::Number => out.push(self.float_of(&t, name)?),
+                    Tok::RBracket => return Ok(out),
+                    _ => return Err(self.unexpected(&t, &format!("a number or ']' in '{name}'"))),
+                }
+            }
+        }
+        if first.kind != Tok::Number {
+            self.lex.next()?;
+            return Err(self.unexpected(&first, &format!("a number for '{name}'")));
+        }
+        while self.lex.peek()?.kind == Tok::Number {
+            let t = self.lex.next()?;
+            out.push(self.float_of(&t, name)?);
+        }
+        Ok(out)
+    }
+
+    fn float_of(&self, t: &Token, name: &str) -> PResult<f32> {
+        match parse_f32(self.lex.bytes(t)) {
+            Some(v) if v.is_finite() => Ok(v),
+            Some(_) => Err(ParseError::new(
+                t.line,
+                format!(
+                    "number {} in '{name}' is not finite in 32-bit floating point",
+                    self.lex.describe(t)
+                ),
+            )),
+            None => Err(self.unexpected(t, &format!("a number in '{name}'"))),
+        }
+    }
+
+    fn int_of(&self, t: &Token, name: &str) -> PResult<i32> {
+        match parse_int(self.lex.bytes(t)) {
+            // Hexadecimal values up to 0xffffffff (packed colours) keep their bits.
+            Some(v) if (i32::MIN as i64..=u32::MAX as i64).contains(&v) => Ok(v as i32),
+            Some(_) => Err(ParseError::new(
+                t.line,
+                format!(
+                    "integer {} in '{name}' is out of range",
+                    self.lex.describe(t)
+                ),
+            )),
+            None => Err(self.unexpected(t, &format!("an integer in '{name}'"))),
+        }
+    }
+
+    fn parse_ints(&mut self, name: &str) -> PResult<Vec<i32>> {
+        let mut out = Vec::new();
+        let first = self.lex.peek()?;
+        if first.kind == Tok::LBracket {
+            self.lex.next()?;
+            loop {
+                let t = self.lex.next()?;
+                match t.kind {
+                    Tok::Number => out.push(self.int_of(&t, name)?),
+                    Tok::RBracket => return Ok(out),
+                    _ => return Err(self.unexpected(&t, &format!("an integer or ']' in '{name}'"))),
+                }
+            }
+        }
+        if first.kind != Tok::Number {
+            self.lex.next()?;
+            return Err(self.unexpected(&first, &format!("an integer for '{name}'")));
+        }
+        while self.lex.peek()?.kind == Tok::Number {
+            let t = self.lex.next()?;
+            out.push(self.int_of(&t, name)?);
+        }
+        Ok(out)
+    }
+
+    /// Skips one field value of unknown type by its structure.
+    fn skip_value(&mut self) -> PResult<()> {
+        let t = self.lex.next()?;
+        match t.kind {
+            Tok::LBracket | Tok::LParen => self.skip_balanced(t),
+            Tok::Number => {
+                while self.lex.peek()?.kind == Tok::Number {
+                    self.lex.next()?;
+                }
+                Ok(())
+            }
+            Tok::Str => {
+                while self.lex.peek()?.kind == Tok::Str {
+                    self.lex.next()?;
+                }
+                Ok(())
+            }
+            Tok::Word => {
+                if self.is_word(&t, b"DEF") {
+                    let name_tok = self.lex.next()?;
+                    let kind_tok = self.lex.next()?;
+                    if !is_name(&name_tok) || kind_tok.kind != Tok::Word {
+                        return Err(self.unexpected(&kind_tok, "a name and a node after 'DEF'"));
+                    }
+                    let name = self.lex.text(&name_tok);
+                    let node = self.parse_node_body(kind_tok, Some(name.clone()))?;
+                    self.defs.insert(name, node);
+                    return Ok(());
+                }
+                if self.is_word(&t, b"USE") {
+                    let n = self.lex.next()?;
+                    if !is_name(&n) {
+                        return Err(self.unexpected(&n, "a name after 'USE'"));
+                    }
+                    return Ok(());
+                }
+                if self.is_word(&t, b"IS") {
+                    self.lex.next()?;
+                    return Ok(());
+                }
+                if self.lex.peek()?.kind == Tok::LBrace {
+                    self.parse_node_body(t, None)?;
+                }
+                Ok(())
+            }
+            _ => Err(self.unexpected(&t, "a field value")),
+        }
+    }
+
+    /// Skips tokens up to the bracket matching `open` (already consumed), without recursion.
+    /// DEF names met inside are registered as skipped nodes so later USEs still resolve.
+    fn skip_balanced(&mut self, open: Token) -> PResult<()> {
+        let mut stack: Vec<(Tok, usize)> = vec![(open.kind, open.line)];
+        let mut prev_def = false;
+        while let Some(&(top, top_line)) = stack.last() {
+            let t = self.lex.next()?;
+            if prev_def && is_name(&t) {
+                let name = self.lex.text(&t);
+                self.defs.entry(name).or_insert_with(|| {
+                    Rc::new(Node {
+                        kind: "<skipped>".into(),
+                        def: None,
+                        line: t.line,
+                        fields: Vec::new(),
+                        children: Vec::new(),
+                        skipped: true,
+                    })
+                });
+            }
+            prev_def = self.is_word(&t, b"DEF");
+            match t.kind {
+                Tok::LBrace | Tok::LBracket | Tok::LParen => stack.push((t.kind, t.line)),
+                Tok::RBrace | Tok::RBracket | Tok::RParen => {
+                    let want = match top {
+                        Tok::LBrace => Tok::RBrace,
+                        Tok::LBracket => Tok::RBracket,
+                        _ => Tok::RParen,
+                    };
+                    if t.kind != want {
+                        let close = match want {
+                            Tok::RBrace => "'}'",
+                            Tok::RBracket => "']'",
+                            _ => "')'",
+                        };
+                        return Err(self.unexpected(
+                            &t,
+                            &format!("{close} to close the one opened at line {top_line}"),
+                        ));
+                    }
+                    stack.pop();
+                }
+                Tok::Eof => {
+                    let close = match top {
+                        Tok::LBrace => "'}'",
+                        Tok::LBracket => "']'",
+                        _ => "')'",
+                    };
+                    return Err(ParseError::new(
+                        self.lex.line(),
+                        format!(
+                            "unexpected end of file: expected {close} to close the one opened at line {top_line}"
+                        ),
+                    ));
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,491 @@
+//! PLY (Stanford polygon format): a reader for ASCII and binary (little / big endian) files and
+//! a binary little-endian writer.
+//!
+//! Read: `element vertex` with `x y z` (float or double, any other properties skipped) and
+//! optional `red green blue` (uchar, becoming per-vertex colours), `element face` with a
+//! `vertex_indices` / `vertex_index` list (any integer count and index types); polygons are
+//! triangulated like VRML faces. Other elements are skipped. The result is one model.
+//! Write: one binary little-endian file of all models, transforms baked in.
+
+use std::io::Write;
+use std::path::Path;
+
+use glam::{Mat4, Vec3};
+
+use super::build::{build, Bind, ShapeSpec};
+use super::lexer::{PResult, ParseError};
+use super::WriteError;
+use crate::mesh::{Attribute, Scene};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Ascii,
+    Little,
+    Big,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Ty {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Ty {
+    fn parse(s: &str) -> Option<Self> {
+        Some(match s {
+            "char" | "int8" => Self::I8,
+            "uchar" | "uint8" => Self::U8,
+            "short" | "int16" => Self::I16,
+            "ushort" | "uint16" => Self::U16,
+            "int" | "int32" => Self::I32,
+            "uint" | "uint32" => Self::U32,
+            "float" | "float32" => Self::F32,
+            "double" | "float64" => Self::F64,
+            _ => return None,
+        })
+    }
+    fn size(self) -> usize {
+        match self {
+            Self::I8 | Self::U8 => 1,
+            Self::I16 | Self::U16 => 2,
+            Self::I32 | Self::U32 | Self::F32 => 4,
+            Self::F64 => 8,
+        }
+    }
+}
+
+#[derive(Debug)]
+struct Property {
+    name: String,
+    ty: Ty,
+    /// For list properties, the type of the count.
+    list: Option<Ty>,
+}
+
+#[derive(Debug)]
+struct Element {
+    name: String,
+    count: usize,
+    props: Vec<Property>,
+    line: usize,
+}
+
+/// Reads scalar values in one of the three encodings.
+struct Body<'a> {
+    format: Format,
+    bytes: &'a [u8],
+    pos: usize,
+    /// Current line (ASCII) for messages.
+    line: usize,
+}
+
+impl<'a> Body<'a> {
+    fn eof(&self, what: &str) -> ParseError {
+        ParseError::new(
+            self.line,
+            format!("unexpected end of file: the PLY body ends before {what}"),
+        )
+    }
+
+    fn token(&mut self, what: &str) -> PResult<&'a [u8]> {
+        let b = self.bytes;
+        while self.pos < b.len() && b[self.pos].is_ascii_whitespace() {
+            if b[self.pos] == b'\n' {
+                self.line += 1;
+            }
+            self.pos += 1;
+        }
+        let start = self.pos;
+        while self.pos < b.len() && !b[self.pos].is_ascii_whitespace() {
+            self.pos += 1;
+        }
+        if start == self.pos {
+            return Err(self.eof(what));
+        }
+        Ok(&b[start..self.pos])
+    }
+
+    fn raw<const N: usize>(&mut self, what: &str) -> PResult<[u8; N]> {
+        let s = self
+            .bytes
+            .get(self.pos..self.pos + N)
+            .ok_or_else(|| self.eof(what))?;
+        self.pos += N;
+        let mut a = [0u8; N];
+        a.copy_from_slice(s);
+        if self.format == Format::Big {
+            a.reverse();
+        }
+        Ok(a)
+    }
+
+    /// One value as f64 (exact for every PLY integer type).
+    fn value(&mut self, ty: Ty, what: &str) -> PResult<f64> {
+        if self.format == Format::Ascii {
+            let t = self.token(what)?;
+            let s = std::str::from_utf8(t).unwrap_or("?");
+            return s.parse::<f64>().map_err(|_| {
+                ParseError::new(
+                    self.line,
+                    format!("expected a number for {what}, found '{s}'"),
+                )
+            });
+        }
+        Ok(match ty {
+            Ty::I8 => i8::from_le_bytes(self.raw::<1>(what)?) as f64,
+            Ty::U8 => self.raw::<1>(what)?[0] as f64,
+            Ty::I16 => i16::from_le_bytes(self.raw::<2>(what)?) as f64,
+            Ty::U16 => u16::from_le_bytes(self.raw::<2>(what)?) as f64,
+            Ty::I32 => i32::from_le_bytes(self.raw::<4>(what)?) as f64,
+            Ty::U32 => u32::from_le_bytes(self.raw::<4>(what)?) as f64,
+            Ty::F32 => f32::from_le_bytes(self.raw::<4>(what)?) as f64,
+            Ty::F64 => f64::from_le_bytes(self.raw::<8>(what)?),
+        })
+    }
+
+    /// An index or count: a non-negative integer.
+    fn index(&mut self, ty: Ty, what: &str) -> PResult<u32> {
+        let v = self.value(ty, what)?;
+        if v >= 0.0 && v <= u32::MAX as f64 && v.fract() == 0.0 {
+            Ok(v as u32)
+        } else {
+            Err(ParseError::new(
+                self.line,
+                format!("expected a non-negative integer for {what}, found {v}"),
+            ))
+        }
+    }
+
+    fn skip(&mut self, ty: Ty, what: &str) -> PResult<()> {
+        if self.format == Format::Ascii {
+            self.token(what)?;
+        } else {
+            self.pos += ty.size();
+            if self.pos > self.bytes.len() {
+                return Err(self.eof(what));
+            }
+        }
+        Ok(())
+    }
+}
+
+fn parse_header(bytes: &[u8]) -> PResult<(Format, Vec<Element>, usize, usize)> {
+    let mut pos = 0;
+    let mut line = 0;
+    let mut format = None;
+    let mut elements: Vec<Element> = Vec::new();
+    loop {
+        line += 1;
+        let end = bytes[pos..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map(|e| pos + e)
+            .ok_or_else(|| {
+                ParseError::new(
+                    line,
+                    "unexpected end of file: the PLY header has no 'end_header'",
+                )
+            })?;
+        let text = String::from_utf8_lossy(&bytes[pos..end]);
+        pos = end + 1;
+        let words: Vec<&str> = text.split_ascii_whitespace().collect();
+        match words.as_slice() {
+            ["ply"] if line == 1 => {}
+            _ if line == 1 => return Err(ParseError::new(1, "expected 'ply' on the first line")),
+            ["format", f, _] => {
+                format = Some(match *f {
+                    "ascii" => Format::Ascii,
+                    "binary_little_endian" => Format::Little,
+                    "binary_big_endian" => Format::Big,
+                    other => {
+                        return Err(ParseError::new(
+                            line,
+                            format!("unknown PLY format '{other}'"),
+                        ))
+                    }
+                })
+            }
+            ["comment", ..] | ["obj_info", ..] | [] => {}
+            ["element", name, count] => elements.push(Element {
+                name: name.to_string(),
+                count: count.parse().map_err(|_| {
+                    ParseError::new(line, format!("expected an element count, found '{count}'"))
+                })?,
+                props: Vec::new(),
+                line,
+            }),
+            ["property", "list", ct, it, name] => {
+                let (Some(ct), Some(it)) = (Ty::parse(ct), Ty::parse(it)) else {
+                    return Err(ParseError::new(
+                        line,
+                        format!("unknown PLY type in '{text}'"),
+                    ));
+                };
+                let el = elements
+                    .last_mut()
+                    .ok_or_else(|| ParseError::new(line, "'property' before any 'element'"))?;
+                el.props.push(Property {
+                    name: name.to_string(),
+                    ty: it,
+                    list: Some(ct),
+                });
+            }
+            ["property", ty, name] => {
+                let ty = Ty::parse(ty)
+                    .ok_or_else(|| ParseError::new(line, format!("unknown PLY type '{ty}'")))?;
+                let el = elements
+                    .last_mut()
+                    .ok_or_else(|| ParseError::new(line, "'property' before any 'element'"))?;
+                el.props.push(Property {
+                    name: name.to_string(),
+                    ty,
+                    list: None,
+                });
+            }
+            ["end_header"] => break,
+            _ => {
+                return Err(ParseError::new(
+                    line,
+                    format!("unexpected PLY header line '{text}'"),
+                ))
+            }
+        }
+    }
+    let format =
+        format.ok_or_else(|| ParseError::new(line, "the PLY header has no 'format' line"))?;
+    Ok((format, elements, pos, line))
+}
+
+/// Reads a PLY file into a scene of one model.
+pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
+    let (format, elements, body_start, header_lines) = parse_header(bytes)?;
+    let mut body = Body {
+        format,
+        bytes: &bytes[body_start..],
+        pos: 0,
+        line: header_lines + 1,
+    };
+    let mut warnings = Vec::new();
+    let mut coords: Vec<f32> = Vec::new();
+    let mut rgb: Vec<f32> = Vec::new();
+    let mut nxyz: Vec<f32> = Vec::new();
+    let mut corners: Vec<u32> = Vec::new();
+    let mut ends: Vec<u32> = Vec::new();
+    let mut face_line = header_lines;
+    for el in &elements {
+        let slot = |n: &str| {
+            el.props
+                .iter()
+                .position(|p| p.name == n && p.list.is_none())
+        };
+        match el.name.as_str() {
+            "vertex" => {
+                let (Some(x), Some(y), Some(z)) = (slot("x"), slot("y"), slot("z")) else {
+                    return Err(ParseError::new(
+                        el.line,
+                        "the vertex element has no x, y, z properties",
+                    ));
+                };
+                let color = match (slot("red"), slot("green"), slot("blue")) {
+                    (Some(r), Some(g), Some(b)) => Some([r, g, b]),
+                    _ => None,
+                };
+                let normal = match (slot("nx"), slot("ny"), slot("nz")) {
+                    (Some(a), Some(b), Some(c)) => Some([a, b, c]),
+                    _ => None,
+                };
+                if el.count > bytes.len() {
+                    return Err(body.eof("all the vertices the header announces"));
+                }
+                coords.reserve(el.count * 3);
+                let mut vals = vec![0f64; el.props.len()];
+                for _ in 0..el.count {
+                    for (k, p) in el.props.iter().enumerate() {
+                        if let Some(ct) = p.list {
+                            let n = body.index(ct, "a vertex list count")?;
+                            for _ in 0..n {
+                                body.skip(p.ty, "a vertex list value")?;
+                            }
+                        } else {
+                            vals[k] = body.value(p.ty, "a vertex")?;
+                        }
+                    }
+                    let (px, py, pz) = (vals[x] as f32, vals[y] as f32, vals[z] as f32);
+                    if !(px.is_finite() && py.is_finite() && pz.is_finite()) {
+                        return Err(ParseError::new(
+                            body.line,
+                            format!("vertex {} is not finite ({px} {py} {pz})", coords.len() / 3),
+                        ));
+                    }
+                    coords.extend([px, py, pz]);
+                    if let Some(c) = color {
+                        let scale = if el.props[c[0]].ty == Ty::U8 {
+                            1.0 / 255.0
+                        } else {
+                            1.0
+                        };
+                        rgb.extend(c.map(|i| vals[i] as f32 * scale));
+                    }
+                    if let Some(n) = normal {
+                        nxyz.extend(n.map(|i| vals[i] as f32));
+                    }
+                }
+            }
+            "face" => {
+                face_line = el.line;
+                let list = el.props.iter().position(|p| {
+                    p.list.is_some() && matches!(p.name.as_str(), "vertex_indices" | "vertex_index")
+                });
+                let Some(list) = list else {
+                    return Err(ParseError::new(
+                        el.line,
+                        "the face element has no vertex_indices list",
+                    ));
+                };
+                if el.count > bytes.len() {
+                    return Err(body.eof("all the faces the header announces"));
+                }
+                corners.reserve(el.count * 3);
+                ends.reserve(el.count);
+                for _ in 0..el.count {
+                    for (k, p) in el.props.iter().enumerate() {
+                        match p.list {
+                            Some(ct) => {
+                                let n = body.index(ct, "a face's corner count")?;
+                                for _ in 0..n {
+                                    if k == list {
+                                        corners.push(body.index(p.ty, "a face's vertex index")?);
+                                    } else {
+                                        body.skip(p.ty, "a face list value")?;
+                                    }
+                                }
+                            }
+                            None => body.skip(p.ty, "a face property")?,
+                        }
+                    }
+                    ends.push(corners.len() as u32);
+                }
+            }
+            _ => {
+                for _ in 0..el.count {
+                    for p in &el.props {
+                        if let Some(ct) = p.list {
+                            let n = body.index(ct, "a list count")?;
+                            for _ in 0..n {
+                                body.skip(p.ty, "a list value")?;
+                            }
+                        } else {
+                            body.skip(p.ty, "a value")?;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    if ends.is_empty() {
+        warnings.push("the PLY file has no faces (a point cloud); nothing to decimate".into());
+        return Ok((Scene::default(), warnings));
+    }
+    let colors = if rgb.is_empty() {
+        Bind::None
+    } else {
+        Bind::PerCorner {
+            values: &rgb,
+            index: corners.clone(),
+        }
+    };
+    let normals = if nxyz.is_empty() {
+        Bind::None
+    } else {
+        Bind::PerCorner {
+            values: &nxyz,
+            index: corners.clone(),
+        }
+    };
+    let spec = ShapeSpec {
+        name: "ply".into(),
+        transform: Mat4::IDENTITY,
+        coords: &coords,
+        corners,
+        ends,
+        colors,
+        normals,
+        ccw: true,
+        solid: false,
+        crease_angle: None,
+        diffuse: [0.8; 3],
+        line: face_line,
+        index_field: "vertex_indices",
+    };
+    let model = build(spec, &mut warnings)?;
+    Ok((
+        Scene {
+            models: vec![model],
+        },
+        warnings,
+    ))
+}
+
+/// Writes all models as one binary little-endian PLY (transforms baked in; per-vertex colours
+/// kept when every model has them), via a temporary file and a rename.
+pub fn write_ply(scene: &Scene, path: &Path) -> Result<(), WriteError> {
+    super::write_atomically(path, |w| write_ply_to(w, scene))
+}
+
+/// Writes the PLY bytes to `w`.
+pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
+    let colored = !scene.models.is_empty()
+        && scene
+            .models
+            .iter()
+            .all(|m| matches!(m.colors, Some(Attribute::PerVertex(_))));
+    writeln!(
+        w,
+        "ply\nformat binary_little_endian 1.0\ncomment written by decimate"
+    )?;
+    writeln!(w, "element vertex {}", scene.vertex_count())?;
+    writeln!(w, "property float x\nproperty float y\nproperty float z")?;
+    if colored {
+        writeln!(
+            w,
+            "property uchar red\nproperty uchar green\nproperty uchar blue"
+        )?;
+    }
+    writeln!(w, "element face {}", scene.triangle_count())?;
+    writeln!(w, "property list uchar int vertex_indices\nend_header")?;
+    for m in &scene.models {
+        let colors = match &m.colors {
+            Some(Attribute::PerVertex(c)) if colored => Some(c),
+            _ => None,
+        };
+        for (i, &p) in m.positions.iter().enumerate() {
+            let p: Vec3 = m.transform.transform_point3(p);
+            for v in [p.x, p.y, p.z] {
+                w.write_all(&v.to_le_bytes())?;
+            }
+            if let Some(c) = colors {
+                let c = c.get(i).copied().unwrap_or(m.diffuse);
+                w.write_all(&c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))?;
+            }
+        }
+    }
+    let mut base = 0u32;
+    for m in &scene.models {
+        let flip = m.transform.determinant() < 0.0;
+        for t in &m.triangles {
+            let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
+            w.write_all(&[3])?;
+            for v in [a, b, c] {
+                w.write_all(&(v + base).to_le_bytes())?;
+            }
+        }
+        base += m.positions.len() as u32;
+    }
+    w.flush()
+}

@@ -1,0 +1,236 @@
+//! The report's test models (test001–test006) built in code, so tests can use them directly
+//! and `tools/gen_models.rs` can write them to `assets/`. Each is welded, counter-clockwise
+//! seen from outside, with the vertex and triangle counts the report gives.
+
+use std::collections::HashMap;
+
+use glam::Vec3;
+
+use super::Model;
+
+/// test001: a three-sided pyramid with one extra vertex in the middle of its base (5 / 6).
+pub fn test001() -> Model {
+    let s = 3f32.sqrt();
+    let positions = vec![
+        Vec3::new(-1.0, 0.0, -s / 3.0),
+        Vec3::new(1.0, 0.0, -s / 3.0),
+        Vec3::new(0.0, 0.0, 2.0 * s / 3.0),
+        Vec3::new(0.0, 1.5, 0.0), // apex
+        Vec3::new(0.0, 0.0, 0.0), // centre of the base
+    ];
+    // Base seen from below (normal -y), sides seen from outside.
+    let triangles = vec![
+        [4, 0, 1],
+        [4, 1, 2],
+        [4, 2, 0],
+        [0, 3, 1],
+        [1, 3, 2],
+        [2, 3, 0],
+    ];
+    named("test001", positions, triangles)
+}
+
+/// test002: a 2×2 cube — each face a 2×2 grid of quads (26 / 48).
+pub fn test002() -> Model {
+    named_cube("test002", 2, 2.0)
+}
+
+/// test003: a one-sided 10×10 plane in z = 0, facing +z (121 / 200).
+pub fn test003() -> Model {
+    let n = 10u32;
+    let mut positions = Vec::new();
+    for y in 0..=n {
+        for x in 0..=n {
+            positions.push(Vec3::new(x as f32, y as f32, 0.0));
+        }
+    }
+    let mut triangles = Vec::new();
+    for y in 0..n {
+        for x in 0..n {
+            let a = y * (n + 1) + x;
+            triangles.push([a, a + 1, a + n + 2]);
+            triangles.push([a, a + n + 2, a + n + 1]);
+        }
+    }
+    named("test003", positions, triangles)
+}
+
+/// test004: a 10×10 cube — each face a 10×10 grid of quads (602 / 1200).
+pub fn test004() -> Model {
+    named_cube("test004", 10, 10.0)
+}
+
+/// test005: a hollow cylinder with thick walls — outer and inner wall of 24 segments × 11
+/// rings, joined by flat annular rims top and bottom (528 / 1056). The rims meet the walls at
+/// right angles: feature edges that must survive decimation.
+pub fn test005() -> Model {
+    let (segments, rings) = (24u32, 11u32);
+    let (outer, inner, height) = (2.0f32, 1.5f32, 5.0f32);
+    let mut positions = Vec::new();
+    for (radius, _) in [(outer, 0), (inner, 1)] {
+        for r in 0..rings {
+            let z = height * r as f32 / (rings - 1) as f32;
+            for s in 0..segments {
+                let a = std::f32::consts::TAU * s as f32 / segments as f32;
+                positions.push(Vec3::new(radius * a.cos(), radius * a.sin(), z));
+            }
+        }
+    }
+    let id = |wall: u32, r: u32, s: u32| wall * rings * segments + r * segments + s % segments;
+    let mut triangles = Vec::new();
+    for r in 0..rings - 1 {
+        for s in 0..segments {
+            // Outer wall faces outwards, inner wall faces the axis.
+            let (a, b, c, d) = (
+                id(0, r, s),
+                id(0, r, s + 1),
+                id(0, r + 1, s + 1),
+                id(0, r + 1, s),
+            );
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+            let (a, b, c, d) = (
+                id(1, r, s),
+                id(1, r, s + 1),
+                id(1, r + 1, s + 1),
+                id(1, r + 1, s),
+            );
+            triangles.push([a, c, b]);
+            triangles.push([a, d, c]);
+        }
+    }
+    let top = rings - 1;
+    for s in 0..segments {
+        // Top rim faces +z, bottom rim faces -z.
+        let (o0, o1, i0, i1) = (
+            id(0, top, s),
+            id(0, top, s + 1),
+            id(1, top, s),
+            id(1, top, s + 1),
+        );
+        triangles.push([o0, o1, i1]);
+        triangles.push([o0, i1, i0]);
+        let (o0, o1, i0, i1) = (id(0, 0, s), id(0, 0, s + 1), id(1, 0, s), id(1, 0, s + 1));
+        triangles.push([o0, i1, o1]);
+        triangles.push([o0, i0, i1]);
+    }
+    named("test005", positions, triangles)
+}
+
+/// test006: a squashed four-sided pyramid (a dome) over a square base: 48 points on each of
+/// 50 square rings plus apex and base centre (2402 / 4800). 40 rings rise as a dome, 10 rings
+/// close the flat base.
+pub fn test006() -> Model {
+    let (per_side, dome_rings, base_rings) = (12u32, 40u32, 10u32);
+    let segments = 4 * per_side;
+    let (half, height) = (5.0f32, 2.5f32);
+    // A point on the square of half-size 1 at parameter s in 0..segments.
+    let square = |s: u32| {
+        let side = s / per_side;
+        let t = (s % per_side) as f32 / per_side as f32 * 2.0 - 1.0;
+        match side {
+            0 => (1.0, t),
+            1 => (-t, 1.0),
+            2 => (-1.0, -t),
+            _ => (t, -1.0),
+        }
+    };
+    let mut positions = vec![Vec3::new(0.0, 0.0, height)]; // apex
+    for r in 1..=dome_rings {
+        let f = r as f32 / dome_rings as f32;
+        let z = height * (1.0 - f * f);
+        for s in 0..segments {
+            let (x, y) = square(s);
+            positions.push(Vec3::new(half * f * x, half * f * y, z));
+        }
+    }
+    for r in 1..=base_rings {
+        let f = 1.0 - r as f32 / (base_rings + 1) as f32;
+        for s in 0..segments {
+            let (x, y) = square(s);
+            positions.push(Vec3::new(half * f * x, half * f * y, 0.0));
+        }
+    }
+    let bottom = positions.len() as u32;
+    positions.push(Vec3::ZERO);
+    let rings = dome_rings + base_rings;
+    let id = |r: u32, s: u32| 1 + (r - 1) * segments + s % segments;
+    let mut triangles = Vec::new();
+    for s in 0..segments {
+        triangles.push([0, id(1, s), id(1, s + 1)]);
+        triangles.push([bottom, id(rings, s + 1), id(rings, s)]);
+    }
+    for r in 1..rings {
+        for s in 0..segments {
+            let (a, b, c, d) = (id(r, s), id(r + 1, s), id(r + 1, s + 1), id(r, s + 1));
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    named("test006", positions, triangles)
+}
+
+/// Every report model, in order.
+pub fn all() -> Vec<Model> {
+    vec![
+        test001(),
+        test002(),
+        test003(),
+        test004(),
+        test005(),
+        test006(),
+    ]
+}
+
+/// An axis-aligned cube of side `size` centred at the origin, each face an `n`×`n` grid of
+/// quads split into two triangles; shared edge and corner vertices are merged.
+pub fn cube(n: u32, size: f32) -> Model {
+    named_cube("cube", n, size)
+}
+
+fn named_cube(name: &str, n: u32, size: f32) -> Model {
+    let mut index: HashMap<[i32; 3], u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    let h = n as i32;
+    // Each face: a fixed axis at ±h, two running axes chosen so (u × v) points outwards.
+    let faces: [(usize, i32, usize, usize); 6] = [
+        (0, 1, 1, 2),
+        (0, -1, 2, 1),
+        (1, 1, 2, 0),
+        (1, -1, 0, 2),
+        (2, 1, 0, 1),
+        (2, -1, 1, 0),
+    ];
+    for (axis, sign, u, v) in faces {
+        let mut id = |i: i32, j: i32| {
+            let mut c = [0i32; 3];
+            c[axis] = sign * h;
+            c[u] = 2 * i - h;
+            c[v] = 2 * j - h;
+            *index.entry(c).or_insert_with(|| {
+                positions.push(
+                    Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32) * (size / (2 * h) as f32),
+                );
+                (positions.len() - 1) as u32
+            })
+        };
+        for j in 0..h {
+            for i in 0..h {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                triangles.push([a, b, c]);
+                triangles.push([a, c, d]);
+            }
+        }
+    }
+    named(name, positions, triangles)
+}
+
+fn named(name: &str, positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Model {
+    Model {
+        name: name.to_string(),
+        positions,
+        triangles,
+        ..Model::default()
+    }
+}

@@ -1,0 +1,351 @@
+//! Dynamic triangle connectivity: flat triangle array with alive flags and free-slot reuse,
+//! plus vertex → incident-triangle lists, and the ordered one-ring ("loop") of a vertex that
+//! every local operation starts from.
+//!
+//! The ring of a vertex `v` is the sequence of its neighbours in counter-clockwise order:
+//! closed for an interior manifold vertex, an open path for a boundary vertex, and "complex"
+//! for anything else (non-manifold edge, two fans meeting at a point, inconsistent
+//! orientation). Ring triangle `i` is `(v, verts[i], verts[i + 1])` (indices modulo the length
+//! for closed rings).
+
+/// Largest valence handled; vertices above it are reported as complex (kept).
+pub const MAX_VALENCE: usize = 256;
+
+/// Incident triangles kept inline per vertex; more spill to a side table.
+const INLINE: usize = 15;
+
+/// One vertex's incident triangles: a cache line holding up to `INLINE` ids inline, so a
+/// lookup costs one memory access instead of two (a `Vec` header, then its heap data).
+#[derive(Debug, Clone, Copy)]
+#[repr(align(64))]
+struct Incidence {
+    len: u32,
+    ids: [u32; INLINE],
+}
+
+/// Triangles with per-vertex incidence, editable in place.
+#[derive(Debug, Clone)]
+pub struct Connectivity {
+    triangles: Vec<[u32; 3]>,
+    alive: Vec<bool>,
+    incidence: Vec<Incidence>,
+    /// Incident lists of vertices with more than `INLINE` triangles.
+    spilled: std::collections::HashMap<u32, Vec<u32>>,
+    free: Vec<u32>,
+    alive_count: usize,
+}
+
+/// The shape of a vertex's one-ring.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RingShape {
+    /// No incident triangle.
+    Isolated,
+    /// A closed loop: interior manifold vertex.
+    Closed,
+    /// An open path: manifold boundary vertex.
+    Open,
+    /// Non-manifold or inconsistently oriented neighbourhood.
+    Complex,
+}
+
+/// Scratch buffers for a ring, reused between calls to avoid allocation.
+#[derive(Debug, Clone, Default)]
+pub struct Ring {
+    /// Neighbours in counter-clockwise order (one more than `triangles` when open).
+    pub verts: Vec<u32>,
+    /// Incident triangle ids, `triangles[i]` = `(v, verts[i], verts[i+1])`.
+    pub triangles: Vec<u32>,
+    pairs: Vec<(u32, u32, u32)>,
+}
+
+impl Connectivity {
+    /// Builds connectivity for `vertex_count` vertices; triangles with an index out of range
+    /// must have been rejected by the caller.
+    pub fn new(vertex_count: usize, triangles: &[[u32; 3]]) -> Self {
+        let mut conn = Self {
+            triangles: triangles.to_vec(),
+            alive: vec![true; triangles.len()],
+            incidence: vec![
+                Incidence {
+                    len: 0,
+                    ids: [0; INLINE]
+                };
+                vertex_count
+            ],
+            spilled: std::collections::HashMap::new(),
+            free: Vec::new(),
+            alive_count: triangles.len(),
+        };
+        for (i, t) in triangles.iter().enumerate() {
+            for &v in t {
+                conn.link(v, i as u32);
+            }
+        }
+        conn
+    }
+
+    /// Adds `t` to `v`'s incident list.
+    fn link(&mut self, v: u32, t: u32) {
+        let inc = &mut self.incidence[v as usize];
+        let len = inc.len as usize;
+        if len < INLINE {
+            inc.ids[len] = t;
+        } else {
+            let list = self.spilled.entry(v).or_insert_with(|| inc.ids.to_vec());
+            list.push(t);
+        }
+        inc.len += 1;
+    }
+
+    /// Removes `t` from `v`'s incident list (order is not kept).
+    fn unlink(&mut self, v: u32, t: u32) {
+        let inc = &mut self.incidence[v as usize];
+        let len = inc.len as usize;
+        if len <= INLINE {
+            if let Some(pos) = inc.ids[..len].iter().position(|&x| x == t) {
+                inc.ids[pos] = inc.ids[len - 1];
+                inc.len -= 1;
+            }
+            return;
+        }
+        let Some(list) = self.spilled.get_mut(&v) else {
+            return;
+        };
+        if let Some(pos) = list.iter().position(|&x| x == t) {
+            list.swap_remove(pos);
+            inc.len -= 1;
+        }
+        if list.len() <= INLINE {
+            inc.ids[..list.len()].copy_from_slice(list);
+            self.spilled.remove(&v);
+        }
+    }
+
+    /// Triangle slots, dead ones included (check [`Self::is_alive`]).
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    pub fn is_alive(&self, t: u32) -> bool {
+        self.alive[t as usize]
+    }
+
+    pub fn triangle(&self, t: u32) -> [u32; 3] {
+        self.triangles[t as usize]
+    }
+
+    /// Number of live triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.alive_count
+    }
+
+    /// Live triangles incident to `v`.
+    pub fn incident(&self, v: u32) -> &[u32] {
+        let inc = &self.incidence[v as usize];
+        let len = inc.len as usize;
+        if len <= INLINE {
+            &inc.ids[..len]
+        } else {
+            self.spilled.get(&v).map_or(&[], Vec::as_slice)
+        }
+    }
+
+    /// Ids of live triangle slots, ascending.
+    pub fn alive_ids(&self) -> impl Iterator<Item = u32> + '_ {
+        (0..self.triangles.len() as u32).filter(|&t| self.alive[t as usize])
+    }
+
+    /// Kills triangle `t` and unlinks it from its vertices; its slot is reused later.
+    pub fn remove_triangle(&mut self, t: u32) {
+        if !self.alive[t as usize] {
+            return;
+        }
+        self.alive[t as usize] = false;
+        self.alive_count -= 1;
+        for v in self.triangles[t as usize] {
+            self.unlink(v, t);
+        }
+        self.free.push(t);
+    }
+
+    /// Adds a triangle, reusing the most recently freed slot; returns its id.
+    pub fn add_triangle(&mut self, tri: [u32; 3]) -> u32 {
+        let t = match self.free.pop() {
+            Some(t) => {
+                self.triangles[t as usize] = tri;
+                self.alive[t as usize] = true;
+                t
+            }
+            None => {
+                self.triangles.push(tri);
+                self.alive.push(true);
+                (self.triangles.len() - 1) as u32
+            }
+        };
+        self.alive_count += 1;
+        for v in tri {
+            self.link(v, t);
+        }
+        t
+    }
+
+    /// True when some live triangle not incident to `except` has the edge `a`–`b`.
+    pub fn has_edge_avoiding(&self, a: u32, b: u32, except: u32) -> bool {
+        self.incident(a).iter().any(|&t| {
+            let tri = self.triangles[t as usize];
+            tri.contains(&b) && !tri.contains(&except)
+        })
+    }
+
+    /// True when a live triangle with exactly the vertices `a`, `b`, `c` exists.
+    pub fn has_triangle(&self, a: u32, b: u32, c: u32) -> bool {
+        self.incident(a).iter().any(|&t| {
+            let tri = self.triangles[t as usize];
+            tri.contains(&b) && tri.contains(&c)
+        })
+    }
+
+    /// Fills `ring` with the ordered one-ring of `v` and says what shape it has.
+    pub fn ring(&self, v: u32, ring: &mut Ring) -> RingShape {
+        ring.verts.clear();
+        ring.triangles.clear();
+        ring.pairs.clear();
+        let incident = self.incident(v);
+        if incident.is_empty() {
+            return RingShape::Isolated;
+        }
+        if incident.len() > MAX_VALENCE {
+            return RingShape::Complex;
+        }
+        for &t in incident {
+            let [a, b, c] = self.triangles[t as usize];
+            let (x, y) = if a == v {
+                (b, c)
+            } else if b == v {
+                (c, a)
+            } else {
+                (a, b)
+            };
+            if x == v || y == v || x == y {
+                return RingShape::Complex;
+            }
+            ring.pairs.push((x, y, t));
+        }
+        // Every neighbour may start at most one ring edge and end at most one.
+        let pairs = &ring.pairs;
+        for (i, p) in pairs.iter().enumerate() {
+            for q in &pairs[i + 1..] {
+                if p.0 == q.0 || p.1 == q.1 {
+                    return RingShape::Complex;
+                }
+            }
+        }
+        let mut starts = pairs.iter().filter(|p| !pairs.iter().any(|q| q.1 == p.0));
+        let (start, shape) = match (starts.next(), starts.next()) {
+            (None, _) => (0, RingShape::Closed),
+            (Some(p), None) => (
+                pairs.iter().position(|q| q == p).unwrap_or(0),
+                RingShape::Open,
+            ),
+            (Some(_), Some(_)) => return RingShape::Complex,
+        };
+        let first = pairs[start].0;
+        let mut cur = start;
+        loop {
+            let (x, y, t) = pairs[cur];
+            ring.verts.push(x);
+            ring.triangles.push(t);
+            match pairs.iter().position(|q| q.0 == y) {
+                Some(next) if y != first => cur = next,
+                Some(_) => break, // back at the start: closed
+                None => {
+                    ring.verts.push(y);
+                    break;
+                }
+            }
+            if ring.triangles.len() > pairs.len() {
+                return RingShape::Complex;
+            }
+        }
+        if ring.triangles.len() != pairs.len() {
+            return RingShape::Complex; // several fans meet at v
+        }
+        shape
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    //        3
+    //      / | \
+    //    4 - 0 - 2      vertex 0 with neighbours 1..=4 counter-clockwise;
+    //      \ | /        the closed fan has four triangles, the open one drops 0-4-1
+    //        1
+    fn fan(closed: bool) -> Connectivity {
+        // Vertex 0 at the centre, neighbours 1..=4 counter-clockwise.
+        let mut tris = vec![[0, 1, 2], [0, 2, 3], [0, 3, 4]];
+        if closed {
+            tris.push([0, 4, 1]);
+        }
+        Connectivity::new(5, &tris)
+    }
+
+    #[test]
+    fn closed_and_open_rings_are_ordered_counter_clockwise() {
+        let mut r = Ring::default();
+        assert_eq!(fan(true).ring(0, &mut r), RingShape::Closed);
+        assert_eq!(r.verts.len(), 4);
+        let i = r.verts.iter().position(|&x| x == 1).unwrap();
+        let rotated: Vec<u32> = (0..4).map(|k| r.verts[(i + k) % 4]).collect();
+        assert_eq!(rotated, vec![1, 2, 3, 4]);
+        assert_eq!(fan(false).ring(0, &mut r), RingShape::Open);
+        assert_eq!(r.verts, vec![1, 2, 3, 4]);
+        assert_eq!(r.triangles, vec![0, 1, 2]);
+    }
+
+    #[test]
+    fn non_manifold_and_bowtie_are_complex() {
+        let mut r = Ring::default();
+        // Three triangles on edge 0-1.
+        let c = Connectivity::new(5, &[[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
+        assert_eq!(c.ring(0, &mut r), RingShape::Complex);
+        // Two fans touching at vertex 0.
+        let c = Connectivity::new(5, &[[0, 1, 2], [0, 3, 4]]);
+        assert_eq!(c.ring(0, &mut r), RingShape::Complex);
+        // Inconsistent orientation.
+        let c = Connectivity::new(4, &[[0, 1, 2], [0, 1, 3]]);
+        assert_eq!(c.ring(0, &mut r), RingShape::Complex);
+    }
+
+    #[test]
+    fn high_valence_spills_and_comes_back() {
+        // A fan of 40 triangles around vertex 0.
+        let tris: Vec<[u32; 3]> = (1..=40).map(|i| [0, i, i % 40 + 1]).collect();
+        let mut c = Connectivity::new(41, &tris);
+        let mut r = Ring::default();
+        assert_eq!(c.incident(0).len(), 40);
+        assert_eq!(c.ring(0, &mut r), RingShape::Closed);
+        assert_eq!(r.verts.len(), 40);
+        for t in 0..30 {
+            c.remove_triangle(t);
+        }
+        let mut left: Vec<u32> = c.incident(0).to_vec();
+        left.sort_unstable();
+        assert_eq!(left, (30..40).collect::<Vec<u32>>());
+        assert_eq!(c.ring(0, &mut r), RingShape::Open);
+    }
+
+    #[test]
+    fn slots_are_reused_and_counts_follow() {
+        let mut c = fan(true);
+        c.remove_triangle(1);
+        assert_eq!(c.triangle_count(), 3);
+        assert!(!c.has_edge_avoiding(2, 3, 99));
+        assert_eq!(c.add_triangle([1, 2, 3]), 1);
+        assert_eq!(c.triangle_count(), 4);
+        assert!(c.has_triangle(3, 1, 2));
+        assert!(c.has_edge_avoiding(2, 3, 0));
+    }
+}

@@ -1,0 +1,169 @@
+//! The report's test models decimated as far as possible and to its percentages: exact
+//! counts where the report (or geometry) fixes them, and on every output the invariants a
+//! user notices — no degenerate or flipped triangle, manifold in → manifold out, Euler
+//! characteristic and boundary loops unchanged, area/volume kept on flat-faced shapes.
+
+use decimate::decimate::{decimate_scene, Params, Report, Target};
+use decimate::mesh::{measure, shapes, Model, Scene};
+
+fn decimate(model: Model, target: Target) -> (Model, Report) {
+    let mut scene = Scene {
+        models: vec![model],
+    };
+    let params = Params {
+        target,
+        ..Params::default()
+    };
+    let report = decimate_scene(&mut scene, &params, &mut |_| {});
+    let model = scene.models.pop().expect("model kept");
+    (model, report)
+}
+
+/// The invariants every decimated model must keep relative to its input.
+fn assert_invariants(before: &Model, after: &Model) {
+    let name = &before.name;
+    assert_eq!(
+        measure::degenerate_triangles(after, 1e-9),
+        0,
+        "{name}: degenerate triangle"
+    );
+    let e = measure::edge_counts(after);
+    assert_eq!(e.non_manifold, 0, "{name}: non-manifold edge");
+    assert_eq!(e.misoriented, 0, "{name}: flipped triangle");
+    assert_eq!(
+        measure::euler_characteristic(after),
+        measure::euler_characteristic(before),
+        "{name}: Euler characteristic"
+    );
+    assert_eq!(
+        measure::boundary_loops(after),
+        measure::boundary_loops(before),
+        "{name}: boundary loops"
+    );
+    // Every vertex left is an original vertex (vertex removal never moves one).
+    for p in &after.positions {
+        assert!(before.positions.contains(p), "{name}: moved vertex {p}");
+    }
+}
+
+fn full(model: Model) -> (Model, Report) {
+    decimate(model, Target::RemovePercent(100.0))
+}
+
+#[test]
+fn test001_pyramid_loses_its_base_centre() {
+    let before = shapes::test001();
+    let (after, report) = full(before.clone());
+    assert_eq!((after.positions.len(), after.triangles.len()), (4, 4));
+    assert!(report.fully_decimated());
+    assert_invariants(&before, &after);
+    assert!((measure::volume(&after) - measure::volume(&before)).abs() < 1e-6);
+}
+
+#[test]
+fn test002_small_cube_becomes_eight_corners() {
+    let before = shapes::test002();
+    let (after, _) = full(before.clone());
+    assert_eq!((after.positions.len(), after.triangles.len()), (8, 12));
+    assert_invariants(&before, &after);
+    assert!((measure::volume(&after) - 8.0).abs() < 1e-5);
+}
+
+#[test]
+fn test003_plane_becomes_two_triangles_with_the_same_area() {
+    let before = shapes::test003();
+    let (after, report) = full(before.clone());
+    // The 2002 program stopped at 40 / 38: it never removed boundary vertices.
+    assert_eq!((after.positions.len(), after.triangles.len()), (4, 2));
+    assert!(report.fully_decimated());
+    assert_invariants(&before, &after);
+    assert!((measure::area(&after) - 100.0).abs() < 1e-9);
+}
+
+#[test]
+fn test004_large_cube_becomes_eight_corners_with_the_same_volume() {
+    let before = shapes::test004();
+    let (after, report) = full(before.clone());
+    assert_eq!((after.positions.len(), after.triangles.len()), (8, 12));
+    assert_eq!(report.models[0].vertices_before, 602);
+    assert_invariants(&before, &after);
+    assert!((measure::volume(&after) - 1000.0).abs() < 1e-3);
+    assert!((measure::area(&after) - 600.0).abs() < 1e-3);
+}
+
+#[test]
+fn percentages_remove_exactly_that_share_of_vertices() {
+    for (p, left) in [(60.0, 241), (80.0, 120), (90.0, 60)] {
+        let before = shapes::test004();
+        let (after, report) = decimate(before.clone(), Target::RemovePercent(p));
+        assert_eq!(after.positions.len(), left, "-p {p}");
+        assert_eq!(report.vertices_removed(), 602 - left);
+        assert_invariants(&before, &after);
+        assert!((measure::volume(&after) - 1000.0).abs() < 1e-3, "-p {p}");
+    }
+    let (after, _) = decimate(shapes::test004(), Target::RemoveVertices(100));
+    assert_eq!(after.positions.len(), 502);
+    let (after, _) = decimate(shapes::test004(), Target::KeepVertices(50));
+    assert_eq!(after.positions.len(), 50);
+    let (after, _) = decimate(shapes::test004(), Target::KeepTriangles(100));
+    assert!(after.triangles.len() <= 100 && after.triangles.len() >= 98);
+}
+
+/// Vertices of `m` on the circle of `radius` at height `z` (the tube's rims).
+fn on_rim(m: &Model, radius: f32, z: f32) -> usize {
+    m.positions
+        .iter()
+        .filter(|p| (p.truncate().length() - radius).abs() < 1e-4 && (p.z - z).abs() < 1e-4)
+        .count()
+}
+
+const RIMS: [(f32, f32); 4] = [(2.0, 0.0), (2.0, 5.0), (1.5, 0.0), (1.5, 5.0)];
+
+#[test]
+fn test005_tube_keeps_its_rims() {
+    // The 2002 program collapsed the tube into jagged shapes at 80 %.
+    let before = shapes::test005();
+    let (after, _) = decimate(before.clone(), Target::RemovePercent(80.0));
+    assert_eq!(after.positions.len(), 528 - 422);
+    assert_invariants(&before, &after);
+    for (radius, z) in RIMS {
+        let n = on_rim(&after, radius, z);
+        assert!(
+            n >= 10,
+            "-p 80: rim r={radius} z={z} kept only {n} of 24 vertices"
+        );
+    }
+    let v = measure::volume(&after) / measure::volume(&before);
+    assert!((0.95..1.01).contains(&v), "-p 80: volume ratio {v}");
+
+    // Even decimated as far as possible it stays a tube with four polygonal rims.
+    let (after, report) = full(before.clone());
+    assert!(report.fully_decimated());
+    assert_invariants(&before, &after);
+    for (radius, z) in RIMS {
+        let n = on_rim(&after, radius, z);
+        assert!(
+            n >= 8,
+            "-p 100: rim r={radius} z={z} kept only {n} vertices"
+        );
+    }
+}
+
+#[test]
+fn test006_dome_keeps_its_volume_and_beats_the_original() {
+    let before = shapes::test006();
+    for p in [60.0, 80.0, 90.0] {
+        let (after, _) = decimate(before.clone(), Target::RemovePercent(p));
+        assert_invariants(&before, &after);
+        let v = measure::volume(&after) / measure::volume(&before);
+        assert!(
+            (0.985..=1.0 + 1e-9).contains(&v),
+            "-p {p}: volume ratio {v}"
+        );
+    }
+    let (after, report) = full(before.clone());
+    assert!(report.fully_decimated());
+    assert_invariants(&before, &after);
+    // The 2002 program stopped at 449 vertices / 894 triangles.
+    assert!(after.positions.len() < 449 && after.triangles.len() < 894);
+}
