@@ -220,7 +220,7 @@ impl Drop for Context {
 /// `VK_LAYER_KHRONOS_validation` when `DECIMATE_VALIDATION=1` and the layer is installed.
 fn validation_layers(entry: &ash::Entry) -> Vec<*const c_char> {
     const VALIDATION: &CStr = c"VK_LAYER_KHRONOS_validation";
-    if std::env::var_os("DECIMATE_VALIDATION").map_or(true, |v| v != "1") {
+    if std::env::var_os("DECIMATE_VALIDATION").is_none_or(|v| v != "1") {
         return Vec::new();
     }
     // SAFETY: a plain query on the loaded entry.
@@ -264,7 +264,7 @@ fn pick_physical_device(
                     (DevicePreference::Cpu, r) => r + 1,
                     (DevicePreference::Fastest, r) => r,
                 };
-                if best.map_or(true, |(r, _, _)| rank < r) {
+                if best.is_none_or(|(r, _, _)| rank < r) {
                     best = Some((rank, device, family));
                 }
             }
