@@ -1,7 +1,10 @@
 //! The viewer side of the program: the `shot` action (offscreen picture) and the interactive
 //! viewer, both over `render`. `run` is what `main` calls for the `gui` and `shot` actions.
 
+pub mod controller;
+pub mod menu;
 pub mod shot;
+pub mod viewport;
 
 use std::process::ExitCode;
 
