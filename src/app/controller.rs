@@ -241,18 +241,17 @@ mod tests {
         let mut c = controller();
         key(&mut c, Key::Char('a'));
         assert_eq!(c.current(), 1);
-        for (k, get) in [
-            (
-                't',
-                (|o: &crate::render::draw::DrawOptions| o.triangles) as fn(&_) -> bool,
-            ),
+        type Get = fn(&crate::render::draw::DrawOptions) -> bool;
+        let toggles: [(char, Get); 7] = [
+            ('t', |o| o.triangles),
             ('e', |o| o.edges),
             ('p', |o| o.points),
             ('n', |o| o.face_normals),
             ('N', |o| o.vertex_normals),
             ('l', |o| o.lighting),
             ('s', |o| o.smooth),
-        ] {
+        ];
+        for (k, get) in toggles {
             let before = get(&c.viewports()[1].options);
             key(&mut c, Key::Char(k));
             assert_eq!(get(&c.viewports()[1].options), !before, "key {k}");
