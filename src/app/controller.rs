@@ -32,6 +32,7 @@ pub struct ViewportController {
     original: Arc<Scene>,
     params: Params,
     viewports: Vec<Viewport>,
+    next_id: u64,
     current: usize,
     width: u32,
     height: u32,
@@ -46,7 +47,8 @@ impl ViewportController {
     pub fn new(original: Scene, params: Params, width: u32, height: u32) -> Self {
         let original = Arc::new(original);
         Self {
-            viewports: vec![Viewport::new(original.clone(), params)],
+            viewports: vec![Viewport::new(0, original.clone(), params)],
+            next_id: 1,
             original,
             params,
             current: 0,
@@ -82,7 +84,12 @@ impl ViewportController {
 
     /// The viewports' rectangles in the window.
     pub fn rects(&self) -> Vec<Rect> {
-        tiles(self.viewports.len(), self.width, self.height)
+        self.rects_for(self.width, self.height)
+    }
+
+    /// The viewports' rectangles in an area of `width` × `height` (the swapchain's extent).
+    pub fn rects_for(&self, width: u32, height: u32) -> Vec<Rect> {
+        tiles(self.viewports.len(), width, height)
     }
 
     /// The mouse moved to `(x, y)`: the viewport under it becomes current.
@@ -168,8 +175,10 @@ impl ViewportController {
             Action::ResetView => self.current_mut().camera.reset(),
             Action::AddViewport => {
                 if self.viewports.len() < MAX_VIEWPORTS {
+                    let id = self.next_id;
+                    self.next_id += 1;
                     self.viewports
-                        .push(Viewport::new(self.original.clone(), self.params));
+                        .push(Viewport::new(id, self.original.clone(), self.params));
                     self.current = self.viewports.len() - 1;
                 } else {
                     self.message = format!("at most {MAX_VIEWPORTS} viewports");

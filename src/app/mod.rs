@@ -2,8 +2,11 @@
 //! viewer, both over `render`. `run` is what `main` calls for the `gui` and `shot` actions.
 
 pub mod controller;
+pub mod glut;
 pub mod menu;
 pub mod shot;
+pub mod ui;
+pub mod viewer;
 pub mod viewport;
 
 use std::process::ExitCode;
@@ -15,9 +18,28 @@ use crate::mesh::Scene;
 pub fn run(scene: Scene, args: &Args) -> ExitCode {
     match args.action {
         Action::Shot => run_shot(&scene, args),
-        Action::Gui | Action::NoGui => {
-            eprintln!("decimate: the interactive viewer is not built yet; use nogui or shot");
-            ExitCode::from(2)
+        Action::Gui | Action::NoGui => run_gui(scene, args),
+    }
+}
+
+/// The viewer: steps (4) to (6) of the original's start-up.
+fn run_gui(scene: Scene, args: &Args) -> ExitCode {
+    if !args.quiet {
+        eprint!("{}", menu::key_help());
+    }
+    // (4) Build the popup menu: one list of entries, shared by the popup and the keyboard.
+    let entries = menu::menu();
+    // (5) Register the callbacks: the viewer answers display, reshape, keyboard, mouse and
+    // motion events for the viewports the controller owns.
+    let controller = controller::ViewportController::new(scene, args.params, 1024, 720);
+    let mut viewer = viewer::Viewer::new(controller, entries);
+    // (6) Hand control to the main loop.
+    let title = format!("decimate — {}", args.input.display());
+    match glut::main_loop(&title, &mut viewer) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("decimate: {e}");
+            ExitCode::FAILURE
         }
     }
 }

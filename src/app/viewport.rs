@@ -15,6 +15,8 @@ use super::menu::{DecimateEvent, DecimateKind};
 /// One viewport.
 #[derive(Debug, Clone)]
 pub struct Viewport {
+    /// Unique among the viewports ever opened in this window (keys the GPU copy).
+    pub id: u64,
     original: Arc<Scene>,
     scene: Scene,
     pub options: DrawOptions,
@@ -29,9 +31,10 @@ pub struct Viewport {
 
 impl Viewport {
     /// A viewport showing `original`, framed on it.
-    pub fn new(original: Arc<Scene>, params: Params) -> Self {
+    pub fn new(id: u64, original: Arc<Scene>, params: Params) -> Self {
         let camera = Camera::framing(scene_bounds(&original));
         Self {
+            id,
             scene: (*original).clone(),
             original,
             options: DrawOptions::default(),

@@ -41,6 +41,18 @@ impl Commands {
         Ok(this)
     }
 
+    /// The pool, for libraries that record their own one-time commands (egui uploads).
+    pub fn pool(&self) -> vk::CommandPool {
+        self.pool
+    }
+
+    /// Ends recording, for a buffer submitted elsewhere (the swapchain's frame submission).
+    pub fn end(&self) -> Result<()> {
+        // SAFETY: the buffer is recording (begun by `begin`).
+        unsafe { self.context.device.end_command_buffer(self.buffer)? };
+        Ok(())
+    }
+
     /// Resets the buffer and starts recording a one-time submission.
     pub fn begin(&self) -> Result<vk::CommandBuffer> {
         let device = &self.context.device;

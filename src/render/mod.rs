@@ -14,6 +14,7 @@ pub mod mesh_data;
 pub mod offscreen;
 pub mod pipeline;
 pub mod shader;
+pub mod swapchain;
 pub mod tiles;
 
 pub use error::{RenderError, Result};
