@@ -11,9 +11,11 @@
     clippy::use_self
 )]
 
+pub mod app;
 pub mod batch;
 pub mod cli;
 pub mod decimate;
 pub mod io;
 pub mod mesh;
 pub mod metro;
+pub mod render;

@@ -45,9 +45,6 @@ fn main() -> ExitCode {
     match args.action {
         Action::NoGui => batch::run(scene, &args),
         // (4) menus, (5) callbacks, (6) main loop: the viewer.
-        Action::Gui | Action::Shot => {
-            eprintln!("decimate: the viewer is not built yet; use the nogui action");
-            ExitCode::from(2)
-        }
+        Action::Gui | Action::Shot => decimate::app::run(scene, &args),
     }
 }

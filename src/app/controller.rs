@@ -1,0 +1,368 @@
+//! `ViewportController`: owns the 1–4 viewports tiled over the window, knows the current one
+//! (the one under the mouse, or chosen with Tab) and dispatches `Action`s — decimate events go
+//! to the current viewport only, as in the original. GPU-free, so it is unit-tested.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use glam::Vec2;
+
+use crate::decimate::Params;
+use crate::mesh::Scene;
+use crate::render::camera::Navigation;
+use crate::render::tiles::{tiles, Rect};
+
+use super::menu::{Action, DecimateEvent, DecimateKind};
+use super::viewport::Viewport;
+
+/// At most this many viewports, as in the original.
+pub const MAX_VIEWPORTS: usize = 4;
+
+/// What the window must do after an action.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Effect {
+    None,
+    /// Open the vertex-count text field.
+    AskVertexCount,
+    Quit,
+}
+
+/// The viewports of the window and the current one.
+pub struct ViewportController {
+    original: Arc<Scene>,
+    params: Params,
+    viewports: Vec<Viewport>,
+    next_id: u64,
+    current: usize,
+    width: u32,
+    height: u32,
+    pub help: bool,
+    /// Where F3 saves (`out.wrl` in the working directory).
+    pub save_path: PathBuf,
+    /// The last thing that happened, for the status line.
+    pub message: String,
+}
+
+impl ViewportController {
+    pub fn new(original: Scene, params: Params, width: u32, height: u32) -> Self {
+        let original = Arc::new(original);
+        Self {
+            viewports: vec![Viewport::new(0, original.clone(), params)],
+            next_id: 1,
+            original,
+            params,
+            current: 0,
+            width,
+            height,
+            help: false,
+            save_path: PathBuf::from("out.wrl"),
+            message: String::new(),
+        }
+    }
+
+    pub fn viewports(&self) -> &[Viewport] {
+        &self.viewports
+    }
+
+    pub fn current(&self) -> usize {
+        self.current
+    }
+
+    pub fn current_viewport(&self) -> &Viewport {
+        &self.viewports[self.current]
+    }
+
+    fn current_mut(&mut self) -> &mut Viewport {
+        &mut self.viewports[self.current]
+    }
+
+    /// Window size in pixels (the reshape callback).
+    pub fn resize(&mut self, width: u32, height: u32) {
+        self.width = width;
+        self.height = height;
+    }
+
+    /// The viewports' rectangles in the window.
+    pub fn rects(&self) -> Vec<Rect> {
+        self.rects_for(self.width, self.height)
+    }
+
+    /// The viewports' rectangles in an area of `width` × `height` (the swapchain's extent).
+    pub fn rects_for(&self, width: u32, height: u32) -> Vec<Rect> {
+        tiles(self.viewports.len(), width, height)
+    }
+
+    /// The mouse moved to `(x, y)`: the viewport under it becomes current.
+    pub fn pointer_at(&mut self, x: f64, y: f64) {
+        if let Some(i) = self.rects().iter().position(|r| r.contains(x, y)) {
+            self.current = i;
+        }
+    }
+
+    /// A decimate event for the current viewport only.
+    pub fn decimate(&mut self, event: DecimateEvent) {
+        let i = self.current;
+        let report = self.current_mut().decimate(event);
+        let what = match event.kind {
+            DecimateKind::Percentage => format!("{:.0} %", event.amount),
+            DecimateKind::Number => format!("{:.0} vertices", event.amount),
+        };
+        self.message = format!(
+            "viewport {}: removed {} ({} vertices) in {:.3} s{}",
+            i + 1,
+            what,
+            report.vertices_removed(),
+            report.seconds,
+            if report.fully_decimated() {
+                " — fully decimated"
+            } else {
+                ""
+            }
+        );
+    }
+
+    /// "Decimate to N vertices": a NUMBER event for the difference from the original.
+    pub fn decimate_to(&mut self, vertices: usize) {
+        let original: usize = self
+            .original
+            .models
+            .iter()
+            .map(crate::mesh::Model::used_vertex_count)
+            .sum();
+        let remove = original.saturating_sub(vertices);
+        self.decimate(DecimateEvent {
+            amount: remove as f64,
+            kind: DecimateKind::Number,
+        });
+    }
+
+    /// Left-drag by `delta` pixels in the current viewport.
+    pub fn drag(&mut self, delta: Vec2) {
+        self.current_mut().camera.drag(delta);
+    }
+
+    /// Wheel steps in the current viewport.
+    pub fn wheel(&mut self, steps: f32) {
+        self.current_mut().camera.wheel(steps);
+    }
+
+    /// Arrow / W S keys: walk in eye control.
+    pub fn walk(&mut self, forward: f32, right: f32) {
+        self.current_mut().camera.walk(forward, right);
+    }
+
+    /// Runs `action`; returns what the window must do about it.
+    pub fn dispatch(&mut self, action: Action) -> Effect {
+        let options = &mut self.viewports[self.current].options;
+        match action {
+            Action::Decimate(event) => self.decimate(event),
+            Action::AskVertexCount => return Effect::AskVertexCount,
+            Action::ToggleTriangles => options.triangles ^= true,
+            Action::ToggleEdges => options.edges ^= true,
+            Action::TogglePoints => options.points ^= true,
+            Action::ToggleFaceNormals => options.face_normals ^= true,
+            Action::ToggleVertexNormals => options.vertex_normals ^= true,
+            Action::ToggleLighting => options.lighting ^= true,
+            Action::ToggleSmooth => options.smooth ^= true,
+            Action::ToggleNavigation => {
+                let camera = &mut self.current_mut().camera;
+                let next = match camera.navigation {
+                    Navigation::Model => Navigation::Eye,
+                    Navigation::Eye => Navigation::Model,
+                };
+                camera.set_navigation(next);
+            }
+            Action::ResetView => self.current_mut().camera.reset(),
+            Action::AddViewport => {
+                if self.viewports.len() < MAX_VIEWPORTS {
+                    let id = self.next_id;
+                    self.next_id += 1;
+                    self.viewports
+                        .push(Viewport::new(id, self.original.clone(), self.params));
+                    self.current = self.viewports.len() - 1;
+                } else {
+                    self.message = format!("at most {MAX_VIEWPORTS} viewports");
+                }
+            }
+            Action::RemoveViewport => {
+                if self.viewports.len() > 1 {
+                    self.viewports.remove(self.current);
+                    self.current = self.current.min(self.viewports.len() - 1);
+                } else {
+                    self.message = "the last viewport stays".into();
+                }
+            }
+            Action::NextViewport => self.current = (self.current + 1) % self.viewports.len(),
+            Action::ToggleHelp => self.help ^= true,
+            Action::Save => self.save(),
+            Action::Quit => return Effect::Quit,
+        }
+        Effect::None
+    }
+
+    /// F3: the current viewport's scene as VRML 2.0.
+    fn save(&mut self) {
+        let path = self.save_path.clone();
+        self.message = match crate::io::write_vrml2(self.current_viewport().scene(), &path) {
+            Ok(()) => format!("saved viewport {} as {}", self.current + 1, path.display()),
+            Err(e) => format!("cannot save: {e}"),
+        };
+        eprintln!("decimate: {}", self.message);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::app::menu::{action_for_key, Key};
+    use crate::mesh::Model;
+    use glam::Vec3;
+
+    /// A 10×10 grid plane (121 vertices, 200 triangles), as test003.
+    fn plane() -> Scene {
+        let mut m = Model::default();
+        for j in 0..=10 {
+            for i in 0..=10 {
+                m.positions.push(Vec3::new(i as f32, j as f32, 0.0));
+            }
+        }
+        for j in 0..10u32 {
+            for i in 0..10u32 {
+                let v = j * 11 + i;
+                m.triangles.push([v, v + 1, v + 12]);
+                m.triangles.push([v, v + 12, v + 11]);
+            }
+        }
+        Scene { models: vec![m] }
+    }
+
+    fn controller() -> ViewportController {
+        ViewportController::new(plane(), Params::default(), 800, 600)
+    }
+
+    fn key(c: &mut ViewportController, k: Key) -> Effect {
+        let action = action_for_key(k).unwrap_or_else(|| panic!("{k:?} is not bound"));
+        c.dispatch(action)
+    }
+
+    #[test]
+    fn toggles_reach_the_current_viewport_only() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        assert_eq!(c.current(), 1);
+        type Get = fn(&crate::render::draw::DrawOptions) -> bool;
+        let toggles: [(char, Get); 7] = [
+            ('t', |o| o.triangles),
+            ('e', |o| o.edges),
+            ('p', |o| o.points),
+            ('n', |o| o.face_normals),
+            ('N', |o| o.vertex_normals),
+            ('l', |o| o.lighting),
+            ('s', |o| o.smooth),
+        ];
+        for (k, get) in toggles {
+            let before = get(&c.viewports()[1].options);
+            key(&mut c, Key::Char(k));
+            assert_eq!(get(&c.viewports()[1].options), !before, "key {k}");
+            assert_eq!(get(&c.viewports()[0].options), before, "key {k} leaked");
+        }
+    }
+
+    #[test]
+    fn decimate_events_reach_the_current_viewport_only() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        key(&mut c, Key::Char('5'));
+        assert_eq!(c.viewports()[0].vertex_count(), 121);
+        assert_eq!(c.viewports()[0].generation, 0);
+        assert_eq!(c.viewports()[1].generation, 1);
+        assert!(c.viewports()[1].last.is_some());
+        assert!(c.message.contains("viewport 2"), "{}", c.message);
+    }
+
+    #[test]
+    fn decimation_always_starts_from_the_original() {
+        let mut c = controller();
+        key(&mut c, Key::Char('9'));
+        let after_90 = c.current_viewport().vertex_count();
+        key(&mut c, Key::Char('1'));
+        let after_10 = c.current_viewport().vertex_count();
+        assert!(
+            after_10 >= after_90,
+            "10 % after 90 % must go back up: {after_10} < {after_90}"
+        );
+        assert_eq!(c.current_viewport().original().vertex_count(), 121);
+    }
+
+    #[test]
+    fn viewports_add_up_to_four_and_the_last_one_stays() {
+        let mut c = controller();
+        for _ in 0..5 {
+            key(&mut c, Key::Char('a'));
+        }
+        assert_eq!(c.viewports().len(), 4);
+        assert_eq!(c.rects().len(), 4);
+        for _ in 0..5 {
+            key(&mut c, Key::Char('x'));
+        }
+        assert_eq!(c.viewports().len(), 1);
+        assert_eq!(c.current(), 0);
+    }
+
+    #[test]
+    fn tab_cycles_and_the_mouse_picks_the_viewport_under_it() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        key(&mut c, Key::Tab);
+        assert_eq!(c.current(), 0);
+        key(&mut c, Key::Tab);
+        assert_eq!(c.current(), 1);
+        c.pointer_at(10.0, 300.0);
+        assert_eq!(c.current(), 0);
+        c.pointer_at(790.0, 300.0);
+        assert_eq!(c.current(), 1);
+    }
+
+    #[test]
+    fn navigation_help_reset_quit_and_text_field() {
+        let mut c = controller();
+        key(&mut c, Key::Char('m'));
+        assert_eq!(c.current_viewport().camera.navigation, Navigation::Eye);
+        key(&mut c, Key::Char('m'));
+        assert_eq!(c.current_viewport().camera.navigation, Navigation::Model);
+        let framed = c.current_viewport().camera.clone();
+        c.drag(Vec2::new(30.0, 5.0));
+        assert_ne!(c.current_viewport().camera, framed);
+        key(&mut c, Key::Char('r'));
+        assert_eq!(c.current_viewport().camera, framed);
+        key(&mut c, Key::Char('h'));
+        assert!(c.help);
+        assert_eq!(key(&mut c, Key::Char('v')), Effect::AskVertexCount);
+        assert_eq!(key(&mut c, Key::Escape), Effect::Quit);
+        assert_eq!(key(&mut c, Key::Char('q')), Effect::Quit);
+    }
+
+    #[test]
+    fn decimate_to_n_vertices_is_a_number_event() {
+        let mut c = controller();
+        c.decimate_to(60);
+        assert!(c.message.contains("61 vertices"), "{}", c.message);
+        assert_eq!(c.current_viewport().generation, 1);
+    }
+
+    #[test]
+    fn f3_saves_the_current_viewport() {
+        let dir = std::env::temp_dir().join(format!("decimate-f3-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        let mut c = controller();
+        c.save_path = dir.join("out.wrl");
+        key(&mut c, Key::Char('9'));
+        key(&mut c, Key::F3);
+        let saved = crate::io::read_scene(&c.save_path).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(
+            saved.scene.models[0].used_vertex_count(),
+            c.current_viewport().vertex_count()
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

@@ -1,0 +1,209 @@
+//! A small GLUT-like layer over winit 0.30's `ApplicationHandler`: the viewer registers one
+//! object implementing [`Callbacks`] (display, reshape, keyboard, special keys, mouse, motion,
+//! wheel — the original program's callbacks) and [`main_loop`] creates the window and feeds it
+//! events until a callback asks to quit. X11 is forced (Xvfb in CI; XWayland elsewhere).
+
+use std::sync::Arc;
+
+use winit::application::ApplicationHandler;
+use winit::dpi::{LogicalSize, PhysicalPosition};
+use winit::event::{ElementState, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::keyboard::{Key as WinitKey, NamedKey};
+use winit::window::{Window, WindowId};
+
+use super::menu::Key;
+
+/// Mouse buttons, as GLUT names them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Button {
+    Left,
+    Middle,
+    Right,
+}
+
+/// Keys GLUT calls "special": arrows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Special {
+    Up,
+    Down,
+    Left,
+    Right,
+}
+
+/// What the loop does after a callback.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Flow {
+    Continue,
+    Quit,
+}
+
+/// The viewer's callbacks. Positions are physical pixels from the window's top-left corner.
+pub trait Callbacks {
+    /// The window exists: create what draws into it. An error ends the loop.
+    fn create(&mut self, window: &Arc<Window>) -> Result<(), String>;
+    /// Draw a frame.
+    fn display(&mut self, window: &Window) -> Flow;
+    /// The window was resized.
+    fn reshape(&mut self, width: u32, height: u32);
+    /// A bound or printable key was pressed.
+    fn keyboard(&mut self, key: Key) -> Flow;
+    /// An arrow key was pressed.
+    fn special(&mut self, key: Special);
+    /// A mouse button went down (`pressed`) or up at `(x, y)`.
+    fn mouse(&mut self, button: Button, pressed: bool, x: f64, y: f64) -> Flow;
+    /// The mouse moved to `(x, y)`.
+    fn motion(&mut self, x: f64, y: f64);
+    /// Wheel steps, positive away from the user.
+    fn wheel(&mut self, steps: f32);
+    /// Every raw event goes here first (for the UI layer); `true` means it was consumed.
+    fn filter(&mut self, window: &Window, event: &WindowEvent) -> bool;
+    /// The loop is ending: free GPU objects while the window still exists.
+    fn destroy(&mut self);
+}
+
+struct Glut<'a, C: Callbacks> {
+    title: String,
+    callbacks: &'a mut C,
+    window: Option<Arc<Window>>,
+    cursor: PhysicalPosition<f64>,
+    error: Option<String>,
+}
+
+/// Opens a window titled `title` and runs the event loop with `callbacks` until one of them
+/// returns [`Flow::Quit`] or the window is closed.
+pub fn main_loop<C: Callbacks>(title: &str, callbacks: &mut C) -> Result<(), String> {
+    use winit::platform::x11::EventLoopBuilderExtX11;
+    let event_loop = EventLoop::builder()
+        .with_x11()
+        .build()
+        .map_err(|e| format!("cannot open the X11 display: {e} (is DISPLAY set?)"))?;
+    let mut glut = Glut {
+        title: title.to_string(),
+        callbacks,
+        window: None,
+        cursor: PhysicalPosition::new(0.0, 0.0),
+        error: None,
+    };
+    event_loop
+        .run_app(&mut glut)
+        .map_err(|e| format!("event loop: {e}"))?;
+    match glut.error {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+impl<C: Callbacks> Glut<'_, C> {
+    fn quit(&mut self, event_loop: &ActiveEventLoop) {
+        self.callbacks.destroy();
+        event_loop.exit();
+    }
+}
+
+impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.window.is_some() {
+            return;
+        }
+        let attributes = Window::default_attributes()
+            .with_title(self.title.clone())
+            .with_inner_size(LogicalSize::new(1024.0, 720.0));
+        let window = match event_loop.create_window(attributes) {
+            Ok(w) => Arc::new(w),
+            Err(e) => {
+                self.error = Some(format!("cannot create the window: {e}"));
+                event_loop.exit();
+                return;
+            }
+        };
+        if let Err(e) = self.callbacks.create(&window) {
+            self.error = Some(e);
+            self.quit(event_loop);
+            return;
+        }
+        let size = window.inner_size();
+        self.callbacks.reshape(size.width, size.height);
+        window.request_redraw();
+        self.window = Some(window);
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        let Some(window) = self.window.clone() else {
+            return;
+        };
+        if self.callbacks.filter(&window, &event) {
+            window.request_redraw();
+            return;
+        }
+        let mut flow = Flow::Continue;
+        match event {
+            WindowEvent::CloseRequested => flow = Flow::Quit,
+            WindowEvent::Resized(size) => self.callbacks.reshape(size.width, size.height),
+            WindowEvent::RedrawRequested => {
+                // Drawn on demand only: no redraw is requested from here, so an idle viewer
+                // leaves the (shared, often software) GPU alone.
+                if self.callbacks.display(&window) == Flow::Quit {
+                    self.quit(event_loop);
+                }
+                return;
+            }
+            WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
+                let key = match &event.logical_key {
+                    WinitKey::Named(NamedKey::F3) => Some(Key::F3),
+                    WinitKey::Named(NamedKey::Tab) => Some(Key::Tab),
+                    WinitKey::Named(NamedKey::Escape) => Some(Key::Escape),
+                    WinitKey::Named(arrow) => {
+                        let special = match arrow {
+                            NamedKey::ArrowUp => Some(Special::Up),
+                            NamedKey::ArrowDown => Some(Special::Down),
+                            NamedKey::ArrowLeft => Some(Special::Left),
+                            NamedKey::ArrowRight => Some(Special::Right),
+                            _ => None,
+                        };
+                        if let Some(s) = special {
+                            self.callbacks.special(s);
+                        }
+                        None
+                    }
+                    WinitKey::Character(s) => s.chars().next().map(Key::Char),
+                    _ => None,
+                };
+                if let Some(key) = key {
+                    flow = self.callbacks.keyboard(key);
+                }
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                self.cursor = position;
+                self.callbacks.motion(position.x, position.y);
+            }
+            WindowEvent::MouseInput { state, button, .. } => {
+                let button = match button {
+                    winit::event::MouseButton::Left => Some(Button::Left),
+                    winit::event::MouseButton::Right => Some(Button::Right),
+                    winit::event::MouseButton::Middle => Some(Button::Middle),
+                    _ => None,
+                };
+                if let Some(b) = button {
+                    let pressed = state == ElementState::Pressed;
+                    flow = self
+                        .callbacks
+                        .mouse(b, pressed, self.cursor.x, self.cursor.y);
+                }
+            }
+            WindowEvent::MouseWheel { delta, .. } => {
+                let steps = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y,
+                    MouseScrollDelta::PixelDelta(p) => (p.y / 40.0) as f32,
+                };
+                self.callbacks.wheel(steps);
+            }
+            _ => return,
+        }
+        if flow == Flow::Quit {
+            self.quit(event_loop);
+        } else {
+            window.request_redraw();
+        }
+    }
+}

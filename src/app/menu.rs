@@ -1,0 +1,317 @@
+//! The viewer's commands as data: the `Action` enum, the popup menu (entries and submenus,
+//! each bound to an action and shown with its key), and the fixed key bindings. Built once and
+//! shared by the right-click popup, the keyboard and the help text, so they never disagree.
+
+/// How a decimate event counts (the original's PERCENTAGE and NUMBER).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DecimateKind {
+    /// Remove this percentage of the original's vertices.
+    Percentage,
+    /// Remove this many of the original's vertices.
+    Number,
+}
+
+/// A decimate event: a number and a kind, always counted from the original scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DecimateEvent {
+    pub amount: f64,
+    pub kind: DecimateKind,
+}
+
+/// Everything a key or a menu entry can do.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Action {
+    Decimate(DecimateEvent),
+    /// Open the "decimate to N vertices" text field.
+    AskVertexCount,
+    ToggleTriangles,
+    ToggleEdges,
+    TogglePoints,
+    ToggleFaceNormals,
+    ToggleVertexNormals,
+    ToggleLighting,
+    ToggleSmooth,
+    /// Model control (trackball) ↔ eye control (first person).
+    ToggleNavigation,
+    AddViewport,
+    RemoveViewport,
+    NextViewport,
+    ResetView,
+    ToggleHelp,
+    /// Save the current viewport's scene as `out.wrl`.
+    Save,
+    Quit,
+}
+
+/// A key the viewer binds, independent of the window system.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Key {
+    Char(char),
+    F3,
+    Tab,
+    Escape,
+}
+
+/// One line of the popup menu.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MenuEntry {
+    pub label: String,
+    /// The key that does the same, shown beside the label.
+    pub key: Option<&'static str>,
+    pub item: MenuItem,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum MenuItem {
+    Action(Action),
+    Submenu(Vec<MenuEntry>),
+}
+
+fn entry(label: &str, key: Option<&'static str>, action: Action) -> MenuEntry {
+    MenuEntry {
+        label: label.into(),
+        key,
+        item: MenuItem::Action(action),
+    }
+}
+
+fn submenu(label: &str, entries: Vec<MenuEntry>) -> MenuEntry {
+    MenuEntry {
+        label: label.into(),
+        key: None,
+        item: MenuItem::Submenu(entries),
+    }
+}
+
+/// Keys 1…9, 0 → remove 10…90 %, 100 % of the original's vertices.
+pub const PERCENT_KEYS: [(char, &str, f64); 10] = [
+    ('1', "1", 10.0),
+    ('2', "2", 20.0),
+    ('3', "3", 30.0),
+    ('4', "4", 40.0),
+    ('5', "5", 50.0),
+    ('6', "6", 60.0),
+    ('7', "7", 70.0),
+    ('8', "8", 80.0),
+    ('9', "9", 90.0),
+    ('0', "0", 100.0),
+];
+
+fn percent(p: f64) -> Action {
+    Action::Decimate(DecimateEvent {
+        amount: p,
+        kind: DecimateKind::Percentage,
+    })
+}
+
+/// The popup menu: every action of the viewer.
+pub fn menu() -> Vec<MenuEntry> {
+    let mut decimate: Vec<_> = PERCENT_KEYS
+        .iter()
+        .map(|&(_, key, p)| {
+            let label = if p >= 100.0 {
+                "Remove 100 % (as far as possible)".to_string()
+            } else {
+                format!("Remove {p:.0} % of the vertices")
+            };
+            entry(&label, Some(key), percent(p))
+        })
+        .collect();
+    decimate.push(entry(
+        "Decimate to N vertices…",
+        Some("v"),
+        Action::AskVertexCount,
+    ));
+    vec![
+        submenu("Decimate", decimate),
+        submenu(
+            "Draw",
+            vec![
+                entry("Triangles", Some("t"), Action::ToggleTriangles),
+                entry("Edges", Some("e"), Action::ToggleEdges),
+                entry("Points", Some("p"), Action::TogglePoints),
+                entry("Face normals", Some("n"), Action::ToggleFaceNormals),
+                entry("Vertex normals", Some("N"), Action::ToggleVertexNormals),
+                entry("Lighting", Some("l"), Action::ToggleLighting),
+                entry("Smooth / flat shading", Some("s"), Action::ToggleSmooth),
+            ],
+        ),
+        submenu(
+            "View",
+            vec![
+                entry("Model / eye control", Some("m"), Action::ToggleNavigation),
+                entry("Reset view", Some("r"), Action::ResetView),
+                entry("Add viewport (original)", Some("a"), Action::AddViewport),
+                entry("Remove viewport", Some("x"), Action::RemoveViewport),
+                entry("Next viewport", Some("Tab"), Action::NextViewport),
+            ],
+        ),
+        entry("Save as out.wrl", Some("F3"), Action::Save),
+        entry("Help", Some("h"), Action::ToggleHelp),
+        entry("Quit", Some("q"), Action::Quit),
+    ]
+}
+
+/// The action bound to `key`, if any.
+pub fn action_for_key(key: Key) -> Option<Action> {
+    Some(match key {
+        Key::F3 => Action::Save,
+        Key::Tab => Action::NextViewport,
+        Key::Escape => Action::Quit,
+        Key::Char(c) => {
+            if let Some(&(_, _, p)) = PERCENT_KEYS.iter().find(|(k, _, _)| *k == c) {
+                return Some(percent(p));
+            }
+            match c {
+                't' => Action::ToggleTriangles,
+                'e' => Action::ToggleEdges,
+                'p' => Action::TogglePoints,
+                'n' => Action::ToggleFaceNormals,
+                'N' => Action::ToggleVertexNormals,
+                'l' => Action::ToggleLighting,
+                's' => Action::ToggleSmooth,
+                'm' => Action::ToggleNavigation,
+                'a' => Action::AddViewport,
+                'x' => Action::RemoveViewport,
+                'r' => Action::ResetView,
+                'h' => Action::ToggleHelp,
+                'v' => Action::AskVertexCount,
+                'q' => Action::Quit,
+                _ => return None,
+            }
+        }
+    })
+}
+
+/// Every action of the menu, depth first.
+pub fn actions(entries: &[MenuEntry]) -> Vec<Action> {
+    let mut out = Vec::new();
+    for e in entries {
+        match &e.item {
+            MenuItem::Action(a) => out.push(*a),
+            MenuItem::Submenu(sub) => out.extend(actions(sub)),
+        }
+    }
+    out
+}
+
+/// The key help printed at start and shown by `h`, generated from the menu.
+pub fn key_help() -> String {
+    let mut text = String::from("keys (right mouse button: the same as a menu):\n");
+    fn walk(entries: &[MenuEntry], text: &mut String) {
+        for e in entries {
+            match &e.item {
+                MenuItem::Action(_) => {
+                    if let Some(key) = e.key {
+                        text.push_str(&format!("  {key:<5} {}\n", e.label));
+                    }
+                }
+                MenuItem::Submenu(sub) => walk(sub, text),
+            }
+        }
+    }
+    walk(&menu(), &mut text);
+    text.push_str(
+        "  Esc   Quit\n\
+         mouse: left drag turns the model (looks around in eye control), wheel zooms (walks)\n\
+         eye control: arrows and W/S walk\n",
+    );
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn key_of(label_key: &str) -> Key {
+        match label_key {
+            "F3" => Key::F3,
+            "Tab" => Key::Tab,
+            k => Key::Char(k.chars().next().unwrap_or(' ')),
+        }
+    }
+
+    #[test]
+    fn every_menu_entry_with_a_key_does_what_the_key_does() {
+        fn check(entries: &[MenuEntry]) {
+            for e in entries {
+                match &e.item {
+                    MenuItem::Action(a) => {
+                        let key = e.key.unwrap_or_else(|| panic!("{} has no key", e.label));
+                        assert_eq!(action_for_key(key_of(key)), Some(*a), "{}", e.label);
+                    }
+                    MenuItem::Submenu(sub) => check(sub),
+                }
+            }
+        }
+        check(&menu());
+    }
+
+    #[test]
+    fn digit_keys_remove_ten_to_a_hundred_percent() {
+        for (c, p) in [('1', 10.0), ('5', 50.0), ('9', 90.0), ('0', 100.0)] {
+            assert_eq!(
+                action_for_key(Key::Char(c)),
+                Some(Action::Decimate(DecimateEvent {
+                    amount: p,
+                    kind: DecimateKind::Percentage
+                }))
+            );
+        }
+    }
+
+    #[test]
+    fn fixed_keys() {
+        assert_eq!(action_for_key(Key::F3), Some(Action::Save));
+        assert_eq!(action_for_key(Key::Escape), Some(Action::Quit));
+        assert_eq!(action_for_key(Key::Char('q')), Some(Action::Quit));
+        assert_eq!(
+            action_for_key(Key::Char('n')),
+            Some(Action::ToggleFaceNormals)
+        );
+        assert_eq!(
+            action_for_key(Key::Char('N')),
+            Some(Action::ToggleVertexNormals)
+        );
+        assert_eq!(action_for_key(Key::Char('z')), None);
+    }
+
+    #[test]
+    fn menu_offers_every_action() {
+        let all = actions(&menu());
+        for a in [
+            Action::AskVertexCount,
+            Action::ToggleTriangles,
+            Action::ToggleEdges,
+            Action::TogglePoints,
+            Action::ToggleFaceNormals,
+            Action::ToggleVertexNormals,
+            Action::ToggleLighting,
+            Action::ToggleSmooth,
+            Action::ToggleNavigation,
+            Action::AddViewport,
+            Action::RemoveViewport,
+            Action::NextViewport,
+            Action::ResetView,
+            Action::ToggleHelp,
+            Action::Save,
+            Action::Quit,
+        ] {
+            assert!(all.contains(&a), "{a:?} is missing from the menu");
+        }
+        assert_eq!(
+            all.iter()
+                .filter(|a| matches!(a, Action::Decimate(_)))
+                .count(),
+            10
+        );
+    }
+
+    #[test]
+    fn help_lists_the_keys() {
+        let help = key_help();
+        for k in ["F3", "Tab", "  9 ", "  N ", "Esc"] {
+            assert!(help.contains(k), "help lacks {k}:\n{help}");
+        }
+    }
+}

@@ -1,0 +1,67 @@
+//! The viewer side of the program: the `shot` action (offscreen picture) and the interactive
+//! viewer, both over `render`. `run` is what `main` calls for the `gui` and `shot` actions.
+
+pub mod controller;
+pub mod glut;
+pub mod menu;
+pub mod shot;
+pub mod ui;
+pub mod viewer;
+pub mod viewport;
+
+use std::process::ExitCode;
+
+use crate::cli::{Action, Args};
+use crate::mesh::Scene;
+
+/// Runs the `gui` or `shot` action on an already built scene.
+pub fn run(scene: Scene, args: &Args) -> ExitCode {
+    match args.action {
+        Action::Shot => run_shot(&scene, args),
+        Action::Gui | Action::NoGui => run_gui(scene, args),
+    }
+}
+
+/// The viewer: steps (4) to (6) of the original's start-up.
+fn run_gui(scene: Scene, args: &Args) -> ExitCode {
+    if !args.quiet {
+        eprint!("{}", menu::key_help());
+    }
+    // (4) Build the popup menu: one list of entries, shared by the popup and the keyboard.
+    let entries = menu::menu();
+    // (5) Register the callbacks: the viewer answers display, reshape, keyboard, mouse and
+    // motion events for the viewports the controller owns.
+    let controller = controller::ViewportController::new(scene, args.params, 1024, 720);
+    let mut viewer = viewer::Viewer::new(controller, entries);
+    // (6) Hand control to the main loop.
+    let title = format!("decimate — {}", args.input.display());
+    match glut::main_loop(&title, &mut viewer) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("decimate: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run_shot(scene: &Scene, args: &Args) -> ExitCode {
+    let params = args.target_given.then_some(&args.params);
+    let (image, report) = match shot::render(scene, &args.shot, params, Default::default()) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("decimate: cannot render: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    if let (Some(report), false) = (report, args.quiet) {
+        eprint!("{}", crate::batch::summary(&report));
+    }
+    if let Err(e) = shot::write_png(&image, &args.output) {
+        eprintln!("decimate: cannot write {e}");
+        return ExitCode::FAILURE;
+    }
+    if !args.quiet {
+        eprintln!("wrote {}", args.output.display());
+    }
+    ExitCode::SUCCESS
+}

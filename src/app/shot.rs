@@ -1,0 +1,141 @@
+//! The `shot` action: render the scene offscreen — no window, no display — with exactly the
+//! viewer's renderer, viewports tiled as in the viewer (the first shows the original scene,
+//! the others the decimated one), and write a PNG through a temporary file and a rename.
+
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+use crate::cli::{ShotModes, ShotOptions};
+use crate::decimate::{decimate_scene, Params, Report};
+use crate::mesh::Scene;
+use crate::render::camera::Camera;
+use crate::render::commands::Commands;
+use crate::render::context::{Context, DevicePreference};
+use crate::render::draw::{DrawOptions, ViewportDraw};
+use crate::render::gpu_mesh::GpuScene;
+use crate::render::offscreen::{OffscreenTarget, RgbaImage, OFFSCREEN_FORMAT};
+use crate::render::pipeline::Pipelines;
+use crate::render::tiles::tiles;
+use crate::render::RenderError;
+
+/// What can go wrong taking a shot.
+#[derive(Debug, thiserror::Error)]
+pub enum ShotError {
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    #[error("{file}: {source}")]
+    Write {
+        file: std::path::PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{file}: PNG encoding failed: {source}")]
+    Encode {
+        file: std::path::PathBuf,
+        #[source]
+        source: png::EncodingError,
+    },
+}
+
+/// The draw toggles a `--mode` list asks for.
+pub fn draw_options(modes: &ShotModes) -> DrawOptions {
+    DrawOptions {
+        triangles: modes.triangles,
+        edges: modes.edges,
+        points: modes.points,
+        face_normals: modes.face_normals,
+        vertex_normals: modes.vertex_normals,
+        lighting: !modes.unlit,
+        smooth: !modes.flat,
+    }
+}
+
+/// A picture of `scene` and, when `params` is given, of its decimated copy.
+///
+/// Viewport 1 shows the original and viewports 2–4 the decimated scene; with a single
+/// viewport and a target, that viewport shows the decimated scene (otherwise the target would
+/// be ignored). Every viewport uses the same camera, framed on the original.
+pub fn render(
+    scene: &Scene,
+    options: &ShotOptions,
+    params: Option<&Params>,
+    device: DevicePreference,
+) -> Result<(RgbaImage, Option<Report>), RenderError> {
+    let context = Context::new(&[], false, device)?;
+    let commands = Commands::new(&context)?;
+    let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
+    let target = OffscreenTarget::new(&context, options.width, options.height)?;
+
+    let original = GpuScene::upload(&context, &commands, scene)?;
+    let (decimated, report) = match params {
+        Some(params) => {
+            let mut copy = scene.clone();
+            let report = decimate_scene(&mut copy, params, &mut |_| {});
+            (
+                Some(GpuScene::upload(&context, &commands, &copy)?),
+                Some(report),
+            )
+        }
+        None => (None, None),
+    };
+    let camera = Camera::framing(original.bounds);
+    let draw = draw_options(&options.modes);
+    let rects = tiles(options.viewports as usize, options.width, options.height);
+    let views: Vec<_> = rects
+        .iter()
+        .enumerate()
+        .map(|(i, &rect)| {
+            let shows_decimated = i > 0 || rects.len() == 1;
+            let scene = match (&decimated, shows_decimated) {
+                (Some(d), true) => d,
+                _ => &original,
+            };
+            ViewportDraw {
+                rect,
+                scene,
+                camera: &camera,
+                options: draw,
+            }
+        })
+        .collect();
+    let image = target.render(&commands, &pipelines, &views, true)?;
+    let image = image.ok_or_else(|| RenderError::TooLarge("no picture was read back".into()))?;
+    Ok((image, report))
+}
+
+/// Writes `image` as an RGBA PNG: to `path.tmp` first, then renamed over `path`, so a crash
+/// never leaves half a file under the real name.
+pub fn write_png(image: &RgbaImage, path: &Path) -> Result<(), ShotError> {
+    let tmp = {
+        let mut name = path.as_os_str().to_owned();
+        name.push(".tmp");
+        std::path::PathBuf::from(name)
+    };
+    let io_err = |source| ShotError::Write {
+        file: path.to_path_buf(),
+        source,
+    };
+    let encode_err = |source| ShotError::Encode {
+        file: path.to_path_buf(),
+        source,
+    };
+    let file = std::fs::File::create(&tmp).map_err(io_err)?;
+    let result = (|| {
+        let mut out = BufWriter::new(file);
+        let mut encoder = png::Encoder::new(&mut out, image.width, image.height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder.write_header().map_err(encode_err)?;
+        writer.write_image_data(&image.pixels).map_err(encode_err)?;
+        writer.finish().map_err(encode_err)?;
+        out.flush().map_err(io_err)?;
+        Ok(())
+    })();
+    match result {
+        Ok(()) => std::fs::rename(&tmp, path).map_err(io_err),
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            Err(e)
+        }
+    }
+}

@@ -1,0 +1,243 @@
+//! `UiLayer`: egui over the Vulkan window — the right-click popup menu (built from the menu
+//! data), the "decimate to N vertices" text field, the status line and the help overlay.
+//! Drawn in its own colour-only rendering pass after the viewports.
+
+use std::sync::Arc;
+
+use ash::vk;
+use egui_ash_renderer::allocator::GpuAllocator;
+use egui_ash_renderer::{DynamicRendering, Options, RenderMode, Renderer};
+use winit::window::Window;
+
+use crate::render::commands::Commands;
+use crate::render::context::Context;
+
+use super::menu::{Action, MenuEntry, MenuItem};
+
+/// What the user did in the UI this frame.
+#[derive(Debug, Default)]
+pub struct UiResult {
+    /// A menu entry was chosen.
+    pub action: Option<Action>,
+    /// The vertex-count field was confirmed with this number.
+    pub decimate_to: Option<usize>,
+    /// The popup or the field was dismissed.
+    pub close_popup: bool,
+    pub close_field: bool,
+    /// egui wants another frame soon (a popup being measured, hover animation).
+    pub repaint: bool,
+}
+
+/// What the UI shows this frame.
+pub struct UiState<'a> {
+    pub menu: &'a [MenuEntry],
+    /// Where the popup is open (logical points), if it is.
+    pub popup_at: Option<egui::Pos2>,
+    /// The popup opened with this frame's click, which must not count as "clicked elsewhere".
+    pub popup_just_opened: bool,
+    /// The vertex-count field's text, if it is open.
+    pub field: Option<&'a mut String>,
+    pub status: &'a str,
+    pub help: Option<&'a str>,
+}
+
+/// egui context, winit glue and Vulkan renderer.
+pub struct UiLayer {
+    // Field order is drop order: the renderer (which holds an allocator reference) goes first.
+    renderer: Renderer<GpuAllocator>,
+    state: egui_winit::State,
+    ctx: egui::Context,
+    primitives: Vec<egui::ClippedPrimitive>,
+    textures_to_free: Vec<egui::TextureId>,
+    pixels_per_point: f32,
+}
+
+impl UiLayer {
+    pub fn new(
+        context: &Arc<Context>,
+        window: &Window,
+        color_format: vk::Format,
+    ) -> Result<Self, String> {
+        let ctx = egui::Context::default();
+        let state = egui_winit::State::new(
+            ctx.clone(),
+            egui::ViewportId::ROOT,
+            window,
+            Some(window.scale_factor() as f32),
+            None,
+            None,
+        );
+        let renderer = Renderer::with_gpu_allocator(
+            context.allocator().clone(),
+            context.device.clone(),
+            RenderMode::DynamicRendering(DynamicRendering {
+                color_attachment_format: color_format,
+                depth_attachment_format: None,
+                stencil_attachment_format: None,
+            }),
+            Options {
+                in_flight_frames: 1,
+                ..Options::default()
+            },
+        )
+        .map_err(|e| format!("egui renderer: {e}"))?;
+        Ok(Self {
+            renderer,
+            state,
+            ctx,
+            primitives: Vec::new(),
+            textures_to_free: Vec::new(),
+            pixels_per_point: 1.0,
+        })
+    }
+
+    /// Passes a window event to egui; `true` when egui used it (typing in the field, clicking
+    /// the menu), so the viewer must not.
+    pub fn on_event(&mut self, window: &Window, event: &winit::event::WindowEvent) -> bool {
+        self.state.on_window_event(window, event).consumed
+    }
+
+    /// True when egui wants the pointer (over the popup or the field).
+    pub fn wants_pointer(&self) -> bool {
+        self.ctx.egui_wants_pointer_input() || self.ctx.is_pointer_over_egui()
+    }
+
+    /// Lays out this frame's UI and uploads its textures.
+    pub fn run(
+        &mut self,
+        window: &Window,
+        context: &Arc<Context>,
+        commands: &Commands,
+        ui_state: UiState<'_>,
+    ) -> Result<UiResult, String> {
+        let input = self.state.take_egui_input(window);
+        let mut result = UiResult::default();
+        let UiState {
+            menu,
+            popup_at,
+            popup_just_opened,
+            mut field,
+            status,
+            help,
+        } = ui_state;
+        let output = self.ctx.run_ui(input, |ui| {
+            let ctx = ui.ctx().clone();
+            egui::Area::new(egui::Id::new("status"))
+                .anchor(egui::Align2::LEFT_BOTTOM, egui::vec2(6.0, -6.0))
+                .show(&ctx, |ui| {
+                    egui::Frame::popup(ui.style()).show(ui, |ui| ui.label(status));
+                });
+            if let Some(text) = help {
+                egui::Area::new(egui::Id::new("help"))
+                    .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-6.0, 6.0))
+                    .show(&ctx, |ui| {
+                        egui::Frame::popup(ui.style())
+                            .show(ui, |ui| ui.label(egui::RichText::new(text).monospace()));
+                    });
+            }
+            if let Some(pos) = popup_at {
+                let area = egui::Area::new(egui::Id::new("popup menu"))
+                    .fixed_pos(pos)
+                    .order(egui::Order::Foreground)
+                    .show(&ctx, |ui| {
+                        egui::Frame::menu(ui.style()).show(ui, |ui| {
+                            ui.set_min_width(180.0);
+                            menu_entries(ui, menu, &mut result.action);
+                        });
+                    });
+                if !popup_just_opened
+                    && area.response.clicked_elsewhere()
+                    && result.action.is_none()
+                {
+                    result.close_popup = true;
+                }
+            }
+            if let Some(text) = field.as_deref_mut() {
+                egui::Window::new("Decimate to N vertices")
+                    .collapsible(false)
+                    .resizable(false)
+                    .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
+                    .show(&ctx, |ui| {
+                        let edit = ui.add(egui::TextEdit::singleline(text).hint_text("vertices"));
+                        edit.request_focus();
+                        let entered =
+                            edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                        ui.horizontal(|ui| {
+                            if ui.button("Decimate").clicked() || entered {
+                                match text.trim().parse::<usize>() {
+                                    Ok(n) => {
+                                        result.decimate_to = Some(n);
+                                        result.close_field = true;
+                                    }
+                                    Err(_) => text.clear(),
+                                }
+                            }
+                            if ui.button("Cancel").clicked()
+                                || ui.input(|i| i.key_pressed(egui::Key::Escape))
+                            {
+                                result.close_field = true;
+                            }
+                        });
+                    });
+            }
+        });
+        result.repaint = output
+            .viewport_output
+            .get(&egui::ViewportId::ROOT)
+            .is_some_and(|v| v.repaint_delay.is_zero());
+        self.state
+            .handle_platform_output(window, output.platform_output);
+        self.pixels_per_point = output.pixels_per_point;
+        self.primitives = self.ctx.tessellate(output.shapes, output.pixels_per_point);
+        let mut delta = output.textures_delta;
+        for (id, deltas) in std::mem::take(&mut delta.set) {
+            for d in &deltas {
+                self.renderer
+                    .set_texture(context.queue, commands.pool(), id, d)
+                    .map_err(|e| format!("egui textures: {e}"))?;
+            }
+        }
+        self.textures_to_free = std::mem::take(&mut delta.free).into_iter().collect();
+        Ok(result)
+    }
+
+    /// Records the UI into `cmd`, inside a colour-only rendering pass of `extent`.
+    pub fn draw(&mut self, cmd: vk::CommandBuffer, extent: vk::Extent2D) -> Result<(), String> {
+        self.renderer
+            .cmd_draw(cmd, extent, self.pixels_per_point, &self.primitives)
+            .map_err(|e| format!("egui draw: {e}"))
+    }
+
+    /// After the frame has finished on the GPU: textures egui no longer needs.
+    pub fn end_frame(&mut self) -> Result<(), String> {
+        for id in std::mem::take(&mut self.textures_to_free) {
+            self.renderer
+                .free_texture(id)
+                .map_err(|e| format!("egui textures: {e}"))?;
+        }
+        Ok(())
+    }
+}
+
+/// The menu entries as buttons; submenus as nested menu buttons.
+fn menu_entries(ui: &mut egui::Ui, entries: &[MenuEntry], chosen: &mut Option<Action>) {
+    for e in entries {
+        match &e.item {
+            MenuItem::Action(a) => {
+                let label = match e.key {
+                    Some(k) => format!("{}    [{k}]", e.label),
+                    None => e.label.clone(),
+                };
+                if ui.button(label).clicked() {
+                    *chosen = Some(*a);
+                    ui.close();
+                }
+            }
+            MenuItem::Submenu(sub) => {
+                ui.menu_button(format!("{}  >", e.label), |ui| {
+                    menu_entries(ui, sub, chosen)
+                });
+            }
+        }
+    }
+}

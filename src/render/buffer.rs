@@ -1,0 +1,184 @@
+//! `Buffer`: a `vk::Buffer` with its gpu-allocator memory, freed in `Drop`. Mesh buffers are
+//! host-visible (on lavapipe and integrated GPUs all memory is) and filled once at upload.
+
+use std::sync::Arc;
+
+use ash::vk;
+use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use gpu_allocator::MemoryLocation;
+
+use super::context::Context;
+use super::error::{RenderError, Result};
+
+/// A buffer and its memory.
+pub struct Buffer {
+    context: Arc<Context>,
+    pub handle: vk::Buffer,
+    pub size: vk::DeviceSize,
+    allocation: Option<Allocation>,
+}
+
+impl Buffer {
+    /// Creates a buffer of `size` bytes in `location`.
+    pub fn new(
+        context: &Arc<Context>,
+        name: &str,
+        size: vk::DeviceSize,
+        usage: vk::BufferUsageFlags,
+        location: MemoryLocation,
+    ) -> Result<Self> {
+        let device = &context.device;
+        let info = vk::BufferCreateInfo::default()
+            .size(size.max(4))
+            .usage(usage)
+            .sharing_mode(vk::SharingMode::EXCLUSIVE);
+        // SAFETY: valid create info on a live device.
+        let handle = unsafe { device.create_buffer(&info, None)? };
+        // From here on `buffer` owns `handle`, so an early return frees it.
+        let mut buffer = Self {
+            context: context.clone(),
+            handle,
+            size,
+            allocation: None,
+        };
+        // SAFETY: `handle` was just created on this device.
+        let requirements = unsafe { device.get_buffer_memory_requirements(handle) };
+        let allocation = context
+            .allocator()
+            .lock()
+            .map_err(|_| RenderError::AllocatorPoisoned)?
+            .allocate(&AllocationCreateDesc {
+                name,
+                requirements,
+                location,
+                linear: true,
+                allocation_scheme: AllocationScheme::GpuAllocatorManaged,
+            })?;
+        // SAFETY: the allocation satisfies the buffer's requirements and is not bound elsewhere.
+        let bound =
+            unsafe { device.bind_buffer_memory(handle, allocation.memory(), allocation.offset()) };
+        buffer.allocation = Some(allocation);
+        bound?;
+        Ok(buffer)
+    }
+
+    /// A host-visible buffer holding `data`.
+    pub fn with_data<T: Copy>(
+        context: &Arc<Context>,
+        name: &str,
+        usage: vk::BufferUsageFlags,
+        data: &[T],
+    ) -> Result<Self> {
+        let bytes = size_of_val(data);
+        let mut buffer = Self::new(context, name, bytes as u64, usage, MemoryLocation::CpuToGpu)?;
+        let target = buffer.mapped_mut()?;
+        // SAFETY: `T: Copy` is plain data; the mapping is at least `bytes` long and does not
+        // overlap `data`.
+        unsafe {
+            std::ptr::copy_nonoverlapping(data.as_ptr().cast::<u8>(), target.as_mut_ptr(), bytes);
+        }
+        Ok(buffer)
+    }
+
+    /// The mapped bytes of a host-visible buffer.
+    pub fn mapped(&self) -> Result<&[u8]> {
+        self.allocation
+            .as_ref()
+            .and_then(Allocation::mapped_slice)
+            .ok_or_else(|| RenderError::TooLarge("buffer is not host-visible".into()))
+    }
+
+    /// The mapped bytes of a host-visible buffer, writable.
+    pub fn mapped_mut(&mut self) -> Result<&mut [u8]> {
+        self.allocation
+            .as_mut()
+            .and_then(Allocation::mapped_slice_mut)
+            .ok_or_else(|| RenderError::TooLarge("buffer is not host-visible".into()))
+    }
+}
+
+impl Drop for Buffer {
+    fn drop(&mut self) {
+        // SAFETY: callers wait for the GPU to finish with the buffer before dropping it (frames
+        // are fenced); the buffer is destroyed before its memory is returned.
+        unsafe { self.context.device.destroy_buffer(self.handle, None) };
+        if let Some(allocation) = self.allocation.take() {
+            if let Ok(mut allocator) = self.context.allocator().lock() {
+                let _ = allocator.free(allocation);
+            }
+        }
+    }
+}
+
+/// Batches uploads into device-local buffers: each `upload` stages its data, `finish` copies
+/// them all in one submission and frees the staging buffers.
+pub struct Uploader<'a> {
+    context: &'a Arc<Context>,
+    commands: &'a super::commands::Commands,
+    cmd: vk::CommandBuffer,
+    staging: Vec<Buffer>,
+}
+
+impl<'a> Uploader<'a> {
+    pub fn new(context: &'a Arc<Context>, commands: &'a super::commands::Commands) -> Result<Self> {
+        let cmd = commands.begin()?;
+        Ok(Self {
+            context,
+            commands,
+            cmd,
+            staging: Vec::new(),
+        })
+    }
+
+    /// A device-local buffer that will hold `data` once `finish` returns.
+    pub fn upload<T: Copy>(
+        &mut self,
+        name: &str,
+        usage: vk::BufferUsageFlags,
+        data: &[T],
+    ) -> Result<Buffer> {
+        let staging =
+            Buffer::with_data(self.context, name, vk::BufferUsageFlags::TRANSFER_SRC, data)?;
+        let buffer = Buffer::new(
+            self.context,
+            name,
+            staging.size,
+            usage | vk::BufferUsageFlags::TRANSFER_DST,
+            MemoryLocation::GpuOnly,
+        )?;
+        if staging.size > 0 {
+            let region = [vk::BufferCopy::default().size(staging.size)];
+            // SAFETY: both buffers are alive until `finish` has waited for the copy, and both
+            // are at least `size` bytes long.
+            unsafe {
+                self.context.device.cmd_copy_buffer(
+                    self.cmd,
+                    staging.handle,
+                    buffer.handle,
+                    &region,
+                )
+            };
+        }
+        self.staging.push(staging);
+        Ok(buffer)
+    }
+
+    /// Runs every copy and waits for them; the buffers are then ready to draw from.
+    pub fn finish(self) -> Result<()> {
+        let barrier = [vk::MemoryBarrier2::default()
+            .src_stage_mask(vk::PipelineStageFlags2::COPY)
+            .src_access_mask(vk::AccessFlags2::TRANSFER_WRITE)
+            .dst_stage_mask(vk::PipelineStageFlags2::VERTEX_INPUT)
+            .dst_access_mask(
+                vk::AccessFlags2::VERTEX_ATTRIBUTE_READ | vk::AccessFlags2::INDEX_READ,
+            )];
+        let dependency = vk::DependencyInfo::default().memory_barriers(&barrier);
+        // SAFETY: the command buffer is recording (begun in `new`).
+        unsafe {
+            self.context
+                .device
+                .cmd_pipeline_barrier2(self.cmd, &dependency)
+        };
+        self.commands.submit_and_wait()
+    }
+}

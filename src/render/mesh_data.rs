@@ -1,0 +1,228 @@
+//! `MeshData`: the CPU side of what the GPU draws for one model — interleaved vertices,
+//! triangle, edge and point index lists, and the face / vertex normal line segments — built
+//! from a `Model` once per decimation, with no Vulkan in sight (so it is unit-tested).
+//!
+//! Vertices are shared between triangles (indexed drawing), except when the model has
+//! per-face colours: then every triangle corner gets its own vertex. Flat shading needs no
+//! duplication: the fragment shader derives the face normal from screen-space derivatives.
+
+use std::collections::HashSet;
+
+use glam::Vec3;
+
+use crate::mesh::{Attribute, Model};
+
+/// One vertex as the vertex shader reads it (locations 0, 1, 2).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Vertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    /// RGBA, 8 bits per channel (`R8G8B8A8_UNORM`).
+    pub color: [u8; 4],
+}
+
+/// Everything the GPU needs to draw one model in any mode.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MeshData {
+    pub vertices: Vec<Vertex>,
+    /// Three indices per triangle, counter-clockwise.
+    pub triangles: Vec<u32>,
+    /// Two indices per unique edge.
+    pub edges: Vec<u32>,
+    /// One index per vertex used by a triangle.
+    pub points: Vec<u32>,
+    /// Two vertices per segment: triangle centroid → centroid + normal × length.
+    pub face_normals: Vec<Vertex>,
+    /// Two vertices per segment: vertex → vertex + normal × length.
+    pub vertex_normals: Vec<Vertex>,
+}
+
+impl MeshData {
+    /// Builds the draw data for `model`; normal segments are `normal_length` long (model units).
+    pub fn from_model(model: &Model, normal_length: f32) -> Self {
+        let normals = vertex_normals(model);
+        let face_colors = match &model.colors {
+            Some(Attribute::PerFace(c)) if c.len() == model.triangles.len() => Some(c),
+            _ => None,
+        };
+        let vertex_colors = match &model.colors {
+            Some(Attribute::PerVertex(c)) if c.len() == model.positions.len() => Some(c),
+            _ => None,
+        };
+        let color_of_vertex = |v: usize| to_rgba8(vertex_colors.map_or(model.diffuse, |c| c[v]));
+
+        let mut data = Self::default();
+        // `render_index[v]`: the render vertex that stands for model vertex `v` in point lists.
+        let mut render_index = vec![u32::MAX; model.positions.len()];
+        if let Some(face_colors) = face_colors {
+            for (t, tri) in model.triangles.iter().enumerate() {
+                for &v in tri {
+                    let index = data.vertices.len() as u32;
+                    data.vertices.push(Vertex {
+                        position: model.positions[v as usize].to_array(),
+                        normal: normals[v as usize].to_array(),
+                        color: to_rgba8(face_colors[t]),
+                    });
+                    data.triangles.push(index);
+                    if render_index[v as usize] == u32::MAX {
+                        render_index[v as usize] = index;
+                    }
+                }
+            }
+        } else {
+            data.vertices = model
+                .positions
+                .iter()
+                .zip(&normals)
+                .enumerate()
+                .map(|(v, (p, n))| Vertex {
+                    position: p.to_array(),
+                    normal: n.to_array(),
+                    color: color_of_vertex(v),
+                })
+                .collect();
+            data.triangles = model.triangles.iter().flatten().copied().collect();
+            for tri in &model.triangles {
+                for &v in tri {
+                    render_index[v as usize] = v;
+                }
+            }
+        }
+
+        // Unique edges, each drawn once, in the model's vertex numbering mapped to render vertices.
+        let mut seen = HashSet::with_capacity(model.triangles.len() * 3 / 2);
+        for tri in &model.triangles {
+            for (a, b) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
+                if seen.insert((a.min(b), a.max(b))) {
+                    data.edges.push(render_index[a as usize]);
+                    data.edges.push(render_index[b as usize]);
+                }
+            }
+        }
+        data.points = render_index
+            .iter()
+            .copied()
+            .filter(|&i| i != u32::MAX)
+            .collect();
+
+        for tri in &model.triangles {
+            let [a, b, c] = tri.map(|v| model.positions[v as usize]);
+            let centre = (a + b + c) / 3.0;
+            let normal = (b - a).cross(c - a).normalize_or_zero();
+            push_segment(&mut data.face_normals, centre, normal * normal_length);
+        }
+        for (v, &i) in render_index.iter().enumerate() {
+            if i != u32::MAX {
+                push_segment(
+                    &mut data.vertex_normals,
+                    model.positions[v],
+                    normals[v] * normal_length,
+                );
+            }
+        }
+        data
+    }
+}
+
+fn push_segment(out: &mut Vec<Vertex>, from: Vec3, along: Vec3) {
+    for p in [from, from + along] {
+        out.push(Vertex {
+            position: p.to_array(),
+            normal: along.normalize_or_zero().to_array(),
+            color: [255; 4],
+        });
+    }
+}
+
+fn to_rgba8(c: [f32; 3]) -> [u8; 4] {
+    let q = |x: f32| (x.clamp(0.0, 1.0) * 255.0).round() as u8;
+    [q(c[0]), q(c[1]), q(c[2]), 255]
+}
+
+/// Per-vertex normals: the file's when it gave one per vertex, else the area-weighted average
+/// of the adjacent triangles' normals (the original computed them the same way).
+pub fn vertex_normals(model: &Model) -> Vec<Vec3> {
+    if let Some(Attribute::PerVertex(n)) = &model.normals {
+        if n.len() == model.positions.len() {
+            return n.iter().map(|v| v.normalize_or_zero()).collect();
+        }
+    }
+    let mut sums = vec![Vec3::ZERO; model.positions.len()];
+    for tri in &model.triangles {
+        let [a, b, c] = tri.map(|v| model.positions[v as usize]);
+        // Twice the area, pointing out of the counter-clockwise side.
+        let n = (b - a).cross(c - a);
+        for &v in tri {
+            sums[v as usize] += n;
+        }
+    }
+    sums.into_iter().map(Vec3::normalize_or_zero).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two triangles sharing the diagonal of the unit square in the z = 0 plane:
+    /// ```text
+    /// 3---2
+    /// | / |
+    /// 0---1
+    /// ```
+    fn square() -> Model {
+        Model {
+            positions: vec![
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(1.0, 0.0, 0.0),
+                Vec3::new(1.0, 1.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+                Vec3::new(9.0, 9.0, 9.0), // unused: no point, no normal
+            ],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            ..Model::default()
+        }
+    }
+
+    #[test]
+    fn shared_vertices_unique_edges_used_points() {
+        let d = MeshData::from_model(&square(), 0.5);
+        assert_eq!(d.vertices.len(), 5);
+        assert_eq!(d.triangles, vec![0, 1, 2, 0, 2, 3]);
+        assert_eq!(d.edges.len(), 2 * 5, "4 sides + 1 diagonal, each once");
+        assert_eq!(d.points, vec![0, 1, 2, 3]);
+        assert_eq!(d.face_normals.len(), 4);
+        assert_eq!(d.vertex_normals.len(), 8);
+    }
+
+    #[test]
+    fn counter_clockwise_gives_plus_z_normals() {
+        let d = MeshData::from_model(&square(), 0.5);
+        for v in &d.vertices[..4] {
+            assert_eq!(v.normal, [0.0, 0.0, 1.0]);
+        }
+        let tip = d.face_normals[1].position;
+        assert!(
+            (tip[2] - 0.5).abs() < 1e-6,
+            "segment points out of the front face: {tip:?}"
+        );
+    }
+
+    #[test]
+    fn per_face_colours_split_corners() {
+        let mut m = square();
+        m.colors = Some(Attribute::PerFace(vec![[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]));
+        let d = MeshData::from_model(&m, 0.5);
+        assert_eq!(d.vertices.len(), 6);
+        assert_eq!(d.vertices[0].color, [255, 0, 0, 255]);
+        assert_eq!(d.vertices[5].color, [0, 0, 255, 255]);
+        assert_eq!(d.edges.len(), 2 * 5);
+        assert_eq!(d.points.len(), 4);
+    }
+
+    #[test]
+    fn diffuse_colour_when_file_has_none() {
+        let d = MeshData::from_model(&square(), 0.5);
+        assert_eq!(d.vertices[0].color, [204, 204, 204, 255]);
+    }
+}

@@ -1,0 +1,273 @@
+//! `Pipelines`: one graphics pipeline per draw mode (filled lit smooth / lit flat / unlit,
+//! edges, points, face normals, vertex normals) over one vertex layout and one push-constant
+//! layout, for a given colour format (dynamic rendering, no render pass). Each mode is the
+//! same two shaders with different specialization constants and topology.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::context::Context;
+use super::error::Result;
+use super::image::DEPTH_FORMAT;
+use super::mesh_data::Vertex;
+use super::shader::{ShaderModule, MESH_FRAG, MESH_VERT};
+
+/// What one pipeline draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum DrawMode {
+    /// Triangles lit with interpolated vertex normals.
+    FilledSmooth,
+    /// Triangles lit with their face normal.
+    FilledFlat,
+    /// Triangles in their colour, no lighting.
+    FilledUnlit,
+    /// Unique edges over filled triangles (dark).
+    EdgesOverSurface,
+    /// Unique edges alone (light).
+    EdgesAlone,
+    /// Vertices as points.
+    Points,
+    /// Face-normal segments.
+    FaceNormals,
+    /// Vertex-normal segments.
+    VertexNormals,
+}
+
+impl DrawMode {
+    pub const ALL: [Self; 8] = [
+        Self::FilledSmooth,
+        Self::FilledFlat,
+        Self::FilledUnlit,
+        Self::EdgesOverSurface,
+        Self::EdgesAlone,
+        Self::Points,
+        Self::FaceNormals,
+        Self::VertexNormals,
+    ];
+
+    fn topology(self) -> vk::PrimitiveTopology {
+        match self {
+            Self::FilledSmooth | Self::FilledFlat | Self::FilledUnlit => {
+                vk::PrimitiveTopology::TRIANGLE_LIST
+            }
+            Self::Points => vk::PrimitiveTopology::POINT_LIST,
+            _ => vk::PrimitiveTopology::LINE_LIST,
+        }
+    }
+
+    /// Shading (fragment shader `SHADING`) and constant colour.
+    fn shading(self) -> (i32, [f32; 3]) {
+        match self {
+            Self::FilledSmooth => (0, [0.0; 3]),
+            Self::FilledFlat => (1, [0.0; 3]),
+            Self::FilledUnlit => (2, [0.0; 3]),
+            Self::EdgesOverSurface => (3, [0.05, 0.05, 0.08]),
+            Self::EdgesAlone => (3, [0.85, 0.88, 0.95]),
+            Self::Points => (3, [1.0, 0.65, 0.1]),
+            Self::FaceNormals => (3, [0.2, 0.8, 1.0]),
+            Self::VertexNormals => (3, [1.0, 0.35, 0.7]),
+        }
+    }
+
+    /// Fraction of the depth range overlays are pulled towards the eye.
+    fn depth_nudge(self) -> f32 {
+        match self {
+            Self::FilledSmooth | Self::FilledFlat | Self::FilledUnlit => 0.0,
+            Self::Points => 4e-4,
+            _ => 2e-4,
+        }
+    }
+}
+
+/// Per-draw constants: 128 bytes, the minimum every device guarantees.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct PushConstants {
+    pub clip_from_model: [f32; 16],
+    pub view_from_model: [f32; 16],
+}
+
+/// Point size asked for; clamped to the device's range (1 px without `largePoints`).
+pub const POINT_SIZE: f32 = 5.0;
+
+/// The pipelines of every draw mode and their shared layout.
+pub struct Pipelines {
+    context: Arc<Context>,
+    pub layout: vk::PipelineLayout,
+    pipelines: Vec<(DrawMode, vk::Pipeline)>,
+    pub color_format: vk::Format,
+}
+
+impl Pipelines {
+    pub fn new(context: &Arc<Context>, color_format: vk::Format) -> Result<Self> {
+        let device = &context.device;
+        let ranges = [vk::PushConstantRange::default()
+            .stage_flags(vk::ShaderStageFlags::VERTEX)
+            .size(size_of::<PushConstants>() as u32)];
+        let layout_info = vk::PipelineLayoutCreateInfo::default().push_constant_ranges(&ranges);
+        // SAFETY: valid create info on a live device.
+        let layout = unsafe { device.create_pipeline_layout(&layout_info, None)? };
+        let mut this = Self {
+            context: context.clone(),
+            layout,
+            pipelines: Vec::new(),
+            color_format,
+        };
+        if !context.capabilities.large_points {
+            eprintln!(
+                "decimate: {} has no largePoints: points are drawn 1 pixel wide",
+                context.device_name
+            );
+        }
+        let vert = ShaderModule::new(context, MESH_VERT)?;
+        let frag = ShaderModule::new(context, MESH_FRAG)?;
+        for mode in DrawMode::ALL {
+            let pipeline = this.create(mode, &vert, &frag)?;
+            this.pipelines.push((mode, pipeline));
+        }
+        Ok(this)
+    }
+
+    /// The pipeline of `mode`.
+    pub fn get(&self, mode: DrawMode) -> vk::Pipeline {
+        self.pipelines
+            .iter()
+            .find(|(m, _)| *m == mode)
+            .map_or(vk::Pipeline::null(), |(_, p)| *p)
+    }
+
+    fn create(
+        &self,
+        mode: DrawMode,
+        vert: &ShaderModule,
+        frag: &ShaderModule,
+    ) -> Result<vk::Pipeline> {
+        let (shading, colour) = mode.shading();
+        let point_size = self.context.capabilities.point_size(POINT_SIZE);
+        // Specialization data: ids 0..=6 in the order the shaders declare them.
+        let mut data = Vec::with_capacity(24);
+        data.extend_from_slice(&mode.depth_nudge().to_ne_bytes());
+        data.extend_from_slice(&point_size.to_ne_bytes());
+        data.extend_from_slice(&shading.to_ne_bytes());
+        for c in colour {
+            data.extend_from_slice(&c.to_ne_bytes());
+        }
+        let round_points = vk::Bool32::from(mode == DrawMode::Points && point_size > 2.0);
+        data.extend_from_slice(&round_points.to_ne_bytes());
+        let entries: Vec<_> = (0..7u32)
+            .map(|id| {
+                vk::SpecializationMapEntry::default()
+                    .constant_id(id)
+                    .offset(id * 4)
+                    .size(4)
+            })
+            .collect();
+        let specialization = vk::SpecializationInfo::default()
+            .map_entries(&entries)
+            .data(&data);
+        let stages = [
+            vk::PipelineShaderStageCreateInfo::default()
+                .stage(vk::ShaderStageFlags::VERTEX)
+                .module(vert.handle)
+                .name(c"main")
+                .specialization_info(&specialization),
+            vk::PipelineShaderStageCreateInfo::default()
+                .stage(vk::ShaderStageFlags::FRAGMENT)
+                .module(frag.handle)
+                .name(c"main")
+                .specialization_info(&specialization),
+        ];
+        let bindings = [vk::VertexInputBindingDescription::default()
+            .binding(0)
+            .stride(size_of::<Vertex>() as u32)
+            .input_rate(vk::VertexInputRate::VERTEX)];
+        let attributes = [
+            vk::VertexInputAttributeDescription::default()
+                .location(0)
+                .format(vk::Format::R32G32B32_SFLOAT)
+                .offset(0),
+            vk::VertexInputAttributeDescription::default()
+                .location(1)
+                .format(vk::Format::R32G32B32_SFLOAT)
+                .offset(12),
+            vk::VertexInputAttributeDescription::default()
+                .location(2)
+                .format(vk::Format::R8G8B8A8_UNORM)
+                .offset(24),
+        ];
+        let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
+            .vertex_binding_descriptions(&bindings)
+            .vertex_attribute_descriptions(&attributes);
+        let input_assembly =
+            vk::PipelineInputAssemblyStateCreateInfo::default().topology(mode.topology());
+        let viewport = vk::PipelineViewportStateCreateInfo::default()
+            .viewport_count(1)
+            .scissor_count(1);
+        // Two-sided: open meshes show their back faces, lit by the flipped normal.
+        let rasterization = vk::PipelineRasterizationStateCreateInfo::default()
+            .polygon_mode(vk::PolygonMode::FILL)
+            .cull_mode(vk::CullModeFlags::NONE)
+            .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
+            .line_width(1.0);
+        let multisample = vk::PipelineMultisampleStateCreateInfo::default()
+            .rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let depth = vk::PipelineDepthStencilStateCreateInfo::default()
+            .depth_test_enable(true)
+            .depth_write_enable(true)
+            .depth_compare_op(vk::CompareOp::LESS_OR_EQUAL);
+        let blend_attachments = [vk::PipelineColorBlendAttachmentState::default()
+            .color_write_mask(vk::ColorComponentFlags::RGBA)];
+        let blend =
+            vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
+        let dynamic_states = [vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
+        let dynamic = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic_states);
+        let color_formats = [self.color_format];
+        let mut rendering = vk::PipelineRenderingCreateInfo::default()
+            .color_attachment_formats(&color_formats)
+            .depth_attachment_format(DEPTH_FORMAT);
+        let info = vk::GraphicsPipelineCreateInfo::default()
+            .stages(&stages)
+            .vertex_input_state(&vertex_input)
+            .input_assembly_state(&input_assembly)
+            .viewport_state(&viewport)
+            .rasterization_state(&rasterization)
+            .multisample_state(&multisample)
+            .depth_stencil_state(&depth)
+            .color_blend_state(&blend)
+            .dynamic_state(&dynamic)
+            .layout(self.layout)
+            .push_next(&mut rendering);
+        // SAFETY: every state struct and the specialization data outlive the call; the layout
+        // and shader modules are alive.
+        let pipelines = unsafe {
+            self.context
+                .device
+                .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
+        };
+        match pipelines {
+            Ok(p) => Ok(p[0]),
+            Err((created, e)) => {
+                for p in created {
+                    // SAFETY: pipelines returned by a failed batch are not in use.
+                    unsafe { self.context.device.destroy_pipeline(p, None) };
+                }
+                Err(e.into())
+            }
+        }
+    }
+}
+
+impl Drop for Pipelines {
+    fn drop(&mut self) {
+        // SAFETY: owners wait for the GPU before dropping; pipelines go before their layout.
+        unsafe {
+            for &(_, p) in &self.pipelines {
+                self.context.device.destroy_pipeline(p, None);
+            }
+            self.context
+                .device
+                .destroy_pipeline_layout(self.layout, None);
+        }
+    }
+}

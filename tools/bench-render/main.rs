@@ -1,0 +1,187 @@
+//! Frame-time benchmark of the renderer: draws a large generated mesh (a UV sphere, about one
+//! million triangles by default) offscreen, once per draw mode, and prints a table of frame
+//! times. No readback is timed: a frame is record + submit + wait, as in the viewer.
+//!
+//! ```text
+//! cargo run --release --example bench-render -- [TRIANGLES] [WxH] [FRAMES]
+//! VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json cargo run --release --example bench-render
+//! ```
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use decimate::mesh::{Model, Scene};
+use decimate::render::camera::Camera;
+use decimate::render::commands::Commands;
+use decimate::render::context::{Context, DevicePreference};
+use decimate::render::draw::{DrawOptions, ViewportDraw};
+use decimate::render::gpu_mesh::GpuScene;
+use decimate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
+use decimate::render::pipeline::Pipelines;
+use decimate::render::tiles::tiles;
+use glam::Vec3;
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let triangles: usize = args
+        .first()
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(1_000_000);
+    let (width, height) = args
+        .get(1)
+        .and_then(|s| s.split_once('x'))
+        .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
+        .unwrap_or((1024, 768));
+    let frames: usize = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(5);
+    match run(triangles, width, height, frames) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("bench-render: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(
+    triangles: usize,
+    width: u32,
+    height: u32,
+    frames: usize,
+) -> Result<(), Box<dyn std::error::Error>> {
+    // rings × segments × 2 ≈ triangles, with twice as many segments as rings.
+    let rings = ((triangles as f64 / 4.0).sqrt().max(3.0)) as u32;
+    let scene = sphere(rings, rings * 2);
+    let context = Context::new(&[], false, DevicePreference::Fastest)?;
+    let commands = Commands::new(&context)?;
+    let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
+    let target = OffscreenTarget::new(&context, width, height)?;
+    let started = Instant::now();
+    let gpu = GpuScene::upload(&context, &commands, &scene)?;
+    let upload = started.elapsed().as_secs_f64() * 1e3;
+    let camera = Camera::framing(gpu.bounds);
+    println!(
+        "device: {}\nmesh: {} vertices, {} triangles (upload {upload:.0} ms)\nimage: {width}x{height}, {frames} frames per mode after one warm-up\n",
+        context.device_name, gpu.vertex_count, gpu.triangle_count
+    );
+    println!(
+        "{:<26} {:>10} {:>10} {:>10}",
+        "mode", "median ms", "min ms", "max ms"
+    );
+    let base = DrawOptions::default();
+    let modes = [
+        ("triangles (smooth)", base),
+        (
+            "triangles (flat)",
+            DrawOptions {
+                smooth: false,
+                ..base
+            },
+        ),
+        (
+            "triangles (unlit)",
+            DrawOptions {
+                lighting: false,
+                ..base
+            },
+        ),
+        (
+            "edges",
+            DrawOptions {
+                triangles: false,
+                edges: true,
+                ..base
+            },
+        ),
+        (
+            "triangles + edges",
+            DrawOptions {
+                edges: true,
+                ..base
+            },
+        ),
+        (
+            "points",
+            DrawOptions {
+                triangles: false,
+                points: true,
+                ..base
+            },
+        ),
+        (
+            "triangles + face normals",
+            DrawOptions {
+                face_normals: true,
+                ..base
+            },
+        ),
+        ("triangles, 4 viewports", base),
+    ];
+    for (name, options) in modes {
+        let count = if name.contains("4 viewports") { 4 } else { 1 };
+        let views: Vec<_> = tiles(count, width, height)
+            .into_iter()
+            .map(|rect| ViewportDraw {
+                rect,
+                scene: &gpu,
+                camera: &camera,
+                options,
+            })
+            .collect();
+        target.render(&commands, &pipelines, &views, false)?;
+        let mut times = Vec::with_capacity(frames);
+        for _ in 0..frames.max(1) {
+            let t = Instant::now();
+            target.render(&commands, &pipelines, &views, false)?;
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+        times.sort_by(f64::total_cmp);
+        println!(
+            "{name:<26} {:>10.1} {:>10.1} {:>10.1}",
+            times[times.len() / 2],
+            times[0],
+            times[times.len() - 1]
+        );
+    }
+    Ok(())
+}
+
+/// A unit UV sphere with `rings` × `segments` quads.
+fn sphere(rings: u32, segments: u32) -> Scene {
+    let mut m = Model {
+        name: "sphere".into(),
+        ..Model::default()
+    };
+    m.positions.push(Vec3::Y);
+    for r in 1..rings {
+        let theta = std::f32::consts::PI * r as f32 / rings as f32;
+        for s in 0..segments {
+            let phi = std::f32::consts::TAU * s as f32 / segments as f32;
+            m.positions.push(Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                -theta.sin() * phi.sin(),
+            ));
+        }
+    }
+    m.positions.push(-Vec3::Y);
+    let bottom = m.positions.len() as u32 - 1;
+    let ring = |r: u32, s: u32| 1 + (r - 1) * segments + s % segments;
+    for s in 0..segments {
+        m.triangles.push([0, ring(1, s), ring(1, s + 1)]);
+        m.triangles
+            .push([bottom, ring(rings - 1, s + 1), ring(rings - 1, s)]);
+    }
+    for r in 1..rings - 1 {
+        for s in 0..segments {
+            let (a, b, c, d) = (
+                ring(r, s),
+                ring(r, s + 1),
+                ring(r + 1, s + 1),
+                ring(r + 1, s),
+            );
+            m.triangles.push([a, d, c]);
+            m.triangles.push([a, c, b]);
+        }
+    }
+    Scene { models: vec![m] }
+}
