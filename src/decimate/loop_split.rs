@@ -22,23 +22,31 @@ pub fn triangulate(
     normal: DVec3,
     out: &mut Vec<[u32; 3]>,
 ) -> bool {
-    let mut stack: Vec<Vec<u32>> = vec![loop_verts.to_vec()];
-    while let Some(lp) = stack.pop() {
-        let n = lp.len();
+    // Sub-loops pending a split, as ranges of one buffer: no allocation per sub-loop.
+    let mut buf: Vec<u32> = Vec::with_capacity(loop_verts.len() * 3);
+    let mut pending: Vec<(usize, usize)> = Vec::with_capacity(loop_verts.len());
+    buf.extend_from_slice(loop_verts);
+    pending.push((0, loop_verts.len()));
+    while let Some((start, end)) = pending.pop() {
+        let n = end - start;
         if n < 3 {
             continue;
         }
         if n == 3 {
-            out.push([lp[0], lp[1], lp[2]]);
+            out.push([buf[start], buf[start + 1], buf[start + 2]]);
             continue;
         }
-        let Some((i, j)) = best_split(positions, &lp, normal) else {
+        let Some((i, j)) = best_split(positions, &buf[start..end], normal) else {
             return false;
         };
-        let first: Vec<u32> = lp[i..=j].to_vec();
-        let second: Vec<u32> = lp[j..].iter().chain(&lp[..=i]).copied().collect();
-        stack.push(first);
-        stack.push(second);
+        let (i, j) = (start + i, start + j);
+        let first = buf.len();
+        buf.extend_from_within(i..=j);
+        pending.push((first, buf.len()));
+        let second = buf.len();
+        buf.extend_from_within(j..end);
+        buf.extend_from_within(start..=i);
+        pending.push((second, buf.len()));
     }
     true
 }

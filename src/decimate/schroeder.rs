@@ -26,9 +26,9 @@ use glam::{DVec3, Vec3};
 
 use super::loop_split;
 use super::queue::VertexQueue;
-use crate::mesh::classify::{classify, VertexClass};
+use crate::mesh::classify::{classify, RingGeometry, VertexClass};
 use crate::mesh::topology::{Connectivity, Ring};
-use crate::mesh::{Attribute, Model};
+use crate::mesh::{spatial, Attribute, Model};
 
 /// How far one model may be decimated.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,13 +59,20 @@ pub fn decimate_model(
     limits: &Limits,
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
-    // 1. load
-    let positions = model.positions.clone();
-    let n = positions.len() as u32;
-    let valid: Vec<u32> = (0..model.triangles.len() as u32)
+    // 1. load, renumbered along a Morton curve for memory locality
+    let n = model.positions.len() as u32;
+    let order = spatial::morton_order(&model.positions);
+    let mut internal = vec![0u32; n as usize];
+    for (i, &v) in order.iter().enumerate() {
+        internal[v as usize] = i as u32;
+    }
+    let positions: Vec<Vec3> = order.iter().map(|&v| model.positions[v as usize]).collect();
+    let mut faces: Vec<u32> = (0..model.triangles.len() as u32)
         .filter(|&t| model.triangles[t as usize].iter().all(|&v| v < n))
         .collect();
-    let triangles: Vec<[u32; 3]> = valid.iter().map(|&t| model.triangles[t as usize]).collect();
+    let tri = |t: u32| model.triangles[t as usize].map(|v| internal[v as usize]);
+    faces.sort_by_cached_key(|&t| tri(t).into_iter().min());
+    let triangles: Vec<[u32; 3]> = faces.iter().map(|&t| tri(t)).collect();
 
     // 2. connect
     let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
@@ -96,7 +103,7 @@ pub fn decimate_model(
         if d.try_remove(v, key) {
             outcome.removed += 1;
             outcome.max_error = outcome.max_error.max(key);
-            if outcome.removed % 4096 == 0 {
+            if outcome.removed.is_multiple_of(4096) {
                 progress(outcome.removed);
             }
         }
@@ -105,7 +112,7 @@ pub fn decimate_model(
 
     // 5. compact
     if outcome.removed > 0 {
-        d.write_back(model, &valid);
+        d.write_back(model, &order, &faces);
     }
     outcome
 }
@@ -119,7 +126,7 @@ struct Decimator {
     queue: VertexQueue,
     cos_feature: f64,
     ring: Ring,
-    crosses: Vec<DVec3>,
+    geometry: RingGeometry,
     fill: Vec<[u32; 3]>,
     loop_buf: Vec<u32>,
     neighbours: Vec<u32>,
@@ -138,7 +145,7 @@ impl Decimator {
             queue: VertexQueue::new(n),
             cos_feature: feature_angle_deg.to_radians().cos(),
             ring: Ring::default(),
-            crosses: Vec::new(),
+            geometry: RingGeometry::default(),
             fill: Vec::new(),
             loop_buf: Vec::new(),
             neighbours: Vec::new(),
@@ -153,13 +160,13 @@ impl Decimator {
             v,
             self.cos_feature,
             &mut self.ring,
-            &mut self.crosses,
+            &mut self.geometry,
         );
         let p = self.positions[v as usize].as_dvec3();
         let verts = &self.ring.verts;
         let distance = match class {
             VertexClass::Simple => {
-                let (normal, centre) = self.average_plane(p, 0..self.crosses.len())?;
+                let (normal, centre) = self.average_plane(p, 0..self.geometry.crosses.len())?;
                 normal.dot(p - centre).abs()
             }
             VertexClass::Boundary => self.line_distance(p, verts[0], verts[verts.len() - 1]),
@@ -179,19 +186,19 @@ impl Decimator {
         indices: impl Iterator<Item = usize>,
     ) -> Option<(DVec3, DVec3)> {
         let verts = &self.ring.verts;
-        let n = verts.len();
         let mut normal = DVec3::ZERO;
         let mut centre = DVec3::ZERO;
         let mut area = 0.0;
         for i in indices {
-            let c = self.crosses[i];
-            let a = c.length();
-            normal += c;
+            let a = self.geometry.lengths[i];
+            normal += self.geometry.crosses[i];
             let pa = self.positions[verts[i] as usize].as_dvec3();
-            let pb = self.positions[verts[(i + 1) % n] as usize].as_dvec3();
-            centre += a * (p + pa + pb) / 3.0;
+            let next = verts.get(i + 1).unwrap_or(&verts[0]);
+            let pb = self.positions[*next as usize].as_dvec3();
+            centre += a * (p + pa + pb);
             area += a;
         }
+        let centre = centre / 3.0;
         let len = normal.length();
         if area <= 0.0 || len <= 1e-12 * area {
             return None;
@@ -261,7 +268,7 @@ impl Decimator {
     /// Interior vertex: triangulate the whole closed loop over its average plane.
     fn fill_closed(&mut self, v: u32) -> bool {
         let p = self.positions[v as usize].as_dvec3();
-        let Some((normal, _)) = self.average_plane(p, 0..self.crosses.len()) else {
+        let Some((normal, _)) = self.average_plane(p, 0..self.geometry.crosses.len()) else {
             return false;
         };
         let r = &self.ring.verts;
@@ -284,7 +291,7 @@ impl Decimator {
             return false;
         }
         let p = self.positions[v as usize].as_dvec3();
-        let Some((normal, _)) = self.average_plane(p, 0..self.crosses.len()) else {
+        let Some((normal, _)) = self.average_plane(p, 0..self.geometry.crosses.len()) else {
             return false;
         };
         loop_split::triangulate(&self.positions, &self.ring.verts, normal, &mut self.fill)
@@ -334,7 +341,7 @@ impl Decimator {
             d == 1 || (closed && d == k - 1)
         };
         // Normal of the old region: the sum of the ring triangles' area vectors.
-        let old: DVec3 = self.crosses.iter().copied().sum();
+        let old: DVec3 = self.geometry.crosses.iter().copied().sum();
         for tri in &self.fill {
             let [a, b, c] = tri.map(|i| self.positions[i as usize].as_dvec3());
             let cross = (b - a).cross(c - a);
@@ -363,22 +370,26 @@ impl Decimator {
     fn faces_like_old(&self, cross: DVec3, tri: &[u32; 3]) -> bool {
         let r = &self.ring.verts;
         let k = r.len();
-        self.crosses.iter().enumerate().all(|(i, &c)| {
-            let touches = tri.contains(&r[i]) || tri.contains(&r[(i + 1) % k]);
+        self.geometry.crosses.iter().enumerate().all(|(i, &c)| {
+            let next = if i + 1 == k { r[0] } else { r[i + 1] };
+            let touches = tri.contains(&r[i]) || tri.contains(&next);
             !touches || cross.dot(c) > -0.5 * cross.length() * c.length()
         })
     }
 
-    /// Writes live vertices and triangles back into `model`, keeping the order of both.
-    fn write_back(&self, model: &mut Model, valid: &[u32]) {
+    /// Writes live vertices and triangles back into `model`. `order` maps internal vertex ids
+    /// to the model's, `faces` internal triangle slots to the model's faces. Kept vertices
+    /// keep their relative order from the input.
+    fn write_back(&self, model: &mut Model, order: &[u32], faces: &[u32]) {
         let slots: Vec<u32> = self.conn.alive_ids().collect();
+        // Model vertex id -> new id, u32::MAX while unused.
         let mut remap = vec![u32::MAX; self.positions.len()];
-        let mut kept_vertices: Vec<u32> = Vec::new();
         for &t in &slots {
             for v in self.conn.triangle(t) {
-                remap[v as usize] = 0;
+                remap[order[v as usize] as usize] = 0;
             }
         }
+        let mut kept_vertices: Vec<u32> = Vec::new();
         for (v, r) in remap.iter_mut().enumerate() {
             if *r == 0 {
                 *r = kept_vertices.len() as u32;
@@ -386,13 +397,14 @@ impl Decimator {
             }
         }
         // A reused slot stands in for the original face that first owned it.
-        let faces: Vec<u32> = slots
-            .iter()
-            .map(|&t| valid.get(t as usize).copied().unwrap_or(0))
-            .collect();
+        let faces: Vec<u32> = slots.iter().map(|&t| faces[t as usize]).collect();
         model.triangles = slots
             .iter()
-            .map(|&t| self.conn.triangle(t).map(|v| remap[v as usize]))
+            .map(|&t| {
+                self.conn
+                    .triangle(t)
+                    .map(|v| remap[order[v as usize] as usize])
+            })
             .collect();
         model.positions = kept_vertices
             .iter()

@@ -316,7 +316,7 @@ pub fn strips_to_triangles(strip_corners: &[u32], strip_ends: &[u32]) -> Strips 
     for (part, &end) in strip_ends.iter().enumerate() {
         let end = end as usize;
         for i in start..end.saturating_sub(2) {
-            let (a, b, c) = if (i - start) % 2 == 0 {
+            let (a, b, c) = if (i - start).is_multiple_of(2) {
                 (i, i + 1, i + 2)
             } else {
                 (i + 1, i, i + 2)

@@ -232,7 +232,7 @@ impl<'a> Lexer<'a> {
 
 /// Parses a float token's bytes; `None` when malformed.
 pub fn parse_f32(bytes: &[u8]) -> Option<f32> {
-    // Fast path for plain decimals with few digits: exact via f64 when the mantissa fits.
+    // std parses f32 correctly rounded; the span is ASCII, so the UTF-8 check is cheap.
     let s = std::str::from_utf8(bytes).ok()?;
     if bytes.len() > 2 && bytes[0] == b'0' && matches!(bytes[1], b'x' | b'X') {
         return parse_int(bytes).map(|v| v as f32);

@@ -44,34 +44,48 @@ impl VertexClass {
     }
 }
 
-/// Classifies `v`. Fills `ring` with its one-ring and `crosses` with the (unnormalised,
-/// twice-area) normal of each ring triangle, for the caller's error computation.
+/// Per-triangle geometry of a ring, filled by [`classify`] for the caller's error terms.
+#[derive(Debug, Clone, Default)]
+pub struct RingGeometry {
+    /// Unnormalised normal of ring triangle `i` (length = twice its area).
+    pub crosses: Vec<DVec3>,
+    /// `crosses[i].length()`.
+    pub lengths: Vec<f64>,
+}
+
+/// Classifies `v`. Fills `ring` with its one-ring and `geometry` with its triangles'
+/// normals and areas.
 pub fn classify(
     conn: &Connectivity,
     positions: &[Vec3],
     v: u32,
     cos_feature: f64,
     ring: &mut Ring,
-    crosses: &mut Vec<DVec3>,
+    geometry: &mut RingGeometry,
 ) -> VertexClass {
     let shape = conn.ring(v, ring);
+    let RingGeometry { crosses, lengths } = geometry;
     crosses.clear();
+    lengths.clear();
     match shape {
         RingShape::Isolated => return VertexClass::Isolated,
         RingShape::Complex => return VertexClass::Complex,
         RingShape::Closed | RingShape::Open => {}
     }
     let p = positions[v as usize].as_dvec3();
-    let n = ring.verts.len();
+    // Closed rings wrap around: the last triangle ends at the first neighbour.
+    let mut a = positions[ring.verts[0] as usize].as_dvec3() - p;
     for i in 0..ring.triangles.len() {
-        let a = positions[ring.verts[i] as usize].as_dvec3();
-        let b = positions[ring.verts[(i + 1) % n] as usize].as_dvec3();
-        crosses.push((a - p).cross(b - p));
+        let next = ring.verts.get(i + 1).unwrap_or(&ring.verts[0]);
+        let b = positions[*next as usize].as_dvec3() - p;
+        let c = a.cross(b);
+        crosses.push(c);
+        lengths.push(c.length());
+        a = b;
     }
     let is_feature = |i: usize, j: usize| {
-        let (ni, nj) = (crosses[i], crosses[j]);
-        let len = ni.length() * nj.length();
-        len > 0.0 && ni.dot(nj) / len < cos_feature
+        let len = lengths[i] * lengths[j];
+        len > 0.0 && crosses[i].dot(crosses[j]) < cos_feature * len
     };
     let sharp_turn = |a: u32, b: u32| {
         let d1 = (p - positions[a as usize].as_dvec3()).normalize_or_zero();
@@ -94,7 +108,7 @@ pub fn classify(
     let mut features = [0usize; 2];
     let mut count = 0;
     for i in 0..k {
-        if is_feature((i + k - 1) % k, i) {
+        if is_feature(if i == 0 { k - 1 } else { i - 1 }, i) {
             if count < 2 {
                 features[count] = i;
             }
@@ -128,7 +142,7 @@ mod tests {
             v,
             cos,
             &mut Ring::default(),
-            &mut Vec::new(),
+            &mut RingGeometry::default(),
         )
     }
 

@@ -7,6 +7,7 @@ pub mod classify;
 pub mod measure;
 pub mod scene;
 pub mod shapes;
+pub mod spatial;
 pub mod topology;
 pub mod weld;
 

@@ -231,46 +231,71 @@ impl Connectivity {
             }
             ring.pairs.push((x, y, t));
         }
-        // Every neighbour may start at most one ring edge and end at most one.
+        // Walk forward from the first ring edge (x -> y), then, if the walk ends open, walk
+        // backward from it. The neighbourhood is one manifold fan exactly when the walks
+        // visit every incident triangle once: a repeated neighbour (non-manifold edge,
+        // inconsistent orientation) or a second fan leaves some triangle unvisited.
         let pairs = &ring.pairs;
-        for (i, p) in pairs.iter().enumerate() {
-            for q in &pairs[i + 1..] {
-                if p.0 == q.0 || p.1 == q.1 {
-                    return RingShape::Complex;
-                }
-            }
-        }
-        let mut starts = pairs.iter().filter(|p| !pairs.iter().any(|q| q.1 == p.0));
-        let (start, shape) = match (starts.next(), starts.next()) {
-            (None, _) => (0, RingShape::Closed),
-            (Some(p), None) => (
-                pairs.iter().position(|q| q == p).unwrap_or(0),
-                RingShape::Open,
-            ),
-            (Some(_), Some(_)) => return RingShape::Complex,
-        };
-        let first = pairs[start].0;
-        let mut cur = start;
+        let k = pairs.len();
+        let first = pairs[0].0;
+        let mut cur = 0;
+        let mut closed = false;
         loop {
             let (x, y, t) = pairs[cur];
             ring.verts.push(x);
             ring.triangles.push(t);
+            if ring.triangles.len() > k {
+                return RingShape::Complex;
+            }
+            if y == first {
+                closed = true;
+                break;
+            }
             match pairs.iter().position(|q| q.0 == y) {
-                Some(next) if y != first => cur = next,
-                Some(_) => break, // back at the start: closed
+                Some(next) => cur = next,
                 None => {
                     ring.verts.push(y);
                     break;
                 }
             }
-            if ring.triangles.len() > pairs.len() {
-                return RingShape::Complex;
+        }
+        if !closed {
+            // Prepend the part of the fan before the first edge, found walking backward.
+            let forward = ring.triangles.len();
+            let mut x = first;
+            while let Some(prev) = pairs.iter().position(|q| q.1 == x) {
+                let (px, _, t) = pairs[prev];
+                ring.verts.push(px);
+                ring.triangles.push(t);
+                if ring.triangles.len() > k {
+                    return RingShape::Complex;
+                }
+                x = px;
+            }
+            let back = ring.triangles.len() - forward;
+            if back > 0 {
+                // verts: [forward (forward + 1 items)][back items, nearest first] -> rotate
+                // so the back part, reversed, comes first.
+                ring.verts[forward + 1..].reverse();
+                ring.verts.rotate_right(back);
+                ring.triangles[forward..].reverse();
+                ring.triangles.rotate_right(back);
             }
         }
-        if ring.triangles.len() != pairs.len() {
+        if ring.triangles.len() != k {
             return RingShape::Complex; // several fans meet at v
         }
-        shape
+        // Distinct neighbours (hence distinct triangles): a neighbour met twice means a
+        // non-manifold edge or an inconsistently oriented triangle.
+        let verts = &ring.verts;
+        if (1..verts.len()).any(|i| verts[..i].contains(&verts[i])) {
+            return RingShape::Complex;
+        }
+        if closed {
+            RingShape::Closed
+        } else {
+            RingShape::Open
+        }
     }
 }
 

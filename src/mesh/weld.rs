@@ -46,7 +46,12 @@ pub fn weld(model: &mut Model, tolerance: f32) -> usize {
             'search: for dx in -1..=1 {
                 for dy in -1..=1 {
                     for dz in -1..=1 {
-                        let k = [c[0] + dx, c[1] + dy, c[2] + dz];
+                        // Wrapping: huge coordinates saturate the cell numbers.
+                        let k = [
+                            c[0].wrapping_add(dx),
+                            c[1].wrapping_add(dy),
+                            c[2].wrapping_add(dz),
+                        ];
                         let mut at = heads.get(&k).copied();
                         while let Some(j) = at {
                             let q = model.positions[kept[j as usize] as usize];
@@ -185,6 +190,20 @@ mod tests {
         // The second triangle duplicates the first; the third collapses and goes.
         assert_eq!(m.triangles, vec![[0, 1, 2], [0, 1, 2]]);
         assert_eq!(m.colors, Some(Attribute::PerFace(vec![[1.0; 3], [2.0; 3]])));
+    }
+
+    #[test]
+    fn huge_and_non_finite_coordinates_do_not_panic() {
+        let mut m = Model {
+            positions: vec![
+                Vec3::splat(1e30),
+                Vec3::splat(-1e30),
+                Vec3::NAN,
+                Vec3::splat(1e30),
+            ],
+            ..Model::default()
+        };
+        assert_eq!(weld(&mut m, 1e-6), 1);
     }
 
     #[test]
