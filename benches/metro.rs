@@ -72,8 +72,15 @@ fn main() {
 }
 
 fn load(path: &str) -> Option<Surface> {
+    let t = Instant::now();
     if let Ok(outcome) = decimate::io::read_scene(Path::new(path)) {
-        return Some(Surface::from_scene(&outcome.scene));
+        let parsed = t.elapsed().as_secs_f64();
+        let surface = Surface::from_scene(&outcome.scene);
+        println!(
+            "{path}: parsed in {parsed:.3} s, flattened in {:.3} s",
+            t.elapsed().as_secs_f64() - parsed
+        );
+        return Some(surface);
     }
     let text = std::fs::read_to_string(path).ok()?;
     let (header, body) = text.split_once("end_header")?;

@@ -47,3 +47,63 @@ fn unreadable_file_is_named() {
     assert!(err.starts_with("metro: "), "{err}");
     assert!(err.contains("no-such-mesh.wrl"), "{err}");
 }
+
+/// The number after `"key": ` inside the JSON object that follows `"section": `.
+fn json_number(json: &str, section: &str, key: &str) -> f64 {
+    let start = json
+        .find(&format!("\"{section}\": "))
+        .unwrap_or_else(|| panic!("no {section} in {json}"));
+    let rest = &json[start..];
+    let at = rest.find(&format!("\"{key}\": ")).unwrap() + key.len() + 4;
+    let end = rest[at..].find([',', '}']).unwrap();
+    rest[at..at + end].trim().parse().unwrap()
+}
+
+#[test]
+fn concentric_cubes_from_the_bundled_assets() {
+    // test002 is the cube [-1, 1]³, test004 the cube [-5, 5]³ (both closed, outward).
+    let (code, out, err) = metro(&[
+        "--json",
+        "--samples",
+        "200000",
+        "assets/test002.wrl",
+        "assets/test004.wrl",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(json_number(&out, "a", "area"), 24.0);
+    assert_eq!(json_number(&out, "a", "volume"), 8.0);
+    assert_eq!(json_number(&out, "b", "area"), 600.0);
+    assert_eq!(json_number(&out, "b", "volume"), 1000.0);
+    // Every point of the small cube is exactly 4 inside the big one's faces.
+    for key in ["max", "mean", "rms"] {
+        assert!((json_number(&out, "a_to_b", key) - 4.0).abs() < 1e-12);
+    }
+    // The big cube's corners are 4√3 from the small cube's corners.
+    let hausdorff = json_number(&out, "symmetric", "max");
+    assert!((hausdorff - 4.0 * 3f64.sqrt()).abs() < 1e-12, "{hausdorff}");
+    // Mean over a face of the big cube, by a 1000×1000 midpoint rule.
+    let n = 1000;
+    let mut sum = 0.0;
+    for i in 0..n {
+        for j in 0..n {
+            let x = -5.0 + 10.0 * (i as f64 + 0.5) / n as f64;
+            let y = -5.0 + 10.0 * (j as f64 + 0.5) / n as f64;
+            let dx = (x.abs() - 1.0).max(0.0);
+            let dy = (y.abs() - 1.0).max(0.0);
+            sum += (dx * dx + dy * dy + 16.0).sqrt();
+        }
+    }
+    let mean = sum / (n * n) as f64;
+    let sampled = json_number(&out, "b_to_a", "mean");
+    assert!((sampled - mean).abs() < 2e-3 * mean, "{sampled} vs {mean}");
+}
+
+#[test]
+fn same_seed_same_output_other_seed_other_output() {
+    let args = ["assets/test006.wrl", "assets/test002.wrl"];
+    let run = |seed: &str| metro(&["--seed", seed, "--samples", "20000", args[0], args[1]]).1;
+    let first = run("7");
+    assert!(first.contains("Hausdorff distance"));
+    assert_eq!(first, run("7"));
+    assert_ne!(first, run("8"));
+}

@@ -85,6 +85,10 @@ def main():
     out.append("")
 
     series = {}
+    lod_csv = ["model,level,vertices,triangles,decimate_seconds,mean,max,mean_relative,"
+               "max_relative,a_to_b_mean,b_to_a_mean,a_to_b_max,b_to_a_max,fully_decimated"]
+    timing_csv = ["model,percent,vertices_before,vertices_after,triangles_after,removed,"
+                  "decimate_seconds,wall_seconds,mean_relative,max_relative"]
     out.append("## Levels of detail (each level removes 50 % of the vertices of the one before)")
     out.append("")
     for model in lod_models:
@@ -120,6 +124,10 @@ def main():
                        f"{pct(sym['mean_relative'])} | {sci(sym['max'])} | "
                        f"{pct(sym['max_relative'])} |")
             points.append((level, sym["mean_relative"], sym["max_relative"]))
+            lod_csv.append(",".join(str(x) for x in (
+                model, level, verts, tris, s[5] if s else "", sym["mean"], sym["max"],
+                sym["mean_relative"], sym["max_relative"], m["a_to_b"]["mean"],
+                m["b_to_a"]["mean"], m["a_to_b"]["max"], m["b_to_a"]["max"], int(r["fully"]))))
         series[model] = points
         out.append("")
 
@@ -142,6 +150,9 @@ def main():
                 v0, v1, t1 = m["a"]["vertices"], m["b"]["vertices"], m["b"]["triangles"]
                 removed, secs_text = v0 - v1, "-"
                 rate = f"{removed / r['wall']:,.0f} (wall)" if r["wall"] > 0 else "-"
+            timing_csv.append(",".join(str(x) for x in (
+                model, percent, v0, v1, t1, removed, s[5] if s else "", r["wall"],
+                m["symmetric"]["mean_relative"], m["symmetric"]["max_relative"])))
             out.append(f"| {model} | {v0} | {percent} % ({removed}) | {v1} | {t1} | {secs_text} | "
                        f"{rate} | {r['wall']:.2f} | {pct(m['symmetric']['mean_relative'])} | "
                        f"{pct(m['symmetric']['max_relative'])} |")
@@ -164,6 +175,9 @@ def main():
         out.append("")
         out.append("![error against level](lod-error.png)")
         out.append("")
+    for name, lines in (("lod.csv", lod_csv), ("timing.csv", timing_csv)):
+        with open(os.path.join(results, name), "w", encoding="utf-8") as f:
+            f.write("\n".join(lines) + "\n")
     with open(os.path.join(results, "evaluation.md"), "w", encoding="utf-8") as f:
         f.write("\n".join(out))
     print("\n".join(out))

@@ -16,6 +16,8 @@ use glam::DVec3;
 const MAX_LEAF: usize = 4;
 /// Bins per axis for the surface-area heuristic.
 const BINS: usize = 16;
+/// Nodes of at most this many triangles are split at the median instead.
+const SMALL_NODE: usize = 16;
 
 /// One node: a box and either two children (`count == 0`, children at `first` and
 /// `first + 1`) or a leaf of `count` triangles starting at `first` in [`Bvh`]'s leaf order.
@@ -288,7 +290,7 @@ fn build_parallel(items: &mut [BuildItem], offset: usize) -> Vec<Node> {
         return build_sequential(items, offset);
     }
     let (lo, hi) = bounds(items);
-    let Some(mid) = split(items) else {
+    let Some(mid) = split(items, lo, hi) else {
         return build_sequential(items, offset);
     };
     if mid.min(n - mid) < n / 8 {
@@ -335,7 +337,7 @@ fn build_sequential(items: &mut [BuildItem], offset: usize) -> Vec<Node> {
         let (lo, hi) = bounds(slice);
         nodes[node].lo = lo;
         nodes[node].hi = hi;
-        match split(slice) {
+        match split(slice, lo, hi) {
             Some(mid) => {
                 let left = nodes.len();
                 nodes[node].first = left as u32;
@@ -356,7 +358,7 @@ fn build_sequential(items: &mut [BuildItem], offset: usize) -> Vec<Node> {
 
 /// Chooses a split of `items` by the binned surface-area heuristic and partitions them in
 /// place; returns the size of the left part, or `None` to make a leaf.
-fn split(items: &mut [BuildItem]) -> Option<usize> {
+fn split(items: &mut [BuildItem], plo: DVec3, phi: DVec3) -> Option<usize> {
     let n = items.len();
     if n <= 2 {
         return None;
@@ -366,26 +368,45 @@ fn split(items: &mut [BuildItem]) -> Option<usize> {
         |(lo, hi), it| (lo.min(it.centroid), hi.max(it.centroid)),
     );
     let extent = chi - clo;
-    let (plo, phi) = bounds(items);
+    if n <= SMALL_NODE {
+        // Binning costs more than it gains on a handful of triangles: split at the median
+        // centroid along the longest axis, down to leaves of at most MAX_LEAF.
+        if n <= MAX_LEAF {
+            return None;
+        }
+        let axis = extent.max_position();
+        let mid = n / 2;
+        items.select_nth_unstable_by(mid, |x, y| x.centroid[axis].total_cmp(&y.centroid[axis]));
+        return Some(mid);
+    }
     let parent_area = half_area(plo, phi);
+    let usable = [0, 1, 2].map(|axis| extent[axis] > 0.0 && extent[axis].is_finite());
+    let scale = DVec3::from_array([0, 1, 2].map(|axis| {
+        if usable[axis] {
+            BINS as f64 / extent[axis]
+        } else {
+            0.0
+        }
+    }));
+
+    // One pass bins every item on all three axes at once.
+    let mut count = [[0usize; BINS]; 3];
+    let mut blo = [[DVec3::splat(f64::INFINITY); BINS]; 3];
+    let mut bhi = [[DVec3::splat(f64::NEG_INFINITY); BINS]; 3];
+    for it in items.iter() {
+        let rel = (it.centroid - clo) * scale;
+        for axis in 0..3 {
+            let b = ((rel[axis]) as usize).min(BINS - 1);
+            count[axis][b] += 1;
+            blo[axis][b] = blo[axis][b].min(it.lo);
+            bhi[axis][b] = bhi[axis][b].max(it.hi);
+        }
+    }
 
     // Best (cost, axis, bin boundary) over the three axes.
     let mut best: Option<(f64, usize, usize)> = None;
-    for axis in 0..3 {
-        let ext = extent[axis];
-        if ext <= 0.0 || !ext.is_finite() {
-            continue;
-        }
-        let scale = BINS as f64 / ext;
-        let mut count = [0usize; BINS];
-        let mut blo = [DVec3::splat(f64::INFINITY); BINS];
-        let mut bhi = [DVec3::splat(f64::NEG_INFINITY); BINS];
-        for it in items.iter() {
-            let b = bin_of(it.centroid[axis], clo[axis], scale);
-            count[b] += 1;
-            blo[b] = blo[b].min(it.lo);
-            bhi[b] = bhi[b].max(it.hi);
-        }
+    for axis in (0..3).filter(|&a| usable[a]) {
+        let (count, blo, bhi) = (&count[axis], &blo[axis], &bhi[axis]);
         // Sweep from the right to get suffix areas, then from the left for the cost.
         let mut right_area = [0.0f64; BINS];
         let mut right_count = [0usize; BINS];
@@ -427,10 +448,10 @@ fn split(items: &mut [BuildItem]) -> Option<usize> {
             if n <= MAX_LEAF && split_cost >= n as f64 {
                 return None;
             }
-            let scale = BINS as f64 / extent[axis];
             let mut left = 0;
             for i in 0..n {
-                if bin_of(items[i].centroid[axis], clo[axis], scale) < boundary {
+                let rel = (items[i].centroid[axis] - clo[axis]) * scale[axis];
+                if ((rel as usize).min(BINS - 1)) < boundary {
                     items.swap(i, left);
                     left += 1;
                 }
@@ -441,11 +462,6 @@ fn split(items: &mut [BuildItem]) -> Option<usize> {
         None if n > MAX_LEAF => Some(n / 2),
         None => None,
     }
-}
-
-#[inline]
-fn bin_of(x: f64, lo: f64, scale: f64) -> usize {
-    (((x - lo) * scale) as usize).min(BINS - 1)
 }
 
 #[cfg(test)]

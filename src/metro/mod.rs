@@ -56,7 +56,7 @@ impl Surface {
         let mut positions = Vec::with_capacity(scene.vertex_count());
         let mut triangles = Vec::with_capacity(scene.triangle_count());
         let mut skipped = 0;
-        let mut weld: HashMap<[u64; 3], u32> = HashMap::with_capacity(scene.vertex_count());
+        let mut weld = WeldMap::with_capacity(scene.vertex_count());
         for model in &scene.models {
             let m = model.transform.as_dmat4();
             let ids: Vec<Option<u32>> = model
@@ -84,7 +84,7 @@ impl Surface {
     /// corners and repeated corners are dropped and counted in `skipped_triangles`).
     pub fn new(positions: &[DVec3], triangles: &[[u32; 3]]) -> Self {
         let mut welded = Vec::with_capacity(positions.len());
-        let mut weld = HashMap::with_capacity(positions.len());
+        let mut weld = WeldMap::with_capacity(positions.len());
         let ids: Vec<Option<u32>> = positions
             .iter()
             .map(|&p| p.is_finite().then(|| weld_id(&mut weld, &mut welded, p)))
@@ -115,12 +115,12 @@ impl Surface {
             .collect();
 
         // Edges: sort the directed edges by their undirected key and read off the runs.
-        let mut directed: Vec<(u64, bool)> = triangles
-            .par_iter()
-            .flat_map_iter(|&[a, b, c]| {
-                [(a, b), (b, c), (c, a)]
-                    .into_iter()
-                    .map(|(u, v)| (u64::from(u.min(v)) << 32 | u64::from(u.max(v)), u < v))
+        let mut directed: Vec<(u64, bool)> = (0..3 * triangles.len())
+            .into_par_iter()
+            .map(|k| {
+                let t = triangles[k / 3];
+                let (u, v) = (t[k % 3], t[(k + 1) % 3]);
+                (u64::from(u.min(v)) << 32 | u64::from(u.max(v)), u < v)
             })
             .collect();
         directed.par_sort_unstable();
@@ -226,7 +226,10 @@ impl Surface {
     }
 }
 
-fn weld_id(map: &mut HashMap<[u64; 3], u32>, positions: &mut Vec<DVec3>, p: DVec3) -> u32 {
+/// Exact bit patterns of positions to their index.
+type WeldMap = HashMap<[u64; 3], u32>;
+
+fn weld_id(map: &mut WeldMap, positions: &mut Vec<DVec3>, p: DVec3) -> u32 {
     // +0.0 and -0.0 are the same place.
     let key = (p + DVec3::ZERO).to_array().map(f64::to_bits);
     *map.entry(key).or_insert_with(|| {

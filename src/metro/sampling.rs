@@ -101,7 +101,7 @@ impl Partial {
 /// Splits `weights` (areas or lengths) into `n` sample counts proportional to them by
 /// systematic sampling: a stratified comb of `n` teeth with a random offset laid over the
 /// cumulative weight, so every item gets its share rounded down or up and the total is `n`.
-fn allocate(weights: &[f64], n: usize, offset: f64) -> Vec<u32> {
+fn allocate(weights: &[f64], n: usize, offset: f64) -> Vec<u64> {
     let total: f64 = weights.iter().sum();
     if total.is_nan() || total <= 0.0 || n == 0 {
         return vec![0; weights.len()];
@@ -118,7 +118,7 @@ fn allocate(weights: &[f64], n: usize, offset: f64) -> Vec<u32> {
         } else {
             ((cumulative * scale + offset).floor() as i64).min(n as i64)
         };
-        counts.push((reach - previous).max(0) as u32);
+        counts.push((reach - previous).max(0) as u64);
         previous = previous.max(reach);
     }
     counts
@@ -268,7 +268,7 @@ mod tests {
             assert_eq!(counts, vec![100, 300, 0, 600]);
         }
         let counts = allocate(&[1.0; 7], 10, 0.5);
-        assert_eq!(counts.iter().sum::<u32>(), 10);
+        assert_eq!(counts.iter().sum::<u64>(), 10);
         assert!(counts.iter().all(|&c| c == 1 || c == 2));
     }
 
