@@ -49,13 +49,19 @@ pub fn summary(report: &Report) -> String {
     let mut s = String::new();
     let (mut vb, mut tb, mut va, mut ta) = (0, 0, 0, 0);
     for m in &report.models {
-        let state = if m.dropped {
-            "  dropped (fewer than 4 vertices left)"
+        let mut state = if m.dropped {
+            "  dropped (fewer than 4 vertices left)".to_string()
         } else if m.fully_decimated {
-            "  fully decimated"
+            "  fully decimated".to_string()
         } else {
-            ""
+            String::new()
         };
+        if m.feature_angle_deg > report.feature_angle_deg {
+            state += &format!(
+                "  (feature angle relaxed to {:.0} deg to reach the target)",
+                m.feature_angle_deg
+            );
+        }
         s += &format!(
             "{:<24} vertices {:>9} -> {:<9} triangles {:>9} -> {:<9} max error {:.4e}{state}\n",
             m.name,

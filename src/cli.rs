@@ -116,7 +116,10 @@ action-options for nogui (one target is MANDATORY):
   --keep-triangles N    stop when N triangles are left
   --max-error E[%]      never remove a vertex whose error exceeds E model units
                         (or E percent of the model's bounding-box diagonal)
-  --feature-angle DEG   dihedral angle that makes an edge a feature edge (DEFAULT: 30)
+  --feature-angle DEG   dihedral angle that makes an edge a feature edge (DEFAULT: 30);
+                        raised in 15-degree steps when a count target cannot be met
+                        otherwise (never for -p 100 or --max-error alone)
+  --keep-features       never raise the feature angle: stop short of the target instead
   --no-weld             do not merge coincident vertices before decimating
   --overwrite           allow -o to name the input file
   -q, --quiet           no summary or progress on stderr
@@ -191,6 +194,7 @@ where
                 params.feature_angle_deg = a;
             }
             "--no-weld" => weld = false,
+            "--keep-features" => params.keep_features = true,
             "--overwrite" => overwrite = true,
             "-q" | "--quiet" => quiet = true,
             "--size" => {
@@ -409,6 +413,8 @@ mod tests {
 
     #[test]
     fn error_bounds_and_shot_options() {
+        let a = run(&["m.wrl", "nogui", "-p", "90", "--keep-features"]);
+        assert!(a.params.keep_features);
         let a = run(&["m.wrl", "nogui", "--max-error", "0.5%"]);
         assert_eq!(a.params.target, Target::ErrorOnly);
         assert_eq!(

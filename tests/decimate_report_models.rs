@@ -167,3 +167,36 @@ fn test006_dome_keeps_its_volume_and_beats_the_original() {
     // The 2002 program stopped at 449 vertices / 894 triangles.
     assert!(after.positions.len() < 449 && after.triangles.len() < 894);
 }
+
+#[test]
+fn count_targets_relax_the_feature_angle_but_full_decimation_does_not() {
+    // A coarse sphere: as it gets coarser every dihedral angle passes 30 degrees, so fully
+    // decimated at 30 degrees it stops with corners everywhere — like a large scan does.
+    let before = shapes::bumpy_sphere(16, 32);
+    assert_eq!(before.positions.len(), 482);
+    let (kept, report) = full(before.clone());
+    let floor = kept.positions.len();
+    assert!(report.fully_decimated());
+    assert_eq!(report.models[0].feature_angle_deg, 30.0);
+    assert!(floor > 24, "{floor}");
+    // Asking for 95 % gets 95 %: the feature angle is raised until it can be met.
+    let (after, report) = decimate(before.clone(), Target::RemovePercent(95.0));
+    assert_eq!(after.positions.len(), 24);
+    assert!(report.models[0].feature_angle_deg > 30.0);
+    assert_invariants(&before, &after);
+    // Unless the user says to keep the features.
+    let mut scene = Scene {
+        models: vec![before.clone()],
+    };
+    let params = Params {
+        target: Target::RemovePercent(95.0),
+        keep_features: true,
+        ..Params::default()
+    };
+    let report = decimate_scene(&mut scene, &params, &mut |_| {});
+    assert_eq!(scene.models[0].positions.len(), floor);
+    assert!(report.fully_decimated());
+    // A cube's corners survive "as far as possible" whatever the relaxation does elsewhere.
+    let (cube, _) = full(shapes::test004());
+    assert_eq!((cube.positions.len(), cube.triangles.len()), (8, 12));
+}

@@ -42,6 +42,8 @@ pub struct Params {
     pub max_error: Option<ErrorBound>,
     /// Dihedral angle in degrees above which an edge is a feature edge.
     pub feature_angle_deg: f64,
+    /// Never relax the feature angle to reach a count target (see [`decimate_scene`]).
+    pub keep_features: bool,
 }
 
 impl Default for Params {
@@ -50,6 +52,7 @@ impl Default for Params {
             target: Target::RemovePercent(50.0),
             max_error: None,
             feature_angle_deg: 30.0,
+            keep_features: false,
         }
     }
 }
@@ -64,6 +67,9 @@ pub struct ModelReport {
     pub triangles_after: usize,
     /// Largest error of any removal made, in model units.
     pub max_error: f64,
+    /// Feature angle in force at the end: larger than asked when it was relaxed to reach a
+    /// count target.
+    pub feature_angle_deg: f64,
     /// True when no further vertex of this model can be removed.
     pub fully_decimated: bool,
     /// True when the model fell under four vertices and was dropped from the scene.
@@ -75,6 +81,8 @@ pub struct ModelReport {
 pub struct Report {
     pub models: Vec<ModelReport>,
     pub seconds: f64,
+    /// The feature angle asked for (a model's own may have been relaxed beyond it).
+    pub feature_angle_deg: f64,
 }
 
 impl Report {
@@ -93,6 +101,12 @@ impl Report {
 
 /// Decimates every model of `scene` in place with Schroeder vertex removal. Models left with
 /// fewer than four vertices are dropped. `progress` is called with the fraction done (0..=1).
+///
+/// Count targets (`-p` below 100, `-v`, `--keep-vertices`, `--keep-triangles`) are met even
+/// on scans that, once coarse, have sharp dihedral angles everywhere: when no candidate is
+/// left first, the feature angle is relaxed step by step. "As far as possible" (`-p 100`),
+/// an error bound alone, or `keep_features` never relax it, so features such as a cube's
+/// corners survive them.
 pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
     let start = Instant::now();
     let vertices: Vec<usize> = scene.models.iter().map(|m| m.used_vertex_count()).collect();
@@ -114,6 +128,12 @@ pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnM
         Target::KeepTriangles(k) => share(k.min(total_triangles), &triangles),
         _ => vec![0; triangles.len()],
     };
+    let relax_features = !params.keep_features
+        && match params.target {
+            Target::RemovePercent(p) => p < 100.0,
+            Target::RemoveVertices(_) | Target::KeepVertices(_) | Target::KeepTriangles(_) => true,
+            Target::ErrorOnly => false,
+        };
     let planned: usize = removals
         .iter()
         .zip(&vertices)
@@ -138,6 +158,7 @@ pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnM
             keep_triangles: keep_triangles[i],
             max_error,
             feature_angle_deg: params.feature_angle_deg,
+            relax_features,
         };
         let outcome = schroeder::decimate_model(model, &limits, &mut |removed| {
             progress(((done + removed) as f32 / planned as f32).min(1.0));
@@ -151,6 +172,7 @@ pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnM
             vertices_after,
             triangles_after: model.triangles.len(),
             max_error: outcome.max_error,
+            feature_angle_deg: outcome.feature_angle_deg,
             fully_decimated: outcome.exhausted,
             // As the original: only a removal can drop a model, never the input itself.
             dropped: outcome.removed > 0 && vertices_after < 4,
@@ -166,6 +188,7 @@ pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnM
     Report {
         models: reports,
         seconds: start.elapsed().as_secs_f64(),
+        feature_angle_deg: params.feature_angle_deg,
     }
 }
 

@@ -41,7 +41,13 @@ pub struct Limits {
     pub max_error: f64,
     /// Dihedral angle in degrees above which an edge is a feature edge.
     pub feature_angle_deg: f64,
+    /// When no candidate is left before `remove`/`keep_triangles` is reached, raise the
+    /// feature angle in `RELAX_STEP_DEG` steps (up to 180°) and go on.
+    pub relax_features: bool,
 }
+
+/// How much the feature angle grows each time a count target could not otherwise be met.
+pub const RELAX_STEP_DEG: f64 = 15.0;
 
 /// What decimating one model did.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,6 +57,8 @@ pub struct Outcome {
     pub max_error: f64,
     /// True when no candidate was left: nothing more can be removed.
     pub exhausted: bool,
+    /// The feature angle in force at the end (larger than asked when relaxed).
+    pub feature_angle_deg: f64,
 }
 
 /// Decimates `model` in place within `limits`; `progress` gets the running removal count.
@@ -87,12 +95,23 @@ pub fn decimate_model(
         removed: 0,
         max_error: 0.0,
         exhausted: false,
+        feature_angle_deg: limits.feature_angle_deg,
     };
     loop {
         if outcome.removed >= limits.remove || d.conn.triangle_count() <= limits.keep_triangles {
             break;
         }
         let Some((key, v)) = d.queue.peek() else {
+            // Out of candidates before the target: a coarse scan has "features" everywhere.
+            // Relax the feature angle, re-rank what is left, and go on.
+            if limits.relax_features && outcome.feature_angle_deg < 180.0 {
+                outcome.feature_angle_deg = (outcome.feature_angle_deg + RELAX_STEP_DEG).min(180.0);
+                d.cos_feature = outcome.feature_angle_deg.to_radians().cos();
+                for v in 0..n {
+                    d.rank(v);
+                }
+                continue;
+            }
             outcome.exhausted = true;
             break;
         };
