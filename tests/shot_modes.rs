@@ -1,6 +1,8 @@
 //! Golden screenshots on lavapipe, one per draw mode, of a 10×10-segment cube (test004's
 //! shape) built in code, plus what a user would notice: the model fills a sensible part of
-//! the picture, the corners show the background, and each mode looks different.
+//! the picture, the corners show the background, each mode looks different — except smooth
+//! and flat shading of a cube, which must look the same (its edges are creases), while on a
+//! sphere they must not.
 
 mod shot_support;
 
@@ -49,6 +51,15 @@ fn each_mode_looks_different_from_the_others() {
     for i in 0..MODES.len() {
         for j in i + 1..MODES.len() {
             let d = different_fraction(&images[i], &images[j], CHANNEL_TOLERANCE);
+            if (MODES[i], MODES[j]) == ("triangles", "triangles,flat") {
+                // Smooth shading keeps creases sharp: a cube's faces stay flat.
+                assert!(
+                    d < 0.005,
+                    "a smooth-shaded cube looks rounded ({:.2} % differ from flat)",
+                    d * 100.0
+                );
+                continue;
+            }
             assert!(
                 d > 0.01,
                 "{} and {} look alike ({:.2} % differ)",
@@ -58,6 +69,20 @@ fn each_mode_looks_different_from_the_others() {
             );
         }
     }
+}
+
+#[test]
+fn smooth_and_flat_shading_differ_on_a_sphere() {
+    // A coarse sphere, compared closely: facets differ by a few levels of grey.
+    let scene = sphere(6, 12, glam::Mat4::IDENTITY);
+    let smooth = render(&scene, 1, modes("triangles"), None);
+    let flat = render(&scene, 1, modes("triangles,flat"), None);
+    let d = different_fraction(&smooth, &flat, 4);
+    assert!(
+        d > 0.05,
+        "smooth and flat spheres look alike ({:.2} % differ)",
+        d * 100.0
+    );
 }
 
 #[test]

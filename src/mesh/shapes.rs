@@ -1,6 +1,7 @@
 //! The report's test models (test001–test006) built in code, so tests can use them directly
 //! and `tools/gen_models.rs` can write them to `assets/`. Each is welded, counter-clockwise
-//! seen from outside, with the vertex and triangle counts the report gives.
+//! seen from outside, with the vertex and triangle counts the report gives, and stands along
+//! +y (VRML's up), so any viewer shows it upright.
 
 use std::collections::HashMap;
 
@@ -60,9 +61,9 @@ pub fn test004() -> Model {
     named_cube("test004", 10, 10.0)
 }
 
-/// test005: a hollow cylinder with thick walls — outer and inner wall of 24 segments × 11
-/// rings, joined by flat annular rims top and bottom (528 / 1056). The rims meet the walls at
-/// right angles: feature edges that must survive decimation.
+/// test005: a hollow cylinder with thick walls along +y — outer (radius 2) and inner (1.5)
+/// wall of 24 segments × 11 rings, joined by flat annular rims at y = 0 and y = 5 (528 /
+/// 1056). The rims meet the walls at right angles: feature edges that must survive.
 pub fn test005() -> Model {
     let (segments, rings) = (24u32, 11u32);
     let (outer, inner, height) = (2.0f32, 1.5f32, 5.0f32);
@@ -114,12 +115,12 @@ pub fn test005() -> Model {
         triangles.push([o0, i1, o1]);
         triangles.push([o0, i0, i1]);
     }
-    named("test005", positions, triangles)
+    named("test005", z_up_to_y_up(positions), triangles)
 }
 
-/// test006: a squashed four-sided pyramid (a dome) over a square base: 48 points on each of
-/// 50 square rings plus apex and base centre (2402 / 4800). 40 rings rise as a dome, 10 rings
-/// close the flat base.
+/// test006: a squashed four-sided pyramid (a dome) over a square base in y = 0, apex at
+/// y = 2.5: 48 points on each of 50 square rings plus apex and base centre (2402 / 4800). 40
+/// rings rise as a dome, 10 rings close the flat base.
 pub fn test006() -> Model {
     let (per_side, dome_rings, base_rings) = (12u32, 40u32, 10u32);
     let segments = 4 * per_side;
@@ -167,7 +168,7 @@ pub fn test006() -> Model {
             triangles.push([a, c, d]);
         }
     }
-    named("test006", positions, triangles)
+    named("test006", z_up_to_y_up(positions), triangles)
 }
 
 /// Every report model, in order.
@@ -224,6 +225,15 @@ fn named_cube(name: &str, n: u32, size: f32) -> Model {
         }
     }
     named(name, positions, triangles)
+}
+
+/// Turns a shape built along +z to stand along +y: a rotation (not a mirror), so the
+/// triangles stay counter-clockwise seen from outside.
+fn z_up_to_y_up(positions: Vec<Vec3>) -> Vec<Vec3> {
+    positions
+        .into_iter()
+        .map(|p| Vec3::new(p.x, p.z, -p.y))
+        .collect()
 }
 
 fn named(name: &str, positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Model {

@@ -2,15 +2,21 @@
 //! triangle, edge and point index lists, and the face / vertex normal line segments — built
 //! from a `Model` once per decimation, with no Vulkan in sight (so it is unit-tested).
 //!
-//! Vertices are shared between triangles (indexed drawing), except when the model has
-//! per-face colours: then every triangle corner gets its own vertex. Flat shading needs no
-//! duplication: the fragment shader derives the face normal from screen-space derivatives.
+//! Vertices are shared between triangles (indexed drawing), except where a corner needs its
+//! own: with per-face colours, and at creases — a vertex whose faces differ by more than the
+//! crease angle (the file's `creaseAngle`, else `DEFAULT_CREASE_DEG`) gets one normal per
+//! corner, averaged over the faces within the crease angle of that corner's face, so smooth
+//! shading keeps a cube's edges sharp. Flat shading needs no duplication: the fragment
+//! shader derives the face normal from screen-space derivatives.
 
 use std::collections::HashSet;
 
 use glam::Vec3;
 
 use crate::mesh::{Attribute, Model};
+
+/// Crease angle for smooth shading when the file gives none.
+pub const DEFAULT_CREASE_DEG: f32 = 45.0;
 
 /// One vertex as the vertex shader reads it (locations 0, 1, 2).
 #[repr(C)]
@@ -52,40 +58,40 @@ impl MeshData {
         };
         let color_of_vertex = |v: usize| to_rgba8(vertex_colors.map_or(model.diffuse, |c| c[v]));
 
+        let creases = Creases::new(model, normals.len());
+
         let mut data = Self::default();
-        // `render_index[v]`: the render vertex that stands for model vertex `v` in point lists.
+        // `render_index[v]`: the render vertex that stands for model vertex `v` in point
+        // lists (its first, when corners have their own).
         let mut render_index = vec![u32::MAX; model.positions.len()];
-        if let Some(face_colors) = face_colors {
-            for (t, tri) in model.triangles.iter().enumerate() {
-                for &v in tri {
+        // The render vertex shared by every corner of `v` that needs no vertex of its own.
+        let mut shared = vec![u32::MAX; model.positions.len()];
+        for (t, tri) in model.triangles.iter().enumerate() {
+            for &v in tri {
+                let vi = v as usize;
+                let own_corner = face_colors.is_some() || creases.is_creased(vi);
+                let index = if !own_corner && shared[vi] != u32::MAX {
+                    shared[vi]
+                } else {
                     let index = data.vertices.len() as u32;
+                    let normal = if creases.is_creased(vi) {
+                        creases.corner_normal(t, vi)
+                    } else {
+                        normals[vi]
+                    };
                     data.vertices.push(Vertex {
-                        position: model.positions[v as usize].to_array(),
-                        normal: normals[v as usize].to_array(),
-                        color: to_rgba8(face_colors[t]),
+                        position: model.positions[vi].to_array(),
+                        normal: normal.to_array(),
+                        color: face_colors.map_or_else(|| color_of_vertex(vi), |c| to_rgba8(c[t])),
                     });
-                    data.triangles.push(index);
-                    if render_index[v as usize] == u32::MAX {
-                        render_index[v as usize] = index;
+                    if !own_corner {
+                        shared[vi] = index;
                     }
-                }
-            }
-        } else {
-            data.vertices = model
-                .positions
-                .iter()
-                .zip(&normals)
-                .enumerate()
-                .map(|(v, (p, n))| Vertex {
-                    position: p.to_array(),
-                    normal: n.to_array(),
-                    color: color_of_vertex(v),
-                })
-                .collect();
-            data.triangles = model.triangles.iter().flatten().copied().collect();
-            for tri in &model.triangles {
-                for &v in tri {
-                    render_index[v as usize] = v;
+                    index
+                };
+                data.triangles.push(index);
+                if render_index[vi] == u32::MAX {
+                    render_index[vi] = index;
                 }
             }
         }
@@ -122,6 +128,98 @@ impl MeshData {
             }
         }
         data
+    }
+}
+
+/// Which vertices sit on a crease, and the faces around each vertex to average corner
+/// normals over. Empty when the file gave per-vertex normals (they are used as they are).
+struct Creases {
+    /// Face normals (twice the area, out of the counter-clockwise side).
+    face: Vec<Vec3>,
+    /// Incident faces of each vertex: `faces[offsets[v]..offsets[v + 1]]`.
+    offsets: Vec<u32>,
+    faces: Vec<u32>,
+    creased: Vec<bool>,
+    cos_crease: f32,
+}
+
+impl Creases {
+    fn new(model: &Model, vertex_count: usize) -> Self {
+        let file_normals = matches!(&model.normals,
+            Some(Attribute::PerVertex(n)) if n.len() == vertex_count);
+        let crease = model
+            .crease_angle
+            .unwrap_or(DEFAULT_CREASE_DEG.to_radians());
+        let mut c = Self {
+            face: Vec::new(),
+            offsets: Vec::new(),
+            faces: Vec::new(),
+            creased: vec![false; vertex_count],
+            cos_crease: crease.cos(),
+        };
+        if file_normals || model.triangles.is_empty() {
+            return c;
+        }
+        c.face = model
+            .triangles
+            .iter()
+            .map(|tri| {
+                let [a, b, c] = tri.map(|v| model.positions[v as usize]);
+                (b - a).cross(c - a)
+            })
+            .collect();
+        // Vertex -> faces, as offsets into one array (counting sort).
+        c.offsets = vec![0; vertex_count + 1];
+        for tri in &model.triangles {
+            for &v in tri {
+                c.offsets[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..vertex_count {
+            c.offsets[v + 1] += c.offsets[v];
+        }
+        let mut fill = c.offsets.clone();
+        c.faces = vec![0; model.triangles.len() * 3];
+        for (t, tri) in model.triangles.iter().enumerate() {
+            for &v in tri {
+                c.faces[fill[v as usize] as usize] = t as u32;
+                fill[v as usize] += 1;
+            }
+        }
+        for v in 0..vertex_count {
+            let around = c.around(v);
+            c.creased[v] = around.iter().enumerate().any(|(i, &f)| {
+                around[i + 1..]
+                    .iter()
+                    .any(|&g| !c.within(f as usize, g as usize))
+            });
+        }
+        c
+    }
+
+    fn around(&self, v: usize) -> &[u32] {
+        &self.faces[self.offsets[v] as usize..self.offsets[v + 1] as usize]
+    }
+
+    /// True when faces `f` and `g` meet at no more than the crease angle.
+    fn within(&self, f: usize, g: usize) -> bool {
+        let (a, b) = (self.face[f], self.face[g]);
+        a.dot(b) >= self.cos_crease * a.length() * b.length()
+    }
+
+    fn is_creased(&self, v: usize) -> bool {
+        self.creased[v]
+    }
+
+    /// The normal of vertex `v` in face `t`: the area-weighted average over the faces around
+    /// `v` within the crease angle of `t`.
+    fn corner_normal(&self, t: usize, v: usize) -> Vec3 {
+        self.around(v)
+            .iter()
+            .filter(|&&g| self.within(t, g as usize))
+            .map(|&g| self.face[g as usize])
+            .sum::<Vec3>()
+            .normalize_or_zero()
     }
 }
 
@@ -164,6 +262,25 @@ pub fn vertex_normals(model: &Model) -> Vec<Vec3> {
 mod tests {
     use super::*;
 
+    #[test]
+    fn smooth_shading_keeps_a_cubes_edges_sharp_and_a_spheres_round() {
+        // Every corner of the 2x2 cube shades with its own face's normal.
+        let cube = crate::mesh::shapes::test002();
+        let d = MeshData::from_model(&cube, 0.1);
+        for (t, tri) in d.triangles.chunks(3).enumerate() {
+            let [a, b, c] = cube.triangles[t].map(|v| cube.positions[v as usize]);
+            let face = (b - a).cross(c - a).normalize();
+            for &i in tri {
+                let n = Vec3::from(d.vertices[i as usize].normal);
+                assert!(n.dot(face) > 0.9999, "triangle {t}: {n} vs {face}");
+            }
+        }
+        // A smooth sphere (the bumps are steep only at the poles) keeps its vertices shared.
+        let sphere = crate::mesh::shapes::bumpy_sphere(24, 48);
+        let d = MeshData::from_model(&sphere, 0.1);
+        assert!(d.vertices.len() < sphere.positions.len() * 11 / 10);
+    }
+
     /// Two triangles sharing the diagonal of the unit square in the z = 0 plane:
     /// ```text
     /// 3---2
@@ -187,7 +304,7 @@ mod tests {
     #[test]
     fn shared_vertices_unique_edges_used_points() {
         let d = MeshData::from_model(&square(), 0.5);
-        assert_eq!(d.vertices.len(), 5);
+        assert_eq!(d.vertices.len(), 4, "the unused vertex is not uploaded");
         assert_eq!(d.triangles, vec![0, 1, 2, 0, 2, 3]);
         assert_eq!(d.edges.len(), 2 * 5, "4 sides + 1 diagonal, each once");
         assert_eq!(d.points, vec![0, 1, 2, 3]);
