@@ -1,9 +1,10 @@
-//! Frame-time benchmark of the renderer: draws a large generated mesh (a UV sphere, about one
-//! million triangles by default) offscreen, once per draw mode, and prints a table of frame
-//! times. No readback is timed: a frame is record + submit + wait, as in the viewer.
+//! Frame-time benchmark of the renderer: draws a large mesh offscreen — a generated UV sphere
+//! (about one million triangles by default) or any file `decimate` reads, such as the
+//! Stanford dragon — once per draw mode, and prints a table of frame times. No readback is
+//! timed: a frame is record + submit + wait, as in the viewer.
 //!
 //! ```text
-//! cargo run --release --example bench-render -- [TRIANGLES] [WxH] [FRAMES]
+//! cargo run --release --example bench-render -- [TRIANGLES | FILE] [WxH] [FRAMES]
 //! VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json cargo run --release --example bench-render
 //! ```
 
@@ -23,17 +24,20 @@ use glam::Vec3;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let triangles: usize = args
-        .first()
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(1_000_000);
+    // A number is a sphere's triangle count; anything else names a file.
+    let source = match args.first() {
+        Some(a) => a
+            .parse()
+            .map_or_else(|_| Source::File(a.clone()), Source::Sphere),
+        None => Source::Sphere(1_000_000),
+    };
     let (width, height) = args
         .get(1)
         .and_then(|s| s.split_once('x'))
         .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
         .unwrap_or((1024, 768));
     let frames: usize = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(5);
-    match run(triangles, width, height, frames) {
+    match run(source, width, height, frames) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("bench-render: {e}");
@@ -42,15 +46,29 @@ fn main() -> ExitCode {
     }
 }
 
+/// What to draw.
+enum Source {
+    Sphere(usize),
+    File(String),
+}
+
 fn run(
-    triangles: usize,
+    source: Source,
     width: u32,
     height: u32,
     frames: usize,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    // rings × segments × 2 ≈ triangles, with twice as many segments as rings.
-    let rings = ((triangles as f64 / 4.0).sqrt().max(3.0)) as u32;
-    let scene = sphere(rings, rings * 2);
+    let scene = match source {
+        Source::Sphere(triangles) => {
+            // rings × segments × 2 ≈ triangles, with twice as many segments as rings.
+            let rings = ((triangles as f64 / 4.0).sqrt().max(3.0)) as u32;
+            sphere(rings, rings * 2)
+        }
+        Source::File(path) => {
+            let outcome = decimate::io::read_scene(std::path::Path::new(&path))?;
+            decimate::mesh::build::build_scene(outcome.scene, true)
+        }
+    };
     let context = Context::new(&[], false, DevicePreference::Fastest)?;
     let commands = Commands::new(&context)?;
     let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
