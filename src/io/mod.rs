@@ -96,6 +96,24 @@ impl Budget {
     }
 }
 
+/// What a scene-graph reader (VRML 1.0/Inventor or VRML 2.0) carries while it walks: the
+/// models made so far, the warnings, and the expansion budget.
+pub(crate) struct Ctx<'w> {
+    pub(crate) models: Vec<crate::mesh::Model>,
+    pub(crate) warnings: &'w mut Vec<String>,
+    pub(crate) budget: Budget,
+}
+
+impl<'w> Ctx<'w> {
+    pub(crate) fn new(warnings: &'w mut Vec<String>) -> Self {
+        Self {
+            models: Vec::new(),
+            warnings,
+            budget: Budget::default(),
+        }
+    }
+}
+
 /// Reads a VRML 1.0, VRML 2.0, Open Inventor ASCII or PLY file (optionally gzipped).
 pub fn read_scene(path: &Path) -> Result<ReadOutcome, ReadError> {
     let io_err = |source| ReadError::Io {

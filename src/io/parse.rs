@@ -593,8 +593,12 @@ impl<'a> Parser<'a> {
         };
         let line = self.lex.peek()?.line;
         let value = match kind {
-            FieldKind::Floats => Value::Floats(self.parse_floats(&name)?),
-            FieldKind::Ints => Value::Ints(self.parse_ints(&name)?),
+            FieldKind::Floats => {
+                Value::Floats(self.parse_numbers(&name, "a number", Self::float_of)?)
+            }
+            FieldKind::Ints => {
+                Value::Ints(self.parse_numbers(&name, "an integer", Self::int_of)?)
+            }
             FieldKind::Bool => {
                 let t = self.lex.next()?;
                 let b = self.lex.bytes(&t);
@@ -685,8 +689,14 @@ impl<'a> Parser<'a> {
         }
     }
 
-    /// Numbers, bracketed or not; brackets may be empty.
-    fn parse_floats(&mut self, name: &str) -> PResult<Vec<f32>> {
+    /// Numbers, bracketed or not; brackets may be empty. `what` names one element in
+    /// errors ("a number", "an integer"); `convert` checks and converts each.
+    fn parse_numbers<T>(
+        &mut self,
+        name: &str,
+        what: &str,
+        convert: fn(&Self, &Token, &str) -> PResult<T>,
+    ) -> PResult<Vec<T>> {
         let mut out = Vec::new();
         let first = self.lex.peek()?;
         if first.kind == Tok::LBracket {
@@ -694,19 +704,19 @@ impl<'a> Parser<'a> {
             loop {
                 let t = self.lex.next()?;
                 match t.kind {
-                    Tok::Number => out.push(self.float_of(&t, name)?),
+                    Tok::Number => out.push(convert(self, &t, name)?),
                     Tok::RBracket => return Ok(out),
-                    _ => return Err(self.unexpected(&t, &format!("a number or ']' in '{name}'"))),
+                    _ => return Err(self.unexpected(&t, &format!("{what} or ']' in '{name}'"))),
                 }
             }
         }
         if first.kind != Tok::Number {
             self.lex.next()?;
-            return Err(self.unexpected(&first, &format!("a number for '{name}'")));
+            return Err(self.unexpected(&first, &format!("{what} for '{name}'")));
         }
         while self.lex.peek()?.kind == Tok::Number {
             let t = self.lex.next()?;
-            out.push(self.float_of(&t, name)?);
+            out.push(convert(self, &t, name)?);
         }
         Ok(out)
     }
@@ -738,31 +748,6 @@ impl<'a> Parser<'a> {
             )),
             None => Err(self.unexpected(t, &format!("an integer in '{name}'"))),
         }
-    }
-
-    fn parse_ints(&mut self, name: &str) -> PResult<Vec<i32>> {
-        let mut out = Vec::new();
-        let first = self.lex.peek()?;
-        if first.kind == Tok::LBracket {
-            self.lex.next()?;
-            loop {
-                let t = self.lex.next()?;
-                match t.kind {
-                    Tok::Number => out.push(self.int_of(&t, name)?),
-                    Tok::RBracket => return Ok(out),
-                    _ => return Err(self.unexpected(&t, &format!("an integer or ']' in '{name}'"))),
-                }
-            }
-        }
-        if first.kind != Tok::Number {
-            self.lex.next()?;
-            return Err(self.unexpected(&first, &format!("an integer for '{name}'")));
-        }
-        while self.lex.peek()?.kind == Tok::Number {
-            let t = self.lex.next()?;
-            out.push(self.int_of(&t, name)?);
-        }
-        Ok(out)
     }
 
     /// Skips one field value of unknown type by its structure.

@@ -18,7 +18,7 @@ use super::build::{
 };
 use super::lexer::{PResult, ParseError};
 use super::parse::Node;
-use super::Budget;
+use super::Ctx;
 use crate::mesh::Model;
 
 const DEFAULT_DIFFUSE: [f32; 3] = [0.8, 0.8, 0.8];
@@ -85,19 +85,9 @@ pub fn compose(t: Vec3, r: Quat, s: Vec3, so: Quat, c: Vec3) -> Mat4 {
         * Mat4::from_translation(-c)
 }
 
-struct Ctx<'w> {
-    models: Vec<Model>,
-    warnings: &'w mut Vec<String>,
-    budget: Budget,
-}
-
 /// Traverses the top-level nodes (an implicit root Separator) into models.
 pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>) -> PResult<Vec<Model>> {
-    let mut ctx = Ctx {
-        models: Vec::new(),
-        warnings,
-        budget: Budget::default(),
-    };
+    let mut ctx = Ctx::new(warnings);
     let mut state = State::default();
     for n in roots {
         traverse(n, &mut state, &mut ctx)?;

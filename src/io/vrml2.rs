@@ -13,22 +13,12 @@ use super::build::{build, explicit, resolve, split_polygons, Bind, Binding, Geo,
 use super::lexer::PResult;
 use super::parse::Node;
 use super::vrml1::{box_corners, compose, rotation, vec3};
-use super::Budget;
+use super::Ctx;
 use crate::mesh::Model;
-
-struct Ctx<'w> {
-    models: Vec<Model>,
-    warnings: &'w mut Vec<String>,
-    budget: Budget,
-}
 
 /// Walks the top-level nodes into models.
 pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>) -> PResult<Vec<Model>> {
-    let mut ctx = Ctx {
-        models: Vec::new(),
-        warnings,
-        budget: Budget::default(),
-    };
+    let mut ctx = Ctx::new(warnings);
     for n in roots {
         traverse(n, Mat4::IDENTITY, &mut ctx)?;
     }

@@ -245,42 +245,58 @@ fn named(name: &str, positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Model {
     }
 }
 
-/// A closed, gently bumpy UV sphere of radius about 1 with `rings` × `segments` quads
-/// (≈ 2 · rings · segments triangles): a stand-in for a large smooth scan in benchmarks.
-/// Poles are fans; the bumps are low-frequency waves plus a small deterministic roughness.
-pub fn bumpy_sphere(rings: u32, segments: u32) -> Model {
-    let (rings, segments) = (rings.max(3), segments.max(3));
-    let mut positions = vec![Vec3::Z];
+/// A unit UV sphere around the y axis: poles at ±y, `rings` bands of `segments` quads
+/// (2 · `segments` · (`rings` − 1) triangles), counter-clockwise seen from outside.
+pub fn uv_sphere(rings: u32, segments: u32) -> Model {
+    let (rings, segments) = (rings.max(2), segments.max(3));
+    let mut positions = vec![Vec3::Y];
     for r in 1..rings {
         let theta = std::f32::consts::PI * r as f32 / rings as f32;
         for s in 0..segments {
             let phi = std::f32::consts::TAU * s as f32 / segments as f32;
-            let hash = (r.wrapping_mul(7919) ^ s.wrapping_mul(104_729)) % 97;
-            let bump =
-                1.0 + 0.02 * (7.0 * theta).sin() * (5.0 * phi).cos() + 0.0003 * hash as f32 / 97.0;
-            positions.push(
-                Vec3::new(
-                    theta.sin() * phi.cos(),
-                    theta.sin() * phi.sin(),
-                    theta.cos(),
-                ) * bump,
-            );
+            positions.push(Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                -theta.sin() * phi.sin(),
+            ));
         }
     }
-    positions.push(-Vec3::Z);
-    let south = positions.len() as u32 - 1;
-    let id = |r: u32, s: u32| 1 + (r - 1) * segments + s % segments;
+    positions.push(-Vec3::Y);
+    let bottom = positions.len() as u32 - 1;
+    let ring = |r: u32, s: u32| 1 + (r - 1) * segments + s % segments;
     let mut triangles = Vec::with_capacity(2 * (rings * segments) as usize);
     for s in 0..segments {
-        triangles.push([0, id(1, s), id(1, s + 1)]);
-        triangles.push([south, id(rings - 1, s + 1), id(rings - 1, s)]);
+        triangles.push([0, ring(1, s), ring(1, s + 1)]);
+        triangles.push([bottom, ring(rings - 1, s + 1), ring(rings - 1, s)]);
     }
     for r in 1..rings - 1 {
         for s in 0..segments {
-            let (a, b, c, d) = (id(r, s), id(r + 1, s), id(r + 1, s + 1), id(r, s + 1));
-            triangles.push([a, b, c]);
-            triangles.push([a, c, d]);
+            let (a, b, c, d) = (
+                ring(r, s),
+                ring(r, s + 1),
+                ring(r + 1, s + 1),
+                ring(r + 1, s),
+            );
+            triangles.push([a, d, c]);
+            triangles.push([a, c, b]);
         }
     }
     named("sphere", positions, triangles)
+}
+
+/// [`uv_sphere`] with gentle bumps: low-frequency waves plus a small deterministic roughness,
+/// radius about 1 — a stand-in for a large smooth scan in benchmarks and tests.
+pub fn bumpy_sphere(rings: u32, segments: u32) -> Model {
+    let mut m = uv_sphere(rings, segments);
+    let segments = segments.max(3);
+    let last = m.positions.len() - 1;
+    for (i, p) in m.positions.iter_mut().enumerate().take(last).skip(1) {
+        // Ring r, segment s of vertex i, and its angles.
+        let (r, s) = ((i as u32 - 1) / segments + 1, (i as u32 - 1) % segments);
+        let theta = p.y.clamp(-1.0, 1.0).acos();
+        let phi = (-p.z).atan2(p.x);
+        let hash = (r.wrapping_mul(7919) ^ s.wrapping_mul(104_729)) % 97;
+        *p *= 1.0 + 0.02 * (7.0 * theta).sin() * (5.0 * phi).cos() + 0.0003 * hash as f32 / 97.0;
+    }
+    m
 }

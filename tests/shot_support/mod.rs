@@ -79,45 +79,11 @@ pub fn cube(n: u32) -> Scene {
 /// A UV sphere of radius 1 with `rings` × `segments` quads (2 triangles each), moved by a
 /// transform so that world transforms are exercised.
 pub fn sphere(rings: u32, segments: u32, transform: Mat4) -> Scene {
-    let mut model = Model {
-        name: "sphere".into(),
+    let model = Model {
         transform,
         diffuse: [0.45, 0.65, 0.85],
-        ..Model::default()
+        ..decimate::mesh::shapes::uv_sphere(rings, segments)
     };
-    model.positions.push(Vec3::Y);
-    for r in 1..rings {
-        let theta = std::f32::consts::PI * r as f32 / rings as f32;
-        for s in 0..segments {
-            let phi = std::f32::consts::TAU * s as f32 / segments as f32;
-            model.positions.push(Vec3::new(
-                theta.sin() * phi.cos(),
-                theta.cos(),
-                -theta.sin() * phi.sin(),
-            ));
-        }
-    }
-    model.positions.push(-Vec3::Y);
-    let bottom = model.positions.len() as u32 - 1;
-    let ring = |r: u32, s: u32| 1 + (r - 1) * segments + s % segments;
-    for s in 0..segments {
-        model.triangles.push([0, ring(1, s), ring(1, s + 1)]);
-        model
-            .triangles
-            .push([bottom, ring(rings - 1, s + 1), ring(rings - 1, s)]);
-    }
-    for r in 1..rings - 1 {
-        for s in 0..segments {
-            let (a, b, c, d) = (
-                ring(r, s),
-                ring(r, s + 1),
-                ring(r + 1, s + 1),
-                ring(r + 1, s),
-            );
-            model.triangles.push([a, d, c]);
-            model.triangles.push([a, c, b]);
-        }
-    }
     Scene {
         models: vec![model],
     }

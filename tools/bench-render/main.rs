@@ -11,7 +11,7 @@
 use std::process::ExitCode;
 use std::time::Instant;
 
-use decimate::mesh::{Model, Scene};
+use decimate::mesh::Scene;
 use decimate::render::camera::Camera;
 use decimate::render::commands::Commands;
 use decimate::render::context::{Context, DevicePreference};
@@ -20,7 +20,6 @@ use decimate::render::gpu_mesh::GpuScene;
 use decimate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
 use decimate::render::pipeline::Pipelines;
 use decimate::render::tiles::tiles;
-use glam::Vec3;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -165,41 +164,7 @@ fn run(
 
 /// A unit UV sphere with `rings` × `segments` quads.
 fn sphere(rings: u32, segments: u32) -> Scene {
-    let mut m = Model {
-        name: "sphere".into(),
-        ..Model::default()
-    };
-    m.positions.push(Vec3::Y);
-    for r in 1..rings {
-        let theta = std::f32::consts::PI * r as f32 / rings as f32;
-        for s in 0..segments {
-            let phi = std::f32::consts::TAU * s as f32 / segments as f32;
-            m.positions.push(Vec3::new(
-                theta.sin() * phi.cos(),
-                theta.cos(),
-                -theta.sin() * phi.sin(),
-            ));
-        }
+    Scene {
+        models: vec![decimate::mesh::shapes::uv_sphere(rings, segments)],
     }
-    m.positions.push(-Vec3::Y);
-    let bottom = m.positions.len() as u32 - 1;
-    let ring = |r: u32, s: u32| 1 + (r - 1) * segments + s % segments;
-    for s in 0..segments {
-        m.triangles.push([0, ring(1, s), ring(1, s + 1)]);
-        m.triangles
-            .push([bottom, ring(rings - 1, s + 1), ring(rings - 1, s)]);
-    }
-    for r in 1..rings - 1 {
-        for s in 0..segments {
-            let (a, b, c, d) = (
-                ring(r, s),
-                ring(r, s + 1),
-                ring(r + 1, s + 1),
-                ring(r + 1, s),
-            );
-            m.triangles.push([a, d, c]);
-            m.triangles.push([a, c, b]);
-        }
-    }
-    Scene { models: vec![m] }
 }
