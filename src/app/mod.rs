@@ -25,7 +25,8 @@ pub fn run(scene: Scene, args: &Args) -> ExitCode {
 /// The viewer: steps (4) to (6) of the original's start-up.
 fn run_gui(scene: Scene, args: &Args) -> ExitCode {
     if !args.quiet {
-        eprint!("{}", menu::key_help());
+        // As the original did: the usage, then the keys, on the console at start.
+        eprint!("{}\n{}", crate::cli::USAGE, menu::key_help());
     }
     // (4) Build the popup menu: one list of entries, shared by the popup and the keyboard.
     let entries = menu::menu();
