@@ -26,6 +26,22 @@ impl VertexQueue {
         }
     }
 
+    /// A queue of `entries` (distinct vertices below `vertex_count`), built bottom-up in
+    /// linear time.
+    pub fn from_entries(vertex_count: usize, entries: Vec<(f64, u32)>) -> Self {
+        let mut q = Self {
+            heap: entries,
+            slot: vec![ABSENT; vertex_count],
+        };
+        for (i, &(_, v)) in q.heap.iter().enumerate() {
+            q.slot[v as usize] = i as u32;
+        }
+        for i in (0..q.heap.len() / 2).rev() {
+            q.sift_down(i);
+        }
+        q
+    }
+
     pub fn len(&self) -> usize {
         self.heap.len()
     }
@@ -150,6 +166,21 @@ mod tests {
         let order: Vec<u32> = std::iter::from_fn(|| q.pop().map(|(_, v)| v)).collect();
         assert_eq!(order, vec![2, 1, 0, 3, 4]);
         assert!(q.is_empty());
+    }
+
+    #[test]
+    fn built_from_entries_pops_in_order_and_stays_updatable() {
+        let keys = [7.0, 1.0, 4.0, 4.0, 9.0, 0.5, 3.0];
+        let entries = keys
+            .iter()
+            .enumerate()
+            .map(|(v, &k)| (k, v as u32))
+            .collect();
+        let mut q = VertexQueue::from_entries(10, entries);
+        q.set(4, 0.1);
+        q.remove(0);
+        let order: Vec<u32> = std::iter::from_fn(|| q.pop().map(|(_, v)| v)).collect();
+        assert_eq!(order, vec![4, 5, 1, 6, 2, 3]);
     }
 
     #[test]

@@ -23,6 +23,7 @@
 //! removal costs O(valence² + log n) and nothing in the loop is quadratic in the mesh size.
 
 use glam::{DVec3, Vec3};
+use rayon::prelude::*;
 
 use super::loop_split;
 use super::queue::VertexQueue;
@@ -79,16 +80,14 @@ pub fn decimate_model(
         .filter(|&t| model.triangles[t as usize].iter().all(|&v| v < n))
         .collect();
     let tri = |t: u32| model.triangles[t as usize].map(|v| internal[v as usize]);
-    faces.sort_by_cached_key(|&t| tri(t).into_iter().min());
+    faces.par_sort_by_cached_key(|&t| tri(t).into_iter().min());
     let triangles: Vec<[u32; 3]> = faces.iter().map(|&t| tri(t)).collect();
 
     // 2. connect
     let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
 
     // 3. classify and rank
-    for v in 0..n {
-        d.rank(v);
-    }
+    d.rank_all();
 
     // 4. remove
     let mut outcome = Outcome {
@@ -107,9 +106,7 @@ pub fn decimate_model(
             if limits.relax_features && outcome.feature_angle_deg < 180.0 {
                 outcome.feature_angle_deg = (outcome.feature_angle_deg + RELAX_STEP_DEG).min(180.0);
                 d.cos_feature = outcome.feature_angle_deg.to_radians().cos();
-                for v in 0..n {
-                    d.rank(v);
-                }
+                d.rank_all();
                 continue;
             }
             outcome.exhausted = true;
@@ -144,8 +141,7 @@ struct Decimator {
     accumulated: Vec<f64>,
     queue: VertexQueue,
     cos_feature: f64,
-    ring: Ring,
-    geometry: RingGeometry,
+    scratch: Scratch,
     fill: Vec<[u32; 3]>,
     loop_buf: Vec<u32>,
     neighbours: Vec<u32>,
@@ -163,8 +159,7 @@ impl Decimator {
             accumulated: vec![0.0; n],
             queue: VertexQueue::new(n),
             cos_feature: feature_angle_deg.to_radians().cos(),
-            ring: Ring::default(),
-            geometry: RingGeometry::default(),
+            scratch: Scratch::default(),
             fill: Vec::new(),
             loop_buf: Vec::new(),
             neighbours: Vec::new(),
@@ -173,69 +168,41 @@ impl Decimator {
 
     /// Classifies `v` into the scratch ring and returns its class and criterion distance.
     fn evaluate(&mut self, v: u32) -> Option<(VertexClass, f64)> {
-        let class = classify(
+        evaluate(
             &self.conn,
             &self.positions,
-            v,
             self.cos_feature,
-            &mut self.ring,
-            &mut self.geometry,
-        );
-        let p = self.positions[v as usize].as_dvec3();
-        let verts = &self.ring.verts;
-        let distance = match class {
-            VertexClass::Simple => {
-                let (normal, centre) = self.average_plane(p, 0..self.geometry.crosses.len())?;
-                normal.dot(p - centre).abs()
-            }
-            VertexClass::Boundary => self.line_distance(p, verts[0], verts[verts.len() - 1]),
-            VertexClass::InteriorEdge { first, second } => {
-                self.line_distance(p, verts[first], verts[second])
-            }
-            _ => return None,
-        };
-        distance.is_finite().then_some((class, distance))
+            v,
+            &mut self.scratch,
+        )
     }
 
-    /// Area-weighted unit normal and centre of the ring triangles `indices` around the
-    /// vertex at `p`.
     fn average_plane(
         &self,
         p: DVec3,
         indices: impl Iterator<Item = usize>,
     ) -> Option<(DVec3, DVec3)> {
-        let verts = &self.ring.verts;
-        let mut normal = DVec3::ZERO;
-        let mut centre = DVec3::ZERO;
-        let mut area = 0.0;
-        for i in indices {
-            let a = self.geometry.lengths[i];
-            normal += self.geometry.crosses[i];
-            let pa = self.positions[verts[i] as usize].as_dvec3();
-            let next = verts.get(i + 1).unwrap_or(&verts[0]);
-            let pb = self.positions[*next as usize].as_dvec3();
-            centre += a * (p + pa + pb);
-            area += a;
-        }
-        let centre = centre / 3.0;
-        let len = normal.length();
-        if area <= 0.0 || len <= 1e-12 * area {
-            return None;
-        }
-        Some((normal / len, centre / area))
+        average_plane(&self.positions, &self.scratch, p, indices)
     }
 
-    fn line_distance(&self, p: DVec3, a: u32, b: u32) -> f64 {
-        let (a, b) = (
-            self.positions[a as usize].as_dvec3(),
-            self.positions[b as usize].as_dvec3(),
-        );
-        let dir = b - a;
-        let len2 = dir.length_squared();
-        if len2 <= 0.0 {
-            return (p - a).length();
-        }
-        (p - a).cross(dir).length() / len2.sqrt()
+    /// Ranks every vertex afresh, in parallel (each key depends only on its own ring), and
+    /// rebuilds the queue from the keys in linear time.
+    fn rank_all(&mut self) {
+        let (conn, positions, cos_feature) = (&self.conn, &self.positions, self.cos_feature);
+        let accumulated = &self.accumulated;
+        let entries: Vec<(f64, u32)> = (0..positions.len() as u32)
+            .into_par_iter()
+            .map_init(Scratch::default, |scratch, v| {
+                match evaluate(conn, positions, cos_feature, v, scratch) {
+                    Some((class, distance)) if class.removable() => {
+                        Some((distance + accumulated[v as usize], v))
+                    }
+                    _ => None,
+                }
+            })
+            .flatten()
+            .collect();
+        self.queue = VertexQueue::from_entries(positions.len(), entries);
     }
 
     /// (Re)computes `v`'s queue key; queues `v` when removable, takes it out otherwise.
@@ -266,9 +233,9 @@ impl Decimator {
         // Apply: old triangles out, new ones in (reusing their slots, so per-face
         // attributes of the region carry over).
         self.neighbours.clear();
-        self.neighbours.extend_from_slice(&self.ring.verts);
-        for i in 0..self.ring.triangles.len() {
-            let t = self.ring.triangles[i];
+        self.neighbours.extend_from_slice(&self.scratch.ring.verts);
+        for i in 0..self.scratch.ring.triangles.len() {
+            let t = self.scratch.ring.triangles[i];
             self.conn.remove_triangle(t);
         }
         for i in 0..self.fill.len() {
@@ -287,19 +254,25 @@ impl Decimator {
     /// Interior vertex: triangulate the whole closed loop over its average plane.
     fn fill_closed(&mut self, v: u32) -> bool {
         let p = self.positions[v as usize].as_dvec3();
-        let Some((normal, _)) = self.average_plane(p, 0..self.geometry.crosses.len()) else {
+        let Some((normal, _)) = self.average_plane(p, 0..self.scratch.geometry.crosses.len())
+        else {
             return false;
         };
-        let r = &self.ring.verts;
+        let r = &self.scratch.ring.verts;
         if r.len() == 3 && self.conn.has_triangle(r[0], r[1], r[2]) {
             return false; // would duplicate a face: the last step before a tetrahedron
         }
-        loop_split::triangulate(&self.positions, &self.ring.verts, normal, &mut self.fill)
+        loop_split::triangulate(
+            &self.positions,
+            &self.scratch.ring.verts,
+            normal,
+            &mut self.fill,
+        )
     }
 
     /// Boundary vertex: the open path plus the closing edge between its ends.
     fn fill_open(&mut self, v: u32) -> bool {
-        let r = &self.ring.verts;
+        let r = &self.scratch.ring.verts;
         let (first, last) = (r[0], r[r.len() - 1]);
         if r.len() == 2 {
             // A lone triangle: removing it leaves its far edge on the boundary, which must
@@ -310,16 +283,22 @@ impl Decimator {
             return false;
         }
         let p = self.positions[v as usize].as_dvec3();
-        let Some((normal, _)) = self.average_plane(p, 0..self.geometry.crosses.len()) else {
+        let Some((normal, _)) = self.average_plane(p, 0..self.scratch.geometry.crosses.len())
+        else {
             return false;
         };
-        loop_split::triangulate(&self.positions, &self.ring.verts, normal, &mut self.fill)
+        loop_split::triangulate(
+            &self.positions,
+            &self.scratch.ring.verts,
+            normal,
+            &mut self.fill,
+        )
     }
 
     /// Interior-edge vertex: split along the crease first, then fill each side on its own
     /// average plane, so the crease line survives.
     fn fill_crease(&mut self, v: u32, first: usize, second: usize) -> bool {
-        let r = &self.ring.verts;
+        let r = &self.scratch.ring.verts;
         let k = r.len();
         if second - first < 2 || k - second + first < 2 {
             return false; // one side is a single triangle: no room to split
@@ -335,7 +314,7 @@ impl Decimator {
             };
             self.loop_buf.clear();
             self.loop_buf
-                .extend((from..=to).map(|i| self.ring.verts[i % k]));
+                .extend((from..=to).map(|i| self.scratch.ring.verts[i % k]));
             if !loop_split::triangulate(&self.positions, &self.loop_buf, normal, &mut self.fill) {
                 return false;
             }
@@ -346,9 +325,9 @@ impl Decimator {
     /// The fill must not flip or degenerate a triangle and must not create an edge that
     /// already exists elsewhere (the result would be non-manifold).
     fn fill_is_valid(&self, v: u32) -> bool {
-        let r = &self.ring.verts;
+        let r = &self.scratch.ring.verts;
         let k = r.len();
-        let closed = k == self.ring.triangles.len();
+        let closed = k == self.scratch.ring.triangles.len();
         let is_ring_edge = |a: u32, b: u32| {
             let (Some(i), Some(j)) = (
                 r.iter().position(|&x| x == a),
@@ -360,7 +339,7 @@ impl Decimator {
             d == 1 || (closed && d == k - 1)
         };
         // Normal of the old region: the sum of the ring triangles' area vectors.
-        let old: DVec3 = self.geometry.crosses.iter().copied().sum();
+        let old: DVec3 = self.scratch.geometry.crosses.iter().copied().sum();
         for tri in &self.fill {
             let [a, b, c] = tri.map(|i| self.positions[i as usize].as_dvec3());
             let cross = (b - a).cross(c - a);
@@ -387,13 +366,18 @@ impl Decimator {
 
     /// A new triangle faces like the old ring triangles that share one of its vertices.
     fn faces_like_old(&self, cross: DVec3, tri: &[u32; 3]) -> bool {
-        let r = &self.ring.verts;
+        let r = &self.scratch.ring.verts;
         let k = r.len();
-        self.geometry.crosses.iter().enumerate().all(|(i, &c)| {
-            let next = if i + 1 == k { r[0] } else { r[i + 1] };
-            let touches = tri.contains(&r[i]) || tri.contains(&next);
-            !touches || cross.dot(c) > -0.5 * cross.length() * c.length()
-        })
+        self.scratch
+            .geometry
+            .crosses
+            .iter()
+            .enumerate()
+            .all(|(i, &c)| {
+                let next = if i + 1 == k { r[0] } else { r[i + 1] };
+                let touches = tri.contains(&r[i]) || tri.contains(&next);
+                !touches || cross.dot(c) > -0.5 * cross.length() * c.length()
+            })
     }
 
     /// Writes live vertices and triangles back into `model`. `order` maps internal vertex ids
@@ -438,4 +422,89 @@ impl Decimator {
             _ => None, // face normals of refilled holes would be wrong: recomputed on display
         };
     }
+}
+
+/// Scratch for evaluating one vertex: its ring and the ring's triangle geometry.
+#[derive(Debug, Clone, Default)]
+struct Scratch {
+    ring: Ring,
+    geometry: RingGeometry,
+}
+
+/// Classifies `v` into `scratch` and returns its class and decimation criterion: distance to
+/// the loop's average plane (simple), or to the line through its boundary / feature
+/// neighbours (boundary, interior edge). `None` for vertices that are never removed.
+fn evaluate(
+    conn: &Connectivity,
+    positions: &[Vec3],
+    cos_feature: f64,
+    v: u32,
+    scratch: &mut Scratch,
+) -> Option<(VertexClass, f64)> {
+    let class = classify(
+        conn,
+        positions,
+        v,
+        cos_feature,
+        &mut scratch.ring,
+        &mut scratch.geometry,
+    );
+    let p = positions[v as usize].as_dvec3();
+    let verts = &scratch.ring.verts;
+    let distance = match class {
+        VertexClass::Simple => {
+            let all = 0..scratch.geometry.crosses.len();
+            let (normal, centre) = average_plane(positions, scratch, p, all)?;
+            normal.dot(p - centre).abs()
+        }
+        VertexClass::Boundary => line_distance(positions, p, verts[0], verts[verts.len() - 1]),
+        VertexClass::InteriorEdge { first, second } => {
+            line_distance(positions, p, verts[first], verts[second])
+        }
+        _ => return None,
+    };
+    distance.is_finite().then_some((class, distance))
+}
+
+/// Area-weighted unit normal and centre of the ring triangles `indices` around the vertex at
+/// `p` (the ring and its geometry in `scratch`).
+fn average_plane(
+    positions: &[Vec3],
+    scratch: &Scratch,
+    p: DVec3,
+    indices: impl Iterator<Item = usize>,
+) -> Option<(DVec3, DVec3)> {
+    let verts = &scratch.ring.verts;
+    let mut normal = DVec3::ZERO;
+    let mut centre = DVec3::ZERO;
+    let mut area = 0.0;
+    for i in indices {
+        let a = scratch.geometry.lengths[i];
+        normal += scratch.geometry.crosses[i];
+        let pa = positions[verts[i] as usize].as_dvec3();
+        let next = verts.get(i + 1).unwrap_or(&verts[0]);
+        let pb = positions[*next as usize].as_dvec3();
+        centre += a * (p + pa + pb);
+        area += a;
+    }
+    let centre = centre / 3.0;
+    let len = normal.length();
+    if area <= 0.0 || len <= 1e-12 * area {
+        return None;
+    }
+    Some((normal / len, centre / area))
+}
+
+/// Distance from `p` to the line through vertices `a` and `b`.
+fn line_distance(positions: &[Vec3], p: DVec3, a: u32, b: u32) -> f64 {
+    let (a, b) = (
+        positions[a as usize].as_dvec3(),
+        positions[b as usize].as_dvec3(),
+    );
+    let dir = b - a;
+    let len2 = dir.length_squared();
+    if len2 <= 0.0 {
+        return (p - a).length();
+    }
+    (p - a).cross(dir).length() / len2.sqrt()
 }

@@ -4,6 +4,7 @@
 //! large scan whose file order is arbitrary.
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 /// Spreads the low 21 bits of `x` so that there are two zero bits between each.
 fn spread(x: u64) -> u64 {
@@ -44,7 +45,7 @@ pub fn morton_order(positions: &[Vec3]) -> Vec<u32> {
             (code, i as u32)
         })
         .collect();
-    keyed.sort_unstable();
+    keyed.par_sort_unstable();
     keyed.into_iter().map(|(_, i)| i).collect()
 }
 
