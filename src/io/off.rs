@@ -82,7 +82,10 @@ fn color(ws: &[&[u8]], line: usize) -> PResult<[f32; 3]> {
     Ok(c)
 }
 
-fn count(w: Option<&[u8]>, line: usize, what: &str, limit: usize) -> PResult<usize> {
+/// A count from the counts line; one record takes at least two bytes, so a count above half
+/// the file's size is refused before anything is reserved.
+fn count(w: Option<&[u8]>, line: usize, what: &str, file_len: usize) -> PResult<usize> {
+    let limit = file_len / 2;
     let w = w.ok_or_else(|| {
         ParseError::new(
             line,
@@ -98,7 +101,15 @@ fn count(w: Option<&[u8]>, line: usize, what: &str, limit: usize) -> PResult<usi
     if n > limit as u64 {
         return Err(ParseError::new(
             line,
-            format!("the file declares {n} {what}s, more than its {limit} bytes can hold"),
+            format!(
+                "the file declares {n} {}, more than its {} bytes can hold",
+                if what == "vertex" {
+                    "vertices"
+                } else {
+                    "faces"
+                },
+                limit * 2
+            ),
         ));
     }
     Ok(n as usize)
@@ -139,9 +150,8 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
     } else {
         (hline, rest)
     };
-    let limit = bytes.len() / 2;
-    let nv = count(counts.first().copied(), counts_line, "vertex", limit)?;
-    let nf = count(counts.get(1).copied(), counts_line, "face", limit)?;
+    let nv = count(counts.first().copied(), counts_line, "vertex", bytes.len())?;
+    let nf = count(counts.get(1).copied(), counts_line, "face", bytes.len())?;
     if nv == 0 || nf == 0 {
         return Err(ParseError::new(
             counts_line,
