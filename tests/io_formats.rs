@@ -306,7 +306,7 @@ fn fails(name: &str, src: &[u8]) -> ReadError {
 fn malformed_files_fail_with_file_and_line() {
     let cases: &[(&str, &[u8], &str)] = &[
         ("a.obj", b"v 0 0 0\nv 1 0 0\nf 1 2 3\n", "a.obj:3: vertex index 3 is out of range"),
-        ("a.obj", b"v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 -4\n", "a.obj:4: vertex index -4"),
+        ("a.obj", b"v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 -4\n", "a.obj:4: vertex index -4 is out of range: 3 vertices are defined above this line"),
         ("a.obj", b"v 0 0 0\nf 0 1 1\n", "a.obj:2: vertex index 0 is invalid"),
         ("a.obj", b"# x\nv 0 0 nan\n", "a.obj:2: a vertex's z is not a finite number"),
         ("a.obj", b"v 1 2\n", "a.obj:1: missing a vertex's z"),

@@ -187,7 +187,12 @@ fn resolve(w: &[u8], count: usize, line: usize, what: &str) -> PResult<u32> {
         return Err(ParseError::new(
             line,
             format!(
-                "{what} index {i} is out of range: {count} {what}s are defined above this line"
+                "{what} index {i} is out of range: {count} {} defined above this line",
+                if what == "vertex" {
+                    "vertices are"
+                } else {
+                    "normals are"
+                }
             ),
         ));
     };
