@@ -1,5 +1,6 @@
 //! The `nogui` action: decimate the scene to the command line's target, print a summary
-//! (and a progress bar on long runs) on stderr, and write VRML 2.0 — never over the input
+//! (and a progress bar on long runs) on stderr, and write the result in the format the
+//! output's extension names (VRML 2.0 by default; `io::write_scene`) — never over the input
 //! unless `--overwrite` says so.
 
 use std::io::{IsTerminal, Write};
@@ -26,7 +27,7 @@ pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
     if !args.quiet {
         eprint!("{}", summary(&report));
     }
-    if let Err(e) = io::write_vrml2(&scene, &args.output) {
+    if let Err(e) = io::write_scene(&scene, &args.output) {
         eprintln!("decimate: cannot write {e}");
         return ExitCode::FAILURE;
     }

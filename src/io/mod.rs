@@ -1,16 +1,20 @@
 //! Reading and writing scenes. One module per format; all readers produce the same `Scene`.
 //!
-//! Entry points: [`read_scene`] (format sniffed from the header, gzip handled here) and
-//! [`write_vrml2`] (temporary file, then rename); [`parse_bytes`] / [`parse_str`] read from
-//! memory. Submodules: `lexer` (shared tokens), `parse` (node trees for both VRML families),
-//! `vrml1` (VRML 1.0 / Inventor state machine), `vrml2` (VRML 2.0 tree walk), `build`
-//! (shape to model), `triangulate` (ear clipping), `ply` (PLY read/write), `writer` (VRML 2.0
-//! output).
+//! Entry points: [`read_scene`] (format from the header, the file name's extension or the
+//! content; gzip handled here), [`write_scene`] (format from the output's extension) and
+//! [`write_vrml2`] (all writers go through a temporary file, then rename); [`parse_bytes`] /
+//! [`parse_str`] read from memory. Submodules: `lexer` (shared tokens), `parse` (node trees
+//! for both VRML families), `vrml1` (VRML 1.0 / Inventor state machine), `vrml2` (VRML 2.0
+//! tree walk), `build` (shape to model), `triangulate` (ear clipping), `ply`, `obj`, `stl`,
+//! `off` (those formats' readers and writers), `writer` (VRML 2.0 output).
 
 mod build;
 mod lexer;
+pub mod obj;
+pub mod off;
 mod parse;
 pub mod ply;
+pub mod stl;
 pub mod triangulate;
 mod vrml1;
 mod vrml2;
@@ -23,7 +27,10 @@ use std::path::{Path, PathBuf};
 use crate::mesh::Scene;
 use lexer::{PResult, ParseError};
 
+pub use obj::write_obj;
+pub use off::write_off;
 pub use ply::write_ply;
+pub use stl::write_stl;
 pub use writer::write_vrml2_to;
 
 /// What went wrong reading a scene: always names the file, and the line where there is one.
@@ -43,6 +50,13 @@ pub enum ReadError {
     },
     #[error("{file}: {message}")]
     Unsupported { file: PathBuf, message: String },
+    /// A binary file's fixed-size record (binary STL), counted from 1.
+    #[error("{file}: record {record}: {message}")]
+    Record {
+        file: PathBuf,
+        record: usize,
+        message: String,
+    },
 }
 
 /// What went wrong writing a scene.
@@ -114,23 +128,54 @@ impl<'w> Ctx<'w> {
     }
 }
 
-/// Reads a VRML 1.0, VRML 2.0, Open Inventor ASCII or PLY file (optionally gzipped).
+/// A file format, as far as the file name's extension tells.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    Vrml2,
+    Ply,
+    Obj,
+    Stl,
+    Off,
+}
+
+impl Format {
+    /// The format a file name's extension names (`.gz` looked through), if any.
+    pub fn from_path(path: &Path) -> Option<Self> {
+        let ext = |p: &Path| {
+            p.extension()
+                .and_then(|e| e.to_str())
+                .map(|e| e.to_ascii_lowercase())
+        };
+        let mut e = ext(path)?;
+        if e == "gz" {
+            e = ext(Path::new(path.file_stem()?))?;
+        }
+        Some(match e.as_str() {
+            "wrl" | "vrml" => Self::Vrml2,
+            "ply" => Self::Ply,
+            "obj" => Self::Obj,
+            "stl" => Self::Stl,
+            "off" => Self::Off,
+            _ => return None,
+        })
+    }
+}
+
+/// Reads a VRML 1.0, VRML 2.0, Open Inventor ASCII, PLY, OBJ, STL or OFF file (optionally
+/// gzipped).
 pub fn read_scene(path: &Path) -> Result<ReadOutcome, ReadError> {
     let io_err = |source| ReadError::Io {
         file: path.to_path_buf(),
         source,
     };
     let bytes = std::fs::read(path).map_err(io_err)?;
-    let is_ply_name = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("ply"));
-    parse_bytes_with(bytes, path, is_ply_name)
+    parse_bytes(bytes, path)
 }
 
-/// Reads a scene from memory; `file_name` is used in messages.
+/// Reads a scene from memory; `file_name` is used in messages, and its extension says the
+/// format when the content does not.
 pub fn parse_bytes(bytes: Vec<u8>, file_name: &Path) -> Result<ReadOutcome, ReadError> {
-    parse_bytes_with(bytes, file_name, false)
+    parse_bytes_with(bytes, file_name, Format::from_path(file_name))
 }
 
 /// Reads a scene from text (tests, tools); `file_name` is used in messages.
@@ -141,7 +186,7 @@ pub fn parse_str(text: &str, file_name: &str) -> Result<ReadOutcome, ReadError> 
 fn parse_bytes_with(
     mut bytes: Vec<u8>,
     path: &Path,
-    ply_by_name: bool,
+    by_name: Option<Format>,
 ) -> Result<ReadOutcome, ReadError> {
     let file = path.to_path_buf();
     if bytes.starts_with(&[0x1f, 0x8b]) {
@@ -160,6 +205,7 @@ fn parse_bytes_with(
         line: e.line,
         message: e.message,
     };
+    let ply_by_name = by_name == Some(Format::Ply);
     if bytes.starts_with(b"ply") && matches!(bytes.get(3), Some(b'\n' | b'\r')) || ply_by_name {
         let (scene, warnings) = ply::read_ply(&bytes).map_err(syntax)?;
         return Ok(ReadOutcome { scene, warnings });
@@ -170,6 +216,40 @@ fn parse_bytes_with(
         .unwrap_or(bytes.len());
     let header = String::from_utf8_lossy(&bytes[..first_line_end]);
     let header = header.trim_end();
+    let vrml_family = ["#VRML V1.0 ascii", "#VRML V2.0 utf8", "#Inventor"]
+        .iter()
+        .any(|h| header.starts_with(h));
+    if !vrml_family {
+        let sniffed = by_name.filter(|&f| f != Format::Vrml2).or_else(|| {
+            if stl::is_binary(&bytes) || stl::starts_with_solid(&bytes) {
+                Some(Format::Stl)
+            } else if off::looks_like_off(&bytes) {
+                Some(Format::Off)
+            } else if obj::looks_like_obj(&bytes) {
+                Some(Format::Obj)
+            } else {
+                None
+            }
+        });
+        let outcome = match sniffed {
+            Some(Format::Obj) => obj::read_obj(&bytes).map_err(syntax)?,
+            Some(Format::Off) => off::read_off(&bytes).map_err(syntax)?,
+            Some(Format::Stl) => stl::read_stl(&bytes).map_err(|e| match e {
+                stl::StlError::Line(e) => syntax(e),
+                stl::StlError::Header(message) => syntax(ParseError::new(1, message)),
+                stl::StlError::Record { record, message } => ReadError::Record {
+                    file: file.clone(),
+                    record,
+                    message,
+                },
+            })?,
+            _ => (Scene::default(), Vec::new()),
+        };
+        if sniffed.is_some() {
+            let (scene, warnings) = outcome;
+            return Ok(ReadOutcome { scene, warnings });
+        }
+    }
     let dialect = if header.starts_with("#VRML V1.0 ascii") {
         parse::Dialect::Vrml1
     } else if header.starts_with("#VRML V2.0 utf8") {
@@ -191,7 +271,7 @@ fn parse_bytes_with(
         return Err(syntax(ParseError::new(
             1,
             format!(
-                "not a VRML, Open Inventor or PLY file: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header, found '{shown}'"
+                "not a VRML, Open Inventor, PLY, OBJ, STL or OFF file: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header, found '{shown}'"
             ),
         )));
     };
@@ -233,6 +313,18 @@ fn parse_tree(bytes: &[u8], dialect: parse::Dialect) -> PResult<ReadOutcome> {
         scene: Scene { models },
         warnings,
     })
+}
+
+/// Writes `scene` to `path` in the format its extension names: `.ply`, `.obj`, `.stl`, `.off`;
+/// `.wrl` and anything else give VRML 2.0. Always via a temporary file and a rename.
+pub fn write_scene(scene: &Scene, path: &Path) -> Result<(), WriteError> {
+    match Format::from_path(path) {
+        Some(Format::Ply) => write_ply(scene, path),
+        Some(Format::Obj) => write_obj(scene, path),
+        Some(Format::Stl) => write_stl(scene, path),
+        Some(Format::Off) => write_off(scene, path),
+        Some(Format::Vrml2) | None => write_vrml2(scene, path),
+    }
 }
 
 /// Writes `scene` as VRML 2.0 to `path` via a temporary file in the same folder and a rename.

@@ -1,0 +1,419 @@
+//! Wavefront OBJ: a reader for polygon meshes and a writer, plus the logical-line splitter
+//! that the OFF reader shares.
+//!
+//! Read: `v x y z [w]` or `v x y z r g b` (per-vertex colours, 0..1), `vn` (indices checked,
+//! values not kept: OBJ normals are per corner and are recomputed with the crease angle like
+//! any file without normals), `vt` ignored, `f` with `v`, `v/vt`, `v//vn` or `v/vt/vn` corners
+//! and 1-based or negative (relative) indices, polygons of any size (triangulated, concave
+//! ones included), `o` / `g` starting a new model (named after them; groups without faces are
+//! dropped), `\` line continuation, `#` comments. `usemtl`, `mtllib`, `s`, `l`, `p` and any
+//! other statement are skipped with one warning per kind. A face may only use vertices defined
+//! above it (every exporter writes them first), so a bad index is reported on its own line.
+//! Write: one `o` per model, positions in world space (OBJ has no transforms), per-vertex
+//! colours as `v x y z r g b`, 1-based indices, counter-clockwise triangles.
+
+use std::borrow::Cow;
+use std::collections::HashSet;
+use std::io::Write;
+use std::path::Path;
+
+use glam::Mat4;
+
+use super::build::{build, Bind, ShapeSpec};
+use super::lexer::{parse_f32, parse_int, PResult, ParseError};
+use super::WriteError;
+use crate::mesh::{Attribute, Scene};
+
+/// Logical lines of a text file: `(line number of its first physical line, text)`, with
+/// `#` comments cut off and, when `continuation` is set, lines ending in `\` joined to the
+/// next. Borrowed unless joined.
+pub(crate) struct Lines<'a> {
+    bytes: &'a [u8],
+    pos: usize,
+    line: usize,
+    continuation: bool,
+}
+
+impl<'a> Lines<'a> {
+    pub(crate) fn new(bytes: &'a [u8], continuation: bool) -> Self {
+        Self {
+            bytes,
+            pos: 0,
+            line: 0,
+            continuation,
+        }
+    }
+
+    /// The line number of the last line read (for end-of-file messages).
+    pub(crate) fn last_line(&self) -> usize {
+        self.line.max(1)
+    }
+
+    pub(crate) fn physical(&mut self) -> Option<&'a [u8]> {
+        if self.pos >= self.bytes.len() {
+            return None;
+        }
+        let rest = &self.bytes[self.pos..];
+        let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+        self.pos += end + 1;
+        self.line += 1;
+        let mut text = &rest[..end];
+        if let Some(hash) = text.iter().position(|&b| b == b'#') {
+            text = &text[..hash];
+        }
+        Some(text)
+    }
+}
+
+fn trim_end(mut s: &[u8]) -> &[u8] {
+    while let [rest @ .., last] = s {
+        if last.is_ascii_whitespace() {
+            s = rest;
+        } else {
+            break;
+        }
+    }
+    s
+}
+
+impl<'a> Iterator for Lines<'a> {
+    type Item = (usize, Cow<'a, [u8]>);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let first = self.physical()?;
+        let start = self.line;
+        if !self.continuation || trim_end(first).last() != Some(&b'\\') {
+            return Some((start, Cow::Borrowed(first)));
+        }
+        let mut joined = Vec::new();
+        let mut cur = first;
+        loop {
+            let t = trim_end(cur);
+            match t.split_last() {
+                Some((b'\\', body)) => {
+                    joined.extend_from_slice(body);
+                    joined.push(b' ');
+                    match self.physical() {
+                        Some(next) => cur = next,
+                        None => break,
+                    }
+                }
+                _ => {
+                    joined.extend_from_slice(cur);
+                    break;
+                }
+            }
+        }
+        Some((start, Cow::Owned(joined)))
+    }
+}
+
+/// The whitespace-separated words of a line.
+pub(crate) fn words(s: &[u8]) -> impl Iterator<Item = &[u8]> {
+    s.split(|b| b.is_ascii_whitespace())
+        .filter(|w| !w.is_empty())
+}
+
+/// A word for messages (at most 40 characters).
+pub(crate) fn shown(w: &[u8]) -> String {
+    String::from_utf8_lossy(w).chars().take(40).collect()
+}
+
+/// Parses a finite number or fails naming what it was for.
+pub(crate) fn number(w: Option<&[u8]>, line: usize, what: &str) -> PResult<f32> {
+    let w = w.ok_or_else(|| ParseError::new(line, format!("missing {what}")))?;
+    match parse_f32(w) {
+        Some(v) if v.is_finite() => Ok(v),
+        Some(_) => Err(ParseError::new(
+            line,
+            format!("{what} is not a finite number ('{}')", shown(w)),
+        )),
+        None => Err(ParseError::new(
+            line,
+            format!("expected a number for {what}, found '{}'", shown(w)),
+        )),
+    }
+}
+
+/// True when the first statement of the file (after comments) is an OBJ one.
+pub(crate) fn looks_like_obj(bytes: &[u8]) -> bool {
+    Lines::new(bytes, false)
+        .take(1000)
+        .find_map(|(_, text)| words(&text).next().map(|w| w.to_vec()))
+        .is_some_and(|w| {
+            matches!(
+                w.as_slice(),
+                b"v" | b"vn" | b"vt" | b"f" | b"o" | b"g" | b"mtllib" | b"usemtl" | b"s"
+            )
+        })
+}
+
+struct Group {
+    name: String,
+    corners: Vec<u32>,
+    ends: Vec<u32>,
+    line: usize,
+}
+
+impl Group {
+    fn new(name: String) -> Self {
+        Self {
+            name,
+            corners: Vec::new(),
+            ends: Vec::new(),
+            line: 0,
+        }
+    }
+}
+
+/// Resolves one OBJ index (1-based, or negative: relative to the `count` defined so far).
+fn resolve(w: &[u8], count: usize, line: usize, what: &str) -> PResult<u32> {
+    let i = parse_int(w).ok_or_else(|| {
+        ParseError::new(
+            line,
+            format!("expected a {what} index, found '{}'", shown(w)),
+        )
+    })?;
+    let resolved = if i > 0 && (i as u64) <= count as u64 {
+        i - 1
+    } else if i < 0 && i.unsigned_abs() <= count as u64 {
+        count as i64 + i
+    } else if i == 0 {
+        return Err(ParseError::new(
+            line,
+            format!("{what} index 0 is invalid (OBJ indices start at 1)"),
+        ));
+    } else {
+        return Err(ParseError::new(
+            line,
+            format!(
+                "{what} index {i} is out of range: {count} {} defined above this line",
+                if what == "vertex" {
+                    "vertices are"
+                } else {
+                    "normals are"
+                }
+            ),
+        ));
+    };
+    u32::try_from(resolved)
+        .map_err(|_| ParseError::new(line, format!("{what} index {i} is too large")))
+}
+
+/// Reads an OBJ file into one model per non-empty `o` / `g` group.
+pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
+    let mut warnings = Vec::new();
+    let mut warned: HashSet<Vec<u8>> = HashSet::new();
+    let mut coords: Vec<f32> = Vec::new();
+    let mut rgb: Vec<f32> = Vec::new();
+    let mut colored = false;
+    let mut normal_count = 0usize;
+    let mut groups: Vec<Group> = Vec::new();
+    let mut cur = Group::new(String::new());
+    for (line, text) in Lines::new(bytes, true) {
+        let mut w = words(&text);
+        let Some(key) = w.next() else { continue };
+        match key {
+            b"v" => {
+                let x = number(w.next(), line, "a vertex's x")?;
+                let y = number(w.next(), line, "a vertex's y")?;
+                let z = number(w.next(), line, "a vertex's z")?;
+                let rest: [Option<&[u8]>; 5] = std::array::from_fn(|_| w.next());
+                let color = match rest {
+                    [None, ..] | [Some(_), None, ..] => None,
+                    [Some(r), Some(g), Some(b), None | Some(_), None] => Some([
+                        number(Some(r), line, "a vertex's red")?,
+                        number(Some(g), line, "a vertex's green")?,
+                        number(Some(b), line, "a vertex's blue")?,
+                    ]),
+                    _ => return Err(ParseError::new(
+                        line,
+                        "a vertex has too many values (expected 'v x y z [w]' or 'v x y z r g b')",
+                    )),
+                };
+                if let [Some(wv), None, ..] = rest {
+                    number(Some(wv), line, "a vertex's w")?;
+                }
+                coords.extend([x, y, z]);
+                match color {
+                    Some(c) => {
+                        if !colored {
+                            colored = true;
+                            rgb.resize(coords.len() - 3, 0.8);
+                        }
+                        rgb.extend(c);
+                    }
+                    None if colored => rgb.extend([0.8; 3]),
+                    None => {}
+                }
+            }
+            b"vn" => {
+                for what in ["a normal's x", "a normal's y", "a normal's z"] {
+                    number(w.next(), line, what)?;
+                }
+                normal_count += 1;
+            }
+            b"vt" => {}
+            b"f" => {
+                if cur.ends.is_empty() {
+                    cur.line = line;
+                }
+                let nverts = coords.len() / 3;
+                for corner in w {
+                    let mut parts = corner.split(|&b| b == b'/');
+                    let v = parts.next().unwrap_or(corner);
+                    cur.corners.push(resolve(v, nverts, line, "vertex")?);
+                    let _texture = parts.next();
+                    if let Some(n) = parts.next().filter(|n| !n.is_empty()) {
+                        resolve(n, normal_count, line, "normal")?;
+                    }
+                    if parts.next().is_some() {
+                        return Err(ParseError::new(
+                            line,
+                            format!(
+                                "bad face corner '{}' (expected v, v/vt, v//vn or v/vt/vn)",
+                                shown(corner)
+                            ),
+                        ));
+                    }
+                }
+                cur.ends.push(cur.corners.len() as u32);
+            }
+            b"o" | b"g" => {
+                let name = words(&text)
+                    .skip(1)
+                    .map(|n| String::from_utf8_lossy(n).into_owned())
+                    .collect::<Vec<_>>()
+                    .join(" ");
+                let name = if name.is_empty() {
+                    "default".to_string()
+                } else {
+                    name
+                };
+                let done = std::mem::replace(&mut cur, Group::new(name));
+                if !done.ends.is_empty() {
+                    groups.push(done);
+                }
+            }
+            _ => {
+                if warned.insert(key.to_vec()) {
+                    let k = shown(key);
+                    warnings.push(match key {
+                        b"usemtl" | b"mtllib" => {
+                            format!("OBJ '{k}' statements skipped (materials are not read)")
+                        }
+                        b"s" => "OBJ 's' (smoothing group) statements skipped".to_string(),
+                        b"l" | b"p" => {
+                            format!("OBJ '{k}' statements skipped (only faces are read)")
+                        }
+                        _ => format!("unknown OBJ statement '{k}' skipped (first on line {line})"),
+                    });
+                }
+            }
+        }
+    }
+    if !cur.ends.is_empty() {
+        groups.push(cur);
+    }
+    if groups.is_empty() {
+        return Err(ParseError::new(
+            1,
+            "the OBJ file has no faces ('f' lines): nothing to read",
+        ));
+    }
+    let mut models = Vec::with_capacity(groups.len());
+    for g in groups {
+        let colors = if colored {
+            Bind::PerCorner {
+                values: &rgb,
+                index: g.corners.clone(),
+            }
+        } else {
+            Bind::None
+        };
+        models.push(build(
+            ShapeSpec {
+                name: g.name,
+                transform: Mat4::IDENTITY,
+                coords: &coords,
+                corners: g.corners,
+                ends: g.ends,
+                colors,
+                normals: Bind::None,
+                ccw: true,
+                solid: false,
+                crease_angle: None,
+                diffuse: [0.8; 3],
+                line: g.line,
+                index_field: "f",
+            },
+            &mut warnings,
+        )?);
+    }
+    Ok((Scene { models }, warnings))
+}
+
+/// A model name as one OBJ word list (no line breaks or comment signs).
+fn clean_name(name: &str, i: usize) -> String {
+    let n: String = name
+        .chars()
+        .map(|c| if c.is_control() || c == '#' { '_' } else { c })
+        .collect();
+    let n = n.trim();
+    if n.is_empty() {
+        format!("shape_{}", i + 1)
+    } else {
+        n.to_string()
+    }
+}
+
+/// Writes all models as one OBJ, via a temporary file and a rename.
+pub fn write_obj(scene: &Scene, path: &Path) -> Result<(), WriteError> {
+    super::write_atomically(path, |w| write_obj_to(w, scene))
+}
+
+/// Writes the OBJ text to `w`.
+pub fn write_obj_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "# written by decimate: {} models, {} vertices, {} triangles",
+        scene.models.len(),
+        scene.vertex_count(),
+        scene.triangle_count()
+    )?;
+    writeln!(
+        w,
+        "# positions are in world space (model transforms applied)"
+    )?;
+    let mut base = 1u64;
+    for (i, m) in scene.models.iter().enumerate() {
+        writeln!(w, "o {}", clean_name(&m.name, i))?;
+        let colors = match &m.colors {
+            Some(Attribute::PerVertex(c)) if c.len() == m.positions.len() => Some(c),
+            _ => None,
+        };
+        for (k, &p) in m.positions.iter().enumerate() {
+            let p = m.transform.transform_point3(p);
+            match colors {
+                Some(c) => {
+                    let [r, g, b] = c[k];
+                    writeln!(w, "v {} {} {} {:?} {:?} {:?}", p.x, p.y, p.z, r, g, b)?
+                }
+                None => writeln!(w, "v {} {} {}", p.x, p.y, p.z)?,
+            }
+        }
+        let flip = m.transform.determinant() < 0.0;
+        for t in &m.triangles {
+            let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
+            writeln!(
+                w,
+                "f {} {} {}",
+                a as u64 + base,
+                b as u64 + base,
+                c as u64 + base
+            )?;
+        }
+        base += m.positions.len() as u64;
+    }
+    w.flush()
+}

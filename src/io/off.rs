@@ -1,0 +1,389 @@
+//! OFF (Geomview Object File Format): an ASCII reader and writer.
+//!
+//! Read: an `OFF` header with optional `ST`, `C`, `N` prefixes (`COFF`, `NOFF`, `CNOFF`...;
+//! the 4-D and n-D variants and binary OFF are refused), `#` comments, the counts line
+//! `vertices faces [edges]` (on the header line or the next), one vertex per line
+//! (`x y z`, then normal / colour / texture values as the prefixes say; a colour is also taken
+//! from a plain `OFF` vertex line with 3 or 4 extra values), one face per line
+//! (`n i1 … in`, optionally followed by a colour: 3 or 4 values, or 1 colour-map index that is
+//! ignored). Colours are 0..1 floats, or 0..255 when all three are integers. Polygons are
+//! triangulated. Counts are checked against the file size before anything is reserved.
+//! Write: ASCII `OFF` (or `COFF` when every model has per-vertex colours), all models in one
+//! file, world positions.
+
+use std::io::Write;
+use std::path::Path;
+
+use glam::Mat4;
+
+use super::build::{build, Bind, ShapeSpec};
+use super::lexer::{parse_int, PResult, ParseError};
+use super::obj::{number, shown, words, Lines};
+use super::WriteError;
+use crate::mesh::{Attribute, Scene};
+
+/// True when the first word of the file (after comments) is an OFF header keyword.
+pub(crate) fn looks_like_off(bytes: &[u8]) -> bool {
+    next_record(&mut Lines::new(bytes, false))
+        .and_then(|(_, text)| words(text).next())
+        .is_some_and(|w| header_kind(w).is_some())
+}
+
+/// The next line with something on it (comments cut off).
+fn next_record<'a>(lines: &mut Lines<'a>) -> Option<(usize, &'a [u8])> {
+    loop {
+        let text = lines.physical()?;
+        if words(text).next().is_some() {
+            return Some((lines.last_line(), text));
+        }
+    }
+}
+
+#[derive(Default, Clone, Copy)]
+struct Kind {
+    texture: bool,
+    color: bool,
+    normal: bool,
+    /// `4OFF` / `nOFF`: not three-dimensional.
+    dims: bool,
+}
+
+fn header_kind(w: &[u8]) -> Option<Kind> {
+    let mut prefix = w.strip_suffix(b"OFF")?;
+    let mut k = Kind::default();
+    if let Some(p) = prefix.strip_prefix(b"ST") {
+        k.texture = true;
+        prefix = p;
+    }
+    for &c in prefix {
+        match c {
+            b'C' if !k.color => k.color = true,
+            b'N' if !k.normal => k.normal = true,
+            b'4' | b'n' => k.dims = true,
+            _ => return None,
+        }
+    }
+    Some(k)
+}
+
+/// One colour from three (or four) words: integers mean 0..255.
+fn color(ws: &[&[u8]], line: usize) -> PResult<[f32; 3]> {
+    let ints = ws[..3].iter().all(|w| parse_int(w).is_some());
+    let mut c = [0f32; 3];
+    for (k, w) in ws[..3].iter().enumerate() {
+        c[k] = number(Some(w), line, "a colour component")?;
+        if ints {
+            c[k] /= 255.0;
+        }
+    }
+    if let Some(a) = ws.get(3) {
+        number(Some(a), line, "a colour's alpha")?;
+    }
+    Ok(c)
+}
+
+/// A count from the counts line; one record takes at least two bytes, so a count above half
+/// the file's size is refused before anything is reserved.
+fn count(w: Option<&[u8]>, line: usize, what: &str, file_len: usize) -> PResult<usize> {
+    let limit = file_len / 2;
+    let w = w.ok_or_else(|| {
+        ParseError::new(
+            line,
+            format!("missing the {what} count (expected 'vertices faces edges')"),
+        )
+    })?;
+    let n = parse_int(w).filter(|&n| n >= 0).ok_or_else(|| {
+        ParseError::new(
+            line,
+            format!("expected a {what} count, found '{}'", shown(w)),
+        )
+    })? as u64;
+    if n > limit as u64 {
+        return Err(ParseError::new(
+            line,
+            format!(
+                "the file declares {n} {}, more than its {} bytes can hold",
+                if what == "vertex" {
+                    "vertices"
+                } else {
+                    "faces"
+                },
+                limit * 2
+            ),
+        ));
+    }
+    Ok(n as usize)
+}
+
+/// Reads an OFF file into a scene of one model.
+pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
+    let mut warnings = Vec::new();
+    let mut lines = Lines::new(bytes, false);
+    let (hline, htext) =
+        next_record(&mut lines).ok_or_else(|| ParseError::new(1, "the OFF file is empty"))?;
+    let mut hw = words(htext);
+    let first = hw.next().unwrap_or_default();
+    let kind = header_kind(first).ok_or_else(|| {
+        ParseError::new(
+            hline,
+            format!("expected an 'OFF' header, found '{}'", shown(first)),
+        )
+    })?;
+    if kind.dims {
+        return Err(ParseError::new(
+            hline,
+            format!("'{}' (4-D or n-D OFF) is not supported", shown(first)),
+        ));
+    }
+    let rest: Vec<&[u8]> = hw.collect();
+    if rest
+        .first()
+        .is_some_and(|w| w.eq_ignore_ascii_case(b"BINARY"))
+    {
+        return Err(ParseError::new(hline, "binary OFF is not supported"));
+    }
+    let (counts_line, counts): (usize, Vec<&[u8]>) = if rest.is_empty() {
+        let (l, t) = next_record(&mut lines).ok_or_else(|| {
+            ParseError::new(hline, "unexpected end of file: expected the counts line")
+        })?;
+        (l, words(t).collect())
+    } else {
+        (hline, rest)
+    };
+    let nv = count(counts.first().copied(), counts_line, "vertex", bytes.len())?;
+    let nf = count(counts.get(1).copied(), counts_line, "face", bytes.len())?;
+    if nv == 0 || nf == 0 {
+        return Err(ParseError::new(
+            counts_line,
+            format!("the file declares {nv} vertices and {nf} faces: nothing to read"),
+        ));
+    }
+
+    let mut coords: Vec<f32> = Vec::with_capacity(nv * 3);
+    let mut rgb: Vec<f32> = Vec::new();
+    let mut ws: Vec<&[u8]> = Vec::new();
+    let mut last = counts_line;
+    for i in 0..nv {
+        let (line, text) = next_record(&mut lines).ok_or_else(|| {
+            ParseError::new(
+                last,
+                format!("unexpected end of file after {i} of {nv} vertices"),
+            )
+        })?;
+        last = line;
+        ws.clear();
+        ws.extend(words(text));
+        let mut it = ws.iter().copied();
+        coords.push(number(it.next(), line, "a vertex's x")?);
+        coords.push(number(it.next(), line, "a vertex's y")?);
+        coords.push(number(it.next(), line, "a vertex's z")?);
+        let mut extra = &ws[3..];
+        if kind.normal {
+            for what in ["a normal's x", "a normal's y", "a normal's z"] {
+                number(extra.first().copied(), line, what)?;
+                extra = &extra[1..];
+            }
+        }
+        let texture = if kind.texture { 2 } else { 0 };
+        let ncolor = extra.len().saturating_sub(texture);
+        let has_color = if kind.color {
+            if !(3..=4).contains(&ncolor) {
+                return Err(ParseError::new(
+                    line,
+                    format!(
+                        "expected 'x y z r g b [a]' on a COFF vertex line, found {} values",
+                        ws.len()
+                    ),
+                ));
+            }
+            true
+        } else {
+            match ncolor {
+                0 => false,
+                3 | 4 if !kind.normal => true,
+                _ => {
+                    return Err(ParseError::new(
+                        line,
+                        format!(
+                            "unexpected values after vertex {i}: {} values on the line",
+                            ws.len()
+                        ),
+                    ))
+                }
+            }
+        };
+        if has_color {
+            if rgb.len() < i * 3 {
+                rgb.resize(i * 3, 0.8);
+            }
+            rgb.extend(color(&extra[..ncolor], line)?);
+        } else if !rgb.is_empty() {
+            rgb.extend([0.8; 3]);
+        }
+        for w in &extra[ncolor..] {
+            number(Some(w), line, "a texture coordinate")?;
+        }
+    }
+
+    let mut corners: Vec<u32> = Vec::with_capacity(nf * 3);
+    let mut ends: Vec<u32> = Vec::with_capacity(nf);
+    let mut face_rgb: Vec<f32> = Vec::new();
+    let mut face_line = last;
+    for f in 0..nf {
+        let (line, text) = next_record(&mut lines).ok_or_else(|| {
+            ParseError::new(
+                last,
+                format!("unexpected end of file after {f} of {nf} faces"),
+            )
+        })?;
+        if f == 0 {
+            face_line = line;
+        }
+        last = line;
+        ws.clear();
+        ws.extend(words(text));
+        let n = ws
+            .first()
+            .and_then(|w| parse_int(w))
+            .filter(|&n| n >= 0 && (n as u64) < ws.len() as u64)
+            .ok_or_else(|| {
+                ParseError::new(
+                    line,
+                    format!("expected 'n i1 … in' for face {f}, found '{}'", shown(text)),
+                )
+            })? as usize;
+        for w in &ws[1..=n] {
+            let i = parse_int(w)
+                .filter(|&i| i >= 0 && (i as u64) < nv as u64)
+                .ok_or_else(|| {
+                    ParseError::new(
+                        line,
+                        format!("face {f}: vertex index '{}' is not in 0..{nv}", shown(w)),
+                    )
+                })?;
+            corners.push(i as u32);
+        }
+        ends.push(corners.len() as u32);
+        let extra = &ws[n + 1..];
+        match extra.len() {
+            0 | 1 => {
+                if let Some(w) = extra.first() {
+                    number(Some(w), line, "a colour-map index")?;
+                }
+                if !face_rgb.is_empty() {
+                    face_rgb.extend([0.8; 3]);
+                }
+            }
+            3 | 4 => {
+                if face_rgb.len() < f * 3 {
+                    face_rgb.resize(f * 3, 0.8);
+                }
+                face_rgb.extend(color(extra, line)?);
+            }
+            k => {
+                return Err(ParseError::new(
+                    line,
+                    format!(
+                        "face {f}: {k} values after its {n} indices (expected a colour of 3 or 4)"
+                    ),
+                ))
+            }
+        }
+    }
+    if next_record(&mut lines).is_some() {
+        warnings.push(format!(
+            "the OFF file has more lines after its {nf} faces; they were ignored"
+        ));
+    }
+    let colors = if !rgb.is_empty() {
+        rgb.resize(nv * 3, 0.8);
+        Bind::PerCorner {
+            values: &rgb,
+            index: corners.clone(),
+        }
+    } else if !face_rgb.is_empty() {
+        face_rgb.resize(nf * 3, 0.8);
+        Bind::PerFace {
+            values: &face_rgb,
+            index: (0..nf as u32).collect(),
+        }
+    } else {
+        Bind::None
+    };
+    let model = build(
+        ShapeSpec {
+            name: "off".into(),
+            transform: Mat4::IDENTITY,
+            coords: &coords,
+            corners,
+            ends,
+            colors,
+            normals: Bind::None,
+            ccw: true,
+            solid: false,
+            crease_angle: None,
+            diffuse: [0.8; 3],
+            line: face_line,
+            index_field: "faces",
+        },
+        &mut warnings,
+    )?;
+    Ok((
+        Scene {
+            models: vec![model],
+        },
+        warnings,
+    ))
+}
+
+/// Writes all models as one ASCII OFF, via a temporary file and a rename.
+pub fn write_off(scene: &Scene, path: &Path) -> Result<(), WriteError> {
+    super::write_atomically(path, |w| write_off_to(w, scene))
+}
+
+/// Writes the OFF text to `w`.
+pub fn write_off_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
+    let colored = !scene.models.is_empty()
+        && scene.models.iter().all(
+            |m| matches!(&m.colors, Some(Attribute::PerVertex(c)) if c.len() == m.positions.len()),
+        );
+    writeln!(w, "{}", if colored { "COFF" } else { "OFF" })?;
+    writeln!(
+        w,
+        "# written by decimate: {} models, world positions (model transforms applied)",
+        scene.models.len()
+    )?;
+    writeln!(w, "{} {} 0", scene.vertex_count(), scene.triangle_count())?;
+    for m in &scene.models {
+        let colors = match &m.colors {
+            Some(Attribute::PerVertex(c)) if colored => Some(c),
+            _ => None,
+        };
+        for (k, &p) in m.positions.iter().enumerate() {
+            let p = m.transform.transform_point3(p);
+            match colors {
+                Some(c) => {
+                    let [r, g, b] = c[k];
+                    writeln!(w, "{} {} {} {:?} {:?} {:?} 1.0", p.x, p.y, p.z, r, g, b)?
+                }
+                None => writeln!(w, "{} {} {}", p.x, p.y, p.z)?,
+            }
+        }
+    }
+    let mut base = 0u64;
+    for m in &scene.models {
+        let flip = m.transform.determinant() < 0.0;
+        for t in &m.triangles {
+            let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
+            writeln!(
+                w,
+                "3 {} {} {}",
+                a as u64 + base,
+                b as u64 + base,
+                c as u64 + base
+            )?;
+        }
+        base += m.positions.len() as u64;
+    }
+    w.flush()
+}
