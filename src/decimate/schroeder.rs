@@ -80,7 +80,7 @@ pub fn decimate_model(
         .filter(|&t| model.triangles[t as usize].iter().all(|&v| v < n))
         .collect();
     let tri = |t: u32| model.triangles[t as usize].map(|v| internal[v as usize]);
-    faces.par_sort_by_cached_key(|&t| tri(t).into_iter().min());
+    faces.sort_by_cached_key(|&t| tri(t).into_iter().min());
     let triangles: Vec<[u32; 3]> = faces.iter().map(|&t| tri(t)).collect();
 
     // 2. connect
@@ -190,18 +190,23 @@ impl Decimator {
     fn rank_all(&mut self) {
         let (conn, positions, cos_feature) = (&self.conn, &self.positions, self.cos_feature);
         let accumulated = &self.accumulated;
-        let entries: Vec<(f64, u32)> = (0..positions.len() as u32)
+        // An indexed collect writes straight into one vector of exactly n keys.
+        let keys: Vec<f64> = (0..positions.len() as u32)
             .into_par_iter()
             .map_init(Scratch::default, |scratch, v| {
                 match evaluate(conn, positions, cos_feature, v, scratch) {
                     Some((class, distance)) if class.removable() => {
-                        Some((distance + accumulated[v as usize], v))
+                        distance + accumulated[v as usize]
                     }
-                    _ => None,
+                    _ => f64::NAN, // not queued
                 }
             })
-            .flatten()
             .collect();
+        let entries: Vec<(f64, u32)> = (0..keys.len() as u32)
+            .filter(|&v| !keys[v as usize].is_nan())
+            .map(|v| (keys[v as usize], v))
+            .collect();
+        drop(keys);
         self.queue = VertexQueue::from_entries(positions.len(), entries);
     }
 
