@@ -13,12 +13,14 @@
 //!    every feature edge (dihedral angle above the feature angle) adds a plane through the
 //!    edge perpendicular to its triangle, weighted `CONSTRAINT_WEIGHT` × length², so that
 //!    outlines and creases stay put;
-//! 4. rank: every edge's collapse is planned (which end goes, where the other one moves) and
-//!    pushed on a min-heap keyed by its cost; entries carry the two ends' version numbers
-//!    and are dropped lazily when either end has changed since;
-//! 5. collapse: pop the cheapest, re-plan it, check it is legal (`is_collapse_legal`: a chain
-//!    of small named checks), perform it, add the quadrics, interpolate attributes and
-//!    re-rank the edges around the kept vertex;
+//! 4. rank: every edge's collapse is planned (which end goes, where the other one moves);
+//!    each vertex is queued in an indexed min-heap (`queue::VertexQueue`, keys updated in
+//!    place) under its cheapest edge — no stale entries to pop;
+//! 5. collapse: take the cheapest, re-plan it, check it is legal (`is_collapse_legal`: a
+//!    chain of small named checks; an illegal edge sends its vertex back under its cheapest
+//!    legal edge), perform it, add the quadrics, interpolate attributes and re-rank the
+//!    kept vertex and its neighbours (a neighbour is re-ranked over all its edges only when
+//!    its cheapest edge went to either end);
 //! 6. compact: live vertices (at their new positions) and triangles back into the model.
 //!
 //! The error of a placement `p` is `sqrt(Q(p) / W)`: `Q` the summed quadric, `W` the summed
@@ -31,11 +33,9 @@
 //! 0..=1), so edges across colour changes go last. Per-vertex normals are interpolated the
 //! same way; per-face colours stay with their surviving faces.
 
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
-
 use glam::{DVec3, Vec3};
 
+use super::queue::VertexQueue;
 use super::schroeder::{Limits, Outcome};
 use crate::mesh::topology::{Connectivity, Ring, RingShape};
 use crate::mesh::{spatial, Attribute, Model};
@@ -119,23 +119,23 @@ pub fn decimate_model(
             outcome.exhausted = true;
             break;
         }
-        let Some(entry) = d.heap.pop() else {
+        let Some((key, v)) = d.queue.peek() else {
             outcome.exhausted = !skipped_for_error;
             break;
         };
-        if !d.is_current(&entry) {
-            continue;
+        if d.colors.is_none() && key > bound2 {
+            break; // the cost is the error: nothing cheaper is left
         }
-        let Some(plan) = d.plan(entry.a, entry.b) else {
+        let plan = d.plan(v, d.best[v as usize]);
+        let Some(plan) = plan.filter(|p| d.is_collapse_legal(p)) else {
+            d.rank_legal(v);
             continue;
         };
         if plan.error2 > bound2 {
             // Colour cost can order an edge early whose geometric error is too large: skip
             // it; it is re-ranked should its ends change.
+            d.queue.remove(v);
             skipped_for_error = true;
-            continue;
-        }
-        if !d.is_collapse_legal(&plan) {
             continue;
         }
         d.collapse(&plan);
@@ -264,37 +264,6 @@ struct Plan {
     cost: f64,
 }
 
-/// A queued edge, valid while both ends still have the versions it was ranked with.
-#[derive(Debug, Clone, Copy)]
-struct Entry {
-    cost: f64,
-    a: u32,
-    b: u32,
-    version_a: u32,
-    version_b: u32,
-}
-
-impl PartialEq for Entry {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
-    }
-}
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Entry {
-    /// Reversed, so that `BinaryHeap` pops the cheapest; ties by vertex ids, so the order
-    /// does not depend on push order.
-    fn cmp(&self, o: &Self) -> Ordering {
-        o.cost
-            .total_cmp(&self.cost)
-            .then_with(|| (o.a, o.b).cmp(&(self.a, self.b)))
-    }
-}
-
 /// The working state of one model's decimation.
 struct Collapser {
     positions: Vec<DVec3>,
@@ -303,10 +272,10 @@ struct Collapser {
     quadrics: Vec<Quadric>,
     colors: Option<Vec<[f32; 3]>>,
     normals: Option<Vec<[f32; 3]>>,
-    versions: Vec<u32>,
-    heap: BinaryHeap<Entry>,
-    /// Heap length above which stale entries are swept out.
-    heap_limit: usize,
+    /// Each vertex's cheapest edge: the other end, and the cost the queue holds.
+    best: Vec<u32>,
+    cost: Vec<f64>,
+    queue: VertexQueue,
     around_remove: Vec<u32>,
     around_keep: Vec<u32>,
 }
@@ -335,9 +304,9 @@ impl Collapser {
             quadrics: vec![Quadric::default(); n],
             colors,
             normals,
-            versions: vec![0; n],
-            heap: BinaryHeap::new(),
-            heap_limit: 0,
+            best: vec![u32::MAX; n],
+            cost: vec![f64::INFINITY; n],
+            queue: VertexQueue::new(n),
             around_remove: Vec::new(),
             around_keep: Vec::new(),
         }
@@ -432,19 +401,61 @@ impl Collapser {
         (count, other)
     }
 
-    /// Queues every edge once, from its smaller end.
+    /// Queues every vertex under its cheapest edge, planning each edge once (from its
+    /// smaller end) for both of its ends.
     fn rank_all(&mut self) {
         let n = self.positions.len() as u32;
-        self.heap = BinaryHeap::with_capacity(3 * n as usize);
-        self.heap_limit = 6 * n as usize + 1024;
-        let mut neighbours = Vec::new();
-        for a in 0..n {
-            self.neighbours_of(a, &mut neighbours);
-            for &b in &neighbours {
-                if a < b {
-                    self.push(a, b);
+        let mut around = Vec::new();
+        for v in 0..n {
+            self.neighbours_of(v, &mut around);
+            for &w in around.iter().filter(|&&w| w > v) {
+                let Some(plan) = self.plan(v, w) else {
+                    continue;
+                };
+                for (x, y) in [(v, w), (w, v)] {
+                    if plan.cost < self.cost[x as usize] {
+                        self.best[x as usize] = y;
+                        self.cost[x as usize] = plan.cost;
+                    }
                 }
             }
+        }
+        for v in 0..n {
+            if self.best[v as usize] != u32::MAX {
+                self.queue.set(v, self.cost[v as usize]);
+            }
+        }
+    }
+
+    /// Queues `v` under its cheapest edge (only legal ones when `legal`), or takes it out
+    /// when it has none.
+    fn rank(&mut self, v: u32, legal: bool) {
+        let mut around = std::mem::take(&mut self.around_keep);
+        self.neighbours_of(v, &mut around);
+        let mut best = (f64::INFINITY, u32::MAX);
+        for &w in &around {
+            if let Some(plan) = self.plan(v, w) {
+                if plan.cost < best.0 && (!legal || self.is_collapse_legal(&plan)) {
+                    best = (plan.cost, w);
+                }
+            }
+        }
+        self.around_keep = around;
+        self.set_best(v, best.1, best.0);
+    }
+
+    /// Re-ranks `v` after its cheapest edge turned out illegal.
+    fn rank_legal(&mut self, v: u32) {
+        self.rank(v, true);
+    }
+
+    fn set_best(&mut self, v: u32, w: u32, cost: f64) {
+        self.best[v as usize] = w;
+        self.cost[v as usize] = cost;
+        if w == u32::MAX {
+            self.queue.remove(v);
+        } else {
+            self.queue.set(v, cost);
         }
     }
 
@@ -458,22 +469,6 @@ impl Collapser {
                 }
             }
         }
-    }
-
-    fn push(&mut self, a: u32, b: u32) {
-        if let Some(plan) = self.plan(a, b) {
-            self.heap.push(Entry {
-                cost: plan.cost,
-                a,
-                b,
-                version_a: self.versions[a as usize],
-                version_b: self.versions[b as usize],
-            });
-        }
-    }
-
-    fn is_current(&self, e: &Entry) -> bool {
-        self.versions[e.a as usize] == e.version_a && self.versions[e.b as usize] == e.version_b
     }
 
     /// Which end of `a`–`b` goes and where the other moves, or `None` when the kinds of the
@@ -666,22 +661,28 @@ impl Collapser {
         self.positions[k] = plan.position;
         let q = self.quadrics[r];
         self.quadrics[k].add(&q);
-        self.versions[r] = self.versions[r].wrapping_add(1);
-        self.versions[k] = self.versions[k].wrapping_add(1);
         self.kinds[r] = Kind::Fixed;
-        // Re-rank.
-        if self.heap.len() > self.heap_limit {
-            let versions = &self.versions;
-            self.heap.retain(|e| {
-                versions[e.a as usize] == e.version_a && versions[e.b as usize] == e.version_b
-            });
-        }
-        let mut around = std::mem::take(&mut self.around_keep);
+        self.set_best(plan.remove, u32::MAX, f64::INFINITY);
+        // Re-rank: the kept vertex over all its edges; a neighbour fully only when its
+        // cheapest edge led to either end, otherwise its edge to the kept vertex may now be
+        // cheaper. Edges elsewhere did not change.
+        let mut around = std::mem::take(&mut self.around_remove);
         self.neighbours_of(plan.keep, &mut around);
+        let mut best = (f64::INFINITY, u32::MAX);
         for &w in &around {
-            self.push(plan.keep.min(w), plan.keep.max(w));
+            let cost = self.plan(plan.keep, w).map_or(f64::INFINITY, |p| p.cost);
+            if cost < best.0 {
+                best = (cost, w);
+            }
+            let b = self.best[w as usize];
+            if b == plan.keep || b == plan.remove || b == u32::MAX {
+                self.rank(w, false);
+            } else if cost < self.cost[w as usize] {
+                self.set_best(w, plan.keep, cost);
+            }
         }
-        self.around_keep = around;
+        self.around_remove = around;
+        self.set_best(plan.keep, best.1, best.0);
     }
 
     /// Writes live vertices (at their new positions) and triangles back into `model`.
