@@ -216,11 +216,6 @@ impl Quadric {
         (p.dot(ap) + 2.0 * b.dot(p) + self.c).max(0.0)
     }
 
-    /// Squared distance-like error at `p`: `Q(p)` over the area behind the quadric.
-    fn error2(&self, p: DVec3) -> f64 {
-        self.eval(p) / self.area.max(f64::MIN_POSITIVE)
-    }
-
     /// The minimiser `-A⁻¹b`, or `None` when `A` is (nearly) singular.
     fn minimum(&self) -> Option<DVec3> {
         let [a00, a01, a02, a11, a12, a22] = self.a;
@@ -508,8 +503,8 @@ impl Collapser {
         let position = if free { self.place(&q, pr, pk) } else { pk };
         // What is written is f32: plan with exactly that.
         let position = position.as_vec3().as_dvec3();
-        let error2 = q.error2(position);
         let mut cost = q.eval(position);
+        let error2 = cost / q.area.max(f64::MIN_POSITIVE);
         if let Some(c) = &self.colors {
             let (cr, ck) = (c[remove as usize], c[keep as usize]);
             let dc = Vec3::from_array(cr) - Vec3::from_array(ck);
