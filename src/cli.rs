@@ -7,7 +7,7 @@
 
 use std::path::PathBuf;
 
-use crate::decimate::{ErrorBound, Params, Target};
+use crate::decimate::{Algorithm, ErrorBound, Params, Target};
 
 /// What the program does after reading the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -109,7 +109,10 @@ usage: decimate filename [action] [action-options]
   action                gui (DEFAULT) | nogui | shot
 
 action-options for nogui (one target is MANDATORY):
-  -o filename           the VRML 2.0 file to save as (DEFAULT: out.wrl)
+  -o filename           the file to save as; the extension picks the format: .wrl
+                        (VRML 2.0), .ply, .obj, .stl, .off (DEFAULT: out.wrl)
+  -a, --algorithm A     schroeder (DEFAULT: vertex removal, vertices never move) |
+                        qem (quadric edge collapse, vertices move)
   -p number             percent of the vertices to remove (100: as far as possible)
   -v number             number of vertices to remove
   --keep-vertices N     stop when N vertices are left
@@ -192,6 +195,17 @@ where
                     )));
                 }
                 params.feature_angle_deg = a;
+            }
+            "-a" | "--algorithm" => {
+                params.algorithm = match value(&arg)?.as_str() {
+                    "schroeder" => Algorithm::Schroeder,
+                    "qem" => Algorithm::Qem,
+                    other => {
+                        return Err(CliError(format!(
+                            "{arg}: unknown algorithm '{other}' (expected schroeder or qem)"
+                        )))
+                    }
+                }
             }
             "--no-weld" => weld = false,
             "--keep-features" => params.keep_features = true,
@@ -364,6 +378,24 @@ mod tests {
         let a = run(&["model.wrl", "nogui", "-v", "50"]);
         assert_eq!(a.params.target, Target::RemoveVertices(50));
         assert_eq!(a.output, PathBuf::from("out.wrl"));
+    }
+
+    #[test]
+    fn algorithm_is_schroeder_unless_qem_is_asked() {
+        let a = run(&["model.wrl", "nogui", "-p", "90"]);
+        assert_eq!(a.params.algorithm, Algorithm::Schroeder);
+        let a = run(&["model.wrl", "nogui", "-a", "qem", "-p", "90"]);
+        assert_eq!(a.params.algorithm, Algorithm::Qem);
+        let a = run(&["model.wrl", "nogui", "--algorithm", "schroeder", "-p", "90"]);
+        assert_eq!(a.params.algorithm, Algorithm::Schroeder);
+        let e = parse(["model.wrl", "nogui", "-a", "lindstrom", "-p", "9"]);
+        assert_eq!(
+            e,
+            Err(CliError(
+                "-a: unknown algorithm 'lindstrom' (expected schroeder or qem)".into()
+            ))
+        );
+        assert!(USAGE.contains("-a, --algorithm A"));
     }
 
     #[test]

@@ -3,6 +3,7 @@
 //! every model of a scene and returns a [`Report`].
 
 pub mod loop_split;
+pub mod qem;
 pub mod queue;
 pub mod schroeder;
 
@@ -35,6 +36,16 @@ pub enum ErrorBound {
     DiagonalFraction(f64),
 }
 
+/// Which decimation algorithm runs.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Algorithm {
+    /// Schroeder vertex removal: vertices never move (`schroeder`).
+    #[default]
+    Schroeder,
+    /// Garland–Heckbert quadric edge collapse: vertices move to the quadric optimum (`qem`).
+    Qem,
+}
+
 /// Everything a decimation run needs besides the scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Params {
@@ -44,6 +55,7 @@ pub struct Params {
     pub feature_angle_deg: f64,
     /// Never relax the feature angle to reach a count target (see [`decimate_scene`]).
     pub keep_features: bool,
+    pub algorithm: Algorithm,
 }
 
 impl Default for Params {
@@ -53,6 +65,7 @@ impl Default for Params {
             max_error: None,
             feature_angle_deg: 30.0,
             keep_features: false,
+            algorithm: Algorithm::default(),
         }
     }
 }
@@ -99,14 +112,15 @@ impl Report {
     }
 }
 
-/// Decimates every model of `scene` in place with Schroeder vertex removal. Models left with
+/// Decimates every model of `scene` in place with `params.algorithm` (Schroeder vertex removal
+/// by default, or quadric edge collapse). Models left with
 /// fewer than four vertices are dropped. `progress` is called with the fraction done (0..=1).
 ///
 /// Count targets (`-p` below 100, `-v`, `--keep-vertices`, `--keep-triangles`) are met even
 /// on scans that, once coarse, have sharp dihedral angles everywhere: when no candidate is
 /// left first, the feature angle is relaxed step by step. "As far as possible" (`-p 100`),
 /// an error bound alone, or `keep_features` never relax it, so features such as a cube's
-/// corners survive them.
+/// corners survive them. Quadric edge collapse never needs to relax it.
 pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
     let start = Instant::now();
     let vertices: Vec<usize> = scene.models.iter().map(|m| m.used_vertex_count()).collect();
@@ -160,9 +174,13 @@ pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnM
             feature_angle_deg: params.feature_angle_deg,
             relax_features,
         };
-        let outcome = schroeder::decimate_model(model, &limits, &mut |removed| {
+        let mut report_progress = |removed: usize| {
             progress(((done + removed) as f32 / planned as f32).min(1.0));
-        });
+        };
+        let outcome = match params.algorithm {
+            Algorithm::Schroeder => schroeder::decimate_model(model, &limits, &mut report_progress),
+            Algorithm::Qem => qem::decimate_model(model, &limits, &mut report_progress),
+        };
         done += outcome.removed;
         let vertices_after = model.positions.len().min(vertices[i] - outcome.removed);
         reports.push(ModelReport {

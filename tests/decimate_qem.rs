@@ -1,0 +1,273 @@
+//! Quadric edge collapse (`--algorithm qem`) on the report's test models and on spheres:
+//! exact counts, the invariants every output keeps (no degenerate or flipped triangle,
+//! manifold, Euler characteristic and boundary loops unchanged), flat shapes kept exactly,
+//! an error bound respected, and a lower mean error than Schroeder's at the same size.
+
+use decimate::decimate::{decimate_scene, Algorithm, ErrorBound, Params, Report, Target};
+use decimate::mesh::{measure, shapes, Attribute, Model, Scene};
+use decimate::metro::{compare, Options, Surface};
+
+fn run(model: Model, params: Params) -> (Model, Report) {
+    let mut scene = Scene {
+        models: vec![model],
+    };
+    let report = decimate_scene(&mut scene, &params, &mut |_| {});
+    let name = &report.models[0].name;
+    let model = scene
+        .models
+        .pop()
+        .unwrap_or_else(|| panic!("{name} dropped"));
+    (model, report)
+}
+
+fn qem(target: Target) -> Params {
+    Params {
+        target,
+        algorithm: Algorithm::Qem,
+        ..Params::default()
+    }
+}
+
+/// Collapses of zero error only (up to rounding): what a flat-faced shape can lose exactly.
+fn lossless() -> Params {
+    Params {
+        max_error: Some(ErrorBound::Absolute(1e-5)),
+        ..qem(Target::ErrorOnly)
+    }
+}
+
+/// The same invariants as tests/decimate_report_models.rs, except that vertices move.
+fn assert_invariants(before: &Model, after: &Model) {
+    let name = &before.name;
+    assert_eq!(
+        measure::degenerate_triangles(after, 1e-9),
+        0,
+        "{name}: degenerate triangle"
+    );
+    let e = measure::edge_counts(after);
+    assert_eq!(e.non_manifold, 0, "{name}: non-manifold edge");
+    assert_eq!(e.misoriented, 0, "{name}: flipped triangle");
+    assert_eq!(
+        measure::euler_characteristic(after),
+        measure::euler_characteristic(before),
+        "{name}: Euler characteristic"
+    );
+    assert_eq!(
+        measure::boundary_loops(after),
+        measure::boundary_loops(before),
+        "{name}: boundary loops"
+    );
+}
+
+/// Symmetric mean and max distance between two models, measured by metro.
+fn distance(a: &Model, b: &Model) -> (f64, f64) {
+    let surface = |m: &Model| {
+        Surface::from_scene(&Scene {
+            models: vec![m.clone()],
+        })
+    };
+    let options = Options {
+        samples: Some(200_000),
+        ..Options::default()
+    };
+    let c = compare(&surface(a), &surface(b), &options).expect("comparable surfaces");
+    let s = c.symmetric();
+    (s.mean, s.max)
+}
+
+#[test]
+fn test001_pyramid_loses_its_base_centre() {
+    let before = shapes::test001();
+    let (after, _) = run(before.clone(), lossless());
+    assert_eq!((after.positions.len(), after.triangles.len()), (4, 4));
+    assert_invariants(&before, &after);
+    assert!((measure::volume(&after) - measure::volume(&before)).abs() < 1e-6);
+}
+
+#[test]
+fn test002_small_cube_becomes_eight_corners() {
+    let before = shapes::test002();
+    let (after, _) = run(before.clone(), lossless());
+    assert_eq!((after.positions.len(), after.triangles.len()), (8, 12));
+    assert_invariants(&before, &after);
+    assert!((measure::volume(&after) - 8.0).abs() < 1e-5);
+}
+
+#[test]
+fn test003_plane_becomes_two_triangles_with_the_same_area() {
+    let before = shapes::test003();
+    let (after, report) = run(before.clone(), lossless());
+    assert_eq!((after.positions.len(), after.triangles.len()), (4, 2));
+    assert!(report.models[0].max_error < 1e-5);
+    assert_invariants(&before, &after);
+    assert!((measure::area(&after) - 100.0).abs() < 1e-6);
+}
+
+#[test]
+fn test004_large_cube_becomes_eight_corners_with_the_same_volume() {
+    let before = shapes::test004();
+    let (after, _) = run(before.clone(), lossless());
+    assert_eq!((after.positions.len(), after.triangles.len()), (8, 12));
+    assert_invariants(&before, &after);
+    assert!((measure::volume(&after) - 1000.0).abs() < 1e-3);
+    assert!((measure::area(&after) - 600.0).abs() < 1e-3);
+    // Count targets on the cube keep it a cube too: its faces are planes.
+    let (after, _) = run(before.clone(), qem(Target::RemovePercent(90.0)));
+    assert_eq!(after.positions.len(), 60);
+    assert_invariants(&before, &after);
+    assert!((measure::volume(&after) - 1000.0).abs() < 1e-3);
+}
+
+#[test]
+fn every_report_model_keeps_the_invariants_at_every_percentage() {
+    for before in shapes::all() {
+        let n = before.positions.len();
+        for p in [50.0, 80.0, 95.0, 100.0] {
+            let (after, report) = run(before.clone(), qem(Target::RemovePercent(p)));
+            assert_invariants(&before, &after);
+            let m = &report.models[0];
+            assert!(after.positions.len() >= 4, "{}: under four", before.name);
+            if p < 100.0 {
+                let left = n - (p / 100.0 * n as f64).round() as usize;
+                assert!(
+                    after.positions.len() == left || m.fully_decimated,
+                    "{} -p {p}: {} left, expected {left}",
+                    before.name,
+                    after.positions.len()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn sphere_percentages_are_exact() {
+    let before = shapes::uv_sphere(24, 48);
+    let n = before.positions.len();
+    for p in [60.0, 80.0, 90.0] {
+        let (after, report) = run(before.clone(), qem(Target::RemovePercent(p)));
+        let left = n - (p / 100.0 * n as f64).round() as usize;
+        assert_eq!(after.positions.len(), left, "-p {p}");
+        assert_eq!(report.models[0].vertices_after, left);
+        assert_eq!(
+            after.triangles.len(),
+            2 * left - 4,
+            "-p {p}: closed genus 0"
+        );
+        assert_invariants(&before, &after);
+        assert!(report.models[0].max_error > 0.0);
+    }
+    let (after, _) = run(before.clone(), qem(Target::KeepVertices(100)));
+    assert_eq!(after.positions.len(), 100);
+    let (after, _) = run(before.clone(), qem(Target::KeepTriangles(200)));
+    assert_eq!(after.triangles.len(), 200);
+}
+
+#[test]
+fn the_error_bound_holds_on_the_surface() {
+    let before = shapes::bumpy_sphere(32, 64);
+    let diagonal = before
+        .bounds()
+        .map_or(0.0, |(lo, hi)| (hi - lo).length() as f64);
+    let bound = 0.005 * diagonal;
+    let params = Params {
+        max_error: Some(ErrorBound::DiagonalFraction(0.005)),
+        ..qem(Target::ErrorOnly)
+    };
+    let (after, report) = run(before.clone(), params);
+    let m = &report.models[0];
+    assert!(m.max_error <= bound, "{} > {bound}", m.max_error);
+    assert!(
+        after.positions.len() < before.positions.len() / 2,
+        "{} of {} vertices left",
+        after.positions.len(),
+        before.positions.len()
+    );
+    assert_invariants(&before, &after);
+    let (mean, max) = distance(&before, &after);
+    assert!(mean <= bound, "mean {mean} > {bound}");
+    assert!(max <= 4.0 * bound, "max {max} > 4 × {bound}");
+}
+
+#[test]
+fn qem_beats_schroeder_by_ten_percent_on_a_bumpy_sphere() {
+    let before = shapes::bumpy_sphere(48, 96);
+    let target = Target::RemovePercent(90.0);
+    let schroeder = Params {
+        target,
+        ..Params::default()
+    };
+    let (s, _) = run(before.clone(), schroeder);
+    let (q, _) = run(before.clone(), qem(target));
+    assert_eq!(s.positions.len(), q.positions.len());
+    assert_invariants(&before, &q);
+    let (mean_s, _) = distance(&before, &s);
+    let (mean_q, _) = distance(&before, &q);
+    assert!(
+        mean_q <= 0.9 * mean_s,
+        "qem mean {mean_q} vs schroeder {mean_s}"
+    );
+}
+
+#[test]
+fn colours_follow_the_vertices_and_faces() {
+    // Per-vertex: red above the equator, blue below; interpolation keeps values in range.
+    let mut before = shapes::uv_sphere(16, 32);
+    let colours = before
+        .positions
+        .iter()
+        .map(|p| {
+            if p.y > 0.0 {
+                [1.0, 0.0, 0.0]
+            } else {
+                [0.0, 0.0, 1.0]
+            }
+        })
+        .collect();
+    before.colors = Some(Attribute::PerVertex(colours));
+    let (after, _) = run(before.clone(), qem(Target::RemovePercent(80.0)));
+    let Some(Attribute::PerVertex(c)) = &after.colors else {
+        panic!("per-vertex colours lost");
+    };
+    assert_eq!(c.len(), after.positions.len());
+    assert!(c
+        .iter()
+        .all(|c| c[1] == 0.0 && (c[0] + c[2] - 1.0).abs() < 1e-6));
+    // Pure colours survive away from the equator.
+    assert!(c.iter().any(|c| c[0] == 1.0) && c.iter().any(|c| c[2] == 1.0));
+    // Per-face: one colour per surviving face, drawn from the input's.
+    let mut before = shapes::test004();
+    let faces = (0..before.triangles.len())
+        .map(|t| [t as f32, 0.0, 0.0])
+        .collect();
+    before.colors = Some(Attribute::PerFace(faces));
+    let (after, _) = run(before, qem(Target::RemovePercent(90.0)));
+    let Some(Attribute::PerFace(c)) = &after.colors else {
+        panic!("per-face colours lost");
+    };
+    assert_eq!(c.len(), after.triangles.len());
+    let mut ids: Vec<u32> = c.iter().map(|c| c[0] as u32).collect();
+    ids.sort_unstable();
+    ids.dedup();
+    assert_eq!(ids.len(), after.triangles.len(), "a face colour used twice");
+}
+
+#[test]
+fn the_binary_runs_qem_end_to_end() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let input: std::path::PathBuf = [env!("CARGO_MANIFEST_DIR"), "assets", "test004.wrl"]
+        .iter()
+        .collect();
+    let out = dir.path().join("out.wrl");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_decimate"))
+        .arg(&input)
+        .args(["nogui", "-a", "qem", "-p", "90", "-o"])
+        .arg(&out)
+        .output()
+        .expect("run decimate");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let scene = decimate::io::read_scene(&out).expect("output parses").scene;
+    let after = &scene.models[0];
+    assert_eq!(after.positions.len(), 60);
+    assert!((measure::volume(after) - 1000.0).abs() < 1e-3);
+}

@@ -1,0 +1,73 @@
+#!/usr/bin/env python3
+"""One peer decimation for tools/bench-peers: bench-peers-run.py TOOL IN.ply OUT.ply TRIANGLES
+
+TOOL is meshlab (pymeshlab's quadric edge collapse), vtk (vtkQuadricDecimation) or
+meshoptimizer (meshopt_simplify through the `meshoptimizer` Python binding). Keeps about
+TRIANGLES triangles, writes OUT.ply and prints the seconds the decimation call alone took.
+"""
+import sys
+import time
+
+
+def meshlab(src, dst, triangles):
+    import pymeshlab
+
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(src)
+    start = time.perf_counter()
+    ms.meshing_decimation_quadric_edge_collapse(targetfacenum=triangles)
+    seconds = time.perf_counter() - start
+    ms.save_current_mesh(dst)
+    return seconds
+
+
+def vtk(src, dst, triangles):
+    import vtk as v
+
+    reader = v.vtkPLYReader()
+    reader.SetFileName(src)
+    reader.Update()
+    mesh = reader.GetOutput()
+    q = v.vtkQuadricDecimation()
+    q.SetInputData(mesh)
+    q.SetTargetReduction(1.0 - triangles / mesh.GetNumberOfPolys())
+    start = time.perf_counter()
+    q.Update()
+    seconds = time.perf_counter() - start
+    writer = v.vtkPLYWriter()
+    writer.SetFileName(dst)
+    writer.SetInputData(q.GetOutput())
+    writer.Write()
+    return seconds
+
+
+def meshoptimizer(src, dst, triangles):
+    import numpy as np
+    import pymeshlab
+    import meshoptimizer as mo
+
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(src)
+    m = ms.current_mesh()
+    positions = np.ascontiguousarray(m.vertex_matrix(), dtype=np.float32)
+    indices = np.ascontiguousarray(m.face_matrix(), dtype=np.uint32).reshape(-1)
+    out = np.zeros_like(indices)
+    start = time.perf_counter()
+    count = mo.simplify(
+        out, indices, positions, target_index_count=3 * triangles, target_error=1.0
+    )
+    seconds = time.perf_counter() - start
+    faces = out[:count].reshape(-1, 3)
+    used = np.unique(faces)
+    remap = np.zeros(len(positions), dtype=np.int64)
+    remap[used] = np.arange(len(used))
+    kept = pymeshlab.Mesh(positions[used].astype(np.float64), remap[faces].astype(np.int32))
+    out_set = pymeshlab.MeshSet()
+    out_set.add_mesh(kept)
+    out_set.save_current_mesh(dst)
+    return seconds
+
+
+if __name__ == "__main__":
+    tool, src, dst, triangles = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+    print(f"{globals()[tool](src, dst, triangles):.3f}")
