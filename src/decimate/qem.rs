@@ -38,6 +38,7 @@
 
 use glam::{DVec3, Vec3};
 
+use super::compact::{compact, Compacted};
 use super::queue::VertexQueue;
 use super::schroeder::{Limits, Outcome};
 use crate::mesh::topology::{Connectivity, Ring, RingShape};
@@ -689,34 +690,16 @@ impl Collapser {
     /// `order` maps internal vertex ids to the model's, `faces` internal triangle slots to the
     /// model's faces. Kept vertices keep their relative order from the input.
     fn write_back(&self, model: &mut Model, order: &[u32], faces: &[u32]) {
-        let slots: Vec<u32> = self.conn.alive_ids().collect();
         let mut inverse = vec![0u32; order.len()];
         for (i, &v) in order.iter().enumerate() {
             inverse[v as usize] = i as u32;
         }
-        // Model vertex id -> new id, u32::MAX while unused.
-        let mut remap = vec![u32::MAX; order.len()];
-        for &t in &slots {
-            for v in self.conn.triangle(t) {
-                remap[order[v as usize] as usize] = 0;
-            }
-        }
-        let mut kept_vertices: Vec<u32> = Vec::new();
-        for (v, r) in remap.iter_mut().enumerate() {
-            if *r == 0 {
-                *r = kept_vertices.len() as u32;
-                kept_vertices.push(v as u32);
-            }
-        }
-        let faces: Vec<u32> = slots.iter().map(|&t| faces[t as usize]).collect();
-        model.triangles = slots
-            .iter()
-            .map(|&t| {
-                self.conn
-                    .triangle(t)
-                    .map(|v| remap[order[v as usize] as usize])
-            })
-            .collect();
+        let Compacted {
+            kept_vertices,
+            faces,
+            triangles,
+        } = compact(&self.conn, order, faces);
+        model.triangles = triangles;
         model.positions = kept_vertices
             .iter()
             .map(|&v| self.positions[inverse[v as usize] as usize].as_vec3())
