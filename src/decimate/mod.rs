@@ -2,7 +2,7 @@
 //! point: [`decimate_scene`] applies a [`Params`] (target, error bound, feature angle) to
 //! every model of a scene and returns a [`Report`].
 
-pub mod compact;
+pub mod layout;
 pub mod loop_split;
 pub mod qem;
 pub mod queue;

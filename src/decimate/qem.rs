@@ -38,11 +38,11 @@
 
 use glam::{DVec3, Vec3};
 
-use super::compact::{compact, Compacted};
+use super::layout::{self, compact, Compacted};
 use super::queue::VertexQueue;
 use super::schroeder::{Limits, Outcome};
 use crate::mesh::topology::{Connectivity, Ring, RingShape};
-use crate::mesh::{spatial, Attribute, Model};
+use crate::mesh::{Attribute, Model};
 
 /// Weight of boundary and feature constraint planes relative to an area-weighted face plane.
 const CONSTRAINT_WEIGHT: f64 = 100.0;
@@ -68,22 +68,13 @@ pub fn decimate_model(
 ) -> Outcome {
     // 1. load, renumbered along a Morton curve for memory locality
     let n = model.positions.len() as u32;
-    let order = spatial::morton_order(&model.positions);
-    let mut internal = vec![0u32; n as usize];
-    for (i, &v) in order.iter().enumerate() {
-        internal[v as usize] = i as u32;
-    }
+    let loaded = layout::load(model);
+    let (order, faces) = (&loaded.order, &loaded.faces);
     let positions: Vec<DVec3> = order
         .iter()
         .map(|&v| model.positions[v as usize].as_dvec3())
         .collect();
-    let faces: Vec<u32> = (0..model.triangles.len() as u32)
-        .filter(|&t| model.triangles[t as usize].iter().all(|&v| v < n))
-        .collect();
-    let triangles: Vec<[u32; 3]> = faces
-        .iter()
-        .map(|&t| model.triangles[t as usize].map(|v| internal[v as usize]))
-        .collect();
+    let triangles = loaded.triangles(model);
     let per_vertex = |a: &Option<Attribute<[f32; 3]>>| match a {
         Some(Attribute::PerVertex(c)) if c.len() == n as usize => {
             Some(order.iter().map(|&v| c[v as usize]).collect::<Vec<_>>())
@@ -155,7 +146,7 @@ pub fn decimate_model(
 
     // 6. compact
     if outcome.removed > 0 {
-        d.write_back(model, &order, &faces);
+        d.write_back(model, order, faces);
     }
     outcome
 }

@@ -25,12 +25,12 @@
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-use super::compact::{compact, Compacted};
+use super::layout::{self, compact, Compacted};
 use super::loop_split;
 use super::queue::VertexQueue;
 use crate::mesh::classify::{classify, RingGeometry, VertexClass};
 use crate::mesh::topology::{Connectivity, Ring};
-use crate::mesh::{spatial, Attribute, Model};
+use crate::mesh::{Attribute, Model};
 
 /// How far one model may be decimated.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -69,20 +69,18 @@ pub fn decimate_model(
     limits: &Limits,
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
-    // 1. load, renumbered along a Morton curve for memory locality
-    let n = model.positions.len() as u32;
-    let order = spatial::morton_order(&model.positions);
-    let mut internal = vec![0u32; n as usize];
-    for (i, &v) in order.iter().enumerate() {
-        internal[v as usize] = i as u32;
-    }
-    let positions: Vec<Vec3> = order.iter().map(|&v| model.positions[v as usize]).collect();
-    let mut faces: Vec<u32> = (0..model.triangles.len() as u32)
-        .filter(|&t| model.triangles[t as usize].iter().all(|&v| v < n))
+    // 1. load, renumbered along a Morton curve, triangles sorted by their first vertex:
+    //    memory locality for everything below
+    let mut loaded = layout::load(model);
+    let positions: Vec<Vec3> = loaded
+        .order
+        .iter()
+        .map(|&v| model.positions[v as usize])
         .collect();
-    let tri = |t: u32| model.triangles[t as usize].map(|v| internal[v as usize]);
-    faces.sort_by_cached_key(|&t| tri(t).into_iter().min());
-    let triangles: Vec<[u32; 3]> = faces.iter().map(|&t| tri(t)).collect();
+    let mut faces = std::mem::take(&mut loaded.faces);
+    faces.sort_by_cached_key(|&t| loaded.triangle(model, t).into_iter().min());
+    loaded.faces = faces;
+    let triangles = loaded.triangles(model);
 
     // 2. connect
     let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
@@ -129,7 +127,7 @@ pub fn decimate_model(
 
     // 5. compact
     if outcome.removed > 0 {
-        d.write_back(model, &order, &faces);
+        d.write_back(model, &loaded.order, &loaded.faces);
     }
     outcome
 }

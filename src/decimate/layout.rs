@@ -1,8 +1,55 @@
-//! The shared last stage of every algorithm: the live triangles of a decimated
-//! `Connectivity`, back in the model's own vertex numbering, with the kept vertices in their
-//! input order.
+//! The first and last stages shared by every algorithm: [`load`] renumbers a model's
+//! vertices along a Morton curve (memory locality) and keeps its valid triangles in that
+//! numbering; [`compact`] brings the live triangles of a decimated `Connectivity` back to the
+//! model's numbering, with the kept vertices in their input order.
 
+use crate::mesh::spatial;
 use crate::mesh::topology::Connectivity;
+use crate::mesh::Model;
+
+/// A model's triangles in internal (Morton) vertex numbering.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Loaded {
+    /// Internal vertex id -> model vertex id.
+    pub order: Vec<u32>,
+    /// Internal triangle -> model face (faces with an out-of-range index are left out).
+    pub faces: Vec<u32>,
+    /// Model vertex id -> internal vertex id.
+    pub internal: Vec<u32>,
+}
+
+impl Loaded {
+    /// The model's face `t` in internal numbering.
+    pub fn triangle(&self, model: &Model, t: u32) -> [u32; 3] {
+        model.triangles[t as usize].map(|v| self.internal[v as usize])
+    }
+
+    /// Every loaded face in internal numbering, in `faces` order.
+    pub fn triangles(&self, model: &Model) -> Vec<[u32; 3]> {
+        self.faces
+            .iter()
+            .map(|&t| self.triangle(model, t))
+            .collect()
+    }
+}
+
+/// Renumbers `model`'s vertices along a Morton curve and lists its valid faces.
+pub fn load(model: &Model) -> Loaded {
+    let n = model.positions.len() as u32;
+    let order = spatial::morton_order(&model.positions);
+    let mut internal = vec![0u32; n as usize];
+    for (i, &v) in order.iter().enumerate() {
+        internal[v as usize] = i as u32;
+    }
+    let faces = (0..model.triangles.len() as u32)
+        .filter(|&t| model.triangles[t as usize].iter().all(|&v| v < n))
+        .collect();
+    Loaded {
+        order,
+        faces,
+        internal,
+    }
+}
 
 /// The live mesh in the model's numbering.
 #[derive(Debug, Clone, Default, PartialEq)]
