@@ -327,6 +327,16 @@ pub fn write_scene(scene: &Scene, path: &Path) -> Result<(), WriteError> {
     }
 }
 
+/// `m`'s triangles as they must be written by the formats that store world positions (PLY,
+/// OBJ, STL, OFF): when the model's transform mirrors, the transformed triangles would face
+/// inwards, so their winding is reversed to stay counter-clockwise seen from outside.
+pub(crate) fn outward_triangles(m: &crate::mesh::Model) -> impl Iterator<Item = [u32; 3]> + '_ {
+    let flip = m.transform.determinant() < 0.0;
+    m.triangles
+        .iter()
+        .map(move |t| if flip { [t[0], t[2], t[1]] } else { *t })
+}
+
 /// Writes `scene` as VRML 2.0 to `path` via a temporary file in the same folder and a rename.
 pub fn write_vrml2(scene: &Scene, path: &Path) -> Result<(), WriteError> {
     write_atomically(path, |w| write_vrml2_to(w, scene))

@@ -402,9 +402,7 @@ pub fn write_obj_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
                 None => writeln!(w, "v {} {} {}", p.x, p.y, p.z)?,
             }
         }
-        let flip = m.transform.determinant() < 0.0;
-        for t in &m.triangles {
-            let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
+        for [a, b, c] in super::outward_triangles(m) {
             writeln!(
                 w,
                 "f {} {} {}",

@@ -372,9 +372,7 @@ pub fn write_off_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
     }
     let mut base = 0u64;
     for m in &scene.models {
-        let flip = m.transform.determinant() < 0.0;
-        for t in &m.triangles {
-            let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
+        for [a, b, c] in super::outward_triangles(m) {
             writeln!(
                 w,
                 "3 {} {} {}",

@@ -477,9 +477,7 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
     }
     let mut base = 0u32;
     for m in &scene.models {
-        let flip = m.transform.determinant() < 0.0;
-        for t in &m.triangles {
-            let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
+        for [a, b, c] in super::outward_triangles(m) {
             w.write_all(&[3])?;
             for v in [a, b, c] {
                 w.write_all(&(v + base).to_le_bytes())?;

@@ -338,9 +338,7 @@ pub fn write_stl_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
             .iter()
             .map(|&p| m.transform.transform_point3(p))
             .collect();
-        let flip = m.transform.determinant() < 0.0;
-        for t in &m.triangles {
-            let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
+        for [a, b, c] in super::outward_triangles(m) {
             let [a, b, c] = [a, b, c].map(|i| world.get(i as usize).copied().unwrap_or(Vec3::ZERO));
             let n = (b - a).cross(c - a).normalize_or_zero();
             for (k, v) in [n, a, b, c].iter().flat_map(|v| v.to_array()).enumerate() {
