@@ -129,6 +129,33 @@ pub fn degenerate_triangles(m: &Model, relative: f64) -> usize {
         .count()
 }
 
+/// What a simplification of `before` into `after` broke, in words (empty when nothing):
+/// a degenerate triangle, a non-manifold or misoriented (flipped) edge, a changed Euler
+/// characteristic or number of boundary loops. The checks every algorithm's output must pass.
+pub fn invariant_violations(before: &Model, after: &Model) -> Vec<String> {
+    let mut broken = Vec::new();
+    let degenerate = degenerate_triangles(after, 1e-9);
+    if degenerate > 0 {
+        broken.push(format!("{degenerate} degenerate triangles"));
+    }
+    let e = edge_counts(after);
+    if e.non_manifold > 0 {
+        broken.push(format!("{} non-manifold edges", e.non_manifold));
+    }
+    if e.misoriented > 0 {
+        broken.push(format!("{} edges of flipped triangles", e.misoriented));
+    }
+    let (chi0, chi1) = (euler_characteristic(before), euler_characteristic(after));
+    if chi0 != chi1 {
+        broken.push(format!("Euler characteristic {chi0} -> {chi1}"));
+    }
+    let (loops0, loops1) = (boundary_loops(before), boundary_loops(after));
+    if loops0 != loops1 {
+        broken.push(format!("boundary loops {loops0} -> {loops1}"));
+    }
+    broken
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -150,6 +177,25 @@ mod tests {
             assert_eq!((e.non_manifold, e.misoriented), (0, 0), "{}", m.name);
             assert_eq!(degenerate_triangles(m, 1e-9), 0, "{}", m.name);
         }
+    }
+
+    #[test]
+    fn violations_name_what_broke() {
+        let cube = shapes::test004();
+        assert!(invariant_violations(&cube, &cube).is_empty());
+        let mut flipped = cube.clone();
+        flipped.triangles[0].swap(1, 2);
+        let broken = invariant_violations(&cube, &flipped);
+        assert_eq!(broken, vec!["3 edges of flipped triangles".to_string()]);
+        let mut holed = cube.clone();
+        holed.triangles.pop();
+        let broken = invariant_violations(&cube, &holed);
+        assert!(
+            broken
+                .iter()
+                .any(|b| b.starts_with("boundary loops 0 -> 1")),
+            "{broken:?}"
+        );
     }
 
     #[test]
