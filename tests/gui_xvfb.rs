@@ -44,29 +44,55 @@ fn run(program: &str, args: &[&str]) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
-fn wait_for(what: &str, timeout: Duration, mut ready: impl FnMut() -> bool) {
+fn wait_for(what: &str, timeout: Duration, log: &Path, mut ready: impl FnMut() -> bool) {
     let start = Instant::now();
     while !ready() {
-        assert!(start.elapsed() < timeout, "timed out waiting for {what}");
+        assert!(
+            start.elapsed() < timeout,
+            "timed out waiting for {what}; viewer log:\n{}",
+            read_log(log)
+        );
         std::thread::sleep(Duration::from_millis(200));
     }
 }
 
-/// The viewer's window id, once it is mapped.
-fn window_of(pid: u32) -> String {
-    let mut id = String::new();
-    wait_for("the viewer's window", Duration::from_secs(30), || {
-        let out = Command::new("xdotool")
-            .args(["search", "--onlyvisible", "--pid", &pid.to_string()])
-            .output();
-        if let Ok(out) = out {
-            if let Some(line) = String::from_utf8_lossy(&out.stdout).lines().last() {
-                id = line.trim().to_string();
+/// The viewer's window id, once it is mapped; `None` when none showed within `timeout`.
+/// Fails at once, with the viewer's log, when the viewer exits before its window shows.
+fn window_of(viewer: &mut Viewer, log: &Path, timeout: Duration) -> Option<String> {
+    let pid = viewer.0.id().to_string();
+    let start = Instant::now();
+    loop {
+        // By the _NET_WM_PID property winit sets, or by the WM_CLASS it sets.
+        for args in [
+            ["search", "--onlyvisible", "--pid", pid.as_str()],
+            ["search", "--onlyvisible", "--class", "decimate"],
+        ] {
+            if let Ok(out) = Command::new("xdotool").args(args).output() {
+                if let Some(line) = String::from_utf8_lossy(&out.stdout).lines().last() {
+                    if !line.trim().is_empty() {
+                        return Some(line.trim().to_string());
+                    }
+                }
             }
         }
-        !id.is_empty()
-    });
-    id
+        if let Ok(Some(status)) = viewer.0.try_wait() {
+            panic!(
+                "the viewer exited with {status} before its window showed:\n{}",
+                read_log(log)
+            );
+        }
+        if start.elapsed() > timeout {
+            return None;
+        }
+        std::thread::sleep(Duration::from_millis(200));
+    }
+}
+
+/// The last lines of the viewer's stderr, for failure messages.
+fn read_log(log: &Path) -> String {
+    let text = std::fs::read_to_string(log).unwrap_or_default();
+    let lines: Vec<&str> = text.lines().collect();
+    lines[lines.len().saturating_sub(15)..].join("\n")
 }
 
 fn screenshot(path: &Path) -> Vec<u8> {
@@ -135,6 +161,24 @@ fn write_cube(path: &Path) {
     decimate::io::write_vrml2(&scene, path).unwrap_or_else(|e| panic!("{e}"));
 }
 
+/// Starts the viewer on `cube.wrl` in `dir`, its stderr going to `log`.
+fn spawn_viewer(dir: &Path, log: &Path) -> Viewer {
+    let file = std::fs::File::create(log)
+        .unwrap_or_else(|e| panic!("cannot create {}: {e}", log.display()));
+    let child = Command::new(env!("CARGO_BIN_EXE_decimate"))
+        .arg("cube.wrl")
+        .current_dir(dir)
+        .env("VK_ICD_FILENAMES", LAVAPIPE)
+        .env("VK_DRIVER_FILES", LAVAPIPE)
+        .env_remove("WAYLAND_DISPLAY")
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(file)
+        .spawn()
+        .unwrap_or_else(|e| panic!("cannot start the viewer: {e}"));
+    Viewer(child)
+}
+
 #[test]
 fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     if !display_or_skip() {
@@ -142,18 +186,32 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     }
     let dir = scratch();
     write_cube(&dir.join("cube.wrl"));
-    let child = Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .arg("cube.wrl")
-        .current_dir(&dir)
-        .env("VK_ICD_FILENAMES", LAVAPIPE)
-        .env("VK_DRIVER_FILES", LAVAPIPE)
-        .env_remove("WAYLAND_DISPLAY")
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap_or_else(|e| panic!("cannot start the viewer: {e}"));
-    let mut viewer = Viewer(child);
-    let wid = window_of(viewer.0.id());
+    // A viewer whose window never shows is reported with its log and the X window tree; it
+    // is started a second time first, so that one slow start on a loaded machine is told
+    // apart from a viewer that cannot open its window.
+    let mut attempts = Vec::new();
+    let (mut viewer, wid, log_path) = loop {
+        let log_path = dir.join(format!("viewer-{}.log", attempts.len() + 1));
+        let mut viewer = spawn_viewer(&dir, &log_path);
+        if let Some(wid) = window_of(&mut viewer, &log_path, Duration::from_secs(45)) {
+            break (viewer, wid, log_path);
+        }
+        let tree = Command::new("xwininfo")
+            .args(["-root", "-tree"])
+            .output()
+            .map(|o| String::from_utf8_lossy(&o.stdout).into_owned())
+            .unwrap_or_default();
+        attempts.push(format!(
+            "attempt {}: no window in 45 s\nwindows:\n{tree}\nviewer log:\n{}",
+            attempts.len() + 1,
+            read_log(&log_path)
+        ));
+        drop(viewer);
+        assert!(attempts.len() < 2, "{}", attempts.join("\n\n"));
+    };
+    for a in &attempts {
+        eprintln!("gui_xvfb: {a}");
+    }
     // Let the first frames (shader compilation, fonts) land.
     std::thread::sleep(Duration::from_secs(2));
     let _ = Command::new("xdotool")
@@ -165,7 +223,9 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     std::thread::sleep(Duration::from_secs(1));
     run("xdotool", &["key", "--window", &wid, "F3"]);
     let out = dir.join("out.wrl");
-    wait_for("out.wrl", Duration::from_secs(20), || out.exists());
+    wait_for("out.wrl", Duration::from_secs(30), &log_path, || {
+        out.exists()
+    });
     std::thread::sleep(Duration::from_millis(300));
     let saved = decimate::io::read_scene(&out).unwrap_or_else(|e| panic!("{e}"));
     let vertices: usize = saved
