@@ -4,6 +4,7 @@
 
 pub mod layout;
 pub mod loop_split;
+pub mod progressive;
 pub mod qem;
 pub mod queue;
 pub mod schroeder;
@@ -123,6 +124,33 @@ impl Report {
 /// an error bound alone, or `keep_features` never relax it, so features such as a cube's
 /// corners survive them. Quadric edge collapse never needs to relax it.
 pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
+    run(scene, params, progress, None)
+}
+
+/// As [`decimate_scene`] with quadric edge collapse (whatever `params.algorithm` says: vertex
+/// removal has no vertex splits to record), and records every collapse: model `i` of the
+/// returned progressive scene has the decimated model `i` as its base and refines back to
+/// the input's model `i`. Models the four-vertex rule drops are dropped from both.
+pub fn decimate_scene_progressive(
+    scene: &mut Scene,
+    params: &Params,
+    progress: &mut dyn FnMut(f32),
+) -> (Report, progressive::ProgressiveScene) {
+    let params = Params {
+        algorithm: Algorithm::Qem,
+        ..*params
+    };
+    let mut models = Vec::new();
+    let report = run(scene, &params, progress, Some(&mut models));
+    (report, progressive::ProgressiveScene { models })
+}
+
+fn run(
+    scene: &mut Scene,
+    params: &Params,
+    progress: &mut dyn FnMut(f32),
+    mut record: Option<&mut Vec<progressive::ProgressiveModel>>,
+) -> Report {
     let start = Instant::now();
     let vertices: Vec<usize> = scene.models.iter().map(|m| m.used_vertex_count()).collect();
     let triangles: Vec<usize> = scene.models.iter().map(|m| m.triangles.len()).collect();
@@ -178,9 +206,17 @@ pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnM
         let mut report_progress = |removed: usize| {
             progress(((done + removed) as f32 / planned as f32).min(1.0));
         };
-        let outcome = match params.algorithm {
-            Algorithm::Schroeder => schroeder::decimate_model(model, &limits, &mut report_progress),
-            Algorithm::Qem => qem::decimate_model(model, &limits, &mut report_progress),
+        let outcome = match (params.algorithm, record.as_deref_mut()) {
+            (_, Some(models)) => {
+                let (outcome, pm) =
+                    qem::decimate_model_progressive(model, &limits, &mut report_progress);
+                models.push(pm);
+                outcome
+            }
+            (Algorithm::Schroeder, None) => {
+                schroeder::decimate_model(model, &limits, &mut report_progress)
+            }
+            (Algorithm::Qem, None) => qem::decimate_model(model, &limits, &mut report_progress),
         };
         done += outcome.removed;
         let vertices_after = model.positions.len().min(vertices[i] - outcome.removed);
@@ -200,6 +236,10 @@ pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnM
     // The original program's rule: a model left with fewer than four vertices is dropped.
     let mut keep = reports.iter().map(|r| !r.dropped);
     scene.models.retain(|_| keep.next().unwrap_or(true));
+    if let Some(models) = record {
+        let mut keep = reports.iter().map(|r| !r.dropped);
+        models.retain(|_| keep.next().unwrap_or(true));
+    }
     for r in reports.iter_mut().filter(|r| r.dropped) {
         r.vertices_after = 0;
         r.triangles_after = 0;

@@ -39,6 +39,7 @@
 use glam::{DVec3, Vec3};
 
 use super::layout::{self, compact, Compacted};
+use super::progressive::{CollapseRecord, ProgressiveModel, Recorder};
 use super::queue::VertexQueue;
 use super::schroeder::{Limits, Outcome};
 use crate::mesh::topology::{Connectivity, Ring, RingShape};
@@ -66,6 +67,45 @@ pub fn decimate_model(
     limits: &Limits,
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
+    run(model, limits, progress, None)
+}
+
+/// As [`decimate_model`], and records every collapse: the returned progressive model's base
+/// is the decimated `model`, and refining it all the way gives the input back.
+pub fn decimate_model_progressive(
+    model: &mut Model,
+    limits: &Limits,
+    progress: &mut dyn FnMut(usize),
+) -> (Outcome, ProgressiveModel) {
+    let face_colors = match &model.colors {
+        Some(Attribute::PerFace(c)) => Some(c.clone()),
+        _ => None,
+    };
+    let mut recorded = None;
+    let outcome = run(
+        model,
+        limits,
+        progress,
+        Some((&mut recorded, face_colors.as_deref())),
+    );
+    let pm = recorded.unwrap_or_else(|| ProgressiveModel {
+        base: model.clone(),
+        splits: Vec::new(),
+        vertex_ids: (0..model.positions.len() as u32).collect(),
+        face_ids: (0..model.triangles.len() as u32).collect(),
+    });
+    (outcome, pm)
+}
+
+/// Where a recording run puts its progressive model, and the input's per-face colours.
+type Recording<'a> = (&'a mut Option<ProgressiveModel>, Option<&'a [[f32; 3]]>);
+
+fn run(
+    model: &mut Model,
+    limits: &Limits,
+    progress: &mut dyn FnMut(usize),
+    recording: Option<Recording<'_>>,
+) -> Outcome {
     // 1. load, renumbered along a Morton curve for memory locality
     let n = model.positions.len() as u32;
     let loaded = layout::load(model);
@@ -91,6 +131,9 @@ pub fn decimate_model(
 
     // 2. connect
     let mut d = Collapser::new(positions, &triangles, colors, normals);
+    if recording.is_some() {
+        d.recorder = Some(Recorder::default());
+    }
 
     // 3. quadrics
     d.fill_quadrics(limits.feature_angle_deg.to_radians().cos());
@@ -145,7 +188,12 @@ pub fn decimate_model(
     progress(outcome.removed);
 
     // 6. compact
-    if outcome.removed > 0 {
+    if let Some((out, face_colors)) = recording {
+        let kept = d.write_back(model, order, faces);
+        if let Some(recorder) = d.recorder.take() {
+            *out = Some(recorder.finish(model.clone(), &kept, &d.conn, order, faces, face_colors));
+        }
+    } else if outcome.removed > 0 {
         d.write_back(model, order, faces);
     }
     outcome
@@ -270,6 +318,8 @@ struct Collapser {
     queue: VertexQueue,
     around_remove: Vec<u32>,
     around_keep: Vec<u32>,
+    /// Set when the collapses are recorded for a progressive mesh.
+    recorder: Option<Recorder>,
 }
 
 impl Collapser {
@@ -301,6 +351,7 @@ impl Collapser {
             queue: VertexQueue::new(n),
             around_remove: Vec::new(),
             around_keep: Vec::new(),
+            recorder: None,
         }
     }
 
@@ -631,6 +682,8 @@ impl Collapser {
         let lerp = |x: [f32; 3], y: [f32; 3]| {
             (Vec3::from_array(y) + s * (Vec3::from_array(x) - Vec3::from_array(y))).to_array()
         };
+        let colors_before = self.colors.as_ref().map(|c| (c[k], c[r]));
+        let normals_before = self.normals.as_ref().map(|n| (n[k], n[r]));
         if let Some(c) = &mut self.colors {
             c[k] = lerp(c[r], c[k]);
         }
@@ -639,16 +692,37 @@ impl Collapser {
                 .normalize_or_zero()
                 .to_array();
         }
-        // Topology: the edge's triangles go, the removed end's others are renamed. Removing
-        // then adding reuses the same slot, so per-face attributes stay with their faces.
+        // Topology: the edge's triangles go, the removed end's others are renamed in place,
+        // so per-face attributes stay with their faces and no slot is ever reused.
         let incident: Vec<u32> = self.conn.incident(plan.remove).to_vec();
+        let mut renamed = Vec::with_capacity(incident.len());
+        let mut deleted = Vec::with_capacity(2);
         for t in incident {
             let tri = self.conn.triangle(t);
-            self.conn.remove_triangle(t);
-            if !tri.contains(&plan.keep) {
-                self.conn
-                    .add_triangle(tri.map(|w| if w == plan.remove { plan.keep } else { w }));
+            if tri.contains(&plan.keep) {
+                self.conn.remove_triangle(t);
+                deleted.push((t, tri));
+            } else {
+                self.conn.rename_corner(t, plan.remove, plan.keep);
+                renamed.push(t);
             }
+        }
+        if let Some(recorder) = &mut self.recorder {
+            recorder.collapse(CollapseRecord {
+                keep: plan.keep,
+                remove: plan.remove,
+                keep_before: pk.as_vec3(),
+                keep_after: plan.position.as_vec3(),
+                removed_position: pr.as_vec3(),
+                colors: colors_before
+                    .zip(self.colors.as_ref())
+                    .map(|((ck, cr), c)| [ck, c[k], cr]),
+                normals: normals_before
+                    .zip(self.normals.as_ref())
+                    .map(|((nk, nr), n)| [nk, n[k], nr].map(Vec3::from_array)),
+                renamed: &renamed,
+                deleted: &deleted,
+            });
         }
         self.positions[k] = plan.position;
         let q = self.quadrics[r];
@@ -680,7 +754,8 @@ impl Collapser {
     /// Writes live vertices (at their new positions) and triangles back into `model`.
     /// `order` maps internal vertex ids to the model's, `faces` internal triangle slots to the
     /// model's faces. Kept vertices keep their relative order from the input.
-    fn write_back(&self, model: &mut Model, order: &[u32], faces: &[u32]) {
+    /// Returns the kept vertices' internal ids, in the written order.
+    fn write_back(&self, model: &mut Model, order: &[u32], faces: &[u32]) -> Vec<u32> {
         let mut inverse = vec![0u32; order.len()];
         for (i, &v) in order.iter().enumerate() {
             inverse[v as usize] = i as u32;
@@ -711,6 +786,11 @@ impl Collapser {
                     .collect(),
             )
         });
+        kept_vertices
+            .iter()
+            .map(internal_of)
+            .map(|i| i as u32)
+            .collect()
     }
 }
 

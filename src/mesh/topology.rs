@@ -189,6 +189,18 @@ impl Connectivity {
         t
     }
 
+    /// Replaces corner `from` of live triangle `t` by `to`, in place: the slot and the corner
+    /// order stay, so a face keeps its id and its orientation (edge collapse, vertex split).
+    pub fn rename_corner(&mut self, t: u32, from: u32, to: u32) {
+        let tri = &mut self.triangles[t as usize];
+        let Some(corner) = tri.iter().position(|&v| v == from) else {
+            return;
+        };
+        tri[corner] = to;
+        self.unlink(from, t);
+        self.link(to, t);
+    }
+
     /// True when some live triangle not incident to `except` has the edge `a`–`b`.
     pub fn has_edge_avoiding(&self, a: u32, b: u32, except: u32) -> bool {
         self.incident(a).iter().any(|&t| {

@@ -1,0 +1,533 @@
+//! Progressive meshes (H. Hoppe, "Progressive Meshes", SIGGRAPH 1996): the edge collapses of
+//! a quadric decimation (`qem`), recorded in reverse as vertex splits, so that every level of
+//! detail between the base mesh and the original can be rebuilt exactly.
+//!
+//! Numbering makes every level a prefix: the base mesh's vertices and faces come first, split
+//! `i` adds vertex `base + i` and appends its faces. A level is therefore a length of the
+//! vertex and face arrays plus the splits' in-place edits (the faces whose corner moves to the
+//! new vertex, the position of the vertex that splits), and [`Lod`] moves between levels one
+//! split or collapse at a time. [`ProgressiveModel::vertex_ids`] and `face_ids` map the
+//! fully refined mesh back to the original model's numbering.
+//!
+//! [`Recorder`] is what the collapse loop fills; [`Recorder::finish`] turns its collapses, in
+//! the loop's internal numbering, into a [`ProgressiveModel`].
+
+use glam::Vec3;
+
+use crate::mesh::topology::Connectivity;
+use crate::mesh::{Attribute, Model};
+
+/// One vertex split: the inverse of one edge collapse.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VertexSplit {
+    /// The vertex that splits in two; always below the new vertex's id.
+    pub keep: u32,
+    /// `keep`'s position before the split (coarse) and after it (fine).
+    pub keep_coarse: Vec3,
+    pub keep_fine: Vec3,
+    /// The new vertex's position; its id is the base vertex count plus this split's index.
+    pub position: Vec3,
+    /// Per-vertex colours, when the model has them: `keep` coarse, `keep` fine, the new one.
+    pub colors: Option<[[f32; 3]; 3]>,
+    /// Per-vertex normals, when the model has them, in the same order.
+    pub normals: Option<[Vec3; 3]>,
+    /// Faces (ids at this level) whose `keep` corner becomes the new vertex.
+    pub renamed: Vec<u32>,
+    /// Faces the split appends (one on a boundary edge, two inside).
+    pub added: Vec<[u32; 3]>,
+    /// Per-face colours of `added`, when the model has per-face colours.
+    pub added_colors: Vec<[f32; 3]>,
+}
+
+/// One model's progressive mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProgressiveModel {
+    /// The coarsest level, with the original's name, transform and material. Its attributes,
+    /// when present, are per vertex (colours, normals) or per face (colours).
+    pub base: Model,
+    /// Splits from the base towards the original, in order.
+    pub splits: Vec<VertexSplit>,
+    /// Vertex id (base and split vertices) → the original model's vertex id.
+    pub vertex_ids: Vec<u32>,
+    /// Face id (base and split faces) → the original model's face id.
+    pub face_ids: Vec<u32>,
+}
+
+/// Every model of a scene, in scene order.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ProgressiveScene {
+    pub models: Vec<ProgressiveModel>,
+}
+
+impl ProgressiveModel {
+    /// Vertices of the fully refined mesh.
+    pub fn full_vertex_count(&self) -> usize {
+        self.base.positions.len() + self.splits.len()
+    }
+
+    /// Faces of the fully refined mesh.
+    pub fn full_face_count(&self) -> usize {
+        self.base.triangles.len() + self.splits.iter().map(|s| s.added.len()).sum::<usize>()
+    }
+
+    /// The fully refined mesh in the original model's numbering: the original's connectivity
+    /// and positions, exactly (vertices no face used are not part of it).
+    pub fn original(&self) -> Model {
+        let mut lod = Lod::new(self);
+        lod.set_level(self.splits.len());
+        let fine = lod.model();
+        let n = self
+            .vertex_ids
+            .iter()
+            .map(|&v| v as usize + 1)
+            .max()
+            .unwrap_or(0);
+        let mut model = Model {
+            positions: vec![Vec3::ZERO; n],
+            triangles: vec![[0; 3]; fine.triangles.len()],
+            colors: None,
+            normals: None,
+            ..fine.clone()
+        };
+        for (pm, &orig) in self.vertex_ids.iter().enumerate() {
+            model.positions[orig as usize] = fine.positions[pm];
+        }
+        for (pm, &orig) in self.face_ids.iter().enumerate() {
+            if let Some(slot) = model.triangles.get_mut(orig as usize) {
+                *slot = fine.triangles[pm].map(|v| self.vertex_ids[v as usize]);
+            }
+        }
+        let vertex_ids = &self.vertex_ids;
+        let face_ids = &self.face_ids;
+        model.colors = fine.colors.as_ref().map(|a| match a {
+            Attribute::PerVertex(c) => Attribute::PerVertex(scatter(c, vertex_ids, n)),
+            Attribute::PerFace(c) => Attribute::PerFace(scatter(c, face_ids, fine.triangles.len())),
+        });
+        model.normals = fine.normals.as_ref().map(|a| match a {
+            Attribute::PerVertex(v) => Attribute::PerVertex(scatter(v, vertex_ids, n)),
+            Attribute::PerFace(v) => Attribute::PerFace(scatter(v, face_ids, fine.triangles.len())),
+        });
+        model
+    }
+
+    /// Checks that every index is in range for the level it is used at, so that [`Lod`]
+    /// never indexes out of bounds: a file read from disk is checked before use.
+    pub fn validate(&self) -> Result<(), String> {
+        let base_v = self.base.positions.len();
+        let mut faces = self.base.triangles.len();
+        for (t, tri) in self.base.triangles.iter().enumerate() {
+            if tri.iter().any(|&v| v as usize >= base_v) {
+                return Err(format!("base face {t} uses a vertex out of range"));
+            }
+        }
+        let vertex_attr_ok = |a: &Option<Attribute<[f32; 3]>>| match a {
+            None => true,
+            Some(Attribute::PerVertex(c)) => c.len() == base_v,
+            Some(Attribute::PerFace(c)) => c.len() == self.base.triangles.len(),
+        };
+        if !vertex_attr_ok(&self.base.colors) {
+            return Err("base colours do not match the base mesh".into());
+        }
+        match &self.base.normals {
+            None => {}
+            Some(Attribute::PerVertex(n)) if n.len() == base_v => {}
+            Some(_) => return Err("base normals must be one per base vertex".into()),
+        }
+        let vertex_colors = matches!(self.base.colors, Some(Attribute::PerVertex(_)));
+        let face_colors = matches!(self.base.colors, Some(Attribute::PerFace(_)));
+        let normals = self.base.normals.is_some();
+        for (i, s) in self.splits.iter().enumerate() {
+            let new = (base_v + i) as u32;
+            if s.keep >= new {
+                return Err(format!(
+                    "split {i} splits vertex {} that does not exist yet",
+                    s.keep
+                ));
+            }
+            if s.renamed.iter().any(|&f| f as usize >= faces) {
+                return Err(format!("split {i} renames a face that does not exist yet"));
+            }
+            if s.added.iter().flatten().any(|&v| v > new) {
+                return Err(format!("split {i} adds a face over a vertex out of range"));
+            }
+            if s.colors.is_some() != vertex_colors || s.normals.is_some() != normals {
+                return Err(format!("split {i}: attributes differ from the base mesh's"));
+            }
+            if face_colors && s.added_colors.len() != s.added.len() {
+                return Err(format!("split {i}: one colour per added face expected"));
+            }
+            faces += s.added.len();
+        }
+        if self.vertex_ids.len() != self.full_vertex_count() {
+            return Err("one original vertex id per vertex expected".into());
+        }
+        if self.face_ids.len() != faces {
+            return Err("one original face id per face expected".into());
+        }
+        Ok(())
+    }
+}
+
+fn scatter<T: Copy + Default>(values: &[T], ids: &[u32], n: usize) -> Vec<T> {
+    let mut out = vec![T::default(); n];
+    for (i, &id) in ids.iter().enumerate() {
+        if let (Some(slot), Some(&v)) = (out.get_mut(id as usize), values.get(i)) {
+            *slot = v;
+        }
+    }
+    out
+}
+
+/// A cursor over one progressive model's levels: level 0 is the base mesh, level
+/// `splits.len()` the original. Moving one level costs the one split or collapse.
+#[derive(Debug, Clone)]
+pub struct Lod<'a> {
+    pm: &'a ProgressiveModel,
+    level: usize,
+    model: Model,
+}
+
+impl<'a> Lod<'a> {
+    /// At level 0, the base mesh. `pm` must have passed [`ProgressiveModel::validate`] (as
+    /// every progressive model made by `qem` or read by `io::progressive` has).
+    pub fn new(pm: &'a ProgressiveModel) -> Self {
+        Self {
+            pm,
+            level: 0,
+            model: pm.base.clone(),
+        }
+    }
+
+    pub fn level(&self) -> usize {
+        self.level
+    }
+
+    /// The number of levels above the base.
+    pub fn max_level(&self) -> usize {
+        self.pm.splits.len()
+    }
+
+    /// The mesh at the current level, in progressive numbering.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// Moves to `level` (clamped to the levels there are).
+    pub fn set_level(&mut self, level: usize) {
+        let level = level.min(self.max_level());
+        while self.level < level {
+            self.refine();
+        }
+        while self.level > level {
+            self.coarsen();
+        }
+    }
+
+    /// Applies the next vertex split.
+    fn refine(&mut self) {
+        let s = &self.pm.splits[self.level];
+        let m = &mut self.model;
+        let new = m.positions.len() as u32;
+        m.positions[s.keep as usize] = s.keep_fine;
+        m.positions.push(s.position);
+        for &f in &s.renamed {
+            for corner in &mut m.triangles[f as usize] {
+                if *corner == s.keep {
+                    *corner = new;
+                }
+            }
+        }
+        m.triangles.extend_from_slice(&s.added);
+        match &mut m.colors {
+            Some(Attribute::PerVertex(c)) => {
+                if let Some([_, fine, own]) = s.colors {
+                    c[s.keep as usize] = fine;
+                    c.push(own);
+                }
+            }
+            Some(Attribute::PerFace(c)) => c.extend_from_slice(&s.added_colors),
+            None => {}
+        }
+        if let (Some(Attribute::PerVertex(n)), Some([_, fine, own])) = (&mut m.normals, s.normals) {
+            n[s.keep as usize] = fine;
+            n.push(own);
+        }
+        self.level += 1;
+    }
+
+    /// Undoes the last vertex split: the edge collapse it stands for.
+    fn coarsen(&mut self) {
+        self.level -= 1;
+        let s = &self.pm.splits[self.level];
+        let m = &mut self.model;
+        let new = (m.positions.len() - 1) as u32;
+        m.positions.pop();
+        m.positions[s.keep as usize] = s.keep_coarse;
+        m.triangles.truncate(m.triangles.len() - s.added.len());
+        for &f in &s.renamed {
+            for corner in &mut m.triangles[f as usize] {
+                if *corner == new {
+                    *corner = s.keep;
+                }
+            }
+        }
+        match &mut m.colors {
+            Some(Attribute::PerVertex(c)) => {
+                c.pop();
+                if let Some([coarse, _, _]) = s.colors {
+                    c[s.keep as usize] = coarse;
+                }
+            }
+            Some(Attribute::PerFace(c)) => c.truncate(c.len() - s.added.len()),
+            None => {}
+        }
+        if let Some(Attribute::PerVertex(n)) = &mut m.normals {
+            n.pop();
+            if let Some([coarse, _, _]) = s.normals {
+                n[s.keep as usize] = coarse;
+            }
+        }
+    }
+
+    /// Where each vertex of the current level was at `coarse` (a lower level): its own
+    /// position there, or that of the vertex it split from — the start of a geomorph from
+    /// `coarse` to this level (vertices glide from there to [`Self::model`]'s positions).
+    pub fn positions_at(&self, coarse: usize) -> Vec<Vec3> {
+        let coarse = coarse.min(self.level);
+        let base = self.pm.base.positions.len();
+        let splits = &self.pm.splits[coarse..self.level];
+        // Positions at `coarse` of the vertices that exist there.
+        let mut at = self.model.positions[..base + coarse].to_vec();
+        for s in splits.iter().rev() {
+            if (s.keep as usize) < base + coarse {
+                at[s.keep as usize] = s.keep_coarse;
+            }
+        }
+        // Each later vertex starts where its ancestor at `coarse` is.
+        let mut ancestor: Vec<u32> = (0..(base + coarse) as u32).collect();
+        for s in splits {
+            let a = ancestor[s.keep as usize];
+            ancestor.push(a);
+        }
+        ancestor.iter().map(|&a| at[a as usize]).collect()
+    }
+}
+
+/// One edge collapse as the collapse loop performed it, in its internal numbering.
+#[derive(Debug, Clone)]
+struct Collapse {
+    keep: u32,
+    remove: u32,
+    keep_before: Vec3,
+    keep_after: Vec3,
+    removed_position: Vec3,
+    colors: Option<[[f32; 3]; 3]>,
+    normals: Option<[Vec3; 3]>,
+    /// Slots whose `remove` corner became `keep`.
+    renamed: Vec<u32>,
+    /// Slots deleted with the edge, and their triangles.
+    deleted: Vec<(u32, [u32; 3])>,
+}
+
+/// Filled by the collapse loop, one [`Recorder::collapse`] per edge collapse.
+#[derive(Debug, Clone, Default)]
+pub struct Recorder {
+    collapses: Vec<Collapse>,
+}
+
+/// What the collapse loop knows of one collapse, before it performs it.
+#[derive(Debug, Clone, Copy)]
+pub struct CollapseRecord<'a> {
+    pub keep: u32,
+    pub remove: u32,
+    pub keep_before: Vec3,
+    pub keep_after: Vec3,
+    pub removed_position: Vec3,
+    /// `keep` before, `keep` after, `remove`.
+    pub colors: Option<[[f32; 3]; 3]>,
+    pub normals: Option<[Vec3; 3]>,
+    pub renamed: &'a [u32],
+    pub deleted: &'a [(u32, [u32; 3])],
+}
+
+impl Recorder {
+    pub fn collapse(&mut self, c: CollapseRecord<'_>) {
+        self.collapses.push(Collapse {
+            keep: c.keep,
+            remove: c.remove,
+            keep_before: c.keep_before,
+            keep_after: c.keep_after,
+            removed_position: c.removed_position,
+            colors: c.colors,
+            normals: c.normals,
+            renamed: c.renamed.to_vec(),
+            deleted: c.deleted.to_vec(),
+        });
+    }
+
+    /// The progressive model whose base is `base` — the decimated model exactly as the loop
+    /// wrote it back, its vertices `kept` (internal ids, in the base's order) and its faces
+    /// the live slots of `conn` ascending. `order` and `faces` map internal vertex ids and
+    /// triangle slots to the original model's; `face_colors` are the original's per-face
+    /// colours, if any. Slots must never have been reused (the loop renames in place).
+    pub fn finish(
+        self,
+        base: Model,
+        kept: &[u32],
+        conn: &Connectivity,
+        order: &[u32],
+        faces: &[u32],
+        face_colors: Option<&[[f32; 3]]>,
+    ) -> ProgressiveModel {
+        let mut pm_vertex = vec![u32::MAX; order.len()];
+        let mut vertex_ids = Vec::with_capacity(kept.len() + self.collapses.len());
+        for (i, &v) in kept.iter().enumerate() {
+            pm_vertex[v as usize] = i as u32;
+            vertex_ids.push(order[v as usize]);
+        }
+        let mut pm_face = vec![u32::MAX; conn.triangles().len()];
+        let mut face_ids = Vec::new();
+        for (i, t) in conn.alive_ids().enumerate() {
+            pm_face[t as usize] = i as u32;
+            face_ids.push(faces[t as usize]);
+        }
+        let vertex_colors = matches!(base.colors, Some(Attribute::PerVertex(_)));
+        let normals = matches!(base.normals, Some(Attribute::PerVertex(_)));
+        let mut splits = Vec::with_capacity(self.collapses.len());
+        for c in self.collapses.into_iter().rev() {
+            let new = vertex_ids.len() as u32;
+            pm_vertex[c.remove as usize] = new;
+            vertex_ids.push(order[c.remove as usize]);
+            let renamed = c.renamed.iter().map(|&t| pm_face[t as usize]).collect();
+            let mut added = Vec::with_capacity(c.deleted.len());
+            let mut added_colors = Vec::new();
+            for &(t, tri) in &c.deleted {
+                pm_face[t as usize] = face_ids.len() as u32;
+                face_ids.push(faces[t as usize]);
+                added.push(tri.map(|v| pm_vertex[v as usize]));
+                if let Some(fc) = face_colors {
+                    added_colors.push(
+                        fc.get(faces[t as usize] as usize)
+                            .copied()
+                            .unwrap_or_default(),
+                    );
+                }
+            }
+            splits.push(VertexSplit {
+                keep: pm_vertex[c.keep as usize],
+                keep_coarse: c.keep_after,
+                keep_fine: c.keep_before,
+                position: c.removed_position,
+                // Recorded as keep before, keep after, removed; a split's order is keep
+                // coarse (after the collapse), keep fine (before it), new.
+                colors: c
+                    .colors
+                    .filter(|_| vertex_colors)
+                    .map(|[b, a, r]| [a, b, r]),
+                normals: c.normals.filter(|_| normals).map(|[b, a, r]| [a, b, r]),
+                renamed,
+                added,
+                added_colors,
+            });
+        }
+        ProgressiveModel {
+            base,
+            splits,
+            vertex_ids,
+            face_ids,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::decimate::{decimate_scene_progressive, Algorithm, Params, Target};
+    use crate::mesh::{measure, shapes, Scene};
+
+    fn progressive(model: Model, percent: f64) -> (Model, ProgressiveModel) {
+        let mut scene = Scene {
+            models: vec![model],
+        };
+        let params = Params {
+            target: Target::RemovePercent(percent),
+            algorithm: Algorithm::Qem,
+            ..Params::default()
+        };
+        let (_, pm) = decimate_scene_progressive(&mut scene, &params, &mut |_| {});
+        (
+            scene.models.remove(0),
+            pm.models
+                .into_iter()
+                .next()
+                .unwrap_or_else(|| panic!("no progressive model")),
+        )
+    }
+
+    #[test]
+    fn refining_all_the_way_gives_the_original_back() {
+        let original = shapes::bumpy_sphere(24, 32);
+        let (decimated, pm) = progressive(original.clone(), 100.0);
+        assert!(pm.validate().is_ok());
+        assert_eq!(pm.base, decimated);
+        assert_eq!(pm.full_vertex_count(), original.positions.len());
+        assert_eq!(pm.full_face_count(), original.triangles.len());
+        assert!(decimated.positions.len() < 10);
+        let back = pm.original();
+        assert_eq!(back.positions, original.positions);
+        assert_eq!(back.triangles, original.triangles);
+    }
+
+    #[test]
+    fn every_level_is_a_valid_mesh_and_moving_down_retraces_moving_up() {
+        let original = shapes::cube(6, 2.0);
+        let (_, pm) = progressive(original.clone(), 100.0);
+        let mut lod = Lod::new(&pm);
+        let mut seen = Vec::new();
+        for level in 0..=lod.max_level() {
+            lod.set_level(level);
+            let m = lod.model();
+            assert_eq!(m.positions.len(), pm.base.positions.len() + level);
+            assert_eq!(measure::degenerate_triangles(m, 1e-9), 0, "level {level}");
+            // A closed cube stays closed: every edge on exactly two faces.
+            assert_eq!(measure::boundary_loops(m), 0, "level {level}");
+            assert_eq!(measure::euler_characteristic(m), 2, "level {level}");
+            seen.push(m.clone());
+        }
+        for level in (0..=lod.max_level()).rev() {
+            lod.set_level(level);
+            assert_eq!(lod.model(), &seen[level], "level {level} going down");
+        }
+    }
+
+    #[test]
+    fn geomorph_starts_where_the_coarse_level_is() {
+        let (_, pm) = progressive(shapes::bumpy_sphere(12, 16), 100.0);
+        let mut lod = Lod::new(&pm);
+        lod.set_level(20);
+        let coarse: Vec<Vec3> = lod.model().positions.clone();
+        let coarse_tris = lod.model().triangles.clone();
+        lod.set_level(60);
+        let start = lod.positions_at(20);
+        assert_eq!(start.len(), lod.model().positions.len());
+        // Vertices that exist at level 20 start at their level-20 positions...
+        assert_eq!(&start[..coarse.len()], &coarse[..]);
+        // ...and the fine mesh drawn at the start positions covers the coarse one: every
+        // fine triangle at its start positions is either collapsed flat or one of the coarse
+        // triangles.
+        let key = |t: [Vec3; 3]| {
+            let mut k: Vec<[u32; 3]> = t.iter().map(|p| p.to_array().map(f32::to_bits)).collect();
+            k.sort();
+            k
+        };
+        let coarse_keys: std::collections::HashSet<_> = coarse_tris
+            .iter()
+            .map(|t| key(t.map(|v| coarse[v as usize])))
+            .collect();
+        for t in &lod.model().triangles {
+            let p = t.map(|v| start[v as usize]);
+            let flat = p[0] == p[1] || p[1] == p[2] || p[0] == p[2];
+            assert!(flat || coarse_keys.contains(&key(p)));
+        }
+    }
+}
