@@ -5,10 +5,14 @@
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec4 in_color;
+// Geomorph start of this vertex: it is drawn at mix(in_morph_from, in_position, pc.morph).
+layout(location = 3) in vec3 in_morph_from;
 
 layout(push_constant) uniform Push {
     mat4 clip_from_model;
-    mat4 view_from_model;
+    // The top three rows of the affine view-from-model matrix (v * view_rows = view xyz).
+    mat3x4 view_rows;
+    float morph;
 } pc;
 
 // Overlays (edges, points, normals) are pulled towards the eye by this fraction of the
@@ -21,12 +25,13 @@ layout(location = 1) out vec3 out_view_normal;
 layout(location = 2) out vec4 out_color;
 
 void main() {
-    vec4 view_position = pc.view_from_model * vec4(in_position, 1.0);
-    out_view_position = view_position.xyz;
-    // Inverse transpose: correct under the non-uniform scales VRML transforms allow.
-    out_view_normal = transpose(inverse(mat3(pc.view_from_model))) * in_normal;
+    vec4 position = vec4(mix(in_morph_from, in_position, pc.morph), 1.0);
+    out_view_position = position * pc.view_rows;
+    // The normal matrix, inverse transpose of the view's 3x3 (correct under the non-uniform
+    // scales VRML transforms allow): mat3(view_rows) is that 3x3 transposed already.
+    out_view_normal = inverse(mat3(pc.view_rows)) * in_normal;
     out_color = in_color;
-    vec4 clip = pc.clip_from_model * vec4(in_position, 1.0);
+    vec4 clip = pc.clip_from_model * position;
     clip.z -= DEPTH_NUDGE * clip.w;
     gl_Position = clip;
     gl_PointSize = POINT_SIZE;

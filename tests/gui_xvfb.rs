@@ -161,6 +161,28 @@ fn write_cube(path: &Path) {
     decimate::io::write_vrml2(&scene, path).unwrap_or_else(|e| panic!("{e}"));
 }
 
+/// Pixels of the 1024-wide RGB screenshots `a` and `b` that differ in the given area.
+fn changed_pixels(
+    a: &[u8],
+    b: &[u8],
+    xs: std::ops::Range<usize>,
+    ys: std::ops::Range<usize>,
+) -> usize {
+    let mut changed = 0;
+    for y in ys {
+        for x in xs.clone() {
+            let i = (y * 1024 + x) * 3;
+            if i + 2 < a.len()
+                && i + 2 < b.len()
+                && (0..3).any(|c| a[i + c].abs_diff(b[i + c]) > 16)
+            {
+                changed += 1;
+            }
+        }
+    }
+    changed
+}
+
 /// Starts the viewer on `cube.wrl` in `dir`, its stderr going to `log`.
 fn spawn_viewer(dir: &Path, log: &Path) -> Viewer {
     let file = std::fs::File::create(log)
@@ -268,8 +290,52 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
         "the menu did not appear: {changed} of {total} pixels changed near the click"
     );
 
-    // q quits.
+    // Escape closes the popup; L opens the level-of-detail slider at the top left, showing
+    // the original (602 vertices); dragging it coarsens the mesh, and F3 saves that level.
+    // Key 1 first (about 540 vertices), so that a slider that does nothing is caught.
     run("xdotool", &["key", "--window", &wid, "Escape"]);
+    run("xdotool", &["key", "--window", &wid, "1"]);
+    std::thread::sleep(Duration::from_millis(800));
+    let before = screenshot(&dir.join("before-lod.rgb"));
+    run("xdotool", &["key", "--window", &wid, "L"]);
+    std::thread::sleep(Duration::from_secs(3));
+    let after = screenshot(&dir.join("after-lod.rgb"));
+    let changed = changed_pixels(&before, &after, 10..370, 10..50);
+    assert!(
+        changed * 10 > 360 * 40,
+        "the level-of-detail slider did not appear: {changed} pixels changed"
+    );
+    run("xdotool", &["mousemove", "--window", &wid, "100", "40"]);
+    std::thread::sleep(Duration::from_millis(300));
+    run("xdotool", &["mousedown", "1"]);
+    std::thread::sleep(Duration::from_millis(300));
+    run("xdotool", &["mousemove", "--window", &wid, "120", "40"]);
+    std::thread::sleep(Duration::from_millis(200));
+    run("xdotool", &["mouseup", "1"]);
+    // Let the geomorph end (0.3 s) before saving.
+    std::thread::sleep(Duration::from_secs(1));
+    let _ = std::fs::remove_file(&out);
+    run("xdotool", &["key", "--window", &wid, "F3"]);
+    wait_for(
+        "out.wrl after the slider",
+        Duration::from_secs(30),
+        &log_path,
+        || out.exists(),
+    );
+    std::thread::sleep(Duration::from_millis(300));
+    let saved = decimate::io::read_scene(&out).unwrap_or_else(|e| panic!("{e}"));
+    let vertices: usize = saved
+        .scene
+        .models
+        .iter()
+        .map(|m| m.used_vertex_count())
+        .sum();
+    assert!(
+        (8..300).contains(&vertices),
+        "out.wrl has {vertices} vertices after dragging the slider to the left"
+    );
+
+    // q quits.
     run("xdotool", &["key", "--window", &wid, "q"]);
     let start = Instant::now();
     loop {

@@ -136,6 +136,20 @@ impl ViewportController {
         });
     }
 
+    /// The level-of-detail slider of the current viewport moved to `vertices`.
+    pub fn set_lod_vertices(&mut self, vertices: usize, now: std::time::Instant) {
+        self.current_mut().set_lod_vertices(vertices, now);
+    }
+
+    /// Advances every viewport's geomorph; true while one runs.
+    pub fn tick(&mut self, now: std::time::Instant) -> bool {
+        let mut running = false;
+        for vp in &mut self.viewports {
+            running |= vp.tick(now);
+        }
+        running
+    }
+
     /// Left-drag by `delta` pixels in the current viewport.
     pub fn drag(&mut self, delta: Vec2) {
         self.current_mut().camera.drag(delta);
@@ -157,6 +171,22 @@ impl ViewportController {
         match action {
             Action::Decimate(event) => self.decimate(event),
             Action::AskVertexCount => return Effect::AskVertexCount,
+            Action::ToggleLod => {
+                let i = self.current;
+                let vp = self.current_mut();
+                vp.toggle_lod();
+                self.message = match vp.lod() {
+                    Some(lod) => {
+                        let (lo, hi) = lod.range();
+                        format!(
+                            "viewport {}: level of detail {lo} to {hi} vertices, built in {:.3} s",
+                            i + 1,
+                            lod.build_seconds
+                        )
+                    }
+                    None => format!("viewport {}: level-of-detail slider off", i + 1),
+                };
+            }
             Action::ToggleTriangles => options.triangles ^= true,
             Action::ToggleEdges => options.edges ^= true,
             Action::TogglePoints => options.points ^= true,
@@ -348,6 +378,38 @@ mod tests {
         c.decimate_to(60);
         assert!(c.message.contains("61 vertices"), "{}", c.message);
         assert_eq!(c.current_viewport().generation, 1);
+    }
+
+    #[test]
+    fn the_lod_slider_reaches_the_current_viewport_only_and_saves_what_it_shows() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        key(&mut c, Key::Char('L'));
+        let (lo, hi) = c
+            .current_viewport()
+            .lod()
+            .map(|l| l.range())
+            .unwrap_or_default();
+        assert_eq!(hi, 121);
+        assert_eq!(
+            lo, 4,
+            "a plane's progressive mesh goes down to its four corners"
+        );
+        assert!(c.viewports()[0].lod().is_none());
+        let t0 = std::time::Instant::now();
+        c.set_lod_vertices(30, t0);
+        assert!(c.tick(t0), "a geomorph runs");
+        assert!(!c.tick(t0 + crate::app::lod::GEOMORPH));
+        assert_eq!(c.current_viewport().vertex_count(), 30);
+        assert_eq!(c.viewports()[0].vertex_count(), 121);
+        // Off: the level shown stays, and a decimate event starts from the original again.
+        key(&mut c, Key::Char('L'));
+        assert!(c.current_viewport().lod().is_none());
+        assert_eq!(c.current_viewport().vertex_count(), 30);
+        key(&mut c, Key::Char('L'));
+        key(&mut c, Key::Char('5'));
+        assert!(c.current_viewport().lod().is_none());
+        assert_eq!(c.current_viewport().vertex_count(), 60);
     }
 
     #[test]

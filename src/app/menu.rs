@@ -24,6 +24,8 @@ pub enum Action {
     Decimate(DecimateEvent),
     /// Open the "decimate to N vertices" text field.
     AskVertexCount,
+    /// The level-of-detail slider (a progressive mesh by quadric edge collapse) on or off.
+    ToggleLod,
     ToggleTriangles,
     ToggleEdges,
     TogglePoints,
@@ -122,6 +124,11 @@ pub fn menu() -> Vec<MenuEntry> {
         Some("v"),
         Action::AskVertexCount,
     ));
+    decimate.push(entry(
+        "Level-of-detail slider (qem, geomorph)",
+        Some("L"),
+        Action::ToggleLod,
+    ));
     vec![
         submenu("Decimate", decimate),
         submenu(
@@ -176,6 +183,7 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'r' => Action::ResetView,
                 'h' => Action::ToggleHelp,
                 'v' => Action::AskVertexCount,
+                'L' => Action::ToggleLod,
                 'q' => Action::Quit,
                 _ => return None,
             }
@@ -281,6 +289,7 @@ mod tests {
         let all = actions(&menu());
         for a in [
             Action::AskVertexCount,
+            Action::ToggleLod,
             Action::ToggleTriangles,
             Action::ToggleEdges,
             Action::TogglePoints,

@@ -3,6 +3,7 @@
 
 pub mod controller;
 pub mod glut;
+pub mod lod;
 pub mod menu;
 pub mod shot;
 pub mod ui;

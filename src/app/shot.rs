@@ -95,6 +95,7 @@ pub fn render(
                 scene,
                 camera: &camera,
                 options: draw,
+                morph: 1.0,
             }
         })
         .collect();

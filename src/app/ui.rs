@@ -26,6 +26,8 @@ pub struct UiResult {
     pub close_field: bool,
     /// egui wants another frame soon (a popup being measured, hover animation).
     pub repaint: bool,
+    /// The level-of-detail slider was moved to this many vertices.
+    pub lod_vertices: Option<usize>,
 }
 
 /// What the UI shows this frame.
@@ -39,6 +41,9 @@ pub struct UiState<'a> {
     pub field: Option<&'a mut String>,
     pub status: &'a str,
     pub help: Option<&'a str>,
+    /// The current viewport's level-of-detail slider, if it is on: least and most vertices,
+    /// and the count it is at.
+    pub lod: Option<(usize, usize, usize)>,
 }
 
 /// egui context, winit glue and Vulkan renderer.
@@ -119,6 +124,7 @@ impl UiLayer {
             mut field,
             status,
             help,
+            lod,
         } = ui_state;
         let output = self.ctx.run_ui(input, |ui| {
             let ctx = ui.ctx().clone();
@@ -127,6 +133,22 @@ impl UiLayer {
                 .show(&ctx, |ui| {
                     egui::Frame::popup(ui.style()).show(ui, |ui| ui.label(status));
                 });
+            if let Some((lo, hi, at)) = lod {
+                egui::Area::new(egui::Id::new("level of detail"))
+                    .anchor(egui::Align2::LEFT_TOP, egui::vec2(6.0, 6.0))
+                    .show(&ctx, |ui| {
+                        egui::Frame::popup(ui.style()).show(ui, |ui| {
+                            ui.label("Level of detail (vertices)  [L: off]");
+                            let mut value = at;
+                            ui.spacing_mut().slider_width = 320.0;
+                            let slider = egui::Slider::new(&mut value, lo..=hi)
+                                .logarithmic(hi > 100 * lo.max(1));
+                            if ui.add(slider).changed() && value != at {
+                                result.lod_vertices = Some(value);
+                            }
+                        });
+                    });
+            }
             if let Some(text) = help {
                 egui::Area::new(egui::Id::new("help"))
                     .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-6.0, 6.0))

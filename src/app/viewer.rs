@@ -4,6 +4,7 @@
 //! `Action`s through the same menu data as the popup.
 
 use std::sync::Arc;
+use std::time::Instant;
 
 use ash::vk;
 use glam::Vec2;
@@ -106,8 +107,14 @@ impl Viewer {
                 .any(|(id, generation, _)| *id == vp.id && *generation == vp.generation);
             if !fresh {
                 gpu.context.wait_idle().map_err(|e| e.to_string())?;
-                let scene = GpuScene::upload(&gpu.context, &gpu.upload_commands, vp.scene())
-                    .map_err(|e| format!("cannot upload the scene: {e}"))?;
+                let morph_from = vp.lod().and_then(|l| l.morph_from());
+                let scene = GpuScene::upload_morphing(
+                    &gpu.context,
+                    &gpu.upload_commands,
+                    vp.scene(),
+                    morph_from,
+                )
+                .map_err(|e| format!("cannot upload the scene: {e}"))?;
                 gpu.scenes.retain(|(id, _, _)| *id != vp.id);
                 gpu.scenes.push((vp.id, vp.generation, scene));
             }
@@ -116,7 +123,14 @@ impl Viewer {
     }
 
     fn draw_frame(&mut self, window: &Window) -> Result<(), String> {
+        // Geomorphs advance with the clock; while one runs, frames keep coming.
+        let now = Instant::now();
+        let morphing = self.controller.tick(now);
         let status = self.status();
+        let lod = self.controller.current_viewport().lod().map(|l| {
+            let (lo, hi) = l.range();
+            (lo, hi, l.target())
+        });
         let help = self.controller.help.then_some(self.help_text.as_str());
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(());
@@ -140,6 +154,7 @@ impl Viewer {
                 field: self.field.as_mut(),
                 status: &status,
                 help,
+                lod,
             },
         )?;
 
@@ -161,6 +176,7 @@ impl Viewer {
                     scene,
                     camera: &vp.camera,
                     options: vp.options,
+                    morph: vp.lod().map_or(1.0, |l| l.morph_factor(now)),
                 })
             })
             .collect();
@@ -216,7 +232,11 @@ impl Viewer {
         }
         gpu.ui.end_frame()?;
         self.popup_just_opened = false;
-        if ui_result.repaint {
+        if ui_result.repaint || morphing {
+            window.request_redraw();
+        }
+        if let Some(n) = ui_result.lod_vertices {
+            self.controller.set_lod_vertices(n, Instant::now());
             window.request_redraw();
         }
 

@@ -1,8 +1,10 @@
 //! `Viewport`: one view of the window — the original scene it decimates from, the scene it
 //! shows now, its draw toggles and camera, and what its last decimation did. No GPU here: the
-//! window re-uploads a viewport's scene when its `generation` changes.
+//! window re-uploads a viewport's scene when its `generation` changes. With the
+//! level-of-detail slider on, the scene shown is the slider's (`LodView`).
 
 use std::sync::Arc;
+use std::time::Instant;
 
 use crate::decimate::{decimate_scene, Params, Report, Target};
 use crate::mesh::Scene;
@@ -10,6 +12,7 @@ use crate::render::camera::{Camera, Navigation};
 use crate::render::draw::DrawOptions;
 use crate::render::gpu_mesh::scene_bounds;
 
+use super::lod::LodView;
 use super::menu::{DecimateEvent, DecimateKind};
 
 /// One viewport.
@@ -27,6 +30,8 @@ pub struct Viewport {
     pub last: Option<Report>,
     /// Feature angle and error bound for decimate events.
     pub params: Params,
+    /// The level-of-detail slider, when it is on.
+    lod: Option<LodView>,
 }
 
 impl Viewport {
@@ -42,12 +47,47 @@ impl Viewport {
             generation: 0,
             last: None,
             params,
+            lod: None,
         }
     }
 
     /// The scene shown now.
     pub fn scene(&self) -> &Scene {
-        &self.scene
+        self.lod.as_ref().map_or(&self.scene, LodView::scene)
+    }
+
+    pub fn lod(&self) -> Option<&LodView> {
+        self.lod.as_ref()
+    }
+
+    /// Turns the level-of-detail slider on (building the original's progressive mesh; it
+    /// starts at the original) or off (the level shown stays, as a decimated scene would).
+    pub fn toggle_lod(&mut self) {
+        match self.lod.take() {
+            Some(lod) => self.scene = lod.scene().clone(),
+            None => self.lod = Some(LodView::new(&self.original, &self.params)),
+        }
+        self.generation += 1;
+    }
+
+    /// The slider moved to `vertices`: a geomorph towards that level starts at `now`.
+    pub fn set_lod_vertices(&mut self, vertices: usize, now: Instant) {
+        if let Some(lod) = &mut self.lod {
+            if lod.set_vertices(vertices, now) {
+                self.generation += 1;
+            }
+        }
+    }
+
+    /// Advances a geomorph to `now`; true while one runs (the window keeps drawing).
+    pub fn tick(&mut self, now: Instant) -> bool {
+        let Some(lod) = &mut self.lod else {
+            return false;
+        };
+        if lod.tick(now) {
+            self.generation += 1;
+        }
+        lod.morphing()
     }
 
     pub fn original(&self) -> &Arc<Scene> {
@@ -69,12 +109,16 @@ impl Viewport {
         let mut scene = (*self.original).clone();
         let report = decimate_scene(&mut scene, &params, &mut |_| {});
         self.scene = scene;
+        self.lod = None;
         self.generation += 1;
         self.last.insert(report)
     }
 
     /// Vertices shown now (used by some triangle).
     pub fn vertex_count(&self) -> usize {
+        if let Some(lod) = &self.lod {
+            return lod.vertex_count();
+        }
         self.scene
             .models
             .iter()
@@ -83,7 +127,7 @@ impl Viewport {
     }
 
     pub fn triangle_count(&self) -> usize {
-        self.scene.triangle_count()
+        self.scene().triangle_count()
     }
 
     /// The status line: counts, last decimation time, "fully decimated".
@@ -93,7 +137,12 @@ impl Viewport {
             self.vertex_count(),
             self.triangle_count()
         );
-        if let Some(r) = &self.last {
+        if let Some(lod) = &self.lod {
+            s.push_str(&format!(
+                ", level of detail (qem, built in {:.3} s)",
+                lod.build_seconds
+            ));
+        } else if let Some(r) = &self.last {
             s.push_str(&format!(", decimated in {:.3} s", r.seconds));
             if r.fully_decimated() {
                 s.push_str(" — fully decimated");

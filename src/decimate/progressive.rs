@@ -12,6 +12,8 @@
 //! [`Recorder`] is what the collapse loop fills; [`Recorder::finish`] turns its collapses, in
 //! the loop's internal numbering, into a [`ProgressiveModel`].
 
+use std::borrow::Borrow;
+
 use glam::Vec3;
 
 use crate::mesh::topology::Connectivity;
@@ -179,23 +181,30 @@ fn scatter<T: Copy + Default>(values: &[T], ids: &[u32], n: usize) -> Vec<T> {
 }
 
 /// A cursor over one progressive model's levels: level 0 is the base mesh, level
-/// `splits.len()` the original. Moving one level costs the one split or collapse.
+/// `splits.len()` the original. Moving one level costs the one split or collapse. `P` is
+/// `&ProgressiveModel` or an owning handle such as `Arc<ProgressiveModel>` (the viewer's).
 #[derive(Debug, Clone)]
-pub struct Lod<'a> {
-    pm: &'a ProgressiveModel,
+pub struct Lod<P: Borrow<ProgressiveModel>> {
+    pm: P,
     level: usize,
     model: Model,
 }
 
-impl<'a> Lod<'a> {
+impl<P: Borrow<ProgressiveModel>> Lod<P> {
     /// At level 0, the base mesh. `pm` must have passed [`ProgressiveModel::validate`] (as
     /// every progressive model made by `qem` or read by `io::progressive` has).
-    pub fn new(pm: &'a ProgressiveModel) -> Self {
+    pub fn new(pm: P) -> Self {
+        let model = pm.borrow().base.clone();
         Self {
             pm,
             level: 0,
-            model: pm.base.clone(),
+            model,
         }
+    }
+
+    /// The progressive model this cursor walks.
+    pub fn progressive(&self) -> &ProgressiveModel {
+        self.pm.borrow()
     }
 
     pub fn level(&self) -> usize {
@@ -204,7 +213,7 @@ impl<'a> Lod<'a> {
 
     /// The number of levels above the base.
     pub fn max_level(&self) -> usize {
-        self.pm.splits.len()
+        self.progressive().splits.len()
     }
 
     /// The mesh at the current level, in progressive numbering.
@@ -225,7 +234,7 @@ impl<'a> Lod<'a> {
 
     /// Applies the next vertex split.
     fn refine(&mut self) {
-        let s = &self.pm.splits[self.level];
+        let s = &self.pm.borrow().splits[self.level];
         let m = &mut self.model;
         let new = m.positions.len() as u32;
         m.positions[s.keep as usize] = s.keep_fine;
@@ -258,7 +267,7 @@ impl<'a> Lod<'a> {
     /// Undoes the last vertex split: the edge collapse it stands for.
     fn coarsen(&mut self) {
         self.level -= 1;
-        let s = &self.pm.splits[self.level];
+        let s = &self.pm.borrow().splits[self.level];
         let m = &mut self.model;
         let new = (m.positions.len() - 1) as u32;
         m.positions.pop();
@@ -294,8 +303,9 @@ impl<'a> Lod<'a> {
     /// `coarse` to this level (vertices glide from there to [`Self::model`]'s positions).
     pub fn positions_at(&self, coarse: usize) -> Vec<Vec3> {
         let coarse = coarse.min(self.level);
-        let base = self.pm.base.positions.len();
-        let splits = &self.pm.splits[coarse..self.level];
+        let pm = self.progressive();
+        let base = pm.base.positions.len();
+        let splits = &pm.splits[coarse..self.level];
         // Positions at `coarse` of the vertices that exist there.
         let mut at = self.model.positions[..base + coarse].to_vec();
         for s in splits.iter().rev() {

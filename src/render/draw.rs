@@ -79,6 +79,8 @@ pub struct ViewportDraw<'a> {
     pub scene: &'a GpuScene,
     pub camera: &'a Camera,
     pub options: DrawOptions,
+    /// Geomorph factor, 0 (at the vertices' `morph_from`) to 1 (at their positions).
+    pub morph: f32,
 }
 
 /// Records the draws of `views` into `cmd`, inside an active dynamic rendering pass.
@@ -129,10 +131,11 @@ pub unsafe fn record(
             };
             for mesh in &view.scene.meshes {
                 let view_from_model = view_matrix * mesh.transform;
-                let push = PushConstants {
-                    clip_from_model: (clip_from_view * view_from_model).to_cols_array(),
-                    view_from_model: view_from_model.to_cols_array(),
-                };
+                let push = PushConstants::new(
+                    clip_from_view * view_from_model,
+                    view_from_model,
+                    view.morph,
+                );
                 // SAFETY: `PushConstants` is plain `repr(C)` floats, exactly the layout's range.
                 unsafe {
                     let bytes = std::slice::from_raw_parts(

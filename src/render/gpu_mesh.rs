@@ -46,11 +46,23 @@ pub struct GpuScene {
 impl GpuScene {
     /// Uploads `scene`; the returned buffers are ready when this returns.
     pub fn upload(context: &Arc<Context>, commands: &Commands, scene: &Scene) -> Result<Self> {
+        Self::upload_morphing(context, commands, scene, None)
+    }
+
+    /// As [`Self::upload`], with each model's geomorph start positions (`morph_from[i]` for
+    /// model `i`, indexed like its positions): drawn with a morph factor below 1, vertices
+    /// glide from there.
+    pub fn upload_morphing(
+        context: &Arc<Context>,
+        commands: &Commands,
+        scene: &Scene,
+        morph_from: Option<&[Vec<Vec3>]>,
+    ) -> Result<Self> {
         let bounds = scene_bounds(scene);
         let normal_length = (bounds.max - bounds.min).length() * NORMAL_LENGTH;
         let mut uploader = Uploader::new(context, commands)?;
         let mut meshes = Vec::with_capacity(scene.models.len());
-        for model in &scene.models {
+        for (i, model) in scene.models.iter().enumerate() {
             // Normal segments are drawn in the model's frame: scale their length back.
             let scale = model
                 .transform
@@ -58,7 +70,8 @@ impl GpuScene {
                 .0
                 .max_element();
             let length = normal_length / if scale > 0.0 { scale } else { 1.0 };
-            let data = MeshData::from_model(model, length);
+            let from = morph_from.and_then(|m| m.get(i)).map(Vec::as_slice);
+            let data = MeshData::from_model_morphing(model, length, from);
             meshes.push(upload_mesh(&mut uploader, model, &data)?);
         }
         uploader.finish()?;

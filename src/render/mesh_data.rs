@@ -18,7 +18,7 @@ use crate::mesh::{Attribute, Model};
 /// Crease angle for smooth shading when the file gives none.
 pub const DEFAULT_CREASE_DEG: f32 = 45.0;
 
-/// One vertex as the vertex shader reads it (locations 0, 1, 2).
+/// One vertex as the vertex shader reads it (locations 0, 1, 2, 3).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Vertex {
@@ -26,6 +26,9 @@ pub struct Vertex {
     pub normal: [f32; 3],
     /// RGBA, 8 bits per channel (`R8G8B8A8_UNORM`).
     pub color: [u8; 4],
+    /// Where a geomorph starts this vertex: the shader draws `mix(morph_from, position, t)`
+    /// for the push constant `t` (1 when nothing morphs). Equal to `position` by default.
+    pub morph_from: [f32; 3],
 }
 
 /// Everything the GPU needs to draw one model in any mode.
@@ -47,6 +50,18 @@ pub struct MeshData {
 impl MeshData {
     /// Builds the draw data for `model`; normal segments are `normal_length` long (model units).
     pub fn from_model(model: &Model, normal_length: f32) -> Self {
+        Self::from_model_morphing(model, normal_length, None)
+    }
+
+    /// As [`Self::from_model`], with the geomorph start of every model vertex (`morph_from`,
+    /// indexed like `model.positions`; ignored unless it has one entry per position). Normal
+    /// segments do not morph.
+    pub fn from_model_morphing(
+        model: &Model,
+        normal_length: f32,
+        morph_from: Option<&[Vec3]>,
+    ) -> Self {
+        let morph_from = morph_from.filter(|m| m.len() == model.positions.len());
         let normals = vertex_normals(model);
         let face_colors = match &model.colors {
             Some(Attribute::PerFace(c)) if c.len() == model.triangles.len() => Some(c),
@@ -83,6 +98,7 @@ impl MeshData {
                         position: model.positions[vi].to_array(),
                         normal: normal.to_array(),
                         color: face_colors.map_or_else(|| color_of_vertex(vi), |c| to_rgba8(c[t])),
+                        morph_from: morph_from.map_or(model.positions[vi], |m| m[vi]).to_array(),
                     });
                     if !own_corner {
                         shared[vi] = index;
@@ -229,6 +245,7 @@ fn push_segment(out: &mut Vec<Vertex>, from: Vec3, along: Vec3) {
             position: p.to_array(),
             normal: along.normalize_or_zero().to_array(),
             color: [255; 4],
+            morph_from: p.to_array(),
         });
     }
 }

@@ -85,7 +85,28 @@ impl DrawMode {
 #[derive(Debug, Clone, Copy)]
 pub struct PushConstants {
     pub clip_from_model: [f32; 16],
-    pub view_from_model: [f32; 16],
+    /// The top three rows of the (affine) view-from-model matrix: GLSL's `mat3x4`, so that
+    /// the geomorph factor fits in lavapipe's 128 bytes of push constants.
+    pub view_rows: [f32; 12],
+    /// Geomorph factor: vertices are drawn at `mix(morph_from, position, morph)`.
+    pub morph: f32,
+    pub _pad: [f32; 3],
+}
+
+impl PushConstants {
+    pub fn new(clip_from_model: glam::Mat4, view_from_model: glam::Mat4, morph: f32) -> Self {
+        let t = view_from_model.transpose();
+        let mut view_rows = [0.0; 12];
+        view_rows[0..4].copy_from_slice(&t.x_axis.to_array());
+        view_rows[4..8].copy_from_slice(&t.y_axis.to_array());
+        view_rows[8..12].copy_from_slice(&t.z_axis.to_array());
+        Self {
+            clip_from_model: clip_from_model.to_cols_array(),
+            view_rows,
+            morph,
+            _pad: [0.0; 3],
+        }
+    }
 }
 
 /// Point size asked for; clamped to the device's range (1 px without `largePoints`).
@@ -195,6 +216,10 @@ impl Pipelines {
                 .location(2)
                 .format(vk::Format::R8G8B8A8_UNORM)
                 .offset(24),
+            vk::VertexInputAttributeDescription::default()
+                .location(3)
+                .format(vk::Format::R32G32B32_SFLOAT)
+                .offset(28),
         ];
         let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
             .vertex_binding_descriptions(&bindings)

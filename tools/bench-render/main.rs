@@ -142,6 +142,7 @@ fn run(
                 scene: &gpu,
                 camera: &camera,
                 options,
+                morph: 1.0,
             })
             .collect();
         target.render(&commands, &pipelines, &views, false)?;
