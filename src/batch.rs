@@ -1,29 +1,32 @@
 //! The `nogui` action: decimate the scene to the command line's target, print a summary
 //! (and a progress bar on long runs) on stderr, and write the result in the format the
 //! output's extension names (VRML 2.0 by default; `io::write_scene`) — never over the input
-//! unless `--overwrite` says so.
+//! unless `--overwrite` says so. With `--progressive FILE` the collapses are recorded too
+//! (`decimate_scene_progressive`) and written to FILE as vertex splits (`io::progressive`).
 
 use std::io::{IsTerminal, Write};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use crate::cli::Args;
-use crate::decimate::{decimate_scene, Report};
+use crate::decimate::progressive::ProgressiveScene;
+use crate::decimate::{decimate_scene, decimate_scene_progressive, Report};
 use crate::io;
 use crate::mesh::Scene;
 
 /// Runs the nogui job; the exit code says whether the output was written.
 pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
-    if !args.overwrite && same_file(&args.input, &args.output) {
-        eprintln!(
-            "decimate: {}: refusing to write over the input file (add --overwrite to allow it)",
-            args.output.display()
-        );
-        return ExitCode::from(2);
+    let outputs = std::iter::once(&args.output).chain(&args.progressive);
+    for output in outputs {
+        if !args.overwrite && same_file(&args.input, output) {
+            eprintln!(
+                "decimate: {}: refusing to write over the input file (add --overwrite to allow it)",
+                output.display()
+            );
+            return ExitCode::from(2);
+        }
     }
-    let mut bar = Progress::new(!args.quiet && std::io::stderr().is_terminal());
-    let report = decimate_scene(&mut scene, &args.params, &mut |f| bar.update(f));
-    bar.finish();
+    let (report, progressive) = decimate(&mut scene, args);
     if !args.quiet {
         eprint!("{}", summary(&report));
     }
@@ -34,7 +37,33 @@ pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
     if !args.quiet {
         eprintln!("wrote {}", args.output.display());
     }
+    if let (Some(path), Some(pm)) = (&args.progressive, &progressive) {
+        if let Err(e) = io::progressive::write_progressive(pm, path) {
+            eprintln!("decimate: cannot write {e}");
+            return ExitCode::FAILURE;
+        }
+        if !args.quiet {
+            let splits: usize = pm.models.iter().map(|m| m.splits.len()).sum();
+            let plural = if splits == 1 { "" } else { "s" };
+            eprintln!("wrote {} ({splits} vertex split{plural})", path.display());
+        }
+    }
     ExitCode::SUCCESS
+}
+
+/// Decimates `scene` to the command line's target, with a progress bar on a terminal;
+/// records the progressive mesh when `--progressive` asks for it.
+fn decimate(scene: &mut Scene, args: &Args) -> (Report, Option<ProgressiveScene>) {
+    let mut bar = Progress::new(!args.quiet && std::io::stderr().is_terminal());
+    let mut update = |f| bar.update(f);
+    let result = if args.progressive.is_some() {
+        let (report, pm) = decimate_scene_progressive(scene, &args.params, &mut update);
+        (report, Some(pm))
+    } else {
+        (decimate_scene(scene, &args.params, &mut update), None)
+    };
+    bar.finish();
+    result
 }
 
 /// True when both paths name the same existing file.

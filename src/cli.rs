@@ -79,8 +79,11 @@ pub struct Args {
     pub target_given: bool,
     /// Merge coincident vertices before decimating (`--no-weld` turns it off).
     pub weld: bool,
-    /// Allow `-o` to name the input file.
+    /// Allow `-o` (and `--progressive`) to name the input file.
     pub overwrite: bool,
+    /// `--progressive`: also write the collapses as vertex splits to this file (nogui; the
+    /// algorithm is then quadric edge collapse).
+    pub progressive: Option<PathBuf>,
     /// No summary or progress on stderr.
     pub quiet: bool,
     pub shot: ShotOptions,
@@ -124,7 +127,9 @@ action-options for nogui (one target is MANDATORY):
                         otherwise (never for -p 100 or --max-error alone)
   --keep-features       never raise the feature angle: stop short of the target instead
   --no-weld             do not merge coincident vertices before decimating
-  --overwrite           allow -o to name the input file
+  --progressive FILE    also write the collapses as vertex splits (FILE.pm), to rebuild
+                        any level between the result and the input (implies -a qem)
+  --overwrite           allow -o or --progressive to name the input file
   -q, --quiet           no summary or progress on stderr
 
 action-options for shot (offscreen render to PNG, no window):
@@ -150,6 +155,8 @@ where
     let mut action: Option<Action> = None;
     let mut output: Option<PathBuf> = None;
     let mut params = Params::default();
+    let mut algorithm: Option<Algorithm> = None;
+    let mut progressive: Option<PathBuf> = None;
     let mut target: Option<Target> = None;
     let mut weld = true;
     let mut overwrite = false;
@@ -197,7 +204,7 @@ where
                 params.feature_angle_deg = a;
             }
             "-a" | "--algorithm" => {
-                params.algorithm = match value(&arg)?.as_str() {
+                algorithm = Some(match value(&arg)?.as_str() {
                     "schroeder" => Algorithm::Schroeder,
                     "qem" => Algorithm::Qem,
                     other => {
@@ -205,8 +212,9 @@ where
                             "{arg}: unknown algorithm '{other}' (expected schroeder or qem)"
                         )))
                     }
-                }
+                })
             }
+            "--progressive" => progressive = Some(PathBuf::from(value(&arg)?)),
             "--no-weld" => weld = false,
             "--keep-features" => params.keep_features = true,
             "--overwrite" => overwrite = true,
@@ -259,6 +267,7 @@ where
                 .into(),
         ));
     }
+    params.algorithm = resolve_algorithm(algorithm, progressive.is_some())?;
     let target_given = target.is_some();
     if let Some(t) = target {
         params.target = t;
@@ -267,6 +276,9 @@ where
         Action::Shot => PathBuf::from("shot.png"),
         _ => PathBuf::from("out.wrl"),
     });
+    if let Some(pm) = &progressive {
+        check_progressive(pm, action, &output)?;
+    }
     Ok(Command::Run(Box::new(Args {
         input,
         action,
@@ -275,9 +287,42 @@ where
         target_given,
         weld,
         overwrite,
+        progressive,
         quiet,
         shot,
     })))
+}
+
+/// The algorithm `-a` asked for, or the one `--progressive` implies: only quadric edge
+/// collapse has vertex splits to record.
+fn resolve_algorithm(asked: Option<Algorithm>, progressive: bool) -> Result<Algorithm, CliError> {
+    match (asked, progressive) {
+        (Some(Algorithm::Schroeder), true) => Err(CliError(
+            "--progressive: vertex removal (-a schroeder) records no vertex splits; use -a qem \
+             (or leave -a out)"
+                .into(),
+        )),
+        (_, true) => Ok(Algorithm::Qem),
+        (asked, false) => Ok(asked.unwrap_or_default()),
+    }
+}
+
+/// `--progressive` belongs to nogui and needs a file of its own.
+fn check_progressive(
+    pm: &std::path::Path,
+    action: Action,
+    output: &std::path::Path,
+) -> Result<(), CliError> {
+    if action != Action::NoGui {
+        return Err(CliError("--progressive is an option of nogui".into()));
+    }
+    if pm == output {
+        return Err(CliError(format!(
+            "--progressive: {} is also the -o file; give them different names",
+            pm.display()
+        )));
+    }
+    Ok(())
 }
 
 fn set_target(slot: &mut Option<Target>, t: Target) -> Result<(), CliError> {
@@ -396,6 +441,64 @@ mod tests {
             ))
         );
         assert!(USAGE.contains("-a, --algorithm A"));
+    }
+
+    #[test]
+    fn progressive_selects_qem_and_refuses_schroeder() {
+        let a = run(&["m.wrl", "nogui", "-p", "90", "--progressive", "m.pm"]);
+        assert_eq!(a.progressive, Some(PathBuf::from("m.pm")));
+        assert_eq!(a.params.algorithm, Algorithm::Qem);
+        assert_eq!(a.output, PathBuf::from("out.wrl"));
+        let a = run(&[
+            "m.wrl",
+            "nogui",
+            "-a",
+            "qem",
+            "--progressive",
+            "x",
+            "-p",
+            "9",
+        ]);
+        assert_eq!(a.progressive, Some(PathBuf::from("x")));
+        assert_eq!(a.params.algorithm, Algorithm::Qem);
+        assert_eq!(run(&["m.wrl", "nogui", "-p", "9"]).progressive, None);
+        for order in [
+            ["-a", "schroeder", "--progressive", "m.pm"],
+            ["--progressive", "m.pm", "-a", "schroeder"],
+        ] {
+            let mut args = vec!["m.wrl", "nogui", "-p", "50"];
+            args.extend(order);
+            let e = parse(args).unwrap_err();
+            assert!(
+                e.0.contains("records no vertex splits") && e.0.contains("-a qem"),
+                "{e}"
+            );
+        }
+        assert!(USAGE.contains("  --progressive FILE    also write the collapses"));
+        assert!(USAGE.contains("(implies -a qem)"));
+    }
+
+    #[test]
+    fn progressive_needs_nogui_a_value_and_its_own_file() {
+        let e = parse(["m.wrl", "nogui", "-p", "9", "--progressive"]).unwrap_err();
+        assert!(e.0.contains("--progressive needs a value"), "{e}");
+        let e = parse(["m.wrl", "shot", "--progressive", "m.pm"]).unwrap_err();
+        assert!(e.0.contains("option of nogui"), "{e}");
+        let e = parse(["m.wrl", "--progressive", "m.pm"]).unwrap_err();
+        assert!(e.0.contains("option of nogui"), "{e}");
+        let e = parse(["m.wrl", "nogui", "-p", "9", "--progressive", "out.wrl"]).unwrap_err();
+        assert!(e.0.contains("also the -o file"), "{e}");
+        let e = parse([
+            "m.wrl",
+            "nogui",
+            "-p",
+            "9",
+            "-o",
+            "a.pm",
+            "--progressive",
+            "a.pm",
+        ]);
+        assert!(e.is_err());
     }
 
     #[test]

@@ -163,6 +163,24 @@ impl ProgressiveModel {
         if self.vertex_ids.len() != self.full_vertex_count() {
             return Err("one original vertex id per vertex expected".into());
         }
+        // The original's vertices no face used are not recorded, so ids may have gaps, but
+        // not so many that `original` would allocate far more than the file describes.
+        let bound = 2 * self.vertex_ids.len() + 1024;
+        if let Some(id) = self.vertex_ids.iter().find(|&&id| id as usize >= bound) {
+            return Err(format!(
+                "original vertex id {id} is out of range for {} vertices",
+                self.vertex_ids.len()
+            ));
+        }
+        if self
+            .face_ids
+            .iter()
+            .any(|&id| id as usize >= 2 * faces + 1024)
+        {
+            return Err(format!(
+                "an original face id is out of range for {faces} faces"
+            ));
+        }
         if self.face_ids.len() != faces {
             return Err("one original face id per face expected".into());
         }

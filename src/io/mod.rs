@@ -6,7 +6,8 @@
 //! [`parse_str`] read from memory. Submodules: `lexer` (shared tokens), `parse` (node trees
 //! for both VRML families), `vrml1` (VRML 1.0 / Inventor state machine), `vrml2` (VRML 2.0
 //! tree walk), `build` (shape to model), `triangulate` (ear clipping), `ply`, `obj`, `stl`,
-//! `off` (those formats' readers and writers), `writer` (VRML 2.0 output).
+//! `off` (those formats' readers and writers), `writer` (VRML 2.0 output), `progressive`
+//! (the binary `.pm` file of a progressive mesh, `--progressive`: its own reader and writer).
 
 mod build;
 mod lexer;
@@ -14,6 +15,7 @@ pub mod obj;
 pub mod off;
 mod parse;
 pub mod ply;
+pub mod progressive;
 pub mod stl;
 pub mod triangulate;
 mod vrml1;
@@ -55,6 +57,13 @@ pub enum ReadError {
     Record {
         file: PathBuf,
         record: usize,
+        message: String,
+    },
+    /// A binary file's byte offset (a progressive mesh), counted from 0.
+    #[error("{file}: byte {offset}: {message}")]
+    Binary {
+        file: PathBuf,
+        offset: usize,
         message: String,
     },
 }
