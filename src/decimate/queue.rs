@@ -1,8 +1,16 @@
-//! An indexed binary min-heap of vertices keyed by error: at most one entry per vertex,
+//! An indexed 4-ary min-heap of vertices keyed by error: at most one entry per vertex,
 //! updated in place when a vertex's error changes. The lazy `BinaryHeap` with stale
-//! entries it replaces spent nearly half of a large decimation popping dead entries.
+//! entries it replaces spent nearly half of a large decimation popping dead entries; four
+//! children per node (one cache line of entries) halve the depth a pop sifts through.
 
 const ABSENT: u32 = u32::MAX;
+
+/// Children per node.
+const ARITY: usize = 4;
+
+fn parent(i: usize) -> usize {
+    (i - 1) / ARITY
+}
 
 /// Strict order on entries: by key, then by vertex, so equal keys pop in a fixed order
 /// whatever sequence of updates built the heap.
@@ -36,7 +44,7 @@ impl VertexQueue {
         for (i, &(_, v)) in q.heap.iter().enumerate() {
             q.slot[v as usize] = i as u32;
         }
-        for i in (0..q.heap.len() / 2).rev() {
+        for i in (0..q.heap.len().div_ceil(ARITY)).rev() {
             q.sift_down(i);
         }
         q
@@ -85,7 +93,7 @@ impl VertexQueue {
             self.heap.swap(i, last);
             self.heap.pop();
             self.slot[self.heap[i].1 as usize] = i as u32;
-            let parent_greater = i > 0 && less(self.heap[i], self.heap[(i - 1) / 2]);
+            let parent_greater = i > 0 && less(self.heap[i], self.heap[parent(i)]);
             if parent_greater {
                 self.sift_up(i);
             } else {
@@ -111,13 +119,13 @@ impl VertexQueue {
     fn sift_up(&mut self, mut i: usize) {
         let item = self.heap[i];
         while i > 0 {
-            let parent = (i - 1) / 2;
-            if !less(item, self.heap[parent]) {
+            let up = parent(i);
+            if !less(item, self.heap[up]) {
                 break;
             }
-            self.heap[i] = self.heap[parent];
+            self.heap[i] = self.heap[up];
             self.slot[self.heap[i].1 as usize] = i as u32;
-            i = parent;
+            i = up;
         }
         self.heap[i] = item;
         self.slot[item.1 as usize] = i as u32;
@@ -127,16 +135,16 @@ impl VertexQueue {
         let item = self.heap[i];
         let n = self.heap.len();
         loop {
-            let left = 2 * i + 1;
-            if left >= n {
+            let first = ARITY * i + 1;
+            if first >= n {
                 break;
             }
-            let right = left + 1;
-            let child = if right < n && less(self.heap[right], self.heap[left]) {
-                right
-            } else {
-                left
-            };
+            let mut child = first;
+            for c in first + 1..(first + ARITY).min(n) {
+                if less(self.heap[c], self.heap[child]) {
+                    child = c;
+                }
+            }
             if !less(self.heap[child], item) {
                 break;
             }
