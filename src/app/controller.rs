@@ -232,6 +232,7 @@ impl ViewportController {
 
     /// F3: the current viewport's scene as VRML 2.0.
     fn save(&mut self) {
+        self.current_mut().settle();
         let path = self.save_path.clone();
         self.message = match crate::io::write_vrml2(self.current_viewport().scene(), &path) {
             Ok(()) => format!("saved viewport {} as {}", self.current + 1, path.display()),
@@ -401,6 +402,22 @@ mod tests {
         assert!(c.tick(t0), "a geomorph runs");
         assert!(!c.tick(t0 + crate::app::lod::GEOMORPH));
         assert_eq!(c.current_viewport().vertex_count(), 30);
+        // F3 in the middle of a coarsening morph saves the level it goes to, not the fine
+        // mesh with its collapsing triangles.
+        let dir = std::env::temp_dir().join(format!("decimate-lod-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        c.save_path = dir.join("out.wrl");
+        c.set_lod_vertices(10, t0);
+        key(&mut c, Key::F3);
+        let saved = crate::io::read_scene(&c.save_path).unwrap_or_else(|e| panic!("{e}"));
+        let _ = std::fs::remove_dir_all(&dir);
+        assert_eq!(saved.scene.models[0].used_vertex_count(), 10);
+        assert_eq!(
+            crate::mesh::measure::degenerate_triangles(&saved.scene.models[0], 1e-9),
+            0
+        );
+        c.set_lod_vertices(30, t0);
+        c.tick(t0 + crate::app::lod::GEOMORPH);
         assert_eq!(c.viewports()[0].vertex_count(), 121);
         // Off: the level shown stays, and a decimate event starts from the original again.
         key(&mut c, Key::Char('L'));

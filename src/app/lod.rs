@@ -147,8 +147,9 @@ impl LodView {
         false
     }
 
-    /// Ends any morph at once: the lods at their target levels, shown as they are.
-    fn settle(&mut self) {
+    /// Ends any morph at once: the lods at their target levels, shown as they are (what F3
+    /// saves must not be the collapsed-flat triangles of a coarsening morph).
+    pub fn settle(&mut self) {
         if let Some(Morph {
             settle: Some(levels),
             ..

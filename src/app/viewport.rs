@@ -79,6 +79,16 @@ impl Viewport {
         }
     }
 
+    /// Ends a running geomorph at once.
+    pub fn settle(&mut self) {
+        if let Some(lod) = &mut self.lod {
+            if lod.morphing() {
+                lod.settle();
+                self.generation += 1;
+            }
+        }
+    }
+
     /// Advances a geomorph to `now`; true while one runs (the window keeps drawing).
     pub fn tick(&mut self, now: Instant) -> bool {
         let Some(lod) = &mut self.lod else {
