@@ -85,11 +85,15 @@ impl ProgressiveModel {
             .max()
             .unwrap_or(0);
         let mut model = Model {
+            name: fine.name.clone(),
+            transform: fine.transform,
             positions: vec![Vec3::ZERO; n],
             triangles: vec![[0; 3]; fine.triangles.len()],
             colors: None,
             normals: None,
-            ..fine.clone()
+            diffuse: fine.diffuse,
+            crease_angle: fine.crease_angle,
+            solid: fine.solid,
         };
         for (pm, &orig) in self.vertex_ids.iter().enumerate() {
             model.positions[orig as usize] = fine.positions[pm];
