@@ -372,6 +372,8 @@ pub struct Recorder {
     /// before, `keep` after, `remove`.
     colors: Vec<[[f32; 3]; 3]>,
     normals: Vec<[Vec3; 3]>,
+    /// The original model's per-face colours, if it has them (for the faces splits add).
+    face_colors: Option<Vec<[f32; 3]>>,
 }
 
 /// What the collapse loop knows of one collapse, before it performs it.
@@ -390,6 +392,18 @@ pub struct CollapseRecord<'a> {
 }
 
 impl Recorder {
+    /// A recorder for collapses of `original` (whose per-face colours it keeps).
+    pub fn new(original: &Model) -> Self {
+        let face_colors = match &original.colors {
+            Some(Attribute::PerFace(c)) => Some(c.clone()),
+            _ => None,
+        };
+        Self {
+            face_colors,
+            ..Self::default()
+        }
+    }
+
     pub fn collapse(&mut self, c: CollapseRecord<'_>) {
         self.renamed.extend_from_slice(c.renamed);
         self.deleted.extend_from_slice(c.deleted);
@@ -409,8 +423,8 @@ impl Recorder {
     /// The progressive model whose base is `base` — the decimated model exactly as the loop
     /// wrote it back, its vertices `kept` (internal ids, in the base's order) and its faces
     /// the live slots of `conn` ascending. `order` and `faces` map internal vertex ids and
-    /// triangle slots to the original model's; `face_colors` are the original's per-face
-    /// colours, if any. Slots must never have been reused (the loop renames in place).
+    /// triangle slots to the original model's. Slots must never have been reused (the loop
+    /// renames in place).
     pub fn finish(
         self,
         base: Model,
@@ -418,8 +432,8 @@ impl Recorder {
         conn: &Connectivity,
         order: &[u32],
         faces: &[u32],
-        face_colors: Option<&[[f32; 3]]>,
     ) -> ProgressiveModel {
+        let face_colors = self.face_colors.as_deref();
         let mut pm_vertex = vec![u32::MAX; order.len()];
         let mut vertex_ids = Vec::with_capacity(kept.len() + self.collapses.len());
         for (i, &v) in kept.iter().enumerate() {

@@ -70,7 +70,7 @@ pub fn decimate_model(
     limits: &Limits,
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
-    run(model, limits, progress, None)
+    run(model, limits, progress, None).0
 }
 
 /// As [`decimate_model`], and records every collapse: the returned progressive model's base
@@ -80,35 +80,21 @@ pub fn decimate_model_progressive(
     limits: &Limits,
     progress: &mut dyn FnMut(usize),
 ) -> (Outcome, ProgressiveModel) {
-    let face_colors = match &model.colors {
-        Some(Attribute::PerFace(c)) => Some(c.clone()),
-        _ => None,
-    };
-    let mut recorded = None;
-    let outcome = run(
-        model,
-        limits,
-        progress,
-        Some((&mut recorded, face_colors.as_deref())),
-    );
-    let pm = recorded.unwrap_or_else(|| ProgressiveModel {
-        base: model.clone(),
-        splits: Vec::new(),
-        vertex_ids: (0..model.positions.len() as u32).collect(),
-        face_ids: (0..model.triangles.len() as u32).collect(),
-    });
-    (outcome, pm)
+    let recorder = Recorder::new(model);
+    match run(model, limits, progress, Some(recorder)) {
+        (outcome, Some(pm)) => (outcome, pm),
+        (_, None) => unreachable!("a run given a recorder returns its progressive model"),
+    }
 }
 
-/// Where a recording run puts its progressive model, and the input's per-face colours.
-type Recording<'a> = (&'a mut Option<ProgressiveModel>, Option<&'a [[f32; 3]]>);
-
+/// The pipeline; with a `recorder`, every collapse is recorded and the progressive model
+/// returned (its base is what is written back into `model`).
 fn run(
     model: &mut Model,
     limits: &Limits,
     progress: &mut dyn FnMut(usize),
-    recording: Option<Recording<'_>>,
-) -> Outcome {
+    recorder: Option<Recorder>,
+) -> (Outcome, Option<ProgressiveModel>) {
     // 1. load, renumbered along a Morton curve for memory locality
     let n = model.positions.len() as u32;
     let loaded = layout::load(model);
@@ -134,9 +120,7 @@ fn run(
 
     // 2. connect
     let mut d = Collapser::new(positions, &triangles, colors, normals);
-    if recording.is_some() {
-        d.recorder = Some(Recorder::default());
-    }
+    d.recorder = recorder;
 
     // 3. quadrics
     d.fill_quadrics(limits.feature_angle_deg.to_radians().cos());
@@ -191,15 +175,15 @@ fn run(
     progress(outcome.removed);
 
     // 6. compact
-    if let Some((out, face_colors)) = recording {
+    if let Some(recorder) = d.recorder.take() {
         let kept = d.write_back(model, order, faces);
-        if let Some(recorder) = d.recorder.take() {
-            *out = Some(recorder.finish(model.clone(), &kept, &d.conn, order, faces, face_colors));
-        }
-    } else if outcome.removed > 0 {
+        let pm = recorder.finish(model.clone(), &kept, &d.conn, order, faces);
+        return (outcome, Some(pm));
+    }
+    if outcome.removed > 0 {
         d.write_back(model, order, faces);
     }
-    outcome
+    (outcome, None)
 }
 
 /// A symmetric 4×4 quadric `Q(p) = pᵀAp + 2b·p + c`, with the area behind it.
