@@ -139,6 +139,14 @@ impl Connectivity {
         self.alive_count
     }
 
+    /// Asks the CPU to start loading `v`'s incident list (a hint; no effect on results).
+    #[inline]
+    pub fn prefetch_incident(&self, v: u32) {
+        if let Some(inc) = self.incidence.get(v as usize) {
+            crate::mesh::prefetch(inc);
+        }
+    }
+
     /// Live triangles incident to `v`.
     pub fn incident(&self, v: u32) -> &[u32] {
         let inc = &self.incidence[v as usize];

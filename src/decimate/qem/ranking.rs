@@ -1,0 +1,200 @@
+//! The cost cache of planned collapses and each vertex's cheapest edge.
+//!
+//! One entry per half-edge slot: slot `3t + i` is the edge from corner `i` to corner
+//! `i + 1` of triangle slot `t` (slots are never reused: collapses rename corners in
+//! place). Both slots of an edge lie in the fans of both its ends and hold the same cost,
+//! planned once, always as `plan(min, max)`, so that whichever end plans it the value is the
+//! same. A blocked entry (the collapse was illegal or over the error bound; cleared when the
+//! neighbourhood changes) has its sign bit set.
+//!
+//! Entries are atomics so that ranking runs on every core: each fan is planned by one
+//! thread, and two threads that meet on an edge write the same value. On x86 a relaxed
+//! atomic load or store is a plain move.
+
+use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
+
+use rayon::prelude::*;
+
+use super::collapser::Collapser;
+
+const BLOCKED: u32 = 1 << 31;
+
+/// Fans longer than this are planned without sharing an edge's cost between its two slots.
+const FAN_MEMO: usize = 24;
+
+/// Vertices per rayon task: planning one fan takes well under a microsecond.
+const MIN_PER_TASK: usize = 2048;
+
+/// Planned costs of every edge, per half-edge slot.
+pub(super) struct EdgeCosts {
+    slots: Vec<AtomicU32>,
+}
+
+impl EdgeCosts {
+    pub fn new(triangle_slots: usize) -> Self {
+        Self {
+            slots: (0..3 * triangle_slots)
+                .map(|_| AtomicU32::new(f32::INFINITY.to_bits()))
+                .collect(),
+        }
+    }
+
+    /// The cost of `slot`, or `None` when it is blocked or the edge may not collapse.
+    fn get(&self, slot: usize) -> Option<f32> {
+        let bits = self.slots[slot].load(Relaxed);
+        let cost = f32::from_bits(bits);
+        (bits & BLOCKED == 0 && cost.is_finite()).then_some(cost)
+    }
+
+    fn set(&self, slot: usize, cost: f32) {
+        self.slots[slot].store(cost.to_bits(), Relaxed);
+    }
+
+    fn block(&self, slot: usize) {
+        self.slots[slot].fetch_or(BLOCKED, Relaxed);
+    }
+
+    fn unblock(&self, slot: usize) {
+        let bits = self.slots[slot].load(Relaxed);
+        if bits & BLOCKED != 0 {
+            self.slots[slot].store(bits & !BLOCKED, Relaxed);
+        }
+    }
+}
+
+/// A plan's cost as stored: f32, finite.
+pub(super) fn stored(cost: f64) -> f32 {
+    (cost as f32).min(f32::MAX)
+}
+
+impl Collapser {
+    /// Calls `f(slot, other end)` for every half-edge slot on an edge of `v`: in each
+    /// incident triangle, the edge leaving `v` and the edge coming into it.
+    fn for_each_edge(&self, v: u32, mut f: impl FnMut(usize, u32)) {
+        for &t in self.conn.incident(v) {
+            let tri = self.conn.triangle(t);
+            let i = if tri[0] == v {
+                0
+            } else if tri[1] == v {
+                1
+            } else {
+                2
+            };
+            let base = 3 * t as usize;
+            f(base + i, tri[(i + 1) % 3]);
+            f(base + (i + 2) % 3, tri[(i + 2) % 3]);
+        }
+    }
+
+    /// The stored cost of collapsing `a`–`b`: infinite when the kinds of its ends forbid it.
+    fn edge_cost(&self, a: u32, b: u32) -> f32 {
+        self.plan(a.min(b), a.max(b))
+            .map_or(f32::INFINITY, |p| stored(p.cost))
+    }
+
+    /// Plans the edges of `v` (only those to a larger vertex when `upward`) and stores each
+    /// edge's cost in its slots, unblocked.
+    pub fn plan_fan(&self, v: u32, upward: bool) {
+        let mut memo = [(u32::MAX, 0.0f32); FAN_MEMO];
+        let mut len = 0;
+        self.for_each_edge(v, |slot, w| {
+            if upward && w <= v {
+                return;
+            }
+            let cost = match memo[..len].iter().find(|m| m.0 == w) {
+                Some(&(_, cost)) => cost,
+                None => {
+                    let cost = self.edge_cost(v, w);
+                    if len < FAN_MEMO {
+                        memo[len] = (w, cost);
+                        len += 1;
+                    }
+                    cost
+                }
+            };
+            self.costs.set(slot, cost);
+        });
+    }
+
+    /// The cheapest unblocked edge of `v`: its other end (`u32::MAX` when none) and cost.
+    pub fn best_edge(&self, v: u32) -> (u32, f32) {
+        let mut best = (u32::MAX, f32::INFINITY);
+        self.for_each_edge(v, |slot, w| {
+            if let Some(cost) = self.costs.get(slot) {
+                if cost < best.1 || (cost == best.1 && w < best.0) {
+                    best = (w, cost);
+                }
+            }
+        });
+        best
+    }
+
+    /// Plans every edge once and gives every vertex its cheapest edge, on all cores.
+    pub fn rank_all(&mut self) {
+        let n = self.positions.len() as u32;
+        let this = &*self;
+        (0..n)
+            .into_par_iter()
+            .with_min_len(MIN_PER_TASK)
+            .for_each(|v| this.plan_fan(v, true));
+        let best: Vec<(u32, f32)> = (0..n)
+            .into_par_iter()
+            .with_min_len(MIN_PER_TASK)
+            .map(|v| this.best_edge(v))
+            .collect();
+        for (v, (w, cost)) in best.into_iter().enumerate() {
+            self.best[v] = w;
+            self.best_cost[v] = cost;
+        }
+    }
+
+    /// Re-plans every edge of each of `vertices` (their quadrics or positions changed), on
+    /// all cores.
+    pub fn replan(&self, vertices: &[u32]) {
+        vertices
+            .par_iter()
+            .with_min_len(MIN_PER_TASK / 4)
+            .for_each(|&v| self.plan_fan(v, false));
+    }
+
+    /// Re-picks the cheapest edge of each of `vertices` among all its edges, first
+    /// unblocking every edge of those whose neighbourhood changed (`release`), on all cores.
+    /// The unblocking is finished before any vertex looks: an edge is in two fans.
+    pub fn rerank(&mut self, vertices: &[u32], release: impl Fn(u32) -> bool + Sync) {
+        let this = &*self;
+        let released = |v: u32| this.has_blocked[v as usize] && release(v);
+        vertices
+            .par_iter()
+            .with_min_len(MIN_PER_TASK)
+            .filter(|&&v| released(v))
+            .for_each(|&v| this.unblock_fan(v));
+        let best: Vec<(u32, f32)> = vertices
+            .par_iter()
+            .with_min_len(MIN_PER_TASK)
+            .map(|&v| this.best_edge(v))
+            .collect();
+        for (&v, (w, cost)) in vertices.iter().zip(best) {
+            if self.has_blocked[v as usize] && release(v) {
+                self.has_blocked[v as usize] = false;
+            }
+            self.best[v as usize] = w;
+            self.best_cost[v as usize] = cost;
+        }
+    }
+
+    /// Blocks the edge `v`–`w` until a neighbour of either end changes.
+    pub fn block_edge(&mut self, v: u32, w: u32) {
+        self.for_each_edge(v, |slot, x| {
+            if x == w {
+                self.costs.block(slot);
+            }
+        });
+        self.has_blocked[v as usize] = true;
+        self.has_blocked[w as usize] = true;
+    }
+
+    /// Unblocks every edge of `v`: its neighbourhood changed.
+    fn unblock_fan(&self, v: u32) {
+        self.for_each_edge(v, |slot, _| self.costs.unblock(slot));
+    }
+}
