@@ -50,7 +50,8 @@ pub(super) struct Plan {
 
 /// The working state of one model's decimation.
 pub(super) struct Collapser {
-    pub positions: Vec<DVec3>,
+    /// f32 as written: a moved vertex is placed at an f32 position (see `plan`).
+    positions: Vec<Vec3>,
     pub conn: Connectivity,
     pub kinds: Vec<Kind>,
     quadrics: Vec<Quadric>,
@@ -74,7 +75,7 @@ pub(super) struct Collapser {
 
 impl Collapser {
     pub fn new(
-        positions: Vec<DVec3>,
+        positions: Vec<Vec3>,
         triangles: &[[u32; 3]],
         colors: Option<Vec<[f32; 3]>>,
         normals: Option<Vec<[f32; 3]>>,
@@ -119,8 +120,17 @@ impl Collapser {
         }
     }
 
+    /// Vertex count.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    pub fn position(&self, v: u32) -> DVec3 {
+        self.positions[v as usize].as_dvec3()
+    }
+
     pub fn corners(&self, t: u32) -> [DVec3; 3] {
-        self.conn.triangle(t).map(|v| self.positions[v as usize])
+        self.conn.triangle(t).map(|v| self.position(v))
     }
 
     /// Triangles on the edge `a`–`b`: how many, and the last one found.
@@ -171,7 +181,7 @@ impl Collapser {
                     }
                     _ => continue,
                 };
-                let (pu, pw) = (self.positions[u as usize], self.positions[w as usize]);
+                let (pu, pw) = (self.position(u), self.position(w));
                 let edge = pw - pu;
                 let side = edge.cross(normal).normalize_or_zero();
                 let weight = scale * edge.length_squared();
@@ -233,10 +243,7 @@ impl Collapser {
             }
         };
         let q = self.quadrics[a as usize].sum(&self.quadrics[b as usize]);
-        let (pr, pk) = (
-            self.positions[remove as usize],
-            self.positions[keep as usize],
-        );
+        let (pr, pk) = (self.position(remove), self.position(keep));
         let position = if free { self.place(&q, pr, pk) } else { pk };
         // What is written is f32: plan with exactly that.
         let position = position.as_vec3().as_dvec3();
@@ -282,7 +289,7 @@ impl Collapser {
     pub fn collapse(&mut self, plan: &Plan) {
         let (r, k) = (plan.remove as usize, plan.keep as usize);
         // Attributes at the projection of the new position on the edge.
-        let (pr, pk) = (self.positions[r], self.positions[k]);
+        let (pr, pk) = (self.position(plan.remove), self.position(plan.keep));
         let edge = pr - pk;
         let s = if edge.length_squared() > 0.0 {
             ((plan.position - pk).dot(edge) / edge.length_squared()).clamp(0.0, 1.0) as f32
@@ -336,7 +343,7 @@ impl Collapser {
                 deleted: &deleted,
             });
         }
-        self.positions[k] = plan.position;
+        self.positions[k] = plan.position.as_vec3();
         let q = self.quadrics[r];
         self.quadrics[k].add(&q);
         self.kinds[r] = Kind::Fixed;
@@ -360,7 +367,7 @@ impl Collapser {
         model.triangles = triangles;
         model.positions = kept_vertices
             .iter()
-            .map(|&v| self.positions[inverse[v as usize] as usize].as_vec3())
+            .map(|&v| self.positions[inverse[v as usize] as usize])
             .collect();
         let internal_of = |v: &u32| inverse[*v as usize] as usize;
         model.colors = match (&self.colors, &model.colors) {

@@ -105,7 +105,7 @@ impl Collapser {
                     if w == plan.remove || w == plan.keep {
                         plan.position
                     } else {
-                        self.positions[w as usize]
+                        self.position(w)
                     }
                 });
                 let old_cross = (old[1] - old[0]).cross(old[2] - old[0]);

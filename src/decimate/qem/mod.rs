@@ -4,9 +4,10 @@
 //! Texture using Quadric Error Metrics" (Garland, Heckbert, IEEE Visualization 1998).
 //!
 //! The pipeline over flat arrays, one stage per step:
-//! 1. load: renumber vertices along a Morton curve (`mesh::spatial`) for locality, drop
-//!    triangles with out-of-range indices; positions are worked in f64, rounded to f32 as
-//!    soon as a vertex moves so that every check sees what is written;
+//! 1. load (`layout`): renumber vertices along a Morton curve (`mesh::spatial`) and order
+//!    triangles by their first vertex, for locality; drop triangles with out-of-range
+//!    indices; positions are stored in f32, as written, and worked in f64: a placement is
+//!    rounded to f32 before it is checked, so every check sees what is written;
 //! 2. connect: vertex → triangle incidence (`mesh::topology`) and each vertex's kind
 //!    (interior, boundary, complex) from its one-ring shape;
 //! 3. quadrics: every triangle adds its plane weighted by its area; every boundary edge adds
@@ -42,7 +43,7 @@ mod passes;
 mod quadric;
 mod ranking;
 
-use glam::DVec3;
+use glam::Vec3;
 
 use super::layout;
 use super::progressive::{ProgressiveModel, Recorder};
@@ -87,10 +88,7 @@ fn run(
     let n = model.positions.len() as u32;
     let loaded = layout::load(model);
     let (order, faces) = (&loaded.order, &loaded.faces);
-    let positions: Vec<DVec3> = order
-        .iter()
-        .map(|&v| model.positions[v as usize].as_dvec3())
-        .collect();
+    let positions: Vec<Vec3> = order.iter().map(|&v| model.positions[v as usize]).collect();
     let triangles = loaded.triangles(model);
     let per_vertex = |a: &Option<Attribute<[f32; 3]>>| match a {
         Some(Attribute::PerVertex(c)) if c.len() == n as usize => {

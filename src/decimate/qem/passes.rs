@@ -58,7 +58,7 @@ pub(super) fn collapse_in_passes(
     limits: &Limits,
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
-    let n = d.positions.len() as u32;
+    let n = d.vertex_count() as u32;
     let mut outcome = Outcome {
         removed: 0,
         max_error: 0.0,

@@ -131,7 +131,7 @@ impl Collapser {
 
     /// Plans every edge once and gives every vertex its cheapest edge, on all cores.
     pub fn rank_all(&mut self) {
-        let n = self.positions.len() as u32;
+        let n = self.vertex_count() as u32;
         let this = &*self;
         (0..n)
             .into_par_iter()
