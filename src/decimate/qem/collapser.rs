@@ -146,60 +146,94 @@ impl Collapser {
         (count, last)
     }
 
-    /// Area-weighted face planes, plus constraint planes along boundary and feature edges.
+    /// Area-weighted face planes, plus constraint planes along boundary and feature edges;
+    /// each vertex gathers its own, on all cores.
     pub fn fill_quadrics(&mut self, cos_feature: f64) {
-        let slots = self.conn.triangles().len() as u32;
-        for t in 0..slots {
-            let [a, b, c] = self.corners(t);
-            let cross = (b - a).cross(c - a);
-            let len = cross.length();
-            if len <= 0.0 {
+        let n = self.vertex_count() as u32;
+        let this = &*self;
+        let quadrics = (0..n)
+            .into_par_iter()
+            .with_min_len(4096)
+            .map(|v| this.vertex_quadric(v, cos_feature))
+            .collect();
+        self.quadrics = quadrics;
+    }
+
+    /// The planes `v` stands for: those of its triangles, and the constraint planes of the
+    /// edges of those triangles that end at `v`.
+    fn vertex_quadric(&self, v: u32, cos_feature: f64) -> Quadric {
+        let mut sum = Quadric::default();
+        for &t in self.conn.incident(v) {
+            let Some((normal, face)) = self.face_plane(t) else {
                 continue;
-            }
-            let normal = cross / len;
-            let area = 0.5 * len;
-            let mut q = Quadric::plane(normal, -normal.dot(a), area);
-            q.area = area;
-            for v in self.conn.triangle(t) {
-                self.quadrics[v as usize].add(&q);
-            }
-            // Each directed edge of the triangle: constrained when it is on the boundary, or
-            // a feature edge (seen once, from the triangle whose id is smaller).
+            };
+            sum.add(&face);
             let tri = self.conn.triangle(t);
             for i in 0..3 {
                 let (u, w) = (tri[i], tri[(i + 1) % 3]);
-                let (count, other) = self.other_triangle(u, w, t);
-                let scale = match (count, other) {
-                    (1, _) => CONSTRAINT_WEIGHT,
-                    (2, Some(o)) if o > t => {
-                        let [p, q2, r] = self.corners(o);
-                        let cos = normal.dot((q2 - p).cross(r - p).normalize_or_zero());
-                        if cos >= cos_feature {
-                            continue;
-                        }
-                        FEATURE_WEIGHT * (1.0 - cos).powi(6)
-                    }
-                    _ => continue,
-                };
-                let (pu, pw) = (self.position(u), self.position(w));
-                let edge = pw - pu;
-                let side = edge.cross(normal).normalize_or_zero();
-                let weight = scale * edge.length_squared();
-                let q = Quadric::plane(side, -side.dot(pu), weight);
-                self.quadrics[u as usize].add(&q);
-                self.quadrics[w as usize].add(&q);
-                if count == 2 {
-                    // A crease is constrained from both of its sides.
-                    if let Some(o) = other {
-                        let [p, q2, r] = self.corners(o);
-                        let n2 = (q2 - p).cross(r - p).normalize_or_zero();
-                        let side = edge.cross(n2).normalize_or_zero();
-                        let q = Quadric::plane(side, -side.dot(pu), weight);
-                        self.quadrics[u as usize].add(&q);
-                        self.quadrics[w as usize].add(&q);
+                if u == v || w == v {
+                    for q in self
+                        .edge_constraints(t, normal, u, w, cos_feature)
+                        .iter()
+                        .flatten()
+                    {
+                        sum.add(q);
                     }
                 }
             }
+        }
+        sum
+    }
+
+    /// Triangle `t`'s unit normal and its plane weighted by its area (`None` when it has
+    /// none).
+    fn face_plane(&self, t: u32) -> Option<(DVec3, Quadric)> {
+        let [a, b, c] = self.corners(t);
+        let cross = (b - a).cross(c - a);
+        let len = cross.length();
+        if len <= 0.0 {
+            return None;
+        }
+        let normal = cross / len;
+        let area = 0.5 * len;
+        let mut q = Quadric::plane(normal, -normal.dot(a), area);
+        q.area = area;
+        Some((normal, q))
+    }
+
+    /// The constraint planes through the edge `u`→`w` of triangle `t` (unit `normal`): one
+    /// perpendicular to `t` when the edge is on the boundary; one per side when it is a
+    /// feature edge (seen once, from the triangle whose id is smaller), weighted by how
+    /// sharp it is; none otherwise.
+    fn edge_constraints(
+        &self,
+        t: u32,
+        normal: DVec3,
+        u: u32,
+        w: u32,
+        cos_feature: f64,
+    ) -> [Option<Quadric>; 2] {
+        let (count, other) = self.other_triangle(u, w, t);
+        let (pu, pw) = (self.position(u), self.position(w));
+        let edge = pw - pu;
+        let plane = |n: DVec3, scale: f64| {
+            let side = edge.cross(n).normalize_or_zero();
+            Quadric::plane(side, -side.dot(pu), scale * edge.length_squared())
+        };
+        match (count, other) {
+            (1, _) => [Some(plane(normal, CONSTRAINT_WEIGHT)), None],
+            (2, Some(o)) if o > t => {
+                let [p, q, r] = self.corners(o);
+                let n2 = (q - p).cross(r - p).normalize_or_zero();
+                let cos = normal.dot(n2);
+                if cos >= cos_feature {
+                    return [None, None];
+                }
+                // A crease is constrained from both of its sides.
+                let scale = FEATURE_WEIGHT * (1.0 - cos).powi(6);
+                [Some(plane(normal, scale)), Some(plane(n2, scale))]
+            }
+            _ => [None, None],
         }
     }
 
