@@ -173,7 +173,7 @@ impl Collapser {
                 let (u, w) = (tri[i], tri[(i + 1) % 3]);
                 if u == v || w == v {
                     for q in self
-                        .edge_constraints(t, normal, u, w, cos_feature)
+                        .edge_constraints(t, normal, v, u, w, cos_feature)
                         .iter()
                         .flatten()
                     {
@@ -201,7 +201,8 @@ impl Collapser {
         Some((normal, q))
     }
 
-    /// The constraint planes through the edge `u`→`w` of triangle `t` (unit `normal`): one
+    /// The constraint planes through the edge `u`→`w` of triangle `t` (unit `normal`), `at`
+    /// one of its ends (whose fan is searched for the edge's other triangle): one
     /// perpendicular to `t` when the edge is on the boundary; one per side when it is a
     /// feature edge (seen once, from the triangle whose id is smaller), weighted by how
     /// sharp it is; none otherwise.
@@ -209,11 +210,13 @@ impl Collapser {
         &self,
         t: u32,
         normal: DVec3,
+        at: u32,
         u: u32,
         w: u32,
         cos_feature: f64,
     ) -> [Option<Quadric>; 2] {
-        let (count, other) = self.other_triangle(u, w, t);
+        let far = if at == u { w } else { u };
+        let (count, other) = self.other_triangle(at, far, t);
         let (pu, pw) = (self.position(u), self.position(w));
         let edge = pw - pu;
         let plane = |n: DVec3, scale: f64| {
