@@ -9,8 +9,6 @@
 //! shading keeps a cube's edges sharp. Flat shading needs no duplication: the fragment
 //! shader derives the face normal from screen-space derivatives.
 
-use std::collections::HashSet;
-
 use glam::Vec3;
 
 use crate::mesh::{Attribute, Model};
@@ -62,7 +60,10 @@ impl MeshData {
         morph_from: Option<&[Vec3]>,
     ) -> Self {
         let morph_from = morph_from.filter(|m| m.len() == model.positions.len());
-        let normals = vertex_normals(model);
+        let (normals, creases) = rayon::join(
+            || vertex_normals(model),
+            || Creases::new(model, model.positions.len()),
+        );
         let face_colors = match &model.colors {
             Some(Attribute::PerFace(c)) if c.len() == model.triangles.len() => Some(c),
             _ => None,
@@ -72,8 +73,6 @@ impl MeshData {
             _ => None,
         };
         let color_of_vertex = |v: usize| to_rgba8(vertex_colors.map_or(model.diffuse, |c| c[v]));
-
-        let creases = Creases::new(model, normals.len());
 
         let mut data = Self::default();
         // `render_index[v]`: the render vertex that stands for model vertex `v` in point
@@ -112,37 +111,24 @@ impl MeshData {
             }
         }
 
-        // Unique edges, each drawn once, in the model's vertex numbering mapped to render vertices.
-        let mut seen = HashSet::with_capacity(model.triangles.len() * 3 / 2);
-        for tri in &model.triangles {
-            for (a, b) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
-                if seen.insert((a.min(b), a.max(b))) {
-                    data.edges.push(render_index[a as usize]);
-                    data.edges.push(render_index[b as usize]);
-                }
-            }
-        }
         data.points = render_index
             .iter()
             .copied()
             .filter(|&i| i != u32::MAX)
             .collect();
-
-        for tri in &model.triangles {
-            let [a, b, c] = tri.map(|v| model.positions[v as usize]);
-            let centre = (a + b + c) / 3.0;
-            let normal = (b - a).cross(c - a).normalize_or_zero();
-            push_segment(&mut data.face_normals, centre, normal * normal_length);
-        }
-        for (v, &i) in render_index.iter().enumerate() {
-            if i != u32::MAX {
-                push_segment(
-                    &mut data.vertex_normals,
-                    model.positions[v],
-                    normals[v] * normal_length,
-                );
-            }
-        }
+        // The line lists are independent of each other: built side by side.
+        let ((edges, face_normals), vertex_normals) = rayon::join(
+            || {
+                rayon::join(
+                    || unique_edges(model, &render_index),
+                    || face_normal_segments(model, normal_length),
+                )
+            },
+            || vertex_normal_segments(model, &normals, &render_index, normal_length),
+        );
+        data.edges = edges;
+        data.face_normals = face_normals;
+        data.vertex_normals = vertex_normals;
         data
     }
 }
@@ -184,24 +170,7 @@ impl Creases {
                 (b - a).cross(c - a)
             })
             .collect();
-        // Vertex -> faces, as offsets into one array (counting sort).
-        c.offsets = vec![0; vertex_count + 1];
-        for tri in &model.triangles {
-            for &v in tri {
-                c.offsets[v as usize + 1] += 1;
-            }
-        }
-        for v in 0..vertex_count {
-            c.offsets[v + 1] += c.offsets[v];
-        }
-        let mut fill = c.offsets.clone();
-        c.faces = vec![0; model.triangles.len() * 3];
-        for (t, tri) in model.triangles.iter().enumerate() {
-            for &v in tri {
-                c.faces[fill[v as usize] as usize] = t as u32;
-                fill[v as usize] += 1;
-            }
-        }
+        (c.offsets, c.faces) = vertex_faces(model, vertex_count);
         for v in 0..vertex_count {
             let around = c.around(v);
             c.creased[v] = around.iter().enumerate().any(|(i, &f)| {
@@ -237,6 +206,92 @@ impl Creases {
             .sum::<Vec3>()
             .normalize_or_zero()
     }
+}
+
+/// Two render indices per unique edge (undirected; a repeated corner's edge counts too),
+/// each at its first appearance in triangle order. An edge is new in triangle `t` when no
+/// earlier triangle has both its ends (in a triangle every two corners are joined) and no
+/// earlier side of `t` is the same edge.
+fn unique_edges(model: &Model, render_index: &[u32]) -> Vec<u32> {
+    let (offsets, faces) = vertex_faces(model, render_index.len());
+    let has_edge = |tri: &[u32; 3], a: u32, b: u32| {
+        if a == b {
+            tri.iter().filter(|&&v| v == a).count() >= 2
+        } else {
+            tri.contains(&a) && tri.contains(&b)
+        }
+    };
+    let mut edges = Vec::with_capacity(model.triangles.len() * 3);
+    for (t, tri) in model.triangles.iter().enumerate() {
+        let sides = [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])];
+        for (i, &(a, b)) in sides.iter().enumerate() {
+            let same = |&(x, y): &(u32, u32)| (x.min(y), x.max(y)) == (a.min(b), a.max(b));
+            if sides[..i].iter().any(same) {
+                continue;
+            }
+            let around = &faces[offsets[a as usize] as usize..offsets[a as usize + 1] as usize];
+            let earlier = around
+                .iter()
+                .take_while(|&&f| (f as usize) < t)
+                .any(|&f| has_edge(&model.triangles[f as usize], a, b));
+            if !earlier {
+                edges.push(render_index[a as usize]);
+                edges.push(render_index[b as usize]);
+            }
+        }
+    }
+    edges
+}
+
+/// Each triangle's normal, a segment from its centroid.
+fn face_normal_segments(model: &Model, normal_length: f32) -> Vec<Vertex> {
+    let mut out = Vec::with_capacity(model.triangles.len() * 2);
+    for tri in &model.triangles {
+        let [a, b, c] = tri.map(|v| model.positions[v as usize]);
+        let centre = (a + b + c) / 3.0;
+        let normal = (b - a).cross(c - a).normalize_or_zero();
+        push_segment(&mut out, centre, normal * normal_length);
+    }
+    out
+}
+
+/// Each used vertex's normal, a segment from the vertex.
+fn vertex_normal_segments(
+    model: &Model,
+    normals: &[Vec3],
+    render_index: &[u32],
+    normal_length: f32,
+) -> Vec<Vertex> {
+    let mut out = Vec::new();
+    for (v, &i) in render_index.iter().enumerate() {
+        if i != u32::MAX {
+            push_segment(&mut out, model.positions[v], normals[v] * normal_length);
+        }
+    }
+    out
+}
+
+/// Vertex → incident faces, ascending, as `faces[offsets[v]..offsets[v + 1]]` (a counting
+/// sort; a face with a repeated corner is listed once per corner).
+fn vertex_faces(model: &Model, vertex_count: usize) -> (Vec<u32>, Vec<u32>) {
+    let mut offsets = vec![0u32; vertex_count + 1];
+    for tri in &model.triangles {
+        for &v in tri {
+            offsets[v as usize + 1] += 1;
+        }
+    }
+    for v in 0..vertex_count {
+        offsets[v + 1] += offsets[v];
+    }
+    let mut fill = offsets.clone();
+    let mut faces = vec![0; model.triangles.len() * 3];
+    for (t, tri) in model.triangles.iter().enumerate() {
+        for &v in tri {
+            faces[fill[v as usize] as usize] = t as u32;
+            fill[v as usize] += 1;
+        }
+    }
+    (offsets, faces)
 }
 
 fn push_segment(out: &mut Vec<Vertex>, from: Vec3, along: Vec3) {
@@ -327,6 +382,29 @@ mod tests {
         assert_eq!(d.points, vec![0, 1, 2, 3]);
         assert_eq!(d.face_normals.len(), 4);
         assert_eq!(d.vertex_normals.len(), 8);
+    }
+
+    #[test]
+    fn every_edge_once_in_first_appearance_order_even_with_repeated_corners() {
+        let mut model = crate::mesh::shapes::uv_sphere(6, 8);
+        // Corners repeated, a triangle given twice and one reversed: edges still once each.
+        model.triangles.push([0, 0, 1]);
+        model.triangles.push([2, 3, 3]);
+        model.triangles.push([4, 4, 4]);
+        let first = model.triangles[0];
+        model.triangles.push(first);
+        model.triangles.push([first[2], first[1], first[0]]);
+        let identity: Vec<u32> = (0..model.positions.len() as u32).collect();
+        let mut seen = std::collections::HashSet::new();
+        let mut expected = Vec::new();
+        for tri in &model.triangles {
+            for (a, b) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
+                if seen.insert((a.min(b), a.max(b))) {
+                    expected.extend([a, b]);
+                }
+            }
+        }
+        assert_eq!(unique_edges(&model, &identity), expected);
     }
 
     #[test]
