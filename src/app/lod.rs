@@ -137,31 +137,35 @@ impl LodView {
         self.morph.is_some()
     }
 
-    /// Ends a finished morph at `now`; true when the shown scene changed (a coarsening morph
-    /// dropped to its coarse topology, or the morph's start positions went away).
+    /// Ends a finished morph at `now`; true when the shown scene changed (see
+    /// [`Self::settle`]).
     pub fn tick(&mut self, now: Instant) -> bool {
         if self.morph.is_some() && self.morph_factor(now) >= 1.0 {
-            self.settle();
-            return true;
+            return self.settle();
         }
         false
     }
 
-    /// Ends any morph at once: the lods at their target levels, shown as they are (what F3
-    /// saves must not be the collapsed-flat triangles of a coarsening morph).
-    pub fn settle(&mut self) {
-        if let Some(Morph {
+    /// Ends any morph at once, the lods at their target levels (what F3 saves must not be
+    /// the collapsed-flat triangles of a coarsening morph). True when the shown scene
+    /// changed: a coarsening morph drops to its coarse topology. A refining morph ends on
+    /// the mesh already shown — drawn with factor 1 its start positions are unused — so the
+    /// window need not upload it again.
+    pub fn settle(&mut self) -> bool {
+        let Some(Morph {
             settle: Some(levels),
             ..
         }) = self.morph.take()
-        {
-            for (lod, level) in self.lods.iter_mut().zip(levels) {
-                lod.set_level(level);
-            }
+        else {
+            return false;
+        };
+        for (lod, level) in self.lods.iter_mut().zip(levels) {
+            lod.set_level(level);
         }
         self.shown = Scene {
             models: self.lods.iter().map(|l| l.model().clone()).collect(),
         };
+        true
     }
 
     /// The slider moved to `vertices` at `now`: start a geomorph to the nearest levels (each
@@ -270,7 +274,12 @@ mod tests {
             }
         }
         assert!(v.morph_factor(t1 + GEOMORPH / 2) > 0.4);
-        assert!(v.tick(t1 + GEOMORPH));
+        let fine = v.scene().clone();
+        assert!(
+            !v.tick(t1 + GEOMORPH),
+            "the mesh shown is already the fine one"
+        );
+        assert_eq!(v.scene(), &fine);
         assert!(!v.morphing());
         assert_eq!(v.morph_factor(t1 + GEOMORPH), 1.0);
         let n = v.vertex_count();

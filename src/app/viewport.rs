@@ -82,8 +82,7 @@ impl Viewport {
     /// Ends a running geomorph at once.
     pub fn settle(&mut self) {
         if let Some(lod) = &mut self.lod {
-            if lod.morphing() {
-                lod.settle();
+            if lod.settle() {
                 self.generation += 1;
             }
         }
