@@ -147,6 +147,14 @@ impl Connectivity {
         }
     }
 
+    /// Asks the CPU to start loading triangle `t`'s corners (a hint).
+    #[inline]
+    pub fn prefetch_triangle(&self, t: u32) {
+        if let Some(tri) = self.triangles.get(t as usize) {
+            crate::mesh::prefetch(tri);
+        }
+    }
+
     /// Live triangles incident to `v`.
     pub fn incident(&self, v: u32) -> &[u32] {
         let inc = &self.incidence[v as usize];

@@ -120,6 +120,17 @@ impl Collapser {
         }
     }
 
+    /// Starts loading `v`'s incident triangles, their corners' positions and their edge
+    /// costs (a hint; `v`'s incident list should be loaded by now).
+    pub fn prefetch_fan(&self, v: u32) {
+        if (v as usize) < self.positions.len() {
+            for &t in self.conn.incident(v) {
+                self.conn.prefetch_triangle(t);
+                self.costs.prefetch(3 * t as usize);
+            }
+        }
+    }
+
     /// Vertex count.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()

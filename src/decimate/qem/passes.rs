@@ -26,7 +26,7 @@ use crate::decimate::schroeder::{Limits, Outcome};
 const PASS_SHARE: usize = 3;
 
 /// Candidates whose data is requested from memory ahead of their turn.
-const PREFETCH_AHEAD: usize = 6;
+const PREFETCH_AHEAD: usize = 4;
 
 /// The kept vertex of a collapse: its edges are re-planned.
 const REPLAN: u8 = 1;
@@ -110,13 +110,17 @@ pub(super) fn collapse_in_passes(
         candidates.sort_unstable_by(by_cost);
         let threshold = candidates[take - 1].0;
         for (i, &(_, v)) in candidates.iter().enumerate() {
-            // Two stages: a candidate's own data, then (once its cheapest edge is loaded)
-            // the other end's.
-            if let Some(&(_, ahead)) = candidates.get(i + 2 * PREFETCH_AHEAD) {
+            // Three stages: a candidate's own data, then (once its cheapest edge is loaded)
+            // the other end's, then (once both incident lists are loaded) their fans.
+            if let Some(&(_, ahead)) = candidates.get(i + 3 * PREFETCH_AHEAD) {
                 d.prefetch(ahead);
             }
-            if let Some(&(_, ahead)) = candidates.get(i + PREFETCH_AHEAD) {
+            if let Some(&(_, ahead)) = candidates.get(i + 2 * PREFETCH_AHEAD) {
                 d.prefetch(d.best[ahead as usize]);
+            }
+            if let Some(&(_, ahead)) = candidates.get(i + PREFETCH_AHEAD) {
+                d.prefetch_fan(ahead);
+                d.prefetch_fan(d.best[ahead as usize]);
             }
             if outcome.removed >= limits.remove || d.conn.triangle_count() <= limits.keep_triangles
             {

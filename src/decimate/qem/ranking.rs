@@ -46,6 +46,13 @@ impl EdgeCosts {
         (bits & BLOCKED == 0 && cost.is_finite()).then_some(cost)
     }
 
+    /// Asks the CPU to start loading `slot` (a hint).
+    pub fn prefetch(&self, slot: usize) {
+        if let Some(s) = self.slots.get(slot) {
+            crate::mesh::prefetch(s);
+        }
+    }
+
     fn set(&self, slot: usize, cost: f32) {
         self.slots[slot].store(cost.to_bits(), Relaxed);
     }
