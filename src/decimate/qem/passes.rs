@@ -135,14 +135,14 @@ pub(super) fn collapse_in_passes(
             if w == u32::MAX || dead(v) || dead(w) {
                 continue;
             }
-            let Some(plan) = d.plan(v.min(w), v.max(w)) else {
-                continue;
-            };
-            if stored(plan.cost) > threshold {
+            let plan = d.plan(v.min(w), v.max(w));
+            if plan.is_some_and(|p| stored(p.cost) > threshold) {
                 continue; // an end took a collapse in this pass: re-planned at its end
             }
-            let legal = d.is_collapse_legal(&plan);
-            if !legal || plan.error2 > bound2 {
+            // No plan (the edge's shape changed since it was planned) counts as illegal, so
+            // that every candidate either goes, waits or is blocked: each pass progresses.
+            let legal = plan.is_some_and(|p| d.is_collapse_legal(&p));
+            let Some(plan) = plan.filter(|p| legal && p.error2 <= bound2) else {
                 // The cost weighs area and colour, not just the error: an edge over the
                 // bound is skipped like an illegal one, until its neighbourhood changes.
                 skipped_for_error |= legal;
@@ -150,7 +150,7 @@ pub(super) fn collapse_in_passes(
                 flags.mark(v, RERANK);
                 flags.mark(w, RERANK);
                 continue;
-            }
+            };
             d.collapse(&plan);
             flags.mark(plan.keep, REPLAN);
             for &t in d.conn.incident(plan.keep) {
