@@ -144,15 +144,8 @@ impl Collapser {
             .into_par_iter()
             .with_min_len(MIN_PER_TASK)
             .for_each(|v| this.plan_fan(v, true));
-        let best: Vec<(u32, f32)> = (0..n)
-            .into_par_iter()
-            .with_min_len(MIN_PER_TASK)
-            .map(|v| this.best_edge(v))
-            .collect();
-        for (v, (w, cost)) in best.into_iter().enumerate() {
-            self.best[v] = w;
-            self.best_cost[v] = cost;
-        }
+        let all: Vec<u32> = (0..n).collect();
+        self.rerank(&all, |_| false);
     }
 
     /// Re-plans every edge of each of `vertices` (their quadrics or positions changed), on
