@@ -62,8 +62,13 @@ impl Connectivity {
     /// Builds connectivity for `vertex_count` vertices; triangles with an index out of range
     /// must have been rejected by the caller.
     pub fn new(vertex_count: usize, triangles: &[[u32; 3]]) -> Self {
+        Self::from_triangles(vertex_count, triangles.to_vec())
+    }
+
+    /// As [`Self::new`], taking the triangle array over instead of copying it.
+    pub fn from_triangles(vertex_count: usize, triangles: Vec<[u32; 3]>) -> Self {
         let mut conn = Self {
-            triangles: triangles.to_vec(),
+            triangles: Vec::new(),
             alive: vec![true; triangles.len()],
             incidence: vec![
                 Incidence {
@@ -81,6 +86,7 @@ impl Connectivity {
                 conn.link(v, i as u32);
             }
         }
+        conn.triangles = triangles;
         conn
     }
 

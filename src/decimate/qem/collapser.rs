@@ -76,12 +76,12 @@ pub(super) struct Collapser {
 impl Collapser {
     pub fn new(
         positions: Vec<Vec3>,
-        triangles: &[[u32; 3]],
+        triangles: Vec<[u32; 3]>,
         colors: Option<Vec<[f32; 3]>>,
         normals: Option<Vec<[f32; 3]>>,
     ) -> Self {
         let n = positions.len();
-        let conn = Connectivity::new(n, triangles);
+        let conn = Connectivity::from_triangles(n, triangles);
         let kinds = (0..n as u32)
             .into_par_iter()
             .with_min_len(4096)

@@ -105,7 +105,7 @@ fn run(
     };
 
     // 2. connect
-    let mut d = Collapser::new(positions, &triangles, colors, normals);
+    let mut d = Collapser::new(positions, triangles, colors, normals);
     d.recorder = recorder;
 
     // 3. quadrics
