@@ -60,10 +60,9 @@ impl MeshData {
         morph_from: Option<&[Vec3]>,
     ) -> Self {
         let morph_from = morph_from.filter(|m| m.len() == model.positions.len());
-        let (normals, creases) = rayon::join(
-            || vertex_normals(model),
-            || Creases::new(model, model.positions.len()),
-        );
+        let incident = VertexFaces::new(model, model.positions.len());
+        let (normals, creases) =
+            rayon::join(|| vertex_normals(model), || Creases::new(model, &incident));
         let face_colors = match &model.colors {
             Some(Attribute::PerFace(c)) if c.len() == model.triangles.len() => Some(c),
             _ => None,
@@ -120,7 +119,7 @@ impl MeshData {
         let ((edges, face_normals), vertex_normals) = rayon::join(
             || {
                 rayon::join(
-                    || unique_edges(model, &render_index),
+                    || unique_edges(model, &incident, &render_index),
                     || face_normal_segments(model, normal_length),
                 )
             },
@@ -134,19 +133,19 @@ impl MeshData {
 }
 
 /// Which vertices sit on a crease, and the faces around each vertex to average corner
-/// normals over. Empty when the file gave per-vertex normals (they are used as they are).
-struct Creases {
+/// normals over. None creased when the file gave per-vertex normals (they are used as they
+/// are).
+struct Creases<'a> {
     /// Face normals (twice the area, out of the counter-clockwise side).
     face: Vec<Vec3>,
-    /// Incident faces of each vertex: `faces[offsets[v]..offsets[v + 1]]`.
-    offsets: Vec<u32>,
-    faces: Vec<u32>,
+    incident: &'a VertexFaces,
     creased: Vec<bool>,
     cos_crease: f32,
 }
 
-impl Creases {
-    fn new(model: &Model, vertex_count: usize) -> Self {
+impl<'a> Creases<'a> {
+    fn new(model: &Model, incident: &'a VertexFaces) -> Self {
+        let vertex_count = model.positions.len();
         let file_normals = matches!(&model.normals,
             Some(Attribute::PerVertex(n)) if n.len() == vertex_count);
         let crease = model
@@ -154,8 +153,7 @@ impl Creases {
             .unwrap_or(DEFAULT_CREASE_DEG.to_radians());
         let mut c = Self {
             face: Vec::new(),
-            offsets: Vec::new(),
-            faces: Vec::new(),
+            incident,
             creased: vec![false; vertex_count],
             cos_crease: crease.cos(),
         };
@@ -170,7 +168,6 @@ impl Creases {
                 (b - a).cross(c - a)
             })
             .collect();
-        (c.offsets, c.faces) = vertex_faces(model, vertex_count);
         for v in 0..vertex_count {
             let around = c.around(v);
             c.creased[v] = around.iter().enumerate().any(|(i, &f)| {
@@ -183,7 +180,7 @@ impl Creases {
     }
 
     fn around(&self, v: usize) -> &[u32] {
-        &self.faces[self.offsets[v] as usize..self.offsets[v + 1] as usize]
+        self.incident.around(v)
     }
 
     /// True when faces `f` and `g` meet at no more than the crease angle.
@@ -212,8 +209,7 @@ impl Creases {
 /// each at its first appearance in triangle order. An edge is new in triangle `t` when no
 /// earlier triangle has both its ends (in a triangle every two corners are joined) and no
 /// earlier side of `t` is the same edge.
-fn unique_edges(model: &Model, render_index: &[u32]) -> Vec<u32> {
-    let (offsets, faces) = vertex_faces(model, render_index.len());
+fn unique_edges(model: &Model, incident: &VertexFaces, render_index: &[u32]) -> Vec<u32> {
     let has_edge = |tri: &[u32; 3], a: u32, b: u32| {
         if a == b {
             tri.iter().filter(|&&v| v == a).count() >= 2
@@ -229,8 +225,8 @@ fn unique_edges(model: &Model, render_index: &[u32]) -> Vec<u32> {
             if sides[..i].iter().any(same) {
                 continue;
             }
-            let around = &faces[offsets[a as usize] as usize..offsets[a as usize + 1] as usize];
-            let earlier = around
+            let earlier = incident
+                .around(a as usize)
                 .iter()
                 .take_while(|&&f| (f as usize) < t)
                 .any(|&f| has_edge(&model.triangles[f as usize], a, b));
@@ -271,27 +267,40 @@ fn vertex_normal_segments(
     out
 }
 
-/// Vertex → incident faces, ascending, as `faces[offsets[v]..offsets[v + 1]]` (a counting
-/// sort; a face with a repeated corner is listed once per corner).
-fn vertex_faces(model: &Model, vertex_count: usize) -> (Vec<u32>, Vec<u32>) {
-    let mut offsets = vec![0u32; vertex_count + 1];
-    for tri in &model.triangles {
-        for &v in tri {
-            offsets[v as usize + 1] += 1;
+/// Vertex → incident faces, ascending (a face with a repeated corner is listed once per
+/// corner): shared by the crease test and the edge list.
+struct VertexFaces {
+    /// `faces[offsets[v]..offsets[v + 1]]` are the faces around `v`.
+    offsets: Vec<u32>,
+    faces: Vec<u32>,
+}
+
+impl VertexFaces {
+    /// A counting sort of the corners by vertex.
+    fn new(model: &Model, vertex_count: usize) -> Self {
+        let mut offsets = vec![0u32; vertex_count + 1];
+        for tri in &model.triangles {
+            for &v in tri {
+                offsets[v as usize + 1] += 1;
+            }
         }
-    }
-    for v in 0..vertex_count {
-        offsets[v + 1] += offsets[v];
-    }
-    let mut fill = offsets.clone();
-    let mut faces = vec![0; model.triangles.len() * 3];
-    for (t, tri) in model.triangles.iter().enumerate() {
-        for &v in tri {
-            faces[fill[v as usize] as usize] = t as u32;
-            fill[v as usize] += 1;
+        for v in 0..vertex_count {
+            offsets[v + 1] += offsets[v];
         }
+        let mut fill = offsets.clone();
+        let mut faces = vec![0; model.triangles.len() * 3];
+        for (t, tri) in model.triangles.iter().enumerate() {
+            for &v in tri {
+                faces[fill[v as usize] as usize] = t as u32;
+                fill[v as usize] += 1;
+            }
+        }
+        Self { offsets, faces }
     }
-    (offsets, faces)
+
+    fn around(&self, v: usize) -> &[u32] {
+        &self.faces[self.offsets[v] as usize..self.offsets[v + 1] as usize]
+    }
 }
 
 fn push_segment(out: &mut Vec<Vertex>, from: Vec3, along: Vec3) {
@@ -404,7 +413,8 @@ mod tests {
                 }
             }
         }
-        assert_eq!(unique_edges(&model, &identity), expected);
+        let incident = VertexFaces::new(&model, model.positions.len());
+        assert_eq!(unique_edges(&model, &incident, &identity), expected);
     }
 
     #[test]
