@@ -35,22 +35,6 @@ const RELEASE: u8 = 2;
 /// A vertex with a newly blocked edge.
 const RERANK: u8 = 4;
 
-/// Vertices flagged during a pass, for the work at its end.
-struct Flags {
-    flags: Vec<u8>,
-    flagged: Vec<u32>,
-}
-
-impl Flags {
-    fn mark(&mut self, v: u32, flag: u8) {
-        let f = &mut self.flags[v as usize];
-        if *f == 0 {
-            self.flagged.push(v);
-        }
-        *f |= flag;
-    }
-}
-
 /// Collapses edges of `d` until `limits` are met or nothing can go; `progress` gets the
 /// running removal count.
 pub(super) fn collapse_in_passes(
@@ -74,10 +58,8 @@ pub(super) fn collapse_in_passes(
     let mut live: Vec<u32> = (0..n)
         .filter(|&v| d.kinds[v as usize] != Kind::Fixed)
         .collect();
-    let mut flags = Flags {
-        flags: vec![0; n as usize],
-        flagged: Vec::new(),
-    };
+    // What each vertex needs at the end of the pass; read and cleared only for `live` ones.
+    let mut flags = vec![0u8; n as usize];
     let mut candidates: Vec<(f32, u32)> = Vec::new();
     let by_cost = |a: &(f32, u32), b: &(f32, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
     'passes: loop {
@@ -147,16 +129,16 @@ pub(super) fn collapse_in_passes(
                 // bound is skipped like an illegal one, until its neighbourhood changes.
                 skipped_for_error |= legal;
                 d.block_edge(v, w);
-                flags.mark(v, RERANK);
-                flags.mark(w, RERANK);
+                flags[v as usize] |= RERANK;
+                flags[w as usize] |= RERANK;
                 continue;
             };
             d.collapse(&plan);
-            flags.mark(plan.keep, REPLAN);
+            flags[plan.keep as usize] |= REPLAN;
             for &t in d.conn.incident(plan.keep) {
                 for x in d.conn.triangle(t) {
                     if x != plan.keep {
-                        flags.mark(x, RELEASE);
+                        flags[x as usize] |= RELEASE;
                     }
                 }
             }
@@ -175,9 +157,9 @@ pub(super) fn collapse_in_passes(
 /// The work deferred to the end of a pass, in vertex order (memory order): the kept
 /// vertices' edges are planned again, then every flagged vertex looks for its cheapest edge
 /// again (after unblocking its edges when its neighbourhood changed), both on all cores.
-fn end_of_pass(d: &mut Collapser, live: &[u32], flags: &mut Flags) {
+fn end_of_pass(d: &mut Collapser, live: &[u32], flags: &mut [u8]) {
     let alive = |v: u32| d.kinds[v as usize] != Kind::Fixed;
-    let flag = |v: u32| flags.flags[v as usize];
+    let flag = |v: u32| flags[v as usize];
     let keeps: Vec<u32> = live
         .iter()
         .copied()
@@ -190,8 +172,7 @@ fn end_of_pass(d: &mut Collapser, live: &[u32], flags: &mut Flags) {
         .filter(|&v| flag(v) != 0 && alive(v))
         .collect();
     d.rerank(&flagged, |v| flag(v) & RELEASE != 0);
-    for &v in &flags.flagged {
-        flags.flags[v as usize] = 0;
+    for &v in live {
+        flags[v as usize] = 0;
     }
-    flags.flagged.clear();
 }
