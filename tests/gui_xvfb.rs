@@ -321,6 +321,20 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
         "out.wrl has {vertices} vertices after dragging the slider to the left"
     );
 
+    // t hides the triangles, e shows the edges: a list the viewer had not uploaded (it
+    // uploads only what the draw modes need), so it must upload the scene again.
+    run("xdotool", &["key", "--window", &wid, "t"]);
+    std::thread::sleep(Duration::from_millis(800));
+    let bare = screenshot(&dir.join("no-triangles.rgb"));
+    run("xdotool", &["key", "--window", &wid, "e"]);
+    std::thread::sleep(Duration::from_millis(800));
+    let wire = screenshot(&dir.join("edges.rgb"));
+    let changed = changed_pixels(&bare, &wire, 212..812, 84..684);
+    assert!(
+        changed > 500,
+        "the edges did not appear: {changed} pixels changed in the middle of the window"
+    );
+
     // q quits.
     run("xdotool", &["key", "--window", &wid, "q"]);
     let start = Instant::now();

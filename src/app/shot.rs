@@ -66,20 +66,20 @@ pub fn render(
     let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
     let target = OffscreenTarget::new(&context, options.width, options.height)?;
 
-    let original = GpuScene::upload(&context, &commands, scene)?;
+    let draw = draw_options(&options.modes);
+    let original = GpuScene::upload(&context, &commands, scene, draw.layers())?;
     let (decimated, report) = match params {
         Some(params) => {
             let mut copy = scene.clone();
             let report = decimate_scene(&mut copy, params, &mut |_| {});
             (
-                Some(GpuScene::upload(&context, &commands, &copy)?),
+                Some(GpuScene::upload(&context, &commands, &copy, draw.layers())?),
                 Some(report),
             )
         }
         None => (None, None),
     };
     let camera = Camera::framing(original.bounds);
-    let draw = draw_options(&options.modes);
     let rects = tiles(options.viewports as usize, options.width, options.height);
     let views: Vec<_> = rects
         .iter()

@@ -95,17 +95,21 @@ impl Viewer {
         s
     }
 
-    /// Uploads the scenes whose generation changed and forgets removed viewports.
+    /// Uploads the scenes whose generation changed, or whose draw modes now need a list that
+    /// was left out (then with the lists it had too, so toggling a mode back and forth
+    /// uploads once), and forgets removed viewports.
     fn sync_scenes(gpu: &mut Gpu, controller: &ViewportController) -> Result<(), String> {
         let viewports = controller.viewports();
         gpu.scenes
             .retain(|(id, _, _)| viewports.iter().any(|v| v.id == *id));
         for vp in viewports {
-            let fresh = gpu
+            let needed = vp.options.layers();
+            let uploaded = gpu
                 .scenes
                 .iter()
-                .any(|(id, generation, _)| *id == vp.id && *generation == vp.generation);
-            if !fresh {
+                .find(|(id, generation, _)| *id == vp.id && *generation == vp.generation)
+                .map(|(_, _, scene)| scene.layers);
+            if uploaded.is_none_or(|layers| !layers.contains(needed)) {
                 gpu.context.wait_idle().map_err(|e| e.to_string())?;
                 let morph_from = vp.lod().and_then(|l| l.morph_from());
                 let scene = GpuScene::upload_morphing(
@@ -113,6 +117,7 @@ impl Viewer {
                     &gpu.upload_commands,
                     vp.scene(),
                     morph_from,
+                    uploaded.map_or(needed, |layers| layers.union(needed)),
                 )
                 .map_err(|e| format!("cannot upload the scene: {e}"))?;
                 gpu.scenes.retain(|(id, _, _)| *id != vp.id);

@@ -6,6 +6,7 @@ use ash::vk;
 
 use super::camera::Camera;
 use super::gpu_mesh::{GpuMesh, GpuScene};
+use super::mesh_data::Layers;
 use super::pipeline::{DrawMode, Pipelines, PushConstants};
 use super::tiles::Rect;
 
@@ -43,6 +44,16 @@ impl Default for DrawOptions {
 }
 
 impl DrawOptions {
+    /// The optional lists these options draw.
+    pub fn layers(&self) -> Layers {
+        Layers {
+            edges: self.edges,
+            points: self.points,
+            face_normals: self.face_normals,
+            vertex_normals: self.vertex_normals,
+        }
+    }
+
     /// The pipelines to run, in drawing order.
     pub fn modes(&self) -> Vec<DrawMode> {
         let mut modes = Vec::new();

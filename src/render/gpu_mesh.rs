@@ -1,6 +1,7 @@
 //! `GpuMesh` and `GpuScene`: a scene's `MeshData` uploaded into device-local buffers, once per
-//! decimation (never per frame), with the world transform of each model and the scene's
-//! world-space bounds for framing the camera.
+//! decimation (never per frame) and again only when a draw mode needs a list that was left
+//! out (`Layers`), with the world transform of each model and the scene's world-space bounds
+//! for framing the camera.
 
 use std::sync::Arc;
 
@@ -12,7 +13,7 @@ use super::camera::Bounds;
 use super::commands::Commands;
 use super::context::Context;
 use super::error::{RenderError, Result};
-use super::mesh_data::MeshData;
+use super::mesh_data::{Layers, MeshData};
 use crate::mesh::{Model, Scene};
 
 /// Normal segments are this fraction of the scene's bounding-box diagonal.
@@ -41,12 +42,20 @@ pub struct GpuScene {
     pub bounds: Bounds,
     pub vertex_count: usize,
     pub triangle_count: usize,
+    /// The optional lists uploaded: a draw mode whose list is missing draws nothing.
+    pub layers: Layers,
 }
 
 impl GpuScene {
-    /// Uploads `scene`; the returned buffers are ready when this returns.
-    pub fn upload(context: &Arc<Context>, commands: &Commands, scene: &Scene) -> Result<Self> {
-        Self::upload_morphing(context, commands, scene, None)
+    /// Uploads `scene` with the lists of `layers`; the returned buffers are ready when this
+    /// returns.
+    pub fn upload(
+        context: &Arc<Context>,
+        commands: &Commands,
+        scene: &Scene,
+        layers: Layers,
+    ) -> Result<Self> {
+        Self::upload_morphing(context, commands, scene, None, layers)
     }
 
     /// As [`Self::upload`], with each model's geomorph start positions (`morph_from[i]` for
@@ -57,6 +66,7 @@ impl GpuScene {
         commands: &Commands,
         scene: &Scene,
         morph_from: Option<&[Vec<Vec3>]>,
+        layers: Layers,
     ) -> Result<Self> {
         let bounds = scene_bounds(scene);
         let normal_length = (bounds.max - bounds.min).length() * NORMAL_LENGTH;
@@ -71,7 +81,7 @@ impl GpuScene {
                 .max_element();
             let length = normal_length / if scale > 0.0 { scale } else { 1.0 };
             let from = morph_from.and_then(|m| m.get(i)).map(Vec::as_slice);
-            let data = MeshData::from_model_morphing(model, length, from);
+            let data = MeshData::build(model, length, from, layers);
             meshes.push(upload_mesh(&mut uploader, model, &data)?);
         }
         uploader.finish()?;
@@ -80,6 +90,7 @@ impl GpuScene {
             bounds,
             vertex_count: scene.models.iter().map(Model::used_vertex_count).sum(),
             triangle_count: scene.triangle_count(),
+            layers,
         })
     }
 }

@@ -1,6 +1,9 @@
 //! `MeshData`: the CPU side of what the GPU draws for one model — interleaved vertices,
 //! triangle, edge and point index lists, and the face / vertex normal line segments — built
 //! from a `Model` once per decimation, with no Vulkan in sight (so it is unit-tested).
+//! Only the vertices and triangles are always built; the line and point lists are
+//! [`Layers`] built when a draw mode needs them (on the dragon they are four fifths of the
+//! bytes, and a slider move or a decimation should not wait for lists nobody draws).
 //!
 //! Vertices are shared between triangles (indexed drawing), except where a corner needs its
 //! own: with per-face colours, and at creases — a vertex whose faces differ by more than the
@@ -10,8 +13,12 @@
 //! shader derives the face normal from screen-space derivatives.
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use crate::mesh::{Attribute, Model};
+
+/// Vertices or faces per parallel task: each takes well under a microsecond.
+const PER_TASK: usize = 4096;
 
 /// Crease angle for smooth shading when the file gives none.
 pub const DEFAULT_CREASE_DEG: f32 = 45.0;
@@ -29,9 +36,49 @@ pub struct Vertex {
     pub morph_from: [f32; 3],
 }
 
-/// Everything the GPU needs to draw one model in any mode.
+/// The optional parts of [`MeshData`]: which line and point lists are built.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Layers {
+    pub edges: bool,
+    pub points: bool,
+    pub face_normals: bool,
+    pub vertex_normals: bool,
+}
+
+impl Layers {
+    /// Every list: what any draw mode may need.
+    pub const ALL: Self = Self {
+        edges: true,
+        points: true,
+        face_normals: true,
+        vertex_normals: true,
+    };
+
+    /// True when every list in `other` is in `self`.
+    pub fn contains(self, other: Self) -> bool {
+        (self.edges || !other.edges)
+            && (self.points || !other.points)
+            && (self.face_normals || !other.face_normals)
+            && (self.vertex_normals || !other.vertex_normals)
+    }
+
+    /// The lists in either.
+    pub fn union(self, other: Self) -> Self {
+        Self {
+            edges: self.edges || other.edges,
+            points: self.points || other.points,
+            face_normals: self.face_normals || other.face_normals,
+            vertex_normals: self.vertex_normals || other.vertex_normals,
+        }
+    }
+}
+
+/// What the GPU needs to draw one model: vertices and triangles, and the lists of `layers`
+/// (those not asked for are empty).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MeshData {
+    /// The optional lists that were built.
+    pub layers: Layers,
     pub vertices: Vec<Vertex>,
     /// Three indices per triangle, counter-clockwise.
     pub triangles: Vec<u32>,
@@ -46,23 +93,39 @@ pub struct MeshData {
 }
 
 impl MeshData {
-    /// Builds the draw data for `model`; normal segments are `normal_length` long (model units).
+    /// Builds every list of the draw data for `model`; normal segments are `normal_length`
+    /// long (model units).
     pub fn from_model(model: &Model, normal_length: f32) -> Self {
-        Self::from_model_morphing(model, normal_length, None)
+        Self::build(model, normal_length, None, Layers::ALL)
     }
 
-    /// As [`Self::from_model`], with the geomorph start of every model vertex (`morph_from`,
-    /// indexed like `model.positions`; ignored unless it has one entry per position). Normal
-    /// segments do not morph.
-    pub fn from_model_morphing(
+    /// As [`Self::from_model`], with only the lists of `layers`, and the geomorph start of
+    /// every model vertex (`morph_from`, indexed like `model.positions`; ignored unless it
+    /// has one entry per position). Normal segments do not morph.
+    pub fn build(
         model: &Model,
         normal_length: f32,
         morph_from: Option<&[Vec3]>,
+        layers: Layers,
     ) -> Self {
         let morph_from = morph_from.filter(|m| m.len() == model.positions.len());
         let incident = VertexFaces::new(model, model.positions.len());
-        let (normals, creases) =
-            rayon::join(|| vertex_normals(model), || Creases::new(model, &incident));
+        let file_normals = match &model.normals {
+            Some(Attribute::PerVertex(n)) if n.len() == model.positions.len() => Some(n),
+            _ => None,
+        };
+        // Face normals serve the vertex normals and the crease test; neither needs them when
+        // the file gave per-vertex normals.
+        let face = if file_normals.is_some() {
+            Vec::new()
+        } else {
+            face_normals(model)
+        };
+        let normals = match file_normals {
+            Some(n) => n.par_iter().map(|v| v.normalize_or_zero()).collect(),
+            None => gathered_normals(&face, &incident),
+        };
+        let creases = Creases::new(model, &incident, &face);
         let face_colors = match &model.colors {
             Some(Attribute::PerFace(c)) if c.len() == model.triangles.len() => Some(c),
             _ => None,
@@ -73,7 +136,12 @@ impl MeshData {
         };
         let color_of_vertex = |v: usize| to_rgba8(vertex_colors.map_or(model.diffuse, |c| c[v]));
 
-        let mut data = Self::default();
+        let mut data = Self {
+            layers,
+            vertices: Vec::with_capacity(model.positions.len()),
+            triangles: Vec::with_capacity(3 * model.triangles.len()),
+            ..Self::default()
+        };
         // `render_index[v]`: the render vertex that stands for model vertex `v` in point
         // lists (its first, when corners have their own).
         let mut render_index = vec![u32::MAX; model.positions.len()];
@@ -110,20 +178,34 @@ impl MeshData {
             }
         }
 
-        data.points = render_index
-            .iter()
-            .copied()
-            .filter(|&i| i != u32::MAX)
-            .collect();
+        if layers.points {
+            data.points = render_index
+                .iter()
+                .copied()
+                .filter(|&i| i != u32::MAX)
+                .collect();
+        }
         // The line lists are independent of each other: built side by side.
         let ((edges, face_normals), vertex_normals) = rayon::join(
             || {
                 rayon::join(
-                    || unique_edges(model, &incident, &render_index),
-                    || face_normal_segments(model, normal_length),
+                    || {
+                        when(layers.edges, || {
+                            unique_edges(model, &incident, &render_index)
+                        })
+                    },
+                    || {
+                        when(layers.face_normals, || {
+                            face_normal_segments(model, normal_length)
+                        })
+                    },
                 )
             },
-            || vertex_normal_segments(model, &normals, &render_index, normal_length),
+            || {
+                when(layers.vertex_normals, || {
+                    vertex_normal_segments(model, &normals, &render_index, normal_length)
+                })
+            },
         );
         data.edges = edges;
         data.face_normals = face_normals;
@@ -132,50 +214,55 @@ impl MeshData {
     }
 }
 
+/// `build()` when `on`, else nothing.
+fn when<T>(on: bool, build: impl FnOnce() -> Vec<T>) -> Vec<T> {
+    if on {
+        build()
+    } else {
+        Vec::new()
+    }
+}
+
 /// Which vertices sit on a crease, and the faces around each vertex to average corner
 /// normals over. None creased when the file gave per-vertex normals (they are used as they
 /// are).
 struct Creases<'a> {
     /// Face normals (twice the area, out of the counter-clockwise side).
-    face: Vec<Vec3>,
+    face: &'a [Vec3],
     incident: &'a VertexFaces,
     creased: Vec<bool>,
     cos_crease: f32,
 }
 
 impl<'a> Creases<'a> {
-    fn new(model: &Model, incident: &'a VertexFaces) -> Self {
-        let vertex_count = model.positions.len();
-        let file_normals = matches!(&model.normals,
-            Some(Attribute::PerVertex(n)) if n.len() == vertex_count);
+    /// `face`: the model's face normals (twice the area), empty when the file gave
+    /// per-vertex normals (then nothing is creased).
+    fn new(model: &Model, incident: &'a VertexFaces, face: &'a [Vec3]) -> Self {
         let crease = model
             .crease_angle
             .unwrap_or(DEFAULT_CREASE_DEG.to_radians());
         let mut c = Self {
-            face: Vec::new(),
+            face,
             incident,
-            creased: vec![false; vertex_count],
+            creased: Vec::new(),
             cos_crease: crease.cos(),
         };
-        if file_normals || model.triangles.is_empty() {
-            return c;
-        }
-        c.face = model
-            .triangles
-            .iter()
-            .map(|tri| {
-                let [a, b, c] = tri.map(|v| model.positions[v as usize]);
-                (b - a).cross(c - a)
-            })
-            .collect();
-        for v in 0..vertex_count {
-            let around = c.around(v);
-            c.creased[v] = around.iter().enumerate().any(|(i, &f)| {
-                around[i + 1..]
-                    .iter()
-                    .any(|&g| !c.within(f as usize, g as usize))
-            });
-        }
+        c.creased = if face.is_empty() {
+            vec![false; model.positions.len()]
+        } else {
+            (0..model.positions.len())
+                .into_par_iter()
+                .with_min_len(PER_TASK)
+                .map(|v| {
+                    let around = c.around(v);
+                    around.iter().enumerate().any(|(i, &f)| {
+                        around[i + 1..]
+                            .iter()
+                            .any(|&g| !c.within(f as usize, g as usize))
+                    })
+                })
+                .collect()
+        };
         c
     }
 
@@ -301,6 +388,10 @@ impl VertexFaces {
     fn around(&self, v: usize) -> &[u32] {
         &self.faces[self.offsets[v] as usize..self.offsets[v + 1] as usize]
     }
+
+    fn vertex_count(&self) -> usize {
+        self.offsets.len() - 1
+    }
 }
 
 fn push_segment(out: &mut Vec<Vertex>, from: Vec3, along: Vec3) {
@@ -319,24 +410,34 @@ fn to_rgba8(c: [f32; 3]) -> [u8; 4] {
     [q(c[0]), q(c[1]), q(c[2]), 255]
 }
 
-/// Per-vertex normals: the file's when it gave one per vertex, else the area-weighted average
-/// of the adjacent triangles' normals (the original computed them the same way).
-pub fn vertex_normals(model: &Model) -> Vec<Vec3> {
-    if let Some(Attribute::PerVertex(n)) = &model.normals {
-        if n.len() == model.positions.len() {
-            return n.iter().map(|v| v.normalize_or_zero()).collect();
-        }
-    }
-    let mut sums = vec![Vec3::ZERO; model.positions.len()];
-    for tri in &model.triangles {
-        let [a, b, c] = tri.map(|v| model.positions[v as usize]);
-        // Twice the area, pointing out of the counter-clockwise side.
-        let n = (b - a).cross(c - a);
-        for &v in tri {
-            sums[v as usize] += n;
-        }
-    }
-    sums.into_iter().map(Vec3::normalize_or_zero).collect()
+/// Each triangle's normal, twice its area long, out of its counter-clockwise side.
+fn face_normals(model: &Model) -> Vec<Vec3> {
+    model
+        .triangles
+        .par_iter()
+        .with_min_len(PER_TASK)
+        .map(|tri| {
+            let [a, b, c] = tri.map(|v| model.positions[v as usize]);
+            (b - a).cross(c - a)
+        })
+        .collect()
+}
+
+/// Per-vertex normals when the file gave none: the area-weighted average of the adjacent
+/// triangles' normals (the original computed them the same way), summed in face order.
+fn gathered_normals(face: &[Vec3], incident: &VertexFaces) -> Vec<Vec3> {
+    (0..incident.vertex_count())
+        .into_par_iter()
+        .with_min_len(PER_TASK)
+        .map(|v| {
+            incident
+                .around(v)
+                .iter()
+                .map(|&f| face[f as usize])
+                .fold(Vec3::ZERO, |sum, n| sum + n)
+                .normalize_or_zero()
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -446,5 +547,43 @@ mod tests {
     fn diffuse_colour_when_file_has_none() {
         let d = MeshData::from_model(&square(), 0.5);
         assert_eq!(d.vertices[0].color, [204, 204, 204, 255]);
+    }
+
+    #[test]
+    fn only_the_lists_asked_for_are_built_and_the_rest_is_the_same() {
+        let sphere = crate::mesh::shapes::bumpy_sphere(24, 48);
+        let all = MeshData::from_model(&sphere, 0.1);
+        let filled = MeshData::build(&sphere, 0.1, None, Layers::default());
+        assert_eq!(filled.vertices, all.vertices);
+        assert_eq!(filled.triangles, all.triangles);
+        assert!(filled.edges.is_empty() && filled.points.is_empty());
+        assert!(filled.face_normals.is_empty() && filled.vertex_normals.is_empty());
+        assert!(!all.edges.is_empty() && !all.face_normals.is_empty());
+        let edges = Layers {
+            edges: true,
+            ..Layers::default()
+        };
+        let d = MeshData::build(&sphere, 0.1, None, edges);
+        assert_eq!(d.edges, all.edges);
+        assert!(d.points.is_empty());
+        assert!(Layers::ALL.contains(edges) && !edges.contains(Layers::ALL));
+        assert!(edges.contains(Layers::default()));
+        assert_eq!(edges.union(Layers::ALL), Layers::ALL);
+    }
+
+    #[test]
+    fn vertex_normals_are_the_area_weighted_sums_in_face_order() {
+        // Reference: scatter every face's normal onto its corners, in face order.
+        let model = crate::mesh::shapes::bumpy_sphere(12, 20);
+        let mut sums = vec![Vec3::ZERO; model.positions.len()];
+        for tri in &model.triangles {
+            let [a, b, c] = tri.map(|v| model.positions[v as usize]);
+            for &v in tri {
+                sums[v as usize] += (b - a).cross(c - a);
+            }
+        }
+        let expected: Vec<Vec3> = sums.into_iter().map(Vec3::normalize_or_zero).collect();
+        let incident = VertexFaces::new(&model, model.positions.len());
+        assert_eq!(gathered_normals(&face_normals(&model), &incident), expected);
     }
 }

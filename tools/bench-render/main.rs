@@ -1,7 +1,10 @@
 //! Frame-time benchmark of the renderer: draws a large mesh offscreen — a generated UV sphere
 //! (about one million triangles by default) or any file `decimate` reads, such as the
 //! Stanford dragon — once per draw mode, and prints a table of frame times. No readback is
-//! timed: a frame is record + submit + wait, as in the viewer.
+//! timed: a frame is record + submit + wait, as in the viewer. Then it moves the
+//! level-of-detail slider as the viewer does and prints what each move costs: the new level,
+//! its upload (filled triangles), one frame, and for a coarsening move the second upload
+//! when the geomorph ends.
 //!
 //! ```text
 //! cargo run --release --example bench-render -- [TRIANGLES | FILE] [WxH] [FRAMES]
@@ -11,12 +14,15 @@
 use std::process::ExitCode;
 use std::time::Instant;
 
+use decimate::app::lod::LodView;
+use decimate::decimate::Params;
 use decimate::mesh::Scene;
 use decimate::render::camera::Camera;
 use decimate::render::commands::Commands;
 use decimate::render::context::{Context, DevicePreference};
 use decimate::render::draw::{DrawOptions, ViewportDraw};
 use decimate::render::gpu_mesh::GpuScene;
+use decimate::render::mesh_data::Layers;
 use decimate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
 use decimate::render::pipeline::Pipelines;
 use decimate::render::tiles::tiles;
@@ -72,12 +78,21 @@ fn run(
     let commands = Commands::new(&context)?;
     let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
     let target = OffscreenTarget::new(&context, width, height)?;
+    // What a viewport drawing filled triangles uploads, then everything (the table's modes).
     let started = Instant::now();
-    let gpu = GpuScene::upload(&context, &commands, &scene)?;
+    drop(GpuScene::upload(
+        &context,
+        &commands,
+        &scene,
+        DrawOptions::default().layers(),
+    )?);
+    let upload_filled = started.elapsed().as_secs_f64() * 1e3;
+    let started = Instant::now();
+    let gpu = GpuScene::upload(&context, &commands, &scene, Layers::ALL)?;
     let upload = started.elapsed().as_secs_f64() * 1e3;
     let camera = Camera::framing(gpu.bounds);
     println!(
-        "device: {}\nmesh: {} vertices, {} triangles (upload {upload:.0} ms)\nimage: {width}x{height}, {frames} frames per mode after one warm-up\n",
+        "device: {}\nmesh: {} vertices, {} triangles (upload {upload_filled:.0} ms filled only, {upload:.0} ms with every list)\nimage: {width}x{height}, {frames} frames per mode after one warm-up\n",
         context.device_name, gpu.vertex_count, gpu.triangle_count
     );
     println!(
@@ -158,6 +173,66 @@ fn run(
             times[times.len() / 2],
             times[0],
             times[times.len() - 1]
+        );
+    }
+    slider_moves(&context, &commands, &pipelines, &target, &scene, &camera)
+}
+
+/// The slider's moves, timed: down to three quarters, half, a quarter and the base of the
+/// progressive mesh, then back up to half and the original.
+fn slider_moves(
+    context: &std::sync::Arc<Context>,
+    commands: &Commands,
+    pipelines: &Pipelines,
+    target: &OffscreenTarget,
+    scene: &Scene,
+    camera: &Camera,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let mut lod = LodView::new(scene, &Params::default());
+    let (lo, hi) = lod.range();
+    println!(
+        "\nlevel-of-detail slider: {lo} to {hi} vertices, progressive mesh built in {:.2} s",
+        lod.build_seconds
+    );
+    println!(
+        "{:<22} {:>9} {:>9} {:>9} {:>9} {:>9}",
+        "move to", "level ms", "upload ms", "frame ms", "settle ms", "total ms"
+    );
+    let layers = DrawOptions::default().layers();
+    let (width, height) = (target.extent.width, target.extent.height);
+    for fraction in [0.75, 0.5, 0.25, 0.0, 0.5, 1.0] {
+        let vertices = lo + ((hi - lo) as f64 * fraction) as usize;
+        let started = Instant::now();
+        lod.set_vertices(vertices, started);
+        let level = started.elapsed().as_secs_f64() * 1e3;
+        let t = Instant::now();
+        let gpu =
+            GpuScene::upload_morphing(context, commands, lod.scene(), lod.morph_from(), layers)?;
+        let upload = t.elapsed().as_secs_f64() * 1e3;
+        let t = Instant::now();
+        let views: Vec<_> = tiles(1, width, height)
+            .into_iter()
+            .map(|rect| ViewportDraw {
+                rect,
+                scene: &gpu,
+                camera,
+                options: DrawOptions::default(),
+                morph: 0.5,
+            })
+            .collect();
+        target.render(commands, pipelines, &views, false)?;
+        let frame = t.elapsed().as_secs_f64() * 1e3;
+        drop(views);
+        drop(gpu);
+        let t = Instant::now();
+        if lod.settle() {
+            drop(GpuScene::upload(context, commands, lod.scene(), layers)?);
+        }
+        let settle = t.elapsed().as_secs_f64() * 1e3;
+        let total = started.elapsed().as_secs_f64() * 1e3;
+        println!(
+            "{:<22} {level:>9.1} {upload:>9.1} {frame:>9.1} {settle:>9.1} {total:>9.1}",
+            format!("{:.0} % ({})", fraction * 100.0, lod.vertex_count())
         );
     }
     Ok(())
