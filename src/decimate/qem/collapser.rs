@@ -4,25 +4,14 @@
 //! The checks live in `legality`, the cost cache in `ranking`, the loop in `passes`.
 
 use glam::{DVec3, Vec3};
-use rayon::prelude::*;
 
+use super::planes;
 use super::quadric::Quadric;
 use super::ranking::EdgeCosts;
 use crate::decimate::layout::{compact, Compacted};
 use crate::decimate::progressive::{CollapseRecord, Recorder};
-use crate::mesh::topology::{Connectivity, Ring, RingShape};
+use crate::mesh::topology::Connectivity;
 use crate::mesh::{Attribute, Model};
-
-/// Weight of boundary and feature constraint planes relative to an area-weighted face plane.
-const CONSTRAINT_WEIGHT: f64 = 100.0;
-
-/// Weight of a feature edge's planes, times `(1 - cos(dihedral))⁶` (15 at a right angle,
-/// 0.2 at 60°, 0.01 at 45°): a scan's many mild "features" barely constrain — any real
-/// weight on them raises the mean error — while sharp creases hold and keep the maximum
-/// down. On the dragon kept at 10 % (metro, 10⁶ samples): with no feature planes mean
-/// 9.08e-6 / max 1.10e-3; 400·(1 - cos)² 9.43e-6 / 1.47e-4; this 9.15e-6 / 2.39e-4
-/// (vtkQuadricDecimation 9.19e-6 / 1.01e-3, MeshLab 1.04e-5 / 4.97e-4).
-const FEATURE_WEIGHT: f64 = 15.0;
 
 /// A placement may leave the edge's bounding box by at most this many edge lengths.
 const BOX_MARGIN: f64 = 1.0;
@@ -74,29 +63,24 @@ pub(super) struct Collapser {
 }
 
 impl Collapser {
+    /// The state for `triangles` over `positions`: connectivity, every vertex's kind and
+    /// starting quadric (`planes`; `cos_feature` picks the constrained feature edges).
     pub fn new(
         positions: Vec<Vec3>,
         triangles: Vec<[u32; 3]>,
         colors: Option<Vec<[f32; 3]>>,
         normals: Option<Vec<[f32; 3]>>,
+        cos_feature: f64,
     ) -> Self {
         let n = positions.len();
         let conn = Connectivity::from_triangles(n, triangles);
-        let kinds = (0..n as u32)
-            .into_par_iter()
-            .with_min_len(4096)
-            .map_init(Ring::default, |ring, v| match conn.ring(v, ring) {
-                RingShape::Closed => Kind::Interior,
-                RingShape::Open => Kind::Boundary,
-                RingShape::Isolated | RingShape::Complex => Kind::Fixed,
-            })
-            .collect();
+        let (kinds, quadrics) = planes::kinds_and_quadrics(&conn, &positions, cos_feature);
         Self {
             positions,
             costs: EdgeCosts::new(conn.triangles().len()),
             conn,
             kinds,
-            quadrics: vec![Quadric::default(); n],
+            quadrics,
             colors,
             normals,
             best: vec![u32::MAX; n],
@@ -155,115 +139,6 @@ impl Collapser {
             }
         }
         (count, last)
-    }
-
-    /// Area-weighted face planes, plus constraint planes along boundary and feature edges;
-    /// each vertex gathers its own, on all cores.
-    pub fn fill_quadrics(&mut self, cos_feature: f64) {
-        let n = self.vertex_count() as u32;
-        let this = &*self;
-        let quadrics = (0..n)
-            .into_par_iter()
-            .with_min_len(4096)
-            .map(|v| this.vertex_quadric(v, cos_feature))
-            .collect();
-        self.quadrics = quadrics;
-    }
-
-    /// The planes `v` stands for: those of its triangles, and the constraint planes of the
-    /// edges of those triangles that end at `v`.
-    fn vertex_quadric(&self, v: u32, cos_feature: f64) -> Quadric {
-        let mut sum = Quadric::default();
-        for &t in self.conn.incident(v) {
-            let Some((normal, face)) = self.face_plane(t) else {
-                continue;
-            };
-            sum.add(&face);
-            let tri = self.conn.triangle(t);
-            for i in 0..3 {
-                let (u, w) = (tri[i], tri[(i + 1) % 3]);
-                if u == v || w == v {
-                    for q in self
-                        .edge_constraints(t, normal, v, u, w, cos_feature)
-                        .iter()
-                        .flatten()
-                    {
-                        sum.add(q);
-                    }
-                }
-            }
-        }
-        sum
-    }
-
-    /// Triangle `t`'s unit normal and its plane weighted by its area (`None` when it has
-    /// none).
-    fn face_plane(&self, t: u32) -> Option<(DVec3, Quadric)> {
-        let [a, b, c] = self.corners(t);
-        let cross = (b - a).cross(c - a);
-        let len = cross.length();
-        if len <= 0.0 {
-            return None;
-        }
-        let normal = cross / len;
-        let area = 0.5 * len;
-        let mut q = Quadric::plane(normal, -normal.dot(a), area);
-        q.area = area;
-        Some((normal, q))
-    }
-
-    /// The constraint planes through the edge `u`→`w` of triangle `t` (unit `normal`), `at`
-    /// one of its ends (whose fan is searched for the edge's other triangle): one
-    /// perpendicular to `t` when the edge is on the boundary; one per side when it is a
-    /// feature edge (seen once, from the triangle whose id is smaller), weighted by how
-    /// sharp it is; none otherwise.
-    fn edge_constraints(
-        &self,
-        t: u32,
-        normal: DVec3,
-        at: u32,
-        u: u32,
-        w: u32,
-        cos_feature: f64,
-    ) -> [Option<Quadric>; 2] {
-        let far = if at == u { w } else { u };
-        let (count, other) = self.other_triangle(at, far, t);
-        let (pu, pw) = (self.position(u), self.position(w));
-        let edge = pw - pu;
-        let plane = |n: DVec3, scale: f64| {
-            let side = edge.cross(n).normalize_or_zero();
-            Quadric::plane(side, -side.dot(pu), scale * edge.length_squared())
-        };
-        match (count, other) {
-            (1, _) => [Some(plane(normal, CONSTRAINT_WEIGHT)), None],
-            (2, Some(o)) if o > t => {
-                let [p, q, r] = self.corners(o);
-                let n2 = (q - p).cross(r - p).normalize_or_zero();
-                let cos = normal.dot(n2);
-                if cos >= cos_feature {
-                    return [None, None];
-                }
-                // A crease is constrained from both of its sides.
-                let scale = FEATURE_WEIGHT * (1.0 - cos).powi(6);
-                [Some(plane(normal, scale)), Some(plane(n2, scale))]
-            }
-            _ => [None, None],
-        }
-    }
-
-    /// Triangles on edge `u`–`w`, and the one that is not `t` if there are exactly two.
-    fn other_triangle(&self, u: u32, w: u32, t: u32) -> (usize, Option<u32>) {
-        let mut count = 0;
-        let mut other = None;
-        for &s in self.conn.incident(u) {
-            if self.conn.triangle(s).contains(&w) {
-                count += 1;
-                if s != t {
-                    other = Some(s);
-                }
-            }
-        }
-        (count, other)
     }
 
     /// Which end of `a`–`b` goes and where the other moves, or `None` when the kinds of the

@@ -8,12 +8,13 @@
 //!    triangles by their first vertex, for locality; drop triangles with out-of-range
 //!    indices; positions are stored in f32, as written, and worked in f64: a placement is
 //!    rounded to f32 before it is checked, so every check sees what is written;
-//! 2. connect: vertex → triangle incidence (`mesh::topology`) and each vertex's kind
-//!    (interior, boundary, complex) from its one-ring shape;
-//! 3. quadrics: every triangle adds its plane weighted by its area; every boundary edge adds
-//!    a plane through the edge perpendicular to its triangle, weighted `CONSTRAINT_WEIGHT` ×
-//!    length², and so does every feature edge (dihedral angle above the feature angle) on
-//!    both sides, weighted by how sharp it is, so that outlines and creases stay put;
+//! 2. connect: vertex → triangle incidence (`mesh::topology`);
+//! 3. kinds and quadrics (`planes`, one pass over the vertices' ordered rings, on all
+//!    cores): each vertex's kind (interior, boundary, complex) from its ring's shape; every
+//!    triangle adds its plane weighted by its area; every boundary edge adds a plane through
+//!    the edge perpendicular to its triangle, weighted `CONSTRAINT_WEIGHT` × length², and so
+//!    does every feature edge (dihedral angle above the feature angle) on both sides,
+//!    weighted by how sharp it is, so that outlines and creases stay put;
 //! 4. rank (`ranking`): every edge's collapse is planned once (which end goes, where the
 //!    other one moves) and its cost cached per half-edge slot; every vertex notes its
 //!    cheapest edge — on all cores;
@@ -40,6 +41,7 @@
 mod collapser;
 mod legality;
 mod passes;
+mod planes;
 mod quadric;
 mod ranking;
 
@@ -104,12 +106,10 @@ fn run(
         _ => None,
     };
 
-    // 2. connect
-    let mut d = Collapser::new(positions, triangles, colors, normals);
+    // 2. connect, 3. quadrics (one pass over the vertices' rings)
+    let cos_feature = limits.feature_angle_deg.to_radians().cos();
+    let mut d = Collapser::new(positions, triangles, colors, normals, cos_feature);
     d.recorder = recorder;
-
-    // 3. quadrics
-    d.fill_quadrics(limits.feature_angle_deg.to_radians().cos());
 
     // 4. rank
     d.rank_all();
