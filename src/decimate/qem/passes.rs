@@ -165,7 +165,7 @@ fn end_of_pass(d: &mut Collapser, live: &[u32], flags: &mut [u8]) {
         .copied()
         .filter(|&v| flag(v) & REPLAN != 0 && alive(v))
         .collect();
-    d.replan(&keeps);
+    d.replan(&keeps, |v| flag(v) & REPLAN != 0 && alive(v));
     let flagged: Vec<u32> = live
         .iter()
         .copied()

@@ -99,13 +99,13 @@ impl Collapser {
             .map_or(f32::INFINITY, |p| stored(p.cost))
     }
 
-    /// Plans the edges of `v` (only those to a larger vertex when `upward`) and stores each
-    /// edge's cost in its slots, unblocked.
-    pub fn plan_fan(&self, v: u32, upward: bool) {
+    /// Plans the edges of `v` except those to a vertex `w` for which `skip(w)` (planned from
+    /// there) and stores each edge's cost in its slots, unblocked.
+    pub fn plan_fan(&self, v: u32, skip: impl Fn(u32) -> bool) {
         let mut memo = [(u32::MAX, 0.0f32); FAN_MEMO];
         let mut len = 0;
         self.for_each_edge(v, |slot, w| {
-            if upward && w <= v {
+            if skip(w) {
                 return;
             }
             let cost = match memo[..len].iter().find(|m| m.0 == w) {
@@ -143,18 +143,19 @@ impl Collapser {
         (0..n)
             .into_par_iter()
             .with_min_len(MIN_PER_TASK)
-            .for_each(|v| this.plan_fan(v, true));
+            .for_each(|v| this.plan_fan(v, |w| w <= v));
         let all: Vec<u32> = (0..n).collect();
         self.rerank(&all, |_| false);
     }
 
     /// Re-plans every edge of each of `vertices` (their quadrics or positions changed), on
-    /// all cores.
-    pub fn replan(&self, vertices: &[u32]) {
+    /// all cores. An edge between two of them (`listed`) is planned once, from its smaller
+    /// end.
+    pub fn replan(&self, vertices: &[u32], listed: impl Fn(u32) -> bool + Sync) {
         vertices
             .par_iter()
             .with_min_len(MIN_PER_TASK / 4)
-            .for_each(|&v| self.plan_fan(v, false));
+            .for_each(|&v| self.plan_fan(v, |w| w < v && listed(w)));
     }
 
     /// Re-picks the cheapest edge of each of `vertices` among all its edges, first
