@@ -58,6 +58,8 @@ pub(super) struct Collapser {
     pub stamp: u32,
     /// Scratch list of a vertex's incident triangles.
     incident: Vec<u32>,
+    /// Scratch lists of a collapse's renamed and deleted triangles.
+    scratch: (Vec<u32>, Vec<(u32, [u32; 3])>),
     /// Set when the collapses are recorded for a progressive mesh.
     pub recorder: Option<Recorder>,
 }
@@ -89,6 +91,7 @@ impl Collapser {
             stamps: vec![0; n],
             stamp: 0,
             incident: Vec::new(),
+            scratch: (Vec::new(), Vec::new()),
             recorder: None,
         }
     }
@@ -237,8 +240,9 @@ impl Collapser {
         let mut incident = std::mem::take(&mut self.incident);
         incident.clear();
         incident.extend_from_slice(self.conn.incident(plan.remove));
-        let mut renamed = Vec::with_capacity(incident.len());
-        let mut deleted = Vec::with_capacity(2);
+        let (mut renamed, mut deleted) = std::mem::take(&mut self.scratch);
+        renamed.clear();
+        deleted.clear();
         for &t in &incident {
             let tri = self.conn.triangle(t);
             if tri.contains(&plan.keep) {
@@ -271,6 +275,7 @@ impl Collapser {
         self.quadrics[k].add(&q);
         self.kinds[r] = Kind::Fixed;
         self.incident = incident;
+        self.scratch = (renamed, deleted);
     }
 
     /// Writes live vertices (at their new positions) and triangles back into `model`.
