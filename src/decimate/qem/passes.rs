@@ -160,12 +160,9 @@ pub(super) fn collapse_in_passes(
 fn end_of_pass(d: &mut Collapser, live: &[u32], flags: &mut [u8]) {
     let alive = |v: u32| d.kinds[v as usize] != Kind::Fixed;
     let flag = |v: u32| flags[v as usize];
-    let keeps: Vec<u32> = live
-        .iter()
-        .copied()
-        .filter(|&v| flag(v) & REPLAN != 0 && alive(v))
-        .collect();
-    d.replan(&keeps, |v| flag(v) & REPLAN != 0 && alive(v));
+    let kept = |v: u32| flag(v) & REPLAN != 0 && alive(v);
+    let keeps: Vec<u32> = live.iter().copied().filter(|&v| kept(v)).collect();
+    d.replan(&keeps, kept);
     let flagged: Vec<u32> = live
         .iter()
         .copied()
