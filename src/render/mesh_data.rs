@@ -77,8 +77,6 @@ impl Layers {
 /// (those not asked for are empty).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MeshData {
-    /// The optional lists that were built.
-    pub layers: Layers,
     pub vertices: Vec<Vertex>,
     /// Three indices per triangle, counter-clockwise.
     pub triangles: Vec<u32>,
@@ -137,7 +135,6 @@ impl MeshData {
         let color_of_vertex = |v: usize| to_rgba8(vertex_colors.map_or(model.diffuse, |c| c[v]));
 
         let mut data = Self {
-            layers,
             vertices: Vec::with_capacity(model.positions.len()),
             triangles: Vec::with_capacity(3 * model.triangles.len()),
             ..Self::default()
