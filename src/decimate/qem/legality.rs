@@ -2,37 +2,30 @@
 //! condition (no non-manifold result), no duplicate triangle, no flipped or degenerate
 //! triangle. Vertex kinds (boundary, complex) were already applied by `plan`.
 
-use super::collapser::{others, Collapser, Plan};
+use super::collapser::{others, Plan};
+use super::part::Part;
 
 /// A triangle is degenerate when its area is this small relative to its longest edge².
 const MIN_RELATIVE_AREA: f64 = 1e-8;
 
-impl Collapser {
+impl Part<'_> {
     pub fn is_collapse_legal(&mut self, plan: &Plan) -> bool {
-        let Some(common) = self.link_condition_holds(plan) else {
-            return false;
-        };
-        self.no_duplicate_triangle(plan, common) && self.no_triangle_flips_or_degenerates(plan)
-    }
-
-    /// Two fresh visit stamps: `s` for "neighbour of the removed end", `s + 1` for "common
-    /// neighbour".
-    fn fresh_stamps(&mut self) -> u32 {
-        if self.stamp >= u32::MAX - 2 {
-            self.stamps.fill(0);
-            self.stamp = 0;
-        }
-        self.stamp += 2;
-        self.stamp - 1
+        self.link_condition_holds(plan)
+            && self.no_duplicate_triangle(plan)
+            && self.no_triangle_flips_or_degenerates(plan)
     }
 
     /// Link condition (Dey et al.): the ends share no neighbour but the apexes of the
     /// triangles on the edge — otherwise the result would be non-manifold. A boundary edge
     /// also must not be the last edge of a triangle whose other two edges are on the boundary.
-    /// Returns the stamp that marks the common neighbours.
-    fn link_condition_holds(&mut self, plan: &Plan) -> Option<u32> {
+    /// Leaves the common neighbours in `scratch.common`. Neighbourhoods are small, so the
+    /// lists are searched linearly: no per-vertex marks to keep, nothing shared to write.
+    fn link_condition_holds(&mut self, plan: &Plan) -> bool {
         let (r, k) = (plan.remove, plan.keep);
-        let s = self.fresh_stamps();
+        let mut neighbours = std::mem::take(&mut self.scratch.ring);
+        let mut common = std::mem::take(&mut self.scratch.common);
+        neighbours.clear();
+        common.clear();
         let mut on_edge = 0;
         let mut edge_triangle = u32::MAX;
         for &t in self.conn.incident(r) {
@@ -42,22 +35,23 @@ impl Collapser {
                 edge_triangle = t;
             }
             for w in tri {
-                if w != r {
-                    self.stamps[w as usize] = s;
+                if w != r && !neighbours.contains(&w) {
+                    neighbours.push(w);
                 }
             }
         }
-        let mut common = 0;
         for &t in self.conn.incident(k) {
             for w in self.conn.triangle(t) {
-                if w != k && self.stamps[w as usize] == s {
-                    self.stamps[w as usize] = s + 1;
-                    common += 1;
+                if w != k && neighbours.contains(&w) && !common.contains(&w) {
+                    common.push(w);
                 }
             }
         }
-        if common != on_edge || !(1..=2).contains(&on_edge) {
-            return None;
+        let shares_only_apexes = common.len() == on_edge && (1..=2).contains(&on_edge);
+        self.scratch.ring = neighbours;
+        self.scratch.common = common;
+        if !shares_only_apexes {
+            return false;
         }
         if on_edge == 1 {
             let apex = self
@@ -67,25 +61,25 @@ impl Collapser {
                 .find(|&w| w != r && w != k);
             if let Some(w) = apex {
                 if self.edge_triangles(r, w).0 == 1 && self.edge_triangles(k, w).0 == 1 {
-                    return None;
+                    return false;
                 }
             }
         }
-        Some(s + 1)
+        true
     }
 
     /// A triangle of the removed end, renamed to the kept end, must not already exist (the
     /// last step before a tetrahedron folds flat). Once the link condition holds, only a
-    /// triangle on two common neighbours (stamped `common`) can be duplicated.
-    fn no_duplicate_triangle(&self, plan: &Plan, common: u32) -> bool {
+    /// triangle on two common neighbours (`scratch.common`) can be duplicated.
+    fn no_duplicate_triangle(&self, plan: &Plan) -> bool {
+        let common = &self.scratch.common;
         self.conn.incident(plan.remove).iter().all(|&t| {
             let tri = self.conn.triangle(t);
             if tri.contains(&plan.keep) {
                 return true;
             }
             let [x, y] = others(tri, plan.remove);
-            let both_common =
-                self.stamps[x as usize] == common && self.stamps[y as usize] == common;
+            let both_common = common.contains(&x) && common.contains(&y);
             !both_common || !self.conn.has_triangle(plan.keep, x, y)
         })
     }

@@ -21,8 +21,10 @@
 //! 5. collapse (`passes`): in passes, each over the cheapest share of the vertices' best
 //!    edges in cost order: re-plan, check it is legal (`legality`: a chain of small named
 //!    checks; an illegal edge is blocked until its neighbourhood changes), perform it, add
-//!    the quadrics, interpolate attributes; at the end of a pass the kept vertices' edges
-//!    are re-planned and the touched vertices re-pick their cheapest edge;
+//!    the quadrics, interpolate attributes (`part`); a pass that cannot reach the target
+//!    collapses in spatial regions on all cores, each a disjoint `Part` of the arrays, with
+//!    the same result on any number of cores; at the end of a pass the kept vertices'
+//!    edges are re-planned and the touched vertices re-pick their cheapest edge;
 //! 6. compact: live vertices (at their new positions) and triangles back into the model.
 //!
 //! Collapses are ordered by the quadric itself, `Q(p)` (area × squared distance, as in the
@@ -40,6 +42,7 @@
 
 mod collapser;
 mod legality;
+mod part;
 mod passes;
 mod planes;
 mod quadric;
@@ -112,7 +115,7 @@ fn run(
     d.recorder = recorder;
 
     // 4. rank
-    d.rank_all();
+    d.whole().rank_all();
 
     // 5. collapse
     let outcome = passes::collapse_in_passes(&mut d, limits, progress);

@@ -32,6 +32,12 @@ impl Quadric {
         }
     }
 
+    /// Asks the CPU to start loading both cache lines the quadric may span (a hint).
+    pub fn prefetch(&self) {
+        crate::mesh::prefetch(self);
+        crate::mesh::prefetch(&self.area);
+    }
+
     pub fn add(&mut self, o: &Self) {
         for i in 0..6 {
             self.a[i] += o.a[i];

@@ -8,11 +8,15 @@
 //! orientation). Ring triangle `i` is `(v, verts[i], verts[i + 1])` (indices modulo the length
 //! for closed rings).
 
+mod part;
+
+pub use part::{split_mut, ConnectivityPart};
+
 /// Largest valence handled; vertices above it are reported as complex (kept).
 pub const MAX_VALENCE: usize = 256;
 
 /// Incident triangles kept inline per vertex; more spill to a side table.
-const INLINE: usize = 15;
+pub const INLINE: usize = 15;
 
 /// One vertex's incident triangles: a cache line holding up to `INLINE` ids inline, so a
 /// lookup costs one memory access instead of two (a `Vec` header, then its heap data).
@@ -23,6 +27,9 @@ struct Incidence {
     ids: [u32; INLINE],
 }
 
+/// Incident lists longer than `INLINE`, by vertex.
+type Spilled = std::collections::HashMap<u32, Vec<u32>>;
+
 /// Triangles with per-vertex incidence, editable in place.
 #[derive(Debug, Clone)]
 pub struct Connectivity {
@@ -30,7 +37,7 @@ pub struct Connectivity {
     alive: Vec<bool>,
     incidence: Vec<Incidence>,
     /// Incident lists of vertices with more than `INLINE` triangles.
-    spilled: std::collections::HashMap<u32, Vec<u32>>,
+    spilled: Spilled,
     free: Vec<u32>,
     alive_count: usize,
 }
@@ -92,39 +99,22 @@ impl Connectivity {
 
     /// Adds `t` to `v`'s incident list.
     fn link(&mut self, v: u32, t: u32) {
-        let inc = &mut self.incidence[v as usize];
-        let len = inc.len as usize;
-        if len < INLINE {
-            inc.ids[len] = t;
-        } else {
-            let list = self.spilled.entry(v).or_insert_with(|| inc.ids.to_vec());
-            list.push(t);
-        }
-        inc.len += 1;
+        link(
+            &mut self.incidence[v as usize],
+            Some(&mut self.spilled),
+            v,
+            t,
+        );
     }
 
     /// Removes `t` from `v`'s incident list (order is not kept).
     fn unlink(&mut self, v: u32, t: u32) {
-        let inc = &mut self.incidence[v as usize];
-        let len = inc.len as usize;
-        if len <= INLINE {
-            if let Some(pos) = inc.ids[..len].iter().position(|&x| x == t) {
-                inc.ids[pos] = inc.ids[len - 1];
-                inc.len -= 1;
-            }
-            return;
-        }
-        let Some(list) = self.spilled.get_mut(&v) else {
-            return;
-        };
-        if let Some(pos) = list.iter().position(|&x| x == t) {
-            list.swap_remove(pos);
-            inc.len -= 1;
-        }
-        if list.len() <= INLINE {
-            inc.ids[..list.len()].copy_from_slice(list);
-            self.spilled.remove(&v);
-        }
+        unlink(
+            &mut self.incidence[v as usize],
+            Some(&mut self.spilled),
+            v,
+            t,
+        );
     }
 
     /// Triangle slots, dead ones included (check [`Self::is_alive`]).
@@ -163,13 +153,7 @@ impl Connectivity {
 
     /// Live triangles incident to `v`.
     pub fn incident(&self, v: u32) -> &[u32] {
-        let inc = &self.incidence[v as usize];
-        let len = inc.len as usize;
-        if len <= INLINE {
-            &inc.ids[..len]
-        } else {
-            self.spilled.get(&v).map_or(&[], Vec::as_slice)
-        }
+        incident(&self.incidence[v as usize], Some(&self.spilled), v)
     }
 
     /// Ids of live triangle slots, ascending.
@@ -330,6 +314,62 @@ impl Connectivity {
         } else {
             RingShape::Open
         }
+    }
+}
+
+/// `v`'s incident list, from its record `inc` and, when it spilled, the side table.
+fn incident<'a>(inc: &'a Incidence, spilled: Option<&'a Spilled>, v: u32) -> &'a [u32] {
+    let len = inc.len as usize;
+    if len <= INLINE {
+        &inc.ids[..len]
+    } else {
+        spilled.and_then(|s| s.get(&v)).map_or(&[], Vec::as_slice)
+    }
+}
+
+/// Adds `t` to `v`'s incident list. Without a side table (`spilled` is `None`) the list
+/// must have room inline; the caller checks (a full list is left unchanged).
+fn link(inc: &mut Incidence, spilled: Option<&mut Spilled>, v: u32, t: u32) {
+    let len = inc.len as usize;
+    debug_assert!(
+        len < INLINE || spilled.is_some(),
+        "a part's incident list overflowed"
+    );
+    if len < INLINE {
+        inc.ids[len] = t;
+    } else if let Some(spilled) = spilled {
+        let list = spilled.entry(v).or_insert_with(|| inc.ids.to_vec());
+        list.push(t);
+    } else {
+        return;
+    }
+    inc.len += 1;
+}
+
+/// Removes `t` from `v`'s incident list (order is not kept). Without a side table the list
+/// must be inline.
+fn unlink(inc: &mut Incidence, spilled: Option<&mut Spilled>, v: u32, t: u32) {
+    let len = inc.len as usize;
+    if len <= INLINE {
+        if let Some(pos) = inc.ids[..len].iter().position(|&x| x == t) {
+            inc.ids[pos] = inc.ids[len - 1];
+            inc.len -= 1;
+        }
+        return;
+    }
+    let Some(spilled) = spilled else {
+        return;
+    };
+    let Some(list) = spilled.get_mut(&v) else {
+        return;
+    };
+    if let Some(pos) = list.iter().position(|&x| x == t) {
+        list.swap_remove(pos);
+        inc.len -= 1;
+    }
+    if list.len() <= INLINE {
+        inc.ids[..list.len()].copy_from_slice(list);
+        spilled.remove(&v);
     }
 }
 

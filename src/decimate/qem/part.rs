@@ -1,0 +1,318 @@
+//! A mutable view of a decimation's state: the whole of it, or one of several disjoint
+//! parts collapsed on different cores (each owns a range of vertices and of triangle slots;
+//! see `Collapser::split`). What a part does: which way an edge collapses and where the
+//! kept vertex goes (`plan`), whether a collapse stays inside the part (`owns_collapse`),
+//! and performing it (topology, quadrics, attributes, the progressive record).
+//!
+//! Vertex ids are always the mesh's; a part translates them to its slices. A part touches
+//! only what it owns: `owns_collapse` is asked before anything else of a collapse.
+
+use glam::{DVec3, Vec3};
+
+use super::collapser::{Kind, Plan};
+use super::quadric::Quadric;
+use super::ranking::EdgeCosts;
+use crate::decimate::progressive::{CollapseRecord, Recorder};
+use crate::mesh::topology::ConnectivityPart;
+
+/// A placement may leave the edge's bounding box by at most this many edge lengths.
+const BOX_MARGIN: f64 = 1.0;
+
+/// Lists a collapse and its checks fill, kept from one collapse to the next.
+#[derive(Debug, Default)]
+pub(super) struct Scratch {
+    /// The removed end's incident triangles.
+    incident: Vec<u32>,
+    /// The removed end's triangles renamed to the kept end, and those deleted with the edge.
+    renamed: Vec<u32>,
+    deleted: Vec<(u32, [u32; 3])>,
+    /// The removed end's neighbours, and those it shares with the kept end.
+    pub ring: Vec<u32>,
+    pub common: Vec<u32>,
+}
+
+/// The state of the vertices `v0..v0 + positions.len()` and of the triangle slots its
+/// `conn` owns (everything when `whole`).
+pub(super) struct Part<'a> {
+    pub v0: u32,
+    pub whole: bool,
+    /// f32 as written: a moved vertex is placed at an f32 position (see `plan`).
+    pub positions: &'a mut [Vec3],
+    pub conn: ConnectivityPart<'a>,
+    pub kinds: &'a mut [Kind],
+    pub quadrics: &'a mut [Quadric],
+    pub colors: Option<&'a mut [[f32; 3]]>,
+    pub normals: Option<&'a mut [[f32; 3]]>,
+    /// Planned cost of every edge, per half-edge slot (the whole mesh's: entries are
+    /// atomics, and a part writes only its own slots).
+    pub costs: &'a EdgeCosts,
+    pub best: &'a mut [u32],
+    pub best_cost: &'a mut [f32],
+    pub has_blocked: &'a mut [bool],
+    pub flags: &'a mut [u8],
+    pub recorder: Option<&'a mut Recorder>,
+    pub scratch: Scratch,
+}
+
+impl Part<'_> {
+    /// `v`'s index in this part's slices, when it owns `v`.
+    #[inline]
+    pub fn local(&self, v: u32) -> Option<usize> {
+        let i = v.wrapping_sub(self.v0) as usize;
+        (i < self.positions.len()).then_some(i)
+    }
+
+    /// True when this part owns vertex `v`.
+    #[inline]
+    pub fn owns(&self, v: u32) -> bool {
+        self.local(v).is_some()
+    }
+
+    /// The index of the owned vertex `v` in this part's slices.
+    #[inline]
+    pub fn at(&self, v: u32) -> usize {
+        (v - self.v0) as usize
+    }
+
+    #[inline]
+    pub fn kind(&self, v: u32) -> Kind {
+        self.kinds[self.at(v)]
+    }
+
+    /// True once `v` was removed or when it can never move.
+    #[inline]
+    pub fn is_fixed(&self, v: u32) -> bool {
+        self.kind(v) == Kind::Fixed
+    }
+
+    /// Whether collapsing the edge `v`–`w` (either way) reads and writes only what this part
+    /// owns: both ends, their triangles (slots) and those triangles' corners, with room in
+    /// the ends' incident lists for the merged fan and unspilled lists at the edge's apexes
+    /// (a split-off part has no side table for long lists). Always true for the whole.
+    pub fn owns_collapse(&self, v: u32, w: u32) -> bool {
+        if self.whole {
+            return true;
+        }
+        if !self.owns(v) || !self.owns(w) {
+            return false;
+        }
+        let c = &self.conn;
+        let fans_owned = [v, w].iter().all(|&x| {
+            c.has_room(x, 0)
+                && c.incident(x)
+                    .iter()
+                    .all(|&t| c.owns_slot(t) && c.triangle(t).iter().all(|&y| self.owns(y)))
+        });
+        // A collapse keeps one end with both fans, less the (at least one) edge triangle
+        // in each: room for the sum less two.
+        fans_owned
+            && c.has_room(v, c.incident(w).len().saturating_sub(2))
+            && c.incident(v).iter().all(|&t| {
+                let tri = c.triangle(t);
+                !tri.contains(&w) || tri.iter().all(|&y| c.has_room(y, 0))
+            })
+    }
+
+    /// Starts loading what collapsing an edge of `v` reads first (a hint; ignored for a
+    /// vertex this part does not own).
+    pub fn prefetch(&self, v: u32) {
+        if let Some(i) = self.local(v) {
+            self.quadrics[i].prefetch();
+            crate::mesh::prefetch(&self.positions[i]);
+            crate::mesh::prefetch(&self.best[i]);
+            self.conn.prefetch_incident(v);
+        }
+    }
+
+    /// Starts loading `v`'s incident triangles and their edge costs (a hint; `v`'s incident
+    /// list should be loaded by now).
+    pub fn prefetch_fan(&self, v: u32) {
+        if self.owns(v) {
+            for &t in self.conn.incident(v) {
+                self.conn.prefetch_triangle(t);
+                self.costs.prefetch(3 * t as usize);
+            }
+        }
+    }
+
+    /// Starts loading the positions of `v`'s neighbours (a hint; `v`'s triangles should be
+    /// loaded by now).
+    pub fn prefetch_ring(&self, v: u32) {
+        if self.owns(v) {
+            for &t in self.conn.incident(v) {
+                if self.conn.owns_slot(t) {
+                    for w in self.conn.triangle(t) {
+                        if let Some(i) = self.local(w) {
+                            crate::mesh::prefetch(&self.positions[i]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Starts loading what planning an edge to `w` reads (a hint).
+    pub fn prefetch_end(&self, w: u32) {
+        if let Some(i) = self.local(w) {
+            self.quadrics[i].prefetch();
+            crate::mesh::prefetch(&self.kinds[i]);
+        }
+    }
+
+    pub fn position(&self, v: u32) -> DVec3 {
+        self.positions[self.at(v)].as_dvec3()
+    }
+
+    pub fn corners(&self, t: u32) -> [DVec3; 3] {
+        self.conn.triangle(t).map(|v| self.position(v))
+    }
+
+    /// Triangles on the edge `a`–`b`: how many, and the last one found.
+    pub fn edge_triangles(&self, a: u32, b: u32) -> (usize, u32) {
+        let mut count = 0;
+        let mut last = u32::MAX;
+        for &t in self.conn.incident(a) {
+            if self.conn.triangle(t).contains(&b) {
+                count += 1;
+                last = t;
+            }
+        }
+        (count, last)
+    }
+
+    /// Which end of `a`–`b` goes and where the other moves, or `None` when the kinds of the
+    /// ends forbid any collapse of this edge. The table, from the ends' kinds:
+    ///
+    /// | a        | b        | edge      | collapse                                          |
+    /// |----------|----------|-----------|---------------------------------------------------|
+    /// | fixed    | any      | any       | none: a complex vertex never moves                |
+    /// | interior | interior | interior  | either way, to the quadric's optimum              |
+    /// | interior | boundary | interior  | the interior end into the boundary end, unmoved: a boundary vertex moves only along its boundary |
+    /// | boundary | boundary | boundary  | either way, to the optimum (the constraint planes keep it on the outline) |
+    /// | boundary | boundary | interior  | none: it would pinch the surface                  |
+    pub fn plan(&self, a: u32, b: u32) -> Option<Plan> {
+        let (ka, kb) = (self.kind(a), self.kind(b));
+        let (remove, keep, free) = match (ka, kb) {
+            (Kind::Fixed, _) | (_, Kind::Fixed) => return None,
+            (Kind::Interior, Kind::Interior) => (a, b, true),
+            (Kind::Interior, Kind::Boundary) => (a, b, false),
+            (Kind::Boundary, Kind::Interior) => (b, a, false),
+            (Kind::Boundary, Kind::Boundary) => {
+                if self.edge_triangles(a, b).0 != 1 {
+                    return None;
+                }
+                (a, b, true)
+            }
+        };
+        let q = self.quadrics[self.at(a)].sum(&self.quadrics[self.at(b)]);
+        let (pr, pk) = (self.position(remove), self.position(keep));
+        let position = if free { self.place(&q, pr, pk) } else { pk };
+        // What is written is f32: plan with exactly that.
+        let position = position.as_vec3().as_dvec3();
+        let mut cost = q.eval(position);
+        let error2 = cost / q.area.max(f64::MIN_POSITIVE);
+        if let Some(c) = self.colors.as_deref() {
+            let (cr, ck) = (c[self.at(remove)], c[self.at(keep)]);
+            let dc = Vec3::from_array(cr) - Vec3::from_array(ck);
+            cost += q.area * dc.length_squared() as f64 * (pk - pr).length_squared();
+        }
+        Some(Plan {
+            remove,
+            keep,
+            position,
+            error2,
+            cost,
+        })
+    }
+
+    /// The quadric's minimum when it exists and stays within a box around the edge `pr`–`pk`;
+    /// otherwise the best of the kept end, the removed end and the midpoint.
+    fn place(&self, q: &Quadric, pr: DVec3, pk: DVec3) -> DVec3 {
+        let margin = DVec3::splat(BOX_MARGIN * (pk - pr).length());
+        let (lo, hi) = (pr.min(pk) - margin, pr.max(pk) + margin);
+        if let Some(p) = q.minimum() {
+            if p.cmpge(lo).all() && p.cmple(hi).all() {
+                return p;
+            }
+        }
+        let mut best = pk;
+        let mut best_error = q.eval(pk);
+        for p in [pr, 0.5 * (pr + pk)] {
+            let e = q.eval(p);
+            if e < best_error {
+                best = p;
+                best_error = e;
+            }
+        }
+        best
+    }
+
+    /// Performs a legal collapse; the kept vertex's edges are left to be re-planned.
+    pub fn collapse(&mut self, plan: &Plan) {
+        let (r, k) = (self.at(plan.remove), self.at(plan.keep));
+        // Attributes at the projection of the new position on the edge.
+        let (pr, pk) = (self.position(plan.remove), self.position(plan.keep));
+        let edge = pr - pk;
+        let s = if edge.length_squared() > 0.0 {
+            ((plan.position - pk).dot(edge) / edge.length_squared()).clamp(0.0, 1.0) as f32
+        } else {
+            0.0
+        };
+        let lerp = |x: [f32; 3], y: [f32; 3]| {
+            (Vec3::from_array(y) + s * (Vec3::from_array(x) - Vec3::from_array(y))).to_array()
+        };
+        let colors_before = self.colors.as_deref().map(|c| (c[k], c[r]));
+        let normals_before = self.normals.as_deref().map(|n| (n[k], n[r]));
+        if let Some(c) = self.colors.as_deref_mut() {
+            c[k] = lerp(c[r], c[k]);
+        }
+        if let Some(n) = self.normals.as_deref_mut() {
+            n[k] = Vec3::from_array(lerp(n[r], n[k]))
+                .normalize_or_zero()
+                .to_array();
+        }
+        // Topology: the edge's triangles go, the removed end's others are renamed in place,
+        // so per-face attributes stay with their faces and no slot is ever reused.
+        let mut incident = std::mem::take(&mut self.scratch.incident);
+        incident.clear();
+        incident.extend_from_slice(self.conn.incident(plan.remove));
+        let mut renamed = std::mem::take(&mut self.scratch.renamed);
+        let mut deleted = std::mem::take(&mut self.scratch.deleted);
+        renamed.clear();
+        deleted.clear();
+        for &t in &incident {
+            let tri = self.conn.triangle(t);
+            if tri.contains(&plan.keep) {
+                self.conn.remove_triangle(t);
+                deleted.push((t, tri));
+            } else {
+                self.conn.rename_corner(t, plan.remove, plan.keep);
+                renamed.push(t);
+            }
+        }
+        if let Some(recorder) = self.recorder.as_deref_mut() {
+            recorder.collapse(CollapseRecord {
+                keep: plan.keep,
+                remove: plan.remove,
+                keep_before: pk.as_vec3(),
+                keep_after: plan.position.as_vec3(),
+                removed_position: pr.as_vec3(),
+                colors: colors_before
+                    .zip(self.colors.as_deref())
+                    .map(|((ck, cr), c)| [ck, c[k], cr]),
+                normals: normals_before
+                    .zip(self.normals.as_deref())
+                    .map(|((nk, nr), n)| [nk, n[k], nr].map(Vec3::from_array)),
+                renamed: &renamed,
+                deleted: &deleted,
+            });
+        }
+        self.positions[k] = plan.position.as_vec3();
+        let q = self.quadrics[r];
+        self.quadrics[k].add(&q);
+        self.kinds[r] = Kind::Fixed;
+        self.scratch.incident = incident;
+        self.scratch.renamed = renamed;
+        self.scratch.deleted = deleted;
+    }
+}

@@ -1,0 +1,250 @@
+//! A mutable view of part of a [`Connectivity`]: the vertices of one id range and the
+//! triangle slots of one slot range, so that disjoint parts of a mesh can be edited on
+//! different threads, each holding plain `&mut` slices (no locks, no `unsafe`).
+//!
+//! A part answers only for what it owns: [`ConnectivityPart::owns_vertex`] and
+//! [`ConnectivityPart::owns_slot`] say what that is, and an operation must check before it
+//! touches anything. A part split off a mesh has no side table for long incident lists:
+//! it must not touch a vertex whose list spilled, nor grow one past [`INLINE`]
+//! ([`ConnectivityPart::has_room`]). The whole mesh as one part ([`Connectivity::whole`])
+//! owns everything and may spill.
+
+use super::{incident, link, unlink, Connectivity, Incidence, Spilled, INLINE};
+
+/// Vertices `v0..` and triangle slots `t0..` of a connectivity, editable.
+#[derive(Debug)]
+pub struct ConnectivityPart<'a> {
+    v0: u32,
+    t0: u32,
+    triangles: &'a mut [[u32; 3]],
+    alive: &'a mut [bool],
+    incidence: &'a mut [Incidence],
+    spilled: Option<&'a mut Spilled>,
+    /// Live triangles of the whole mesh when the part was made (meaningful for a whole part).
+    live_before: usize,
+    /// Slots killed through this part, in order: free once the part is given back.
+    removed: Vec<u32>,
+}
+
+/// Splits `slice` at `starts` (ascending offsets, the first 0): part `i` is
+/// `starts[i]..starts[i + 1]`, the last runs to the end. Offsets past the end are clamped.
+pub fn split_mut<'a, T>(mut slice: &'a mut [T], starts: &[usize]) -> Vec<&'a mut [T]> {
+    let mut parts = Vec::with_capacity(starts.len());
+    let mut at = 0;
+    for (i, _) in starts.iter().enumerate() {
+        let end = starts.get(i + 1).map_or(usize::MAX, |&e| e);
+        let len = end.saturating_sub(at).min(slice.len());
+        let (head, tail) = std::mem::take(&mut slice).split_at_mut(len);
+        parts.push(head);
+        slice = tail;
+        at += len;
+    }
+    parts
+}
+
+impl Connectivity {
+    /// The whole mesh as one part.
+    pub fn whole(&mut self) -> ConnectivityPart<'_> {
+        ConnectivityPart {
+            v0: 0,
+            t0: 0,
+            live_before: self.alive_count,
+            triangles: &mut self.triangles,
+            alive: &mut self.alive,
+            incidence: &mut self.incidence,
+            spilled: Some(&mut self.spilled),
+            removed: Vec::new(),
+        }
+    }
+
+    /// Disjoint parts: part `i` owns the vertices from `vertex_starts[i]` and the slots from
+    /// `slot_starts[i]` up to the next part's (both ascending, starting at 0, equally long).
+    pub fn split(
+        &mut self,
+        vertex_starts: &[u32],
+        slot_starts: &[u32],
+    ) -> Vec<ConnectivityPart<'_>> {
+        let as_usize = |s: &[u32]| s.iter().map(|&x| x as usize).collect::<Vec<_>>();
+        let (vs, ts) = (as_usize(vertex_starts), as_usize(slot_starts));
+        let incidence = split_mut(&mut self.incidence, &vs);
+        let triangles = split_mut(&mut self.triangles, &ts);
+        let alive = split_mut(&mut self.alive, &ts);
+        let live_before = self.alive_count;
+        incidence
+            .into_iter()
+            .zip(triangles)
+            .zip(alive)
+            .zip(vertex_starts.iter().zip(slot_starts))
+            .map(
+                |(((incidence, triangles), alive), (&v0, &t0))| ConnectivityPart {
+                    v0,
+                    t0,
+                    triangles,
+                    alive,
+                    incidence,
+                    spilled: None,
+                    live_before,
+                    removed: Vec::new(),
+                },
+            )
+            .collect()
+    }
+
+    /// Takes back the slots parts killed (`removed`, from [`ConnectivityPart::finish`]):
+    /// they count as dead and their slots become free, in the given order.
+    pub fn absorb(&mut self, removed: Vec<u32>) {
+        self.alive_count -= removed.len();
+        self.free.extend(removed);
+    }
+}
+
+impl ConnectivityPart<'_> {
+    /// True when vertex `v` is in this part.
+    #[inline]
+    pub fn owns_vertex(&self, v: u32) -> bool {
+        (v.wrapping_sub(self.v0) as usize) < self.incidence.len()
+    }
+
+    /// True when triangle slot `t` is in this part.
+    #[inline]
+    pub fn owns_slot(&self, t: u32) -> bool {
+        (t.wrapping_sub(self.t0) as usize) < self.triangles.len()
+    }
+
+    /// True when `v` (owned) can take `extra` more incident triangles: its list neither
+    /// spilled nor would spill, or the part has the side table.
+    pub fn has_room(&self, v: u32, extra: usize) -> bool {
+        self.spilled.is_some() || self.incidence[self.vertex(v)].len as usize + extra <= INLINE
+    }
+
+    #[inline]
+    fn vertex(&self, v: u32) -> usize {
+        (v - self.v0) as usize
+    }
+
+    #[inline]
+    fn slot(&self, t: u32) -> usize {
+        (t - self.t0) as usize
+    }
+
+    /// Live triangles incident to the owned vertex `v`.
+    #[inline]
+    pub fn incident(&self, v: u32) -> &[u32] {
+        incident(&self.incidence[self.vertex(v)], self.spilled.as_deref(), v)
+    }
+
+    /// The corners of the owned slot `t`.
+    #[inline]
+    pub fn triangle(&self, t: u32) -> [u32; 3] {
+        self.triangles[self.slot(t)]
+    }
+
+    /// Live triangles of the whole mesh, for a part made by [`Connectivity::whole`].
+    pub fn triangle_count(&self) -> usize {
+        self.live_before - self.removed.len()
+    }
+
+    /// Asks the CPU to start loading `v`'s incident list, if owned (a hint).
+    #[inline]
+    pub fn prefetch_incident(&self, v: u32) {
+        if let Some(inc) = self.incidence.get(v.wrapping_sub(self.v0) as usize) {
+            crate::mesh::prefetch(inc);
+        }
+    }
+
+    /// Asks the CPU to start loading slot `t`'s corners, if owned (a hint).
+    #[inline]
+    pub fn prefetch_triangle(&self, t: u32) {
+        if let Some(tri) = self.triangles.get(t.wrapping_sub(self.t0) as usize) {
+            crate::mesh::prefetch(tri);
+        }
+    }
+
+    /// True when a live triangle with exactly the vertices `a` (owned), `b`, `c` exists.
+    pub fn has_triangle(&self, a: u32, b: u32, c: u32) -> bool {
+        self.incident(a).iter().any(|&t| {
+            let tri = self.triangle(t);
+            tri.contains(&b) && tri.contains(&c)
+        })
+    }
+
+    fn link(&mut self, v: u32, t: u32) {
+        let i = self.vertex(v);
+        link(&mut self.incidence[i], self.spilled.as_deref_mut(), v, t);
+    }
+
+    fn unlink(&mut self, v: u32, t: u32) {
+        let i = self.vertex(v);
+        unlink(&mut self.incidence[i], self.spilled.as_deref_mut(), v, t);
+    }
+
+    /// Kills the owned slot `t` and unlinks it from its (owned) corners.
+    pub fn remove_triangle(&mut self, t: u32) {
+        let i = self.slot(t);
+        if !self.alive[i] {
+            return;
+        }
+        self.alive[i] = false;
+        for v in self.triangles[i] {
+            self.unlink(v, t);
+        }
+        self.removed.push(t);
+    }
+
+    /// As [`Connectivity::rename_corner`], on an owned slot with owned corners.
+    pub fn rename_corner(&mut self, t: u32, from: u32, to: u32) {
+        let i = self.slot(t);
+        let tri = &mut self.triangles[i];
+        let Some(corner) = tri.iter().position(|&v| v == from) else {
+            return;
+        };
+        tri[corner] = to;
+        self.unlink(from, t);
+        self.link(to, t);
+    }
+
+    /// Ends the part: the slots it killed, for [`Connectivity::absorb`].
+    pub fn finish(self) -> Vec<u32> {
+        self.removed
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn split_mut_cuts_at_the_offsets() {
+        let mut v: Vec<u32> = (0..10).collect();
+        let parts = split_mut(&mut v, &[0, 3, 3, 8]);
+        let lens: Vec<usize> = parts.iter().map(|p| p.len()).collect();
+        assert_eq!(lens, vec![3, 0, 5, 2]);
+        assert_eq!(parts[2][0], 3);
+    }
+
+    #[test]
+    fn parts_edit_their_own_vertices_and_slots() {
+        // Two strips: vertices 0..4 with slots 0..2, vertices 4..8 with slots 2..4.
+        let tris = [[0, 1, 2], [1, 3, 2], [4, 5, 6], [5, 7, 6]];
+        let mut c = Connectivity::new(8, &tris);
+        let mut parts = c.split(&[0, 4], &[0, 2]);
+        assert!(parts[0].owns_vertex(3) && !parts[0].owns_vertex(4));
+        assert!(parts[1].owns_slot(3) && !parts[1].owns_slot(1));
+        // Collapse 3 into 2 in part 0, remove slot 3 in part 1.
+        parts[0].remove_triangle(1);
+        parts[1].remove_triangle(3);
+        parts[1].rename_corner(2, 6, 7);
+        assert_eq!(parts[1].triangle(2), [4, 5, 7]);
+        assert_eq!(parts[0].incident(1), &[0]);
+        let removed: Vec<u32> = parts
+            .into_iter()
+            .flat_map(ConnectivityPart::finish)
+            .collect();
+        c.absorb(removed);
+        assert_eq!(c.triangle_count(), 2);
+        assert_eq!(c.incident(7), &[2]);
+        assert!(c.incident(6).is_empty());
+        // Freed slots are reused in the order the parts gave them back.
+        assert_eq!(c.add_triangle([0, 1, 3]), 3);
+    }
+}
