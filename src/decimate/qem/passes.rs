@@ -16,7 +16,8 @@
 //! each region collapses, in cost order, those of the round's candidates whose whole
 //! neighbourhood it owns (`Part::owns_collapse`). Collapses in different regions touch
 //! disjoint data, so they commute: the result depends neither on the threads' timing nor
-//! on how many there are. The round's candidates on region borders (about a tenth) then go,
+//! on how many there are. The round's candidates on region borders (about a tenth) then
+//! get a second chance in regions shifted by half a region, and those on both borders go,
 //! in cost order, on the whole mesh. A round runs in regions only when it cannot reach the
 //! target; the last candidates before the target go one at a time on the whole mesh, so
 //! that the count stops exactly there. A progressive record is kept on the whole mesh only.
@@ -133,7 +134,7 @@ pub(super) fn collapse_in_passes(
     // plane's two triangles or a tetrahedron is as far as collapsing should go.
     let used = (0..n).filter(|&v| !d.conn.incident(v).is_empty()).count();
     let removable = used.saturating_sub(4);
-    let regions = Regions::of(d);
+    let regions = [Regions::of(d, false), Regions::of(d, true)];
     let mut skipped_for_error = false;
     let mut live: Vec<u32> = (0..n)
         .filter(|&v| d.kinds[v as usize] != Kind::Fixed)
@@ -167,7 +168,7 @@ pub(super) fn collapse_in_passes(
             candidates.select_nth_unstable_by(take - 1, by_cost);
             candidates.truncate(take);
         }
-        candidates.sort_unstable_by(by_cost);
+        candidates.par_sort_unstable_by(by_cost);
         let bounds = PassBounds {
             threshold: candidates[take - 1].0,
             bound2,
@@ -194,13 +195,13 @@ pub(super) fn collapse_in_passes(
 /// at most two triangles); the rest runs on the whole mesh, one candidate at a time.
 fn collapse_pass(
     d: &mut Collapser,
-    regions: &Regions,
+    regions: &[Regions; 2],
     candidates: &[Candidate],
     bounds: PassBounds,
     limit: Limit,
     tally: &mut Tally,
 ) -> bool {
-    let in_regions = regions.count() > 1 && d.recorder.is_none();
+    let in_regions = regions[0].count() > 1 && d.recorder.is_none();
     let round = candidates.len().div_ceil(ROUNDS).max(MIN_ROUND);
     let mut rest = candidates;
     while in_regions && !rest.is_empty() {
@@ -215,7 +216,8 @@ fn collapse_pass(
             break;
         }
         let (chunk, tail) = rest.split_at(size);
-        let border = collapse_in_regions(d, regions, chunk, bounds, tally);
+        let border = collapse_in_regions(d, &regions[0], chunk, bounds, tally);
+        let border = collapse_in_regions(d, &regions[1], &border, bounds, tally);
         let mut whole = d.whole();
         collapse_in_order(&mut whole, &border, bounds, None, tally);
         let removed = whole.conn.finish();
@@ -236,14 +238,24 @@ struct Regions {
 }
 
 impl Regions {
-    /// `REGIONS` equal ranges of vertex ids (fewer on a small mesh), each with the triangle
+    /// `REGIONS` equal ranges of vertex ids (fewer on a small mesh; `shifted` by half a
+    /// range, the first one longer and the last shorter), each with the triangle
     /// slots whose smallest corner is in its range — all of them while nothing collapsed
     /// yet, as `layout::load` orders triangles by their smallest vertex. (Were they in
     /// another order, only more candidates would end up on borders.)
-    fn of(d: &Collapser) -> Self {
+    fn of(d: &Collapser, shifted: bool) -> Self {
         let n = d.vertex_count();
         let count = (n / MIN_REGION).clamp(1, REGIONS);
-        let vertex_starts: Vec<u32> = (0..count).map(|i| (i * n / count) as u32).collect();
+        let shift = if shifted { n / count / 2 } else { 0 };
+        let vertex_starts: Vec<u32> = (0..count)
+            .map(|i| {
+                if i == 0 {
+                    0
+                } else {
+                    (i * n / count - shift) as u32
+                }
+            })
+            .collect();
         let triangles = d.conn.triangles();
         let mut slot_starts: Vec<u32> = Vec::with_capacity(count);
         for &v0 in &vertex_starts {
@@ -442,19 +454,22 @@ mod tests {
             .map(|&v| model.positions[v as usize])
             .collect();
         let d = Collapser::new(positions, loaded.triangles(&model), None, None, 0.5);
-        let regions = Regions::of(&d);
-        let n = d.vertex_count() as u32;
-        assert_eq!(regions.count(), n as usize / MIN_REGION);
-        assert_eq!(regions.vertex_starts[0], 0);
-        assert_eq!(regions.slot_starts[0], 0);
-        assert!(regions.vertex_starts.windows(2).all(|w| w[0] < w[1]));
-        assert!(regions.slot_starts.windows(2).all(|w| w[0] <= w[1]));
-        // Every triangle lies in the slot range of the region of its smallest corner.
-        let slot_region = |t: usize| regions.slot_starts.partition_point(|&s| s as usize <= t) - 1;
-        for (t, tri) in d.conn.triangles().iter().enumerate() {
-            let first = tri.iter().copied().min().unwrap_or(0);
-            assert_eq!(slot_region(t), regions.of_vertex(first), "triangle {t}");
+        for shifted in [false, true] {
+            let regions = Regions::of(&d, shifted);
+            let n = d.vertex_count() as u32;
+            assert_eq!(regions.count(), n as usize / MIN_REGION);
+            assert_eq!(regions.vertex_starts[0], 0);
+            assert_eq!(regions.slot_starts[0], 0);
+            assert!(regions.vertex_starts.windows(2).all(|w| w[0] < w[1]));
+            assert!(regions.slot_starts.windows(2).all(|w| w[0] <= w[1]));
+            // Every triangle lies in the slot range of the region of its smallest corner.
+            let slot_region =
+                |t: usize| regions.slot_starts.partition_point(|&s| s as usize <= t) - 1;
+            for (t, tri) in d.conn.triangles().iter().enumerate() {
+                let first = tri.iter().copied().min().unwrap_or(0);
+                assert_eq!(slot_region(t), regions.of_vertex(first), "triangle {t}");
+            }
+            assert_eq!(regions.of_vertex(n - 1), regions.count() - 1);
         }
-        assert_eq!(regions.of_vertex(n - 1), regions.count() - 1);
     }
 }
