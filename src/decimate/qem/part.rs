@@ -124,13 +124,15 @@ impl Part<'_> {
         }
     }
 
-    /// Starts loading `v`'s incident triangles and their edge costs (a hint; `v`'s incident
-    /// list should be loaded by now).
-    pub fn prefetch_fan(&self, v: u32) {
+    /// Starts loading `v`'s incident triangles, and with `costs` their edge costs (a hint;
+    /// `v`'s incident list should be loaded by now).
+    pub fn prefetch_fan(&self, v: u32, costs: bool) {
         if self.owns(v) {
             for &t in self.conn.incident(v) {
                 self.conn.prefetch_triangle(t);
-                self.costs.prefetch(3 * t as usize);
+                if costs {
+                    self.costs.prefetch(3 * t as usize);
+                }
             }
         }
     }
@@ -144,6 +146,23 @@ impl Part<'_> {
                     for w in self.conn.triangle(t) {
                         if let Some(i) = self.local(w) {
                             crate::mesh::prefetch(&self.positions[i]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Starts loading the incident lists of the apexes of the edge `v`–`w`'s triangles,
+    /// which a collapse edits (a hint; `v`'s triangles should be loaded by now).
+    pub fn prefetch_apexes(&self, v: u32, w: u32) {
+        if self.owns(v) {
+            for &t in self.conn.incident(v) {
+                if self.conn.owns_slot(t) {
+                    let tri = self.conn.triangle(t);
+                    if tri.contains(&w) {
+                        for x in tri {
+                            self.conn.prefetch_incident(x);
                         }
                     }
                 }

@@ -352,7 +352,7 @@ fn collapse_in_order(
 /// Asks for the data of the candidates ahead, in four stages: a candidate's own data, then
 /// (once its cheapest edge is loaded) the other end's, then (once both incident lists are
 /// loaded) their fans, then (once the fans' triangles are loaded) their neighbours'
-/// positions.
+/// positions and the incident lists of the edge's apexes.
 fn prefetch_ahead(part: &Part<'_>, candidates: &[Candidate], i: usize) {
     let best = |v: u32| part.local(v).map_or(u32::MAX, |i| part.best[i]);
     if let Some(&(_, ahead)) = candidates.get(i + 3 * PREFETCH_AHEAD) {
@@ -362,12 +362,14 @@ fn prefetch_ahead(part: &Part<'_>, candidates: &[Candidate], i: usize) {
         part.prefetch(best(ahead));
     }
     if let Some(&(_, ahead)) = candidates.get(i + PREFETCH_AHEAD) {
-        part.prefetch_fan(ahead);
-        part.prefetch_fan(best(ahead));
+        // A collapse reads no edge costs (blocking one is rare).
+        part.prefetch_fan(ahead, false);
+        part.prefetch_fan(best(ahead), false);
     }
     if let Some(&(_, ahead)) = candidates.get(i + PREFETCH_AHEAD / 2) {
         part.prefetch_ring(ahead);
         part.prefetch_ring(best(ahead));
+        part.prefetch_apexes(ahead, best(ahead));
     }
 }
 

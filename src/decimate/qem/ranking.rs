@@ -117,7 +117,7 @@ impl Part<'_> {
                 self.conn.prefetch_incident(a);
             }
             if let Some(&a) = vertices.get(i + 2 * AHEAD) {
-                self.prefetch_fan(a);
+                self.prefetch_fan(a, true);
             }
             if ends {
                 if let Some(&a) = vertices.get(i + AHEAD) {
