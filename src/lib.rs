@@ -11,6 +11,7 @@
     clippy::use_self
 )]
 
+pub mod alloc;
 pub mod app;
 pub mod batch;
 pub mod cli;

@@ -7,6 +7,10 @@ use std::process::ExitCode;
 use decimate::cli::{self, Action, Command};
 use decimate::{batch, io, mesh};
 
+/// The mesh arrays on huge pages (see `decimate::alloc`).
+#[global_allocator]
+static ALLOCATOR: decimate::alloc::HugePages = decimate::alloc::HugePages;
+
 fn main() -> ExitCode {
     // (1) Parameter check.
     let args = match cli::parse(std::env::args().skip(1)) {

@@ -97,6 +97,10 @@ fn read(path: &str) -> Result<Surface, String> {
     Ok(surface)
 }
 
+/// The mesh arrays on huge pages (see `decimate::alloc`).
+#[global_allocator]
+static ALLOCATOR: decimate::alloc::HugePages = decimate::alloc::HugePages;
+
 fn main() -> ExitCode {
     let argv: Vec<String> = std::env::args().skip(1).collect();
     let args = match parse(&argv) {
