@@ -40,6 +40,8 @@ impl EdgeCosts {
     pub fn new(triangle_slots: usize) -> Self {
         Self {
             slots: (0..3 * triangle_slots)
+                .into_par_iter()
+                .with_min_len(1 << 16)
                 .map(|_| AtomicU32::new(f32::INFINITY.to_bits()))
                 .collect(),
         }
