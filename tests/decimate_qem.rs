@@ -234,6 +234,89 @@ fn runs_on_all_cores_give_the_same_mesh_every_time_and_on_any_number_of_cores() 
     }
 }
 
+/// An open, wavy height field of `n × n` vertices: one boundary loop, with corners.
+fn wavy_sheet(n: u32) -> Model {
+    let at = |i: u32, j: u32| i * n + j;
+    let positions = (0..n)
+        .flat_map(|i| (0..n).map(move |j| (i, j)))
+        .map(|(i, j)| {
+            let (x, z) = (i as f32 / (n - 1) as f32, j as f32 / (n - 1) as f32);
+            glam::Vec3::new(x, 0.05 * (9.0 * x).sin() * (7.0 * z).cos(), z)
+        })
+        .collect();
+    let triangles = (0..n - 1)
+        .flat_map(|i| (0..n - 1).map(move |j| (i, j)))
+        .flat_map(|(i, j)| {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            [[a, d, c], [a, c, b]]
+        })
+        .collect();
+    Model {
+        name: "sheet".into(),
+        positions,
+        triangles,
+        ..Model::default()
+    }
+}
+
+#[test]
+fn an_open_sheet_keeps_its_outline_in_regions_on_any_number_of_cores() {
+    // 200 × 200 vertices: the passes run in nine regions, and the outline's vertices (which
+    // move only along it) sit on many region borders.
+    let before = wavy_sheet(200);
+    let n = before.positions.len();
+    let params = qem(Target::RemovePercent(90.0));
+    let (first, _) = run(before.clone(), params);
+    assert_eq!(first.positions.len(), n - (0.9 * n as f64).round() as usize);
+    assert_invariants(&before, &first);
+    // The outline stays on the unit square's border (its constraint planes are weighted,
+    // not exact: within 1e-4 of the sheet's size), and so do its corners.
+    let on_border = |p: &glam::Vec3| {
+        [p.x, p.z]
+            .iter()
+            .any(|&c| c.abs() < 1e-4 || (c - 1.0).abs() < 1e-4)
+    };
+    let mut uses = std::collections::HashMap::new();
+    for t in &first.triangles {
+        for i in 0..3 {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
+            *uses.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+        }
+    }
+    let outline: Vec<u32> = uses
+        .iter()
+        .filter(|&(_, &count)| count == 1)
+        .flat_map(|(&(a, b), _)| [a, b])
+        .collect();
+    assert!(!outline.is_empty());
+    for &v in &outline {
+        let p = first.positions[v as usize];
+        assert!(on_border(&p), "outline vertex {v} at {p} left the border");
+    }
+    for corner in [[0.0, 0.0], [0.0, 1.0], [1.0, 0.0], [1.0, 1.0]] {
+        let found = first
+            .positions
+            .iter()
+            .any(|p| (p.x - corner[0]).abs() < 1e-4 && (p.z - corner[1]).abs() < 1e-4);
+        let nearest = first
+            .positions
+            .iter()
+            .map(|p| ((p.x - corner[0]).powi(2) + (p.z - corner[1]).powi(2)).sqrt())
+            .fold(f32::INFINITY, f32::min);
+        assert!(
+            found,
+            "corner {corner:?} moved: nearest vertex {nearest} away"
+        );
+    }
+    let single = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("a thread pool");
+    let again = single.install(|| run(before.clone(), params).0);
+    assert_eq!(again.triangles, first.triangles);
+    assert_eq!(again.positions, first.positions);
+}
+
 #[test]
 fn colours_follow_the_vertices_and_faces() {
     // Per-vertex: red above the equator, blue below; interpolation keeps values in range.
