@@ -53,7 +53,7 @@ pub(super) struct Collapser {
     /// Vertices with a blocked edge.
     has_blocked: Vec<bool>,
     /// What each vertex needs at the end of a pass (`passes`).
-    pub flags: Vec<u8>,
+    flags: Vec<u8>,
     /// Set when the collapses are recorded for a progressive mesh.
     pub recorder: Option<Recorder>,
 }
@@ -119,8 +119,8 @@ impl Collapser {
     /// record: a progressive mesh is built on the whole.
     pub fn split(&mut self, vertex_starts: &[u32], slot_starts: &[u32]) -> Vec<Part<'_>> {
         let vs: Vec<usize> = vertex_starts.iter().map(|&v| v as usize).collect();
-        let mut colors = split_attribute(self.colors.as_deref_mut(), &vs);
-        let mut normals = split_attribute(self.normals.as_deref_mut(), &vs);
+        let mut colors = split_attribute(self.colors.as_deref_mut(), &vs).into_iter();
+        let mut normals = split_attribute(self.normals.as_deref_mut(), &vs).into_iter();
         let mut positions = split_mut(&mut self.positions, &vs).into_iter();
         let mut kinds = split_mut(&mut self.kinds, &vs).into_iter();
         let mut quadrics = split_mut(&mut self.quadrics, &vs).into_iter();
@@ -133,8 +133,7 @@ impl Collapser {
         conns
             .into_iter()
             .zip(vertex_starts)
-            .enumerate()
-            .filter_map(|(i, (conn, &v0))| {
+            .filter_map(|(conn, &v0)| {
                 Some(Part {
                     v0,
                     whole: false,
@@ -142,8 +141,8 @@ impl Collapser {
                     conn,
                     kinds: kinds.next()?,
                     quadrics: quadrics.next()?,
-                    colors: colors.get_mut(i)?.take(),
-                    normals: normals.get_mut(i)?.take(),
+                    colors: colors.next()?,
+                    normals: normals.next()?,
                     costs,
                     best: best.next()?,
                     best_cost: best_cost.next()?,
