@@ -85,30 +85,32 @@ impl Part<'_> {
     }
 
     /// Every triangle that survives around either end keeps facing the same way and keeps
-    /// an area.
+    /// an area. Such a triangle has exactly one of the ends, `v`: it turns about the other
+    /// two corners as `v` moves to the plan's position.
     fn no_triangle_flips_or_degenerates(&self, plan: &Plan) -> bool {
-        let ends = [plan.remove, plan.keep];
-        ends.iter().all(|&v| {
+        let p = plan.position;
+        let min2 = MIN_RELATIVE_AREA * MIN_RELATIVE_AREA;
+        [plan.remove, plan.keep].iter().all(|&v| {
+            let other = if v == plan.remove {
+                plan.keep
+            } else {
+                plan.remove
+            };
+            let pv = self.position(v);
             self.conn.incident(v).iter().all(|&t| {
                 let tri = self.conn.triangle(t);
-                if tri.contains(&plan.remove) && tri.contains(&plan.keep) {
+                if tri.contains(&other) {
                     return true; // collapses away
                 }
-                let old = self.corners(t);
-                let new = tri.map(|w| {
-                    if w == plan.remove || w == plan.keep {
-                        plan.position
-                    } else {
-                        self.position(w)
-                    }
-                });
-                let old_cross = (old[1] - old[0]).cross(old[2] - old[0]);
-                let new_cross = (new[1] - new[0]).cross(new[2] - new[0]);
-                let longest = (new[1] - new[0])
+                let [x, y] = others(tri, v).map(|w| self.position(w));
+                let old_cross = (x - pv).cross(y - pv);
+                let new_cross = (x - p).cross(y - p);
+                let longest = (x - p)
                     .length_squared()
-                    .max((new[2] - new[1]).length_squared())
-                    .max((new[0] - new[2]).length_squared());
-                new_cross.length() > MIN_RELATIVE_AREA * longest && new_cross.dot(old_cross) > 0.0
+                    .max((y - x).length_squared())
+                    .max((p - y).length_squared());
+                new_cross.length_squared() > min2 * longest * longest
+                    && new_cross.dot(old_cross) > 0.0
             })
         })
     }

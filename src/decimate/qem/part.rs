@@ -182,10 +182,6 @@ impl Part<'_> {
         self.positions[self.at(v)].as_dvec3()
     }
 
-    pub fn corners(&self, t: u32) -> [DVec3; 3] {
-        self.conn.triangle(t).map(|v| self.position(v))
-    }
-
     /// Triangles on the edge `a`–`b`: how many, and the last one found.
     pub fn edge_triangles(&self, a: u32, b: u32) -> (usize, u32) {
         let mut count = 0;
@@ -292,23 +288,14 @@ impl Part<'_> {
         }
         // Topology: the edge's triangles go, the removed end's others are renamed in place,
         // so per-face attributes stay with their faces and no slot is ever reused.
-        let mut incident = std::mem::take(&mut self.scratch.incident);
-        incident.clear();
-        incident.extend_from_slice(self.conn.incident(plan.remove));
-        let mut renamed = std::mem::take(&mut self.scratch.renamed);
-        let mut deleted = std::mem::take(&mut self.scratch.deleted);
-        renamed.clear();
-        deleted.clear();
-        for &t in &incident {
-            let tri = self.conn.triangle(t);
-            if tri.contains(&plan.keep) {
-                self.conn.remove_triangle(t);
-                deleted.push((t, tri));
-            } else {
-                self.conn.rename_corner(t, plan.remove, plan.keep);
-                renamed.push(t);
-            }
-        }
+        let Scratch {
+            incident,
+            renamed,
+            deleted,
+            ..
+        } = &mut self.scratch;
+        self.conn
+            .collapse_edge(plan.remove, plan.keep, incident, renamed, deleted);
         if let Some(recorder) = self.recorder.as_deref_mut() {
             recorder.collapse(CollapseRecord {
                 keep: plan.keep,
@@ -322,16 +309,13 @@ impl Part<'_> {
                 normals: normals_before
                     .zip(self.normals.as_deref())
                     .map(|((nk, nr), n)| [nk, n[k], nr].map(Vec3::from_array)),
-                renamed: &renamed,
-                deleted: &deleted,
+                renamed: &self.scratch.renamed,
+                deleted: &self.scratch.deleted,
             });
         }
         self.positions[k] = plan.position.as_vec3();
         let q = self.quadrics[r];
         self.quadrics[k].add(&q);
         self.kinds[r] = Kind::Fixed;
-        self.scratch.incident = incident;
-        self.scratch.renamed = renamed;
-        self.scratch.deleted = deleted;
     }
 }

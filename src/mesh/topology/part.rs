@@ -178,29 +178,51 @@ impl ConnectivityPart<'_> {
         unlink(&mut self.incidence[i], self.spilled.as_deref_mut(), v, t);
     }
 
-    /// Kills the owned slot `t` and unlinks it from its (owned) corners.
-    pub fn remove_triangle(&mut self, t: u32) {
-        let i = self.slot(t);
-        if !self.alive[i] {
-            return;
+    /// The topology of collapsing the edge `remove`–`keep`: the triangles on the edge are
+    /// killed (into `deleted`, with their corners), `remove`'s others are renamed to `keep`
+    /// in place (into `renamed`), and `remove`'s list is emptied at once rather than entry
+    /// by entry. `incident` is scratch. Everything touched must be owned, with room in
+    /// `keep`'s list (see [`Self::has_room`]).
+    pub fn collapse_edge(
+        &mut self,
+        remove: u32,
+        keep: u32,
+        incident: &mut Vec<u32>,
+        renamed: &mut Vec<u32>,
+        deleted: &mut Vec<(u32, [u32; 3])>,
+    ) {
+        incident.clear();
+        incident.extend_from_slice(self.incident(remove));
+        renamed.clear();
+        deleted.clear();
+        for &t in incident.iter() {
+            let i = self.slot(t);
+            let tri = self.triangles[i];
+            if tri.contains(&keep) {
+                if !self.alive[i] {
+                    continue;
+                }
+                self.alive[i] = false;
+                for v in tri {
+                    if v != remove {
+                        self.unlink(v, t);
+                    }
+                }
+                self.removed.push(t);
+                deleted.push((t, tri));
+            } else if let Some(corner) = tri.iter().position(|&v| v == remove) {
+                self.triangles[i][corner] = keep;
+                self.link(keep, t);
+                renamed.push(t);
+            }
         }
-        self.alive[i] = false;
-        for v in self.triangles[i] {
-            self.unlink(v, t);
+        let r = self.vertex(remove);
+        if self.incidence[r].len as usize > INLINE {
+            if let Some(spilled) = self.spilled.as_deref_mut() {
+                spilled.remove(&remove);
+            }
         }
-        self.removed.push(t);
-    }
-
-    /// As [`Connectivity::rename_corner`], on an owned slot with owned corners.
-    pub fn rename_corner(&mut self, t: u32, from: u32, to: u32) {
-        let i = self.slot(t);
-        let tri = &mut self.triangles[i];
-        let Some(corner) = tri.iter().position(|&v| v == from) else {
-            return;
-        };
-        tri[corner] = to;
-        self.unlink(from, t);
-        self.link(to, t);
+        self.incidence[r].len = 0;
     }
 
     /// Ends the part: the slots it killed, for [`Connectivity::absorb`].
@@ -230,12 +252,20 @@ mod tests {
         let mut parts = c.split(&[0, 4], &[0, 2]);
         assert!(parts[0].owns_vertex(3) && !parts[0].owns_vertex(4));
         assert!(parts[1].owns_slot(3) && !parts[1].owns_slot(1));
-        // Collapse 3 into 2 in part 0, remove slot 3 in part 1.
-        parts[0].remove_triangle(1);
-        parts[1].remove_triangle(3);
-        parts[1].rename_corner(2, 6, 7);
+        // Collapse 3 into 2 in part 0 (slot 1 goes), 6 into 7 in part 1 (slot 3 goes, slot
+        // 2 is renamed).
+        let (mut incident, mut renamed, mut deleted) = (Vec::new(), Vec::new(), Vec::new());
+        parts[0].collapse_edge(3, 2, &mut incident, &mut renamed, &mut deleted);
+        assert_eq!(
+            (renamed.as_slice(), deleted.as_slice()),
+            (&[][..], &[(1, [1, 3, 2])][..])
+        );
+        parts[1].collapse_edge(6, 7, &mut incident, &mut renamed, &mut deleted);
+        assert_eq!(renamed, vec![2]);
+        assert_eq!(deleted, vec![(3, [5, 7, 6])]);
         assert_eq!(parts[1].triangle(2), [4, 5, 7]);
         assert_eq!(parts[0].incident(1), &[0]);
+        assert!(parts[0].incident(3).is_empty());
         let removed: Vec<u32> = parts
             .into_iter()
             .flat_map(ConnectivityPart::finish)
@@ -246,5 +276,25 @@ mod tests {
         assert!(c.incident(6).is_empty());
         // Freed slots are reused in the order the parts gave them back.
         assert_eq!(c.add_triangle([0, 1, 3]), 3);
+    }
+
+    #[test]
+    fn collapsing_into_a_vertex_spills_its_list_on_the_whole_mesh() {
+        // A closed fan of 20 triangles around vertex 0, rim 1..=20.
+        let tris: Vec<[u32; 3]> = (1..=20u32).map(|i| [0, i, i % 20 + 1]).collect();
+        let mut c = Connectivity::new(21, &tris);
+        let mut whole = c.whole();
+        let (mut incident, mut renamed, mut deleted) = (Vec::new(), Vec::new(), Vec::new());
+        whole.collapse_edge(0, 1, &mut incident, &mut renamed, &mut deleted);
+        assert_eq!(deleted.len(), 2);
+        assert_eq!(renamed.len(), 18);
+        assert!(whole.incident(0).is_empty());
+        let at_one = whole.incident(1);
+        assert_eq!(at_one.len(), 18);
+        assert!(at_one.len() > INLINE);
+        assert!(at_one.iter().all(|&t| whole.triangle(t).contains(&1)));
+        let removed = whole.finish();
+        c.absorb(removed);
+        assert_eq!(c.triangle_count(), 18);
     }
 }
