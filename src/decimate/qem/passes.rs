@@ -164,14 +164,19 @@ pub(super) fn collapse_in_passes(
     let mut live: Vec<u32> = (0..n)
         .filter(|&v| d.kinds[v as usize] != Kind::Fixed)
         .collect();
-    let mut candidates: Vec<Candidate> = Vec::new();
     loop {
-        live.retain(|&v| d.kinds[v as usize] != Kind::Fixed);
-        candidates.clear();
-        candidates.extend(live.iter().filter_map(|&v| {
-            let cost = d.best_cost[v as usize];
-            cost.is_finite().then(|| Candidate::new(cost, v))
-        }));
+        live = live
+            .par_iter()
+            .copied()
+            .filter(|&v| d.kinds[v as usize] != Kind::Fixed)
+            .collect();
+        let mut candidates: Vec<Candidate> = live
+            .par_iter()
+            .filter_map(|&v| {
+                let cost = d.best_cost[v as usize];
+                cost.is_finite().then(|| Candidate::new(cost, v))
+            })
+            .collect();
         if candidates.is_empty() {
             outcome.exhausted = !skipped_for_error;
             break;
@@ -381,21 +386,30 @@ fn collapse_in_order(
 fn prefetch_ahead(part: &Part<'_>, candidates: &[Candidate], i: usize) {
     let best = |v: u32| part.local(v).map_or(u32::MAX, |i| part.best[i]);
     let vertex_at = |j: usize| candidates.get(j).map(|c| c.vertex());
+    // Most candidates that will be skipped are known by now (the other end went earlier in
+    // the pass): nothing past their first loads is asked for.
+    let pair_at = |j: usize| {
+        let v = vertex_at(j)?;
+        let w = best(v);
+        part.local(w)
+            .is_some_and(|i| part.kinds[i] != Kind::Fixed)
+            .then_some((v, w))
+    };
     if let Some(ahead) = vertex_at(i + 3 * PREFETCH_AHEAD) {
         part.prefetch(ahead);
     }
     if let Some(ahead) = vertex_at(i + 2 * PREFETCH_AHEAD) {
         part.prefetch(best(ahead));
     }
-    if let Some(ahead) = vertex_at(i + PREFETCH_AHEAD) {
+    if let Some((v, w)) = pair_at(i + PREFETCH_AHEAD) {
         // A collapse reads no edge costs (blocking one is rare).
-        part.prefetch_fan(ahead, false);
-        part.prefetch_fan(best(ahead), false);
+        part.prefetch_fan(v, false);
+        part.prefetch_fan(w, false);
     }
-    if let Some(ahead) = vertex_at(i + PREFETCH_AHEAD / 2) {
-        part.prefetch_ring(ahead);
-        part.prefetch_ring(best(ahead));
-        part.prefetch_apexes(ahead, best(ahead));
+    if let Some((v, w)) = pair_at(i + PREFETCH_AHEAD / 2) {
+        part.prefetch_ring(v);
+        part.prefetch_ring(w);
+        part.prefetch_apexes(v, w);
     }
 }
 
@@ -404,6 +418,11 @@ fn prefetch_ahead(part: &Part<'_>, candidates: &[Candidate], i: usize) {
 fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds) -> Attempt {
     let w = d.best[d.at(v)];
     if w == u32::MAX || d.is_fixed(v) {
+        return Attempt::Skipped;
+    }
+    // Most skips are here: the best edge's other end went earlier in this pass (it is
+    // re-ranked at the pass's end). Fixed is for good: asked before the ownership walk.
+    if d.local(w).is_some_and(|i| d.kinds[i] == Kind::Fixed) {
         return Attempt::Skipped;
     }
     if !d.owns_collapse(v, w) {
@@ -452,18 +471,26 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds) -> Attempt {
 fn end_of_pass(d: &mut Part<'_>, live: &[u32]) {
     let flag = |d: &Part<'_>, v: u32| d.flags[d.at(v)];
     let kept = |v: u32| flag(d, v) & REPLAN != 0 && !d.is_fixed(v);
-    let keeps: Vec<u32> = live.iter().copied().filter(|&v| kept(v)).collect();
+    let keeps: Vec<u32> = live.par_iter().copied().filter(|&v| kept(v)).collect();
     d.replan(&keeps, kept);
+    // A neighbour whose cheapest edge kept both its ends keeps that edge's cost, and its
+    // edges to kept vertices only got dearer (a quadric only grows): it need not look again.
+    let unchanged = |d: &Part<'_>, v: u32| {
+        let i = d.at(v);
+        let w = d.best[i];
+        d.flags[i] == RELEASE
+            && !d.has_blocked[i]
+            && d.local(w)
+                .is_some_and(|j| d.kinds[j] != Kind::Fixed && d.flags[j] & REPLAN == 0)
+    };
+    let this = &*d;
     let flagged: Vec<u32> = live
-        .iter()
+        .par_iter()
         .copied()
-        .filter(|&v| flag(d, v) != 0 && !d.is_fixed(v))
+        .filter(|&v| flag(this, v) != 0 && !this.is_fixed(v) && !unchanged(this, v))
         .collect();
     d.rerank(&flagged, RELEASE);
-    for &v in live {
-        let i = d.at(v);
-        d.flags[i] = 0;
-    }
+    d.flags.fill(0);
 }
 
 #[cfg(test)]
