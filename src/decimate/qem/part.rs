@@ -9,7 +9,7 @@
 
 use glam::{DVec3, Vec3};
 
-use super::collapser::{Kind, Plan};
+use super::collapser::{others, Kind, Plan};
 use super::quadric::Quadric;
 use super::ranking::EdgeCosts;
 use crate::decimate::progressive::{CollapseRecord, Recorder};
@@ -137,34 +137,24 @@ impl Part<'_> {
         }
     }
 
-    /// Starts loading the positions of `v`'s neighbours (a hint; `v`'s triangles should be
-    /// loaded by now).
-    pub fn prefetch_ring(&self, v: u32) {
-        if self.owns(v) {
-            for &t in self.conn.incident(v) {
-                if self.conn.owns_slot(t) {
-                    for w in self.conn.triangle(t) {
-                        if let Some(i) = self.local(w) {
-                            crate::mesh::prefetch(&self.positions[i]);
-                        }
-                    }
-                }
+    /// Starts loading the positions of the neighbours of `v` and `w` (each once in a closed
+    /// fan) and the incident lists of the edge `v`–`w`'s apexes, which a collapse edits (a
+    /// hint; the fans' triangles should be loaded by now).
+    pub fn prefetch_neighbourhood(&self, v: u32, w: u32) {
+        for (x, y) in [(v, w), (w, v)] {
+            if !self.owns(x) {
+                continue;
             }
-        }
-    }
-
-    /// Starts loading the incident lists of the apexes of the edge `v`–`w`'s triangles,
-    /// which a collapse edits (a hint; `v`'s triangles should be loaded by now).
-    pub fn prefetch_apexes(&self, v: u32, w: u32) {
-        if self.owns(v) {
-            for &t in self.conn.incident(v) {
-                if self.conn.owns_slot(t) {
-                    let tri = self.conn.triangle(t);
-                    if tri.contains(&w) {
-                        for x in tri {
-                            self.conn.prefetch_incident(x);
-                        }
-                    }
+            for &t in self.conn.incident(x) {
+                if !self.conn.owns_slot(t) {
+                    continue;
+                }
+                let [a, b] = others(self.conn.triangle(t), x);
+                if let Some(i) = self.local(a) {
+                    crate::mesh::prefetch(&self.positions[i]);
+                }
+                if a == y {
+                    self.conn.prefetch_incident(b);
                 }
             }
         }
@@ -205,6 +195,7 @@ impl Part<'_> {
     /// | interior | boundary | interior  | the interior end into the boundary end, unmoved: a boundary vertex moves only along its boundary |
     /// | boundary | boundary | boundary  | either way, to the optimum (the constraint planes keep it on the outline) |
     /// | boundary | boundary | interior  | none: it would pinch the surface                  |
+    #[inline(always)]
     pub fn plan(&self, a: u32, b: u32) -> Option<Plan> {
         let (ka, kb) = (self.kind(a), self.kind(b));
         let (remove, keep, free) = match (ka, kb) {

@@ -407,9 +407,7 @@ fn prefetch_ahead(part: &Part<'_>, candidates: &[Candidate], i: usize) {
         part.prefetch_fan(w, false);
     }
     if let Some((v, w)) = pair_at(i + PREFETCH_AHEAD / 2) {
-        part.prefetch_ring(v);
-        part.prefetch_ring(w);
-        part.prefetch_apexes(v, w);
+        part.prefetch_neighbourhood(v, w);
     }
 }
 

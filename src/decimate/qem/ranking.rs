@@ -15,6 +15,7 @@ use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
 use rayon::prelude::*;
 
+use super::collapser::others;
 use super::part::Part;
 
 const BLOCKED: u32 = 1 << 31;
@@ -123,7 +124,11 @@ impl Part<'_> {
             }
             if ends {
                 if let Some(&a) = vertices.get(i + AHEAD) {
-                    self.for_each_edge(a, |_, w| self.prefetch_end(w));
+                    // The corner after `a` in each triangle: every neighbour once in a
+                    // closed fan.
+                    for &t in self.conn.incident(a) {
+                        self.prefetch_end(others(self.conn.triangle(t), a)[0]);
+                    }
                 }
             }
             f(i, v);
