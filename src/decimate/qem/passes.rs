@@ -18,9 +18,10 @@
 //! disjoint data, so they commute: the result depends neither on the threads' timing nor
 //! on how many there are. The round's candidates on region borders (about a tenth) then
 //! get a second chance in fewer, larger regions shifted by half a region, and those on
-//! both borders go, in cost order, on the whole mesh. A round runs in regions only when it cannot reach the
-//! target; the last candidates before the target go one at a time on the whole mesh, so
-//! that the count stops exactly there. A progressive record is kept on the whole mesh only.
+//! both borders go, in cost order, on the whole mesh. A round runs in regions only when it
+//! cannot reach the target; the last candidates before the target go one at a time on the
+//! whole mesh, so that the count stops exactly there. A progressive record is kept on the
+//! whole mesh only.
 
 use rayon::prelude::*;
 
@@ -278,10 +279,10 @@ struct Regions {
 impl Regions {
     /// `REGIONS` equal ranges of vertex ids (fewer on a small mesh; `shifted`: `BORDER_MERGE`
     /// times fewer, shifted by half an unshifted range, the first one longer and the last
-    /// shorter), each with the triangle
-    /// slots whose smallest corner is in its range — all of them while nothing collapsed
-    /// yet, as `layout::load` orders triangles by their smallest vertex. (Were they in
-    /// another order, only more candidates would end up on borders.)
+    /// shorter), each with the triangle slots whose smallest corner is in its range — all
+    /// of them while nothing collapsed yet, as `layout::load` orders triangles by their
+    /// smallest vertex. (Were they in another order, only more candidates would end up on
+    /// borders.)
     fn of(d: &Collapser, shifted: bool) -> Self {
         let n = d.vertex_count();
         let count = (n / MIN_REGION).clamp(1, REGIONS);
@@ -405,9 +406,7 @@ fn prefetch_ahead(part: &Part<'_>, candidates: &[Candidate], i: usize) {
     let pair_at = |j: usize| {
         let v = vertex_at(j)?;
         let w = best(v);
-        part.local(w)
-            .is_some_and(|i| part.kinds[i] != Kind::Fixed)
-            .then_some((v, w))
+        (part.owns(w) && !part.is_fixed(w)).then_some((v, w))
     };
     if let Some(ahead) = vertex_at(i + 3 * PREFETCH_AHEAD) {
         part.prefetch(ahead);
@@ -434,14 +433,11 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds) -> Attempt {
     }
     // Most skips are here: the best edge's other end went earlier in this pass (it is
     // re-ranked at the pass's end). Fixed is for good: asked before the ownership walk.
-    if d.local(w).is_some_and(|i| d.kinds[i] == Kind::Fixed) {
+    if d.owns(w) && d.is_fixed(w) {
         return Attempt::Skipped;
     }
     if !d.owns_collapse(v, w) {
         return Attempt::Elsewhere;
-    }
-    if d.is_fixed(w) {
-        return Attempt::Skipped;
     }
     let plan = d.plan(v.min(w), v.max(w));
     if plan.is_some_and(|p| stored(p.cost) > bounds.threshold) {
@@ -486,14 +482,17 @@ fn end_of_pass(d: &mut Part<'_>, live: &[u32]) {
     let keeps: Vec<u32> = live.par_iter().copied().filter(|&v| kept(v)).collect();
     d.replan(&keeps, kept);
     // A neighbour whose cheapest edge kept both its ends keeps that edge's cost, and its
-    // edges to kept vertices only got dearer (a quadric only grows): it need not look again.
+    // edges to kept vertices only got dearer (a quadric only grows; a placement outside the
+    // edge's box or the colour term can bend that, which leaves the order a little less
+    // greedy): it need not look again.
     let unchanged = |d: &Part<'_>, v: u32| {
         let i = d.at(v);
         let w = d.best[i];
         d.flags[i] == RELEASE
             && !d.has_blocked[i]
-            && d.local(w)
-                .is_some_and(|j| d.kinds[j] != Kind::Fixed && d.flags[j] & REPLAN == 0)
+            && w != u32::MAX
+            && !d.is_fixed(w)
+            && flag(d, w) & REPLAN == 0
     };
     let this = &*d;
     let flagged: Vec<u32> = live
