@@ -3,6 +3,8 @@
 //! numbering; [`compact`] brings the live triangles of a decimated `Connectivity` back to the
 //! model's numbering, with the kept vertices in their input order.
 
+use rayon::prelude::*;
+
 use crate::mesh::spatial;
 use crate::mesh::topology::Connectivity;
 use crate::mesh::Model;
@@ -27,7 +29,7 @@ impl Loaded {
     /// Every loaded face in internal numbering, in `faces` order.
     pub fn triangles(&self, model: &Model) -> Vec<[u32; 3]> {
         self.faces
-            .iter()
+            .par_iter()
             .map(|&t| self.triangle(model, t))
             .collect()
     }

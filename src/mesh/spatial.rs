@@ -38,7 +38,7 @@ pub fn morton_order(positions: &[Vec3]) -> Vec<u32> {
     };
     let lo = if lo.is_finite() { lo } else { Vec3::ZERO };
     let mut keyed: Vec<(u64, u32)> = positions
-        .iter()
+        .par_iter()
         .enumerate()
         .map(|(i, &p)| {
             let code = if p.is_finite() { morton(p, lo, inv) } else { 0 };
@@ -46,7 +46,7 @@ pub fn morton_order(positions: &[Vec3]) -> Vec<u32> {
         })
         .collect();
     keyed.par_sort_unstable();
-    keyed.into_iter().map(|(_, i)| i).collect()
+    keyed.into_par_iter().map(|(_, i)| i).collect()
 }
 
 #[cfg(test)]

@@ -49,6 +49,7 @@ mod quadric;
 mod ranking;
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use super::layout;
 use super::progressive::{ProgressiveModel, Recorder};
@@ -93,7 +94,10 @@ fn run(
     let n = model.positions.len() as u32;
     let loaded = layout::load(model);
     let (order, faces) = (&loaded.order, &loaded.faces);
-    let positions: Vec<Vec3> = order.iter().map(|&v| model.positions[v as usize]).collect();
+    let positions: Vec<Vec3> = order
+        .par_iter()
+        .map(|&v| model.positions[v as usize])
+        .collect();
     let triangles = loaded.triangles(model);
     let per_vertex = |a: &Option<Attribute<[f32; 3]>>| match a {
         Some(Attribute::PerVertex(c)) if c.len() == n as usize => {
