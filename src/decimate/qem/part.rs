@@ -26,7 +26,8 @@ pub(super) struct Scratch {
     /// The removed end's triangles renamed to the kept end, and those deleted with the edge.
     renamed: Vec<u32>,
     deleted: Vec<(u32, [u32; 3])>,
-    /// The removed end's neighbours, and those it shares with the kept end.
+    /// The removed end's neighbours (with repeats: two per triangle, see the link
+    /// condition), and those it shares with the kept end (each once).
     pub ring: Vec<u32>,
     pub common: Vec<u32>,
 }
