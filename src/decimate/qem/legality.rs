@@ -2,13 +2,15 @@
 //! condition (no non-manifold result), no duplicate triangle, no flipped or degenerate
 //! triangle. Vertex kinds (boundary, complex) were already applied by `plan`.
 
-use super::collapser::{others, Plan};
+use super::collapser::Plan;
 use super::part::Part;
+use crate::mesh::topology::FanTriangle;
 
 /// A triangle is degenerate when its area is this small relative to its longest edge².
 const MIN_RELATIVE_AREA: f64 = 1e-8;
 
 impl Part<'_> {
+    /// Whether the planned collapse of the edge [`Part::gather`] read last is legal.
     pub fn is_collapse_legal(&mut self, plan: &Plan) -> bool {
         self.link_condition_holds(plan)
             && self.no_duplicate_triangle(plan)
@@ -27,23 +29,23 @@ impl Part<'_> {
         let mut common = std::mem::take(&mut self.scratch.common);
         neighbours.clear();
         common.clear();
+        let (fan_r, fan_k) = self.fans(plan);
         let mut on_edge = 0;
-        let mut edge_triangle = u32::MAX;
+        let mut apex = u32::MAX;
         let mut mask = 0u64;
-        for &t in self.conn.incident(r) {
-            let tri = self.conn.triangle(t);
-            if tri.contains(&k) {
+        for f in fan_r {
+            if f.touches(k) {
                 on_edge += 1;
-                edge_triangle = t;
+                apex = if f.next == k { f.prev } else { f.next };
             }
             // With repeats: each neighbour once per triangle it is in.
-            for w in others(tri, r) {
+            for w in [f.next, f.prev] {
                 mask |= 1 << (w & 63);
                 neighbours.push(w);
             }
         }
-        for &t in self.conn.incident(k) {
-            for w in others(self.conn.triangle(t), k) {
+        for f in fan_k {
+            for w in [f.next, f.prev] {
                 if mask & 1 << (w & 63) != 0
                     && w != r
                     && neighbours.contains(&w)
@@ -54,24 +56,13 @@ impl Part<'_> {
             }
         }
         let shares_only_apexes = common.len() == on_edge && (1..=2).contains(&on_edge);
+        // The one triangle on a boundary edge must keep an edge off the boundary.
+        let edge_count = |fan: &[FanTriangle], w: u32| fan.iter().filter(|f| f.touches(w)).count();
+        let legal = shares_only_apexes
+            && (on_edge != 1 || edge_count(fan_r, apex) != 1 || edge_count(fan_k, apex) != 1);
         self.scratch.ring = neighbours;
         self.scratch.common = common;
-        if !shares_only_apexes {
-            return false;
-        }
-        if on_edge == 1 {
-            let apex = self
-                .conn
-                .triangle(edge_triangle)
-                .into_iter()
-                .find(|&w| w != r && w != k);
-            if let Some(w) = apex {
-                if self.edge_triangles(r, w).0 == 1 && self.edge_triangles(k, w).0 == 1 {
-                    return false;
-                }
-            }
-        }
-        true
+        legal
     }
 
     /// A triangle of the removed end, renamed to the kept end, must not already exist (the
@@ -79,14 +70,13 @@ impl Part<'_> {
     /// triangle on two common neighbours (`scratch.common`) can be duplicated.
     fn no_duplicate_triangle(&self, plan: &Plan) -> bool {
         let common = &self.scratch.common;
-        self.conn.incident(plan.remove).iter().all(|&t| {
-            let tri = self.conn.triangle(t);
-            if tri.contains(&plan.keep) {
+        let (fan_r, fan_k) = self.fans(plan);
+        fan_r.iter().all(|f| {
+            if f.touches(plan.keep) {
                 return true;
             }
-            let [x, y] = others(tri, plan.remove);
-            let both_common = common.contains(&x) && common.contains(&y);
-            !both_common || !self.conn.has_triangle(plan.keep, x, y)
+            let both_common = common.contains(&f.next) && common.contains(&f.prev);
+            !both_common || !fan_k.iter().any(|g| g.touches(f.next) && g.touches(f.prev))
         })
     }
 
@@ -96,19 +86,19 @@ impl Part<'_> {
     fn no_triangle_flips_or_degenerates(&self, plan: &Plan) -> bool {
         let p = plan.position;
         let min2 = MIN_RELATIVE_AREA * MIN_RELATIVE_AREA;
-        [plan.remove, plan.keep].iter().all(|&v| {
-            let other = if v == plan.remove {
-                plan.keep
-            } else {
-                plan.remove
-            };
+        let (fan_r, fan_k) = self.fans(plan);
+        [
+            (plan.remove, fan_r, plan.keep),
+            (plan.keep, fan_k, plan.remove),
+        ]
+        .iter()
+        .all(|&(v, fan, other)| {
             let pv = self.position(v);
-            self.conn.incident(v).iter().all(|&t| {
-                let tri = self.conn.triangle(t);
-                if tri.contains(&other) {
+            fan.iter().all(|f| {
+                if f.touches(other) {
                     return true; // collapses away
                 }
-                let [x, y] = others(tri, v).map(|w| self.position(w));
+                let [x, y] = [f.next, f.prev].map(|w| self.position(w));
                 let old_cross = (x - pv).cross(y - pv);
                 let new_cross = (x - p).cross(y - p);
                 let longest = (x - p)

@@ -1,11 +1,11 @@
 //! A mutable view of a decimation's state: the whole of it, or one of several disjoint
 //! parts collapsed on different cores (each owns a range of vertices and of triangle slots;
 //! see `Collapser::split`). What a part does: which way an edge collapses and where the
-//! kept vertex goes (`plan`), whether a collapse stays inside the part (`owns_collapse`),
+//! kept vertex goes (`plan`), whether a collapse stays inside the part (`gather`),
 //! and performing it (topology, quadrics, attributes, the progressive record).
 //!
 //! Vertex ids are always the mesh's; a part translates them to its slices. A part touches
-//! only what it owns: `owns_collapse` is asked before anything else of a collapse.
+//! only what it owns: `gather` is asked before anything else of a collapse.
 
 use glam::{DVec3, Vec3};
 
@@ -13,7 +13,7 @@ use super::collapser::{others, Kind, Plan};
 use super::quadric::Quadric;
 use super::ranking::EdgeCosts;
 use crate::decimate::progressive::{CollapseRecord, Recorder};
-use crate::mesh::topology::ConnectivityPart;
+use crate::mesh::topology::{ConnectivityPart, FanTriangle};
 
 /// A placement may leave the edge's bounding box by at most this many edge lengths.
 const BOX_MARGIN: f64 = 1.0;
@@ -21,8 +21,10 @@ const BOX_MARGIN: f64 = 1.0;
 /// Lists a collapse and its checks fill, kept from one collapse to the next.
 #[derive(Debug, Default)]
 pub(super) struct Scratch {
-    /// The removed end's incident triangles.
-    incident: Vec<u32>,
+    /// The candidate edge's ends and their fans, read once by [`Part::gather`] for every
+    /// check and for the collapse.
+    ends: [u32; 2],
+    fans: [Vec<FanTriangle>; 2],
     /// The removed end's triangles renamed to the kept end, and those deleted with the edge.
     renamed: Vec<u32>,
     deleted: Vec<(u32, [u32; 3])>,
@@ -30,6 +32,18 @@ pub(super) struct Scratch {
     /// condition), and those it shares with the kept end (each once).
     pub ring: Vec<u32>,
     pub common: Vec<u32>,
+}
+
+impl Scratch {
+    /// The fans [`Part::gather`] read, as `plan`'s (removed end's, kept end's).
+    pub fn fans(&self, plan: &Plan) -> (&[FanTriangle], &[FanTriangle]) {
+        let [a, b] = &self.fans;
+        if self.ends[0] == plan.remove {
+            (a, b)
+        } else {
+            (b, a)
+        }
+    }
 }
 
 /// The state of the vertices `v0..v0 + positions.len()` and of the triangle slots its
@@ -86,32 +100,42 @@ impl Part<'_> {
         self.kind(v) == Kind::Fixed
     }
 
-    /// Whether collapsing the edge `v`–`w` (either way) reads and writes only what this part
-    /// owns: both ends, their triangles (slots) and those triangles' corners, with room in
-    /// the ends' incident lists for the merged fan and unspilled lists at the edge's apexes
-    /// (a split-off part has no side table for long lists). Always true for the whole.
-    pub fn owns_collapse(&self, v: u32, w: u32) -> bool {
-        if self.whole {
-            return true;
-        }
-        if !self.owns(v) || !self.owns(w) {
+    /// Reads the fans of the edge `v`–`w`'s ends into the scratch, for the checks and the
+    /// collapse; false when collapsing it (either way) would read or write what this part
+    /// does not own: both ends, their triangles (slots) and those triangles' corners, with
+    /// room in the ends' incident lists for the merged fan and unspilled lists at the
+    /// edge's apexes (a split-off part has no side table for long lists). The whole owns
+    /// everything.
+    pub fn gather(&mut self, v: u32, w: u32) -> bool {
+        let (v0, len, whole) = (self.v0, self.positions.len(), self.whole);
+        let owns = |x: u32| (x.wrapping_sub(v0) as usize) < len;
+        if !(whole || (owns(v) && owns(w))) {
             return false;
         }
+        let Scratch { ends, fans, .. } = &mut self.scratch;
+        *ends = [v, w];
         let c = &self.conn;
-        let fans_owned = [v, w].iter().all(|&x| {
-            c.has_room(x, 0)
-                && c.incident(x)
-                    .iter()
-                    .all(|&t| c.owns_slot(t) && c.triangle(t).iter().all(|&y| self.owns(y)))
-        });
+        for (&x, fan) in ends.iter().zip(fans.iter_mut()) {
+            // Asked first: a split-off part sees a spilled list as empty.
+            if !c.has_room(x, 0) || !c.fan(x, fan) {
+                return false;
+            }
+            if !whole && !fan.iter().all(|f| owns(f.next) && owns(f.prev)) {
+                return false;
+            }
+        }
         // A collapse keeps one end with both fans, less the (at least one) edge triangle
         // in each: room for the sum less two.
-        fans_owned
-            && c.has_room(v, c.incident(w).len().saturating_sub(2))
-            && c.incident(v).iter().all(|&t| {
-                let tri = c.triangle(t);
-                !tri.contains(&w) || tri.iter().all(|&y| c.has_room(y, 0))
-            })
+        whole
+            || (c.has_room(v, fans[1].len().saturating_sub(2))
+                && fans[0]
+                    .iter()
+                    .all(|f| !f.touches(w) || (c.has_room(f.next, 0) && c.has_room(f.prev, 0))))
+    }
+
+    /// The fans [`Self::gather`] read, as `plan`'s (removed end's, kept end's).
+    pub fn fans(&self, plan: &Plan) -> (&[FanTriangle], &[FanTriangle]) {
+        self.scratch.fans(plan)
     }
 
     /// Starts loading what collapsing an edge of `v` reads first (a hint; ignored for a
@@ -121,6 +145,7 @@ impl Part<'_> {
             self.quadrics[i].prefetch();
             crate::mesh::prefetch(&self.positions[i]);
             crate::mesh::prefetch(&self.best[i]);
+            crate::mesh::prefetch(&self.kinds[i]);
             self.conn.prefetch_incident(v);
         }
     }
@@ -153,6 +178,7 @@ impl Part<'_> {
                 let [a, b] = others(self.conn.triangle(t), x);
                 if let Some(i) = self.local(a) {
                     crate::mesh::prefetch(&self.positions[i]);
+                    crate::mesh::prefetch(&self.flags[i]);
                 }
                 if a == y {
                     self.conn.prefetch_incident(b);
@@ -166,6 +192,7 @@ impl Part<'_> {
         if let Some(i) = self.local(w) {
             self.quadrics[i].prefetch();
             crate::mesh::prefetch(&self.kinds[i]);
+            crate::mesh::prefetch(&self.positions[i]);
         }
     }
 
@@ -254,7 +281,8 @@ impl Part<'_> {
         best
     }
 
-    /// Performs a legal collapse; the kept vertex's edges are left to be re-planned.
+    /// Performs a legal collapse of the edge [`Self::gather`] read last; the kept vertex's
+    /// edges are left to be re-planned.
     pub fn collapse(&mut self, plan: &Plan) {
         let (r, k) = (self.at(plan.remove), self.at(plan.keep));
         // Attributes at the projection of the new position on the edge.
@@ -281,13 +309,15 @@ impl Part<'_> {
         // Topology: the edge's triangles go, the removed end's others are renamed in place,
         // so per-face attributes stay with their faces and no slot is ever reused.
         let Scratch {
-            incident,
+            ends,
+            fans,
             renamed,
             deleted,
             ..
         } = &mut self.scratch;
+        let fan = &fans[usize::from(ends[0] != plan.remove)];
         self.conn
-            .collapse_edge(plan.remove, plan.keep, incident, renamed, deleted);
+            .collapse_edge(plan.remove, plan.keep, fan, renamed, deleted);
         if let Some(recorder) = self.recorder.as_deref_mut() {
             recorder.collapse(CollapseRecord {
                 keep: plan.keep,

@@ -14,7 +14,7 @@
 //! A pass runs on all cores, in `ROUNDS` rounds of its cheapest candidates: the vertices
 //! are cut into `REGIONS` ranges of ids (spatial blocks: ids follow a Morton curve) and
 //! each region collapses, in cost order, those of the round's candidates whose whole
-//! neighbourhood it owns (`Part::owns_collapse`). Collapses in different regions touch
+//! neighbourhood it owns (`Part::gather`). Collapses in different regions touch
 //! disjoint data, so they commute: the result depends neither on the threads' timing nor
 //! on how many there are. The round's candidates on region borders (about a tenth) then
 //! get a second chance in fewer, larger regions shifted by half a region, and those on
@@ -436,7 +436,7 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds) -> Attempt {
     if d.owns(w) && d.is_fixed(w) {
         return Attempt::Skipped;
     }
-    if !d.owns_collapse(v, w) {
+    if !d.gather(v, w) {
         return Attempt::Elsewhere;
     }
     let plan = d.plan(v.min(w), v.max(w));
@@ -459,17 +459,19 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds) -> Attempt {
             Attempt::Skipped
         };
     };
-    d.collapse(&plan);
+    // The kept vertex's neighbours after the collapse: the corners of both fans' triangles
+    // off the edge.
     let k = d.at(plan.keep);
     d.flags[k] |= REPLAN;
-    for &t in d.conn.incident(plan.keep) {
-        for x in d.conn.triangle(t) {
-            if x != plan.keep {
-                let i = d.at(x);
-                d.flags[i] |= RELEASE;
+    let (fan_r, fan_k) = d.scratch.fans(&plan);
+    for (fan, other) in [(fan_r, plan.keep), (fan_k, plan.remove)] {
+        for f in fan.iter().filter(|f| !f.touches(other)) {
+            for x in [f.next, f.prev] {
+                d.flags[(x - d.v0) as usize] |= RELEASE;
             }
         }
     }
+    d.collapse(&plan);
     Attempt::Collapsed(plan.error2)
 }
 

@@ -32,10 +32,10 @@ impl Quadric {
         }
     }
 
-    /// Asks the CPU to start loading both cache lines the quadric may span (a hint).
+    /// Asks the CPU to start loading every cache line the quadric spans (a hint).
+    #[inline]
     pub fn prefetch(&self) {
-        crate::mesh::prefetch(self);
-        crate::mesh::prefetch(&self.area);
+        crate::mesh::prefetch_all(self);
     }
 
     pub fn add(&mut self, o: &Self) {

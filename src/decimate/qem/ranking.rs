@@ -175,12 +175,11 @@ impl Part<'_> {
     /// Plans every edge once and gives every vertex its cheapest edge, on all cores.
     pub fn rank_all(&mut self) {
         let n = self.positions.len() as u32;
+        let all: Vec<u32> = (0..n).into_par_iter().collect();
         let this = &*self;
-        (0..n)
-            .into_par_iter()
-            .with_min_len(MIN_PER_TASK)
-            .for_each(|v| this.plan_fan(v, |w| w <= v));
-        let all: Vec<u32> = (0..n).collect();
+        all.par_chunks(MIN_PER_TASK).for_each(|chunk| {
+            this.pipelined(chunk, true, |_, v| this.plan_fan(v, |w| w <= v));
+        });
         self.rerank(&all, 0);
     }
 

@@ -10,7 +10,7 @@
 
 mod part;
 
-pub use part::{split_mut, ConnectivityPart};
+pub use part::{split_mut, ConnectivityPart, FanTriangle};
 
 /// Largest valence handled; vertices above it are reported as complex (kept).
 pub const MAX_VALENCE: usize = 256;

@@ -11,6 +11,24 @@
 
 use super::{incident, link, unlink, Connectivity, Incidence, Spilled, INLINE};
 
+/// One triangle of the fan around a vertex `v`: its slot, which of its corners is `v`,
+/// and the other two in the triangle's cyclic order after `v`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FanTriangle {
+    pub t: u32,
+    pub corner: u8,
+    pub next: u32,
+    pub prev: u32,
+}
+
+impl FanTriangle {
+    /// True when `x` is one of the two corners other than the fan's vertex.
+    #[inline]
+    pub fn touches(&self, x: u32) -> bool {
+        self.next == x || self.prev == x
+    }
+}
+
 /// Vertices `v0..` and triangle slots `t0..` of a connectivity, editable.
 #[derive(Debug)]
 pub struct ConnectivityPart<'a> {
@@ -178,42 +196,69 @@ impl ConnectivityPart<'_> {
         unlink(&mut self.incidence[i], self.spilled.as_deref_mut(), v, t);
     }
 
-    /// The topology of collapsing the edge `remove`–`keep`: the triangles on the edge are
-    /// killed (into `deleted`, with their corners), `remove`'s others are renamed to `keep`
-    /// in place (into `renamed`), and `remove`'s list is emptied at once rather than entry
-    /// by entry. `incident` is scratch. Everything touched must be owned, with room in
-    /// `keep`'s list (see [`Self::has_room`]).
+    /// `v`'s incident triangles as a fan into `out` (cleared first); false, with `out`
+    /// partly filled, when one of them lies in a slot this part does not own. A split-off
+    /// part sees a spilled list as empty: ask [`Self::has_room`] first.
+    #[inline]
+    pub fn fan(&self, v: u32, out: &mut Vec<FanTriangle>) -> bool {
+        out.clear();
+        for &t in self.incident(v) {
+            if !self.owns_slot(t) {
+                return false;
+            }
+            let tri = self.triangle(t);
+            let corner = if tri[0] == v {
+                0
+            } else if tri[1] == v {
+                1
+            } else {
+                2
+            };
+            out.push(FanTriangle {
+                t,
+                corner,
+                next: tri[(corner as usize + 1) % 3],
+                prev: tri[(corner as usize + 2) % 3],
+            });
+        }
+        true
+    }
+
+    /// The topology of collapsing the edge `remove`–`keep`, `fan` being `remove`'s (from
+    /// [`Self::fan`], unchanged since): the triangles on the edge are killed (into
+    /// `deleted`, with their corners), `remove`'s others are renamed to `keep` in place
+    /// (into `renamed`), and `remove`'s list is emptied at once rather than entry by entry.
+    /// Everything touched must be owned, with room in `keep`'s list (see
+    /// [`Self::has_room`]).
     pub fn collapse_edge(
         &mut self,
         remove: u32,
         keep: u32,
-        incident: &mut Vec<u32>,
+        fan: &[FanTriangle],
         renamed: &mut Vec<u32>,
         deleted: &mut Vec<(u32, [u32; 3])>,
     ) {
-        incident.clear();
-        incident.extend_from_slice(self.incident(remove));
         renamed.clear();
         deleted.clear();
-        for &t in incident.iter() {
-            let i = self.slot(t);
-            let tri = self.triangles[i];
-            if tri.contains(&keep) {
+        for f in fan {
+            let i = self.slot(f.t);
+            if f.touches(keep) {
                 if !self.alive[i] {
                     continue;
                 }
                 self.alive[i] = false;
+                let tri = self.triangles[i];
                 for v in tri {
                     if v != remove {
-                        self.unlink(v, t);
+                        self.unlink(v, f.t);
                     }
                 }
-                self.removed.push(t);
-                deleted.push((t, tri));
-            } else if let Some(corner) = tri.iter().position(|&v| v == remove) {
-                self.triangles[i][corner] = keep;
-                self.link(keep, t);
-                renamed.push(t);
+                self.removed.push(f.t);
+                deleted.push((f.t, tri));
+            } else {
+                self.triangles[i][f.corner as usize] = keep;
+                self.link(keep, f.t);
+                renamed.push(f.t);
             }
         }
         let r = self.vertex(remove);
@@ -254,13 +299,24 @@ mod tests {
         assert!(parts[1].owns_slot(3) && !parts[1].owns_slot(1));
         // Collapse 3 into 2 in part 0 (slot 1 goes), 6 into 7 in part 1 (slot 3 goes, slot
         // 2 is renamed).
-        let (mut incident, mut renamed, mut deleted) = (Vec::new(), Vec::new(), Vec::new());
-        parts[0].collapse_edge(3, 2, &mut incident, &mut renamed, &mut deleted);
+        let (mut fan, mut renamed, mut deleted) = (Vec::new(), Vec::new(), Vec::new());
+        assert!(parts[0].fan(3, &mut fan));
+        assert_eq!(
+            fan,
+            vec![FanTriangle {
+                t: 1,
+                corner: 1,
+                next: 2,
+                prev: 1
+            }]
+        );
+        parts[0].collapse_edge(3, 2, &fan, &mut renamed, &mut deleted);
         assert_eq!(
             (renamed.as_slice(), deleted.as_slice()),
             (&[][..], &[(1, [1, 3, 2])][..])
         );
-        parts[1].collapse_edge(6, 7, &mut incident, &mut renamed, &mut deleted);
+        assert!(parts[1].fan(6, &mut fan));
+        parts[1].collapse_edge(6, 7, &fan, &mut renamed, &mut deleted);
         assert_eq!(renamed, vec![2]);
         assert_eq!(deleted, vec![(3, [5, 7, 6])]);
         assert_eq!(parts[1].triangle(2), [4, 5, 7]);
@@ -279,13 +335,53 @@ mod tests {
     }
 
     #[test]
+    fn a_fan_reaching_into_another_parts_slots_is_refused() {
+        // Vertex 2 (part 0's) is in slot 0 (part 0's) and slot 1 (part 1's).
+        let tris = [[0, 1, 2], [2, 4, 3]];
+        let mut c = Connectivity::new(5, &tris);
+        let parts = c.split(&[0, 3], &[0, 1]);
+        let mut fan = Vec::new();
+        assert!(parts[0].fan(1, &mut fan));
+        assert_eq!(fan.len(), 1);
+        assert!(!parts[0].fan(2, &mut fan));
+        assert!(parts[1].fan(4, &mut fan));
+        let whole_fan = |c: &mut Connectivity| {
+            let mut fan = Vec::new();
+            let ok = c.whole().fan(2, &mut fan);
+            (ok, fan)
+        };
+        drop(parts);
+        let (ok, fan) = whole_fan(&mut c);
+        assert!(ok);
+        assert_eq!(
+            fan,
+            vec![
+                FanTriangle {
+                    t: 0,
+                    corner: 2,
+                    next: 0,
+                    prev: 1
+                },
+                FanTriangle {
+                    t: 1,
+                    corner: 0,
+                    next: 4,
+                    prev: 3
+                }
+            ]
+        );
+        assert!(fan[1].touches(3) && !fan[1].touches(2));
+    }
+
+    #[test]
     fn collapsing_into_a_vertex_spills_its_list_on_the_whole_mesh() {
         // A closed fan of 20 triangles around vertex 0, rim 1..=20.
         let tris: Vec<[u32; 3]> = (1..=20u32).map(|i| [0, i, i % 20 + 1]).collect();
         let mut c = Connectivity::new(21, &tris);
         let mut whole = c.whole();
-        let (mut incident, mut renamed, mut deleted) = (Vec::new(), Vec::new(), Vec::new());
-        whole.collapse_edge(0, 1, &mut incident, &mut renamed, &mut deleted);
+        let (mut fan, mut renamed, mut deleted) = (Vec::new(), Vec::new(), Vec::new());
+        assert!(whole.fan(0, &mut fan));
+        whole.collapse_edge(0, 1, &fan, &mut renamed, &mut deleted);
         assert_eq!(deleted.len(), 2);
         assert_eq!(renamed.len(), 18);
         assert!(whole.incident(0).is_empty());
