@@ -166,20 +166,21 @@ pub(super) fn collapse_in_passes(
     let bound2 = limits.max_error * limits.max_error;
     // Never fewer than four vertices: a model under four is dropped from the scene, and a
     // plane's two triangles or a tetrahedron is as far as collapsing should go.
-    let used = (0..n).filter(|&v| !d.conn.incident(v).is_empty()).count();
+    let used = (0..n)
+        .into_par_iter()
+        .filter(|&v| !d.conn.incident(v).is_empty())
+        .count();
     let removable = used.saturating_sub(4);
     let regions = [Regions::of(d, false), Regions::of(d, true)];
     let mut skipped_for_error = false;
-    let mut live: Vec<u32> = (0..n)
-        .filter(|&v| d.kinds[v as usize] != Kind::Fixed)
-        .collect();
+    let mut live: Vec<u32> = (0..n).into_par_iter().collect();
     loop {
         live = live
             .par_iter()
             .copied()
             .filter(|&v| d.kinds[v as usize] != Kind::Fixed)
             .collect();
-        let mut candidates: Vec<Candidate> = live
+        let candidates: Vec<Candidate> = live
             .par_iter()
             .filter_map(|&v| {
                 let cost = d.best_cost[v as usize];
@@ -203,11 +204,7 @@ pub(super) fn collapse_in_passes(
         let take = (candidates.len() / PASS_SHARE)
             .min(2 * needed)
             .clamp(1, candidates.len());
-        if take < candidates.len() {
-            candidates.select_nth_unstable(take - 1);
-            candidates.truncate(take);
-        }
-        candidates.par_sort_unstable();
+        let candidates = cheapest(candidates, take);
         let bounds = PassBounds {
             threshold: candidates[take - 1].cost(),
             bound2,
@@ -226,6 +223,64 @@ pub(super) fn collapse_in_passes(
     }
     progress(outcome.removed);
     outcome
+}
+
+/// Bits of a candidate's key that pick its bucket in [`cheapest`]: the sign, the exponent
+/// and seven bits of the mantissa of its cost, so that a bucket spans under 1 % of it.
+const BUCKET_BITS: u32 = 16;
+
+/// The `take` cheapest of `candidates` (distinct), sorted, on all cores: a histogram of the
+/// keys' top bits gives the bucket the last of them falls in; the buckets below it are
+/// taken whole and that one is selected in. The same set as a serial
+/// `select_nth_unstable`, so a pass is the same on any number of cores.
+fn cheapest(candidates: Vec<Candidate>, take: usize) -> Vec<Candidate> {
+    let bucket = |c: &Candidate| (c.0 >> (64 - BUCKET_BITS)) as usize;
+    let mut kept = if take >= candidates.len() {
+        candidates
+    } else {
+        let per_thread = candidates
+            .len()
+            .div_ceil(rayon::current_num_threads().max(1));
+        let histograms: Vec<Vec<u32>> = candidates
+            .par_chunks(per_thread.max(1))
+            .map(|chunk| {
+                let mut histogram = vec![0u32; 1 << BUCKET_BITS];
+                for c in chunk {
+                    histogram[bucket(c)] += 1;
+                }
+                histogram
+            })
+            .collect();
+        let mut below = 0;
+        let mut last = 0;
+        for b in 0..1 << BUCKET_BITS {
+            let count: usize = histograms.iter().map(|h| h[b] as usize).sum();
+            if below + count >= take {
+                last = b;
+                break;
+            }
+            below += count;
+        }
+        let mut kept: Vec<Candidate> = candidates
+            .par_iter()
+            .copied()
+            .filter(|c| bucket(c) < last)
+            .collect();
+        let mut tied: Vec<Candidate> = candidates
+            .par_iter()
+            .copied()
+            .filter(|c| bucket(c) == last)
+            .collect();
+        let rest = take - below;
+        if rest < tied.len() {
+            tied.select_nth_unstable(rest - 1);
+            tied.truncate(rest);
+        }
+        kept.append(&mut tied);
+        kept
+    };
+    kept.par_sort_unstable();
+    kept
 }
 
 /// Collapses the pass's `candidates` (in cost order) within `limit`, adding what became of
@@ -525,6 +580,35 @@ mod tests {
             .collect();
         let expected: Vec<(u32, u32)> = all.iter().map(|&(c, v)| (c.to_bits(), v)).collect();
         assert_eq!(unpacked, expected);
+    }
+
+    #[test]
+    fn cheapest_takes_the_same_candidates_as_a_serial_selection() {
+        // Costs from a few values (many in one bucket) and spread over many octaves.
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let candidates: Vec<Candidate> = (0..20_000u32)
+            .map(|v| {
+                let r = next();
+                let cost = match r % 4 {
+                    0 => 0.0,
+                    1 => 1.0 + (r >> 40) as f32 * 1e-9,
+                    _ => f32::from_bits(0x2000_0000 + (r >> 35) as u32),
+                };
+                Candidate::new(cost, v)
+            })
+            .collect();
+        for take in [1, 2, 4_999, 5_000, 5_001, 10_000, 19_999, 20_000] {
+            let mut expected = candidates.clone();
+            expected.sort_unstable();
+            expected.truncate(take);
+            assert_eq!(cheapest(candidates.clone(), take), expected, "take {take}");
+        }
     }
 
     #[test]

@@ -10,6 +10,8 @@
 
 mod part;
 
+use rayon::prelude::*;
+
 pub use part::{split_mut, ConnectivityPart, FanTriangle};
 
 /// Largest valence handled; vertices above it are reported as complex (kept).
@@ -74,27 +76,42 @@ impl Connectivity {
 
     /// As [`Self::new`], taking the triangle array over instead of copying it.
     pub fn from_triangles(vertex_count: usize, triangles: Vec<[u32; 3]>) -> Self {
-        let mut conn = Self {
-            triangles: Vec::new(),
+        let mut incidence: Vec<Incidence> = (0..vertex_count)
+            .into_par_iter()
+            .with_min_len(1 << 14)
+            .map(|_| Incidence {
+                len: 0,
+                ids: [0; INLINE],
+            })
+            .collect();
+        // On all cores, one range of vertices each: every range scans the triangles in
+        // order, so each list comes out as one scan would make it, on any number of cores.
+        let ranges = rayon::current_num_threads().clamp(1, 64);
+        let chunk = vertex_count.div_ceil(ranges).max(1);
+        let spills: Vec<Spilled> = incidence
+            .par_chunks_mut(chunk)
+            .enumerate()
+            .map(|(i, lists)| {
+                let v0 = (i * chunk) as u32;
+                let mut spilled = Spilled::new();
+                for (t, tri) in triangles.iter().enumerate() {
+                    for &v in tri {
+                        if let Some(inc) = lists.get_mut(v.wrapping_sub(v0) as usize) {
+                            link(inc, Some(&mut spilled), v, t as u32);
+                        }
+                    }
+                }
+                spilled
+            })
+            .collect();
+        Self {
             alive: vec![true; triangles.len()],
-            incidence: vec![
-                Incidence {
-                    len: 0,
-                    ids: [0; INLINE]
-                };
-                vertex_count
-            ],
-            spilled: std::collections::HashMap::new(),
-            free: Vec::new(),
             alive_count: triangles.len(),
-        };
-        for (i, t) in triangles.iter().enumerate() {
-            for &v in t {
-                conn.link(v, i as u32);
-            }
+            triangles,
+            incidence,
+            spilled: spills.into_iter().flatten().collect(),
+            free: Vec::new(),
         }
-        conn.triangles = triangles;
-        conn
     }
 
     /// Adds `t` to `v`'s incident list.
