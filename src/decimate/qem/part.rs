@@ -261,6 +261,7 @@ impl Part<'_> {
 
     /// The quadric's minimum when it exists and stays within a box around the edge `pr`–`pk`;
     /// otherwise the best of the kept end, the removed end and the midpoint.
+    #[inline(always)]
     fn place(&self, q: &Quadric, pr: DVec3, pk: DVec3) -> DVec3 {
         let margin = DVec3::splat(BOX_MARGIN * (pk - pr).length());
         let (lo, hi) = (pr.min(pk) - margin, pr.max(pk) + margin);

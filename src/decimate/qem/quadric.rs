@@ -38,6 +38,7 @@ impl Quadric {
         crate::mesh::prefetch_all(self);
     }
 
+    #[inline]
     pub fn add(&mut self, o: &Self) {
         for i in 0..6 {
             self.a[i] += o.a[i];
@@ -49,6 +50,7 @@ impl Quadric {
         self.area += o.area;
     }
 
+    #[inline]
     pub fn sum(&self, o: &Self) -> Self {
         let mut s = *self;
         s.add(o);
@@ -56,6 +58,7 @@ impl Quadric {
     }
 
     /// `Q(p)`, never negative.
+    #[inline]
     pub fn eval(&self, p: DVec3) -> f64 {
         let [a00, a01, a02, a11, a12, a22] = self.a;
         let ap = DVec3::new(
@@ -68,6 +71,7 @@ impl Quadric {
     }
 
     /// The minimiser `-A⁻¹b`, or `None` when `A` is (nearly) singular.
+    #[inline]
     pub fn minimum(&self) -> Option<DVec3> {
         let [a00, a01, a02, a11, a12, a22] = self.a;
         let c0 = a11 * a22 - a12 * a12;
