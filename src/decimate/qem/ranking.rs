@@ -17,6 +17,7 @@ use rayon::prelude::*;
 
 use super::collapser::others;
 use super::part::Part;
+use crate::mesh::topology::split_mut;
 
 const BLOCKED: u32 = 1 << 31;
 
@@ -140,11 +141,21 @@ impl Part<'_> {
     pub fn plan_fan(&self, v: u32, skip: impl Fn(u32) -> bool) {
         let mut memo = [(u32::MAX, 0.0f32); FAN_MEMO];
         let mut len = 0;
+        // A neighbour's first slot (its bit not yet in the mask) skips the memo's search.
+        let mut seen = 0u64;
         self.for_each_edge(v, |slot, w| {
             if skip(w) {
                 return;
             }
-            let cost = match memo[..len].iter().find(|m| m.0 == w) {
+            let bit = 1u64 << (w & 63);
+            let known = seen & bit != 0;
+            seen |= bit;
+            let cached = if known {
+                memo[..len].iter().find(|m| m.0 == w)
+            } else {
+                None
+            };
+            let cost = match cached {
                 Some(&(_, cost)) => cost,
                 None => {
                     let cost = self.edge_cost(v, w);
@@ -207,20 +218,38 @@ impl Part<'_> {
             .with_min_len(MIN_PER_TASK)
             .filter(|&&v| released(v))
             .for_each(|&v| this.unblock_fan(v));
-        let mut best = vec![(u32::MAX, f32::INFINITY); vertices.len()];
-        best.par_chunks_mut(MIN_PER_TASK)
-            .zip(vertices.par_chunks(MIN_PER_TASK))
-            .for_each(|(out, chunk)| {
-                this.pipelined(chunk, false, |i, v| out[i] = this.best_edge(v));
-            });
-        for (&v, (w, cost)) in vertices.iter().zip(best) {
-            let i = self.at(v);
-            if self.flags[i] & release != 0 {
-                self.has_blocked[i] = false;
-            }
-            self.best[i] = w;
-            self.best_cost[i] = cost;
-        }
+        // `vertices` ascend, so a chunk's lie from its first up to the next chunk's first:
+        // the per-vertex arrays split there, and each chunk writes its own piece.
+        debug_assert!(vertices.windows(2).all(|w| w[0] < w[1]));
+        let chunks: Vec<&[u32]> = vertices.chunks(MIN_PER_TASK).collect();
+        let starts: Vec<usize> = chunks
+            .iter()
+            .enumerate()
+            .map(|(c, chunk)| if c == 0 { 0 } else { self.at(chunk[0]) })
+            .collect();
+        let best = std::mem::take(&mut self.best);
+        let best_cost = std::mem::take(&mut self.best_cost);
+        let has_blocked = std::mem::take(&mut self.has_blocked);
+        let pieces = split_mut(best, &starts)
+            .into_iter()
+            .zip(split_mut(best_cost, &starts))
+            .zip(split_mut(has_blocked, &starts))
+            .zip(starts.iter().zip(chunks));
+        let this = &*self;
+        pieces.collect::<Vec<_>>().into_par_iter().for_each(
+            |(((best, best_cost), has_blocked), (&start, chunk))| {
+                this.pipelined(chunk, false, |_, v| {
+                    let i = this.at(v);
+                    let (w, cost) = this.best_edge(v);
+                    if this.flags[i] & release != 0 {
+                        has_blocked[i - start] = false;
+                    }
+                    best[i - start] = w;
+                    best_cost[i - start] = cost;
+                });
+            },
+        );
+        (self.best, self.best_cost, self.has_blocked) = (best, best_cost, has_blocked);
     }
 
     /// Blocks the edge `v`–`w` until a neighbour of either end changes.
