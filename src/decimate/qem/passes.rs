@@ -174,19 +174,17 @@ pub(super) fn collapse_in_passes(
     let regions = [Regions::of(d, false), Regions::of(d, true)];
     let mut skipped_for_error = false;
     let mut live: Vec<u32> = (0..n).into_par_iter().collect();
+    // The lists are kept from pass to pass and edited in place: a fresh list each pass
+    // costs more in first-touch page faults than filling it does.
+    let mut candidates: Vec<Candidate> = Vec::with_capacity(live.len());
+    let (mut pass, mut tied) = (Vec::new(), Vec::new());
     loop {
-        live = live
-            .par_iter()
-            .copied()
-            .filter(|&v| d.kinds[v as usize] != Kind::Fixed)
-            .collect();
-        let candidates: Vec<Candidate> = live
-            .par_iter()
-            .filter_map(|&v| {
-                let cost = d.best_cost[v as usize];
-                cost.is_finite().then(|| Candidate::new(cost, v))
-            })
-            .collect();
+        live.retain(|&v| d.kinds[v as usize] != Kind::Fixed);
+        candidates.clear();
+        candidates.extend(live.iter().filter_map(|&v| {
+            let cost = d.best_cost[v as usize];
+            cost.is_finite().then(|| Candidate::new(cost, v))
+        }));
         if candidates.is_empty() {
             outcome.exhausted = !skipped_for_error;
             break;
@@ -204,13 +202,13 @@ pub(super) fn collapse_in_passes(
         let take = (candidates.len() / PASS_SHARE)
             .min(2 * needed)
             .clamp(1, candidates.len());
-        let candidates = cheapest(candidates, take);
+        cheapest(&candidates, take, &mut pass, &mut tied);
         let bounds = PassBounds {
-            threshold: candidates[take - 1].cost(),
+            threshold: pass[take - 1].cost(),
             bound2,
         };
         let mut tally = Tally::default();
-        let stopped = collapse_pass(d, &regions, &candidates, bounds, limit, &mut tally);
+        let stopped = collapse_pass(d, &regions, &pass, bounds, limit, &mut tally);
         outcome.removed += tally.removed;
         outcome.max_error = outcome.max_error.max(tally.max_error2.sqrt());
         outcome.exhausted |= tally.floor;
@@ -229,14 +227,20 @@ pub(super) fn collapse_in_passes(
 /// and seven bits of the mantissa of its cost, so that a bucket spans under 1 % of it.
 const BUCKET_BITS: u32 = 16;
 
-/// The `take` cheapest of `candidates` (distinct), sorted, on all cores: a histogram of the
-/// keys' top bits gives the bucket the last of them falls in; the buckets below it are
-/// taken whole and that one is selected in. The same set as a serial
+/// The `take` cheapest of `candidates` (distinct), sorted, into `out` (`tied` is scratch):
+/// a histogram of the keys' top bits, on all cores, gives the bucket the last of them falls
+/// in; the buckets below it are taken whole and that one is selected in. The same set as a
 /// `select_nth_unstable`, so a pass is the same on any number of cores.
-fn cheapest(candidates: Vec<Candidate>, take: usize) -> Vec<Candidate> {
+fn cheapest(
+    candidates: &[Candidate],
+    take: usize,
+    out: &mut Vec<Candidate>,
+    tied: &mut Vec<Candidate>,
+) {
     let bucket = |c: &Candidate| (c.0 >> (64 - BUCKET_BITS)) as usize;
-    let mut kept = if take >= candidates.len() {
-        candidates
+    out.clear();
+    if take >= candidates.len() {
+        out.extend_from_slice(candidates);
     } else {
         let per_thread = candidates
             .len()
@@ -261,26 +265,22 @@ fn cheapest(candidates: Vec<Candidate>, take: usize) -> Vec<Candidate> {
             }
             below += count;
         }
-        let mut kept: Vec<Candidate> = candidates
-            .par_iter()
-            .copied()
-            .filter(|c| bucket(c) < last)
-            .collect();
-        let mut tied: Vec<Candidate> = candidates
-            .par_iter()
-            .copied()
-            .filter(|c| bucket(c) == last)
-            .collect();
+        tied.clear();
+        for &c in candidates {
+            match bucket(&c).cmp(&last) {
+                std::cmp::Ordering::Less => out.push(c),
+                std::cmp::Ordering::Equal => tied.push(c),
+                std::cmp::Ordering::Greater => {}
+            }
+        }
         let rest = take - below;
         if rest < tied.len() {
             tied.select_nth_unstable(rest - 1);
             tied.truncate(rest);
         }
-        kept.append(&mut tied);
-        kept
-    };
-    kept.par_sort_unstable();
-    kept
+        out.append(tied);
+    }
+    out.par_sort_unstable();
 }
 
 /// Collapses the pass's `candidates` (in cost order) within `limit`, adding what became of
@@ -607,7 +607,9 @@ mod tests {
             let mut expected = candidates.clone();
             expected.sort_unstable();
             expected.truncate(take);
-            assert_eq!(cheapest(candidates.clone(), take), expected, "take {take}");
+            let (mut out, mut tied) = (vec![Candidate::new(5.0, 0)], Vec::new());
+            cheapest(&candidates, take, &mut out, &mut tied);
+            assert_eq!(out, expected, "take {take}");
         }
     }
 
