@@ -163,8 +163,8 @@ impl Part<'_> {
         }
     }
 
-    /// Starts loading the positions of the neighbours of `v` and `w` (each once in a closed
-    /// fan) and the incident lists of the edge `v`–`w`'s apexes, which a collapse edits (a
+    /// Starts loading the positions and flags of the neighbours of `v` and `w` (each once in
+    /// a closed fan) and the incident lists of the edge `v`–`w`'s apexes, which a collapse edits (a
     /// hint; the fans' triangles should be loaded by now).
     pub fn prefetch_neighbourhood(&self, v: u32, w: u32) {
         for (x, y) in [(v, w), (w, v)] {
