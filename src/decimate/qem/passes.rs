@@ -224,8 +224,9 @@ pub(super) fn collapse_in_passes(
 }
 
 /// Bits of a candidate's key that pick its bucket in [`cheapest`]: the sign, the exponent
-/// and seven bits of the mantissa of its cost, so that a bucket spans under 1 % of it.
-const BUCKET_BITS: u32 = 16;
+/// and three bits of the mantissa of its cost, so that a bucket spans under 10 % of it (a
+/// few thousand of the dragon's candidates at most), and the histogram stays small.
+const BUCKET_BITS: u32 = 12;
 
 /// The `take` cheapest of `candidates` (distinct), sorted, into `out` (`tied` is scratch):
 /// a histogram of the keys' top bits, on all cores, gives the bucket the last of them falls
@@ -265,14 +266,21 @@ fn cheapest(
             }
             below += count;
         }
+        // The buckets below `last` are the keys below its first; compacted without a
+        // branch (which would go either way at random): every key is written, and the end
+        // moves on past those that stay.
+        let lo = (last as u64) << (64 - BUCKET_BITS);
+        out.resize(below + 1, Candidate(0));
+        let mut end = 0;
         tied.clear();
         for &c in candidates {
-            match bucket(&c).cmp(&last) {
-                std::cmp::Ordering::Less => out.push(c),
-                std::cmp::Ordering::Equal => tied.push(c),
-                std::cmp::Ordering::Greater => {}
+            out[end] = c;
+            end += usize::from(c.0 < lo);
+            if bucket(&c) == last {
+                tied.push(c);
             }
         }
+        out.truncate(end);
         let rest = take - below;
         if rest < tied.len() {
             tied.select_nth_unstable(rest - 1);
