@@ -543,13 +543,10 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds) -> Attempt {
 /// again (after unblocking its edges when its neighbourhood changed), both on all cores.
 fn end_of_pass(d: &mut Part<'_>, live: &[u32]) {
     let flag = |d: &Part<'_>, v: u32| d.flags[d.at(v)];
-    let kept = |v: u32| flag(d, v) & REPLAN != 0 && !d.is_fixed(v);
-    let keeps: Vec<u32> = live.par_iter().copied().filter(|&v| kept(v)).collect();
-    d.replan(&keeps, kept);
     // A neighbour whose cheapest edge kept both its ends keeps that edge's cost, and its
     // edges to kept vertices only got dearer (a quadric only grows; a placement outside the
     // edge's box or the colour term can bend that, which leaves the order a little less
-    // greedy): it need not look again.
+    // greedy): it need not look again. Re-planning changes none of what this reads.
     let unchanged = |d: &Part<'_>, v: u32| {
         let i = d.at(v);
         let w = d.best[i];
@@ -565,6 +562,10 @@ fn end_of_pass(d: &mut Part<'_>, live: &[u32]) {
         .copied()
         .filter(|&v| flag(this, v) != 0 && !this.is_fixed(v) && !unchanged(this, v))
         .collect();
+    // The kept vertices are all flagged (REPLAN is never unchanged).
+    let kept = |v: u32| flag(this, v) & REPLAN != 0 && !this.is_fixed(v);
+    let keeps: Vec<u32> = flagged.par_iter().copied().filter(|&v| kept(v)).collect();
+    d.replan(&keeps, kept);
     d.rerank(&flagged, RELEASE);
     d.flags.fill(0);
 }
