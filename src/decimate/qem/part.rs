@@ -200,17 +200,13 @@ impl Part<'_> {
         self.positions[self.at(v)].as_dvec3()
     }
 
-    /// Triangles on the edge `a`–`b`: how many, and the last one found.
-    pub fn edge_triangles(&self, a: u32, b: u32) -> (usize, u32) {
-        let mut count = 0;
-        let mut last = u32::MAX;
-        for &t in self.conn.incident(a) {
-            if self.conn.triangle(t).contains(&b) {
-                count += 1;
-                last = t;
-            }
-        }
-        (count, last)
+    /// How many triangles are on the edge `a`–`b`.
+    fn edge_triangles(&self, a: u32, b: u32) -> usize {
+        self.conn
+            .incident(a)
+            .iter()
+            .filter(|&&t| self.conn.triangle(t).contains(&b))
+            .count()
     }
 
     /// Which end of `a`–`b` goes and where the other moves, or `None` when the kinds of the
@@ -232,7 +228,7 @@ impl Part<'_> {
             (Kind::Interior, Kind::Boundary) => (a, b, false),
             (Kind::Boundary, Kind::Interior) => (b, a, false),
             (Kind::Boundary, Kind::Boundary) => {
-                if self.edge_triangles(a, b).0 != 1 {
+                if self.edge_triangles(a, b) != 1 {
                     return None;
                 }
                 (a, b, true)

@@ -109,13 +109,13 @@ impl Part<'_> {
             .map_or(f32::INFINITY, |p| stored(p.cost))
     }
 
-    /// Calls `f(i, vertices[i])` in order, first asking the CPU for each vertex's data in
+    /// Calls `f(v)` for each of `vertices` in order, first asking the CPU for each vertex's data in
     /// three stages, as each becomes addressable: its incident list `4 × AHEAD` vertices
     /// ahead, its triangles and edge costs `2 × AHEAD` ahead, and (with `ends`) what
     /// planning its edges reads of its neighbours `AHEAD` ahead. The loads then overlap
     /// instead of each fan waiting on three round trips to memory. Hints only: `f` sees the
     /// same data either way.
-    fn pipelined(&self, vertices: &[u32], ends: bool, mut f: impl FnMut(usize, u32)) {
+    fn pipelined(&self, vertices: &[u32], ends: bool, mut f: impl FnMut(u32)) {
         for (i, &v) in vertices.iter().enumerate() {
             if let Some(&a) = vertices.get(i + 4 * AHEAD) {
                 self.conn.prefetch_incident(a);
@@ -132,7 +132,7 @@ impl Part<'_> {
                     }
                 }
             }
-            f(i, v);
+            f(v);
         }
     }
 
@@ -189,7 +189,7 @@ impl Part<'_> {
         let all: Vec<u32> = (0..n).into_par_iter().collect();
         let this = &*self;
         all.par_chunks(MIN_PER_TASK).for_each(|chunk| {
-            this.pipelined(chunk, true, |_, v| this.plan_fan(v, |w| w <= v));
+            this.pipelined(chunk, true, |v| this.plan_fan(v, |w| w <= v));
         });
         self.rerank(&all, 0);
     }
@@ -199,7 +199,7 @@ impl Part<'_> {
     /// end.
     pub fn replan(&self, vertices: &[u32], listed: impl Fn(u32) -> bool + Sync) {
         vertices.par_chunks(MIN_PER_TASK / 4).for_each(|chunk| {
-            self.pipelined(chunk, true, |_, v| self.plan_fan(v, |w| w < v && listed(w)));
+            self.pipelined(chunk, true, |v| self.plan_fan(v, |w| w < v && listed(w)));
         });
     }
 
@@ -238,7 +238,7 @@ impl Part<'_> {
         let this = &*self;
         pieces.collect::<Vec<_>>().into_par_iter().for_each(
             |(((best, best_cost), has_blocked), (&start, chunk))| {
-                this.pipelined(chunk, false, |_, v| {
+                this.pipelined(chunk, false, |v| {
                     let i = this.at(v);
                     let (w, cost) = this.best_edge(v);
                     if this.flags[i] & release != 0 {

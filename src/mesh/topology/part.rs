@@ -178,14 +178,6 @@ impl ConnectivityPart<'_> {
         }
     }
 
-    /// True when a live triangle with exactly the vertices `a` (owned), `b`, `c` exists.
-    pub fn has_triangle(&self, a: u32, b: u32, c: u32) -> bool {
-        self.incident(a).iter().any(|&t| {
-            let tri = self.triangle(t);
-            tri.contains(&b) && tri.contains(&c)
-        })
-    }
-
     fn link(&mut self, v: u32, t: u32) {
         let i = self.vertex(v);
         link(&mut self.incidence[i], self.spilled.as_deref_mut(), v, t);
