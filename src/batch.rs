@@ -16,6 +16,7 @@ use crate::mesh::Scene;
 
 /// Runs the nogui job; the exit code says whether the output was written.
 pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
+    crate::threads::join_pool();
     let outputs = std::iter::once(&args.output).chain(&args.progressive);
     for output in outputs {
         if !args.overwrite && same_file(&args.input, output) {

@@ -20,3 +20,4 @@ pub mod io;
 pub mod mesh;
 pub mod metro;
 pub mod render;
+pub mod threads;

@@ -17,6 +17,7 @@ use crate::mesh::Scene;
 
 /// Runs the `gui` or `shot` action on an already built scene.
 pub fn run(scene: Scene, args: &Args) -> ExitCode {
+    crate::threads::join_pool();
     match args.action {
         Action::Shot => run_shot(&scene, args),
         Action::Gui | Action::NoGui => run_gui(scene, args),

@@ -539,8 +539,9 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds) -> Attempt {
 }
 
 /// The work deferred to the end of a pass, in vertex order (memory order): the kept
-/// vertices' edges are planned again, then every flagged vertex looks for its cheapest edge
-/// again (after unblocking its edges when its neighbourhood changed), both on all cores.
+/// vertices' edges are planned again (which gives them their cheapest edge), then every
+/// other flagged vertex looks for its cheapest edge again (after unblocking its edges when
+/// its neighbourhood changed), both on all cores.
 fn end_of_pass(d: &mut Part<'_>, live: &[u32]) {
     let flag = |d: &Part<'_>, v: u32| d.flags[d.at(v)];
     // A neighbour whose cheapest edge kept both its ends keeps that edge's cost, and its
@@ -563,10 +564,11 @@ fn end_of_pass(d: &mut Part<'_>, live: &[u32]) {
         .filter(|&v| flag(this, v) != 0 && !this.is_fixed(v) && !unchanged(this, v))
         .collect();
     // The kept vertices are all flagged (REPLAN is never unchanged).
-    let kept = |v: u32| flag(this, v) & REPLAN != 0 && !this.is_fixed(v);
-    let keeps: Vec<u32> = flagged.par_iter().copied().filter(|&v| kept(v)).collect();
-    d.replan(&keeps, kept);
-    d.rerank(&flagged, RELEASE);
+    let (keeps, others): (Vec<u32>, Vec<u32>) = flagged
+        .par_iter()
+        .partition(|&&v| flag(this, v) & REPLAN != 0);
+    d.replan(&keeps);
+    d.rerank(&others, RELEASE);
     d.flags.fill(0);
 }
 

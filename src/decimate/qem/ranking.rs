@@ -137,8 +137,11 @@ impl Part<'_> {
     }
 
     /// Plans the edges of `v` except those to a vertex `w` for which `skip(w)` (planned from
-    /// there) and stores each edge's cost in its slots, unblocked.
-    pub fn plan_fan(&self, v: u32, skip: impl Fn(u32) -> bool) {
+    /// there) and stores each edge's cost in its slots, unblocked. Returns the cheapest of
+    /// the edges it planned, as [`Self::best_edge`] would pick it: its other end (`u32::MAX`
+    /// when none) and cost.
+    pub fn plan_fan(&self, v: u32, skip: impl Fn(u32) -> bool) -> (u32, f32) {
+        let mut best = (u32::MAX, f32::INFINITY);
         let mut memo = [(u32::MAX, 0.0f32); FAN_MEMO];
         let mut len = 0;
         // A neighbour's first slot (its bit not yet in the mask) skips the memo's search.
@@ -167,7 +170,11 @@ impl Part<'_> {
                 }
             };
             self.costs.set(slot, cost);
+            if cost.is_finite() && (cost < best.1 || (cost == best.1 && w < best.0)) {
+                best = (w, cost);
+            }
         });
+        best
     }
 
     /// The cheapest unblocked edge of `v`: its other end (`u32::MAX` when none) and cost.
@@ -189,24 +196,27 @@ impl Part<'_> {
         let all: Vec<u32> = (0..n).into_par_iter().collect();
         let this = &*self;
         all.par_chunks(MIN_PER_TASK).for_each(|chunk| {
-            this.pipelined(chunk, true, |v| this.plan_fan(v, |w| w <= v));
+            this.pipelined(chunk, true, |v| {
+                this.plan_fan(v, |w| w <= v);
+            });
         });
         self.rerank(&all, 0);
     }
 
-    /// Re-plans every edge of each of `vertices` (their quadrics or positions changed), on
-    /// all cores. An edge between two of them (`listed`) is planned once, from its smaller
-    /// end.
-    pub fn replan(&self, vertices: &[u32], listed: impl Fn(u32) -> bool + Sync) {
-        vertices.par_chunks(MIN_PER_TASK / 4).for_each(|chunk| {
-            self.pipelined(chunk, true, |v| self.plan_fan(v, |w| w < v && listed(w)));
+    /// Re-plans every edge of each of `vertices` (ascending; their quadrics or positions
+    /// changed) and gives each its cheapest edge, on all cores. An edge between two of them
+    /// is planned from both ends: each then knows all its costs without waiting for the
+    /// other, and both store the same value.
+    pub fn replan(&mut self, vertices: &[u32]) {
+        self.update_best(vertices, MIN_PER_TASK / 4, true, |this, v| {
+            (this.plan_fan(v, |_| false), true)
         });
     }
 
-    /// Re-picks the cheapest edge of each of `vertices` among all its edges, first
-    /// unblocking every edge of those whose neighbourhood changed (a flag in `release`
-    /// set), on all cores. The unblocking is finished before any vertex looks: an edge is
-    /// in two fans.
+    /// Re-picks the cheapest edge of each of `vertices` (ascending) among all its edges,
+    /// first unblocking every edge of those whose neighbourhood changed (a flag in
+    /// `release` set), on all cores. The unblocking is finished before any vertex looks: an
+    /// edge is in two fans.
     pub fn rerank(&mut self, vertices: &[u32], release: u8) {
         let this = &*self;
         let released = |v: u32| {
@@ -218,10 +228,25 @@ impl Part<'_> {
             .with_min_len(MIN_PER_TASK)
             .filter(|&&v| released(v))
             .for_each(|&v| this.unblock_fan(v));
+        self.update_best(vertices, MIN_PER_TASK, false, |this, v| {
+            (this.best_edge(v), this.flags[this.at(v)] & release != 0)
+        });
+    }
+
+    /// Sets each of `vertices`' (ascending) cheapest edge to what `pick` finds, and clears
+    /// its blocked mark when `pick` says its edges were all unblocked, `per_task` vertices
+    /// to a task on all cores (`ends`: as [`Self::pipelined`]).
+    fn update_best(
+        &mut self,
+        vertices: &[u32],
+        per_task: usize,
+        ends: bool,
+        pick: impl Fn(&Self, u32) -> ((u32, f32), bool) + Sync,
+    ) {
         // `vertices` ascend, so a chunk's lie from its first up to the next chunk's first:
         // the per-vertex arrays split there, and each chunk writes its own piece.
         debug_assert!(vertices.windows(2).all(|w| w[0] < w[1]));
-        let chunks: Vec<&[u32]> = vertices.chunks(MIN_PER_TASK).collect();
+        let chunks: Vec<&[u32]> = vertices.chunks(per_task).collect();
         let starts: Vec<usize> = chunks
             .iter()
             .enumerate()
@@ -238,14 +263,14 @@ impl Part<'_> {
         let this = &*self;
         pieces.collect::<Vec<_>>().into_par_iter().for_each(
             |(((best, best_cost), has_blocked), (&start, chunk))| {
-                this.pipelined(chunk, false, |v| {
-                    let i = this.at(v);
-                    let (w, cost) = this.best_edge(v);
-                    if this.flags[i] & release != 0 {
-                        has_blocked[i - start] = false;
+                this.pipelined(chunk, ends, |v| {
+                    let i = this.at(v) - start;
+                    let ((w, cost), unblocked) = pick(this, v);
+                    if unblocked {
+                        has_blocked[i] = false;
                     }
-                    best[i - start] = w;
-                    best_cost[i - start] = cost;
+                    best[i] = w;
+                    best_cost[i] = cost;
                 });
             },
         );
