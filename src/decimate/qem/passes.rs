@@ -547,7 +547,8 @@ fn end_of_pass(d: &mut Part<'_>, live: &[u32]) {
     // A neighbour whose cheapest edge kept both its ends keeps that edge's cost, and its
     // edges to kept vertices only got dearer (a quadric only grows; a placement outside the
     // edge's box or the colour term can bend that, which leaves the order a little less
-    // greedy): it need not look again. Re-planning changes none of what this reads.
+    // greedy): it need not look again. Asked before anything is re-planned: re-planning
+    // writes the kept vertices' best edges and blocked marks, which this reads.
     let unchanged = |d: &Part<'_>, v: u32| {
         let i = d.at(v);
         let w = d.best[i];
