@@ -42,6 +42,7 @@
 
 mod collapser;
 mod legality;
+mod lists;
 mod part;
 mod passes;
 mod planes;

@@ -26,6 +26,7 @@
 use rayon::prelude::*;
 
 use super::collapser::{Collapser, Kind};
+use super::lists;
 use super::part::Part;
 use super::ranking::stored;
 use crate::decimate::schroeder::{Limits, Outcome};
@@ -77,7 +78,7 @@ const RERANK: u8 = 4;
 /// A candidate: its best edge's cost and the vertex, packed so that comparing the packed
 /// integers orders by cost (as `f32::total_cmp` does), then by vertex: selecting and sorting
 /// plain integers is several times faster than through a comparison closure.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord)]
 struct Candidate(u64);
 
 impl Candidate {
@@ -176,15 +177,18 @@ pub(super) fn collapse_in_passes(
     let mut live: Vec<u32> = (0..n).into_par_iter().collect();
     // The lists are kept from pass to pass and edited in place: a fresh list each pass
     // costs more in first-touch page faults than filling it does.
-    let mut candidates: Vec<Candidate> = Vec::with_capacity(live.len());
+    let mut all_candidates: Vec<Candidate> = Vec::new();
     let (mut pass, mut tied) = (Vec::new(), Vec::new());
+    let mut flagged = Flagged::default();
     loop {
-        live.retain(|&v| d.kinds[v as usize] != Kind::Fixed);
-        candidates.clear();
-        candidates.extend(live.iter().filter_map(|&v| {
-            let cost = d.best_cost[v as usize];
+        let kinds = &d.kinds;
+        lists::retain(&mut live, |v| kinds[v as usize] != Kind::Fixed);
+        let best_cost = &d.best_cost;
+        let count = lists::filter_map_into(&live, &mut all_candidates, |&v| {
+            let cost = best_cost[v as usize];
             cost.is_finite().then(|| Candidate::new(cost, v))
-        }));
+        });
+        let candidates = &all_candidates[..count];
         if candidates.is_empty() {
             outcome.exhausted = !skipped_for_error;
             break;
@@ -202,7 +206,7 @@ pub(super) fn collapse_in_passes(
         let take = (candidates.len() / PASS_SHARE)
             .min(2 * needed)
             .clamp(1, candidates.len());
-        cheapest(&candidates, take, &mut pass, &mut tied);
+        cheapest(candidates, take, &mut pass, &mut tied);
         let bounds = PassBounds {
             threshold: pass[take - 1].cost(),
             bound2,
@@ -217,7 +221,7 @@ pub(super) fn collapse_in_passes(
         if stopped {
             break;
         }
-        end_of_pass(&mut d.whole(), &live);
+        end_of_pass(&mut d.whole(), &live, &mut flagged);
     }
     progress(outcome.removed);
     outcome
@@ -538,11 +542,20 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds) -> Attempt {
     Attempt::Collapsed(plan.error2)
 }
 
+/// The lists of the vertices [`end_of_pass`] looks at again, kept from pass to pass: all of
+/// them, the kept ones and the others.
+#[derive(Debug, Default)]
+struct Flagged {
+    all: Vec<u32>,
+    keeps: Vec<u32>,
+    others: Vec<u32>,
+}
+
 /// The work deferred to the end of a pass, in vertex order (memory order): the kept
 /// vertices' edges are planned again (which gives them their cheapest edge), then every
 /// other flagged vertex looks for its cheapest edge again (after unblocking its edges when
 /// its neighbourhood changed), both on all cores.
-fn end_of_pass(d: &mut Part<'_>, live: &[u32]) {
+fn end_of_pass(d: &mut Part<'_>, live: &[u32], lists: &mut Flagged) {
     let flag = |d: &Part<'_>, v: u32| d.flags[d.at(v)];
     // A neighbour whose cheapest edge kept both its ends keeps that edge's cost, and its
     // edges to kept vertices only got dearer (a quadric only grows; a placement outside the
@@ -559,17 +572,17 @@ fn end_of_pass(d: &mut Part<'_>, live: &[u32]) {
             && flag(d, w) & REPLAN == 0
     };
     let this = &*d;
-    let flagged: Vec<u32> = live
-        .par_iter()
-        .copied()
-        .filter(|&v| flag(this, v) != 0 && !this.is_fixed(v) && !unchanged(this, v))
-        .collect();
+    let Flagged { all, keeps, others } = lists;
+    let count = lists::filter_map_into(live, all, |&v| {
+        (flag(this, v) != 0 && !this.is_fixed(v) && !unchanged(this, v)).then_some(v)
+    });
+    let all = &all[..count];
     // The kept vertices are all flagged (REPLAN is never unchanged).
-    let (keeps, others): (Vec<u32>, Vec<u32>) = flagged
-        .par_iter()
-        .partition(|&&v| flag(this, v) & REPLAN != 0);
-    d.replan(&keeps);
-    d.rerank(&others, RELEASE);
+    let kept = lists::filter_map_into(all, keeps, |&v| (flag(this, v) & REPLAN != 0).then_some(v));
+    let other =
+        lists::filter_map_into(all, others, |&v| (flag(this, v) & REPLAN == 0).then_some(v));
+    d.replan(&keeps[..kept]);
+    d.rerank(&others[..other], RELEASE);
     d.flags.fill(0);
 }
 
