@@ -191,16 +191,75 @@ impl Part<'_> {
     }
 
     /// Plans every edge once and gives every vertex its cheapest edge, on all cores.
+    ///
+    /// An edge is planned from its smaller end. A task plans an ascending range of vertices
+    /// in order, so a vertex finds its edges to smaller vertices of its own range planned
+    /// already and reads their costs; only a vertex with a neighbour below its range looks
+    /// at its edges again, once every range is done. On the dragon (871k triangles, 2 cores)
+    /// that is 38.5k vertices of 435k, and ranking takes about 55 ms instead of 67 with a
+    /// second look at every vertex.
     pub fn rank_all(&mut self) {
-        let n = self.positions.len() as u32;
-        let all: Vec<u32> = (0..n).into_par_iter().collect();
+        let best = std::mem::take(&mut self.best);
+        let best_cost = std::mem::take(&mut self.best_cost);
         let this = &*self;
-        all.par_chunks(MIN_PER_TASK).for_each(|chunk| {
-            this.pipelined(chunk, true, |v| {
-                this.plan_fan(v, |w| w <= v);
-            });
+        let incomplete: Vec<Vec<u32>> = best
+            .par_chunks_mut(MIN_PER_TASK)
+            .zip(best_cost.par_chunks_mut(MIN_PER_TASK))
+            .enumerate()
+            .map(|(c, (best, best_cost))| {
+                let lo = (c * MIN_PER_TASK) as u32;
+                let range: Vec<u32> = (lo..lo + best.len() as u32).collect();
+                let mut incomplete = Vec::new();
+                this.pipelined(&range, true, |v| {
+                    let (found, complete) = this.plan_fan_from(v, lo);
+                    let i = (v - lo) as usize;
+                    (best[i], best_cost[i]) = found;
+                    if !complete {
+                        incomplete.push(v);
+                    }
+                });
+                incomplete
+            })
+            .collect();
+        (self.best, self.best_cost) = (best, best_cost);
+        self.rerank(&incomplete.concat(), 0);
+    }
+
+    /// Plans `v`'s edges to larger vertices and reads those to vertices from `lo` up to `v`
+    /// (planned already), as [`Self::plan_fan`] does. Returns the cheapest of them, as
+    /// [`Self::best_edge`] would pick it, and whether they were all of `v`'s edges.
+    fn plan_fan_from(&self, v: u32, lo: u32) -> ((u32, f32), bool) {
+        let mut best = (u32::MAX, f32::INFINITY);
+        let mut complete = true;
+        let mut memo = [(u32::MAX, 0.0f32); FAN_MEMO];
+        let mut len = 0;
+        self.for_each_edge(v, |slot, w| {
+            let cost = if w > v {
+                match memo[..len].iter().find(|m| m.0 == w) {
+                    Some(&(_, cost)) => cost,
+                    None => {
+                        let cost = self.edge_cost(v, w);
+                        if len < FAN_MEMO {
+                            memo[len] = (w, cost);
+                            len += 1;
+                        }
+                        cost
+                    }
+                }
+            } else if lo <= w && w < v {
+                self.costs.get(slot).unwrap_or(f32::INFINITY)
+            } else {
+                complete &= w == v;
+                return;
+            };
+            if w > v {
+                self.costs.set(slot, cost);
+            }
+            if cost.is_finite() && (cost < best.1 || (cost == best.1 && w < best.0)) {
+                best = (w, cost);
+            }
         });
-        self.rerank(&all, 0);
+        (best, complete)
     }
 
     /// Re-plans every edge of each of `vertices` (ascending; their quadrics or positions
@@ -292,5 +351,43 @@ impl Part<'_> {
     /// Unblocks every edge of `v`: its neighbourhood changed.
     fn unblock_fan(&self, v: u32) {
         self.for_each_edge(v, |slot, _| self.costs.unblock(slot));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::decimate::layout;
+    use crate::decimate::qem::collapser::Collapser;
+    use crate::mesh::shapes;
+
+    #[test]
+    fn ranking_gives_every_vertex_its_cheapest_edge_across_task_ranges() {
+        // Many task ranges, renumbered along the Morton curve as a decimation does: vertices
+        // on a range's edge have neighbours in earlier ranges, planned by other tasks.
+        let model = shapes::bumpy_sphere(80, 160);
+        let loaded = layout::load(&model);
+        let positions = loaded
+            .order
+            .iter()
+            .map(|&v| model.positions[v as usize])
+            .collect();
+        let mut d = Collapser::new(positions, loaded.triangles(&model), None, None, 0.5);
+        let n = d.vertex_count();
+        assert!(n > 6 * super::MIN_PER_TASK, "{n} vertices");
+        let mut whole = d.whole();
+        whole.rank_all();
+        let mut with_edge = 0;
+        for v in 0..n as u32 {
+            let i = v as usize;
+            // A fresh look at every slot, as each pass's re-ranking takes it.
+            let (w, cost) = whole.best_edge(v);
+            assert_eq!((whole.best[i], whole.best_cost[i]), (w, cost), "vertex {v}");
+            with_edge += usize::from(w != u32::MAX);
+            // And every edge was planned: its stored cost is what planning it gives.
+            if w != u32::MAX {
+                assert_eq!(cost, whole.edge_cost(v, w), "edge {v}–{w}");
+            }
+        }
+        assert_eq!(with_edge, n, "a closed surface: every vertex has an edge");
     }
 }
