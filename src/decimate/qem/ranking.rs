@@ -207,7 +207,7 @@ impl Part<'_> {
             .zip(best_cost.par_chunks_mut(MIN_PER_TASK))
             .enumerate()
             .map(|(c, (best, best_cost))| {
-                let lo = (c * MIN_PER_TASK) as u32;
+                let lo = this.v0 + (c * MIN_PER_TASK) as u32;
                 let range: Vec<u32> = (lo..lo + best.len() as u32).collect();
                 let mut incomplete = Vec::new();
                 this.pipelined(&range, true, |v| {
@@ -249,6 +249,8 @@ impl Part<'_> {
             } else if lo <= w && w < v {
                 self.costs.get(slot).unwrap_or(f32::INFINITY)
             } else {
+                // Below the range: planned by another task, perhaps not yet. (`w == v`: a
+                // degenerate triangle's, never collapsed.)
                 complete &= w == v;
                 return;
             };
