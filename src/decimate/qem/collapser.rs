@@ -88,6 +88,19 @@ impl Collapser {
         }
     }
 
+    /// The state for the valid triangles of `model`, renumbered along a Morton curve as a
+    /// decimation loads it, with no attributes and features from 60° (for tests).
+    #[cfg(test)]
+    pub fn from_model(model: &Model) -> Self {
+        let loaded = crate::decimate::layout::load(model);
+        let positions = loaded
+            .order
+            .iter()
+            .map(|&v| model.positions[v as usize])
+            .collect();
+        Self::new(positions, loaded.triangles(model), None, None, 0.5)
+    }
+
     /// Vertex count.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()

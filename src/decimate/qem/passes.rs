@@ -589,7 +589,6 @@ fn end_of_pass(d: &mut Part<'_>, live: &[u32], lists: &mut Flagged) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::decimate::layout;
     use crate::mesh::shapes;
 
     #[test]
@@ -640,14 +639,7 @@ mod tests {
 
     #[test]
     fn regions_cover_the_vertices_and_own_the_slots_of_their_triangles() {
-        let model = shapes::uv_sphere(100, 200);
-        let loaded = layout::load(&model);
-        let positions = loaded
-            .order
-            .iter()
-            .map(|&v| model.positions[v as usize])
-            .collect();
-        let d = Collapser::new(positions, loaded.triangles(&model), None, None, 0.5);
+        let d = Collapser::from_model(&shapes::uv_sphere(100, 200));
         for shifted in [false, true] {
             let regions = Regions::of(&d, shifted);
             let n = d.vertex_count() as u32;

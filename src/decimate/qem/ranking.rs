@@ -33,6 +33,47 @@ const MIN_PER_TASK: usize = 2048;
 /// asked for before a fan is planned, 0.30 s with the three stages.
 const AHEAD: usize = 2;
 
+/// The costs a fan planned so far, by their other end: each edge of a closed fan is in two
+/// of its triangles, and is planned once.
+struct FanMemo {
+    ends: [(u32, f32); FAN_MEMO],
+    len: usize,
+    /// One bit per other end, by its id's low bits: an end's first slot skips the search.
+    seen: u64,
+}
+
+impl Default for FanMemo {
+    fn default() -> Self {
+        Self {
+            ends: [(u32::MAX, 0.0); FAN_MEMO],
+            len: 0,
+            seen: 0,
+        }
+    }
+}
+
+impl FanMemo {
+    /// The cost of the edge to `w`: as planned before in this fan, or `plan()`'s, noted
+    /// (while there is room).
+    #[inline(always)]
+    fn cost(&mut self, w: u32, plan: impl FnOnce() -> f32) -> f32 {
+        let bit = 1u64 << (w & 63);
+        let known = self.seen & bit != 0;
+        self.seen |= bit;
+        if known {
+            if let Some(&(_, cost)) = self.ends[..self.len].iter().find(|m| m.0 == w) {
+                return cost;
+            }
+        }
+        let cost = plan();
+        if self.len < FAN_MEMO {
+            self.ends[self.len] = (w, cost);
+            self.len += 1;
+        }
+        cost
+    }
+}
+
 /// Planned costs of every edge, per half-edge slot.
 pub(super) struct EdgeCosts {
     slots: Vec<AtomicU32>,
@@ -142,33 +183,12 @@ impl Part<'_> {
     /// when none) and cost.
     pub fn plan_fan(&self, v: u32, skip: impl Fn(u32) -> bool) -> (u32, f32) {
         let mut best = (u32::MAX, f32::INFINITY);
-        let mut memo = [(u32::MAX, 0.0f32); FAN_MEMO];
-        let mut len = 0;
-        // A neighbour's first slot (its bit not yet in the mask) skips the memo's search.
-        let mut seen = 0u64;
+        let mut memo = FanMemo::default();
         self.for_each_edge(v, |slot, w| {
             if skip(w) {
                 return;
             }
-            let bit = 1u64 << (w & 63);
-            let known = seen & bit != 0;
-            seen |= bit;
-            let cached = if known {
-                memo[..len].iter().find(|m| m.0 == w)
-            } else {
-                None
-            };
-            let cost = match cached {
-                Some(&(_, cost)) => cost,
-                None => {
-                    let cost = self.edge_cost(v, w);
-                    if len < FAN_MEMO {
-                        memo[len] = (w, cost);
-                        len += 1;
-                    }
-                    cost
-                }
-            };
+            let cost = memo.cost(w, || self.edge_cost(v, w));
             self.costs.set(slot, cost);
             if cost.is_finite() && (cost < best.1 || (cost == best.1 && w < best.0)) {
                 best = (w, cost);
@@ -231,21 +251,10 @@ impl Part<'_> {
     fn plan_fan_from(&self, v: u32, lo: u32) -> ((u32, f32), bool) {
         let mut best = (u32::MAX, f32::INFINITY);
         let mut complete = true;
-        let mut memo = [(u32::MAX, 0.0f32); FAN_MEMO];
-        let mut len = 0;
+        let mut memo = FanMemo::default();
         self.for_each_edge(v, |slot, w| {
             let cost = if w > v {
-                match memo[..len].iter().find(|m| m.0 == w) {
-                    Some(&(_, cost)) => cost,
-                    None => {
-                        let cost = self.edge_cost(v, w);
-                        if len < FAN_MEMO {
-                            memo[len] = (w, cost);
-                            len += 1;
-                        }
-                        cost
-                    }
-                }
+                memo.cost(w, || self.edge_cost(v, w))
             } else if lo <= w && w < v {
                 self.costs.get(slot).unwrap_or(f32::INFINITY)
             } else {
@@ -358,7 +367,6 @@ impl Part<'_> {
 
 #[cfg(test)]
 mod tests {
-    use crate::decimate::layout;
     use crate::decimate::qem::collapser::Collapser;
     use crate::mesh::shapes;
 
@@ -366,14 +374,7 @@ mod tests {
     fn ranking_gives_every_vertex_its_cheapest_edge_across_task_ranges() {
         // Many task ranges, renumbered along the Morton curve as a decimation does: vertices
         // on a range's edge have neighbours in earlier ranges, planned by other tasks.
-        let model = shapes::bumpy_sphere(80, 160);
-        let loaded = layout::load(&model);
-        let positions = loaded
-            .order
-            .iter()
-            .map(|&v| model.positions[v as usize])
-            .collect();
-        let mut d = Collapser::new(positions, loaded.triangles(&model), None, None, 0.5);
+        let mut d = Collapser::from_model(&shapes::bumpy_sphere(80, 160));
         let n = d.vertex_count();
         assert!(n > 6 * super::MIN_PER_TASK, "{n} vertices");
         let mut whole = d.whole();
