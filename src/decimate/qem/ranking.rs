@@ -177,17 +177,13 @@ impl Part<'_> {
         }
     }
 
-    /// Plans the edges of `v` except those to a vertex `w` for which `skip(w)` (planned from
-    /// there) and stores each edge's cost in its slots, unblocked. Returns the cheapest of
-    /// the edges it planned, as [`Self::best_edge`] would pick it: its other end (`u32::MAX`
-    /// when none) and cost.
-    pub fn plan_fan(&self, v: u32, skip: impl Fn(u32) -> bool) -> (u32, f32) {
+    /// Plans every edge of `v` and stores each edge's cost in its slots, unblocked. Returns
+    /// the cheapest, as [`Self::best_edge`] would pick it: its other end (`u32::MAX` when
+    /// none) and cost.
+    fn plan_fan(&self, v: u32) -> (u32, f32) {
         let mut best = (u32::MAX, f32::INFINITY);
         let mut memo = FanMemo::default();
         self.for_each_edge(v, |slot, w| {
-            if skip(w) {
-                return;
-            }
             let cost = memo.cost(w, || self.edge_cost(v, w));
             self.costs.set(slot, cost);
             if cost.is_finite() && (cost < best.1 || (cost == best.1 && w < best.0)) {
@@ -279,7 +275,7 @@ impl Part<'_> {
     /// other, and both store the same value.
     pub fn replan(&mut self, vertices: &[u32]) {
         self.update_best(vertices, MIN_PER_TASK / 4, true, |this, v| {
-            (this.plan_fan(v, |_| false), true)
+            (this.plan_fan(v), true)
         });
     }
 
