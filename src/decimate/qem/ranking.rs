@@ -120,6 +120,14 @@ impl EdgeCosts {
     }
 }
 
+/// Whether an edge to `w` costing `cost` beats `best` (other end, cost) as a vertex's
+/// cheapest edge: finite, cheaper, or as cheap to a smaller vertex. Every way of picking a
+/// vertex's best edge uses this one order, so that they all pick the same.
+#[inline(always)]
+fn cheaper(w: u32, cost: f32, best: (u32, f32)) -> bool {
+    cost.is_finite() && (cost < best.1 || (cost == best.1 && w < best.0))
+}
+
 /// A plan's cost as stored: f32, finite.
 pub(super) fn stored(cost: f64) -> f32 {
     (cost as f32).min(f32::MAX)
@@ -186,7 +194,7 @@ impl Part<'_> {
         self.for_each_edge(v, |slot, w| {
             let cost = memo.cost(w, || self.edge_cost(v, w));
             self.costs.set(slot, cost);
-            if cost.is_finite() && (cost < best.1 || (cost == best.1 && w < best.0)) {
+            if cheaper(w, cost, best) {
                 best = (w, cost);
             }
         });
@@ -198,7 +206,7 @@ impl Part<'_> {
         let mut best = (u32::MAX, f32::INFINITY);
         self.for_each_edge(v, |slot, w| {
             if let Some(cost) = self.costs.get(slot) {
-                if cost < best.1 || (cost == best.1 && w < best.0) {
+                if cheaper(w, cost, best) {
                     best = (w, cost);
                 }
             }
@@ -250,7 +258,9 @@ impl Part<'_> {
         let mut memo = FanMemo::default();
         self.for_each_edge(v, |slot, w| {
             let cost = if w > v {
-                memo.cost(w, || self.edge_cost(v, w))
+                let cost = memo.cost(w, || self.edge_cost(v, w));
+                self.costs.set(slot, cost);
+                cost
             } else if lo <= w && w < v {
                 self.costs.get(slot).unwrap_or(f32::INFINITY)
             } else {
@@ -259,10 +269,7 @@ impl Part<'_> {
                 complete &= w == v;
                 return;
             };
-            if w > v {
-                self.costs.set(slot, cost);
-            }
-            if cost.is_finite() && (cost < best.1 || (cost == best.1 && w < best.0)) {
+            if cheaper(w, cost, best) {
                 best = (w, cost);
             }
         });
