@@ -108,7 +108,8 @@ usage: decimate filename [action] [action-options]
   -h, --help            prints this message
   --version             prints the version
   filename              the VRML 1.0 / VRML 2.0 / Open Inventor ASCII file to open
-                        (gzipped too; PLY is also read)
+                        (gzipped too; PLY, OBJ, STL and OFF are also read, the
+                        extension or the first bytes pick the format)
   action                gui (DEFAULT) | nogui | shot
 
 action-options for nogui (one target is MANDATORY):

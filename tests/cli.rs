@@ -2,6 +2,7 @@
 //! parses back with the expected counts, errors that name the file and line with a non-zero
 //! exit and no output left behind, and the input never overwritten unless asked.
 
+use std::os::unix::fs::FileTypeExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -197,6 +198,60 @@ fn the_input_is_never_overwritten_unless_asked() {
 }
 
 #[test]
+fn an_output_through_a_link_or_into_a_pipe_lands_where_it_points() {
+    let dir = tempfile::tempdir().unwrap();
+    // A link: the file it names gets the model, the link stays a link, and a link to the
+    // input counts as the input.
+    std::fs::create_dir(dir.path().join("real")).unwrap();
+    std::os::unix::fs::symlink("real/m.ply", dir.path().join("link.ply")).unwrap();
+    let args = [
+        asset("test006.wrl"),
+        "nogui".into(),
+        "-p".into(),
+        "30".into(),
+    ];
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = decimate(dir.path(), &[&args[..], &["-o", "link.ply"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let link = std::fs::symlink_metadata(dir.path().join("link.ply")).unwrap();
+    assert!(link.file_type().is_symlink());
+    assert_eq!(counts(&dir.path().join("real/m.ply")), vec![(1681, 3358)]);
+    let input = dir.path().join("m.wrl");
+    std::fs::copy(asset("test006.wrl"), &input).unwrap();
+    std::os::unix::fs::symlink("m.wrl", dir.path().join("same.wrl")).unwrap();
+    let o = decimate(
+        dir.path(),
+        &["m.wrl", "nogui", "-p", "30", "-o", "same.wrl"],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read(&input).unwrap(),
+        std::fs::read(asset("test006.wrl")).unwrap()
+    );
+    // A named pipe (as `-o /dev/stdout` would be): written into, not replaced by a file.
+    let fifo = dir.path().join("pipe.off");
+    let made = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo");
+    assert!(made.success());
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::read(fifo))
+    };
+    let o = decimate(dir.path(), &[&args[..], &["-o", "pipe.off"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    // Asked before waiting on the reader: had the pipe been replaced, it would wait forever.
+    let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
+    assert!(kind.is_fifo(), "the pipe was replaced by a file");
+    let bytes = reader.join().unwrap().unwrap();
+    let scene = decimate::io::parse_bytes(bytes, &fifo).unwrap().scene;
+    let piped: Vec<_> = scene
+        .models
+        .iter()
+        .map(|m| (m.positions.len(), m.triangles.len()))
+        .collect();
+    assert_eq!(piped, vec![(1681, 3358)]);
+}
+
+#[test]
 fn bad_files_fail_with_file_and_line_and_leave_no_output() {
     let dir = tempfile::tempdir().unwrap();
     let cases = [
@@ -217,6 +272,22 @@ fn bad_files_fail_with_file_and_line_and_leave_no_output() {
     let o = decimate(dir.path(), &["missing.wrl", "nogui", "-p", "50"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("missing.wrl"));
+}
+
+#[test]
+fn the_readme_shows_the_usage_that_help_prints() {
+    // A user reads the README's usage block first: it must be what the binary accepts.
+    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
+        .expect("README.md");
+    let block = readme
+        .split("## Usage")
+        .nth(1)
+        .and_then(|rest| rest.split("```").nth(1))
+        .expect("a fenced block under '## Usage'");
+    let dir = tempfile::tempdir().unwrap();
+    let o = decimate(dir.path(), &["--help"]);
+    let help = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(block.trim(), help.trim());
 }
 
 #[test]

@@ -2,7 +2,6 @@
 //! viewer's renderer, viewports tiled as in the viewer (the first shows the original scene,
 //! the others the decimated one), and write a PNG through a temporary file and a rename.
 
-use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use crate::cli::{ShotModes, ShotOptions};
@@ -104,39 +103,34 @@ pub fn render(
     Ok((image, report))
 }
 
-/// Writes `image` as an RGBA PNG: to `path.tmp` first, then renamed over `path`, so a crash
-/// never leaves half a file under the real name.
+/// Writes `image` as an RGBA PNG through [`crate::io::replace::replace_file`]: a temporary
+/// file renamed over `path`, so a crash never leaves half a file under the real name.
 pub fn write_png(image: &RgbaImage, path: &Path) -> Result<(), ShotError> {
-    let tmp = {
-        let mut name = path.as_os_str().to_owned();
-        name.push(".tmp");
-        std::path::PathBuf::from(name)
-    };
-    let io_err = |source| ShotError::Write {
-        file: path.to_path_buf(),
-        source,
-    };
-    let encode_err = |source| ShotError::Encode {
-        file: path.to_path_buf(),
-        source,
-    };
-    let file = std::fs::File::create(&tmp).map_err(io_err)?;
-    let result = (|| {
-        let mut out = BufWriter::new(file);
-        let mut encoder = png::Encoder::new(&mut out, image.width, image.height);
+    // The encoder's own error is kept aside: `replace_file` passes on I/O errors only.
+    let mut encoding = None;
+    let written = crate::io::replace::replace_file(path, |out| {
+        let mut encoder = png::Encoder::new(out, image.width, image.height);
         encoder.set_color(png::ColorType::Rgba);
         encoder.set_depth(png::BitDepth::Eight);
-        let mut writer = encoder.write_header().map_err(encode_err)?;
-        writer.write_image_data(&image.pixels).map_err(encode_err)?;
-        writer.finish().map_err(encode_err)?;
-        out.flush().map_err(io_err)?;
-        Ok(())
-    })();
-    match result {
-        Ok(()) => std::fs::rename(&tmp, path).map_err(io_err),
-        Err(e) => {
-            let _ = std::fs::remove_file(&tmp);
-            Err(e)
-        }
+        let result = encoder.write_header().and_then(|mut writer| {
+            writer.write_image_data(&image.pixels)?;
+            writer.finish()
+        });
+        result.map_err(|e| {
+            let message = e.to_string();
+            encoding = Some(e);
+            std::io::Error::other(message)
+        })
+    });
+    match (written, encoding) {
+        (Ok(()), _) => Ok(()),
+        (Err(_), Some(source)) => Err(ShotError::Encode {
+            file: path.to_path_buf(),
+            source,
+        }),
+        (Err(source), None) => Err(ShotError::Write {
+            file: path.to_path_buf(),
+            source,
+        }),
     }
 }

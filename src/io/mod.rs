@@ -7,7 +7,8 @@
 //! for both VRML families), `vrml1` (VRML 1.0 / Inventor state machine), `vrml2` (VRML 2.0
 //! tree walk), `build` (shape to model), `triangulate` (ear clipping), `ply`, `obj`, `stl`,
 //! `off` (those formats' readers and writers), `writer` (VRML 2.0 output), `progressive`
-//! (the binary `.pm` file of a progressive mesh, `--progressive`: its own reader and writer).
+//! (the binary `.pm` file of a progressive mesh, `--progressive`: its own reader and writer),
+//! `replace` (how every output replaces its file).
 
 mod build;
 mod lexer;
@@ -16,6 +17,7 @@ pub mod off;
 mod parse;
 pub mod ply;
 pub mod progressive;
+pub mod replace;
 pub mod stl;
 pub mod triangulate;
 mod vrml1;
@@ -351,37 +353,14 @@ pub fn write_vrml2(scene: &Scene, path: &Path) -> Result<(), WriteError> {
     write_atomically(path, |w| write_vrml2_to(w, scene))
 }
 
-/// Writes through `write` to a temporary file beside `path`, then renames it over `path`; on
-/// any error the temporary file is removed and `path` is left as it was.
+/// Writes through `write` into `path` with [`replace::replace_file`] (a temporary file and a
+/// rename; on any error `path` is left as it was), naming `path` in the error.
 pub(crate) fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> std::io::Result<()>,
 ) -> Result<(), WriteError> {
-    let err = |source| WriteError {
+    replace::replace_file(path, write).map_err(|source| WriteError {
         file: path.to_path_buf(),
         source,
-    };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = (|| {
-        let file = std::fs::File::create(&tmp)?;
-        let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
-        write(&mut w)?;
-        let file = w.into_inner().map_err(|e| e.into_error())?;
-        file.sync_all()?;
-        drop(file);
-        std::fs::rename(&tmp, path)
-    })();
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(err(e));
-    }
-    Ok(())
+    })
 }
