@@ -142,8 +142,20 @@ struct Decimator {
     cos_feature: f64,
     scratch: Scratch,
     fill: Vec<[u32; 3]>,
+    /// Which ring triangles each stretch of `fill` replaces: one region for a closed or open
+    /// ring, one per side of a crease.
+    regions: Vec<FillRegion>,
     loop_buf: Vec<u32>,
     neighbours: Vec<u32>,
+}
+
+/// The fill triangles from the previous region's `end` up to this `end` replace the ring
+/// triangles `from..to` (indices modulo the ring's length).
+#[derive(Debug, Clone, Copy)]
+struct FillRegion {
+    end: usize,
+    from: usize,
+    to: usize,
 }
 
 /// A fill is rejected when a new triangle's area is this small relative to its longest edge².
@@ -160,6 +172,7 @@ impl Decimator {
             cos_feature: feature_angle_deg.to_radians().cos(),
             scratch: Scratch::default(),
             fill: Vec::new(),
+            regions: Vec::new(),
             loop_buf: Vec::new(),
             neighbours: Vec::new(),
         }
@@ -225,6 +238,7 @@ impl Decimator {
             return false;
         };
         self.fill.clear();
+        self.regions.clear();
         let ok = match class {
             VertexClass::Simple => self.fill_closed(v),
             VertexClass::Boundary => self.fill_open(v),
@@ -266,12 +280,23 @@ impl Decimator {
         if r.len() == 3 && self.conn.has_triangle(r[0], r[1], r[2]) {
             return false; // would duplicate a face: the last step before a tetrahedron
         }
-        loop_split::triangulate(
+        self.fill_whole_ring(normal)
+    }
+
+    /// Triangulates the whole ring over the plane of `normal`, as one region.
+    fn fill_whole_ring(&mut self, normal: DVec3) -> bool {
+        let filled = loop_split::triangulate(
             &self.positions,
             &self.scratch.ring.verts,
             normal,
             &mut self.fill,
-        )
+        );
+        self.regions.push(FillRegion {
+            end: self.fill.len(),
+            from: 0,
+            to: self.scratch.ring.triangles.len(),
+        });
+        filled
     }
 
     /// Boundary vertex: the open path plus the closing edge between its ends.
@@ -291,12 +316,7 @@ impl Decimator {
         else {
             return false;
         };
-        loop_split::triangulate(
-            &self.positions,
-            &self.scratch.ring.verts,
-            normal,
-            &mut self.fill,
-        )
+        self.fill_whole_ring(normal)
     }
 
     /// Interior-edge vertex: split along the crease first, then fill each side on its own
@@ -322,12 +342,19 @@ impl Decimator {
             if !loop_split::triangulate(&self.positions, &self.loop_buf, normal, &mut self.fill) {
                 return false;
             }
+            self.regions.push(FillRegion {
+                end: self.fill.len(),
+                from,
+                to,
+            });
         }
         true
     }
 
     /// The fill must not flip or degenerate a triangle and must not create an edge that
-    /// already exists elsewhere (the result would be non-manifold).
+    /// already exists elsewhere (the result would be non-manifold). A new triangle is
+    /// compared with the old triangles of its own region only: across a crease the two sides
+    /// may face apart by up to 180°.
     fn fill_is_valid(&self, v: u32) -> bool {
         let r = &self.scratch.ring.verts;
         let k = r.len();
@@ -342,46 +369,49 @@ impl Decimator {
             let d = i.abs_diff(j);
             d == 1 || (closed && d == k - 1)
         };
-        // Normal of the old region: the sum of the ring triangles' area vectors.
-        let old: DVec3 = self.scratch.geometry.crosses.iter().copied().sum();
-        for tri in &self.fill {
-            let [a, b, c] = tri.map(|i| self.positions[i as usize].as_dvec3());
-            let cross = (b - a).cross(c - a);
-            let longest = (b - a)
-                .length_squared()
-                .max((c - b).length_squared())
-                .max((a - c).length_squared());
-            if cross.length() <= MIN_RELATIVE_AREA * longest {
-                return false;
-            }
-            // Flip test against the old triangles this one covers: it must face the same
-            // way as at least the region as a whole and as the nearest old triangle.
-            if cross.dot(old) <= 0.0 || !self.faces_like_old(cross, tri) {
-                return false;
-            }
-            for (x, y) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
-                if !is_ring_edge(x, y) && self.conn.has_edge_avoiding(x, y, v) {
+        let crosses = &self.scratch.geometry.crosses;
+        let mut start = 0;
+        for &region in &self.regions {
+            // Normal of the old region: the sum of its ring triangles' area vectors.
+            let old: DVec3 = (region.from..region.to).map(|i| crosses[i % k]).sum();
+            for tri in &self.fill[start..region.end] {
+                let [a, b, c] = tri.map(|i| self.positions[i as usize].as_dvec3());
+                let cross = (b - a).cross(c - a);
+                let longest = (b - a)
+                    .length_squared()
+                    .max((c - b).length_squared())
+                    .max((a - c).length_squared());
+                if cross.length() <= MIN_RELATIVE_AREA * longest {
                     return false;
                 }
+                // Flip test against the old triangles this one covers: it must face the same
+                // way as at least the region as a whole and as the nearest old triangle.
+                if cross.dot(old) <= 0.0 || !self.faces_like_old(cross, tri, region) {
+                    return false;
+                }
+                for (x, y) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
+                    if !is_ring_edge(x, y) && self.conn.has_edge_avoiding(x, y, v) {
+                        return false;
+                    }
+                }
             }
+            start = region.end;
         }
         true
     }
 
-    /// A new triangle faces like the old ring triangles that share one of its vertices.
-    fn faces_like_old(&self, cross: DVec3, tri: &[u32; 3]) -> bool {
+    /// A new triangle faces like the old ring triangles of its region that share one of its
+    /// vertices.
+    fn faces_like_old(&self, cross: DVec3, tri: &[u32; 3], region: FillRegion) -> bool {
         let r = &self.scratch.ring.verts;
         let k = r.len();
-        self.scratch
-            .geometry
-            .crosses
-            .iter()
-            .enumerate()
-            .all(|(i, &c)| {
-                let next = if i + 1 == k { r[0] } else { r[i + 1] };
-                let touches = tri.contains(&r[i]) || tri.contains(&next);
-                !touches || cross.dot(c) > -0.5 * cross.length() * c.length()
-            })
+        let crosses = &self.scratch.geometry.crosses;
+        (region.from..region.to).all(|i| {
+            let (i, c) = (i % k, crosses[i % k]);
+            let next = if i + 1 == k { r[0] } else { r[i + 1] };
+            let touches = tri.contains(&r[i]) || tri.contains(&next);
+            !touches || cross.dot(c) > -0.5 * cross.length() * c.length()
+        })
     }
 
     /// Writes live vertices and triangles back into `model`. `order` maps internal vertex ids
