@@ -3,19 +3,24 @@
 //! output's extension names (VRML 2.0 by default; `io::write_scene`) — never over the input
 //! unless `--overwrite` says so. With `--progressive FILE` the collapses are recorded too
 //! (`decimate_scene_progressive`) and written to FILE as vertex splits (`io::progressive`).
+//! When the input is such a file, nothing is decimated: each model's level that meets the
+//! target is rebuilt from the base by its vertex splits (`decimate::levels`), exactly as the
+//! recorded decimation left it at that count.
 
 use std::io::{IsTerminal, Write};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use crate::cli::Args;
-use crate::decimate::progressive::ProgressiveScene;
+use crate::decimate::levels::levels_for;
+use crate::decimate::progressive::{Lod, ProgressiveScene};
 use crate::decimate::{decimate_scene, decimate_scene_progressive, Report};
 use crate::io;
 use crate::mesh::Scene;
 
-/// Runs the nogui job; the exit code says whether the output was written.
-pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
+/// Runs the nogui job on `scene`, or on `recorded` when the input is a progressive mesh; the
+/// exit code says whether the output was written.
+pub fn run(mut scene: Scene, recorded: Option<ProgressiveScene>, args: &Args) -> ExitCode {
     crate::threads::join_pool();
     let outputs = std::iter::once(&args.output).chain(&args.progressive);
     for output in outputs {
@@ -26,6 +31,9 @@ pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
             );
             return ExitCode::from(2);
         }
+    }
+    if let Some(pm) = recorded {
+        return rebuild_levels(&pm, args);
     }
     let (report, progressive) = decimate(&mut scene, args);
     if !args.quiet {
@@ -48,6 +56,68 @@ pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
             let plural = if splits == 1 { "" } else { "s" };
             eprintln!("wrote {} ({splits} vertex split{plural})", path.display());
         }
+    }
+    ExitCode::SUCCESS
+}
+
+/// Writes each model of the progressive mesh `pm` at the level that meets the command line's
+/// count target (never below its base).
+fn rebuild_levels(pm: &ProgressiveScene, args: &Args) -> ExitCode {
+    let input = args.input.display();
+    let refuse = |why: String| {
+        eprintln!("decimate: {input}: {why}");
+        ExitCode::from(2)
+    };
+    if args.progressive.is_some() {
+        return refuse("is already a progressive mesh: --progressive has nothing to record".into());
+    }
+    let levels = match levels_for(pm, args.params.target) {
+        Some(levels) if args.params.max_error.is_none() => levels,
+        _ => {
+            return refuse(
+                "a progressive mesh records no errors: --max-error cannot pick a level; give \
+                 -p, -v, --keep-vertices or --keep-triangles"
+                    .into(),
+            )
+        }
+    };
+    let start = Instant::now();
+    let mut models = Vec::with_capacity(pm.models.len());
+    let mut s = String::new();
+    let (mut vb, mut tb, mut va, mut ta) = (0, 0, 0, 0);
+    for (m, &level) in pm.models.iter().zip(&levels) {
+        let mut lod = Lod::new(m);
+        lod.set_level(level);
+        let model = lod.model().clone();
+        let (v, t) = (model.positions.len(), model.triangles.len());
+        let (full_v, full_t) = (m.full_vertex_count(), m.full_face_count());
+        let base = if level == 0 && !m.splits.is_empty() {
+            "  (the base: the file holds no coarser level)"
+        } else {
+            ""
+        };
+        s += &format!(
+            "{:<24} vertices {full_v:>9} -> {v:<9} triangles {full_t:>9} -> {t:<9} level {level} \
+             of {}{base}\n",
+            m.base.name,
+            m.splits.len()
+        );
+        (vb, tb, va, ta) = (vb + full_v, tb + full_t, va + v, ta + t);
+        models.push(model);
+    }
+    if !args.quiet {
+        eprintln!(
+            "{s}total: vertices {vb} -> {va}, triangles {tb} -> {ta}; rebuilt by vertex splits \
+             in {:.3} s",
+            start.elapsed().as_secs_f64()
+        );
+    }
+    if let Err(e) = io::write_scene(&Scene { models }, &args.output) {
+        eprintln!("decimate: cannot write {e}");
+        return ExitCode::FAILURE;
+    }
+    if !args.quiet {
+        eprintln!("wrote {}", args.output.display());
     }
     ExitCode::SUCCESS
 }

@@ -129,7 +129,9 @@ action-options for nogui (one target is MANDATORY):
   --keep-features       never raise the feature angle: stop short of the target instead
   --no-weld             do not merge coincident vertices before decimating
   --progressive FILE    also write the collapses as vertex splits (FILE.pm), to rebuild
-                        any level between the result and the input (implies -a qem)
+                        any level between the result and the input (implies -a qem);
+                        with FILE.pm as the input, nogui rebuilds the level the target
+                        asks for (never below the base) instead of decimating
   --overwrite           allow -o or --progressive to name the input file
   -q, --quiet           no summary or progress on stderr
 

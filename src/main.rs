@@ -47,7 +47,7 @@ fn main() -> ExitCode {
     let scene = mesh::build::build_scene(outcome.scene, args.weld);
 
     match args.action {
-        Action::NoGui => batch::run(scene, &args),
+        Action::NoGui => batch::run(scene, outcome.progressive, &args),
         // (4) menus, (5) callbacks, (6) main loop: the viewer.
         Action::Gui | Action::Shot => decimate::app::run(scene, &args),
     }

@@ -3,6 +3,7 @@
 //! every model of a scene and returns a [`Report`].
 
 pub mod layout;
+pub mod levels;
 pub mod loop_split;
 pub mod progressive;
 pub mod qem;
@@ -253,7 +254,7 @@ fn run(
 
 /// Splits `total` into parts proportional to `weights` that add up to exactly `total`
 /// (cumulative rounding).
-fn share(total: usize, weights: &[usize]) -> Vec<usize> {
+pub(crate) fn share(total: usize, weights: &[usize]) -> Vec<usize> {
     let sum: usize = weights.iter().sum();
     if sum == 0 {
         return vec![0; weights.len()];

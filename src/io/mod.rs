@@ -1,7 +1,7 @@
 //! Reading and writing scenes. One module per format; all readers produce the same `Scene`.
 //!
 //! Entry points: [`read_scene`] (format from the header, the file name's extension or the
-//! content; gzip handled here), [`write_scene`] (format from the output's extension) and
+//! content; gzip handled here; a progressive mesh gives its full meshes and the record), [`write_scene`] (format from the output's extension) and
 //! [`write_vrml2`] (all writers go through a temporary file, then rename); [`parse_bytes`] /
 //! [`parse_str`] read from memory. Submodules: `lexer` (shared tokens), `parse` (node trees
 //! for both VRML families), `vrml1` (VRML 1.0 / Inventor state machine), `vrml2` (VRML 2.0
@@ -28,6 +28,7 @@ use std::collections::HashSet;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
+use crate::decimate::progressive::ProgressiveScene;
 use crate::mesh::Scene;
 use lexer::{PResult, ParseError};
 
@@ -84,6 +85,8 @@ pub struct WriteError {
 pub struct ReadOutcome {
     pub scene: Scene,
     pub warnings: Vec<String>,
+    /// Set when the file is a progressive mesh (`FILE.pm`); `scene` is then its full meshes.
+    pub progressive: Option<ProgressiveScene>,
 }
 
 /// Most models one file may expand to (DEF/USE instancing can multiply them).
@@ -211,6 +214,15 @@ fn parse_bytes_with(
             })?;
         bytes = out;
     }
+    if bytes.starts_with(&progressive::MAGIC) {
+        let pm = progressive::parse_progressive(&bytes, path)?;
+        let models = pm.models.iter().map(|m| m.original()).collect();
+        return Ok(ReadOutcome {
+            scene: Scene { models },
+            warnings: Vec::new(),
+            progressive: Some(pm),
+        });
+    }
     let syntax = |e: ParseError| ReadError::Syntax {
         file: file.clone(),
         line: e.line,
@@ -219,7 +231,11 @@ fn parse_bytes_with(
     let ply_by_name = by_name == Some(Format::Ply);
     if bytes.starts_with(b"ply") && matches!(bytes.get(3), Some(b'\n' | b'\r')) || ply_by_name {
         let (scene, warnings) = ply::read_ply(&bytes).map_err(syntax)?;
-        return Ok(ReadOutcome { scene, warnings });
+        return Ok(ReadOutcome {
+            scene,
+            warnings,
+            progressive: None,
+        });
     }
     let first_line_end = bytes
         .iter()
@@ -258,7 +274,11 @@ fn parse_bytes_with(
         };
         if sniffed.is_some() {
             let (scene, warnings) = outcome;
-            return Ok(ReadOutcome { scene, warnings });
+            return Ok(ReadOutcome {
+                scene,
+                warnings,
+                progressive: None,
+            });
         }
     }
     let dialect = if header.starts_with("#VRML V1.0 ascii") {
@@ -323,6 +343,7 @@ fn parse_tree(bytes: &[u8], dialect: parse::Dialect) -> PResult<ReadOutcome> {
     Ok(ReadOutcome {
         scene: Scene { models },
         warnings,
+        progressive: None,
     })
 }
 
