@@ -2,55 +2,39 @@
 //! splits are the recorded decimation's collapses in reverse, so a level is that decimation
 //! as it stood once it had removed that many vertices (or come down to that many
 //! triangles). Counts are shared among the models as [`super::decimate_scene`] shares them,
-//! in proportion to the full meshes' sizes. A level never goes below the base mesh, the
+//! in proportion to the full meshes' sizes (`Shares`). A level never goes below the base mesh, the
 //! coarsest the file holds.
 
 use super::progressive::ProgressiveScene;
-use super::{share, Target};
+use super::{Shares, Target};
 
 /// The level (splits applied to the base) of each model of `pm` for `target`; `None` for a
 /// target that is no count (an error bound alone: the file records no errors).
 pub fn levels_for(pm: &ProgressiveScene, target: Target) -> Option<Vec<usize>> {
+    if target == Target::ErrorOnly {
+        return None;
+    }
     let vertices: Vec<usize> = pm.models.iter().map(|m| m.full_vertex_count()).collect();
     let triangles: Vec<usize> = pm.models.iter().map(|m| m.full_face_count()).collect();
-    let removals = match target {
-        Target::RemovePercent(p) => vertices
-            .iter()
-            .map(|&n| ((p / 100.0) * n as f64).round() as usize)
-            .collect(),
-        Target::RemoveVertices(k) => share(k, &vertices),
-        Target::KeepVertices(k) => {
-            share(vertices.iter().sum::<usize>().saturating_sub(k), &vertices)
+    let shares = Shares::of(target, &vertices, &triangles);
+    let levels = pm.models.iter().enumerate().map(|(i, m)| {
+        let splits = m.splits.len();
+        if let Target::KeepTriangles(_) = target {
+            // Faces only grow with the level: the finest level within the share.
+            let keep = shares.keep_triangles[i];
+            let mut faces = m.base.triangles.len();
+            m.splits
+                .iter()
+                .take_while(|s| {
+                    faces += s.added.len();
+                    faces <= keep
+                })
+                .count()
+        } else {
+            splits - shares.removals[i].min(splits)
         }
-        Target::KeepTriangles(k) => {
-            let keep = share(k.min(triangles.iter().sum()), &triangles);
-            return Some(
-                pm.models
-                    .iter()
-                    .zip(keep)
-                    .map(|(m, keep)| {
-                        // Faces only grow with the level: the finest level within `keep`.
-                        let mut faces = m.base.triangles.len();
-                        m.splits
-                            .iter()
-                            .take_while(|s| {
-                                faces += s.added.len();
-                                faces <= keep
-                            })
-                            .count()
-                    })
-                    .collect(),
-            );
-        }
-        Target::ErrorOnly => return None,
-    };
-    Some(
-        pm.models
-            .iter()
-            .zip(removals)
-            .map(|(m, remove)| m.splits.len() - remove.min(m.splits.len()))
-            .collect(),
-    )
+    });
+    Some(levels.collect())
 }
 
 #[cfg(test)]

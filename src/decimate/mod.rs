@@ -155,23 +155,10 @@ fn run(
     let start = Instant::now();
     let vertices: Vec<usize> = scene.models.iter().map(|m| m.used_vertex_count()).collect();
     let triangles: Vec<usize> = scene.models.iter().map(|m| m.triangles.len()).collect();
-    let total_vertices: usize = vertices.iter().sum();
-    let total_triangles: usize = triangles.iter().sum();
-
-    // Share the scene's target among models in proportion to their size.
-    let removals: Vec<usize> = match params.target {
-        Target::RemovePercent(p) => vertices
-            .iter()
-            .map(|&n| ((p / 100.0) * n as f64).round() as usize)
-            .collect(),
-        Target::RemoveVertices(k) => share(k, &vertices),
-        Target::KeepVertices(k) => share(total_vertices.saturating_sub(k), &vertices),
-        Target::KeepTriangles(_) | Target::ErrorOnly => vec![usize::MAX; vertices.len()],
-    };
-    let keep_triangles: Vec<usize> = match params.target {
-        Target::KeepTriangles(k) => share(k.min(total_triangles), &triangles),
-        _ => vec![0; triangles.len()],
-    };
+    let Shares {
+        removals,
+        keep_triangles,
+    } = Shares::of(params.target, &vertices, &triangles);
     let relax_features = !params.keep_features
         && match params.target {
             Target::RemovePercent(p) => p < 100.0,
@@ -252,9 +239,42 @@ fn run(
     }
 }
 
+/// A scene's count target shared among its models in proportion to their sizes.
+pub(crate) struct Shares {
+    /// Vertices each model is to lose (`usize::MAX`: no vertex count applies).
+    pub removals: Vec<usize>,
+    /// Triangles each model is to keep (0: no triangle count applies).
+    pub keep_triangles: Vec<usize>,
+}
+
+impl Shares {
+    /// `target` over models with these used `vertices` and `triangles`.
+    pub(crate) fn of(target: Target, vertices: &[usize], triangles: &[usize]) -> Self {
+        let removals = match target {
+            Target::RemovePercent(p) => vertices
+                .iter()
+                .map(|&n| ((p / 100.0) * n as f64).round() as usize)
+                .collect(),
+            Target::RemoveVertices(k) => share(k, vertices),
+            Target::KeepVertices(k) => {
+                share(vertices.iter().sum::<usize>().saturating_sub(k), vertices)
+            }
+            Target::KeepTriangles(_) | Target::ErrorOnly => vec![usize::MAX; vertices.len()],
+        };
+        let keep_triangles = match target {
+            Target::KeepTriangles(k) => share(k.min(triangles.iter().sum()), triangles),
+            _ => vec![0; triangles.len()],
+        };
+        Self {
+            removals,
+            keep_triangles,
+        }
+    }
+}
+
 /// Splits `total` into parts proportional to `weights` that add up to exactly `total`
 /// (cumulative rounding).
-pub(crate) fn share(total: usize, weights: &[usize]) -> Vec<usize> {
+fn share(total: usize, weights: &[usize]) -> Vec<usize> {
     let sum: usize = weights.iter().sum();
     if sum == 0 {
         return vec![0; weights.len()];
