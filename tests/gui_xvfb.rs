@@ -88,6 +88,28 @@ fn window_of(viewer: &mut Viewer, log: &Path, timeout: Duration) -> Option<Strin
     }
 }
 
+/// Waits until the X server on `DISPLAY` answers `xdpyinfo`; fails, naming the server and
+/// what `xdpyinfo` said, when it does not within `timeout`, so that a virtual X server that
+/// is slow to start is waited for, and one that is gone is not blamed on the viewer.
+fn x_server_answers(timeout: Duration) {
+    let display = std::env::var("DISPLAY").unwrap_or_default();
+    let start = Instant::now();
+    loop {
+        let out = Command::new("xdpyinfo")
+            .output()
+            .unwrap_or_else(|e| panic!("cannot run xdpyinfo (install x11-utils): {e}"));
+        if out.status.success() {
+            return;
+        }
+        assert!(
+            start.elapsed() < timeout,
+            "the X server on DISPLAY={display} does not answer (not the viewer's fault): {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        std::thread::sleep(Duration::from_millis(250));
+    }
+}
+
 /// The last lines of the viewer's stderr, for failure messages.
 fn read_log(log: &Path) -> String {
     let text = std::fs::read_to_string(log).unwrap_or_default();
@@ -218,6 +240,7 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     if !display_or_skip() {
         return;
     }
+    x_server_answers(Duration::from_secs(20));
     let dir = scratch();
     write_cube(&dir.join("cube.wrl"));
     // A viewer whose window never shows is reported with its log and the X window tree; it
