@@ -1,8 +1,9 @@
 //! Reading and writing scenes. One module per format; all readers produce the same `Scene`.
 //!
 //! Entry points: [`read_scene`] (format from the header, the file name's extension or the
-//! content; gzip handled here; a progressive mesh gives its full meshes and the record), [`write_scene`] (format from the output's extension) and
-//! [`write_vrml2`] (all writers go through a temporary file, then rename); [`parse_bytes`] /
+//! content; gzip handled here; a progressive mesh gives its full meshes and the record),
+//! [`write_scene`] (format from the output's extension) and [`write_vrml2`] (all writers go
+//! through [`replace::replace_file`]: a temporary file, then a rename); [`parse_bytes`] /
 //! [`parse_str`] read from memory. Submodules: `lexer` (shared tokens), `parse` (node trees
 //! for both VRML families), `vrml1` (VRML 1.0 / Inventor state machine), `vrml2` (VRML 2.0
 //! tree walk), `build` (shape to model), `triangulate` (ear clipping), `ply`, `obj`, `stl`,
