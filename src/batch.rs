@@ -96,12 +96,8 @@ fn rebuild_levels(pm: &ProgressiveScene, args: &Args) -> ExitCode {
         } else {
             ""
         };
-        s += &format!(
-            "{:<24} vertices {full_v:>9} -> {v:<9} triangles {full_t:>9} -> {t:<9} level {level} \
-             of {}{base}\n",
-            m.base.name,
-            m.splits.len()
-        );
+        s += &counts_column(&m.base.name, (full_v, v), (full_t, t));
+        s += &format!(" level {level} of {}{base}\n", m.splits.len());
         (vb, tb, va, ta) = (vb + full_v, tb + full_t, va + v, ta + t);
         models.push(model);
     }
@@ -145,6 +141,15 @@ fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
     }
 }
 
+/// A model's line of a summary up to its counts, (before, after) each; decimation and
+/// level rebuilding print the same columns.
+fn counts_column(name: &str, vertices: (usize, usize), triangles: (usize, usize)) -> String {
+    format!(
+        "{name:<24} vertices {:>9} -> {:<9} triangles {:>9} -> {:<9}",
+        vertices.0, vertices.1, triangles.0, triangles.1
+    )
+}
+
 /// The per-model table printed after a run.
 pub fn summary(report: &Report) -> String {
     let mut s = String::new();
@@ -163,15 +168,12 @@ pub fn summary(report: &Report) -> String {
                 m.feature_angle_deg
             );
         }
-        s += &format!(
-            "{:<24} vertices {:>9} -> {:<9} triangles {:>9} -> {:<9} max error {:.4e}{state}\n",
-            m.name,
-            m.vertices_before,
-            m.vertices_after,
-            m.triangles_before,
-            m.triangles_after,
-            m.max_error
+        s += &counts_column(
+            &m.name,
+            (m.vertices_before, m.vertices_after),
+            (m.triangles_before, m.triangles_after),
         );
+        s += &format!(" max error {:.4e}{state}\n", m.max_error);
         vb += m.vertices_before;
         tb += m.triangles_before;
         va += m.vertices_after;
