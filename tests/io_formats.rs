@@ -77,8 +77,11 @@ f 5/1/1 6/1 \\
         panic!("no per-vertex colours: {:?}", s.models[1].colors)
     };
     assert_eq!(c, &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
-    // One warning per kind: mtllib, usemtl (twice in the file), s, l.
-    assert_eq!(out.warnings.len(), 4, "{:?}", out.warnings);
+    // One warning per kind: mtllib, usemtl (twice in the file), s, l; and one for the
+    // second model, whose third corner has no texture coordinate (so it has none).
+    assert_eq!(out.warnings.len(), 5, "{:?}", out.warnings);
+    assert!(out.warnings[4].starts_with("second: some face corners have texture"));
+    assert_eq!(s.models[1].texcoords, None);
     assert_eq!(
         out.warnings.iter().filter(|w| w.contains("usemtl")).count(),
         1

@@ -36,6 +36,7 @@ fn scene() -> Scene {
             [0.3, 0.6, 0.9],
         ])),
         normals: Some(Attribute::PerFace(vec![Vec3::Z, Vec3::X])),
+        texcoords: None,
         diffuse: [0.25, 0.5, 0.75],
         crease_angle: Some(0.5),
         solid: true,

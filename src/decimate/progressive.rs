@@ -91,6 +91,7 @@ impl ProgressiveModel {
             triangles: vec![[0; 3]; fine.triangles.len()],
             colors: None,
             normals: None,
+            texcoords: None,
             diffuse: fine.diffuse,
             crease_angle: fine.crease_angle,
             solid: fine.solid,

@@ -12,12 +12,14 @@
 //!    interior edge → distance to the line through its two feature neighbours;
 //!    plus the error already accumulated at the vertex by earlier removals around it, so that
 //!    the queue's key bounds the distance to the original surface (as VTK's later
-//!    implementation of the paper does);
+//!    implementation of the paper does); texture seam vertices (`mesh::seams`) are never
+//!    queued;
 //! 4. remove: pop the smallest, fill its hole by recursive loop splitting
 //!    (`loop_split`), keeping creases (an interior-edge vertex's loop is first split along its
 //!    feature edge) and rejecting fills that flip or degenerate a triangle or create an edge
 //!    that already exists (non-manifold) — such a vertex is kept; then re-rank the loop;
-//! 5. compact: live vertices and triangles back into the model's arrays.
+//! 5. compact: live vertices and triangles (and their colours, normals and texture
+//!    coordinates, which a removal never changes) back into the model's arrays.
 //!
 //! Entries in the queue are invalidated lazily by a per-vertex version number, so each
 //! removal costs O(valence² + log n) and nothing in the loop is quadratic in the mesh size.
@@ -30,7 +32,7 @@ use super::loop_split;
 use super::queue::VertexQueue;
 use crate::mesh::classify::{classify, RingGeometry, VertexClass};
 use crate::mesh::topology::{Connectivity, Ring};
-use crate::mesh::{Attribute, Model};
+use crate::mesh::{seams, Attribute, Model};
 
 /// How far one model may be decimated.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -81,9 +83,12 @@ pub fn decimate_model(
     faces.sort_by_cached_key(|&t| loaded.triangle(model, t).into_iter().min());
     loaded.faces = faces;
     let triangles = loaded.triangles(model);
+    let seams = seams::seam_vertices(model);
+    let pinned: Vec<bool> = loaded.order.iter().map(|&v| seams[v as usize]).collect();
 
     // 2. connect
     let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
+    d.pinned = pinned;
 
     // 3. classify and rank
     d.rank_all();
@@ -147,6 +152,8 @@ struct Decimator {
     regions: Vec<FillRegion>,
     loop_buf: Vec<u32>,
     neighbours: Vec<u32>,
+    /// Vertices never removed: texture seams (`mesh::seams`).
+    pinned: Vec<bool>,
 }
 
 /// The fill triangles from the previous region's `end` up to this `end` replace the ring
@@ -175,6 +182,7 @@ impl Decimator {
             regions: Vec::new(),
             loop_buf: Vec::new(),
             neighbours: Vec::new(),
+            pinned: vec![false; n],
         }
     }
 
@@ -201,13 +209,13 @@ impl Decimator {
     /// rebuilds the queue from the keys in linear time.
     fn rank_all(&mut self) {
         let (conn, positions, cos_feature) = (&self.conn, &self.positions, self.cos_feature);
-        let accumulated = &self.accumulated;
+        let (accumulated, pinned) = (&self.accumulated, &self.pinned);
         // An indexed collect writes straight into one vector of exactly n keys.
         let keys: Vec<f64> = (0..positions.len() as u32)
             .into_par_iter()
             .map_init(Scratch::default, |scratch, v| {
                 match evaluate(conn, positions, cos_feature, v, scratch) {
-                    Some((class, distance)) if class.removable() => {
+                    Some((class, distance)) if class.removable() && !pinned[v as usize] => {
                         distance + accumulated[v as usize]
                     }
                     _ => f64::NAN, // not queued
@@ -225,7 +233,7 @@ impl Decimator {
     /// (Re)computes `v`'s queue key; queues `v` when removable, takes it out otherwise.
     fn rank(&mut self, v: u32) {
         match self.evaluate(v) {
-            Some((class, distance)) if class.removable() => {
+            Some((class, distance)) if class.removable() && !self.pinned[v as usize] => {
                 self.queue.set(v, distance + self.accumulated[v as usize]);
             }
             _ => self.queue.remove(v),
@@ -437,6 +445,12 @@ impl Decimator {
             Some(n @ Attribute::PerVertex(_)) => Some(n.select(&kept_vertices, &faces)),
             _ => None, // face normals of refilled holes would be wrong: recomputed on display
         };
+        model.texcoords = model.texcoords.as_ref().map(|t| {
+            kept_vertices
+                .iter()
+                .map(|&v| t.get(v as usize).copied().unwrap_or_default())
+                .collect()
+        });
     }
 }
 

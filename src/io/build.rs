@@ -32,6 +32,14 @@ pub enum Bind<'a> {
     },
 }
 
+/// Texture coordinates of a shape: `values` flat (u v), `index[k]` the pair of the `k`-th
+/// polygon corner (a per-vertex binding repeats the coordinate indices).
+#[derive(Debug, Clone)]
+pub struct TexCoords<'a> {
+    pub values: &'a [f32],
+    pub index: Vec<u32>,
+}
+
 /// One shape to build: polygons as corner lists over `coords` (flat x y z).
 pub struct ShapeSpec<'a> {
     pub name: String,
@@ -43,6 +51,9 @@ pub struct ShapeSpec<'a> {
     pub ends: Vec<u32>,
     pub colors: Bind<'a>,
     pub normals: Bind<'a>,
+    /// Texture coordinates: a corner whose vertex already has other coordinates gets a vertex
+    /// of its own, so seams are kept.
+    pub texcoords: Option<TexCoords<'a>>,
     pub ccw: bool,
     pub solid: bool,
     pub crease_angle: Option<f32>,
@@ -116,11 +127,12 @@ fn check_bind<'a>(
 /// shapes over a big shared array (so many small shapes stay linear overall).
 enum Remap {
     Dense(Vec<u32>),
-    Sparse(HashMap<u32, u32>),
+    Sparse(HashMap<u64, u32>),
 }
 
 impl Remap {
-    fn get_or_insert(&mut self, old: u32, next: u32) -> (u32, bool) {
+    /// `old`: a point index, or a point index and a texture coordinate index (sparse only).
+    fn get_or_insert(&mut self, old: u64, next: u32) -> (u32, bool) {
         match self {
             Self::Dense(v) => {
                 let slot = &mut v[old as usize];
@@ -153,6 +165,7 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         ends,
         colors,
         normals,
+        texcoords,
         ccw,
         solid,
         crease_angle,
@@ -171,8 +184,9 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
     }
     let colors = check_bind(colors, "colour", &name, warnings);
     let normals = check_bind(normals, "normal", &name, warnings);
+    let texcoords = texcoords.filter(|t| texcoords_fit(t, corners.len(), &name, warnings));
 
-    let mut remap = if corners.len() * 4 < npoints {
+    let mut remap = if texcoords.is_some() || corners.len() * 4 < npoints {
         Remap::Sparse(HashMap::with_capacity(corners.len()))
     } else {
         Remap::Dense(vec![u32::MAX; npoints])
@@ -181,8 +195,14 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
     let mut local: Vec<u32> = Vec::with_capacity(corners.len());
     let mut vcolors: Vec<[f32; 3]> = Vec::new();
     let mut vnormals: Vec<Vec3> = Vec::new();
+    let mut vtexcoords: Vec<[f32; 2]> = Vec::new();
     for (k, &c) in corners.iter().enumerate() {
-        let (v, fresh) = remap.get_or_insert(c, positions.len() as u32);
+        // With texture coordinates a vertex is a (point, coordinate pair) pair.
+        let key = match &texcoords {
+            Some(t) => u64::from(c) | u64::from(t.index[k]) << 32,
+            None => u64::from(c),
+        };
+        let (v, fresh) = remap.get_or_insert(key, positions.len() as u32);
         if fresh {
             let i = c as usize * 3;
             let p = Vec3::new(coords[i], coords[i + 1], coords[i + 2]);
@@ -207,6 +227,10 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
                     .and_then(|&i| value3(values, i))
                     .unwrap_or([0.0; 3]);
                 vnormals.push(Vec3::from(n));
+            }
+            if let Some(t) = &texcoords {
+                let i = t.index[k] as usize * 2;
+                vtexcoords.push([t.values[i], t.values[i + 1]]);
             }
         }
         local.push(v);
@@ -286,10 +310,47 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         triangles,
         colors,
         normals,
+        texcoords: texcoords.map(|_| vtexcoords),
         diffuse,
         crease_angle,
         solid,
     })
+}
+
+/// True when every corner has a texture coordinate pair in range and every used pair is
+/// finite; otherwise the shape's texture coordinates are dropped with a warning (the shape
+/// itself is still read).
+fn texcoords_fit(
+    t: &TexCoords<'_>,
+    corners: usize,
+    name: &str,
+    warnings: &mut Vec<String>,
+) -> bool {
+    let count = t.values.len() / 2;
+    let problem = if t.index.len() < corners {
+        Some(format!(
+            "{} texture coordinate indices for {corners} polygon corners",
+            t.index.len()
+        ))
+    } else if let Some(bad) = t.index[..corners].iter().find(|&&i| i as usize >= count) {
+        Some(format!(
+            "texture coordinate index {bad} is out of range ({count} pairs)"
+        ))
+    } else {
+        t.index[..corners]
+            .iter()
+            .find(|&&i| {
+                !(t.values[i as usize * 2].is_finite() && t.values[i as usize * 2 + 1].is_finite())
+            })
+            .map(|bad| format!("texture coordinate {bad} is not a finite pair"))
+    };
+    match problem {
+        Some(p) => {
+            warnings.push(format!("{name}: {p}; texture coordinates ignored"));
+            false
+        }
+        None => true,
+    }
 }
 
 /// Builds the triangles of triangle strips (`strips` as corner lists) as 3-corner polygons,

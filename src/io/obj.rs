@@ -3,14 +3,18 @@
 //!
 //! Read: `v x y z [w]` or `v x y z r g b` (per-vertex colours, 0..1), `vn` (indices checked,
 //! values not kept: OBJ normals are per corner and are recomputed with the crease angle like
-//! any file without normals), `vt` ignored, `f` with `v`, `v/vt`, `v//vn` or `v/vt/vn` corners
+//! any file without normals), `vt u [v [w]]` (texture coordinates, per corner: a point with
+//! different ones in different faces becomes one vertex per seam side; a group where some
+//! corner has none is read without them, with a warning), `f` with `v`, `v/vt`, `v//vn` or
+//! `v/vt/vn` corners
 //! and 1-based or negative (relative) indices, polygons of any size (triangulated, concave
 //! ones included), `o` / `g` starting a new model (named after them; groups without faces are
 //! dropped), `\` line continuation, `#` comments. `usemtl`, `mtllib`, `s`, `l`, `p` and any
 //! other statement are skipped with one warning per kind. A face may only use vertices defined
 //! above it (every exporter writes them first), so a bad index is reported on its own line.
 //! Write: one `o` per model, positions in world space (OBJ has no transforms), per-vertex
-//! colours as `v x y z r g b`, 1-based indices, counter-clockwise triangles.
+//! colours as `v x y z r g b`, texture coordinates as one `vt` per vertex (`f v/vt`), 1-based
+//! indices, counter-clockwise triangles.
 
 use std::borrow::Cow;
 use std::collections::HashSet;
@@ -19,7 +23,7 @@ use std::path::Path;
 
 use glam::Mat4;
 
-use super::build::{build, Bind, ShapeSpec};
+use super::build::{build, Bind, ShapeSpec, TexCoords};
 use super::lexer::{parse_f32, parse_int, PResult, ParseError};
 use super::WriteError;
 use crate::mesh::{Attribute, Scene};
@@ -151,6 +155,8 @@ pub(crate) fn looks_like_obj(bytes: &[u8]) -> bool {
 struct Group {
     name: String,
     corners: Vec<u32>,
+    /// Each corner's texture coordinate index, `u32::MAX` where it has none.
+    texcoords: Vec<u32>,
     ends: Vec<u32>,
     line: usize,
 }
@@ -160,6 +166,7 @@ impl Group {
         Self {
             name,
             corners: Vec::new(),
+            texcoords: Vec::new(),
             ends: Vec::new(),
             line: 0,
         }
@@ -188,10 +195,10 @@ fn resolve(w: &[u8], count: usize, line: usize, what: &str) -> PResult<u32> {
             line,
             format!(
                 "{what} index {i} is out of range: {count} {} defined above this line",
-                if what == "vertex" {
-                    "vertices are"
-                } else {
-                    "normals are"
+                match what {
+                    "vertex" => "vertices are",
+                    "normal" => "normals are",
+                    _ => "texture coordinates are",
                 }
             ),
         ));
@@ -208,6 +215,7 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
     let mut rgb: Vec<f32> = Vec::new();
     let mut colored = false;
     let mut normal_count = 0usize;
+    let mut uv: Vec<f32> = Vec::new();
     let mut groups: Vec<Group> = Vec::new();
     let mut cur = Group::new(String::new());
     for (line, text) in Lines::new(bytes, true) {
@@ -253,7 +261,13 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                 }
                 normal_count += 1;
             }
-            b"vt" => {}
+            b"vt" => {
+                uv.push(number(w.next(), line, "a texture coordinate's u")?);
+                uv.push(match w.next() {
+                    Some(v) => number(Some(v), line, "a texture coordinate's v")?,
+                    None => 0.0,
+                });
+            }
             b"f" => {
                 if cur.ends.is_empty() {
                     cur.line = line;
@@ -263,7 +277,11 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                     let mut parts = corner.split(|&b| b == b'/');
                     let v = parts.next().unwrap_or(corner);
                     cur.corners.push(resolve(v, nverts, line, "vertex")?);
-                    let _texture = parts.next();
+                    cur.texcoords
+                        .push(match parts.next().filter(|t| !t.is_empty()) {
+                            Some(t) => resolve(t, uv.len() / 2, line, "texture coordinate")?,
+                            None => u32::MAX,
+                        });
                     if let Some(n) = parts.next().filter(|n| !n.is_empty()) {
                         resolve(n, normal_count, line, "normal")?;
                     }
@@ -322,7 +340,22 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
         ));
     }
     let mut models = Vec::with_capacity(groups.len());
-    for g in groups {
+    for mut g in groups {
+        let texcoords = if g.texcoords.iter().all(|&t| t == u32::MAX) {
+            None
+        } else if g.texcoords.contains(&u32::MAX) {
+            warnings.push(format!(
+                "{}: some face corners have texture coordinates ('v/vt') and some do not; \
+                 texture coordinates ignored",
+                g.name
+            ));
+            None
+        } else {
+            Some(TexCoords {
+                values: &uv,
+                index: std::mem::take(&mut g.texcoords),
+            })
+        };
         let colors = if colored {
             Bind::PerCorner {
                 values: &rgb,
@@ -340,6 +373,7 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                 ends: g.ends,
                 colors,
                 normals: Bind::None,
+                texcoords,
                 ccw: true,
                 solid: false,
                 crease_angle: None,
@@ -385,7 +419,7 @@ pub fn write_obj_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         w,
         "# positions are in world space (model transforms applied)"
     )?;
-    let mut base = 1u64;
+    let (mut base, mut tbase) = (1u64, 1u64);
     for (i, m) in scene.models.iter().enumerate() {
         writeln!(w, "o {}", clean_name(&m.name, i))?;
         let colors = match &m.colors {
@@ -402,14 +436,28 @@ pub fn write_obj_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
                 None => writeln!(w, "v {} {} {}", p.x, p.y, p.z)?,
             }
         }
-        for [a, b, c] in super::outward_triangles(m) {
-            writeln!(
-                w,
-                "f {} {} {}",
-                a as u64 + base,
-                b as u64 + base,
-                c as u64 + base
-            )?;
+        // One `vt` per vertex, in the vertices' order; `vt` numbers run on across models,
+        // counting only those of textured models.
+        let textured = match &m.texcoords {
+            Some(t) if t.len() == m.positions.len() => {
+                for [u, v] in t {
+                    writeln!(w, "vt {u:?} {v:?}")?;
+                }
+                true
+            }
+            _ => false,
+        };
+        for t in super::outward_triangles(m) {
+            let [a, b, c] = t.map(|v| v as u64 + base);
+            let (at, bt, ct) = (a - base + tbase, b - base + tbase, c - base + tbase);
+            if textured {
+                writeln!(w, "f {a}/{at} {b}/{bt} {c}/{ct}")?;
+            } else {
+                writeln!(w, "f {a} {b} {c}")?;
+            }
+        }
+        if textured {
+            tbase += m.positions.len() as u64;
         }
         base += m.positions.len() as u64;
     }

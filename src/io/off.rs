@@ -319,6 +319,7 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
             ends,
             colors,
             normals: Bind::None,
+            texcoords: None,
             ccw: true,
             solid: false,
             crease_angle: None,

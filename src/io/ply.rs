@@ -416,6 +416,7 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
         ends,
         colors,
         normals,
+        texcoords: None,
         ccw: true,
         solid: false,
         crease_angle: None,

@@ -107,6 +107,7 @@ fn model(
         ends: (1..=(n / 3) as u32).map(|t| t * 3).collect(),
         colors: Bind::None,
         normals: Bind::None,
+        texcoords: None,
         ccw: true,
         solid: false,
         crease_angle: None,

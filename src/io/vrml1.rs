@@ -507,6 +507,7 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
         ends: geo.ends,
         colors,
         normals,
+        texcoords: None,
         ccw: state.ccw || kind == "Cube",
         solid: state.solid || kind == "Cube",
         crease_angle: state.crease_angle,

@@ -6,6 +6,7 @@ pub mod build;
 pub mod classify;
 pub mod measure;
 pub mod scene;
+pub mod seams;
 pub mod shapes;
 pub mod spatial;
 pub mod topology;

@@ -54,6 +54,10 @@ pub struct Model {
     pub colors: Option<Attribute<[f32; 3]>>,
     /// Normals from the file, if any; `mesh::normals` computes them when absent.
     pub normals: Option<Attribute<Vec3>>,
+    /// Texture coordinates (u, v), one per vertex, if the file gave any. A vertex where the
+    /// texture has a seam is split into one vertex per side (same position, different
+    /// coordinates), so the model is cut along its seams; decimation pins such vertices.
+    pub texcoords: Option<Vec<[f32; 2]>>,
     /// Diffuse colour of the shape's material (used when there are no per-vertex/face colours).
     pub diffuse: [f32; 3],
     /// Crease angle in radians from the file (ShapeHints / IndexedFaceSet), if given.
@@ -71,6 +75,7 @@ impl Default for Model {
             triangles: Vec::new(),
             colors: None,
             normals: None,
+            texcoords: None,
             diffuse: [0.8, 0.8, 0.8],
             crease_angle: None,
             solid: false,

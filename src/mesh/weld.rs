@@ -5,7 +5,8 @@
 //! hashing positions into a grid of cells of that size and looking at the 27 cells around
 //! each vertex. Expected linear time either way. The first vertex of a group is kept (with its
 //! per-vertex attributes); triangles are remapped, and those that collapse are dropped along
-//! with their per-face attributes.
+//! with their per-face attributes. Vertices with different texture coordinates never merge:
+//! they are the two sides of a texture seam.
 
 use std::collections::HashMap;
 
@@ -22,6 +23,13 @@ fn key_exact(p: Vec3) -> [u32; 3] {
     ]
 }
 
+/// The texture coordinates' bits (zero without them), as `key_exact`.
+fn uv_key(texcoords: Option<&[[f32; 2]]>, i: usize) -> [u32; 2] {
+    texcoords
+        .and_then(|t| t.get(i))
+        .map_or([0; 2], |uv| uv.map(|x| (x + 0.0).to_bits()))
+}
+
 fn cell(p: Vec3, inv: f32) -> [i64; 3] {
     let c = (p * inv).floor();
     [c.x as i64, c.y as i64, c.z as i64]
@@ -34,6 +42,7 @@ pub fn weld(model: &mut Model, tolerance: f32) -> usize {
     // old vertex -> new vertex; `kept` lists the old indices that survive, in order.
     let mut map = vec![0u32; n];
     let mut kept: Vec<u32> = Vec::with_capacity(n);
+    let texcoords = model.texcoords.as_deref();
     if tolerance > 0.0 && tolerance.is_finite() {
         let inv = 1.0 / tolerance;
         let tol2 = tolerance * tolerance;
@@ -54,8 +63,11 @@ pub fn weld(model: &mut Model, tolerance: f32) -> usize {
                         ];
                         let mut at = heads.get(&k).copied();
                         while let Some(j) = at {
-                            let q = model.positions[kept[j as usize] as usize];
-                            if p.distance_squared(q) <= tol2 {
+                            let other = kept[j as usize] as usize;
+                            let q = model.positions[other];
+                            if p.distance_squared(q) <= tol2
+                                && uv_key(texcoords, i) == uv_key(texcoords, other)
+                            {
                                 found = Some(j);
                                 break 'search;
                             }
@@ -78,9 +90,10 @@ pub fn weld(model: &mut Model, tolerance: f32) -> usize {
             };
         }
     } else {
-        let mut seen: HashMap<[u32; 3], u32> = HashMap::with_capacity(n);
+        let mut seen: HashMap<([u32; 3], [u32; 2]), u32> = HashMap::with_capacity(n);
         for (i, &p) in model.positions.iter().enumerate() {
-            map[i] = *seen.entry(key_exact(p)).or_insert_with(|| {
+            let key = (key_exact(p), uv_key(texcoords, i));
+            map[i] = *seen.entry(key).or_insert_with(|| {
                 kept.push(i as u32);
                 kept.len() as u32 - 1
             });
@@ -120,6 +133,12 @@ pub fn weld(model: &mut Model, tolerance: f32) -> usize {
     }
     fix(&mut model.colors, &kept, &keep_face);
     fix(&mut model.normals, &kept, &keep_face);
+    if let Some(t) = &mut model.texcoords {
+        *t = kept
+            .iter()
+            .filter_map(|&i| t.get(i as usize).copied())
+            .collect();
+    }
     merged
 }
 
@@ -190,6 +209,26 @@ mod tests {
         // The second triangle duplicates the first; the third collapses and goes.
         assert_eq!(m.triangles, vec![[0, 1, 2], [0, 1, 2]]);
         assert_eq!(m.colors, Some(Attribute::PerFace(vec![[1.0; 3], [2.0; 3]])));
+    }
+
+    #[test]
+    fn vertices_on_a_texture_seam_stay_apart() {
+        let mut m = split_cube();
+        // The first two faces' corners share u = 0; the others have their own u.
+        m.texcoords = Some(
+            (0..24)
+                .map(|i| if i < 8 { [0.0, 0.5] } else { [i as f32, 0.5] })
+                .collect(),
+        );
+        // Faces 0 and 1 share no corner point: nothing merges, at either tolerance.
+        let mut exact = m.clone();
+        assert_eq!(weld(&mut exact, 0.0), 0);
+        assert_eq!(weld(&mut m, 1e-3), 0);
+        // Same coordinates everywhere: the cube closes up, with its coordinates.
+        let mut same = split_cube();
+        same.texcoords = Some(vec![[0.25, 0.75]; 24]);
+        assert_eq!(weld(&mut same, 0.0), 16);
+        assert_eq!(same.texcoords, Some(vec![[0.25, 0.75]; 8]));
     }
 
     #[test]

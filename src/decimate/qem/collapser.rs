@@ -45,6 +45,8 @@ pub(super) struct Collapser {
     quadrics: Vec<Quadric>,
     colors: Option<Vec<[f32; 3]>>,
     normals: Option<Vec<[f32; 3]>>,
+    /// Texture coordinates, interpolated as the normals are.
+    pub texcoords: Option<Vec<[f32; 2]>>,
     /// Planned cost of every edge, per half-edge slot.
     costs: EdgeCosts,
     /// Each vertex's cheapest unblocked edge: the other end (`u32::MAX`: none) and its cost.
@@ -80,6 +82,7 @@ impl Collapser {
             quadrics,
             colors,
             normals,
+            texcoords: None,
             best: vec![u32::MAX; n],
             best_cost: vec![f32::INFINITY; n],
             has_blocked: vec![false; n],
@@ -101,6 +104,15 @@ impl Collapser {
         Self::new(positions, loaded.triangles(model), None, None, 0.5)
     }
 
+    /// Makes the flagged vertices fixed: they never move, and no edge at them collapses.
+    pub fn pin(&mut self, pinned: impl IntoIterator<Item = bool>) {
+        for (kind, pin) in self.kinds.iter_mut().zip(pinned) {
+            if pin {
+                *kind = Kind::Fixed;
+            }
+        }
+    }
+
     /// Vertex count.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
@@ -117,6 +129,7 @@ impl Collapser {
             quadrics: &mut self.quadrics,
             colors: self.colors.as_deref_mut(),
             normals: self.normals.as_deref_mut(),
+            texcoords: self.texcoords.as_deref_mut(),
             costs: &self.costs,
             best: &mut self.best,
             best_cost: &mut self.best_cost,
@@ -134,6 +147,7 @@ impl Collapser {
         let vs: Vec<usize> = vertex_starts.iter().map(|&v| v as usize).collect();
         let mut colors = split_attribute(self.colors.as_deref_mut(), &vs).into_iter();
         let mut normals = split_attribute(self.normals.as_deref_mut(), &vs).into_iter();
+        let mut texcoords = split_attribute(self.texcoords.as_deref_mut(), &vs).into_iter();
         let mut positions = split_mut(&mut self.positions, &vs).into_iter();
         let mut kinds = split_mut(&mut self.kinds, &vs).into_iter();
         let mut quadrics = split_mut(&mut self.quadrics, &vs).into_iter();
@@ -156,6 +170,7 @@ impl Collapser {
                     quadrics: quadrics.next()?,
                     colors: colors.next()?,
                     normals: normals.next()?,
+                    texcoords: texcoords.next()?,
                     costs,
                     best: best.next()?,
                     best_cost: best_cost.next()?,
@@ -203,6 +218,10 @@ impl Collapser {
                     .collect(),
             )
         });
+        model.texcoords = self
+            .texcoords
+            .as_ref()
+            .map(|t| kept_vertices.iter().map(|v| t[internal_of(v)]).collect());
         kept_vertices
             .iter()
             .map(internal_of)
@@ -212,10 +231,10 @@ impl Collapser {
 }
 
 /// A per-vertex attribute, when there is one, split at `starts` (see `split_mut`).
-fn split_attribute<'a>(
-    attribute: Option<&'a mut [[f32; 3]]>,
+fn split_attribute<'a, T>(
+    attribute: Option<&'a mut [T]>,
     starts: &[usize],
-) -> Vec<Option<&'a mut [[f32; 3]]>> {
+) -> Vec<Option<&'a mut [T]>> {
     match attribute {
         Some(a) => split_mut(a, starts).into_iter().map(Some).collect(),
         None => starts.iter().map(|_| None).collect(),

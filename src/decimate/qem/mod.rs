@@ -37,8 +37,9 @@
 //! vertex's colour is interpolated along the edge at the projection of its new position, and
 //! the cost used to order collapses adds `W × |colour difference|² × edge length²` (colour
 //! in 0..=1; the units of `Q`: as if the colour step moved the surface by that fraction of
-//! the edge), so edges across colour changes go last. Per-vertex normals are interpolated the
-//! same way; per-face colours stay with their surviving faces.
+//! the edge), so edges across colour changes go last. Per-vertex normals and texture
+//! coordinates are interpolated the same way; per-face colours stay with their surviving
+//! faces. Texture seam vertices (`mesh::seams`) are fixed, so the seam's sides never part.
 
 mod collapser;
 mod legality;
@@ -55,7 +56,7 @@ use rayon::prelude::*;
 use super::layout;
 use super::progressive::{ProgressiveModel, Recorder};
 use super::schroeder::{Limits, Outcome};
-use crate::mesh::{Attribute, Model};
+use crate::mesh::{seams, Attribute, Model};
 use collapser::Collapser;
 
 /// Decimates `model` in place by quadric edge collapse within `limits` (the feature angle
@@ -117,6 +118,13 @@ fn run(
     // 2. connect, 3. quadrics (one pass over the vertices' rings)
     let cos_feature = limits.feature_angle_deg.to_radians().cos();
     let mut d = Collapser::new(positions, triangles, colors, normals, cos_feature);
+    d.texcoords = model
+        .texcoords
+        .as_ref()
+        .filter(|t| t.len() == n as usize)
+        .map(|t| order.iter().map(|&v| t[v as usize]).collect());
+    let seams = seams::seam_vertices(model);
+    d.pin(order.iter().map(|&v| seams[v as usize]));
     d.recorder = recorder;
 
     // 4. rank

@@ -58,6 +58,7 @@ pub(super) struct Part<'a> {
     pub quadrics: &'a mut [Quadric],
     pub colors: Option<&'a mut [[f32; 3]]>,
     pub normals: Option<&'a mut [[f32; 3]]>,
+    pub texcoords: Option<&'a mut [[f32; 2]]>,
     /// Planned cost of every edge, per half-edge slot (the whole mesh's: entries are
     /// atomics, and a part writes only its own slots).
     pub costs: &'a EdgeCosts,
@@ -302,6 +303,11 @@ impl Part<'_> {
             n[k] = Vec3::from_array(lerp(n[r], n[k]))
                 .normalize_or_zero()
                 .to_array();
+        }
+        if let Some(t) = self.texcoords.as_deref_mut() {
+            let [x, y] = [t[r], t[k]].map(|[u, v]| [u, v, 0.0]);
+            let [u, v, _] = lerp(x, y);
+            t[k] = [u, v];
         }
         // Topology: the edge's triangles go, the removed end's others are renamed in place,
         // so per-face attributes stay with their faces and no slot is ever reused.

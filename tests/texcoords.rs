@@ -1,0 +1,244 @@
+//! Texture coordinates survive decimation end to end: an OBJ with `vt` goes through the
+//! binary with either algorithm and comes out with one coordinate pair per vertex that still
+//! maps the surface as the input did, with every texture seam in place and closed (its two
+//! sides pinned, so the surface never cracks along it).
+
+use std::collections::HashMap;
+use std::path::Path;
+use std::process::Command;
+
+/// An OBJ as read back by this test's own reader: positions, texture coordinates and
+/// triangles as `(vertex, texcoord)` corners (0-based).
+struct Obj {
+    positions: Vec<[f32; 3]>,
+    texcoords: Vec<[f32; 2]>,
+    triangles: Vec<[(usize, usize); 3]>,
+}
+
+fn read_obj(path: &Path) -> Obj {
+    let text = std::fs::read_to_string(path).expect("the output exists");
+    let mut obj = Obj {
+        positions: Vec::new(),
+        texcoords: Vec::new(),
+        triangles: Vec::new(),
+    };
+    for line in text.lines() {
+        let mut w = line.split_whitespace();
+        let numbers = |w: std::str::SplitWhitespace| -> Vec<f32> {
+            w.map(|x| x.parse().expect("a number")).collect()
+        };
+        match w.next() {
+            Some("v") => {
+                let n = numbers(w);
+                obj.positions.push([n[0], n[1], n[2]]);
+            }
+            Some("vt") => {
+                let n = numbers(w);
+                obj.texcoords.push([n[0], n[1]]);
+            }
+            Some("f") => {
+                let corners: Vec<(usize, usize)> = w
+                    .map(|c| {
+                        let (v, t) = c.split_once('/').expect("every corner has a vt");
+                        (
+                            v.parse::<usize>().unwrap() - 1,
+                            t.parse::<usize>().unwrap() - 1,
+                        )
+                    })
+                    .collect();
+                assert_eq!(corners.len(), 3, "triangles only");
+                obj.triangles.push([corners[0], corners[1], corners[2]]);
+            }
+            _ => {}
+        }
+    }
+    obj
+}
+
+/// A grid of `n` × `n` squares over the unit square (each cut in two), its points at
+/// `surface(x, y)`, textured by `uv(x, y)` and cut by a seam down x = 0.5: the squares right
+/// of it map to a second island, `uv` shifted by 2 in u.
+fn grid_obj(n: usize, surface: impl Fn(f32, f32) -> [f32; 3]) -> String {
+    let mut text = String::new();
+    let at = |i: usize| i as f32 / n as f32;
+    for j in 0..=n {
+        for i in 0..=n {
+            let [x, y, z] = surface(at(i), at(j));
+            text += &format!("v {x} {y} {z}\n");
+        }
+    }
+    for island in 0..2 {
+        for j in 0..=n {
+            for i in 0..=n {
+                text += &format!("vt {} {}\n", at(i) + 2.0 * island as f32, at(j));
+            }
+        }
+    }
+    let point = |i: usize, j: usize| j * (n + 1) + i + 1;
+    for j in 0..n {
+        for i in 0..n {
+            let island = usize::from(i >= n / 2);
+            let corner = |i: usize, j: usize| {
+                let p = point(i, j);
+                format!("{p}/{}", p + island * (n + 1) * (n + 1))
+            };
+            let [a, b, c, d] = [
+                corner(i, j),
+                corner(i + 1, j),
+                corner(i + 1, j + 1),
+                corner(i, j + 1),
+            ];
+            text += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
+        }
+    }
+    text
+}
+
+/// Runs `decimate IN nogui ARGS -o OUT.obj` in a fresh directory; returns the output read back.
+fn decimate(name: &str, obj: &str, args: &[&str]) -> Obj {
+    let dir =
+        std::env::temp_dir().join(format!("decimate-texcoords-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (input, output) = (dir.join("in.obj"), dir.join("out.obj"));
+    std::fs::write(&input, obj).unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_decimate"))
+        .arg(&input)
+        .arg("nogui")
+        .args(args)
+        .arg("-o")
+        .arg(&output)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "decimate failed: {stderr}");
+    assert!(!stderr.contains("warning"), "unexpected warning: {stderr}");
+    let out = read_obj(&output);
+    std::fs::remove_dir_all(&dir).ok();
+    out
+}
+
+/// Checks what every textured output must hold: one pair per vertex, numbered as the
+/// vertices; no triangle spanning the two islands.
+fn check_layout(out: &Obj) {
+    assert_eq!(out.texcoords.len(), out.positions.len());
+    for t in &out.triangles {
+        for &(v, vt) in t {
+            assert_eq!(v, vt, "the writer numbers pairs as vertices");
+        }
+        let islands: Vec<bool> = t
+            .iter()
+            .map(|&(_, vt)| out.texcoords[vt][0] > 1.5)
+            .collect();
+        assert!(
+            islands.iter().all(|&i| i == islands[0]),
+            "a triangle spans the seam: {t:?}"
+        );
+    }
+}
+
+/// How many vertices lie on the seam line x = 0.5, by island.
+fn seam_vertices(out: &Obj) -> [usize; 2] {
+    let mut count = [0; 2];
+    for (p, uv) in out.positions.iter().zip(&out.texcoords) {
+        if p[0] == 0.5 {
+            count[usize::from(uv[0] > 1.5)] += 1;
+        }
+    }
+    count
+}
+
+#[test]
+fn a_flat_textured_grid_keeps_an_exact_mapping_and_its_seam() {
+    let n = 32;
+    // 33 × 33 points, the 33 on the seam twice: 1122 vertices.
+    let obj = grid_obj(n, |x, y| [x, y, 0.0]);
+    for algorithm in ["schroeder", "qem"] {
+        let out = decimate(
+            &format!("flat-{algorithm}"),
+            &obj,
+            &["-a", algorithm, "--keep-vertices", "300"],
+        );
+        assert_eq!(out.positions.len(), 300, "{algorithm}");
+        check_layout(&out);
+        // Flat: no vertex leaves its edge, so each pair is its island's map of the position.
+        for (p, uv) in out.positions.iter().zip(&out.texcoords) {
+            let shift = if uv[0] > 1.5 { 2.0 } else { 0.0 };
+            assert!(
+                (uv[0] - shift - p[0]).abs() < 1e-5 && (uv[1] - p[1]).abs() < 1e-5,
+                "{algorithm}: vertex at {p:?} maps to {uv:?}"
+            );
+        }
+        assert_eq!(
+            seam_vertices(&out),
+            [n + 1, n + 1],
+            "{algorithm}: the seam is pinned"
+        );
+    }
+}
+
+#[test]
+fn a_curved_textured_surface_stays_closed_along_its_seam() {
+    let n = 48;
+    let obj = grid_obj(n, |x, y| [x, y, 0.2 * (3.0 * x).sin() * (2.0 * y).cos()]);
+    for algorithm in ["schroeder", "qem"] {
+        let out = decimate(
+            &format!("curved-{algorithm}"),
+            &obj,
+            &["-a", algorithm, "-p", "80"],
+        );
+        check_layout(&out);
+        // Weld by position: every edge inside the unit square has two triangles, so the
+        // seam's two sides still meet along their whole length.
+        let mut id: HashMap<[u32; 3], usize> = HashMap::new();
+        let welded: Vec<usize> = out
+            .positions
+            .iter()
+            .map(|p| {
+                let len = id.len();
+                *id.entry(p.map(f32::to_bits)).or_insert(len)
+            })
+            .collect();
+        let mut edges: HashMap<(usize, usize), usize> = HashMap::new();
+        for t in &out.triangles {
+            for k in 0..3 {
+                let (a, b) = (welded[t[k].0], welded[t[(k + 1) % 3].0]);
+                *edges.entry((a.min(b), a.max(b))).or_default() += 1;
+            }
+        }
+        // Boundary vertices slide along the rim (qem: within its constraint planes); an edge
+        // along the rim has both ends near the same side of the square.
+        let sides = |v: usize| {
+            let p = out.positions[v];
+            [p[0], p[0] - 1.0, p[1], p[1] - 1.0].map(|c| c.abs() < 1e-3)
+        };
+        let first_of: HashMap<usize, usize> =
+            welded.iter().enumerate().map(|(v, &w)| (w, v)).collect();
+        for (&(a, b), &count) in &edges {
+            let (sa, sb) = (sides(first_of[&a]), sides(first_of[&b]));
+            let on_rim = (0..4).any(|k| sa[k] && sb[k]);
+            let at = [a, b].map(|w| out.positions[first_of[&w]]);
+            assert_eq!(
+                count,
+                if on_rim { 1 } else { 2 },
+                "{algorithm}: edge {at:?}"
+            );
+        }
+        assert_eq!(seam_vertices(&out), [n + 1, n + 1], "{algorithm}");
+        // The mapping still follows the surface: each pair within one input square of its
+        // island's map of the vertex's (x, y).
+        let worst = out
+            .positions
+            .iter()
+            .zip(&out.texcoords)
+            .map(|(p, uv)| {
+                let shift = if uv[0] > 1.5 { 2.0 } else { 0.0 };
+                (uv[0] - shift - p[0]).abs().max((uv[1] - p[1]).abs())
+            })
+            .fold(0.0f32, f32::max);
+        eprintln!("{algorithm}: worst texture shift {worst}");
+        assert!(
+            worst < 1.0 / n as f32,
+            "{algorithm}: texture shifted by {worst}"
+        );
+    }
+}
