@@ -205,3 +205,31 @@ fn instancing_bombs_are_refused() {
     let (_, msg) = fail(&src);
     assert!(msg.contains("expands to more than"), "{msg}");
 }
+
+#[test]
+fn a_texture_url_that_is_not_a_string_names_its_line() {
+    let (line, msg) = fail(
+        "#VRML V2.0 utf8\nShape {\n appearance Appearance { texture ImageTexture {\n  url [ \"a.png\" 3 ] } }\n}",
+    );
+    assert_eq!(line, Some(4));
+    assert!(msg.contains("a string or ']' in 'url'"), "{msg}");
+    let (line, msg) = fail("#Inventor V2.1 ascii\nSeparator {\n Texture2 { filename wood.png }\n}");
+    assert_eq!(line, Some(3));
+    assert!(msg.contains("a string for 'filename'"), "{msg}");
+}
+
+#[test]
+fn bad_texture_coordinate_indices_drop_the_coordinates_with_a_warning() {
+    // Index 5 of three pairs: the shape is read, without texture coordinates.
+    let src = "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet {\n coord Coordinate { point [ 0 0 0, 1 0 0, 0 1 0 ] }\n coordIndex [ 0 1 2 -1 ]\n texCoord TextureCoordinate { point [ 0 0, 1 0, 0 1 ] }\n texCoordIndex [ 0 1 5 -1 ] } }";
+    let out = parse_str(src, "t.wrl").unwrap();
+    assert_eq!(out.scene.models[0].triangles.len(), 1);
+    assert_eq!(out.scene.models[0].texcoords, None);
+    assert!(
+        out.warnings
+            .iter()
+            .any(|w| w.contains("texture coordinate index 5 is out of range")),
+        "{:?}",
+        out.warnings
+    );
+}

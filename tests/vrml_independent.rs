@@ -110,3 +110,116 @@ Transform { translation 5 0 0 rotation 0 0 1 0.5 scale 2 2 2 children [
         );
     }
 }
+
+const TCOORDS: &str = r#"
+import sys, vtk
+vtk.vtkObject.GlobalWarningDisplayOff()
+imp = vtk.vtkVRMLImporter()
+imp.SetFileName(sys.argv[1])
+imp.Update()
+actors = imp.GetRenderer().GetActors()
+actors.InitTraversal()
+for _ in range(actors.GetNumberOfItems()):
+    pd = actors.GetNextActor().GetMapper().GetInput()
+    tc = pd.GetPointData().GetTCoords()
+    print(pd.GetNumberOfPoints(), tc.GetNumberOfTuples() if tc else 0)
+    for i in range(pd.GetNumberOfPoints()):
+        x, y, _ = pd.GetPoint(i)
+        u, v = tc.GetTuple2(i) if tc else (float("nan"), float("nan"))
+        print(x, y, u, v)
+"#;
+
+#[test]
+fn vtk_reads_our_texture_coordinates() {
+    if !vtk_available() {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "VTK for Python is missing: apt-get install python3-vtk9"
+        );
+        eprintln!("skipped: VTK for Python is missing (apt-get install python3-vtk9)");
+        return;
+    }
+    // A flat 4 × 4 grid, u = x and v = y, with a seam at x = 0.5: the right half's
+    // coordinates are shifted by 2 in u, so its points there have two pairs.
+    let mut points = String::new();
+    let mut uvs = String::new();
+    let (mut faces, mut uv_faces) = (String::new(), String::new());
+    for j in 0..=4 {
+        for i in 0..=4 {
+            points += &format!("{} {} 0, ", i as f32 / 4.0, j as f32 / 4.0);
+        }
+    }
+    for shift in [0.0, 2.0] {
+        for j in 0..=4 {
+            for i in 0..=4 {
+                uvs += &format!("{} {}, ", i as f32 / 4.0 + shift, j as f32 / 4.0);
+            }
+        }
+    }
+    for j in 0..4 {
+        for i in 0..4 {
+            let q = [j * 5 + i, j * 5 + i + 1, j * 5 + i + 6, j * 5 + i + 5];
+            let s = if i >= 2 { 25 } else { 0 };
+            faces += &format!("{} {} {} {} -1, ", q[0], q[1], q[2], q[3]);
+            uv_faces += &format!("{} {} {} {} -1, ", q[0] + s, q[1] + s, q[2] + s, q[3] + s);
+        }
+    }
+    let scene = format!(
+        "#VRML V2.0 utf8\nShape {{ appearance Appearance {{ texture ImageTexture {{ url \"grid.png\" }} }}\n\
+         geometry IndexedFaceSet {{ coord Coordinate {{ point [ {points} ] }} coordIndex [ {faces} ]\n\
+         texCoord TextureCoordinate {{ point [ {uvs} ] }} texCoordIndex [ {uv_faces} ] }} }}\n"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("grid.wrl");
+    std::fs::write(&input, scene).unwrap();
+    for algorithm in ["schroeder", "qem"] {
+        let out = dir.path().join(format!("{algorithm}.wrl"));
+        let o = Command::new(env!("CARGO_BIN_EXE_decimate"))
+            .arg(&input)
+            .args(["nogui", "-a", algorithm, "-p", "40", "-q", "-o"])
+            .arg(&out)
+            .output()
+            .expect("run decimate");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let vtk = Command::new("/usr/bin/python3")
+            .args(["-c", TCOORDS])
+            .arg(&out)
+            .output()
+            .expect("run python3");
+        assert!(
+            vtk.status.success(),
+            "{}",
+            String::from_utf8_lossy(&vtk.stderr)
+        );
+        let text = String::from_utf8_lossy(&vtk.stdout);
+        let mut lines = text.lines();
+        let counts: Vec<usize> = lines
+            .next()
+            .expect("one shape")
+            .split_whitespace()
+            .map(|w| w.parse().unwrap())
+            .collect();
+        let ours = decimate::io::read_scene(&out).unwrap().scene;
+        // 30 vertices (25 points, 5 of them twice) less 40 %.
+        assert_eq!(ours.models[0].positions.len(), 18, "{algorithm}");
+        assert_eq!(
+            counts,
+            [18, 18],
+            "{algorithm}: VTK's points and coordinate pairs"
+        );
+        for line in lines {
+            let [x, y, u, v] = line
+                .split_whitespace()
+                .map(|w| w.parse::<f64>().unwrap())
+                .collect::<Vec<_>>()[..]
+            else {
+                panic!("{line}")
+            };
+            let shift = if u > 1.5 { 2.0 } else { 0.0 };
+            assert!(
+                (u - shift - x).abs() < 1e-5 && (v - y).abs() < 1e-5,
+                "{algorithm}: VTK maps ({x}, {y}) to ({u}, {v})"
+            );
+        }
+    }
+}

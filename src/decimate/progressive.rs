@@ -92,6 +92,7 @@ impl ProgressiveModel {
             colors: None,
             normals: None,
             texcoords: None,
+            texture: fine.texture.clone(),
             diffuse: fine.diffuse,
             crease_angle: fine.crease_angle,
             solid: fine.solid,

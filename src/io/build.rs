@@ -311,6 +311,7 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         colors,
         normals,
         texcoords: texcoords.map(|_| vtexcoords),
+        texture: None,
         diffuse,
         crease_angle,
         solid,
@@ -467,6 +468,28 @@ fn lookup(index: &[i32], at: u32) -> u32 {
         Some(&v) if v >= 0 => v as u32,
         _ => u32::MAX,
     }
+}
+
+/// Texture coordinates (flat u v) bound per vertex over `geo`: through `index` (VRML's
+/// `texCoordIndex`, Inventor's `textureCoordIndex`, parallel to the coordinate index) when
+/// the file gives one, else as the coordinates are indexed (`indexed` shapes) or in corner
+/// sequence. `None` without values; a bad index is caught by `build` (coordinates dropped
+/// with a warning).
+pub fn texcoords_per_vertex<'a>(
+    values: &'a [f32],
+    index: Option<&[i32]>,
+    geo: &Geo,
+    indexed: bool,
+) -> Option<TexCoords<'a>> {
+    if values.len() < 2 {
+        return None;
+    }
+    let index = match (indexed, explicit(index)) {
+        (true, Some(ix)) => geo.raw_pos.iter().map(|&p| lookup(ix, p)).collect(),
+        (true, None) => geo.corners.clone(),
+        (false, _) => geo.seq_no.clone(),
+    };
+    Some(TexCoords { values, index })
 }
 
 /// Resolves a binding over `geo` into per-face / per-corner value indices. `index` is the

@@ -31,6 +31,7 @@ pub enum Value {
     Ints(Vec<i32>),
     Bool(bool),
     Word(String),
+    Strings(Vec<String>),
     Node(Option<Rc<Node>>),
     Nodes(Vec<Rc<Node>>),
 }
@@ -91,6 +92,13 @@ impl Node {
             _ => None,
         }
     }
+    /// The strings of an SFString / MFString field (quotes removed, escapes resolved).
+    pub fn strings(&self, name: &str) -> &[String] {
+        match self.field(name).map(|f| &f.value) {
+            Some(Value::Strings(v)) => v,
+            _ => &[],
+        }
+    }
     pub fn node(&self, name: &str) -> Option<&Rc<Self>> {
         match &self.field(name)?.value {
             Value::Node(n) => n.as_ref(),
@@ -121,6 +129,8 @@ pub enum FieldKind {
     Bool,
     /// An enum name or an Inventor bit mask `( A | B )`.
     Word,
+    /// SFString or MFString: `"text"` or `[ "a", "b" ]`.
+    Strings,
     /// SFNode: a node, `USE name` or `NULL`.
     Node,
     /// MFNode: `[ nodes ]` or a single node.
@@ -136,7 +146,7 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Normal", "vector") => Floats,
             ("Material", "diffuseColor") => Floats,
             ("BaseColor", "rgb") => Floats,
-            ("MaterialBinding" | "NormalBinding", "value") => Word,
+            ("MaterialBinding" | "NormalBinding" | "TextureCoordinateBinding", "value") => Word,
             ("ShapeHints", "vertexOrdering" | "shapeType" | "faceType") => Word,
             ("ShapeHints", "creaseAngle") => Floats,
             (
@@ -152,8 +162,9 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Switch" | "Blinker", "whichChild") => Ints,
             (
                 "IndexedFaceSet" | "IndexedTriangleStripSet",
-                "coordIndex" | "materialIndex" | "normalIndex",
+                "coordIndex" | "materialIndex" | "normalIndex" | "textureCoordIndex",
             ) => Ints,
+            ("TextureCoordinate2", "point") => Floats,
             ("FaceSet" | "TriangleStripSet", "startIndex" | "numVertices") => Ints,
             ("QuadMesh", "startIndex" | "verticesPerColumn" | "verticesPerRow") => Ints,
             (
@@ -164,10 +175,11 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
                 | "QuadMesh",
                 "vertexProperty",
             ) => Node,
-            ("VertexProperty", "vertex" | "normal") => Floats,
+            ("VertexProperty", "vertex" | "normal" | "texCoord") => Floats,
             ("VertexProperty", "orderedRGBA") => Ints,
             ("VertexProperty", "materialBinding" | "normalBinding") => Word,
             ("Cube", "width" | "height" | "depth") => Floats,
+            ("Texture2", "filename") => Strings,
             ("ResetTransform", "whatToReset") => Word,
             _ => return None,
         }),
@@ -180,10 +192,13 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Switch", "whichChoice") => Ints,
             ("LOD", "level") => Nodes,
             ("Shape", "appearance" | "geometry") => Node,
-            ("Appearance", "material") => Node,
+            ("Appearance", "material" | "texture") => Node,
+            ("ImageTexture", "url") => Strings,
             ("Material", "diffuseColor") => Floats,
-            ("IndexedFaceSet", "coord" | "color" | "normal") => Node,
-            ("IndexedFaceSet", "coordIndex" | "colorIndex" | "normalIndex") => Ints,
+            ("IndexedFaceSet", "coord" | "color" | "normal" | "texCoord") => Node,
+            ("IndexedFaceSet", "coordIndex" | "colorIndex" | "normalIndex" | "texCoordIndex") => {
+                Ints
+            }
             (
                 "IndexedFaceSet",
                 "colorPerVertex" | "normalPerVertex" | "ccw" | "solid" | "convex",
@@ -192,6 +207,7 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Coordinate", "point") => Floats,
             ("Color", "color") => Floats,
             ("Normal", "vector") => Floats,
+            ("TextureCoordinate", "point") => Floats,
             ("Box", "size") => Floats,
             _ => return None,
         }),
@@ -226,10 +242,13 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "ResetTransform"
                 | "Coordinate3"
                 | "Normal"
+                | "TextureCoordinate2"
+                | "Texture2"
                 | "Material"
                 | "BaseColor"
                 | "MaterialBinding"
                 | "NormalBinding"
+                | "TextureCoordinateBinding"
                 | "ShapeHints"
                 | "IndexedFaceSet"
                 | "IndexedTriangleStripSet"
@@ -255,6 +274,8 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "Coordinate"
                 | "Color"
                 | "Normal"
+                | "TextureCoordinate"
+                | "ImageTexture"
                 | "Box"
         ),
     }
@@ -277,10 +298,7 @@ fn is_ignorable(dialect: Dialect, kind: &str) -> bool {
                 | "Environment"
                 | "DrawStyle"
                 | "LightModel"
-                | "Texture2"
                 | "Texture2Transform"
-                | "TextureCoordinate2"
-                | "TextureCoordinateBinding"
                 | "TextureCoordinatePlane"
                 | "TextureCoordinateDefault"
                 | "FontStyle"
@@ -323,11 +341,9 @@ fn is_ignorable(dialect: Dialect, kind: &str) -> bool {
                 | "AudioClip"
                 | "IndexedLineSet"
                 | "PointSet"
-                | "ImageTexture"
                 | "PixelTexture"
                 | "MovieTexture"
                 | "TextureTransform"
-                | "TextureCoordinate"
                 | "FontStyle"
         ),
     }
@@ -609,6 +625,7 @@ impl<'a> Parser<'a> {
                 }
             }
             FieldKind::Word => Value::Word(self.parse_word(&name)?),
+            FieldKind::Strings => Value::Strings(self.parse_strings(&name)?),
             FieldKind::Node => {
                 let t = self.lex.peek()?;
                 if self.is_word(&t, b"NULL") {
@@ -666,6 +683,45 @@ impl<'a> Parser<'a> {
         }
         node.fields.push(Field { name, line, value });
         Ok(())
+    }
+
+    /// `"text"` or `[ "a", "b" ]` (commas are whitespace to the lexer).
+    fn parse_strings(&mut self, name: &str) -> PResult<Vec<String>> {
+        let t = self.lex.next()?;
+        match t.kind {
+            Tok::Str => Ok(vec![self.string_of(&t)]),
+            Tok::LBracket => {
+                let mut out = Vec::new();
+                loop {
+                    let t = self.lex.next()?;
+                    match t.kind {
+                        Tok::Str => out.push(self.string_of(&t)),
+                        Tok::RBracket => return Ok(out),
+                        _ => {
+                            return Err(self.unexpected(&t, &format!("a string or ']' in '{name}'")))
+                        }
+                    }
+                }
+            }
+            _ => Err(self.unexpected(&t, &format!("a string for '{name}'"))),
+        }
+    }
+
+    /// A string token's text without its quotes, `\x` read as `x`.
+    fn string_of(&self, t: &Token) -> String {
+        let b = self.lex.bytes(t);
+        let inner = b.get(1..b.len().saturating_sub(1)).unwrap_or_default();
+        let mut out = Vec::with_capacity(inner.len());
+        let mut escaped = false;
+        for &c in inner {
+            if c == b'\\' && !escaped {
+                escaped = true;
+            } else {
+                out.push(c);
+                escaped = false;
+            }
+        }
+        String::from_utf8_lossy(&out).into_owned()
     }
 
     fn parse_word(&mut self, name: &str) -> PResult<String> {

@@ -14,7 +14,8 @@ use std::rc::Rc;
 use glam::{Mat4, Quat, Vec3};
 
 use super::build::{
-    build, explicit, resolve, split_polygons, strips_to_triangles, Bind, Binding, Geo, ShapeSpec,
+    build, explicit, resolve, split_polygons, strips_to_triangles, texcoords_per_vertex, Bind,
+    Binding, Geo, ShapeSpec,
 };
 use super::lexer::{PResult, ParseError};
 use super::parse::Node;
@@ -28,9 +29,13 @@ struct State {
     transform: Mat4,
     coords: Option<Rc<Node>>,
     normals: Option<Rc<Node>>,
+    texcoords: Option<Rc<Node>>,
+    /// `Texture2`'s file name.
+    texture: Option<String>,
     material: Option<Rc<Node>>,
     material_binding: Binding,
     normal_binding: Binding,
+    texcoord_binding: Binding,
     ccw: bool,
     solid: bool,
     crease_angle: Option<f32>,
@@ -42,9 +47,12 @@ impl Default for State {
             transform: Mat4::IDENTITY,
             coords: None,
             normals: None,
+            texcoords: None,
+            texture: None,
             material: None,
             material_binding: Binding::Overall,
             normal_binding: Binding::Default,
+            texcoord_binding: Binding::Default,
             ccw: true,
             solid: false,
             crease_angle: None,
@@ -200,9 +208,19 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
         }
         "Coordinate3" => state.coords = Some(node.clone()),
         "Normal" => state.normals = Some(node.clone()),
+        "TextureCoordinate2" => state.texcoords = Some(node.clone()),
+        // An empty file name turns texturing off.
+        "Texture2" => {
+            state.texture = node
+                .strings("filename")
+                .first()
+                .filter(|f| !f.is_empty())
+                .cloned()
+        }
         "Material" | "BaseColor" => state.material = Some(node.clone()),
         "MaterialBinding" => state.material_binding = binding(node)?,
         "NormalBinding" => state.normal_binding = binding(node)?,
+        "TextureCoordinateBinding" => state.texcoord_binding = binding(node)?,
         "ShapeHints" => {
             let ordering = node.word("vertexOrdering").unwrap_or("UNKNOWN_ORDERING");
             state.ccw = ordering != "CLOCKWISE";
@@ -313,6 +331,17 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
             diffuse_values(state.material.as_ref()),
             state.material_binding,
         ),
+    };
+    let texcoord_values: &[f32] = match vp
+        .and_then(|v| v.floats("texCoord"))
+        .filter(|v| !v.is_empty())
+    {
+        Some(v) => v,
+        None => state
+            .texcoords
+            .as_ref()
+            .and_then(|t| t.floats("point"))
+            .unwrap_or(&[]),
     };
     let normal_binding = vp
         .and_then(|v| v.word("normalBinding"))
@@ -495,6 +524,19 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
             &geo,
         )
     };
+    // Per vertex, the only binding there is: PER_VERTEX takes the pairs in corner order,
+    // PER_VERTEX_INDEXED (the default) through textureCoordIndex or else coordIndex.
+    let texcoords = if kind == "Cube" {
+        None
+    } else {
+        let by_index = indexed && state.texcoord_binding != Binding::PerVertex;
+        let index = if by_index {
+            node.ints("textureCoordIndex")
+        } else {
+            None
+        };
+        texcoords_per_vertex(texcoord_values, index, &geo, by_index)
+    };
     let name = node
         .def
         .clone()
@@ -507,7 +549,7 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
         ends: geo.ends,
         colors,
         normals,
-        texcoords: None,
+        texcoords,
         ccw: state.ccw || kind == "Cube",
         solid: state.solid || kind == "Cube",
         crease_angle: state.crease_angle,
@@ -519,7 +561,8 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
         },
         index_field,
     };
-    let model = build(spec, ctx.warnings)?;
+    let mut model = build(spec, ctx.warnings)?;
+    model.texture = state.texture.clone();
     if model.triangles.is_empty() {
         return Ok(());
     }

@@ -9,7 +9,9 @@ use std::rc::Rc;
 
 use glam::{Mat4, Vec3};
 
-use super::build::{build, explicit, resolve, split_polygons, Bind, Binding, Geo, ShapeSpec};
+use super::build::{
+    build, explicit, resolve, split_polygons, texcoords_per_vertex, Bind, Binding, Geo, ShapeSpec,
+};
 use super::lexer::PResult;
 use super::parse::Node;
 use super::vrml1::{box_corners, compose, rotation, vec3};
@@ -82,6 +84,11 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
         .clone()
         .or_else(|| node.def.clone())
         .unwrap_or_else(|| format!("{}_{}", geometry.kind, ctx.models.len() + 1));
+    let texture = node
+        .node("appearance")
+        .and_then(|a| a.node("texture"))
+        .filter(|t| t.kind == "ImageTexture")
+        .and_then(|t| t.strings("url").first().cloned());
     let boxed;
     let spec = match geometry.kind.as_str() {
         "IndexedFaceSet" => {
@@ -124,6 +131,12 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
                 ni,
                 &geo,
             );
+            let texcoord_values = geometry
+                .node("texCoord")
+                .and_then(|t| t.floats("point"))
+                .unwrap_or(&[]);
+            let texcoords =
+                texcoords_per_vertex(texcoord_values, geometry.ints("texCoordIndex"), &geo, true);
             ShapeSpec {
                 name,
                 transform,
@@ -132,7 +145,7 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
                 ends: geo.ends,
                 colors,
                 normals,
-                texcoords: None,
+                texcoords,
                 ccw: geometry.boolean("ccw").unwrap_or(true),
                 solid: geometry.boolean("solid").unwrap_or(true),
                 crease_angle: geometry.float("creaseAngle"),
@@ -175,7 +188,8 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
             return Ok(());
         }
     };
-    let model = build(spec, ctx.warnings)?;
+    let mut model = build(spec, ctx.warnings)?;
+    model.texture = texture;
     if model.triangles.is_empty() {
         return Ok(());
     }

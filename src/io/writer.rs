@@ -6,6 +6,8 @@
 //! so faces keep facing outwards). Numbers use Rust's shortest round-trip formatting of `f32`,
 //! written straight into the buffered writer (no allocation per number). Colours and normals
 //! keep their binding: per vertex (`colorPerVertex TRUE`, indexed by `coordIndex`) or per face.
+//! Texture coordinates are per vertex (`texCoord`, indexed by `coordIndex`), the texture's
+//! image an `ImageTexture` with the URL as read.
 
 use std::collections::HashSet;
 use std::io::{self, Write};
@@ -46,6 +48,19 @@ fn decompose(m: &Mat4) -> Option<(Vec3, Quat, Vec3)> {
         .iter()
         .fold(1.0f32, |a, &v| a.max(v.abs()));
     back.abs_diff_eq(*m, 1e-6 * size).then_some((t, r, s))
+}
+
+/// An SFString: quoted, with `"` and `\\` escaped and control characters (which no reader
+/// expects inside a URL) dropped.
+fn write_string(w: &mut impl Write, s: &str) -> io::Result<()> {
+    w.write_all(b"\"")?;
+    for c in s.chars().filter(|c| !c.is_control()) {
+        if matches!(c, '"' | '\\') {
+            w.write_all(b"\\")?;
+        }
+        write!(w, "{c}")?;
+    }
+    w.write_all(b"\"")
 }
 
 fn vec(w: &mut (impl Write + ?Sized), v: Vec3) -> io::Result<()> {
@@ -115,10 +130,16 @@ fn write_model(w: &mut impl Write, m: &Model, names: &mut HashSet<String>) -> io
         writeln!(w, "    Shape {{")?;
     }
     let [r, g, b] = m.diffuse;
-    writeln!(
+    write!(
         w,
-        "      appearance Appearance {{ material Material {{ diffuseColor {r} {g} {b} }} }}"
+        "      appearance Appearance {{ material Material {{ diffuseColor {r} {g} {b} }}"
     )?;
+    if let Some(url) = &m.texture {
+        write!(w, " texture ImageTexture {{ url ")?;
+        write_string(w, url)?;
+        write!(w, " }}")?;
+    }
+    writeln!(w, " }}")?;
     writeln!(w, "      geometry IndexedFaceSet {{")?;
     writeln!(w, "        ccw TRUE")?;
     writeln!(
@@ -150,6 +171,16 @@ fn write_model(w: &mut impl Write, m: &Model, names: &mut HashSet<String>) -> io
             "        colorPerVertex {}",
             if per_vertex { "TRUE" } else { "FALSE" }
         )?;
+    }
+    // Texture coordinates per vertex: without a texCoordIndex, coordIndex indexes them.
+    if let Some(t) = m
+        .texcoords
+        .as_ref()
+        .filter(|t| t.len() == m.positions.len())
+    {
+        w.write_all(b"        texCoord TextureCoordinate { point ")?;
+        write_list(w, t, |w, [u, v]| write!(w, "{u} {v}"))?;
+        w.write_all(b" }\n")?;
     }
     if let Some(normals) = &m.normals {
         w.write_all(b"        normal Normal { vector ")?;

@@ -58,6 +58,9 @@ pub struct Model {
     /// texture has a seam is split into one vertex per side (same position, different
     /// coordinates), so the model is cut along its seams; decimation pins such vertices.
     pub texcoords: Option<Vec<[f32; 2]>>,
+    /// The image the texture coordinates map, as the file named it (a URL or a path
+    /// relative to the file: VRML 2.0's `ImageTexture`, Inventor's `Texture2`).
+    pub texture: Option<String>,
     /// Diffuse colour of the shape's material (used when there are no per-vertex/face colours).
     pub diffuse: [f32; 3],
     /// Crease angle in radians from the file (ShapeHints / IndexedFaceSet), if given.
@@ -76,6 +79,7 @@ impl Default for Model {
             colors: None,
             normals: None,
             texcoords: None,
+            texture: None,
             diffuse: [0.8, 0.8, 0.8],
             crease_angle: None,
             solid: false,
