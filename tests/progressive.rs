@@ -1,15 +1,15 @@
 //! `--progressive FILE.pm` as a user meets it: the binary writes the decimated scene and the
 //! progressive file; reading the file back gives a base mesh with exactly the output's
 //! counts, levels with exactly base + k vertices and a clean surface, and at the top level the
-//! input itself — positions, triangles and colours bit for bit. Malformed files are refused
-//! with a message naming the file and the byte, never a panic.
+//! input itself — positions, triangles, colours and texture coordinates bit for bit.
+//! Malformed files are refused with a message naming the file and the byte, never a panic.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use decimate::decimate::progressive::{Lod, ProgressiveScene};
+use decimate::decimate::progressive::{Lod, ProgressiveScene, VertexSplit};
 use decimate::io::progressive::{parse_progressive, read_progressive, MAGIC};
-use decimate::io::{read_scene, write_vrml2, ReadError};
+use decimate::io::{read_scene, write_scene, ReadError};
 use decimate::mesh::{build::build_scene, measure, shapes, Attribute, Model, Scene};
 
 fn decimate(dir: &Path, args: &[&str]) -> Output {
@@ -26,8 +26,13 @@ fn stderr(o: &Output) -> String {
 
 /// Writes `models` to `dir/in.wrl`.
 fn write_input(dir: &Path, models: Vec<Model>) -> PathBuf {
-    let path = dir.join("in.wrl");
-    write_vrml2(&Scene { models }, &path).unwrap_or_else(|e| panic!("write {e}"));
+    write_input_as(dir, "in.wrl", models)
+}
+
+/// Writes `models` to `dir/name`, in the format its extension names.
+fn write_input_as(dir: &Path, name: &str, models: Vec<Model>) -> PathBuf {
+    let path = dir.join(name);
+    write_scene(&Scene { models }, &path).unwrap_or_else(|e| panic!("write {e}"));
     path
 }
 
@@ -44,17 +49,26 @@ fn read_pm(path: &Path) -> ProgressiveScene {
 /// Runs `decimate in.wrl nogui -p 90 -o out.wrl --progressive out.pm` on `models`; returns
 /// the directory, the input as built, the output as read and the progressive scene.
 fn run_progressive(models: Vec<Model>) -> (tempfile::TempDir, Scene, Scene, ProgressiveScene) {
+    run_progressive_as("wrl", models)
+}
+
+/// As [`run_progressive`], with input and output `in.EXT` and `out.EXT`.
+fn run_progressive_as(
+    ext: &str,
+    models: Vec<Model>,
+) -> (tempfile::TempDir, Scene, Scene, ProgressiveScene) {
     let dir = tempfile::tempdir().unwrap_or_else(|e| panic!("temporary directory: {e}"));
-    let input = write_input(dir.path(), models);
+    let (name, output) = (format!("in.{ext}"), format!("out.{ext}"));
+    let input = write_input_as(dir.path(), &name, models);
     let o = decimate(
         dir.path(),
         &[
-            "in.wrl",
+            &name,
             "nogui",
             "-p",
             "90",
             "-o",
-            "out.wrl",
+            &output,
             "--progressive",
             "out.pm",
         ],
@@ -67,7 +81,7 @@ fn run_progressive(models: Vec<Model>) -> (tempfile::TempDir, Scene, Scene, Prog
         "{}",
         stderr(&o)
     );
-    let out = read_scene(&dir.path().join("out.wrl"))
+    let out = read_scene(&dir.path().join(output))
         .unwrap_or_else(|e| panic!("read {e}"))
         .scene;
     (dir, as_built(&input), out, pm)
@@ -87,6 +101,10 @@ fn assert_round_trip(input: &Scene, out: &Scene, pm: &ProgressiveScene) {
         assert_eq!(back.positions, before.positions, "{name}: positions");
         assert_eq!(back.triangles, before.triangles, "{name}: triangles");
         assert_eq!(back.colors, before.colors, "{name}: colours");
+        assert_eq!(
+            back.texcoords, before.texcoords,
+            "{name}: texture coordinates"
+        );
         assert_eq!(back.transform, before.transform, "{name}: transform");
     }
 }
@@ -175,6 +193,126 @@ fn two_shapes_in_one_file_keep_two_progressive_models() {
     assert_eq!(input.models.len(), 2);
     assert_round_trip(&input, &out, &pm);
     assert_ne!(pm.models[0].base.name, pm.models[1].base.name);
+}
+
+/// A grid of `n` × `n` squares over the unit square (each cut in two) at height `z(x, y)`,
+/// textured by (x, y) and cut by a seam down x = 0.5: the squares right of it map to a
+/// second island, shifted by 2 in u, so the seam's points are there once per side.
+fn textured_grid(n: u32, z: impl Fn(f32, f32) -> f32) -> Model {
+    let (mut positions, mut texcoords, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+    let mut ids = std::collections::HashMap::new();
+    let at = |i: u32| i as f32 / n as f32;
+    for j in 0..n {
+        for i in 0..n {
+            let island = u32::from(2 * i >= n);
+            let mut id = |i: u32, j: u32| {
+                *ids.entry((i, j, island)).or_insert_with(|| {
+                    let (x, y) = (at(i), at(j));
+                    positions.push(glam::Vec3::new(x, y, z(x, y)));
+                    texcoords.push([x + 2.0 * island as f32, y]);
+                    positions.len() as u32 - 1
+                })
+            };
+            let [a, b, c, d] = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    Model {
+        name: "grid".into(),
+        positions,
+        triangles,
+        texcoords: Some(texcoords),
+        ..Model::default()
+    }
+}
+
+/// `(position, texture coordinates)` of each vertex of an OBJ the binary wrote, which must
+/// give one `vt` per vertex and number each face corner's `vt` as its vertex.
+fn obj_vertices(path: &Path) -> Vec<([f32; 3], [f32; 2])> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{e}"));
+    let (mut v, mut vt) = (Vec::new(), Vec::new());
+    let numbers = |rest: &str| -> Vec<f32> {
+        rest.split_whitespace()
+            .map(|x| x.parse().unwrap_or_else(|e| panic!("{x}: {e}")))
+            .collect()
+    };
+    for line in text.lines() {
+        if let Some(rest) = line.strip_prefix("v ") {
+            let p = numbers(rest);
+            v.push([p[0], p[1], p[2]]);
+        } else if let Some(rest) = line.strip_prefix("vt ") {
+            let t = numbers(rest);
+            vt.push([t[0], t[1]]);
+        } else if let Some(rest) = line.strip_prefix("f ") {
+            for corner in rest.split_whitespace() {
+                let (a, b) = corner.split_once('/').unwrap_or((corner, ""));
+                assert_eq!(a, b, "the corner {corner} has its vertex's vt");
+            }
+        }
+    }
+    assert_eq!(vt.len(), v.len(), "one vt per vertex");
+    v.into_iter().zip(vt).collect()
+}
+
+#[test]
+fn texture_coordinates_come_back_exactly_and_rebuilt_levels_keep_the_mapping() {
+    let models = vec![
+        textured_grid(40, |_, _| 0.0),
+        textured_grid(24, |x, y| 0.2 * (3.0 * x).sin() * (2.0 * y).cos()),
+    ];
+    let (dir, input, out, pm) = run_progressive_as("obj", models);
+    for (m, name) in input.models.iter().zip(["flat", "curved"]) {
+        assert!(m.texcoords.is_some(), "{name}: the input is textured");
+    }
+    for (m, name) in pm.models.iter().zip(["flat", "curved"]) {
+        assert!(m.base.texcoords.is_some(), "{name}: the base is textured");
+    }
+    // The top level is the input, its coordinates bit for bit.
+    assert_round_trip(&input, &out, &pm);
+    // A level rebuilt from the file: the flat grid's coordinates are still its positions'
+    // (x, y) on its island.
+    let o = decimate(
+        dir.path(),
+        &["out.pm", "nogui", "-p", "50", "-o", "p50.obj"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let vertices = obj_vertices(&dir.path().join("p50.obj"));
+    let full: Vec<usize> = pm.models.iter().map(|m| m.full_vertex_count()).collect();
+    let half = |n: usize| n - (n as f64 / 2.0).round() as usize;
+    assert_eq!(vertices.len(), half(full[0]) + half(full[1]));
+    for (p, uv) in &vertices[..half(full[0])] {
+        let shift = if uv[0] > 1.5 { 2.0 } else { 0.0 };
+        let off = (uv[0] - shift - p[0]).abs().max((uv[1] - p[1]).abs());
+        assert!(off < 1e-5, "{p:?} maps to {uv:?}");
+    }
+}
+
+#[test]
+fn a_file_cut_in_its_texture_coordinates_is_refused() {
+    let (dir, _, _, pm) = run_progressive_as("obj", vec![textured_grid(12, |_, _| 0.0)]);
+    let b = std::fs::read(dir.path().join("out.pm")).unwrap_or_else(|e| panic!("{e}"));
+    let m = &pm.models[0];
+    // The attribute byte: texture coordinates (bit 3) only.
+    let flags = 16 + 4 + m.base.name.len() + 64 + 12 + 5 + 1;
+    assert_eq!(b[flags], 8);
+    // The base's coordinates come after its positions: a cut there leaves too few bytes.
+    let (v, f) = (m.base.positions.len(), m.base.triangles.len());
+    let positions = flags + 1 + 8;
+    let text = refused(dir.path(), "base.pm", &b[..positions + 12 * v + 4]);
+    assert!(text.contains("truncated"), "{text}");
+    // The last split's, read after all the others: the cut is named there.
+    let split = |s: &VertexSplit| 4 + 36 + 24 + 4 + 4 * s.renamed.len() + 1 + 12 * s.added.len();
+    let earlier = &m.splits[..m.splits.len() - 1];
+    let last = positions + 20 * v + 12 * f + 4 + earlier.iter().map(split).sum::<usize>();
+    let text = refused(dir.path(), "split.pm", &b[..last + 40 + 12]);
+    assert!(
+        text.contains(&format!(
+            "split {}: the file ends before a texture coordinate",
+            earlier.len()
+        )),
+        "{text}"
+    );
 }
 
 #[test]

@@ -5,8 +5,9 @@
 //! Numbering makes every level a prefix: the base mesh's vertices and faces come first, split
 //! `i` adds vertex `base + i` and appends its faces. A level is therefore a length of the
 //! vertex and face arrays plus the splits' in-place edits (the faces whose corner moves to the
-//! new vertex, the position of the vertex that splits), and [`Lod`] moves between levels one
-//! split or collapse at a time. [`ProgressiveModel::vertex_ids`] and `face_ids` map the
+//! new vertex, the position of the vertex that splits, and its colour, normal and texture
+//! coordinates when the model has them), and [`Lod`] moves between levels one split or
+//! collapse at a time. [`ProgressiveModel::vertex_ids`] and `face_ids` map the
 //! fully refined mesh back to the original model's numbering.
 //!
 //! [`Recorder`] is what the collapse loop fills; [`Recorder::finish`] turns its collapses, in
@@ -33,6 +34,8 @@ pub struct VertexSplit {
     pub colors: Option<[[f32; 3]; 3]>,
     /// Per-vertex normals, when the model has them, in the same order.
     pub normals: Option<[Vec3; 3]>,
+    /// Texture coordinates, when the model has them, in the same order.
+    pub texcoords: Option<[[f32; 2]; 3]>,
     /// Faces (ids at this level) whose `keep` corner becomes the new vertex.
     pub renamed: Vec<u32>,
     /// Faces the split appends (one on a boundary edge, two inside).
@@ -45,7 +48,8 @@ pub struct VertexSplit {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ProgressiveModel {
     /// The coarsest level, with the original's name, transform and material. Its attributes,
-    /// when present, are per vertex (colours, normals) or per face (colours).
+    /// when present, are per vertex (colours, normals, texture coordinates) or per face
+    /// (colours).
     pub base: Model,
     /// Splits from the base towards the original, in order.
     pub splits: Vec<VertexSplit>,
@@ -72,8 +76,8 @@ impl ProgressiveModel {
         self.base.triangles.len() + self.splits.iter().map(|s| s.added.len()).sum::<usize>()
     }
 
-    /// The fully refined mesh in the original model's numbering: the original's connectivity
-    /// and positions, exactly (vertices no face used are not part of it).
+    /// The fully refined mesh in the original model's numbering: the original's connectivity,
+    /// positions and attributes, exactly (vertices no face used are not part of it).
     pub fn original(&self) -> Model {
         let mut lod = Lod::new(self);
         lod.set_level(self.splits.len());
@@ -115,6 +119,7 @@ impl ProgressiveModel {
             Attribute::PerVertex(v) => Attribute::PerVertex(scatter(v, vertex_ids, n)),
             Attribute::PerFace(v) => Attribute::PerFace(scatter(v, face_ids, fine.triangles.len())),
         });
+        model.texcoords = fine.texcoords.as_ref().map(|t| scatter(t, vertex_ids, n));
         model
     }
 
@@ -141,9 +146,18 @@ impl ProgressiveModel {
             Some(Attribute::PerVertex(n)) if n.len() == base_v => {}
             Some(_) => return Err("base normals must be one per base vertex".into()),
         }
+        if self
+            .base
+            .texcoords
+            .as_ref()
+            .is_some_and(|t| t.len() != base_v)
+        {
+            return Err("base texture coordinates must be one pair per base vertex".into());
+        }
         let vertex_colors = matches!(self.base.colors, Some(Attribute::PerVertex(_)));
         let face_colors = matches!(self.base.colors, Some(Attribute::PerFace(_)));
         let normals = self.base.normals.is_some();
+        let texcoords = self.base.texcoords.is_some();
         for (i, s) in self.splits.iter().enumerate() {
             let new = (base_v + i) as u32;
             if s.keep >= new {
@@ -158,7 +172,10 @@ impl ProgressiveModel {
             if s.added.iter().flatten().any(|&v| v > new) {
                 return Err(format!("split {i} adds a face over a vertex out of range"));
             }
-            if s.colors.is_some() != vertex_colors || s.normals.is_some() != normals {
+            if s.colors.is_some() != vertex_colors
+                || s.normals.is_some() != normals
+                || s.texcoords.is_some() != texcoords
+            {
                 return Err(format!("split {i}: attributes differ from the base mesh's"));
             }
             if face_colors && s.added_colors.len() != s.added.len() {
@@ -285,6 +302,10 @@ impl<P: Borrow<ProgressiveModel>> Lod<P> {
             n[s.keep as usize] = fine;
             n.push(own);
         }
+        if let (Some(t), Some([_, fine, own])) = (&mut m.texcoords, s.texcoords) {
+            t[s.keep as usize] = fine;
+            t.push(own);
+        }
         self.level += 1;
     }
 
@@ -318,6 +339,12 @@ impl<P: Borrow<ProgressiveModel>> Lod<P> {
             n.pop();
             if let Some([coarse, _, _]) = s.normals {
                 n[s.keep as usize] = coarse;
+            }
+        }
+        if let Some(t) = &mut m.texcoords {
+            t.pop();
+            if let Some([coarse, _, _]) = s.texcoords {
+                t[s.keep as usize] = coarse;
             }
         }
     }
@@ -370,10 +397,11 @@ pub struct Recorder {
     renamed: Vec<u32>,
     /// Slots deleted with the edge, and their triangles, collapse after collapse.
     deleted: Vec<(u32, [u32; 3])>,
-    /// One entry per collapse when the model has per-vertex colours (normals): `keep`
-    /// before, `keep` after, `remove`.
+    /// One entry per collapse when the model has per-vertex colours (normals, texture
+    /// coordinates): `keep` before, `keep` after, `remove`.
     colors: Vec<[[f32; 3]; 3]>,
     normals: Vec<[Vec3; 3]>,
+    texcoords: Vec<[[f32; 2]; 3]>,
     /// The original model's per-face colours, if it has them (for the faces splits add).
     face_colors: Option<Vec<[f32; 3]>>,
 }
@@ -389,6 +417,7 @@ pub struct CollapseRecord<'a> {
     /// `keep` before, `keep` after, `remove`.
     pub colors: Option<[[f32; 3]; 3]>,
     pub normals: Option<[Vec3; 3]>,
+    pub texcoords: Option<[[f32; 2]; 3]>,
     pub renamed: &'a [u32],
     pub deleted: &'a [(u32, [u32; 3])],
 }
@@ -411,6 +440,7 @@ impl Recorder {
         self.deleted.extend_from_slice(c.deleted);
         self.colors.extend(c.colors);
         self.normals.extend(c.normals);
+        self.texcoords.extend(c.texcoords);
         self.collapses.push(Collapse {
             keep: c.keep,
             remove: c.remove,
@@ -454,6 +484,7 @@ impl Recorder {
             matches!(base.colors, Some(Attribute::PerVertex(_))) && self.colors.len() == n;
         let normals =
             matches!(base.normals, Some(Attribute::PerVertex(_))) && self.normals.len() == n;
+        let texcoords = base.texcoords.is_some() && self.texcoords.len() == n;
         let mut splits = Vec::with_capacity(n);
         for (i, c) in self.collapses.iter().enumerate().rev() {
             let start = |ends: fn(&Collapse) -> u32| {
@@ -493,6 +524,10 @@ impl Recorder {
                 }),
                 normals: normals.then(|| {
                     let [b, a, r] = self.normals[i];
+                    [a, b, r]
+                }),
+                texcoords: texcoords.then(|| {
+                    let [b, a, r] = self.texcoords[i];
                     [a, b, r]
                 }),
                 renamed,
@@ -567,6 +602,64 @@ mod tests {
         for level in (0..=lod.max_level()).rev() {
             lod.set_level(level);
             assert_eq!(lod.model(), &seen[level], "level {level} going down");
+        }
+    }
+
+    /// `m` with texture coordinates `(x, y) / 10` of each vertex's position.
+    fn textured(mut m: Model) -> Model {
+        m.texcoords = Some(
+            m.positions
+                .iter()
+                .map(|p| [p.x, p.y].map(|c| c * 0.1))
+                .collect(),
+        );
+        m
+    }
+
+    #[test]
+    fn texture_coordinates_come_back_exactly_and_retrace_every_level() {
+        let mut original = shapes::bumpy_sphere(16, 24);
+        let uv = |p: &Vec3| [p.x + 0.5 * p.z, p.y];
+        original.texcoords = Some(original.positions.iter().map(uv).collect());
+        let (decimated, pm) = progressive(original.clone(), 100.0);
+        assert!(pm.validate().is_ok());
+        assert_eq!(pm.base, decimated);
+        assert!(pm.base.texcoords.is_some());
+        let back = pm.original();
+        assert_eq!(back.positions, original.positions);
+        assert_eq!(back.texcoords, original.texcoords);
+        let mut lod = Lod::new(&pm);
+        let mut seen = Vec::new();
+        for level in 0..=lod.max_level() {
+            lod.set_level(level);
+            let m = lod.model();
+            assert_eq!(m.texcoords.as_ref().map(Vec::len), Some(m.positions.len()));
+            seen.push(m.texcoords.clone());
+        }
+        for level in (0..=lod.max_level()).rev() {
+            lod.set_level(level);
+            assert_eq!(
+                lod.model().texcoords,
+                seen[level],
+                "level {level} going down"
+            );
+        }
+    }
+
+    #[test]
+    fn a_flat_grid_keeps_its_mapping_at_every_level() {
+        let (_, pm) = progressive(textured(shapes::test003()), 100.0);
+        let mut lod = Lod::new(&pm);
+        for level in 0..=lod.max_level() {
+            lod.set_level(level);
+            let m = lod.model();
+            let t = m.texcoords.as_deref().unwrap_or_default();
+            assert_eq!(t.len(), m.positions.len(), "level {level}");
+            for (p, uv) in m.positions.iter().zip(t) {
+                let want = [p.x, p.y].map(|c| c * 0.1);
+                let off = (uv[0] - want[0]).abs().max((uv[1] - want[1]).abs());
+                assert!(off < 1e-5, "level {level}: {p} maps to {uv:?}");
+            }
         }
     }
 

@@ -13,9 +13,9 @@
 //! # Layout, version 1
 //!
 //! Integers are unsigned little-endian (`u8`, `u32`); reals are little-endian IEEE-754 `f32`
-//! and finite; `vec3` is three reals (x, y, z), `rgb` three reals (red, green, blue, 0..=1);
-//! a flag is a `u8`, 0 or 1. Nothing is padded or aligned; a count comes before what it
-//! counts. The file ends right after the last model.
+//! and finite; `vec3` is three reals (x, y, z), `rgb` three reals (red, green, blue, 0..=1),
+//! `uv` two reals (u, v); a flag is a `u8`, 0 or 1. Nothing is padded or aligned; a count
+//! comes before what it counts. The file ends right after the last model.
 //!
 //! | field                      | type             | notes                                                     |
 //! |----------------------------|------------------|-----------------------------------------------------------|
@@ -28,12 +28,13 @@
 //! | diffuse                    | rgb              | the material's colour                                     |
 //! | crease flag, crease angle  | flag, f32        | radians; the angle is there (0) when the flag is 0        |
 //! | solid                      | flag             |                                                           |
-//! | attributes                 | u8               | bit 0 per-vertex colours, bit 1 per-face colours, bit 2 per-vertex normals; bits 0 and 1 exclusive, bits 3–7 zero |
+//! | attributes                 | u8               | bit 0 per-vertex colours, bit 1 per-face colours, bit 2 per-vertex normals, bit 3 texture coordinates; bits 0 and 1 exclusive, bits 4–7 zero |
 //! | base vertex count          | u32              | V                                                         |
 //! | base face count            | u32              | F                                                         |
 //! | positions                  | V × vec3         |                                                           |
 //! | vertex colours             | V × rgb          | bit 0 only                                                |
 //! | vertex normals             | V × vec3         | bit 2 only                                                |
+//! | texture coordinates        | V × uv           | bit 3 only                                                |
 //! | triangles                  | F × 3 u32        | vertex ids below V, counter-clockwise from the front      |
 //! | face colours               | F × rgb          | bit 1 only                                                |
 //! | split count                | u32              | S; S split records follow, split i adds vertex V + i      |
@@ -42,6 +43,7 @@
 //! | new position               | vec3             | vertex V + i                                              |
 //! | colours                    | 3 × rgb          | bit 0 only: keep coarse, keep fine, new                   |
 //! | normals                    | 3 × vec3         | bit 2 only, same order                                    |
+//! | texture coordinates        | 3 × uv           | bit 3 only, same order                                    |
 //! | renamed count              | u32              | R                                                         |
 //! | renamed                    | R × u32          | faces (ids at this level) whose `keep` corner becomes V + i |
 //! | added count                | u8               | A (1 on a boundary edge, 2 inside)                        |
@@ -53,6 +55,8 @@
 //! Faces are numbered as they appear: the F base faces, then each split's added faces in
 //! order. A split's renamed faces are those that exist before it (ids below F plus the faces
 //! the earlier splits added).
+//!
+//! Bit 3 came after the first files were written; those have it clear and read as before.
 
 use std::io::{self, Write};
 use std::path::Path;
@@ -71,6 +75,7 @@ pub const VERSION: u32 = 1;
 const VERTEX_COLORS: u8 = 1;
 const FACE_COLORS: u8 = 2;
 const VERTEX_NORMALS: u8 = 4;
+const TEXCOORDS: u8 = 8;
 
 /// Writes `pm` to `path` via a temporary file beside it and a rename. A model that fails
 /// [`ProgressiveModel::validate`] (or that the layout cannot hold, such as per-face normals)
@@ -121,6 +126,7 @@ struct Attributes {
     vertex_colors: bool,
     face_colors: bool,
     normals: bool,
+    texcoords: bool,
 }
 
 impl Attributes {
@@ -129,6 +135,7 @@ impl Attributes {
             vertex_colors: matches!(m.colors, Some(Attribute::PerVertex(_))),
             face_colors: matches!(m.colors, Some(Attribute::PerFace(_))),
             normals: m.normals.is_some(),
+            texcoords: m.texcoords.is_some(),
         }
     }
 
@@ -137,10 +144,11 @@ impl Attributes {
         bit(self.vertex_colors, VERTEX_COLORS)
             | bit(self.face_colors, FACE_COLORS)
             | bit(self.normals, VERTEX_NORMALS)
+            | bit(self.texcoords, TEXCOORDS)
     }
 
     fn from_bits(bits: u8) -> Option<Self> {
-        let all = VERTEX_COLORS | FACE_COLORS | VERTEX_NORMALS;
+        let all = VERTEX_COLORS | FACE_COLORS | VERTEX_NORMALS | TEXCOORDS;
         let both_colors = VERTEX_COLORS | FACE_COLORS;
         if bits & !all != 0 || bits & both_colors == both_colors {
             return None;
@@ -149,12 +157,14 @@ impl Attributes {
             vertex_colors: bits & VERTEX_COLORS != 0,
             face_colors: bits & FACE_COLORS != 0,
             normals: bits & VERTEX_NORMALS != 0,
+            texcoords: bits & TEXCOORDS != 0,
         })
     }
 
     /// Bytes of one base vertex, one base face and one split before its lists.
     fn vertex_size(self) -> usize {
         12 + 12 * (self.vertex_colors as usize + self.normals as usize)
+            + 8 * self.texcoords as usize
     }
 
     fn face_size(self) -> usize {
@@ -162,7 +172,11 @@ impl Attributes {
     }
 
     fn split_size(self) -> usize {
-        4 + 36 + 36 * (self.vertex_colors as usize + self.normals as usize) + 4 + 1
+        4 + 36
+            + 36 * (self.vertex_colors as usize + self.normals as usize)
+            + 24 * self.texcoords as usize
+            + 4
+            + 1
     }
 }
 
@@ -258,6 +272,9 @@ fn write_base<W: Write>(out: &mut Out<'_, W>, m: &Model) -> io::Result<()> {
     if let Some(Attribute::PerVertex(n)) = &m.normals {
         n.iter().try_for_each(|&n| out.vec3(n))?;
     }
+    if let Some(t) = &m.texcoords {
+        t.iter().try_for_each(|t| out.f32s(t))?;
+    }
     m.triangles.iter().try_for_each(|t| out.u32s(t))?;
     if let Some(Attribute::PerFace(c)) = &m.colors {
         c.iter().try_for_each(|c| out.f32s(c))?;
@@ -275,6 +292,9 @@ fn write_split<W: Write>(out: &mut Out<'_, W>, s: &VertexSplit, a: Attributes) -
     }
     if let (true, Some(n)) = (a.normals, &s.normals) {
         n.iter().try_for_each(|&n| out.vec3(n))?;
+    }
+    if let (true, Some(t)) = (a.texcoords, &s.texcoords) {
+        t.iter().try_for_each(|t| out.f32s(t))?;
     }
     out.len(s.renamed.len())?;
     out.u32s(&s.renamed)?;
@@ -368,6 +388,10 @@ impl<'a> Cursor<'a> {
 
     fn rgb(&mut self, what: &str) -> Parse<[f32; 3]> {
         Ok([self.f32(what)?, self.f32(what)?, self.f32(what)?])
+    }
+
+    fn uv(&mut self, what: &str) -> Parse<[f32; 2]> {
+        Ok([self.f32(what)?, self.f32(what)?])
     }
 
     /// An id below `limit`.
@@ -512,7 +536,7 @@ fn header(c: &mut Cursor<'_>) -> Parse<(Model, Attributes, usize, usize)> {
     let a = Attributes::from_bits(bits).ok_or_else(|| {
         c.bad(
             at,
-            format!("attribute flags {bits:#04x}: expected bits 0, 1 (not both) and 2 only"),
+            format!("attribute flags {bits:#04x}: expected bits 0, 1 (not both), 2 and 3 only"),
         )
     })?;
     let vertices = c.count(a.vertex_size(), "the base vertex count")?;
@@ -543,6 +567,12 @@ fn read_base(
     if a.normals {
         let normals = c.list(vertices, 12, "normals", |c| c.vec3("a normal"))?;
         m.normals = Some(Attribute::PerVertex(normals));
+    }
+    if a.texcoords {
+        let texcoords = c.list(vertices, 8, "texture coordinates", |c| {
+            c.uv("a texture coordinate")
+        })?;
+        m.texcoords = Some(texcoords);
     }
     m.triangles = c.list(faces, 12, "triangles", |c| {
         c.triangle(vertices, "a base face's vertex")
@@ -594,6 +624,12 @@ fn split(c: &mut Cursor<'_>, a: Attributes, new: usize, faces: usize) -> Parse<V
     } else {
         None
     };
+    let texcoords = if a.texcoords {
+        let what = "a texture coordinate";
+        Some([c.uv(what)?, c.uv(what)?, c.uv(what)?])
+    } else {
+        None
+    };
     let renamed = c.count(4, "the renamed face count")?;
     let renamed = c.list(renamed, 4, "renamed faces", |c| {
         c.index(faces, "a renamed face")
@@ -614,6 +650,7 @@ fn split(c: &mut Cursor<'_>, a: Attributes, new: usize, faces: usize) -> Parse<V
         position,
         colors,
         normals,
+        texcoords,
         renamed,
         added: added_faces,
         added_colors,
@@ -668,20 +705,52 @@ mod tests {
         assert_eq!(parse(&b).unwrap_or_else(|e| panic!("{e}")), pm);
     }
 
+    /// `m` with texture coordinates from its positions (no two vertices alike).
+    fn textured(mut m: Model) -> Model {
+        m.texcoords = Some(m.positions.iter().map(|p| [p.x + 0.5 * p.z, p.y]).collect());
+        m
+    }
+
+    #[test]
+    fn texture_coordinates_read_back_equal_and_a_cut_through_them_is_named() {
+        let pm = progressive(vec![textured(shapes::uv_sphere(8, 12))]);
+        let m = &pm.models[0];
+        assert!(m.base.texcoords.is_some());
+        let b = bytes(&pm);
+        // The attribute byte, after the magic, version, model count, name and material.
+        let header = 16 + 4 + m.base.name.len() + 64 + 12 + 5 + 1;
+        assert_eq!(b[header], 8, "bit 3, texture coordinates, only");
+        assert_eq!(parse(&b).unwrap_or_else(|e| panic!("{e}")), pm);
+        // Cut in the middle of the last split's coordinates.
+        let (v, f) = (m.base.positions.len(), m.base.triangles.len());
+        let split =
+            |s: &VertexSplit| 4 + 36 + 24 + 4 + 4 * s.renamed.len() + 1 + 12 * s.added.len();
+        let earlier = &m.splits[..m.splits.len().saturating_sub(1)];
+        let at = header + 1 + 8 + 20 * v + 12 * f + 4 + earlier.iter().map(split).sum::<usize>();
+        let e = parse(&b[..at + 40 + 12]).err().map(|e| e.to_string());
+        let expected = format!(
+            "split {}: the file ends before a texture coordinate (4 bytes needed, 0 left)",
+            earlier.len()
+        );
+        assert!(e.as_ref().is_some_and(|e| e.contains(&expected)), "{e:?}");
+    }
+
     #[test]
     fn every_prefix_and_every_flipped_byte_is_handled() {
-        let pm = progressive(vec![shapes::cube(2, 1.0)]);
-        let b = bytes(&pm);
-        for len in 0..b.len() {
-            let e = parse(&b[..len]).err();
-            assert!(e.is_some(), "a file cut to {len} bytes was read");
-        }
-        for i in 0..b.len() {
-            let mut bad = b.clone();
-            bad[i] ^= 0x5a;
-            // Either read (an id or position changed) or refused: never a panic.
-            if let Ok(read) = parse(&bad) {
-                assert!(read.models.iter().all(|m| m.validate().is_ok()));
+        for model in [shapes::cube(2, 1.0), textured(shapes::cube(2, 1.0))] {
+            let pm = progressive(vec![model]);
+            let b = bytes(&pm);
+            for len in 0..b.len() {
+                let e = parse(&b[..len]).err();
+                assert!(e.is_some(), "a file cut to {len} bytes was read");
+            }
+            for i in 0..b.len() {
+                let mut bad = b.clone();
+                bad[i] ^= 0x5a;
+                // Either read (an id or position changed) or refused: never a panic.
+                if let Ok(read) = parse(&bad) {
+                    assert!(read.models.iter().all(|m| m.validate().is_ok()));
+                }
             }
         }
     }

@@ -296,6 +296,7 @@ impl Part<'_> {
         };
         let colors_before = self.colors.as_deref().map(|c| (c[k], c[r]));
         let normals_before = self.normals.as_deref().map(|n| (n[k], n[r]));
+        let texcoords_before = self.texcoords.as_deref().map(|t| (t[k], t[r]));
         if let Some(c) = self.colors.as_deref_mut() {
             c[k] = lerp(c[r], c[k]);
         }
@@ -334,6 +335,9 @@ impl Part<'_> {
                 normals: normals_before
                     .zip(self.normals.as_deref())
                     .map(|((nk, nr), n)| [nk, n[k], nr].map(Vec3::from_array)),
+                texcoords: texcoords_before
+                    .zip(self.texcoords.as_deref())
+                    .map(|((tk, tr), t)| [tk, t[k], tr]),
                 renamed: &self.scratch.renamed,
                 deleted: &self.scratch.deleted,
             });
