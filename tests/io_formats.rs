@@ -223,6 +223,85 @@ fn coff_vertex_colours_and_off_face_colours() {
     );
 }
 
+/// Each triangle corner as (position bits, texture coordinate bits).
+fn textured_corners(s: &Scene) -> Vec<[u32; 5]> {
+    let mut v = Vec::new();
+    for m in &s.models {
+        let t = m.texcoords.as_ref().expect("texture coordinates");
+        assert_eq!(t.len(), m.positions.len());
+        for tri in &m.triangles {
+            for &i in tri {
+                let (p, uv) = (m.positions[i as usize], t[i as usize]);
+                v.push([p.x, p.y, p.z, uv[0], uv[1]].map(f32::to_bits));
+            }
+        }
+    }
+    v
+}
+
+#[test]
+fn off_texture_coordinates_are_read_and_round_trip_exactly() {
+    // ST with colours and with normals: s t come last on the line.
+    let src = b"STCOFF
+4 2 0
+0 0 0  255 0 0 255  0.125 0.25
+1 0 0  0 255 0 255  0.333333343 0.5
+1 1 0  0 0 255 255  0.1 1e-7
+0 1 0  9 9 9 255  -0 2
+3 0 1 2
+3 0 2 3
+";
+    let out = read("st.off", src);
+    assert!(out.warnings.is_empty(), "{:?}", out.warnings);
+    let m = &out.scene.models[0];
+    assert_eq!(
+        m.texcoords.as_deref(),
+        Some(&[[0.125, 0.25], [1.0 / 3.0, 0.5], [0.1, 1e-7], [-0.0, 2.0]][..])
+    );
+    assert!(matches!(m.colors, Some(Attribute::PerVertex(_))));
+    let s = read(
+        "n.off",
+        b"STNOFF 3 1 0\n0 0 0 0 0 1 0.5 0.5\n1 0 0 0 0 1 1 0\n0 1 0 0 0 1 0 1\n3 0 1 2\n",
+    )
+    .scene;
+    assert_eq!(
+        s.models[0].texcoords.as_deref(),
+        Some(&[[0.5, 0.5], [1.0, 0.0], [0.0, 1.0]][..])
+    );
+
+    // Written back: STCOFF with the colour before s t, and the same corners exactly.
+    let mut text = Vec::new();
+    decimate::io::off::write_off_to(&mut text, &out.scene).unwrap();
+    assert!(
+        text.starts_with(b"STCOFF\n"),
+        "{}",
+        String::from_utf8_lossy(&text)
+    );
+    let back = read("back.off", &text);
+    assert_eq!(textured_corners(&back.scene), textured_corners(&out.scene));
+    assert_eq!(back.scene.models[0].colors, m.colors);
+
+    // Without colours: STOFF; a seam (point 0 twice, other coordinates) stays cut.
+    let mut model = out.scene.models[0].clone();
+    model.colors = None;
+    model.positions.push(model.positions[0]);
+    model.texcoords.as_mut().unwrap().push([7.5, 1.0 / 3.0]);
+    model.triangles[1][0] = 4;
+    let scene = Scene {
+        models: vec![model],
+    };
+    let mut text = Vec::new();
+    decimate::io::off::write_off_to(&mut text, &scene).unwrap();
+    assert!(
+        text.starts_with(b"STOFF\n"),
+        "{}",
+        String::from_utf8_lossy(&text)
+    );
+    let back = read("seam.off", &text);
+    assert_eq!(back.scene.vertex_count(), 5);
+    assert_eq!(textured_corners(&back.scene), textured_corners(&scene));
+}
+
 /// Two coloured shapes, one translated and one mirrored.
 const SCENE: &str = "#VRML V2.0 utf8
 DEF A Transform { translation 0 0 5 children [ Shape { geometry IndexedFaceSet {
@@ -323,6 +402,8 @@ fn malformed_files_fail_with_file_and_line() {
         ("a.off", b"OFF\n3 1 0\n0 0 zz\n1 0 0\n0 1 0\n3 0 1 2\n", "a.off:3: expected a number for a vertex's z, found 'zz'"),
         ("a.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n5 0 1 2\n", "a.off:6: expected 'n i1 … in' for face 0"),
         ("a.off", b"4OFF\n", "a.off:1: '4OFF' (4-D or n-D OFF) is not supported"),
+        ("a.off", b"STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1\n0 1 0 0 1\n3 0 1 2\n", "a.off:4: expected texture coordinates 's t' at the end of an STOFF vertex line, found 4 values"),
+        ("a.off", b"STCOFF\n3 1 0\n0 0 0 1 0 0 1 0 0\n1 0 0 1 0 0 1 1 y\n", "a.off:4: expected a number for a texture coordinate, found 'y'"),
         ("a.stl", b"solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid\n", "a.stl:3: a facet has 2 vertices"),
         ("a.stl", b"solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 x\n", "a.stl:5: expected a number for a vertex's z, found 'x'"),
         ("a.stl", b"solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n", "a.stl:4: unexpected end of file inside a facet"),
@@ -376,6 +457,7 @@ fn every_prefix_of_every_fixture_reads_or_fails_cleanly() {
     let fixtures: Vec<(&str, Vec<u8>)> = vec![
         ("p.obj", b"v 0 0 0 1 0 0\nv 1 0 0\nv 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\ng x\nf -1 -2 -3\n".to_vec()),
         ("p.off", b"COFF\n3 1 0\n0 0 0 1 0 0\n1 0 0 0 1 0\n0 1 0 0 0 1\n3 0 1 2 1 1 1\n".to_vec()),
+        ("t.off", b"STCOFF\n3 1 0\n0 0 0 1 0 0 0.5 0.5\n1 0 0 0 1 0 1 0\n0 1 0 0 0 1 0 1\n3 0 1 2\n".to_vec()),
         ("p.stl", b"solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n".to_vec()),
         ("q.stl", binary_stl(b"solid q", &TETRA)),
     ];

@@ -1,10 +1,10 @@
 //! Texture coordinates survive decimation end to end: an OBJ with `vt` goes through the
 //! binary with either algorithm and comes out with one coordinate pair per vertex that still
 //! maps the surface as the input did, with every texture seam in place and closed (its two
-//! sides pinned, so the surface never cracks along it).
+//! sides pinned, so the surface never cracks along it). A PLY with per-vertex coordinates
+//! comes out of qem as a PLY with one `s t` pair per vertex.
 
 use std::collections::HashMap;
-use std::path::Path;
 use std::process::Command;
 
 /// An OBJ as read back by this test's own reader: positions, texture coordinates and
@@ -15,8 +15,7 @@ struct Obj {
     triangles: Vec<[(usize, usize); 3]>,
 }
 
-fn read_obj(path: &Path) -> Obj {
-    let text = std::fs::read_to_string(path).expect("the output exists");
+fn read_obj(text: &str) -> Obj {
     let mut obj = Obj {
         positions: Vec::new(),
         texcoords: Vec::new(),
@@ -96,11 +95,20 @@ fn grid_obj(n: usize, surface: impl Fn(f32, f32) -> [f32; 3]) -> String {
 
 /// Runs `decimate IN nogui ARGS -o OUT.obj` in a fresh directory; returns the output read back.
 fn decimate(name: &str, obj: &str, args: &[&str]) -> Obj {
+    let out = run(name, "obj", obj, args);
+    read_obj(&String::from_utf8(out).expect("OBJ is text"))
+}
+
+/// Runs `decimate in.EXT nogui ARGS -o out.EXT` in a fresh directory; returns the output.
+fn run(name: &str, ext: &str, input_text: &str, args: &[&str]) -> Vec<u8> {
     let dir =
         std::env::temp_dir().join(format!("decimate-texcoords-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let (input, output) = (dir.join("in.obj"), dir.join("out.obj"));
-    std::fs::write(&input, obj).unwrap();
+    let (input, output) = (
+        dir.join(format!("in.{ext}")),
+        dir.join(format!("out.{ext}")),
+    );
+    std::fs::write(&input, input_text).unwrap();
     let run = Command::new(env!("CARGO_BIN_EXE_decimate"))
         .arg(&input)
         .arg("nogui")
@@ -112,7 +120,7 @@ fn decimate(name: &str, obj: &str, args: &[&str]) -> Obj {
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "decimate failed: {stderr}");
     assert!(!stderr.contains("warning"), "unexpected warning: {stderr}");
-    let out = read_obj(&output);
+    let out = std::fs::read(&output).expect("the output exists");
     std::fs::remove_dir_all(&dir).ok();
     out
 }
@@ -387,4 +395,109 @@ fn inventor_texture_bindings_pick_pairs_by_index_or_in_corner_order() {
     assert_eq!(read(per_vertex.clone()), [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]);
     let scene = decimate::io::parse_str(&per_vertex, "t.iv").unwrap().scene;
     assert_eq!(scene.models[0].positions.len(), 6);
+}
+
+/// `grid_obj`'s flat grid as an ASCII PLY with MeshLab's per-vertex `texture_u texture_v`:
+/// the points on the seam are there twice, once per island.
+fn grid_ply(n: usize) -> String {
+    let at = |i: usize| i as f32 / n as f32;
+    let mut vertices = String::new();
+    let mut id: HashMap<(usize, usize, usize), usize> = HashMap::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            for island in 0..2 {
+                if (island == 0 && i <= n / 2) || (island == 1 && i >= n / 2) {
+                    id.insert((island, i, j), id.len());
+                    let (x, y) = (at(i), at(j));
+                    vertices += &format!("{x} {y} 0 {} {y}\n", x + 2.0 * island as f32);
+                }
+            }
+        }
+    }
+    let mut faces = String::new();
+    for j in 0..n {
+        for i in 0..n {
+            let island = usize::from(i >= n / 2);
+            let v = |i, j| id[&(island, i, j)];
+            let [a, b, c, d] = [v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)];
+            faces += &format!("4 {a} {b} {c} {d}\n");
+        }
+    }
+    format!(
+        "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\n\
+         property float z\nproperty float texture_u\nproperty float texture_v\n\
+         element face {}\nproperty list uchar int vertex_indices\nend_header\n{vertices}{faces}",
+        id.len(),
+        n * n
+    )
+}
+
+/// Our binary PLY output, checked against the exact layout the writer promises (x y z s t
+/// floats per vertex, triangles as uchar 3 + three ints), as an `Obj` whose pairs are
+/// numbered as the vertices.
+fn read_our_ply(bytes: &[u8]) -> Obj {
+    let end = b"end_header\n";
+    let split = bytes
+        .windows(end.len())
+        .position(|w| w == end)
+        .expect("a header")
+        + end.len();
+    let header = std::str::from_utf8(&bytes[..split]).expect("an ASCII header");
+    let count = |el: &str| -> usize {
+        let line = header.lines().find(|l| l.starts_with(el)).expect(el);
+        line[el.len()..].trim().parse().expect("a count")
+    };
+    let (nv, nf) = (count("element vertex "), count("element face "));
+    assert_eq!(
+        header,
+        format!(
+            "ply\nformat binary_little_endian 1.0\ncomment written by decimate\n\
+             element vertex {nv}\nproperty float x\nproperty float y\nproperty float z\n\
+             property float s\nproperty float t\nelement face {nf}\n\
+             property list uchar int vertex_indices\nend_header\n"
+        )
+    );
+    let body = &bytes[split..];
+    assert_eq!(body.len(), nv * 20 + nf * 13, "one s t pair per vertex");
+    let f = |k: usize| f32::from_le_bytes(body[k..k + 4].try_into().unwrap());
+    let mut obj = Obj {
+        positions: Vec::new(),
+        texcoords: Vec::new(),
+        triangles: Vec::new(),
+    };
+    for v in 0..nv {
+        let k = v * 20;
+        obj.positions.push([f(k), f(k + 4), f(k + 8)]);
+        obj.texcoords.push([f(k + 12), f(k + 16)]);
+    }
+    for t in 0..nf {
+        let k = nv * 20 + t * 13;
+        assert_eq!(body[k], 3);
+        let i = |c: usize| {
+            u32::from_le_bytes(body[k + 1 + 4 * c..k + 5 + 4 * c].try_into().unwrap()) as usize
+        };
+        obj.triangles.push([0, 1, 2].map(|c| (i(c), i(c))));
+    }
+    obj
+}
+
+#[test]
+fn a_textured_ply_comes_out_of_qem_with_a_pair_per_vertex() {
+    let n = 32;
+    let out = read_our_ply(&run(
+        "ply-qem",
+        "ply",
+        &grid_ply(n),
+        &["-a", "qem", "--keep-vertices", "300"],
+    ));
+    assert_eq!(out.positions.len(), 300);
+    check_layout(&out);
+    for (p, uv) in out.positions.iter().zip(&out.texcoords) {
+        let shift = if uv[0] > 1.5 { 2.0 } else { 0.0 };
+        assert!(
+            (uv[0] - shift - p[0]).abs() < 1e-5 && (uv[1] - p[1]).abs() < 1e-5,
+            "vertex at {p:?} maps to {uv:?}"
+        );
+    }
+    assert_eq!(seam_vertices(&out), [n + 1, n + 1], "the seam is pinned");
 }

@@ -3,20 +3,22 @@
 //! Read: an `OFF` header with optional `ST`, `C`, `N` prefixes (`COFF`, `NOFF`, `CNOFF`...;
 //! the 4-D and n-D variants and binary OFF are refused), `#` comments, the counts line
 //! `vertices faces [edges]` (on the header line or the next), one vertex per line
-//! (`x y z`, then normal / colour / texture values as the prefixes say; a colour is also taken
-//! from a plain `OFF` vertex line with 3 or 4 extra values), one face per line
-//! (`n i1 … in`, optionally followed by a colour: 3 or 4 values, or 1 colour-map index that is
-//! ignored). Colours are 0..1 floats, or 0..255 when all three are integers. Polygons are
-//! triangulated. Counts are checked against the file size before anything is reserved.
-//! Write: ASCII `OFF` (or `COFF` when every model has per-vertex colours), all models in one
-//! file, world positions.
+//! (`x y z`, then normal / colour / `s t` texture coordinates as the prefixes say, in that
+//! order; a colour is also taken from a plain `OFF` vertex line with 3 or 4 extra values), one
+//! face per line (`n i1 … in`, optionally followed by a colour: 3 or 4 values, or 1 colour-map
+//! index that is ignored). Colours are 0..1 floats, or 0..255 when all three are integers.
+//! `ST` texture coordinates are kept per vertex. Polygons are triangulated. Counts are checked
+//! against the file size before anything is reserved.
+//! Write: ASCII `OFF`, with `C` (`r g b a`) when every model has per-vertex colours and `ST`
+//! (`s t`, after the colour) when every model has texture coordinates (`STCOFF`, `STOFF`,
+//! `COFF`), all models in one file, world positions.
 
 use std::io::Write;
 use std::path::Path;
 
 use glam::Mat4;
 
-use super::build::{build, Bind, ShapeSpec};
+use super::build::{build, Bind, ShapeSpec, TexCoords};
 use super::lexer::{parse_int, PResult, ParseError};
 use super::obj::{number, shown, words, Lines};
 use super::WriteError;
@@ -161,6 +163,7 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
 
     let mut coords: Vec<f32> = Vec::with_capacity(nv * 3);
     let mut rgb: Vec<f32> = Vec::new();
+    let mut st: Vec<f32> = Vec::new();
     let mut ws: Vec<&[u8]> = Vec::new();
     let mut last = counts_line;
     for i in 0..nv {
@@ -185,7 +188,18 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
             }
         }
         let texture = if kind.texture { 2 } else { 0 };
-        let ncolor = extra.len().saturating_sub(texture);
+        if extra.len() < texture {
+            return Err(ParseError::new(
+                line,
+                format!(
+                    "expected texture coordinates 's t' at the end of an {} vertex line, \
+                     found {} values",
+                    shown(first),
+                    ws.len()
+                ),
+            ));
+        }
+        let ncolor = extra.len() - texture;
         let has_color = if kind.color {
             if !(3..=4).contains(&ncolor) {
                 return Err(ParseError::new(
@@ -221,7 +235,7 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
             rgb.extend([0.8; 3]);
         }
         for w in &extra[ncolor..] {
-            number(Some(w), line, "a texture coordinate")?;
+            st.push(number(Some(w), line, "a texture coordinate")?);
         }
     }
 
@@ -310,6 +324,10 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
     } else {
         Bind::None
     };
+    let texcoords = kind.texture.then(|| TexCoords {
+        values: &st,
+        index: corners.clone(),
+    });
     let model = build(
         ShapeSpec {
             name: "off".into(),
@@ -319,7 +337,7 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
             ends,
             colors,
             normals: Bind::None,
-            texcoords: None,
+            texcoords,
             ccw: true,
             solid: false,
             crease_angle: None,
@@ -348,7 +366,19 @@ pub fn write_off_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         && scene.models.iter().all(
             |m| matches!(&m.colors, Some(Attribute::PerVertex(c)) if c.len() == m.positions.len()),
         );
-    writeln!(w, "{}", if colored { "COFF" } else { "OFF" })?;
+    let textured = !scene.models.is_empty()
+        && scene.models.iter().all(|m| {
+            m.texcoords
+                .as_ref()
+                .is_some_and(|t| t.len() == m.positions.len())
+        });
+    // Prefixes in the order readers expect: [ST][C][N]OFF.
+    writeln!(
+        w,
+        "{}{}OFF",
+        if textured { "ST" } else { "" },
+        if colored { "C" } else { "" }
+    )?;
     writeln!(
         w,
         "# written by decimate: {} models, world positions (model transforms applied)",
@@ -360,15 +390,19 @@ pub fn write_off_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
             Some(Attribute::PerVertex(c)) if colored => Some(c),
             _ => None,
         };
+        let texcoords = m.texcoords.as_ref().filter(|_| textured);
         for (k, &p) in m.positions.iter().enumerate() {
             let p = m.transform.transform_point3(p);
-            match colors {
-                Some(c) => {
-                    let [r, g, b] = c[k];
-                    writeln!(w, "{} {} {} {:?} {:?} {:?} 1.0", p.x, p.y, p.z, r, g, b)?
-                }
-                None => writeln!(w, "{} {} {}", p.x, p.y, p.z)?,
+            write!(w, "{} {} {}", p.x, p.y, p.z)?;
+            if let Some(c) = colors {
+                let [r, g, b] = c[k];
+                write!(w, " {r:?} {g:?} {b:?} 1.0")?;
             }
+            if let Some(t) = texcoords {
+                let [s, t] = t[k];
+                write!(w, " {s:?} {t:?}")?;
+            }
+            writeln!(w)?;
         }
     }
     let mut base = 0u64;

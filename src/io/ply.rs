@@ -1,18 +1,25 @@
 //! PLY (Stanford polygon format): a reader for ASCII and binary (little / big endian) files and
 //! a binary little-endian writer.
 //!
-//! Read: `element vertex` with `x y z` (float or double, any other properties skipped) and
-//! optional `red green blue` (uchar, becoming per-vertex colours), `element face` with a
-//! `vertex_indices` / `vertex_index` list (any integer count and index types); polygons are
-//! triangulated like VRML faces. Other elements are skipped. The result is one model.
-//! Write: one binary little-endian file of all models, transforms baked in.
+//! Read: `element vertex` with `x y z` (float or double, any other properties skipped),
+//! optional `red green blue` (uchar, becoming per-vertex colours) and optional texture
+//! coordinates as one of the pairs `s t` (Blender), `u v`, `texture_u texture_v` (MeshLab),
+//! `texture_s texture_t` (any numeric type; half a pair is skipped with a warning),
+//! `element face` with a `vertex_indices` / `vertex_index` list (any integer count and index
+//! types) and optionally MeshLab's per-corner `texcoord` list (`u v` per corner, taking the
+//! place of per-vertex ones; a point with different ones in different faces becomes one
+//! vertex per seam side); polygons are triangulated like VRML faces. Other elements are
+//! skipped. The result is one model.
+//! Write: one binary little-endian file of all models, transforms baked in, with per-vertex
+//! colours (`red green blue`) and texture coordinates (`s t`) when every model has them.
 
+use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
 
 use glam::{Mat4, Vec3};
 
-use super::build::{build, Bind, ShapeSpec};
+use super::build::{build, Bind, ShapeSpec, TexCoords};
 use super::lexer::{PResult, ParseError};
 use super::WriteError;
 use crate::mesh::{Attribute, Scene};
@@ -75,6 +82,14 @@ struct Element {
     props: Vec<Property>,
     line: usize,
 }
+
+/// The vertex property pairs that hold texture coordinates, as tools write them.
+const UV_NAMES: [[&str; 2]; 4] = [
+    ["s", "t"],
+    ["u", "v"],
+    ["texture_u", "texture_v"],
+    ["texture_s", "texture_t"],
+];
 
 /// Reads scalar values in one of the three encodings.
 struct Body<'a> {
@@ -275,6 +290,10 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
     let mut coords: Vec<f32> = Vec::new();
     let mut rgb: Vec<f32> = Vec::new();
     let mut nxyz: Vec<f32> = Vec::new();
+    let mut uv: Vec<f32> = Vec::new();
+    // MeshLab's per-corner `texcoord` lists, flat (u v); `None` once a face's list does not
+    // match its corners.
+    let mut corner_uv: Option<Vec<f32>> = None;
     let mut corners: Vec<u32> = Vec::new();
     let mut ends: Vec<u32> = Vec::new();
     let mut face_line = header_lines;
@@ -300,6 +319,20 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                     (Some(a), Some(b), Some(c)) => Some([a, b, c]),
                     _ => None,
                 };
+                let texture = UV_NAMES
+                    .iter()
+                    .find_map(|[u, v]| Some([slot(u)?, slot(v)?]));
+                if texture.is_none() {
+                    for [u, v] in UV_NAMES {
+                        if let (Some(_), None) | (None, Some(_)) = (slot(u), slot(v)) {
+                            let (has, lacks) = if slot(u).is_some() { (u, v) } else { (v, u) };
+                            warnings.push(format!(
+                                "the vertex element has '{has}' but no '{lacks}'; \
+                                 texture coordinates skipped"
+                            ));
+                        }
+                    }
+                }
                 if el.count > bytes.len() {
                     return Err(body.eof("all the vertices the header announces"));
                 }
@@ -335,6 +368,9 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                     if let Some(n) = normal {
                         nxyz.extend(n.map(|i| vals[i] as f32));
                     }
+                    if let Some(t) = texture {
+                        uv.extend(t.map(|i| vals[i] as f32));
+                    }
                 }
             }
             "face" => {
@@ -348,12 +384,21 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                         "the face element has no vertex_indices list",
                     ));
                 };
+                let texture = el
+                    .props
+                    .iter()
+                    .position(|p| p.list.is_some() && p.name == "texcoord");
+                if texture.is_some() {
+                    corner_uv = Some(Vec::new());
+                }
                 if el.count > bytes.len() {
                     return Err(body.eof("all the faces the header announces"));
                 }
                 corners.reserve(el.count * 3);
                 ends.reserve(el.count);
-                for _ in 0..el.count {
+                for f in 0..el.count {
+                    let first = corners.len();
+                    let mut values = 0;
                     for (k, p) in el.props.iter().enumerate() {
                         match p.list {
                             Some(ct) => {
@@ -361,6 +406,12 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                                 for _ in 0..n {
                                     if k == list {
                                         corners.push(body.index(p.ty, "a face's vertex index")?);
+                                    } else if Some(k) == texture {
+                                        let v = body.value(p.ty, "a face's texture coordinate")?;
+                                        if let Some(c) = &mut corner_uv {
+                                            c.push(v as f32);
+                                        }
+                                        values += 1;
                                     } else {
                                         body.skip(p.ty, "a face list value")?;
                                     }
@@ -368,6 +419,14 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                             }
                             None => body.skip(p.ty, "a face property")?,
                         }
+                    }
+                    if corner_uv.is_some() && values != 2 * (corners.len() - first) {
+                        warnings.push(format!(
+                            "face {f} has {values} 'texcoord' values for {} corners \
+                             (expected u v per corner); texture coordinates skipped",
+                            corners.len() - first
+                        ));
+                        corner_uv = None;
                     }
                     ends.push(corners.len() as u32);
                 }
@@ -408,6 +467,32 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
             index: corners.clone(),
         }
     };
+    // Per-corner pairs win over per-vertex ones; equal pairs share an index, so corners of a
+    // point that agree on their coordinates stay one vertex.
+    let mut pairs: Vec<f32> = Vec::new();
+    let texcoords = match corner_uv {
+        Some(c) if !c.is_empty() => {
+            let mut seen: HashMap<[u32; 2], u32> = HashMap::new();
+            let mut index = Vec::with_capacity(c.len() / 2);
+            for p in c.chunks_exact(2) {
+                let next = seen.len() as u32;
+                let i = *seen.entry([p[0].to_bits(), p[1].to_bits()]).or_insert(next);
+                if i == next {
+                    pairs.extend(p);
+                }
+                index.push(i);
+            }
+            Some(TexCoords {
+                values: &pairs,
+                index,
+            })
+        }
+        _ if !uv.is_empty() => Some(TexCoords {
+            values: &uv,
+            index: corners.clone(),
+        }),
+        _ => None,
+    };
     let spec = ShapeSpec {
         name: "ply".into(),
         transform: Mat4::IDENTITY,
@@ -416,7 +501,7 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
         ends,
         colors,
         normals,
-        texcoords: None,
+        texcoords,
         ccw: true,
         solid: false,
         crease_angle: None,
@@ -434,7 +519,7 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
 }
 
 /// Writes all models as one binary little-endian PLY (transforms baked in; per-vertex colours
-/// kept when every model has them), via a temporary file and a rename.
+/// and texture coordinates kept when every model has them), via a temporary file and a rename.
 pub fn write_ply(scene: &Scene, path: &Path) -> Result<(), WriteError> {
     super::write_atomically(path, |w| write_ply_to(w, scene))
 }
@@ -446,6 +531,12 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
             .models
             .iter()
             .all(|m| matches!(m.colors, Some(Attribute::PerVertex(_))));
+    let textured = !scene.models.is_empty()
+        && scene.models.iter().all(|m| {
+            m.texcoords
+                .as_ref()
+                .is_some_and(|t| t.len() == m.positions.len())
+        });
     writeln!(
         w,
         "ply\nformat binary_little_endian 1.0\ncomment written by decimate"
@@ -457,6 +548,9 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
             w,
             "property uchar red\nproperty uchar green\nproperty uchar blue"
         )?;
+    }
+    if textured {
+        writeln!(w, "property float s\nproperty float t")?;
     }
     writeln!(w, "element face {}", scene.triangle_count())?;
     writeln!(w, "property list uchar int vertex_indices\nend_header")?;
@@ -473,6 +567,11 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
             if let Some(c) = colors {
                 let c = c.get(i).copied().unwrap_or(m.diffuse);
                 w.write_all(&c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))?;
+            }
+            if let Some(t) = m.texcoords.as_ref().filter(|_| textured) {
+                for v in t[i] {
+                    w.write_all(&v.to_le_bytes())?;
+                }
             }
         }
     }
