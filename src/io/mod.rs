@@ -360,6 +360,17 @@ pub fn write_scene(scene: &Scene, path: &Path) -> Result<(), WriteError> {
     }
 }
 
+/// True when the scene has models and every one has a texture coordinate pair per vertex:
+/// OFF and PLY hold all models in one vertex list, so they write pairs for all or none.
+pub(crate) fn all_textured(scene: &Scene) -> bool {
+    !scene.models.is_empty()
+        && scene.models.iter().all(|m| {
+            m.texcoords
+                .as_ref()
+                .is_some_and(|t| t.len() == m.positions.len())
+        })
+}
+
 /// `m`'s triangles as they must be written by the formats that store world positions (PLY,
 /// OBJ, STL, OFF): when the model's transform mirrors, the transformed triangles would face
 /// inwards, so their winding is reversed to stay counter-clockwise seen from outside.

@@ -366,12 +366,7 @@ pub fn write_off_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         && scene.models.iter().all(
             |m| matches!(&m.colors, Some(Attribute::PerVertex(c)) if c.len() == m.positions.len()),
         );
-    let textured = !scene.models.is_empty()
-        && scene.models.iter().all(|m| {
-            m.texcoords
-                .as_ref()
-                .is_some_and(|t| t.len() == m.positions.len())
-        });
+    let textured = super::all_textured(scene);
     // Prefixes in the order readers expect: [ST][C][N]OFF.
     writeln!(
         w,

@@ -531,12 +531,7 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
             .models
             .iter()
             .all(|m| matches!(m.colors, Some(Attribute::PerVertex(_))));
-    let textured = !scene.models.is_empty()
-        && scene.models.iter().all(|m| {
-            m.texcoords
-                .as_ref()
-                .is_some_and(|t| t.len() == m.positions.len())
-        });
+    let textured = super::all_textured(scene);
     writeln!(
         w,
         "ply\nformat binary_little_endian 1.0\ncomment written by decimate"
