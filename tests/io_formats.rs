@@ -5,6 +5,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod texture_support;
+use texture_support::textured_corners;
+
 use decimate::io::{parse_bytes, read_scene, write_scene, ReadError, ReadOutcome};
 use decimate::mesh::build::build_scene;
 use decimate::mesh::{Attribute, Scene};
@@ -221,22 +224,6 @@ fn coff_vertex_colours_and_off_face_colours() {
         s.models[0].colors,
         Some(Attribute::PerFace(vec![[0., 0., 1.]; 2]))
     );
-}
-
-/// Each triangle corner as (position bits, texture coordinate bits).
-fn textured_corners(s: &Scene) -> Vec<[u32; 5]> {
-    let mut v = Vec::new();
-    for m in &s.models {
-        let t = m.texcoords.as_ref().expect("texture coordinates");
-        assert_eq!(t.len(), m.positions.len());
-        for tri in &m.triangles {
-            for &i in tri {
-                let (p, uv) = (m.positions[i as usize], t[i as usize]);
-                v.push([p.x, p.y, p.z, uv[0], uv[1]].map(f32::to_bits));
-            }
-        }
-    }
-    v
 }
 
 #[test]

@@ -7,6 +7,9 @@ use decimate::mesh::{Attribute, Model, Scene};
 use glam::Vec3;
 use std::path::Path;
 
+mod texture_support;
+use texture_support::textured_corners;
+
 #[test]
 fn ascii_ply_with_a_quad_and_colours() {
     let src = "ply
@@ -75,23 +78,6 @@ fn ply_index_out_of_range_is_an_error() {
 
 fn read(name: &str, src: &[u8]) -> ReadOutcome {
     parse_bytes(src.to_vec(), Path::new(name)).unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// Each triangle corner as (position bits, texture coordinate bits): what a round trip must
-/// keep exactly, whatever order the vertices come back in.
-fn textured_corners(s: &Scene) -> Vec<[u32; 5]> {
-    let mut v = Vec::new();
-    for m in &s.models {
-        let t = m.texcoords.as_ref().expect("texture coordinates");
-        assert_eq!(t.len(), m.positions.len());
-        for tri in &m.triangles {
-            for &i in tri {
-                let (p, uv) = (m.positions[i as usize], t[i as usize]);
-                v.push([p.x, p.y, p.z, uv[0], uv[1]].map(f32::to_bits));
-            }
-        }
-    }
-    v
 }
 
 /// A coloured quad textured with awkward floats and cut by a seam: vertex 4 is vertex 0's
