@@ -157,6 +157,11 @@ pub fn summary(report: &Report) -> String {
     for m in &report.models {
         let mut state = if m.dropped {
             "  dropped (fewer than 4 vertices left)".to_string()
+        } else if m.fully_decimated && m.pinned > 0 {
+            format!(
+                "  fully decimated ({} vertices are pinned on texture seams)",
+                m.pinned
+            )
         } else if m.fully_decimated {
             "  fully decimated".to_string()
         } else {

@@ -501,3 +501,55 @@ fn a_textured_ply_comes_out_of_qem_with_a_pair_per_vertex() {
     }
     assert_eq!(seam_vertices(&out), [n + 1, n + 1], "the seam is pinned");
 }
+
+#[test]
+fn a_model_all_seams_says_why_it_stops() {
+    // Every triangle of a 4 × 4 grid has texture coordinates of its own: every point is on
+    // a seam, so nothing may go, and the summary says why.
+    let mut obj = String::new();
+    for j in 0..=4 {
+        for i in 0..=4 {
+            obj += &format!("v {} {} 0\n", i as f32 / 4.0, j as f32 / 4.0);
+        }
+    }
+    let mut k = 0;
+    for j in 0..4 {
+        for i in 0..4 {
+            let a = j * 5 + i + 1;
+            for tri in [[a, a + 1, a + 6], [a, a + 6, a + 5]] {
+                for _ in tri {
+                    obj += &format!("vt {} 0\n", k as f32 * 0.01);
+                    k += 1;
+                }
+                obj += &format!(
+                    "f {}/{} {}/{} {}/{}\n",
+                    tri[0],
+                    k - 2,
+                    tri[1],
+                    k - 1,
+                    tri[2],
+                    k
+                );
+            }
+        }
+    }
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("in.obj"), obj).unwrap();
+    for algorithm in ["schroeder", "qem"] {
+        let run = Command::new(env!("CARGO_BIN_EXE_decimate"))
+            .arg(dir.path().join("in.obj"))
+            .args(["nogui", "-a", algorithm, "-p", "50", "-o"])
+            .arg(dir.path().join("out.obj"))
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert!(run.status.success(), "{stderr}");
+        // 96 corners, each a vertex; all but the two corners of the square that only one
+        // triangle touches are on a seam.
+        assert!(
+            stderr.contains("vertices 96 -> 96")
+                && stderr.contains("fully decimated (94 vertices are pinned on texture seams)"),
+            "{algorithm}: {stderr}"
+        );
+    }
+}

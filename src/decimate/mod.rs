@@ -90,6 +90,8 @@ pub struct ModelReport {
     pub fully_decimated: bool,
     /// True when the model fell under four vertices and was dropped from the scene.
     pub dropped: bool,
+    /// Vertices kept because they lie on a texture seam.
+    pub pinned: usize,
 }
 
 /// What a decimation run did, model by model.
@@ -219,6 +221,7 @@ fn run(
             fully_decimated: outcome.exhausted,
             // As the original: only a removal can drop a model, never the input itself.
             dropped: outcome.removed > 0 && vertices_after < 4,
+            pinned: outcome.pinned,
         });
     }
     // The original program's rule: a model left with fewer than four vertices is dropped.

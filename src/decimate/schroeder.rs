@@ -63,6 +63,8 @@ pub struct Outcome {
     pub exhausted: bool,
     /// The feature angle in force at the end (larger than asked when relaxed).
     pub feature_angle_deg: f64,
+    /// Vertices never removed because they lie on a texture seam (`mesh::seams`).
+    pub pinned: usize,
 }
 
 /// Decimates `model` in place within `limits`; `progress` gets the running removal count.
@@ -88,6 +90,7 @@ pub fn decimate_model(
 
     // 2. connect
     let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
+    let pinned_count = pinned.iter().filter(|&&p| p).count();
     d.pinned = pinned;
 
     // 3. classify and rank
@@ -99,6 +102,7 @@ pub fn decimate_model(
         max_error: 0.0,
         exhausted: false,
         feature_angle_deg: limits.feature_angle_deg,
+        pinned: pinned_count,
     };
     loop {
         if outcome.removed >= limits.remove || d.conn.triangle_count() <= limits.keep_triangles {

@@ -131,7 +131,8 @@ fn run(
     d.whole().rank_all();
 
     // 5. collapse
-    let outcome = passes::collapse_in_passes(&mut d, limits, progress);
+    let mut outcome = passes::collapse_in_passes(&mut d, limits, progress);
+    outcome.pinned = seams.iter().filter(|&&s| s).count();
 
     // 6. compact
     if let Some(recorder) = d.recorder.take() {

@@ -163,6 +163,7 @@ pub(super) fn collapse_in_passes(
         max_error: 0.0,
         exhausted: false,
         feature_angle_deg: limits.feature_angle_deg,
+        pinned: 0,
     };
     let bound2 = limits.max_error * limits.max_error;
     // Never fewer than four vertices: a model under four is dropped from the scene, and a
