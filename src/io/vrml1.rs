@@ -274,6 +274,23 @@ fn unpack_rgba(packed: &[i32]) -> Vec<f32> {
     out
 }
 
+/// The values of the shape's `vertexProperty` field `own` when it has some, else those of
+/// the traversal state's node in `field` (Coordinate3, Normal, TextureCoordinate2).
+fn property_or<'a>(
+    vp: Option<&'a Rc<Node>>,
+    own: &str,
+    state_node: &'a Option<Rc<Node>>,
+    field: &str,
+) -> &'a [f32] {
+    match vp.and_then(|v| v.floats(own)).filter(|v| !v.is_empty()) {
+        Some(v) => v,
+        None => state_node
+            .as_ref()
+            .and_then(|n| n.floats(field))
+            .unwrap_or(&[]),
+    }
+}
+
 fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
     let kind = node.kind.as_str();
     let vp = node
@@ -292,29 +309,9 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
         cube = box_corners(cube_half);
         &cube
     } else {
-        match vp
-            .and_then(|v| v.floats("vertex"))
-            .filter(|v| !v.is_empty())
-        {
-            Some(v) => v,
-            None => state
-                .coords
-                .as_ref()
-                .and_then(|c| c.floats("point"))
-                .unwrap_or(&[]),
-        }
+        property_or(vp, "vertex", &state.coords, "point")
     };
-    let normal_values: &[f32] = match vp
-        .and_then(|v| v.floats("normal"))
-        .filter(|v| !v.is_empty())
-    {
-        Some(v) => v,
-        None => state
-            .normals
-            .as_ref()
-            .and_then(|n| n.floats("vector"))
-            .unwrap_or(&[]),
-    };
+    let normal_values = property_or(vp, "normal", &state.normals, "vector");
     let (material_values, material_binding): (&[f32], Binding) = match vp
         .and_then(|v| v.ints("orderedRGBA"))
         .filter(|v| !v.is_empty())
@@ -332,17 +329,7 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
             state.material_binding,
         ),
     };
-    let texcoord_values: &[f32] = match vp
-        .and_then(|v| v.floats("texCoord"))
-        .filter(|v| !v.is_empty())
-    {
-        Some(v) => v,
-        None => state
-            .texcoords
-            .as_ref()
-            .and_then(|t| t.floats("point"))
-            .unwrap_or(&[]),
-    };
+    let texcoord_values = property_or(vp, "texCoord", &state.texcoords, "point");
     let normal_binding = vp
         .and_then(|v| v.word("normalBinding"))
         .and_then(Binding::parse)
