@@ -12,7 +12,7 @@ pub mod schroeder;
 
 use std::time::Instant;
 
-use crate::mesh::Scene;
+use crate::mesh::{seams, stitches, Scene};
 
 /// How far to decimate. Counts are over the whole scene and shared among its models in
 /// proportion to their vertex counts.
@@ -90,7 +90,8 @@ pub struct ModelReport {
     pub fully_decimated: bool,
     /// True when the model fell under four vertices and was dropped from the scene.
     pub dropped: bool,
-    /// Vertices kept because they lie on a texture seam.
+    /// Vertices kept because they lie on a texture seam or a border shared with another
+    /// model.
     pub pinned: usize,
 }
 
@@ -174,9 +175,15 @@ fn run(
         .sum::<usize>()
         .max(1);
 
+    // Pinned: texture seams and borders shared with another model (cracks otherwise).
+    let shared = stitches::shared_border_vertices(scene);
     let mut reports = Vec::with_capacity(scene.models.len());
     let mut done = 0usize;
     for (i, model) in scene.models.iter_mut().enumerate() {
+        let mut pins = seams::seam_vertices(model);
+        for (pin, &on_shared_border) in pins.iter_mut().zip(&shared[i]) {
+            *pin |= on_shared_border;
+        }
         let max_error = match params.max_error {
             None => f64::INFINITY,
             Some(ErrorBound::Absolute(e)) => e,
@@ -199,14 +206,16 @@ fn run(
         let outcome = match (params.algorithm, record.as_deref_mut()) {
             (_, Some(models)) => {
                 let (outcome, pm) =
-                    qem::decimate_model_progressive(model, &limits, &mut report_progress);
+                    qem::decimate_model_progressive(model, &limits, &pins, &mut report_progress);
                 models.push(pm);
                 outcome
             }
             (Algorithm::Schroeder, None) => {
-                schroeder::decimate_model(model, &limits, &mut report_progress)
+                schroeder::decimate_model(model, &limits, &pins, &mut report_progress)
             }
-            (Algorithm::Qem, None) => qem::decimate_model(model, &limits, &mut report_progress),
+            (Algorithm::Qem, None) => {
+                qem::decimate_model(model, &limits, &pins, &mut report_progress)
+            }
         };
         done += outcome.removed;
         let vertices_after = model.positions.len().min(vertices[i] - outcome.removed);

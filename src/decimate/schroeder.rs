@@ -12,8 +12,8 @@
 //!    interior edge → distance to the line through its two feature neighbours;
 //!    plus the error already accumulated at the vertex by earlier removals around it, so that
 //!    the queue's key bounds the distance to the original surface (as VTK's later
-//!    implementation of the paper does); texture seam vertices (`mesh::seams`) are never
-//!    queued;
+//!    implementation of the paper does); pinned vertices (texture seams, `mesh::seams`;
+//!    borders shared with another model, `mesh::stitches`) are never queued;
 //! 4. remove: pop the smallest, fill its hole by recursive loop splitting
 //!    (`loop_split`), keeping creases (an interior-edge vertex's loop is first split along its
 //!    feature edge) and rejecting fills that flip or degenerate a triangle or create an edge
@@ -32,7 +32,7 @@ use super::loop_split;
 use super::queue::VertexQueue;
 use crate::mesh::classify::{classify, RingGeometry, VertexClass};
 use crate::mesh::topology::{Connectivity, Ring};
-use crate::mesh::{seams, Attribute, Model};
+use crate::mesh::{Attribute, Model};
 
 /// How far one model may be decimated.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,14 +63,18 @@ pub struct Outcome {
     pub exhausted: bool,
     /// The feature angle in force at the end (larger than asked when relaxed).
     pub feature_angle_deg: f64,
-    /// Vertices never removed because they lie on a texture seam (`mesh::seams`).
+    /// Vertices never removed because they were pinned (texture seams, `mesh::seams`, and
+    /// borders shared with another model, `mesh::stitches`).
     pub pinned: usize,
 }
 
-/// Decimates `model` in place within `limits`; `progress` gets the running removal count.
+/// Decimates `model` in place within `limits`, never removing a vertex flagged in `pins`
+/// (indexed like the model's positions: texture seams, shared borders); `progress` gets the
+/// running removal count.
 pub fn decimate_model(
     model: &mut Model,
     limits: &Limits,
+    pins: &[bool],
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
     // 1. load, renumbered along a Morton curve, triangles sorted by their first vertex:
@@ -85,8 +89,11 @@ pub fn decimate_model(
     faces.sort_by_cached_key(|&t| loaded.triangle(model, t).into_iter().min());
     loaded.faces = faces;
     let triangles = loaded.triangles(model);
-    let seams = seams::seam_vertices(model);
-    let pinned: Vec<bool> = loaded.order.iter().map(|&v| seams[v as usize]).collect();
+    let pinned: Vec<bool> = loaded
+        .order
+        .iter()
+        .map(|&v| pins.get(v as usize).copied().unwrap_or(false))
+        .collect();
 
     // 2. connect
     let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
@@ -156,7 +163,7 @@ struct Decimator {
     regions: Vec<FillRegion>,
     loop_buf: Vec<u32>,
     neighbours: Vec<u32>,
-    /// Vertices never removed: texture seams (`mesh::seams`).
+    /// Vertices never removed: texture seams and shared borders.
     pinned: Vec<bool>,
 }
 

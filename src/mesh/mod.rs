@@ -9,6 +9,7 @@ pub mod scene;
 pub mod seams;
 pub mod shapes;
 pub mod spatial;
+pub mod stitches;
 pub mod topology;
 pub mod weld;
 

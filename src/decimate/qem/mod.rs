@@ -39,7 +39,8 @@
 //! in 0..=1; the units of `Q`: as if the colour step moved the surface by that fraction of
 //! the edge), so edges across colour changes go last. Per-vertex normals and texture
 //! coordinates are interpolated the same way; per-face colours stay with their surviving
-//! faces. Texture seam vertices (`mesh::seams`) are fixed, so the seam's sides never part.
+//! faces. Pinned vertices — texture seams (`mesh::seams`) and borders shared with another
+//! model (`mesh::stitches`) — are fixed, so the two sides never part.
 
 mod collapser;
 mod legality;
@@ -56,18 +57,21 @@ use rayon::prelude::*;
 use super::layout;
 use super::progressive::{ProgressiveModel, Recorder};
 use super::schroeder::{Limits, Outcome};
-use crate::mesh::{seams, Attribute, Model};
+use crate::mesh::{Attribute, Model};
 use collapser::Collapser;
 
 /// Decimates `model` in place by quadric edge collapse within `limits` (the feature angle
 /// only picks the feature edges that are constrained; it is never relaxed — QEM needs no
-/// relaxing to reach a count). `progress` gets the running removal count.
+/// relaxing to reach a count). Vertices flagged in `pins` (indexed like the model's
+/// positions: texture seams, shared borders) never move. `progress` gets the running
+/// removal count.
 pub fn decimate_model(
     model: &mut Model,
     limits: &Limits,
+    pins: &[bool],
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
-    run(model, limits, progress, None).0
+    run(model, limits, pins, progress, None).0
 }
 
 /// As [`decimate_model`], and records every collapse: the returned progressive model's base
@@ -75,10 +79,11 @@ pub fn decimate_model(
 pub fn decimate_model_progressive(
     model: &mut Model,
     limits: &Limits,
+    pins: &[bool],
     progress: &mut dyn FnMut(usize),
 ) -> (Outcome, ProgressiveModel) {
     let recorder = Recorder::new(model);
-    match run(model, limits, progress, Some(recorder)) {
+    match run(model, limits, pins, progress, Some(recorder)) {
         (outcome, Some(pm)) => (outcome, pm),
         (_, None) => unreachable!("a run given a recorder returns its progressive model"),
     }
@@ -89,6 +94,7 @@ pub fn decimate_model_progressive(
 fn run(
     model: &mut Model,
     limits: &Limits,
+    pins: &[bool],
     progress: &mut dyn FnMut(usize),
     recorder: Option<Recorder>,
 ) -> (Outcome, Option<ProgressiveModel>) {
@@ -123,8 +129,8 @@ fn run(
         .as_ref()
         .filter(|t| t.len() == n as usize)
         .map(|t| order.iter().map(|&v| t[v as usize]).collect());
-    let seams = seams::seam_vertices(model);
-    d.pin(order.iter().map(|&v| seams[v as usize]));
+    let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
+    d.pin(order.iter().map(|&v| pinned(v)));
     d.recorder = recorder;
 
     // 4. rank
@@ -132,7 +138,7 @@ fn run(
 
     // 5. collapse
     let mut outcome = passes::collapse_in_passes(&mut d, limits, progress);
-    outcome.pinned = seams.iter().filter(|&&s| s).count();
+    outcome.pinned = (0..n).filter(|&v| pinned(v)).count();
 
     // 6. compact
     if let Some(recorder) = d.recorder.take() {

@@ -1,0 +1,155 @@
+//! Borders that models of one scene share: a CAD part split by colour, an OBJ split by
+//! material, a scan delivered in tiles. Each model is decimated on its own, so were a shared
+//! border simplified from both sides, each side would take its own shortcuts and the seam
+//! between them would open into a crack. Decimation pins the vertices found here, as it pins
+//! texture seams (`mesh::seams`).
+//!
+//! A vertex is on a shared border when it lies on a boundary edge of its model (an edge one
+//! triangle uses) and a boundary vertex of another model has exactly the same world position
+//! (the model's transform applied, `-0` taken as `0`). Exact equality is what exporters give
+//! when they cut one mesh in parts; parts merely close to each other are not stitched.
+
+use std::collections::hash_map::Entry;
+use std::collections::HashMap;
+
+use rayon::prelude::*;
+
+use super::{Model, Scene};
+
+/// One flag per vertex of each model of `scene` (indexed like `Model::positions`): true for
+/// a vertex on a border the model shares with another model. All false in a one-model scene.
+pub fn shared_border_vertices(scene: &Scene) -> Vec<Vec<bool>> {
+    let mut shared: Vec<Vec<bool>> = scene
+        .models
+        .iter()
+        .map(|m| vec![false; m.positions.len()])
+        .collect();
+    if scene.models.len() < 2 {
+        return shared;
+    }
+    let borders: Vec<Vec<u32>> = scene.models.par_iter().map(border_vertices).collect();
+    // World position -> the one model whose border has it, or `SHARED` once a second has.
+    const SHARED: usize = usize::MAX;
+    let mut owner: HashMap<[u32; 3], usize> = HashMap::new();
+    for (i, (model, border)) in scene.models.iter().zip(&borders).enumerate() {
+        for &v in border {
+            match owner.entry(world_key(model, v)) {
+                Entry::Vacant(e) => {
+                    e.insert(i);
+                }
+                Entry::Occupied(mut e) => {
+                    if *e.get() != i {
+                        e.insert(SHARED);
+                    }
+                }
+            }
+        }
+    }
+    for ((model, border), flags) in scene.models.iter().zip(&borders).zip(&mut shared) {
+        for &v in border {
+            if owner.get(&world_key(model, v)) == Some(&SHARED) {
+                flags[v as usize] = true;
+            }
+        }
+    }
+    shared
+}
+
+/// The vertices of `model`'s boundary edges (edges that one triangle uses), each once.
+fn border_vertices(model: &Model) -> Vec<u32> {
+    let n = model.positions.len() as u32;
+    let mut edges: Vec<u64> = model
+        .triangles
+        .iter()
+        .filter(|t| t.iter().all(|&v| v < n))
+        .flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)])
+        .filter(|(a, b)| a != b)
+        .map(|(a, b)| u64::from(a.min(b)) << 32 | u64::from(a.max(b)))
+        .collect();
+    edges.par_sort_unstable();
+    let mut on_border = vec![false; n as usize];
+    let mut i = 0;
+    while i < edges.len() {
+        let mut j = i + 1;
+        while j < edges.len() && edges[j] == edges[i] {
+            j += 1;
+        }
+        if j - i == 1 {
+            on_border[(edges[i] >> 32) as usize] = true;
+            on_border[edges[i] as u32 as usize] = true;
+        }
+        i = j;
+    }
+    (0..n).filter(|&v| on_border[v as usize]).collect()
+}
+
+/// The bits of vertex `v`'s world position, `-0` folded into `0`.
+fn world_key(model: &Model, v: u32) -> [u32; 3] {
+    let p = model
+        .transform
+        .transform_point3(model.positions[v as usize]);
+    [p.x, p.y, p.z].map(|x| (x + 0.0).to_bits())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::{Mat4, Vec3};
+
+    /// A unit square in the z = 0 plane from `x0` to `x0 + 1`, as two triangles.
+    fn square(x0: f32) -> Model {
+        Model {
+            positions: vec![
+                Vec3::new(x0, 0.0, 0.0),
+                Vec3::new(x0 + 1.0, 0.0, 0.0),
+                Vec3::new(x0 + 1.0, 1.0, 0.0),
+                Vec3::new(x0, 1.0, 0.0),
+            ],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            ..Model::default()
+        }
+    }
+
+    #[test]
+    fn two_squares_side_by_side_share_their_common_edge_only() {
+        let scene = Scene {
+            models: vec![square(0.0), square(1.0), square(5.0)],
+        };
+        let shared = shared_border_vertices(&scene);
+        // x = 1 is the first square's right edge (vertices 1, 2) and the second's left (0, 3).
+        assert_eq!(shared[0], vec![false, true, true, false]);
+        assert_eq!(shared[1], vec![true, false, false, true]);
+        assert_eq!(shared[2], vec![false; 4]);
+    }
+
+    #[test]
+    fn transforms_are_applied_and_one_model_shares_nothing() {
+        let mut moved = square(0.0);
+        moved.transform = Mat4::from_translation(Vec3::new(1.0, 0.0, 0.0));
+        let scene = Scene {
+            models: vec![square(0.0), moved],
+        };
+        let shared = shared_border_vertices(&scene);
+        assert_eq!(shared[0], vec![false, true, true, false]);
+        assert_eq!(shared[1], vec![true, false, false, true]);
+        let alone = Scene {
+            models: vec![square(0.0)],
+        };
+        assert_eq!(shared_border_vertices(&alone), vec![vec![false; 4]]);
+    }
+
+    #[test]
+    fn interior_vertices_are_not_borders() {
+        // A closed tetrahedron touching a square's corner: no boundary, nothing shared.
+        let tetra = Model {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z],
+            triangles: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
+            ..Model::default()
+        };
+        let scene = Scene {
+            models: vec![tetra, square(0.0)],
+        };
+        let shared = shared_border_vertices(&scene);
+        assert!(shared.iter().flatten().all(|&s| !s));
+    }
+}
