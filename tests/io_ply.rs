@@ -308,3 +308,58 @@ fn broken_texture_coordinates_are_skipped_with_a_warning() {
     let e = parse_bytes(src.into_bytes(), Path::new("x.ply")).unwrap_err();
     assert!(e.to_string().starts_with("x.ply:13:"), "{e}");
 }
+
+#[test]
+fn meshlab_texture_file_comment_names_the_image_both_ways() {
+    // MeshLab's header names the image in a comment; the name may hold spaces.
+    let src = "ply
+format ascii 1.0
+comment VCGLIB generated
+comment TextureFile scan texture 01.png
+comment TextureFile second.png
+element vertex 3
+property float x
+property float y
+property float z
+property float texture_u
+property float texture_v
+element face 1
+property list uchar int vertex_indices
+end_header
+0 0 0 0 0
+1 0 0 1 0
+0 1 0 0 1
+3 0 1 2
+";
+    let back = read("meshlab.ply", src.as_bytes());
+    let m = &back.scene.models[0];
+    assert_eq!(m.texture.as_deref(), Some("scan texture 01.png"));
+    let mut bytes = Vec::new();
+    write_ply_to(&mut bytes, &back.scene).unwrap();
+    let text = String::from_utf8_lossy(&bytes);
+    assert!(
+        text.contains("\ncomment TextureFile scan texture 01.png\n"),
+        "{text}"
+    );
+    let again = read("again.ply", &bytes);
+    assert_eq!(
+        again.scene.models[0].texture.as_deref(),
+        Some("scan texture 01.png")
+    );
+    // Without texture coordinates the image is meaningless: not kept, not written.
+    let plain = src
+        .replace("property float texture_u\nproperty float texture_v\n", "")
+        .replace(" 0 0\n", "\n")
+        .replace(" 1 0\n", "\n")
+        .replace(" 0 1\n", "\n");
+    let back = read("plain.ply", plain.as_bytes());
+    assert_eq!(back.scene.models[0].texture, None);
+    // Two models mapping different images: a PLY cannot say which is which, so none.
+    let mut two = again.scene.clone();
+    let mut other = two.models[0].clone();
+    other.texture = Some("other.png".into());
+    two.models.push(other);
+    let mut bytes = Vec::new();
+    write_ply_to(&mut bytes, &two).unwrap();
+    assert!(!String::from_utf8_lossy(&bytes).contains("TextureFile"));
+}

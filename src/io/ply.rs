@@ -9,9 +9,11 @@
 //! types) and optionally MeshLab's per-corner `texcoord` list (`u v` per corner, taking the
 //! place of per-vertex ones; a point with different ones in different faces becomes one
 //! vertex per seam side); polygons are triangulated like VRML faces. Other elements are
-//! skipped. The result is one model.
+//! skipped. The result is one model. A `comment TextureFile NAME` header line (MeshLab's
+//! convention) names the image the coordinates map.
 //! Write: one binary little-endian file of all models, transforms baked in, with per-vertex
-//! colours (`red green blue`) and texture coordinates (`s t`) when every model has them.
+//! colours (`red green blue`) and texture coordinates (`s t`) when every model has them, and
+//! `comment TextureFile NAME` when they all map the same image.
 
 use std::collections::HashMap;
 use std::io::Write;
@@ -190,11 +192,24 @@ impl<'a> Body<'a> {
     }
 }
 
-fn parse_header(bytes: &[u8]) -> PResult<(Format, Vec<Element>, usize, usize)> {
+/// What a PLY header says.
+struct Header {
+    format: Format,
+    elements: Vec<Element>,
+    /// Offset of the body's first byte.
+    body_start: usize,
+    /// Lines the header takes.
+    lines: usize,
+    /// The image named by the first `comment TextureFile NAME` (MeshLab's convention).
+    texture: Option<String>,
+}
+
+fn parse_header(bytes: &[u8]) -> PResult<Header> {
     let mut pos = 0;
     let mut line = 0;
     let mut format = None;
     let mut elements: Vec<Element> = Vec::new();
+    let mut texture = None;
     loop {
         line += 1;
         let end = bytes[pos..]
@@ -225,6 +240,11 @@ fn parse_header(bytes: &[u8]) -> PResult<(Format, Vec<Element>, usize, usize)> {
                         ))
                     }
                 })
+            }
+            ["comment", "TextureFile", _, ..] if texture.is_none() => {
+                // The name is the rest of the line: it may hold spaces.
+                let rest = text.trim_start()["comment".len()..].trim_start();
+                texture = Some(rest["TextureFile".len()..].trim().to_string());
             }
             ["comment", ..] | ["obj_info", ..] | [] => {}
             ["element", name, count] => elements.push(Element {
@@ -274,12 +294,24 @@ fn parse_header(bytes: &[u8]) -> PResult<(Format, Vec<Element>, usize, usize)> {
     }
     let format =
         format.ok_or_else(|| ParseError::new(line, "the PLY header has no 'format' line"))?;
-    Ok((format, elements, pos, line))
+    Ok(Header {
+        format,
+        elements,
+        body_start: pos,
+        lines: line,
+        texture,
+    })
 }
 
 /// Reads a PLY file into a scene of one model.
 pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
-    let (format, elements, body_start, header_lines) = parse_header(bytes)?;
+    let Header {
+        format,
+        elements,
+        body_start,
+        lines: header_lines,
+        texture,
+    } = parse_header(bytes)?;
     let mut body = Body {
         format,
         bytes: &bytes[body_start..],
@@ -509,7 +541,9 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
         line: face_line,
         index_field: "vertex_indices",
     };
-    let model = build(spec, &mut warnings)?;
+    let mut model = build(spec, &mut warnings)?;
+    // An image means nothing without coordinates to map it.
+    model.texture = texture.filter(|_| model.texcoords.is_some());
     Ok((
         Scene {
             models: vec![model],
@@ -524,6 +558,17 @@ pub fn write_ply(scene: &Scene, path: &Path) -> Result<(), WriteError> {
     super::write_atomically(path, |w| write_ply_to(w, scene))
 }
 
+/// The one image every model maps, if they all name the same one (a PLY holds one mesh: it
+/// cannot say which part maps which image). Names with a line break cannot be written.
+fn shared_texture(scene: &Scene) -> Option<&str> {
+    let first = scene.models.first()?.texture.as_deref()?;
+    let same = scene
+        .models
+        .iter()
+        .all(|m| m.texture.as_deref() == Some(first));
+    (same && !first.contains(['\n', '\r'])).then_some(first)
+}
+
 /// Writes the PLY bytes to `w`.
 pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
     let colored = !scene.models.is_empty()
@@ -536,6 +581,9 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         w,
         "ply\nformat binary_little_endian 1.0\ncomment written by decimate"
     )?;
+    if let Some(image) = shared_texture(scene).filter(|_| textured) {
+        writeln!(w, "comment TextureFile {image}")?;
+    }
     writeln!(w, "element vertex {}", scene.vertex_count())?;
     writeln!(w, "property float x\nproperty float y\nproperty float z")?;
     if colored {
