@@ -28,7 +28,9 @@
 //! | diffuse                    | rgb              | the material's colour                                     |
 //! | crease flag, crease angle  | flag, f32        | radians; the angle is there (0) when the flag is 0        |
 //! | solid                      | flag             |                                                           |
-//! | attributes                 | u8               | bit 0 per-vertex colours, bit 1 per-face colours, bit 2 per-vertex normals, bit 3 texture coordinates; bits 0 and 1 exclusive, bits 4–7 zero |
+//! | attributes                 | u8               | bit 0 per-vertex colours, bit 1 per-face colours, bit 2 per-vertex normals, bit 3 texture coordinates, bit 4 texture image; bits 0 and 1 exclusive, bits 5–7 zero |
+//! | image name length          | u32              | bit 4 only: N                                             |
+//! | image name                 | N bytes          | bit 4 only: UTF-8, the texture image as the input named it |
 //! | base vertex count          | u32              | V                                                         |
 //! | base face count            | u32              | F                                                         |
 //! | positions                  | V × vec3         |                                                           |
@@ -56,7 +58,8 @@
 //! order. A split's renamed faces are those that exist before it (ids below F plus the faces
 //! the earlier splits added).
 //!
-//! Bit 3 came after the first files were written; those have it clear and read as before.
+//! Bits 3 and 4 came after the first files were written; those have them clear and read as
+//! before.
 
 use std::io::{self, Write};
 use std::path::Path;
@@ -76,6 +79,7 @@ const VERTEX_COLORS: u8 = 1;
 const FACE_COLORS: u8 = 2;
 const VERTEX_NORMALS: u8 = 4;
 const TEXCOORDS: u8 = 8;
+const TEXTURE_IMAGE: u8 = 16;
 
 /// Writes `pm` to `path` via a temporary file beside it and a rename. A model that fails
 /// [`ProgressiveModel::validate`] (or that the layout cannot hold, such as per-face normals)
@@ -127,6 +131,7 @@ struct Attributes {
     face_colors: bool,
     normals: bool,
     texcoords: bool,
+    texture_image: bool,
 }
 
 impl Attributes {
@@ -136,6 +141,7 @@ impl Attributes {
             face_colors: matches!(m.colors, Some(Attribute::PerFace(_))),
             normals: m.normals.is_some(),
             texcoords: m.texcoords.is_some(),
+            texture_image: m.texture.is_some(),
         }
     }
 
@@ -145,10 +151,11 @@ impl Attributes {
             | bit(self.face_colors, FACE_COLORS)
             | bit(self.normals, VERTEX_NORMALS)
             | bit(self.texcoords, TEXCOORDS)
+            | bit(self.texture_image, TEXTURE_IMAGE)
     }
 
     fn from_bits(bits: u8) -> Option<Self> {
-        let all = VERTEX_COLORS | FACE_COLORS | VERTEX_NORMALS | TEXCOORDS;
+        let all = VERTEX_COLORS | FACE_COLORS | VERTEX_NORMALS | TEXCOORDS | TEXTURE_IMAGE;
         let both_colors = VERTEX_COLORS | FACE_COLORS;
         if bits & !all != 0 || bits & both_colors == both_colors {
             return None;
@@ -158,6 +165,7 @@ impl Attributes {
             face_colors: bits & FACE_COLORS != 0,
             normals: bits & VERTEX_NORMALS != 0,
             texcoords: bits & TEXCOORDS != 0,
+            texture_image: bits & TEXTURE_IMAGE != 0,
         })
     }
 
@@ -260,6 +268,10 @@ fn write_header<W: Write>(out: &mut Out<'_, W>, m: &Model, a: Attributes) -> io:
     out.f32s(&[m.crease_angle.unwrap_or(0.0)])?;
     out.u8(m.solid as u8)?;
     out.u8(a.bits())?;
+    if let Some(image) = &m.texture {
+        out.len(image.len())?;
+        out.bytes(image.as_bytes())?;
+    }
     out.len(m.positions.len())?;
     out.len(m.triangles.len())
 }
@@ -536,9 +548,18 @@ fn header(c: &mut Cursor<'_>) -> Parse<(Model, Attributes, usize, usize)> {
     let a = Attributes::from_bits(bits).ok_or_else(|| {
         c.bad(
             at,
-            format!("attribute flags {bits:#04x}: expected bits 0, 1 (not both), 2 and 3 only"),
+            format!("attribute flags {bits:#04x}: expected bits 0, 1 (not both), 2, 3 and 4 only"),
         )
     })?;
+    let texture = if a.texture_image {
+        let len = c.count(1, "the texture image name length")?;
+        let at = c.pos;
+        let image = std::str::from_utf8(c.take(len, "the texture image name")?)
+            .map_err(|e| c.bad(at, format!("the texture image name is not UTF-8 ({e})")))?;
+        Some(image.to_string())
+    } else {
+        None
+    };
     let vertices = c.count(a.vertex_size(), "the base vertex count")?;
     let faces = c.count(a.face_size(), "the base face count")?;
     let model = Model {
@@ -547,6 +568,7 @@ fn header(c: &mut Cursor<'_>) -> Parse<(Model, Attributes, usize, usize)> {
         diffuse,
         crease_angle: creased.then_some(crease),
         solid,
+        texture,
         ..Model::default()
     };
     Ok((model, a, vertices, faces))
@@ -736,8 +758,40 @@ mod tests {
     }
 
     #[test]
+    fn the_texture_image_name_reads_back_after_the_attribute_byte() {
+        let mut m = textured(shapes::uv_sphere(6, 8));
+        m.texture = Some("maps/scan ü.png".into());
+        let pm = progressive(vec![m]);
+        let b = bytes(&pm);
+        let header = 16 + 4 + pm.models[0].base.name.len() + 64 + 12 + 5 + 1;
+        assert_eq!(b[header], 8 | 16, "bits 3 and 4");
+        let len = "maps/scan ü.png".len();
+        assert_eq!(&b[header + 1..header + 5], &(len as u32).to_le_bytes());
+        assert_eq!(
+            &b[header + 5..header + 5 + len],
+            "maps/scan ü.png".as_bytes()
+        );
+        let back = parse(&b).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(
+            back.models[0].base.texture.as_deref(),
+            Some("maps/scan ü.png")
+        );
+        assert_eq!(back, pm);
+        let mut bad = b.clone();
+        bad[header + 5] = 0xff;
+        let e = parse(&bad).err().map(|e| e.to_string());
+        assert!(
+            e.as_ref()
+                .is_some_and(|e| e.contains("the texture image name is not UTF-8")),
+            "{e:?}"
+        );
+    }
+
+    #[test]
     fn every_prefix_and_every_flipped_byte_is_handled() {
-        for model in [shapes::cube(2, 1.0), textured(shapes::cube(2, 1.0))] {
+        let mut named = textured(shapes::cube(2, 1.0));
+        named.texture = Some("t.png".into());
+        for model in [shapes::cube(2, 1.0), textured(shapes::cube(2, 1.0)), named] {
             let pm = progressive(vec![model]);
             let b = bytes(&pm);
             for len in 0..b.len() {
