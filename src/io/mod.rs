@@ -13,6 +13,7 @@
 
 mod build;
 mod lexer;
+pub mod losses;
 pub mod obj;
 pub mod off;
 mod parse;

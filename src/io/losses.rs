@@ -1,0 +1,187 @@
+//! What an output format cannot hold of a scene, said before it is written: a user who
+//! decimates a textured, coloured VRML scene to STL should hear that the colours and the
+//! texture stay behind, not find out in another program. One message per kind of loss,
+//! with how many models it touches.
+//!
+//! What each writer keeps (see their modules): VRML 2.0 everything; OBJ per-vertex colours
+//! and texture coordinates per model; PLY and OFF hold all models in one vertex list, so
+//! per-vertex colours and texture coordinates only when every model has them (PLY also
+//! names one texture image shared by all); STL geometry only. Per-face colours are VRML's
+//! alone.
+
+use super::Format;
+use crate::mesh::{Attribute, Model, Scene};
+
+/// The warnings for writing `scene` in `format` (`None`: VRML 2.0, the default).
+pub fn losses(scene: &Scene, format: Option<Format>) -> Vec<String> {
+    let format = format.unwrap_or(Format::Vrml2);
+    let name = match format {
+        Format::Vrml2 => return Vec::new(),
+        Format::Ply => "PLY",
+        Format::Obj => "OBJ",
+        Format::Stl => "STL",
+        Format::Off => "OFF",
+    };
+    let models = &scene.models;
+    let count = |has: fn(&Model) -> bool| models.iter().filter(|m| has(m)).count();
+    let vertex_colored = count(|m| matches!(m.colors, Some(Attribute::PerVertex(_))));
+    let face_colored = count(|m| matches!(m.colors, Some(Attribute::PerFace(_))));
+    let textured = count(|m| m.texcoords.is_some());
+    let imaged = count(|m| m.texcoords.is_some() && m.texture.is_some());
+    let all = models.len();
+    // Whether the format keeps each, given how many models have it.
+    let one_list = matches!(format, Format::Ply | Format::Off);
+    let keeps_vertex_colors = match format {
+        Format::Obj => true,
+        Format::Ply | Format::Off => vertex_colored == all,
+        _ => false,
+    };
+    let keeps_texcoords = match format {
+        Format::Obj => true,
+        Format::Ply | Format::Off => textured == all,
+        _ => false,
+    };
+    let shared_image = models
+        .first()
+        .and_then(|m| m.texture.as_ref())
+        .is_some_and(|first| models.iter().all(|m| m.texture.as_ref() == Some(first)));
+    let keeps_images = keeps_texcoords
+        && match format {
+            Format::Obj => true,
+            Format::Ply => shared_image,
+            _ => false,
+        };
+    let have = |n: usize| {
+        if n == 1 {
+            "1 model has them".to_string()
+        } else {
+            format!("{n} models have them")
+        }
+    };
+    let why = |n: usize| {
+        if one_list && n < all {
+            format!(
+                " ({n} of {all} models; {name} holds all models in one vertex list: all or none)"
+            )
+        } else {
+            format!(" ({})", have(n))
+        }
+    };
+    let mut out = Vec::new();
+    if vertex_colored > 0 && !keeps_vertex_colors {
+        out.push(format!(
+            "{name} output keeps no per-vertex colours{}",
+            why(vertex_colored)
+        ));
+    }
+    if face_colored > 0 {
+        out.push(format!(
+            "{name} output keeps no per-face colours ({}; VRML 2.0 keeps them)",
+            have(face_colored)
+        ));
+    }
+    if textured > 0 && !keeps_texcoords {
+        out.push(format!(
+            "{name} output keeps no texture coordinates{}",
+            why(textured)
+        ));
+    } else if imaged > 0 && !keeps_images {
+        let reason = if format == Format::Ply {
+            "; a PLY names one image for all models"
+        } else {
+            ""
+        };
+        out.push(format!(
+            "{name} output does not name the texture image ({}{reason})",
+            have(imaged)
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes;
+
+    fn textured(image: Option<&str>) -> Model {
+        let mut m = shapes::cube(2, 1.0);
+        m.texcoords = Some(vec![[0.5, 0.5]; m.positions.len()]);
+        m.texture = image.map(str::to_string);
+        m
+    }
+
+    fn colored() -> Model {
+        let mut m = shapes::cube(2, 1.0);
+        m.colors = Some(Attribute::PerVertex(vec![
+            [1.0, 0.0, 0.0];
+            m.positions.len()
+        ]));
+        m
+    }
+
+    #[test]
+    fn vrml_and_plain_geometry_lose_nothing() {
+        let scene = Scene {
+            models: vec![textured(Some("a.png")), colored()],
+        };
+        assert!(losses(&scene, None).is_empty());
+        assert!(losses(&scene, Some(Format::Vrml2)).is_empty());
+        let plain = Scene {
+            models: vec![shapes::cube(2, 1.0)],
+        };
+        for f in [Format::Ply, Format::Obj, Format::Stl, Format::Off] {
+            assert!(losses(&plain, Some(f)).is_empty(), "{f:?}");
+        }
+    }
+
+    #[test]
+    fn stl_names_everything_it_drops() {
+        let mut faced = shapes::cube(2, 1.0);
+        faced.colors = Some(Attribute::PerFace(vec![[0.0; 3]; faced.triangles.len()]));
+        let scene = Scene {
+            models: vec![textured(Some("a.png")), colored(), faced],
+        };
+        assert_eq!(
+            losses(&scene, Some(Format::Stl)),
+            vec![
+                "STL output keeps no per-vertex colours (1 model has them)",
+                "STL output keeps no per-face colours (1 model has them; VRML 2.0 keeps them)",
+                "STL output keeps no texture coordinates (1 model has them)",
+            ]
+        );
+    }
+
+    #[test]
+    fn ply_and_off_keep_attributes_only_when_every_model_has_them() {
+        let mixed = Scene {
+            models: vec![textured(None), shapes::cube(2, 1.0)],
+        };
+        assert_eq!(
+            losses(&mixed, Some(Format::Off)),
+            vec![
+                "OFF output keeps no texture coordinates (1 of 2 models; OFF holds all models \
+                 in one vertex list: all or none)"
+            ]
+        );
+        assert!(losses(&mixed, Some(Format::Obj)).is_empty());
+        let two_images = Scene {
+            models: vec![textured(Some("a.png")), textured(Some("b.png"))],
+        };
+        assert_eq!(
+            losses(&two_images, Some(Format::Ply)),
+            vec![
+                "PLY output does not name the texture image (2 models have them; a PLY names \
+                 one image for all models)"
+            ]
+        );
+        let one_image = Scene {
+            models: vec![textured(Some("a.png")), textured(Some("a.png"))],
+        };
+        assert!(losses(&one_image, Some(Format::Ply)).is_empty());
+        assert_eq!(
+            losses(&one_image, Some(Format::Off)),
+            vec!["OFF output does not name the texture image (2 models have them)"]
+        );
+    }
+}
