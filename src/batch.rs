@@ -5,7 +5,8 @@
 //! (`decimate_scene_progressive`) and written to FILE as vertex splits (`io::progressive`).
 //! When the input is such a file, nothing is decimated: each model's level that meets the
 //! target is rebuilt from the base by its vertex splits (`decimate::levels`), exactly as the
-//! recorded decimation left it at that count.
+//! recorded decimation left it at that count. Texture names are rebased from the input's
+//! folder to the output's before writing (`io::rebase_textures`).
 
 use std::io::{IsTerminal, Write};
 use std::process::ExitCode;
@@ -39,6 +40,7 @@ pub fn run(mut scene: Scene, recorded: Option<ProgressiveScene>, args: &Args) ->
     if !args.quiet {
         eprint!("{}", summary(&report));
     }
+    rebase_textures(&mut scene, args);
     if let Err(e) = io::write_scene(&scene, &args.output) {
         eprintln!("decimate: cannot write {e}");
         return ExitCode::FAILURE;
@@ -108,7 +110,9 @@ fn rebuild_levels(pm: &ProgressiveScene, args: &Args) -> ExitCode {
             start.elapsed().as_secs_f64()
         );
     }
-    if let Err(e) = io::write_scene(&Scene { models }, &args.output) {
+    let mut scene = Scene { models };
+    rebase_textures(&mut scene, args);
+    if let Err(e) = io::write_scene(&scene, &args.output) {
         eprintln!("decimate: cannot write {e}");
         return ExitCode::FAILURE;
     }
@@ -131,6 +135,13 @@ fn decimate(scene: &mut Scene, args: &Args) -> (Report, Option<ProgressiveScene>
     };
     bar.finish();
     result
+}
+
+/// Re-expresses the scene's texture names, read relative to the input's folder, for the
+/// output's folder, so that the written file still finds its images.
+fn rebase_textures(scene: &mut Scene, args: &Args) {
+    use io::texture_path::folder_of;
+    io::rebase_textures(scene, folder_of(&args.input), folder_of(&args.output));
 }
 
 /// True when both paths name the same existing file.

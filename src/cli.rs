@@ -114,7 +114,8 @@ usage: decimate filename [action] [action-options]
 
 action-options for nogui (one target is MANDATORY):
   -o filename           the file to save as; the extension picks the format: .wrl
-                        (VRML 2.0), .ply, .obj, .stl, .off (DEFAULT: out.wrl)
+                        (VRML 2.0), .ply, .obj, .stl, .off (DEFAULT: out.wrl);
+                        .obj writes its materials to a .mtl of the same name
   -a, --algorithm A     schroeder (DEFAULT: vertex removal, vertices never move) |
                         qem (quadric edge collapse, vertices move)
   -p number             percent of the vertices to remove (100: as far as possible)

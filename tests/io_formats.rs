@@ -80,15 +80,16 @@ f 5/1/1 6/1 \\
         panic!("no per-vertex colours: {:?}", s.models[1].colors)
     };
     assert_eq!(c, &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
-    // One warning per kind: mtllib, usemtl (twice in the file), s, l; and one for the
-    // second model, whose third corner has no texture coordinate (so it has none).
-    assert_eq!(out.warnings.len(), 5, "{:?}", out.warnings);
-    assert!(out.warnings[4].starts_with("second: some face corners have texture"));
+    // One warning per kind: s, l; and one for the second model, whose third corner has no
+    // texture coordinate (so it has none). Materials are read, not skipped: the last
+    // `usemtl` before a face counts and carries over `o`; the library is handed back.
+    assert_eq!(out.warnings.len(), 3, "{:?}", out.warnings);
+    assert!(out.warnings[2].starts_with("second: some face corners have texture"));
     assert_eq!(s.models[1].texcoords, None);
-    assert_eq!(
-        out.warnings.iter().filter(|w| w.contains("usemtl")).count(),
-        1
-    );
+    assert!(!out.warnings.iter().any(|w| w.contains("mtl")));
+    let materials: Vec<Option<&str>> = s.models.iter().map(|m| m.material.as_deref()).collect();
+    assert_eq!(materials, [Some("blue"), Some("blue")]);
+    assert_eq!(out.material_libraries, ["scene.mtl"]);
     // Counter-clockwise seen from +z.
     assert!(normal_sum(s).z > 0.0);
 }

@@ -39,6 +39,9 @@ pub struct ViewportController {
     pub help: bool,
     /// Where F3 saves (`out.wrl` in the working directory).
     pub save_path: PathBuf,
+    /// The folder the scene was read from: its relative texture names are relative to it,
+    /// and F3 re-expresses them for `save_path`'s folder.
+    pub input_dir: PathBuf,
     /// The last thing that happened, for the status line.
     pub message: String,
 }
@@ -56,6 +59,7 @@ impl ViewportController {
             height,
             help: false,
             save_path: PathBuf::from("out.wrl"),
+            input_dir: PathBuf::from("."),
             message: String::new(),
         }
     }
@@ -230,11 +234,14 @@ impl ViewportController {
         Effect::None
     }
 
-    /// F3: the current viewport's scene as VRML 2.0.
+    /// F3: the current viewport's scene as VRML 2.0, its texture names rebased for the
+    /// folder it is saved in.
     fn save(&mut self) {
         self.current_mut().settle();
         let path = self.save_path.clone();
-        self.message = match crate::io::write_vrml2(self.current_viewport().scene(), &path) {
+        let to_dir = crate::io::texture_path::folder_of(&path);
+        let scene = crate::io::rebased(self.current_viewport().scene(), &self.input_dir, to_dir);
+        self.message = match crate::io::write_vrml2(&scene, &path) {
             Ok(()) => format!("saved viewport {} as {}", self.current + 1, path.display()),
             Err(e) => format!("cannot save: {e}"),
         };
@@ -441,6 +448,34 @@ mod tests {
         assert_eq!(
             saved.scene.models[0].used_vertex_count(),
             c.current_viewport().vertex_count()
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn f3_points_the_texture_at_the_image_read_beside_the_input() {
+        let dir = std::env::temp_dir().join(format!("decimate-f3-tex-{}", std::process::id()));
+        let (input_dir, out_dir) = (dir.join("scan"), dir.join("saved"));
+        for d in [&input_dir, &out_dir] {
+            std::fs::create_dir_all(d).unwrap_or_else(|e| panic!("{e}"));
+        }
+        let mut scene = plane();
+        let m = &mut scene.models[0];
+        m.texcoords = Some(
+            m.positions
+                .iter()
+                .map(|p| [p.x / 10.0, p.y / 10.0])
+                .collect(),
+        );
+        m.texture = Some("maps/skin.jpg".into());
+        let mut c = ViewportController::new(scene, Params::default(), 800, 600);
+        c.input_dir = input_dir;
+        c.save_path = out_dir.join("out.wrl");
+        key(&mut c, Key::F3);
+        let saved = crate::io::read_scene(&c.save_path).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(
+            saved.scene.models[0].texture.as_deref(),
+            Some("../scan/maps/skin.jpg")
         );
         let _ = std::fs::remove_dir_all(&dir);
     }

@@ -34,7 +34,8 @@ fn run_gui(scene: Scene, args: &Args) -> ExitCode {
     let entries = menu::menu();
     // (5) Register the callbacks: the viewer answers display, reshape, keyboard, mouse and
     // motion events for the viewports the controller owns.
-    let controller = controller::ViewportController::new(scene, args.params, 1024, 720);
+    let mut controller = controller::ViewportController::new(scene, args.params, 1024, 720);
+    controller.input_dir = crate::io::texture_path::folder_of(&args.input).to_path_buf();
     let mut viewer = viewer::Viewer::new(controller, entries);
     // (6) Hand control to the main loop.
     let title = format!("decimate — {}", args.input.display());

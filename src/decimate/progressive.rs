@@ -97,6 +97,7 @@ impl ProgressiveModel {
             normals: None,
             texcoords: None,
             texture: fine.texture.clone(),
+            material: fine.material.clone(),
             diffuse: fine.diffuse,
             crease_angle: fine.crease_angle,
             solid: fine.solid,

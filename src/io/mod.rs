@@ -9,11 +9,16 @@
 //! tree walk), `build` (shape to model), `triangulate` (ear clipping), `ply`, `obj`, `stl`,
 //! `off` (those formats' readers and writers), `writer` (VRML 2.0 output), `progressive`
 //! (the binary `.pm` file of a progressive mesh, `--progressive`: its own reader and writer),
-//! `replace` (how every output replaces its file).
+//! `replace` (how every output replaces its file), `mtl` (an OBJ's material libraries: read
+//! by [`read_scene`], which knows the OBJ's folder, and written beside an OBJ output) and
+//! `texture_path` (texture names re-expressed for the folder a scene is written to:
+//! [`rebase_textures`], which every writer's caller applies first), `losses` (what an output
+//! format cannot hold, said before writing).
 
 mod build;
 mod lexer;
 pub mod losses;
+pub mod mtl;
 pub mod obj;
 pub mod off;
 mod parse;
@@ -21,6 +26,7 @@ pub mod ply;
 pub mod progressive;
 pub mod replace;
 pub mod stl;
+pub mod texture_path;
 pub mod triangulate;
 mod vrml1;
 mod vrml2;
@@ -38,6 +44,7 @@ pub use obj::write_obj;
 pub use off::write_off;
 pub use ply::write_ply;
 pub use stl::write_stl;
+pub use texture_path::{rebase_textures, rebased};
 pub use writer::write_vrml2_to;
 
 /// What went wrong reading a scene: always names the file, and the line where there is one.
@@ -89,6 +96,9 @@ pub struct ReadOutcome {
     pub warnings: Vec<String>,
     /// Set when the file is a progressive mesh (`FILE.pm`); `scene` is then its full meshes.
     pub progressive: Option<ProgressiveScene>,
+    /// The material libraries an OBJ names (`mtllib`), as written, relative to its folder;
+    /// [`read_scene`] has applied them, [`parse_bytes`] has not (it reads no other file).
+    pub material_libraries: Vec<String>,
 }
 
 /// Most models one file may expand to (DEF/USE instancing can multiply them).
@@ -178,14 +188,16 @@ impl Format {
 }
 
 /// Reads a VRML 1.0, VRML 2.0, Open Inventor ASCII, PLY, OBJ, STL or OFF file (optionally
-/// gzipped).
+/// gzipped); an OBJ's material libraries are read from its folder and applied (see `mtl`).
 pub fn read_scene(path: &Path) -> Result<ReadOutcome, ReadError> {
     let io_err = |source| ReadError::Io {
         file: path.to_path_buf(),
         source,
     };
     let bytes = std::fs::read(path).map_err(io_err)?;
-    parse_bytes(bytes, path)
+    let mut outcome = parse_bytes(bytes, path)?;
+    mtl::apply_materials(&mut outcome, path);
+    Ok(outcome)
 }
 
 /// Reads a scene from memory; `file_name` is used in messages, and its extension says the
@@ -223,6 +235,7 @@ fn parse_bytes_with(
             scene: Scene { models },
             warnings: Vec::new(),
             progressive: Some(pm),
+            material_libraries: Vec::new(),
         });
     }
     let syntax = |e: ParseError| ReadError::Syntax {
@@ -237,6 +250,7 @@ fn parse_bytes_with(
             scene,
             warnings,
             progressive: None,
+            material_libraries: Vec::new(),
         });
     }
     let first_line_end = bytes
@@ -261,7 +275,7 @@ fn parse_bytes_with(
             }
         });
         let outcome = match sniffed {
-            Some(Format::Obj) => obj::read_obj(&bytes).map_err(syntax)?,
+            Some(Format::Obj) => return obj::read_obj(&bytes).map_err(syntax),
             Some(Format::Off) => off::read_off(&bytes).map_err(syntax)?,
             Some(Format::Stl) => stl::read_stl(&bytes).map_err(|e| match e {
                 stl::StlError::Line(e) => syntax(e),
@@ -280,6 +294,7 @@ fn parse_bytes_with(
                 scene,
                 warnings,
                 progressive: None,
+                material_libraries: Vec::new(),
             });
         }
     }
@@ -346,11 +361,14 @@ fn parse_tree(bytes: &[u8], dialect: parse::Dialect) -> PResult<ReadOutcome> {
         scene: Scene { models },
         warnings,
         progressive: None,
+        material_libraries: Vec::new(),
     })
 }
 
 /// Writes `scene` to `path` in the format its extension names: `.ply`, `.obj`, `.stl`, `.off`;
-/// `.wrl` and anything else give VRML 2.0. Always via a temporary file and a rename.
+/// `.wrl` and anything else give VRML 2.0. Always via a temporary file and a rename. Texture
+/// names are written as they are: a scene read from another folder is given to
+/// [`rebase_textures`] first. An OBJ may come with an MTL file beside it (see `mtl`).
 pub fn write_scene(scene: &Scene, path: &Path) -> Result<(), WriteError> {
     match Format::from_path(path) {
         Some(Format::Ply) => write_ply(scene, path),

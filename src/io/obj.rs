@@ -9,24 +9,34 @@
 //! `v/vt/vn` corners
 //! and 1-based or negative (relative) indices, polygons of any size (triangulated, concave
 //! ones included), `o` / `g` starting a new model (named after them; groups without faces are
-//! dropped), `\` line continuation, `#` comments. `usemtl`, `mtllib`, `s`, `l`, `p` and any
-//! other statement are skipped with one warning per kind. A face may only use vertices defined
-//! above it (every exporter writes them first), so a bad index is reported on its own line.
+//! dropped), `\` line continuation, `#` comments. `usemtl NAME` sets the material of the faces
+//! after it (`Model::material`; it carries over `o` / `g`): a group whose faces use several
+//! materials becomes one model per material, in the order they are first used, named
+//! `group (material)` (`group (no material)` for faces before the first `usemtl`); a group
+//! with one material keeps its own name. `mtllib` names are handed back
+//! (`ReadOutcome::material_libraries`): this reader sees only bytes, `io::read_scene` loads
+//! them (`mtl`). `s`, `l`, `p` and any other statement are skipped with one warning per kind.
+//! A face may only use vertices defined above it (every exporter writes them first), so a bad
+//! index is reported on its own line.
 //! Write: one `o` per model, positions in world space (OBJ has no transforms), per-vertex
 //! colours as `v x y z r g b`, texture coordinates as one `vt` per vertex (`f v/vt`), 1-based
-//! indices, counter-clockwise triangles.
+//! indices, counter-clockwise triangles. When a model has a texture, a material name or a
+//! diffuse colour other than the default, `FILE.mtl` is written beside `FILE.obj` (`mtl`),
+//! named by `mtllib`, and each model's `o` is followed by its `usemtl`.
 
 use std::borrow::Cow;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::Mat4;
 
+use super::mtl::MtlPlan;
+
 use super::build::{build, Bind, ShapeSpec, TexCoords};
 use super::lexer::{parse_f32, parse_int, PResult, ParseError};
-use super::WriteError;
-use crate::mesh::{Attribute, Scene};
+use super::{ReadOutcome, WriteError};
+use crate::mesh::{Attribute, Model, Scene};
 
 /// Logical lines of a text file: `(line number of its first physical line, text)`, with
 /// `#` comments cut off and, when `continuation` is set, lines ending in `\` joined to the
@@ -152,25 +162,80 @@ pub(crate) fn looks_like_obj(bytes: &[u8]) -> bool {
         })
 }
 
-struct Group {
-    name: String,
+/// The faces of one `o` / `g` group that use one material.
+struct Part {
+    /// The `usemtl` name in force for these faces, if any.
+    material: Option<String>,
     corners: Vec<u32>,
     /// Each corner's texture coordinate index, `u32::MAX` where it has none.
     texcoords: Vec<u32>,
     ends: Vec<u32>,
+    /// The line of the first face (for messages).
     line: usize,
+}
+
+/// One `o` / `g` group: its faces, one part per material in the order the materials are
+/// first used in it.
+struct Group {
+    name: String,
+    parts: Vec<Part>,
+    /// Each material's part (a file may switch materials very often).
+    by_material: HashMap<Option<String>, usize>,
 }
 
 impl Group {
     fn new(name: String) -> Self {
         Self {
             name,
-            corners: Vec::new(),
-            texcoords: Vec::new(),
-            ends: Vec::new(),
-            line: 0,
+            parts: Vec::new(),
+            by_material: HashMap::new(),
         }
     }
+
+    /// The part for faces under `material`, made (starting at `line`) when there is none.
+    fn part(&mut self, material: &Option<String>, line: usize) -> usize {
+        let parts = &mut self.parts;
+        *self.by_material.entry(material.clone()).or_insert_with(|| {
+            parts.push(Part {
+                material: material.clone(),
+                corners: Vec::new(),
+                texcoords: Vec::new(),
+                ends: Vec::new(),
+                line,
+            });
+            parts.len() - 1
+        })
+    }
+
+    /// The group's models-to-be with their names: the group's own name when all its faces
+    /// share one material, else `group (material)` for each part (`(no material)` for faces
+    /// before the first `usemtl`).
+    fn into_named_parts(self) -> impl Iterator<Item = (String, Part)> {
+        let split = self.parts.len() > 1;
+        let name = self.name;
+        self.parts.into_iter().map(move |p| {
+            let n = if !split {
+                name.clone()
+            } else {
+                let m = p.material.as_deref().unwrap_or("no material");
+                if name.is_empty() {
+                    m.to_string()
+                } else {
+                    format!("{name} ({m})")
+                }
+            };
+            (n, p)
+        })
+    }
+}
+
+/// The rest of a statement's line after its keyword, spaces inside kept (names and file
+/// names may hold them), `None` when empty.
+fn rest_of_line(text: &[u8]) -> Option<String> {
+    let text = String::from_utf8_lossy(text);
+    let rest = text.trim().split_once(|c: char| c.is_ascii_whitespace())?.1;
+    let rest = rest.trim();
+    (!rest.is_empty()).then(|| rest.to_string())
 }
 
 /// Resolves one OBJ index (1-based, or negative: relative to the `count` defined so far).
@@ -207,8 +272,9 @@ fn resolve(w: &[u8], count: usize, line: usize, what: &str) -> PResult<u32> {
         .map_err(|_| ParseError::new(line, format!("{what} index {i} is too large")))
 }
 
-/// Reads an OBJ file into one model per non-empty `o` / `g` group.
-pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
+/// Reads an OBJ file into one model per non-empty `o` / `g` group and material; the
+/// `mtllib` names come back in `material_libraries` (the caller knows where to look).
+pub fn read_obj(bytes: &[u8]) -> PResult<ReadOutcome> {
     let mut warnings = Vec::new();
     let mut warned: HashSet<Vec<u8>> = HashSet::new();
     let mut coords: Vec<f32> = Vec::new();
@@ -218,6 +284,11 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
     let mut uv: Vec<f32> = Vec::new();
     let mut groups: Vec<Group> = Vec::new();
     let mut cur = Group::new(String::new());
+    let mut libraries: Vec<String> = Vec::new();
+    // The `usemtl` in force (it carries over `o` / `g`), and its part of `cur` once a face
+    // has used it.
+    let mut material: Option<String> = None;
+    let mut part: Option<usize> = None;
     for (line, text) in Lines::new(bytes, true) {
         let mut w = words(&text);
         let Some(key) = w.next() else { continue };
@@ -269,9 +340,8 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                 });
             }
             b"f" => {
-                if cur.ends.is_empty() {
-                    cur.line = line;
-                }
+                let i = *part.get_or_insert_with(|| cur.part(&material, line));
+                let cur = &mut cur.parts[i];
                 let nverts = coords.len() / 3;
                 for corner in w {
                     let mut parts = corner.split(|&b| b == b'/');
@@ -309,17 +379,34 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                     name
                 };
                 let done = std::mem::replace(&mut cur, Group::new(name));
-                if !done.ends.is_empty() {
+                part = None;
+                if !done.parts.is_empty() {
                     groups.push(done);
                 }
             }
+            b"usemtl" => {
+                let name = rest_of_line(&text);
+                if name.is_none() && warned.insert(b"usemtl without a name".to_vec()) {
+                    warnings.push(format!(
+                        "OBJ 'usemtl' without a material name on line {line}: the faces after \
+                         it have no material"
+                    ));
+                }
+                if name != material {
+                    material = name;
+                    part = None;
+                }
+            }
+            b"mtllib" => match rest_of_line(&text) {
+                Some(lib) => libraries.push(lib),
+                None => warnings.push(format!(
+                    "OBJ 'mtllib' without a file name on line {line} skipped"
+                )),
+            },
             _ => {
                 if warned.insert(key.to_vec()) {
                     let k = shown(key);
                     warnings.push(match key {
-                        b"usemtl" | b"mtllib" => {
-                            format!("OBJ '{k}' statements skipped (materials are not read)")
-                        }
                         b"s" => "OBJ 's' (smoothing group) statements skipped".to_string(),
                         b"l" | b"p" => {
                             format!("OBJ '{k}' statements skipped (only faces are read)")
@@ -330,7 +417,7 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
             }
         }
     }
-    if !cur.ends.is_empty() {
+    if !cur.parts.is_empty() {
         groups.push(cur);
     }
     if groups.is_empty() {
@@ -340,14 +427,14 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
         ));
     }
     let mut models = Vec::with_capacity(groups.len());
-    for mut g in groups {
+    for (name, mut g) in groups.into_iter().flat_map(Group::into_named_parts) {
         let texcoords = if g.texcoords.iter().all(|&t| t == u32::MAX) {
             None
         } else if g.texcoords.contains(&u32::MAX) {
             warnings.push(format!(
                 "{}: some face corners have texture coordinates ('v/vt') and some do not; \
                  texture coordinates ignored",
-                g.name
+                name
             ));
             None
         } else {
@@ -364,9 +451,9 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
         } else {
             Bind::None
         };
-        models.push(build(
+        let mut model = build(
             ShapeSpec {
-                name: g.name,
+                name,
                 transform: Mat4::IDENTITY,
                 coords: &coords,
                 corners: g.corners,
@@ -377,14 +464,21 @@ pub fn read_obj(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                 ccw: true,
                 solid: false,
                 crease_angle: None,
-                diffuse: [0.8; 3],
+                diffuse: Model::DEFAULT_DIFFUSE,
                 line: g.line,
                 index_field: "f",
             },
             &mut warnings,
-        )?);
+        )?;
+        model.material = g.material;
+        models.push(model);
     }
-    Ok((Scene { models }, warnings))
+    Ok(ReadOutcome {
+        scene: Scene { models },
+        warnings,
+        progressive: None,
+        material_libraries: libraries,
+    })
 }
 
 /// A model name as one OBJ word list (no line breaks or comment signs).
@@ -401,13 +495,60 @@ fn clean_name(name: &str, i: usize) -> String {
     }
 }
 
-/// Writes all models as one OBJ, via a temporary file and a rename.
-pub fn write_obj(scene: &Scene, path: &Path) -> Result<(), WriteError> {
-    super::write_atomically(path, |w| write_obj_to(w, scene))
+/// The MTL file written beside the OBJ output `path`: its name with `.mtl` for `.obj`
+/// (`.obj.gz` too).
+pub fn mtl_path_for(path: &Path) -> PathBuf {
+    let mut stem = path
+        .file_stem()
+        .map(Path::new)
+        .unwrap_or(Path::new("materials"));
+    let is_gz = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gz"));
+    if is_gz {
+        stem = stem.file_stem().map(Path::new).unwrap_or(stem);
+    }
+    path.with_file_name(stem).with_extension("mtl")
 }
 
-/// Writes the OBJ text to `w`.
+/// Writes all models as one OBJ, via a temporary file and a rename; when the scene has
+/// materials worth keeping (see `mtl::plan`), first writes them to the MTL file beside it
+/// ([`mtl_path_for`]) the same way, and the OBJ names it (`mtllib`) and one material per
+/// model (`usemtl`).
+pub fn write_obj(scene: &Scene, path: &Path) -> Result<(), WriteError> {
+    let Some(plan) = super::mtl::plan(scene) else {
+        return super::write_atomically(path, |w| write_obj_to(w, scene));
+    };
+    let mtl_path = mtl_path_for(path);
+    super::write_atomically(&mtl_path, |w| super::mtl::write_mtl_to(w, &plan.entries))?;
+    let library = mtl_path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let materials = Materials {
+        library: &library,
+        plan: &plan,
+    };
+    super::write_atomically(path, |w| write_obj_with(w, scene, Some(materials)))
+}
+
+/// What an OBJ with materials names: its library and each model's entry in it.
+#[derive(Clone, Copy)]
+struct Materials<'a> {
+    library: &'a str,
+    plan: &'a MtlPlan,
+}
+
+/// Writes the OBJ text to `w`, without materials.
 pub fn write_obj_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
+    write_obj_with(w, scene, None)
+}
+
+fn write_obj_with(
+    w: &mut impl Write,
+    scene: &Scene,
+    materials: Option<Materials<'_>>,
+) -> std::io::Result<()> {
     writeln!(
         w,
         "# written by decimate: {} models, {} vertices, {} triangles",
@@ -419,9 +560,19 @@ pub fn write_obj_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         w,
         "# positions are in world space (model transforms applied)"
     )?;
+    if let Some(m) = materials {
+        writeln!(w, "mtllib {}", m.library)?;
+    }
     let (mut base, mut tbase) = (1u64, 1u64);
     for (i, m) in scene.models.iter().enumerate() {
         writeln!(w, "o {}", clean_name(&m.name, i))?;
+        let entry = materials.and_then(|mm| {
+            let e = *mm.plan.of_model.get(i)?;
+            mm.plan.entries.get(e)
+        });
+        if let Some(entry) = entry {
+            writeln!(w, "usemtl {}", entry.name)?;
+        }
         let colors = match &m.colors {
             Some(Attribute::PerVertex(c)) if c.len() == m.positions.len() => Some(c),
             _ => None,

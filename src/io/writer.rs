@@ -7,7 +7,8 @@
 //! written straight into the buffered writer (no allocation per number). Colours and normals
 //! keep their binding: per vertex (`colorPerVertex TRUE`, indexed by `coordIndex`) or per face.
 //! Texture coordinates are per vertex (`texCoord`, indexed by `coordIndex`), the texture's
-//! image an `ImageTexture` with the URL as read.
+//! image an `ImageTexture` with the URL as the model holds it (callers rebase relative names
+//! for the output's folder first: `io::rebase_textures`).
 
 use std::collections::HashSet;
 use std::io::{self, Write};

@@ -59,8 +59,12 @@ pub struct Model {
     /// coordinates), so the model is cut along its seams; decimation pins such vertices.
     pub texcoords: Option<Vec<[f32; 2]>>,
     /// The image the texture coordinates map, as the file named it (a URL or a path
-    /// relative to the file: VRML 2.0's `ImageTexture`, Inventor's `Texture2`).
+    /// relative to the file's folder: VRML 2.0's `ImageTexture`, Inventor's `Texture2`, an
+    /// OBJ's `map_Kd`); `io::rebase_textures` re-expresses it for another folder.
     pub texture: Option<String>,
+    /// The material's name as the file gave it (OBJ `usemtl`), if any: what an OBJ output
+    /// names its `newmtl` after.
+    pub material: Option<String>,
     /// Diffuse colour of the shape's material (used when there are no per-vertex/face colours).
     pub diffuse: [f32; 3],
     /// Crease angle in radians from the file (ShapeHints / IndexedFaceSet), if given.
@@ -80,7 +84,8 @@ impl Default for Model {
             normals: None,
             texcoords: None,
             texture: None,
-            diffuse: [0.8, 0.8, 0.8],
+            material: None,
+            diffuse: Self::DEFAULT_DIFFUSE,
             crease_angle: None,
             solid: false,
         }
@@ -88,6 +93,9 @@ impl Default for Model {
 }
 
 impl Model {
+    /// The diffuse colour of a shape whose file gives no material (VRML's default).
+    pub const DEFAULT_DIFFUSE: [f32; 3] = [0.8, 0.8, 0.8];
+
     /// Number of vertices that at least one triangle uses.
     pub fn used_vertex_count(&self) -> usize {
         let mut used = vec![false; self.positions.len()];

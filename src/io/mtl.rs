@@ -1,0 +1,434 @@
+//! Wavefront MTL material libraries, the companions of OBJ files: reading them for an OBJ
+//! that names them, and writing one beside an OBJ output.
+//!
+//! Read ([`parse_mtl`]): `newmtl NAME`, `Kd r [g b]` (the diffuse colour, clamped to 0..1;
+//! one value means grey) and `map_Kd [options] FILE` (the diffuse texture; the options
+//! `-blendu`, `-blendv`, `-cc`, `-clamp`, `-imfchan`, `-type`, `-bm`, `-boost`, `-texres`
+//! (one value), `-mm` (two) and `-o`, `-s`, `-t` (one to three numbers) are skipped; what is
+//! left is the file name, spaces included). Other texture maps (`map_Ks`, `bump`, …) are
+//! skipped with one warning per file, other statements (`Ka`, `Ks`, `Ns`, `d`, `illum`, …)
+//! silently. A bad line is a warning naming the file and line, and is skipped: materials
+//! only change how a model looks, so they never stop a file from being read.
+//!
+//! [`apply_materials`] is what `io::read_scene` does for an OBJ: load each `mtllib` relative
+//! to the OBJ's folder (a name with spaces is tried whole first, then as a list of files),
+//! and give each model whose `usemtl` names a material its `Kd` as `Model::diffuse` and its
+//! `map_Kd` as `Model::texture` (models with texture coordinates only), re-expressed
+//! relative to the OBJ's folder. The first library to define a name wins. A library that
+//! cannot be read and a material no library defines are warnings naming the file.
+//!
+//! Write ([`plan`], [`write_mtl_to`]): one `newmtl` per distinct material of the scene, named
+//! after the model's material, else after the model (spaces and `#` made `_`; `_2`, `_3` …
+//! added where two different materials would share a name), with `Ka 0 0 0`, `Kd`,
+//! `Ks 0 0 0`, `d 1`, `illum 1` (plain diffuse shading in every viewer) and `map_Kd` for a
+//! model whose texture the OBJ maps (it has one texture coordinate pair per vertex).
+
+use std::collections::{HashMap, HashSet};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use super::obj::Lines;
+use super::texture_path::{folder_of, rebase};
+use super::ReadOutcome;
+use crate::mesh::{Model, Scene};
+
+/// One material of an MTL file, as far as this program uses it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    pub name: String,
+    /// `Kd`, if given.
+    pub diffuse: Option<[f32; 3]>,
+    /// `map_Kd`'s file name as written (relative to the MTL file's folder), if given.
+    pub texture: Option<String>,
+}
+
+/// Reads an MTL file's materials, in file order; `file` is named in the warnings.
+pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<String>) {
+    let f = file.display();
+    let mut materials: Vec<Material> = Vec::new();
+    let mut warnings = Vec::new();
+    let mut skipped_maps: Vec<String> = Vec::new();
+    let mut outside_warned = false;
+    for (line, text) in Lines::new(bytes, false) {
+        let text = String::from_utf8_lossy(&text);
+        let mut w = text.split_whitespace();
+        let Some(key) = w.next() else { continue };
+        let rest = text.trim().get(key.len()..).unwrap_or("").trim();
+        if key == "newmtl" {
+            if rest.is_empty() {
+                warnings.push(format!("{f}:{line}: 'newmtl' without a name skipped"));
+            }
+            materials.push(Material {
+                name: rest.to_string(),
+                diffuse: None,
+                texture: None,
+            });
+            continue;
+        }
+        let is_map =
+            key.starts_with("map_") || matches!(key, "bump" | "disp" | "decal" | "refl" | "norm");
+        if key != "Kd" && key != "map_Kd" {
+            if is_map && !skipped_maps.iter().any(|k| k == key) {
+                skipped_maps.push(key.to_string());
+            }
+            continue;
+        }
+        let Some(m) = materials.last_mut() else {
+            if !outside_warned {
+                outside_warned = true;
+                warnings.push(format!(
+                    "{f}:{line}: '{key}' before any 'newmtl' skipped (it belongs to no material)"
+                ));
+            }
+            continue;
+        };
+        let read = if key == "Kd" {
+            kd(rest).map(|c| m.diffuse = Some(c))
+        } else {
+            map_file(rest).map(|t| m.texture = Some(t))
+        };
+        if let Err(why) = read {
+            warnings.push(format!("{f}:{line}: {key}: {why}; line skipped"));
+        }
+    }
+    materials.retain(|m| !m.name.is_empty());
+    if !skipped_maps.is_empty() {
+        warnings.push(format!(
+            "{f}: texture maps other than map_Kd are not used ({})",
+            skipped_maps.join(", ")
+        ));
+    }
+    (materials, warnings)
+}
+
+/// `Kd`'s colour: `r g b`, or `r` alone for grey; `spectral` and `xyz` forms are refused.
+fn kd(rest: &str) -> Result<[f32; 3], String> {
+    let values: Vec<&str> = rest.split_whitespace().collect();
+    if matches!(values.first(), Some(&("spectral" | "xyz"))) {
+        return Err(format!("the '{}' form is not supported", values[0]));
+    }
+    let number = |s: &str| -> Result<f32, String> {
+        match s.parse::<f32>() {
+            Ok(v) if v.is_finite() => Ok(v.clamp(0.0, 1.0)),
+            _ => Err(format!(
+                "expected a number, found '{}'",
+                s.chars().take(40).collect::<String>()
+            )),
+        }
+    };
+    match values[..] {
+        [r] => Ok([number(r)?; 3]),
+        [r, g, b] => Ok([number(r)?, number(g)?, number(b)?]),
+        _ => Err(format!(
+            "expected 'Kd r g b', found {} values",
+            values.len()
+        )),
+    }
+}
+
+/// How many values each `map_Kd` option takes: a fixed count, or up to three numbers.
+fn option_values(option: &str) -> Option<(usize, bool)> {
+    Some(match option {
+        "-blendu" | "-blendv" | "-cc" | "-clamp" | "-imfchan" | "-type" | "-bm" | "-boost"
+        | "-texres" => (1, false),
+        "-mm" => (2, false),
+        "-o" | "-s" | "-t" => (3, true),
+        _ => return None,
+    })
+}
+
+/// `map_Kd`'s file name: what is left after the options, spaces inside kept.
+fn map_file(rest: &str) -> Result<String, String> {
+    // Each word with where it starts, so the file name can be cut out whole.
+    let mut spans = Vec::new();
+    let mut start = None;
+    for (i, c) in rest.char_indices().chain([(rest.len(), ' ')]) {
+        match (c.is_whitespace(), start) {
+            (false, None) => start = Some(i),
+            (true, Some(s)) => {
+                spans.push((s, &rest[s..i]));
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    let mut i = 0;
+    while let Some(&(_, word)) = spans.get(i) {
+        if !word.starts_with('-') {
+            break;
+        }
+        let Some((count, numbers_only)) = option_values(word) else {
+            // The last word is the file name even when it starts with '-'.
+            if i + 1 == spans.len() {
+                break;
+            }
+            return Err(format!("unknown option '{word}'"));
+        };
+        i += 1;
+        if i == spans.len() {
+            return Err("no file name".to_string());
+        }
+        let mut taken = 0;
+        // Always leave one word for the file name.
+        while taken < count && i + 1 < spans.len() {
+            if numbers_only && spans[i].1.parse::<f32>().is_err() {
+                break;
+            }
+            i += 1;
+            taken += 1;
+        }
+        if taken == 0 {
+            return Err(format!("option '{word}' without a value"));
+        }
+    }
+    match spans.get(i) {
+        Some(&(at, _)) => Ok(rest[at..].trim_end().to_string()),
+        None => Err("no file name".to_string()),
+    }
+}
+
+/// The files one `mtllib` statement names: the whole text when such a file exists (names
+/// with spaces), else each word.
+fn library_files(obj_dir: &Path, lib: &str) -> Vec<String> {
+    if obj_dir.join(lib).is_file() {
+        return vec![lib.to_string()];
+    }
+    lib.split_whitespace().map(str::to_string).collect()
+}
+
+/// Loads the OBJ's material libraries (named relative to `obj`'s folder) and applies their
+/// materials to the models that use them; problems become warnings.
+pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) {
+    let used = outcome.scene.models.iter().any(|m| m.material.is_some());
+    if outcome.material_libraries.is_empty() && !used {
+        return;
+    }
+    let obj_dir = folder_of(obj);
+    let mut table: HashMap<String, Material> = HashMap::new();
+    let mut loaded: Vec<PathBuf> = Vec::new();
+    for lib in &outcome.material_libraries {
+        for name in library_files(obj_dir, lib) {
+            let path = obj_dir.join(&name);
+            let bytes = match std::fs::read(&path) {
+                Ok(b) => b,
+                Err(e) => {
+                    outcome.warnings.push(format!(
+                        "{}: cannot read its material library {}: {e}; its materials are not \
+                         applied",
+                        obj.display(),
+                        path.display()
+                    ));
+                    continue;
+                }
+            };
+            let (materials, warnings) = parse_mtl(&bytes, &path);
+            outcome.warnings.extend(warnings);
+            let mtl_dir = folder_of(&path);
+            for mut m in materials {
+                m.texture = m.texture.map(|t| rebase(&t, mtl_dir, obj_dir));
+                table.entry(m.name.clone()).or_insert(m);
+            }
+            loaded.push(path);
+        }
+    }
+    let mut unknown: Vec<&str> = Vec::new();
+    for model in &mut outcome.scene.models {
+        let Some(name) = &model.material else {
+            continue;
+        };
+        let Some(m) = table.get(name) else {
+            if !unknown.contains(&name.as_str()) {
+                unknown.push(name);
+            }
+            continue;
+        };
+        if let Some(kd) = m.diffuse {
+            model.diffuse = kd;
+        }
+        if model.texcoords.is_some() {
+            model.texture.clone_from(&m.texture);
+        }
+    }
+    if !unknown.is_empty() {
+        let quoted: Vec<String> = unknown.iter().map(|n| format!("'{n}'")).collect();
+        let where_ = if loaded.is_empty() {
+            "no material library could be read".to_string()
+        } else {
+            let files: Vec<String> = loaded.iter().map(|p| p.display().to_string()).collect();
+            format!("not defined in {}", files.join(", "))
+        };
+        outcome.warnings.push(format!(
+            "{}: material {} {where_}; the default grey is used",
+            obj.display(),
+            quoted.join(", ")
+        ));
+    }
+}
+
+/// One `newmtl` of an MTL output.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MtlEntry {
+    pub name: String,
+    pub diffuse: [f32; 3],
+    pub texture: Option<String>,
+}
+
+/// The materials an OBJ output needs, and each model's entry; `None` when no model has a
+/// texture the OBJ maps, a material name or a diffuse colour other than the default (a
+/// plain conversion stays a plain OBJ).
+pub struct MtlPlan {
+    pub entries: Vec<MtlEntry>,
+    /// For each model, its entry's index.
+    pub of_model: Vec<usize>,
+}
+
+/// The texture an OBJ output maps for `m`: only with one coordinate pair per vertex.
+fn mapped_texture(m: &Model) -> Option<&String> {
+    let t = m.texcoords.as_ref()?;
+    (t.len() == m.positions.len())
+        .then_some(m.texture.as_ref())
+        .flatten()
+}
+
+/// A material name as one MTL word: whitespace, control characters and `#` become `_`.
+fn clean(name: &str) -> String {
+    name.trim()
+        .chars()
+        .map(|c| {
+            if c.is_whitespace() || c.is_control() || c == '#' {
+                '_'
+            } else {
+                c
+            }
+        })
+        .collect()
+}
+
+/// Works out the `newmtl` entries for `scene` (see the module documentation).
+pub fn plan(scene: &Scene) -> Option<MtlPlan> {
+    let needed = scene.models.iter().any(|m| {
+        m.material.is_some() || mapped_texture(m).is_some() || m.diffuse != Model::DEFAULT_DIFFUSE
+    });
+    if !needed {
+        return None;
+    }
+    let mut entries: Vec<MtlEntry> = Vec::new();
+    let mut names: HashSet<String> = HashSet::new();
+    // The name each entry was wanted under (before `_K` was added).
+    let mut wanted_of: Vec<String> = Vec::new();
+    let mut of_model = Vec::with_capacity(scene.models.len());
+    for (i, m) in scene.models.iter().enumerate() {
+        let wanted = match clean(m.material.as_deref().unwrap_or(&m.name)) {
+            n if n.is_empty() => format!("material_{}", i + 1),
+            n => n,
+        };
+        let (diffuse, texture) = (m.diffuse, mapped_texture(m).cloned());
+        // Same wanted name and same look: the same entry.
+        let same = entries
+            .iter()
+            .zip(&wanted_of)
+            .position(|(e, w)| *w == wanted && e.diffuse == diffuse && e.texture == texture);
+        let index = match same {
+            Some(e) => e,
+            None => {
+                let mut name = wanted.clone();
+                let mut k = 2;
+                while names.contains(&name) {
+                    name = format!("{wanted}_{k}");
+                    k += 1;
+                }
+                names.insert(name.clone());
+                wanted_of.push(wanted);
+                entries.push(MtlEntry {
+                    name,
+                    diffuse,
+                    texture,
+                });
+                entries.len() - 1
+            }
+        };
+        of_model.push(index);
+    }
+    Some(MtlPlan { entries, of_model })
+}
+
+/// Writes the MTL text for `entries` to `w`.
+pub fn write_mtl_to(w: &mut impl Write, entries: &[MtlEntry]) -> std::io::Result<()> {
+    writeln!(w, "# written by decimate: {} materials", entries.len())?;
+    for e in entries {
+        let [r, g, b] = e.diffuse;
+        writeln!(w, "\nnewmtl {}", e.name)?;
+        writeln!(w, "Ka 0 0 0")?;
+        writeln!(w, "Kd {r} {g} {b}")?;
+        writeln!(w, "Ks 0 0 0")?;
+        writeln!(w, "d 1")?;
+        writeln!(w, "illum 1")?;
+        if let Some(t) = &e.texture {
+            let t: String = t.chars().filter(|c| !c.is_control()).collect();
+            // A name starting with '-' would read as an option.
+            let dot = if t.starts_with('-') { "./" } else { "" };
+            writeln!(w, "map_Kd {dot}{t}")?;
+        }
+    }
+    w.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn map_kd_options_are_skipped_and_the_file_name_kept_whole() {
+        assert_eq!(map_file("skin.jpg").as_deref(), Ok("skin.jpg"));
+        assert_eq!(
+            map_file("-s 1 1 1 -o 0 0 -clamp on -bm 0.5 my skin.jpg").as_deref(),
+            Ok("my skin.jpg")
+        );
+        // Fewer numbers than three: the next option or the file name ends them.
+        assert_eq!(map_file("-s 2 tex/a.png").as_deref(), Ok("tex/a.png"));
+        assert_eq!(map_file("-mm 0 1 b.png").as_deref(), Ok("b.png"));
+        // An option needs its value and leaves a file name, or the line is refused.
+        assert!(map_file("-o 1")
+            .unwrap_err()
+            .contains("'-o' without a value"));
+        assert!(map_file("-clamp").unwrap_err().contains("no file name"));
+        assert_eq!(map_file("-s 1 -x.png").as_deref(), Ok("-x.png"));
+        assert!(map_file("-zz a.png").unwrap_err().contains("'-zz'"));
+        assert!(map_file("").is_err());
+    }
+
+    #[test]
+    fn kd_reads_grey_and_rgb_and_refuses_the_rest() {
+        assert_eq!(kd("0.5"), Ok([0.5; 3]));
+        assert_eq!(kd("0.1 0.2 1.5"), Ok([0.1, 0.2, 1.0]));
+        assert!(kd("0.1 0.2").is_err());
+        assert!(kd("spectral a.rfl").unwrap_err().contains("spectral"));
+        assert!(kd("0.1 x 0.3").unwrap_err().contains("'x'"));
+    }
+
+    #[test]
+    fn entries_are_shared_by_equal_materials_and_renamed_when_they_differ() {
+        let model = |name: &str, material: Option<&str>, diffuse| Model {
+            name: name.into(),
+            material: material.map(String::from),
+            diffuse,
+            ..Model::default()
+        };
+        let scene = Scene {
+            models: vec![
+                model("a", Some("skin"), [1.0, 0.0, 0.0]),
+                model("b", Some("skin"), [1.0, 0.0, 0.0]),
+                model("c", Some("skin"), [0.0, 1.0, 0.0]),
+                model("my part", None, Model::DEFAULT_DIFFUSE),
+            ],
+        };
+        let plan = plan(&scene).expect("materials are needed");
+        let names: Vec<&str> = plan.entries.iter().map(|e| e.name.as_str()).collect();
+        assert_eq!(names, ["skin", "skin_2", "my_part"]);
+        assert_eq!(plan.of_model, [0, 0, 1, 2]);
+        let plain = Scene {
+            models: vec![model("a", None, Model::DEFAULT_DIFFUSE)],
+        };
+        assert!(super::plan(&plain).is_none());
+    }
+}
