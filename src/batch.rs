@@ -9,6 +9,7 @@
 //! folder to the output's before writing (`io::rebase_textures`).
 
 use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
@@ -20,14 +21,29 @@ use crate::io;
 use crate::mesh::Scene;
 
 /// Runs the nogui job on `scene`, or on `recorded` when the input is a progressive mesh; the
-/// exit code says whether the output was written.
-pub fn run(mut scene: Scene, recorded: Option<ProgressiveScene>, args: &Args) -> ExitCode {
+/// exit code says whether the output was written. `material_libraries` are the input OBJ's
+/// (`mtllib`, relative to its folder): an output's own MTL must not replace one of them.
+pub fn run(
+    mut scene: Scene,
+    recorded: Option<ProgressiveScene>,
+    material_libraries: &[String],
+    args: &Args,
+) -> ExitCode {
     crate::threads::join_pool();
-    let outputs = std::iter::once(&args.output).chain(&args.progressive);
+    let input_dir = io::texture_path::folder_of(&args.input);
+    let inputs: Vec<PathBuf> = std::iter::once(args.input.clone())
+        .chain(material_libraries.iter().map(|l| input_dir.join(l)))
+        .collect();
+    // The OBJ output's material library is written too (when the scene has materials).
+    let mtl = (io::Format::from_path(&args.output) == Some(io::Format::Obj))
+        .then(|| io::obj::mtl_path_for(&args.output));
+    let outputs = std::iter::once(&args.output)
+        .chain(&args.progressive)
+        .chain(&mtl);
     for output in outputs {
-        if !args.overwrite && same_file(&args.input, output) {
+        if !args.overwrite && inputs.iter().any(|input| same_file(input, output)) {
             eprintln!(
-                "decimate: {}: refusing to write over the input file (add --overwrite to allow it)",
+                "decimate: {}: refusing to write over an input file (add --overwrite to allow it)",
                 output.display()
             );
             return ExitCode::from(2);
@@ -40,13 +56,8 @@ pub fn run(mut scene: Scene, recorded: Option<ProgressiveScene>, args: &Args) ->
     if !args.quiet {
         eprint!("{}", summary(&report));
     }
-    rebase_textures(&mut scene, args);
-    if let Err(e) = io::write_scene(&scene, &args.output) {
-        eprintln!("decimate: cannot write {e}");
+    if !write(&mut scene, args) {
         return ExitCode::FAILURE;
-    }
-    if !args.quiet {
-        eprintln!("wrote {}", args.output.display());
     }
     if let (Some(path), Some(pm)) = (&args.progressive, &progressive) {
         if let Err(e) = io::progressive::write_progressive(pm, path) {
@@ -110,16 +121,31 @@ fn rebuild_levels(pm: &ProgressiveScene, args: &Args) -> ExitCode {
             start.elapsed().as_secs_f64()
         );
     }
-    let mut scene = Scene { models };
-    rebase_textures(&mut scene, args);
-    if let Err(e) = io::write_scene(&scene, &args.output) {
+    if write(&mut Scene { models }, args) {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
+}
+
+/// Writes `scene` to the output: texture names rebased for its folder, and a warning for
+/// whatever its format cannot hold (`io::losses`). False (with the error printed) when the
+/// file could not be written.
+fn write(scene: &mut Scene, args: &Args) -> bool {
+    rebase_textures(scene, args);
+    if !args.quiet {
+        for loss in io::losses::losses(scene, io::Format::from_path(&args.output)) {
+            eprintln!("decimate: warning: {}: {loss}", args.output.display());
+        }
+    }
+    if let Err(e) = io::write_scene(scene, &args.output) {
         eprintln!("decimate: cannot write {e}");
-        return ExitCode::FAILURE;
+        return false;
     }
     if !args.quiet {
         eprintln!("wrote {}", args.output.display());
     }
-    ExitCode::SUCCESS
+    true
 }
 
 /// Decimates `scene` to the command line's target, with a progress bar on a terminal;

@@ -133,7 +133,7 @@ action-options for nogui (one target is MANDATORY):
                         any level between the result and the input (implies -a qem);
                         with FILE.pm as the input, nogui rebuilds the level the target
                         asks for (never below the base) instead of decimating
-  --overwrite           allow -o or --progressive to name the input file
+  --overwrite           allow -o or --progressive to name an input file
   -q, --quiet           no summary or progress on stderr
 
 action-options for shot (offscreen render to PNG, no window):

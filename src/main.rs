@@ -47,7 +47,12 @@ fn main() -> ExitCode {
     let scene = mesh::build::build_scene(outcome.scene, args.weld);
 
     match args.action {
-        Action::NoGui => batch::run(scene, outcome.progressive, &args),
+        Action::NoGui => batch::run(
+            scene,
+            outcome.progressive,
+            &outcome.material_libraries,
+            &args,
+        ),
         // (4) menus, (5) callbacks, (6) main loop: the viewer.
         Action::Gui | Action::Shot => decimate::app::run(scene, &args),
     }

@@ -399,3 +399,72 @@ fn texture_names_are_rebased_between_folders() {
     std::fs::write(&image, IMAGE).unwrap();
     assert!(resolves_to(&to, &rebase("tex/a.jpg", &from, &to), &image));
 }
+
+#[test]
+fn an_output_beside_the_input_never_replaces_the_input_s_library_unasked() {
+    let root = tempfile::tempdir().unwrap();
+    let (obj, _) = scan(root.path(), SKIN_MTL);
+    let dir = obj.parent().unwrap();
+    // `copy.obj` names `scan.mtl`; decimated into `scan.obj` beside it, its output's own
+    // library would be `in/scan.mtl`, the very file the input reads its materials from.
+    let beside = root.path().join("in/copy.obj");
+    std::fs::copy(&obj, &beside).unwrap();
+    let target = dir.join("scan.obj");
+    let o = decimate(&beside, &target, &["-p", "50"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("scan.mtl: refusing to write over an input file"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("scan.mtl")).unwrap(),
+        SKIN_MTL
+    );
+    // Asked for, it goes ahead.
+    let o = decimate(&beside, &target, &["-p", "50", "--overwrite"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_ne!(
+        std::fs::read_to_string(dir.join("scan.mtl")).unwrap(),
+        SKIN_MTL
+    );
+}
+
+#[test]
+fn formats_that_cannot_hold_the_texture_say_so() {
+    let root = tempfile::tempdir().unwrap();
+    let (obj, _) = scan(root.path(), SKIN_MTL);
+    let out = root.path().join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    let cases = [
+        (
+            "scan.stl",
+            "STL output keeps no texture coordinates (1 model has them)",
+        ),
+        (
+            "scan.off",
+            "OFF output does not name the texture image (1 model has them)",
+        ),
+    ];
+    for (name, expected) in cases {
+        let o = decimate(&obj, &out.join(name), &["-p", "50"]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let line = format!("warning: {}: {expected}", out.join(name).display());
+        assert!(stderr(&o).contains(&line), "{name}: {}", stderr(&o));
+    }
+    // PLY names the image, OBJ and VRML keep everything: no warning.
+    for name in ["scan.ply", "scan.obj", "scan.wrl"] {
+        let o = decimate(&obj, &out.join(name), &["-p", "50"]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        assert!(
+            !stderr(&o).contains("output keeps no"),
+            "{name}: {}",
+            stderr(&o)
+        );
+        assert!(
+            !stderr(&o).contains("does not name"),
+            "{name}: {}",
+            stderr(&o)
+        );
+    }
+}

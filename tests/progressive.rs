@@ -346,7 +346,7 @@ fn progressive_over_the_input_is_refused_unless_overwrite() {
     let args = ["in.wrl", "nogui", "-p", "50", "--progressive", "in.wrl"];
     let o = decimate(dir.path(), &args);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(stderr(&o).contains("refusing to write over the input"));
+    assert!(stderr(&o).contains("refusing to write over an input file"));
     assert_eq!(std::fs::read(&input).ok(), Some(before));
     assert!(!dir.path().join("out.wrl").exists());
     let o = decimate(dir.path(), &[&args[..], &["--overwrite"]].concat());

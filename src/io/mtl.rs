@@ -314,8 +314,9 @@ pub fn plan(scene: &Scene) -> Option<MtlPlan> {
     }
     let mut entries: Vec<MtlEntry> = Vec::new();
     let mut names: HashSet<String> = HashSet::new();
-    // The name each entry was wanted under (before `_K` was added).
-    let mut wanted_of: Vec<String> = Vec::new();
+    // Each entry by the name it was wanted under (before `_K` was added) and its look.
+    let mut by_look: HashMap<(String, [u32; 3], Option<String>), usize> = HashMap::new();
+    let mut next_suffix: HashMap<String, usize> = HashMap::new();
     let mut of_model = Vec::with_capacity(scene.models.len());
     for (i, m) in scene.models.iter().enumerate() {
         let wanted = match clean(m.material.as_deref().unwrap_or(&m.name)) {
@@ -324,26 +325,24 @@ pub fn plan(scene: &Scene) -> Option<MtlPlan> {
         };
         let (diffuse, texture) = (m.diffuse, mapped_texture(m).cloned());
         // Same wanted name and same look: the same entry.
-        let same = entries
-            .iter()
-            .zip(&wanted_of)
-            .position(|(e, w)| *w == wanted && e.diffuse == diffuse && e.texture == texture);
-        let index = match same {
-            Some(e) => e,
+        let look = (wanted.clone(), diffuse.map(f32::to_bits), texture.clone());
+        let index = match by_look.get(&look) {
+            Some(&e) => e,
             None => {
+                // Suffixes go on from the last one given for this name: no rescans.
+                let k = next_suffix.entry(wanted.clone()).or_insert(2);
                 let mut name = wanted.clone();
-                let mut k = 2;
                 while names.contains(&name) {
                     name = format!("{wanted}_{k}");
-                    k += 1;
+                    *k += 1;
                 }
                 names.insert(name.clone());
-                wanted_of.push(wanted);
                 entries.push(MtlEntry {
                     name,
                     diffuse,
                     texture,
                 });
+                by_look.insert(look, entries.len() - 1);
                 entries.len() - 1
             }
         };
