@@ -28,9 +28,11 @@
 //! | diffuse                    | rgb              | the material's colour                                     |
 //! | crease flag, crease angle  | flag, f32        | radians; the angle is there (0) when the flag is 0        |
 //! | solid                      | flag             |                                                           |
-//! | attributes                 | u8               | bit 0 per-vertex colours, bit 1 per-face colours, bit 2 per-vertex normals, bit 3 texture coordinates, bit 4 texture image; bits 0 and 1 exclusive, bits 5–7 zero |
+//! | attributes                 | u8               | bit 0 per-vertex colours, bit 1 per-face colours, bit 2 per-vertex normals, bit 3 texture coordinates, bit 4 texture image, bit 5 material name; bits 0 and 1 exclusive, bits 6–7 zero |
 //! | image name length          | u32              | bit 4 only: N                                             |
 //! | image name                 | N bytes          | bit 4 only: UTF-8, the texture image as the input named it |
+//! | material name length       | u32              | bit 5 only: N                                             |
+//! | material name              | N bytes          | bit 5 only: UTF-8, the material (OBJ `usemtl`)            |
 //! | base vertex count          | u32              | V                                                         |
 //! | base face count            | u32              | F                                                         |
 //! | positions                  | V × vec3         |                                                           |
@@ -58,7 +60,7 @@
 //! order. A split's renamed faces are those that exist before it (ids below F plus the faces
 //! the earlier splits added).
 //!
-//! Bits 3 and 4 came after the first files were written; those have them clear and read as
+//! Bits 3 to 5 came after the first files were written; those have them clear and read as
 //! before.
 
 use std::io::{self, Write};
@@ -80,6 +82,7 @@ const FACE_COLORS: u8 = 2;
 const VERTEX_NORMALS: u8 = 4;
 const TEXCOORDS: u8 = 8;
 const TEXTURE_IMAGE: u8 = 16;
+const MATERIAL_NAME: u8 = 32;
 
 /// Writes `pm` to `path` via a temporary file beside it and a rename. A model that fails
 /// [`ProgressiveModel::validate`] (or that the layout cannot hold, such as per-face normals)
@@ -132,6 +135,7 @@ struct Attributes {
     normals: bool,
     texcoords: bool,
     texture_image: bool,
+    material_name: bool,
 }
 
 impl Attributes {
@@ -142,6 +146,7 @@ impl Attributes {
             normals: m.normals.is_some(),
             texcoords: m.texcoords.is_some(),
             texture_image: m.texture.is_some(),
+            material_name: m.material.is_some(),
         }
     }
 
@@ -152,10 +157,16 @@ impl Attributes {
             | bit(self.normals, VERTEX_NORMALS)
             | bit(self.texcoords, TEXCOORDS)
             | bit(self.texture_image, TEXTURE_IMAGE)
+            | bit(self.material_name, MATERIAL_NAME)
     }
 
     fn from_bits(bits: u8) -> Option<Self> {
-        let all = VERTEX_COLORS | FACE_COLORS | VERTEX_NORMALS | TEXCOORDS | TEXTURE_IMAGE;
+        let all = VERTEX_COLORS
+            | FACE_COLORS
+            | VERTEX_NORMALS
+            | TEXCOORDS
+            | TEXTURE_IMAGE
+            | MATERIAL_NAME;
         let both_colors = VERTEX_COLORS | FACE_COLORS;
         if bits & !all != 0 || bits & both_colors == both_colors {
             return None;
@@ -166,6 +177,7 @@ impl Attributes {
             normals: bits & VERTEX_NORMALS != 0,
             texcoords: bits & TEXCOORDS != 0,
             texture_image: bits & TEXTURE_IMAGE != 0,
+            material_name: bits & MATERIAL_NAME != 0,
         })
     }
 
@@ -268,9 +280,9 @@ fn write_header<W: Write>(out: &mut Out<'_, W>, m: &Model, a: Attributes) -> io:
     out.f32s(&[m.crease_angle.unwrap_or(0.0)])?;
     out.u8(m.solid as u8)?;
     out.u8(a.bits())?;
-    if let Some(image) = &m.texture {
-        out.len(image.len())?;
-        out.bytes(image.as_bytes())?;
+    for name in [&m.texture, &m.material].into_iter().flatten() {
+        out.len(name.len())?;
+        out.bytes(name.as_bytes())?;
     }
     out.len(m.positions.len())?;
     out.len(m.triangles.len())
@@ -548,18 +560,23 @@ fn header(c: &mut Cursor<'_>) -> Parse<(Model, Attributes, usize, usize)> {
     let a = Attributes::from_bits(bits).ok_or_else(|| {
         c.bad(
             at,
-            format!("attribute flags {bits:#04x}: expected bits 0, 1 (not both), 2, 3 and 4 only"),
+            format!("attribute flags {bits:#04x}: expected bits 0, 1 (not both) and 2 to 5 only"),
         )
     })?;
-    let texture = if a.texture_image {
-        let len = c.count(1, "the texture image name length")?;
+    let mut text = |what: &str| -> Parse<String> {
+        let len = c.count(1, &format!("the {what} length"))?;
         let at = c.pos;
-        let image = std::str::from_utf8(c.take(len, "the texture image name")?)
-            .map_err(|e| c.bad(at, format!("the texture image name is not UTF-8 ({e})")))?;
-        Some(image.to_string())
-    } else {
-        None
+        let bytes = c.take(len, &format!("the {what}"))?;
+        match std::str::from_utf8(bytes) {
+            Ok(s) => Ok(s.to_string()),
+            Err(e) => Err(c.bad(at, format!("the {what} is not UTF-8 ({e})"))),
+        }
     };
+    let texture = a
+        .texture_image
+        .then(|| text("texture image name"))
+        .transpose()?;
+    let material = a.material_name.then(|| text("material name")).transpose()?;
     let vertices = c.count(a.vertex_size(), "the base vertex count")?;
     let faces = c.count(a.face_size(), "the base face count")?;
     let model = Model {
@@ -569,6 +586,7 @@ fn header(c: &mut Cursor<'_>) -> Parse<(Model, Attributes, usize, usize)> {
         crease_angle: creased.then_some(crease),
         solid,
         texture,
+        material,
         ..Model::default()
     };
     Ok((model, a, vertices, faces))
@@ -758,39 +776,43 @@ mod tests {
     }
 
     #[test]
-    fn the_texture_image_name_reads_back_after_the_attribute_byte() {
+    fn the_texture_image_and_material_names_read_back_after_the_attribute_byte() {
         let mut m = textured(shapes::uv_sphere(6, 8));
         m.texture = Some("maps/scan ü.png".into());
+        m.material = Some("skin".into());
         let pm = progressive(vec![m]);
         let b = bytes(&pm);
         let header = 16 + 4 + pm.models[0].base.name.len() + 64 + 12 + 5 + 1;
-        assert_eq!(b[header], 8 | 16, "bits 3 and 4");
+        assert_eq!(b[header], 8 | 16 | 32, "bits 3, 4 and 5");
         let len = "maps/scan ü.png".len();
         assert_eq!(&b[header + 1..header + 5], &(len as u32).to_le_bytes());
-        assert_eq!(
-            &b[header + 5..header + 5 + len],
-            "maps/scan ü.png".as_bytes()
-        );
+        let image = header + 5;
+        assert_eq!(&b[image..image + len], "maps/scan ü.png".as_bytes());
+        let material = image + len;
+        assert_eq!(&b[material..material + 4], &4u32.to_le_bytes());
+        assert_eq!(&b[material + 4..material + 8], b"skin");
         let back = parse(&b).unwrap_or_else(|e| panic!("{e}"));
-        assert_eq!(
-            back.models[0].base.texture.as_deref(),
-            Some("maps/scan ü.png")
-        );
+        let base = &back.models[0].base;
+        assert_eq!(base.texture.as_deref(), Some("maps/scan ü.png"));
+        assert_eq!(base.material.as_deref(), Some("skin"));
         assert_eq!(back, pm);
-        let mut bad = b.clone();
-        bad[header + 5] = 0xff;
-        let e = parse(&bad).err().map(|e| e.to_string());
-        assert!(
-            e.as_ref()
-                .is_some_and(|e| e.contains("the texture image name is not UTF-8")),
-            "{e:?}"
-        );
+        for (at, what) in [
+            (image, "texture image name"),
+            (material + 4, "material name"),
+        ] {
+            let mut bad = b.clone();
+            bad[at] = 0xff;
+            let e = parse(&bad).err().map(|e| e.to_string());
+            let expected = format!("the {what} is not UTF-8");
+            assert!(e.as_ref().is_some_and(|e| e.contains(&expected)), "{e:?}");
+        }
     }
 
     #[test]
     fn every_prefix_and_every_flipped_byte_is_handled() {
         let mut named = textured(shapes::cube(2, 1.0));
         named.texture = Some("t.png".into());
+        named.material = Some("m".into());
         for model in [shapes::cube(2, 1.0), textured(shapes::cube(2, 1.0)), named] {
             let pm = progressive(vec![model]);
             let b = bytes(&pm);
