@@ -155,6 +155,32 @@ fn seam_vertices(out: &Obj) -> [usize; 2] {
     count
 }
 
+/// Checks the seam of an `n` × `n` grid after `algorithm`: qem pins it whole; vertex
+/// removal takes its two sides away in pairs, so it is simplified, its sides holding the
+/// same points.
+fn check_seam(out: &Obj, n: usize, algorithm: &str) {
+    let mut sides: [Vec<[u32; 3]>; 2] = [Vec::new(), Vec::new()];
+    for (p, uv) in out.positions.iter().zip(&out.texcoords) {
+        if p[0] == 0.5 {
+            sides[usize::from(uv[0] > 1.5)].push(p.map(f32::to_bits));
+        }
+    }
+    sides.iter_mut().for_each(|s| s.sort_unstable());
+    assert_eq!(sides[0], sides[1], "{algorithm}: the seam's sides part");
+    if algorithm == "qem" {
+        assert_eq!(
+            seam_vertices(out),
+            [n + 1, n + 1],
+            "{algorithm}: the seam is pinned"
+        );
+    } else {
+        assert!(
+            sides[0].len() < n + 1,
+            "{algorithm}: the seam was not simplified"
+        );
+    }
+}
+
 #[test]
 fn a_flat_textured_grid_keeps_an_exact_mapping_and_its_seam() {
     let n = 32;
@@ -176,11 +202,7 @@ fn a_flat_textured_grid_keeps_an_exact_mapping_and_its_seam() {
                 "{algorithm}: vertex at {p:?} maps to {uv:?}"
             );
         }
-        assert_eq!(
-            seam_vertices(&out),
-            [n + 1, n + 1],
-            "{algorithm}: the seam is pinned"
-        );
+        check_seam(&out, n, algorithm);
     }
 }
 
@@ -231,7 +253,7 @@ fn a_curved_textured_surface_stays_closed_along_its_seam() {
                 "{algorithm}: edge {at:?}"
             );
         }
-        assert_eq!(seam_vertices(&out), [n + 1, n + 1], "{algorithm}");
+        check_seam(&out, n, algorithm);
         // The mapping still follows the surface: each pair within one input square of its
         // island's map of the vertex's (x, y).
         let worst = out
@@ -356,8 +378,24 @@ fn vrml_and_inventor_textures_come_out_in_vrml_with_their_image() {
                     "{kind} {algorithm}"
                 );
             }
-            let on_seam = m.positions.iter().filter(|p| p.x == 0.5).count();
-            assert_eq!(on_seam, 2 * (n + 1), "{kind} {algorithm}: seam pinned");
+            // The seam: pinned whole by qem, taken away in pairs by vertex removal.
+            let mut sides: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
+            for (p, uv) in m.positions.iter().zip(t) {
+                if p.x == 0.5 {
+                    sides[usize::from(uv[0] > 1.5)].push(p.y.to_bits());
+                }
+            }
+            sides.iter_mut().for_each(|s| s.sort_unstable());
+            assert_eq!(
+                sides[0], sides[1],
+                "{kind} {algorithm}: the seam's sides part"
+            );
+            let expected = if algorithm == "qem" {
+                n + 1
+            } else {
+                sides[0].len().min(n)
+            };
+            assert_eq!(sides[0].len(), expected, "{kind} {algorithm}: seam");
         }
     }
 }
@@ -545,12 +583,15 @@ fn a_model_all_seams_says_why_it_stops() {
         let stderr = String::from_utf8_lossy(&run.stderr);
         assert!(run.status.success(), "{stderr}");
         // 96 corners, each a vertex; all but the two corners of the square that only one
-        // triangle touches are on a seam.
+        // triangle touches are on a seam. The two corners at the diagonals' ends have two
+        // sides each: pairs that vertex removal would take away together, not pinned (none
+        // can go: a lone triangle loses no corner). qem pins all 94.
+        let pinned = if algorithm == "qem" { 94 } else { 90 };
+        let expected = format!(
+            "fully decimated ({pinned} vertices are pinned on texture seams or shared borders)"
+        );
         assert!(
-            stderr.contains("vertices 96 -> 96")
-                && stderr.contains(
-                    "fully decimated (94 vertices are pinned on texture seams or shared borders)"
-                ),
+            stderr.contains("vertices 96 -> 96") && stderr.contains(&expected),
             "{algorithm}: {stderr}"
         );
     }

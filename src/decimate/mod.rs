@@ -180,10 +180,27 @@ fn run(
     let mut reports = Vec::with_capacity(scene.models.len());
     let mut done = 0usize;
     for (i, model) in scene.models.iter_mut().enumerate() {
-        let mut pins = seams::seam_vertices(model);
-        for (pin, &on_shared_border) in pins.iter_mut().zip(&shared[i]) {
-            *pin |= on_shared_border;
+        // Vertex removal takes a seam's two sides away together (`twins`); collapses do not
+        // yet, so for them every seam vertex is pinned. A shared border is always pinned.
+        let shared = &shared[i];
+        let on_shared = |v: u32| shared.get(v as usize).copied().unwrap_or(false);
+        let mut twins = match (params.algorithm, &record) {
+            (Algorithm::Schroeder, None) => seams::seam_twins(model),
+            _ => Vec::new(),
+        };
+        for v in 0..twins.len() as u32 {
+            let w = twins[v as usize];
+            if w != u32::MAX && (on_shared(v) || on_shared(w)) {
+                twins[v as usize] = u32::MAX;
+            }
         }
+        let seam = seams::seam_vertices(model);
+        let pins: Vec<bool> = (0..seam.len() as u32)
+            .map(|v| {
+                let paired = twins.get(v as usize).is_some_and(|&w| w != u32::MAX);
+                on_shared(v) || (seam[v as usize] && !paired)
+            })
+            .collect();
         let max_error = match params.max_error {
             None => f64::INFINITY,
             Some(ErrorBound::Absolute(e)) => e,
@@ -211,7 +228,7 @@ fn run(
                 outcome
             }
             (Algorithm::Schroeder, None) => {
-                schroeder::decimate_model(model, &limits, &pins, &mut report_progress)
+                schroeder::decimate_model(model, &limits, &pins, &twins, &mut report_progress)
             }
             (Algorithm::Qem, None) => {
                 qem::decimate_model(model, &limits, &pins, &mut report_progress)

@@ -12,8 +12,9 @@
 //!    interior edge → distance to the line through its two feature neighbours;
 //!    plus the error already accumulated at the vertex by earlier removals around it, so that
 //!    the queue's key bounds the distance to the original surface (as VTK's later
-//!    implementation of the paper does); pinned vertices (texture seams, `mesh::seams`;
-//!    borders shared with another model, `mesh::stitches`) are never queued;
+//!    implementation of the paper does); pinned vertices (seam junctions, `mesh::seams`;
+//!    borders shared with another model, `mesh::stitches`) are never queued, and the two
+//!    sides of a texture seam (twins) go together or not at all (`try_remove_twins`);
 //! 4. remove: pop the smallest, fill its hole by recursive loop splitting
 //!    (`loop_split`), keeping creases (an interior-edge vertex's loop is first split along its
 //!    feature edge) and rejecting fills that flip or degenerate a triangle or create an edge
@@ -69,12 +70,14 @@ pub struct Outcome {
 }
 
 /// Decimates `model` in place within `limits`, never removing a vertex flagged in `pins`
-/// (indexed like the model's positions: texture seams, shared borders); `progress` gets the
-/// running removal count.
+/// (indexed like the model's positions: texture seams, shared borders) and removing the
+/// vertices `twins` pairs (the two sides of a texture seam, `mesh::seams::seam_twins`; may
+/// be empty) only together; `progress` gets the running removal count.
 pub fn decimate_model(
     model: &mut Model,
     limits: &Limits,
     pins: &[bool],
+    twins: &[u32],
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
     // 1. load, renumbered along a Morton curve, triangles sorted by their first vertex:
@@ -99,6 +102,18 @@ pub fn decimate_model(
     let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
     let pinned_count = pinned.iter().filter(|&&p| p).count();
     d.pinned = pinned;
+    if twins.iter().any(|&w| w != u32::MAX) {
+        let mut new_id = vec![u32::MAX; model.positions.len()];
+        for (new, &old) in loaded.order.iter().enumerate() {
+            new_id[old as usize] = new as u32;
+        }
+        let renumber = |old: u32| new_id.get(old as usize).copied().unwrap_or(u32::MAX);
+        d.twins = loaded
+            .order
+            .iter()
+            .map(|&v| twins.get(v as usize).map_or(u32::MAX, |&w| renumber(w)))
+            .collect();
+    }
 
     // 3. classify and rank
     d.rank_all();
@@ -131,10 +146,22 @@ pub fn decimate_model(
             break;
         }
         d.queue.remove(v);
-        if d.try_remove(v, key) {
-            outcome.removed += 1;
+        let twin = d.twins.get(v as usize).copied().unwrap_or(u32::MAX);
+        let removed = if twin == u32::MAX {
+            d.try_remove(v, key).then_some((1, key))
+        } else {
+            // Two vertices and two triangles go: only while both counts allow it.
+            let room = limits.remove - outcome.removed >= 2
+                && d.conn.triangle_count() >= limits.keep_triangles + 2;
+            d.queue.remove(twin);
+            room.then(|| d.try_remove_twins(v, twin, key))
+                .flatten()
+                .map(|key| (2, key))
+        };
+        if let Some((count, key)) = removed {
+            outcome.removed += count;
             outcome.max_error = outcome.max_error.max(key);
-            if outcome.removed.is_multiple_of(4096) {
+            if outcome.removed % 4096 < count {
                 progress(outcome.removed);
             }
         }
@@ -165,6 +192,12 @@ struct Decimator {
     neighbours: Vec<u32>,
     /// Vertices never removed: texture seams and shared borders.
     pinned: Vec<bool>,
+    /// Each seam vertex's other side, removed only together with it (`u32::MAX`: none;
+    /// empty when the model has no such pairs).
+    twins: Vec<u32>,
+    /// The first twin's plan while the second is planned: ring vertices, ring triangles,
+    /// fill.
+    twin_plan: (Vec<u32>, Vec<u32>, Vec<[u32; 3]>),
 }
 
 /// The fill triangles from the previous region's `end` up to this `end` replace the ring
@@ -194,6 +227,8 @@ impl Decimator {
             loop_buf: Vec::new(),
             neighbours: Vec::new(),
             pinned: vec![false; n],
+            twins: Vec::new(),
+            twin_plan: Default::default(),
         }
     }
 
@@ -253,9 +288,17 @@ impl Decimator {
 
     /// Removes `v` and fills its hole; false (and nothing changed) when it cannot be filled.
     fn try_remove(&mut self, v: u32, key: f64) -> bool {
-        let Some((class, _)) = self.evaluate(v) else {
+        if self.plan_removal(v).is_none() {
             return false;
-        };
+        }
+        self.apply_plan(key);
+        true
+    }
+
+    /// Classifies `v` and plans its removal into the scratch ring and `fill`: its class and
+    /// key (distance plus accumulated error) when the hole can be filled validly.
+    fn plan_removal(&mut self, v: u32) -> Option<(VertexClass, f64)> {
+        let (class, distance) = self.evaluate(v)?;
         self.fill.clear();
         self.regions.clear();
         let ok = match class {
@@ -264,11 +307,13 @@ impl Decimator {
             VertexClass::InteriorEdge { first, second } => self.fill_crease(v, first, second),
             _ => false,
         };
-        if !ok || !self.fill_is_valid(v) {
-            return false;
-        }
-        // Apply: old triangles out, new ones in (reusing their slots, so per-face
-        // attributes of the region carry over).
+        (ok && self.fill_is_valid(v)).then_some((class, distance + self.accumulated[v as usize]))
+    }
+
+    /// Applies the planned removal (scratch ring, `fill`): old triangles out, new ones in
+    /// (reusing their slots, so per-face attributes of the region carry over), and the
+    /// ring re-ranked with `key` as the error accumulated around it.
+    fn apply_plan(&mut self, key: f64) {
         self.neighbours.clear();
         self.neighbours.extend_from_slice(&self.scratch.ring.verts);
         for i in 0..self.scratch.ring.triangles.len() {
@@ -285,7 +330,54 @@ impl Decimator {
             *acc = acc.max(key);
             self.rank(u);
         }
-        true
+    }
+
+    /// Removes the two sides `v`, `w` of a texture seam together, or neither: both must be
+    /// boundary vertices whose boundary neighbours lie at the same two points, with rings
+    /// apart, and both holes must fill validly. Each hole is then closed by the edge between
+    /// those points, so the seam's sides stay on one line. Returns the larger key.
+    fn try_remove_twins(&mut self, v: u32, w: u32, key: f64) -> Option<f64> {
+        let (class, key_v) = self.plan_removal(v)?;
+        if class != VertexClass::Boundary {
+            return None;
+        }
+        let ends = |d: &Self| {
+            let r = &d.scratch.ring.verts;
+            let at = |i: usize| {
+                d.positions[r[i] as usize]
+                    .to_array()
+                    .map(|x| (x + 0.0).to_bits())
+            };
+            let (a, b) = (at(0), at(r.len() - 1));
+            (a.min(b), a.max(b))
+        };
+        let v_ends = ends(self);
+        let (mut verts, mut tris, mut fill) = std::mem::take(&mut self.twin_plan);
+        verts.clone_from(&self.scratch.ring.verts);
+        tris.clone_from(&self.scratch.ring.triangles);
+        fill.clone_from(&self.fill);
+        let planned = self.plan_removal(w).filter(|&(class, _)| {
+            class == VertexClass::Boundary
+                && ends(self) == v_ends
+                && !self
+                    .scratch
+                    .ring
+                    .verts
+                    .iter()
+                    .any(|u| *u == v || verts.contains(u))
+                && !verts.contains(&w)
+        });
+        let result = planned.map(|(_, key_w)| {
+            let key = key.max(key_v).max(key_w);
+            self.apply_plan(key);
+            std::mem::swap(&mut self.scratch.ring.verts, &mut verts);
+            std::mem::swap(&mut self.scratch.ring.triangles, &mut tris);
+            std::mem::swap(&mut self.fill, &mut fill);
+            self.apply_plan(key);
+            key
+        });
+        self.twin_plan = (verts, tris, fill);
+        result
     }
 
     /// Interior vertex: triangulate the whole closed loop over its average plane.

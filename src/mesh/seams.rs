@@ -44,6 +44,46 @@ pub fn seam_vertices(model: &Model) -> Vec<bool> {
     seam
 }
 
+/// For each vertex on a texture seam where exactly two used vertices share the position
+/// (the seam's two sides, away from junctions of three or more charts), the other one;
+/// `u32::MAX` for every other vertex. Empty-handed (all `u32::MAX`) without texture
+/// coordinates. Such pairs may go together: removing both sides of the seam at once keeps
+/// it closed (see `decimate::schroeder`).
+pub fn seam_twins(model: &Model) -> Vec<u32> {
+    let n = model.positions.len();
+    let mut twin = vec![u32::MAX; n];
+    if model.texcoords.is_none() {
+        return twin;
+    }
+    let mut used = vec![false; n];
+    for t in &model.triangles {
+        for &v in t {
+            if let Some(u) = used.get_mut(v as usize) {
+                *u = true;
+            }
+        }
+    }
+    // Position -> the used vertices there: the first, the second, and how many in all.
+    let mut at: HashMap<[u32; 3], (u32, u32, u32)> = HashMap::new();
+    for (v, p) in model.positions.iter().enumerate() {
+        if used[v] {
+            let key = [p.x, p.y, p.z].map(|x| (x + 0.0).to_bits());
+            let entry = at.entry(key).or_insert((v as u32, u32::MAX, 0));
+            if entry.2 == 1 {
+                entry.1 = v as u32;
+            }
+            entry.2 += 1;
+        }
+    }
+    for &(a, b, count) in at.values() {
+        if count == 2 {
+            twin[a as usize] = b;
+            twin[b as usize] = a;
+        }
+    }
+    twin
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -74,5 +114,31 @@ mod tests {
             ..m
         };
         assert!(seam_vertices(&untextured).iter().all(|&s| !s));
+    }
+
+    #[test]
+    fn twins_are_the_two_sides_of_a_seam_and_junctions_have_none() {
+        let m = Model {
+            positions: vec![
+                Vec3::ZERO,
+                Vec3::X,
+                Vec3::Y,
+                Vec3::ZERO, // 0's other side
+                Vec3::X,    // 1 again, and again below: a junction of three
+                Vec3::X,
+                Vec3::NEG_Y,
+            ],
+            triangles: vec![[0, 1, 2], [3, 4, 6], [5, 6, 3]],
+            texcoords: Some(vec![[0.0; 2]; 7]),
+            ..Model::default()
+        };
+        // Position 0 holds two vertices (0, 3): twins; X holds three (1, 4, 5): a junction.
+        let twins = seam_twins(&m);
+        assert_eq!(twins[0], 3);
+        assert_eq!(twins[3], 0);
+        assert!(
+            [1, 2, 4, 5, 6].iter().all(|&v| twins[v] == u32::MAX),
+            "{twins:?}"
+        );
     }
 }
