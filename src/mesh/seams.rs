@@ -16,14 +16,7 @@ pub fn seam_vertices(model: &Model) -> Vec<bool> {
     if model.texcoords.is_none() {
         return seam;
     }
-    let mut used = vec![false; n];
-    for t in &model.triangles {
-        for &v in t {
-            if let Some(u) = used.get_mut(v as usize) {
-                *u = true;
-            }
-        }
-    }
+    let used = used_vertices(model);
     // Position (bits, -0 folded into +0) -> first used vertex there.
     let mut first: HashMap<[u32; 3], u32> = HashMap::new();
     for (v, p) in model.positions.iter().enumerate() {
@@ -55,14 +48,7 @@ pub fn seam_twins(model: &Model) -> Vec<u32> {
     if model.texcoords.is_none() {
         return twin;
     }
-    let mut used = vec![false; n];
-    for t in &model.triangles {
-        for &v in t {
-            if let Some(u) = used.get_mut(v as usize) {
-                *u = true;
-            }
-        }
-    }
+    let used = used_vertices(model);
     // Position -> the used vertices there: the first, the second, and how many in all.
     let mut at: HashMap<[u32; 3], (u32, u32, u32)> = HashMap::new();
     for (v, p) in model.positions.iter().enumerate() {
@@ -82,6 +68,19 @@ pub fn seam_twins(model: &Model) -> Vec<u32> {
         }
     }
     twin
+}
+
+/// One flag per vertex: true when a triangle uses it.
+fn used_vertices(model: &Model) -> Vec<bool> {
+    let mut used = vec![false; model.positions.len()];
+    for t in &model.triangles {
+        for &v in t {
+            if let Some(u) = used.get_mut(v as usize) {
+                *u = true;
+            }
+        }
+    }
+    used
 }
 
 #[cfg(test)]
