@@ -184,8 +184,9 @@ fn run(
         // yet, so for them every seam vertex is pinned. A shared border is always pinned.
         let shared = &shared[i];
         let on_shared = |v: u32| shared.get(v as usize).copied().unwrap_or(false);
+        let seams = seams::find(model);
         let mut twins = match (params.algorithm, &record) {
-            (Algorithm::Schroeder, None) => seams::seam_twins(model),
+            (Algorithm::Schroeder, None) => seams.twin,
             _ => Vec::new(),
         };
         for v in 0..twins.len() as u32 {
@@ -194,11 +195,10 @@ fn run(
                 twins[v as usize] = u32::MAX;
             }
         }
-        let seam = seams::seam_vertices(model);
-        let pins: Vec<bool> = (0..seam.len() as u32)
+        let pins: Vec<bool> = (0..seams.on_seam.len() as u32)
             .map(|v| {
                 let paired = twins.get(v as usize).is_some_and(|&w| w != u32::MAX);
-                on_shared(v) || (seam[v as usize] && !paired)
+                on_shared(v) || (seams.on_seam[v as usize] && !paired)
             })
             .collect();
         let max_error = match params.max_error {

@@ -71,7 +71,7 @@ pub struct Outcome {
 
 /// Decimates `model` in place within `limits`, never removing a vertex flagged in `pins`
 /// (indexed like the model's positions: texture seams, shared borders) and removing the
-/// vertices `twins` pairs (the two sides of a texture seam, `mesh::seams::seam_twins`; may
+/// vertices `twins` pairs (the two sides of a texture seam, `mesh::seams::Seams::twin`; may
 /// be empty) only together; `progress` gets the running removal count.
 pub fn decimate_model(
     model: &mut Model,

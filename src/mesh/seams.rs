@@ -1,73 +1,63 @@
 //! Texture seams: where a model's texture coordinates jump, its file gives one point two or
 //! more coordinate pairs, and the model holds one vertex per side, at the same position (see
-//! `Model::texcoords`). The surface is cut there. Decimation pins these vertices: were the
-//! sides simplified on their own, their outlines would part and open a crack.
+//! `Model::texcoords`). The surface is cut there. Were the sides simplified on their own,
+//! their outlines would part and open a crack: decimation pins these vertices, or (vertex
+//! removal) takes a seam's two sides away together.
 
 use std::collections::HashMap;
 
 use super::Model;
 
-/// One flag per vertex: true for a vertex that a triangle uses and whose exact position
-/// another used vertex shares, when the model has texture coordinates (all false without
-/// them: an unwelded model's duplicates are not seams).
-pub fn seam_vertices(model: &Model) -> Vec<bool> {
+/// A model's texture seams, found in one pass over its used vertices' positions.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Seams {
+    /// One flag per vertex: true for a vertex that a triangle uses and whose exact position
+    /// another used vertex shares.
+    pub on_seam: Vec<bool>,
+    /// For each vertex on a seam where exactly two used vertices share the position (the
+    /// seam's two sides, away from junctions of three or more charts), the other one;
+    /// `u32::MAX` for every other vertex. Such pairs may go together: removing both sides
+    /// at once keeps the seam closed (see `decimate::schroeder`).
+    pub twin: Vec<u32>,
+}
+
+/// The seams of `model`; none without texture coordinates (an unwelded model's duplicates
+/// are not seams).
+pub fn find(model: &Model) -> Seams {
     let n = model.positions.len();
-    let mut seam = vec![false; n];
+    let mut seams = Seams {
+        on_seam: vec![false; n],
+        twin: vec![u32::MAX; n],
+    };
     if model.texcoords.is_none() {
-        return seam;
+        return seams;
     }
     let used = used_vertices(model);
-    // Position (bits, -0 folded into +0) -> first used vertex there.
-    let mut first: HashMap<[u32; 3], u32> = HashMap::new();
+    // Position (bits, -0 folded into +0) -> the used vertices there: the first, the second,
+    // and how many in all.
+    let mut at: HashMap<[u32; 3], (u32, u32, u32)> = HashMap::new();
     for (v, p) in model.positions.iter().enumerate() {
         if !used[v] {
             continue;
         }
         let key = [p.x, p.y, p.z].map(|x| (x + 0.0).to_bits());
-        match first.get(&key) {
-            Some(&w) => {
-                seam[v] = true;
-                seam[w as usize] = true;
-            }
-            None => {
-                first.insert(key, v as u32);
-            }
+        let entry = at.entry(key).or_insert((v as u32, u32::MAX, 0));
+        entry.2 += 1;
+        if entry.2 >= 2 {
+            seams.on_seam[v] = true;
+            seams.on_seam[entry.0 as usize] = true;
         }
-    }
-    seam
-}
-
-/// For each vertex on a texture seam where exactly two used vertices share the position
-/// (the seam's two sides, away from junctions of three or more charts), the other one;
-/// `u32::MAX` for every other vertex. Empty-handed (all `u32::MAX`) without texture
-/// coordinates. Such pairs may go together: removing both sides of the seam at once keeps
-/// it closed (see `decimate::schroeder`).
-pub fn seam_twins(model: &Model) -> Vec<u32> {
-    let n = model.positions.len();
-    let mut twin = vec![u32::MAX; n];
-    if model.texcoords.is_none() {
-        return twin;
-    }
-    let used = used_vertices(model);
-    // Position -> the used vertices there: the first, the second, and how many in all.
-    let mut at: HashMap<[u32; 3], (u32, u32, u32)> = HashMap::new();
-    for (v, p) in model.positions.iter().enumerate() {
-        if used[v] {
-            let key = [p.x, p.y, p.z].map(|x| (x + 0.0).to_bits());
-            let entry = at.entry(key).or_insert((v as u32, u32::MAX, 0));
-            if entry.2 == 1 {
-                entry.1 = v as u32;
-            }
-            entry.2 += 1;
+        if entry.2 == 2 {
+            entry.1 = v as u32;
         }
     }
     for &(a, b, count) in at.values() {
         if count == 2 {
-            twin[a as usize] = b;
-            twin[b as usize] = a;
+            seams.twin[a as usize] = b;
+            seams.twin[b as usize] = a;
         }
     }
-    twin
+    seams
 }
 
 /// One flag per vertex: true when a triangle uses it.
@@ -105,14 +95,16 @@ mod tests {
         };
         // Vertex 1 is shared by both triangles (one vertex), 0 and 3 are the seam's sides.
         assert_eq!(
-            seam_vertices(&m),
+            find(&m).on_seam,
             vec![true, false, false, true, false, false]
         );
         let untextured = Model {
             texcoords: None,
             ..m
         };
-        assert!(seam_vertices(&untextured).iter().all(|&s| !s));
+        let none = find(&untextured);
+        assert!(none.on_seam.iter().all(|&s| !s));
+        assert!(none.twin.iter().all(|&t| t == u32::MAX));
     }
 
     #[test]
@@ -132,7 +124,12 @@ mod tests {
             ..Model::default()
         };
         // Position 0 holds two vertices (0, 3): twins; X holds three (1, 4, 5): a junction.
-        let twins = seam_twins(&m);
+        let found = find(&m);
+        let twins = &found.twin;
+        assert_eq!(
+            found.on_seam,
+            vec![true, true, false, true, true, true, false]
+        );
         assert_eq!(twins[0], 3);
         assert_eq!(twins[3], 0);
         assert!(
