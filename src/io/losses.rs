@@ -41,14 +41,10 @@ pub fn losses(scene: &Scene, format: Option<Format>) -> Vec<String> {
         Format::Ply | Format::Off => textured == all,
         _ => false,
     };
-    let shared_image = models
-        .first()
-        .and_then(|m| m.texture.as_ref())
-        .is_some_and(|first| models.iter().all(|m| m.texture.as_ref() == Some(first)));
     let keeps_images = keeps_texcoords
         && match format {
             Format::Obj => true,
-            Format::Ply => shared_image,
+            Format::Ply => super::ply::shared_texture(scene).is_some(),
             _ => false,
         };
     let have = |n: usize| {

@@ -560,7 +560,7 @@ pub fn write_ply(scene: &Scene, path: &Path) -> Result<(), WriteError> {
 
 /// The one image every model maps, if they all name the same one (a PLY holds one mesh: it
 /// cannot say which part maps which image). Names with a line break cannot be written.
-fn shared_texture(scene: &Scene) -> Option<&str> {
+pub(crate) fn shared_texture(scene: &Scene) -> Option<&str> {
     let first = scene.models.first()?.texture.as_deref()?;
     let same = scene
         .models
