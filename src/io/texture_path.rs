@@ -77,25 +77,41 @@ fn normalize<'a>(components: impl IntoIterator<Item = Component<'a>>) -> PathBuf
 /// `name`, read relative to `from_dir`, as a name that points at the same image from
 /// `to_dir` (see the module documentation for the rules).
 pub fn rebase(name: &str, from_dir: &Path, to_dir: &Path) -> String {
-    if name.is_empty() || has_url_scheme(name) || is_absolute(name) {
-        return name.to_string();
+    match Folders::resolve(from_dir, to_dir) {
+        Some(folders) => folders.rebase(name),
+        None => name.to_string(),
     }
-    let (Some(from), Some(to)) = (resolve_dir(from_dir), resolve_dir(to_dir)) else {
-        return name.to_string();
-    };
-    if from == to {
-        return name.to_string();
+}
+
+/// The two folders of a rebase, resolved once for all the names it applies to.
+struct Folders {
+    from: PathBuf,
+    to: PathBuf,
+}
+
+impl Folders {
+    /// Both folders resolved; `None` when one cannot be, or they are the same folder (names
+    /// then stay as they are).
+    fn resolve(from_dir: &Path, to_dir: &Path) -> Option<Self> {
+        let (from, to) = (resolve_dir(from_dir)?, resolve_dir(to_dir)?);
+        (from != to).then_some(Self { from, to })
     }
-    let parts = name
-        .split(['/', '\\'])
-        .filter(|p| !p.is_empty())
-        .map(|p| match p {
-            "." => Component::CurDir,
-            ".." => Component::ParentDir,
-            p => Component::Normal(p.as_ref()),
-        });
-    let image = normalize(from.components().chain(parts));
-    relative_to(&image, &to).unwrap_or_else(|| image.to_string_lossy().into_owned())
+
+    fn rebase(&self, name: &str) -> String {
+        if name.is_empty() || has_url_scheme(name) || is_absolute(name) {
+            return name.to_string();
+        }
+        let parts = name
+            .split(['/', '\\'])
+            .filter(|p| !p.is_empty())
+            .map(|p| match p {
+                "." => Component::CurDir,
+                ".." => Component::ParentDir,
+                p => Component::Normal(p.as_ref()),
+            });
+        let image = normalize(self.from.components().chain(parts));
+        relative_to(&image, &self.to).unwrap_or_else(|| image.to_string_lossy().into_owned())
+    }
 }
 
 /// `path` relative to the folder `dir` (both absolute and normalized), with `/`; `None` when
@@ -120,9 +136,12 @@ fn relative_to(path: &Path, dir: &Path) -> Option<String> {
 /// Rebases every model's texture name from `from_dir` (the folder of the file it was read
 /// from) to `to_dir` (the folder of the file about to be written).
 pub fn rebase_textures(scene: &mut Scene, from_dir: &Path, to_dir: &Path) {
+    let Some(folders) = Folders::resolve(from_dir, to_dir) else {
+        return;
+    };
     for m in &mut scene.models {
         if let Some(t) = &mut m.texture {
-            *t = rebase(t, from_dir, to_dir);
+            *t = folders.rebase(t);
         }
     }
 }
@@ -130,16 +149,25 @@ pub fn rebase_textures(scene: &mut Scene, from_dir: &Path, to_dir: &Path) {
 /// `scene` with its texture names rebased as [`rebase_textures`] does; borrowed when no
 /// name changes (nothing is copied for an untextured scene).
 pub fn rebased<'a>(scene: &'a Scene, from_dir: &Path, to_dir: &Path) -> Cow<'a, Scene> {
-    let changes = scene.models.iter().any(|m| {
-        m.texture
-            .as_ref()
-            .is_some_and(|t| rebase(t, from_dir, to_dir) != *t)
-    });
-    if !changes {
+    let Some(folders) = Folders::resolve(from_dir, to_dir) else {
+        return Cow::Borrowed(scene);
+    };
+    let names: Vec<Option<String>> = scene
+        .models
+        .iter()
+        .map(|m| m.texture.as_deref().map(|t| folders.rebase(t)))
+        .collect();
+    if names
+        .iter()
+        .zip(&scene.models)
+        .all(|(n, m)| *n == m.texture)
+    {
         return Cow::Borrowed(scene);
     }
     let mut scene = scene.clone();
-    rebase_textures(&mut scene, from_dir, to_dir);
+    for (m, name) in scene.models.iter_mut().zip(names) {
+        m.texture = name;
+    }
     Cow::Owned(scene)
 }
 
