@@ -156,14 +156,10 @@ fn seam_vertices(out: &Obj) -> [usize; 2] {
 }
 
 /// Checks the seam (x = 0.5) of an `n` × `n` grid, given as each output vertex's position
-/// and texture pair, after `algorithm`: qem pins it whole; vertex removal takes its two
-/// sides away in pairs, so it is simplified, its sides holding the same points.
-fn check_seam(
-    vertices: impl Iterator<Item = ([f32; 3], [f32; 2])>,
-    n: usize,
-    algorithm: &str,
-    label: &str,
-) {
+/// and texture pair: both algorithms take its two sides away in pairs (vertex removal
+/// removes both, an edge collapse collapses both edges to one point), so it is simplified,
+/// its sides holding the same points.
+fn check_seam(vertices: impl Iterator<Item = ([f32; 3], [f32; 2])>, n: usize, label: &str) {
     let mut sides: [Vec<[u32; 3]>; 2] = [Vec::new(), Vec::new()];
     for (p, uv) in vertices {
         if p[0] == 0.5 {
@@ -172,14 +168,11 @@ fn check_seam(
     }
     sides.iter_mut().for_each(|s| s.sort_unstable());
     assert_eq!(sides[0], sides[1], "{label}: the seam's sides part");
-    if algorithm == "qem" {
-        assert_eq!(sides[0].len(), n + 1, "{label}: the seam is pinned");
-    } else {
-        assert!(
-            sides[0].len() < n + 1,
-            "{label}: the seam was not simplified"
-        );
-    }
+    assert!(
+        sides[0].len() < n + 1,
+        "{label}: the seam was not simplified ({} points)",
+        sides[0].len()
+    );
 }
 
 /// [`check_seam`] on an OBJ read back.
@@ -189,7 +182,7 @@ fn check_obj_seam(out: &Obj, n: usize, algorithm: &str) {
         .iter()
         .copied()
         .zip(out.texcoords.iter().copied());
-    check_seam(vertices, n, algorithm, algorithm);
+    check_seam(vertices, n, algorithm);
 }
 
 #[test]
@@ -219,13 +212,27 @@ fn a_flat_textured_grid_keeps_an_exact_mapping_and_its_seam() {
 
 #[test]
 fn a_curved_textured_surface_stays_closed_along_its_seam() {
-    let n = 48;
+    // The larger grid (23k vertices) is collapsed in regions on all cores: a seam collapse
+    // there needs both sides in one region.
+    for n in [48, 150] {
+        curved_surface_stays_closed_along_its_seam(n);
+    }
+}
+
+fn curved_surface_stays_closed_along_its_seam(n: usize) {
     let obj = grid_obj(n, |x, y| [x, y, 0.2 * (3.0 * x).sin() * (2.0 * y).cos()]);
     for algorithm in ["schroeder", "qem"] {
         let out = decimate(
-            &format!("curved-{algorithm}"),
+            &format!("curved-{n}-{algorithm}"),
             &obj,
             &["-a", algorithm, "-p", "80"],
+        );
+        // 80 % of the used vertices go: exactly, seam pairs included.
+        let used = (n + 1) * (n + 1) + n + 1;
+        assert_eq!(
+            out.positions.len(),
+            used - (used * 4).div_ceil(5),
+            "{algorithm}"
         );
         check_layout(&out);
         // Weld by position: every edge inside the unit square has two triangles, so the
@@ -394,7 +401,7 @@ fn vrml_and_inventor_textures_come_out_in_vrml_with_their_image() {
                 .iter()
                 .map(|p| p.to_array())
                 .zip(t.iter().copied());
-            check_seam(vertices, n, algorithm, &format!("{kind} {algorithm}"));
+            check_seam(vertices, n, &format!("{kind} {algorithm}"));
         }
     }
 }
@@ -536,7 +543,8 @@ fn a_textured_ply_comes_out_of_qem_with_a_pair_per_vertex() {
             "vertex at {p:?} maps to {uv:?}"
         );
     }
-    assert_eq!(seam_vertices(&out), [n + 1, n + 1], "the seam is pinned");
+    let [a, b] = seam_vertices(&out);
+    assert!(a == b && a < n + 1, "the seam's sides: {a} and {b} points");
 }
 
 #[test]
@@ -583,14 +591,12 @@ fn a_model_all_seams_says_why_it_stops() {
         assert!(run.status.success(), "{stderr}");
         // 96 corners, each a vertex; all but the two corners of the square that only one
         // triangle touches are on a seam. The two corners at the diagonals' ends have two
-        // sides each: pairs that vertex removal would take away together, not pinned (none
-        // can go: a lone triangle loses no corner). qem pins all 94.
-        let pinned = if algorithm == "qem" { 94 } else { 90 };
-        let expected = format!(
-            "fully decimated ({pinned} vertices are pinned on texture seams or shared borders)"
-        );
+        // sides each: pairs that both algorithms would take away together, not pinned (none
+        // can go: a lone triangle loses no corner).
+        let expected =
+            "fully decimated (90 vertices are pinned on texture seams or shared borders)";
         assert!(
-            stderr.contains("vertices 96 -> 96") && stderr.contains(&expected),
+            stderr.contains("vertices 96 -> 96") && stderr.contains(expected),
             "{algorithm}: {stderr}"
         );
     }

@@ -182,7 +182,10 @@ impl LodView {
         let levels: Vec<usize> = self
             .lods
             .iter()
-            .map(|l| (fraction * l.max_level() as f64).round() as usize)
+            .map(|l| {
+                let level = (fraction * l.max_level() as f64).round() as usize;
+                l.progressive().whole_level(level)
+            })
             .collect();
         if self.lods.iter().zip(&levels).all(|(l, &k)| l.level() == k) {
             return false;

@@ -3,7 +3,8 @@
 //! as it stood once it had removed that many vertices (or come down to that many
 //! triangles). Counts are shared among the models as [`super::decimate_scene`] shares them,
 //! in proportion to the full meshes' sizes (`Shares`). A level never goes below the base mesh, the
-//! coarsest the file holds.
+//! coarsest the file holds, and never splits one side of a texture seam without the other
+//! (it keeps one vertex fewer instead).
 
 use super::progressive::ProgressiveScene;
 use super::{Shares, Target};
@@ -19,7 +20,7 @@ pub fn levels_for(pm: &ProgressiveScene, target: Target) -> Option<Vec<usize>> {
     let shares = Shares::of(target, &vertices, &triangles);
     let levels = pm.models.iter().enumerate().map(|(i, m)| {
         let splits = m.splits.len();
-        if let Target::KeepTriangles(_) = target {
+        let level = if let Target::KeepTriangles(_) = target {
             // Faces only grow with the level: the finest level within the share.
             let keep = shares.keep_triangles[i];
             let mut faces = m.base.triangles.len();
@@ -32,7 +33,9 @@ pub fn levels_for(pm: &ProgressiveScene, target: Target) -> Option<Vec<usize>> {
                 .count()
         } else {
             splits - shares.removals[i].min(splits)
-        }
+        };
+        // Never half of a seam's two splits: one vertex fewer rather than a crack.
+        m.whole_level(level)
     });
     Some(levels.collect())
 }

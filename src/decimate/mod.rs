@@ -180,15 +180,12 @@ fn run(
     let mut reports = Vec::with_capacity(scene.models.len());
     let mut done = 0usize;
     for (i, model) in scene.models.iter_mut().enumerate() {
-        // Vertex removal takes a seam's two sides away together (`twins`); collapses do not
-        // yet, so for them every seam vertex is pinned. A shared border is always pinned.
+        // Both algorithms take a seam's two sides away together (`twins`); junctions of
+        // three or more sides and shared borders are pinned.
         let shared = &shared[i];
         let on_shared = |v: u32| shared.get(v as usize).copied().unwrap_or(false);
         let seams = seams::find(model);
-        let mut twins = match (params.algorithm, &record) {
-            (Algorithm::Schroeder, None) => seams.twin,
-            _ => Vec::new(),
-        };
+        let mut twins = seams.twin;
         for v in 0..twins.len() as u32 {
             let w = twins[v as usize];
             if w != u32::MAX && (on_shared(v) || on_shared(w)) {
@@ -222,8 +219,13 @@ fn run(
         };
         let outcome = match (params.algorithm, record.as_deref_mut()) {
             (_, Some(models)) => {
-                let (outcome, pm) =
-                    qem::decimate_model_progressive(model, &limits, &pins, &mut report_progress);
+                let (outcome, pm) = qem::decimate_model_progressive(
+                    model,
+                    &limits,
+                    &pins,
+                    &twins,
+                    &mut report_progress,
+                );
                 models.push(pm);
                 outcome
             }
@@ -231,7 +233,7 @@ fn run(
                 schroeder::decimate_model(model, &limits, &pins, &twins, &mut report_progress)
             }
             (Algorithm::Qem, None) => {
-                qem::decimate_model(model, &limits, &pins, &mut report_progress)
+                qem::decimate_model(model, &limits, &pins, &twins, &mut report_progress)
             }
         };
         done += outcome.removed;

@@ -66,6 +66,31 @@ pub struct ProgressiveScene {
 }
 
 impl ProgressiveModel {
+    /// True when splits `j` and `j + 1` undo one texture-seam collapse: `qem` collapses a
+    /// seam's two sides together, to one point, recorded as two collapses of twin vertices
+    /// (the same positions before and after).
+    fn seam_pair(&self, j: usize) -> bool {
+        match (self.splits.get(j), self.splits.get(j + 1)) {
+            (Some(a), Some(b)) => {
+                a.keep != b.keep
+                    && a.keep_coarse == b.keep_coarse
+                    && a.keep_fine == b.keep_fine
+                    && a.position == b.position
+            }
+            _ => false,
+        }
+    }
+
+    /// `level`, or one level coarser when `level` would apply only the first of a seam's
+    /// two splits, which would open a crack along the seam.
+    pub fn whole_level(&self, level: usize) -> usize {
+        if level > 0 && self.seam_pair(level - 1) {
+            level - 1
+        } else {
+            level
+        }
+    }
+
     /// Vertices of the fully refined mesh.
     pub fn full_vertex_count(&self) -> usize {
         self.base.positions.len() + self.splits.len()
@@ -645,6 +670,74 @@ mod tests {
                 "level {level} going down"
             );
         }
+    }
+
+    /// An open, bumpy tube textured by its (angle, height), cut down one side by a texture
+    /// seam: the columns at u = 0 and u = 1 are the same points, once per side.
+    fn seamed_tube(around: u32, along: u32) -> Model {
+        let (mut positions, mut texcoords, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+        for j in 0..=along {
+            for i in 0..=around {
+                let (u, v) = ((i % around) as f32 / around as f32, j as f32 / along as f32);
+                let angle = std::f32::consts::TAU * u;
+                let r = 1.0 + 0.1 * (3.0 * angle).sin() * (4.0 * v).cos();
+                positions.push(Vec3::new(r * angle.cos(), r * angle.sin(), v));
+                texcoords.push([i as f32 / around as f32, v]);
+            }
+        }
+        let id = |i: u32, j: u32| j * (around + 1) + i;
+        for j in 0..along {
+            for i in 0..around {
+                let [a, b, c, d] = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+                triangles.push([a, b, c]);
+                triangles.push([a, c, d]);
+            }
+        }
+        Model {
+            positions,
+            triangles,
+            texcoords: Some(texcoords),
+            ..Model::default()
+        }
+    }
+
+    #[test]
+    fn a_seam_collapsed_on_both_sides_never_shows_one_side_alone() {
+        let (_, pm) = progressive(seamed_tube(24, 12), 100.0);
+        assert!(pm.validate().is_ok());
+        // The points of each side of the seam (u = 0 and u = 1) at `level`: equal sets when
+        // the seam is closed.
+        let sides = |level: usize| {
+            let mut lod = Lod::new(&pm);
+            lod.set_level(level);
+            let m = lod.model();
+            let t = m.texcoords.clone().unwrap_or_default();
+            let side = |u: f32| {
+                let mut points: Vec<[u32; 3]> = m
+                    .positions
+                    .iter()
+                    .zip(&t)
+                    .filter(|(_, uv)| uv[0] == u)
+                    .map(|(p, _)| p.to_array().map(f32::to_bits))
+                    .collect();
+                points.sort_unstable();
+                points
+            };
+            (side(0.0), side(1.0))
+        };
+        let mut halves = 0;
+        for level in 0..=pm.splits.len() {
+            let whole = pm.whole_level(level);
+            let (a, b) = sides(whole);
+            assert_eq!(a, b, "level {level} (shown as {whole}): the seam parts");
+            if whole != level {
+                halves += 1;
+                let (a, b) = sides(level);
+                assert_ne!(a, b, "level {level}: half a seam collapse");
+            }
+        }
+        // The seam went down in pairs: levels between a pair's splits exist.
+        assert!(halves > 3, "{halves} seam pairs");
     }
 
     #[test]

@@ -1,8 +1,9 @@
 //! Texture seams: where a model's texture coordinates jump, its file gives one point two or
 //! more coordinate pairs, and the model holds one vertex per side, at the same position (see
 //! `Model::texcoords`). The surface is cut there. Were the sides simplified on their own,
-//! their outlines would part and open a crack: decimation pins these vertices, or (vertex
-//! removal) takes a seam's two sides away together.
+//! their outlines would part and open a crack: decimation takes a seam's two sides away
+//! together (vertex removal removes both, edge collapse collapses both edges to one point),
+//! and pins the junctions where three or more sides meet.
 
 use std::collections::HashMap;
 
@@ -17,7 +18,8 @@ pub struct Seams {
     /// For each vertex on a seam where exactly two used vertices share the position (the
     /// seam's two sides, away from junctions of three or more charts), the other one;
     /// `u32::MAX` for every other vertex. Such pairs may go together: removing both sides
-    /// at once keeps the seam closed (see `decimate::schroeder`).
+    /// at once keeps the seam closed (see `decimate::schroeder`; `decimate::qem` collapses
+    /// both sides' edges together).
     pub twin: Vec<u32>,
 }
 

@@ -34,6 +34,9 @@ pub(super) struct Plan {
     pub error2: f64,
     /// Cost that orders the collapses: the quadric plus the colour term.
     pub cost: f64,
+    /// On a texture seam, the other side's edge (its removed end, its kept end): it
+    /// collapses in the same step, to the same position (see `Part::plan`).
+    pub twin: Option<[u32; 2]>,
 }
 
 /// The working state of one model's decimation.
@@ -58,6 +61,10 @@ pub(super) struct Collapser {
     flags: Vec<u8>,
     /// Set when the collapses are recorded for a progressive mesh.
     pub recorder: Option<Recorder>,
+    /// The other side of each texture-seam vertex with exactly two sides (`u32::MAX`:
+    /// none); empty when the model has no such seam. Never changes: twins collapse together,
+    /// so the kept ones stay twins.
+    twins: Vec<u32>,
 }
 
 impl Collapser {
@@ -88,6 +95,7 @@ impl Collapser {
             has_blocked: vec![false; n],
             flags: vec![0; n],
             recorder: None,
+            twins: Vec::new(),
         }
     }
 
@@ -113,6 +121,22 @@ impl Collapser {
         }
     }
 
+    /// Pairs the two sides of texture seams: `twins[v]` is `v`'s other side or `u32::MAX`
+    /// (internal numbering). A pair collapses only together, along the seam (see
+    /// `Part::plan`); a vertex with a twin never moves otherwise.
+    pub fn set_twins(&mut self, twins: Vec<u32>) {
+        self.twins = if twins.iter().any(|&w| w != u32::MAX) {
+            twins
+        } else {
+            Vec::new()
+        };
+    }
+
+    /// True when some texture seam's sides collapse together (see [`Self::set_twins`]).
+    pub fn has_twins(&self) -> bool {
+        !self.twins.is_empty()
+    }
+
     /// Vertex count.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
@@ -136,6 +160,7 @@ impl Collapser {
             has_blocked: &mut self.has_blocked,
             flags: &mut self.flags,
             recorder: self.recorder.as_mut(),
+            twins: &self.twins,
             scratch: Scratch::default(),
         }
     }
@@ -156,6 +181,7 @@ impl Collapser {
         let mut has_blocked = split_mut(&mut self.has_blocked, &vs).into_iter();
         let mut flags = split_mut(&mut self.flags, &vs).into_iter();
         let costs = &self.costs;
+        let twins = &self.twins;
         let conns = self.conn.split(vertex_starts, slot_starts);
         conns
             .into_iter()
@@ -177,6 +203,7 @@ impl Collapser {
                     has_blocked: has_blocked.next()?,
                     flags: flags.next()?,
                     recorder: None,
+                    twins,
                     scratch: Scratch::default(),
                 })
             })

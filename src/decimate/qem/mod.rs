@@ -39,8 +39,12 @@
 //! in 0..=1; the units of `Q`: as if the colour step moved the surface by that fraction of
 //! the edge), so edges across colour changes go last. Per-vertex normals and texture
 //! coordinates are interpolated the same way; per-face colours stay with their surviving
-//! faces. Pinned vertices — texture seams (`mesh::seams`) and borders shared with another
-//! model (`mesh::stitches`) — are fixed, so the two sides never part.
+//! faces. A texture seam (`mesh::seams`) is two boundaries at the same positions: where
+//! exactly two sides meet, a seam edge collapses together with the other side's edge, to
+//! the same position, costed by the four ends' quadrics (`Part::plan`), and a seam vertex
+//! otherwise only takes in interior neighbours, unmoved; so the sides never part. Seam
+//! junctions (three or more sides) and borders shared with another model
+//! (`mesh::stitches`) are pinned.
 
 mod collapser;
 mod legality;
@@ -63,15 +67,17 @@ use collapser::Collapser;
 /// Decimates `model` in place by quadric edge collapse within `limits` (the feature angle
 /// only picks the feature edges that are constrained; it is never relaxed — QEM needs no
 /// relaxing to reach a count). Vertices flagged in `pins` (indexed like the model's
-/// positions: texture seams, shared borders) never move. `progress` gets the running
-/// removal count.
+/// positions: seam junctions, shared borders) never move; vertices `twins` pairs (the two
+/// sides of a texture seam, `mesh::seams::Seams::twin`; may be empty) move only together,
+/// along the seam. `progress` gets the running removal count.
 pub fn decimate_model(
     model: &mut Model,
     limits: &Limits,
     pins: &[bool],
+    twins: &[u32],
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
-    run(model, limits, pins, progress, None).0
+    run(model, limits, pins, twins, progress, None).0
 }
 
 /// As [`decimate_model`], and records every collapse: the returned progressive model's base
@@ -80,10 +86,11 @@ pub fn decimate_model_progressive(
     model: &mut Model,
     limits: &Limits,
     pins: &[bool],
+    twins: &[u32],
     progress: &mut dyn FnMut(usize),
 ) -> (Outcome, ProgressiveModel) {
     let recorder = Recorder::new(model);
-    match run(model, limits, pins, progress, Some(recorder)) {
+    match run(model, limits, pins, twins, progress, Some(recorder)) {
         (outcome, Some(pm)) => (outcome, pm),
         (_, None) => unreachable!("a run given a recorder returns its progressive model"),
     }
@@ -95,6 +102,7 @@ fn run(
     model: &mut Model,
     limits: &Limits,
     pins: &[bool],
+    twins: &[u32],
     progress: &mut dyn FnMut(usize),
     recorder: Option<Recorder>,
 ) -> (Outcome, Option<ProgressiveModel>) {
@@ -131,6 +139,16 @@ fn run(
         .map(|t| order.iter().map(|&v| t[v as usize]).collect());
     let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
     d.pin(order.iter().map(|&v| pinned(v)));
+    if twins.iter().any(|&w| w != u32::MAX) {
+        let internal = &loaded.internal;
+        let renumber = |w: u32| internal.get(w as usize).copied().unwrap_or(u32::MAX);
+        d.set_twins(
+            order
+                .iter()
+                .map(|&v| twins.get(v as usize).map_or(u32::MAX, |&w| renumber(w)))
+                .collect(),
+        );
+    }
     d.recorder = recorder;
 
     // 4. rank

@@ -32,6 +32,10 @@ pub(super) struct Scratch {
     /// condition), and those it shares with the kept end (each once).
     pub ring: Vec<u32>,
     pub common: Vec<u32>,
+    /// The ends and fans of a seam collapse's other side while the first side's are in
+    /// `ends` and `fans` (see [`Part::swap_sides`]).
+    twin_ends: [u32; 2],
+    twin_fans: [Vec<FanTriangle>; 2],
 }
 
 impl Scratch {
@@ -67,6 +71,8 @@ pub(super) struct Part<'a> {
     pub has_blocked: &'a mut [bool],
     pub flags: &'a mut [u8],
     pub recorder: Option<&'a mut Recorder>,
+    /// Texture-seam twins, by vertex id (the whole mesh's, read only; empty when none).
+    pub twins: &'a [u32],
     pub scratch: Scratch,
 }
 
@@ -235,7 +241,16 @@ impl Part<'_> {
                 (a, b, true)
             }
         };
-        let q = self.quadrics[self.at(a)].sum(&self.quadrics[self.at(b)]);
+        let (remove, keep, twin) = if self.twins.is_empty() {
+            (remove, keep, None)
+        } else {
+            self.seam_sides(remove, keep, free, ka == Kind::Boundary)?
+        };
+        let mut q = self.quadrics[self.at(a)].sum(&self.quadrics[self.at(b)]);
+        if let Some([r2, k2]) = twin {
+            q.add(&self.quadrics[self.at(r2)]);
+            q.add(&self.quadrics[self.at(k2)]);
+        }
         let (pr, pk) = (self.position(remove), self.position(keep));
         let position = if free { self.place(&q, pr, pk) } else { pk };
         // What is written is f32: plan with exactly that.
@@ -243,9 +258,15 @@ impl Part<'_> {
         let mut cost = q.eval(position);
         let error2 = cost / q.area.max(f64::MIN_POSITIVE);
         if let Some(c) = self.colors.as_deref() {
-            let (cr, ck) = (c[self.at(remove)], c[self.at(keep)]);
-            let dc = Vec3::from_array(cr) - Vec3::from_array(ck);
-            cost += q.area * dc.length_squared() as f64 * (pk - pr).length_squared();
+            let step = |r: u32, k: u32| {
+                let dc = Vec3::from_array(c[self.at(r)]) - Vec3::from_array(c[self.at(k)]);
+                dc.length_squared() as f64
+            };
+            let mut dc2 = step(remove, keep);
+            if let Some([r2, k2]) = twin {
+                dc2 += step(r2, k2);
+            }
+            cost += q.area * dc2 * (pk - pr).length_squared();
         }
         Some(Plan {
             remove,
@@ -253,7 +274,95 @@ impl Part<'_> {
             position,
             error2,
             cost,
+            twin,
         })
+    }
+
+    /// `v`'s other side on a texture seam, when it has one.
+    #[inline]
+    pub fn twin(&self, v: u32) -> Option<u32> {
+        self.twins
+            .get(v as usize)
+            .copied()
+            .filter(|&w| w != u32::MAX)
+    }
+
+    /// What texture seams make of the collapse `remove` → `keep` (`free`: the kept end
+    /// moves; `along_boundary`: both ends are on the boundary): `None` when it would part a
+    /// seam's sides; otherwise its ends, with the other side's edge when it is a seam edge.
+    ///
+    /// A vertex with a twin may stay where it is while an interior neighbour collapses into
+    /// it; it moves or goes only with its twin, along the seam: both ends of a boundary edge
+    /// have twins that are the ends of another boundary edge, and the two edges collapse in
+    /// the same step to the same position (the plan's quadric is the four ends'). Which end
+    /// goes is decided on the side whose smaller end is the smaller id, so that the plan is
+    /// the same from either side.
+    fn seam_sides(
+        &self,
+        remove: u32,
+        keep: u32,
+        free: bool,
+        along_boundary: bool,
+    ) -> Option<(u32, u32, Option<[u32; 2]>)> {
+        match (self.twin(remove), self.twin(keep)) {
+            (None, None) => Some((remove, keep, None)),
+            (None, Some(_)) if !free => Some((remove, keep, None)),
+            (Some(r2), Some(k2)) if free && along_boundary => {
+                let distinct = r2 != keep && k2 != remove && r2 != k2;
+                let owned = self.owns(r2) && self.owns(k2);
+                if !(distinct
+                    && owned
+                    && self.kind(r2) == Kind::Boundary
+                    && self.kind(k2) == Kind::Boundary
+                    && self.edge_triangles(r2, k2) == 1)
+                {
+                    return None;
+                }
+                // `remove` is the smaller end of its edge (plans are asked as (min, max)).
+                if remove < r2.min(k2) {
+                    Some((remove, keep, Some([r2, k2])))
+                } else {
+                    let (r2, k2) = (r2.min(k2), r2.max(k2));
+                    let (r, k) = (self.twin(r2)?, self.twin(k2)?);
+                    Some((r, k, Some([r2, k2])))
+                }
+            }
+            _ => None,
+        }
+    }
+
+    /// Swaps the ends and fans [`Self::gather`] read with the other side's of a seam
+    /// collapse, so that the checks and the collapse work on either side.
+    pub fn swap_sides(&mut self) {
+        let s = &mut self.scratch;
+        std::mem::swap(&mut s.ends, &mut s.twin_ends);
+        std::mem::swap(&mut s.fans, &mut s.twin_fans);
+    }
+
+    /// As [`Self::gather`], for a seam collapse's other side (`v`–`w`, the twins of the
+    /// first side's ends), into the other side's scratch.
+    pub fn gather_twin(&mut self, v: u32, w: u32) -> bool {
+        self.swap_sides();
+        let owned = self.gather(v, w);
+        self.swap_sides();
+        owned
+    }
+
+    /// True when the two sides of a seam collapse (read by [`Self::gather`] and
+    /// [`Self::gather_twin`]) share no vertex, so that each collapse leaves the other's fans
+    /// as they were read. Seams only: the lists are short, searched linearly.
+    pub fn sides_apart(&self) -> bool {
+        let s = &self.scratch;
+        let corners = |fans: &[Vec<FanTriangle>; 2]| {
+            fans.iter()
+                .flatten()
+                .flat_map(|f| [f.next, f.prev])
+                .collect::<Vec<_>>()
+        };
+        let first = corners(&s.fans);
+        corners(&s.twin_fans)
+            .iter()
+            .all(|x| !s.ends.contains(x) && !first.contains(x))
     }
 
     /// The quadric's minimum when it exists and stays within a box around the edge `pr`–`pk`;

@@ -25,7 +25,7 @@
 
 use rayon::prelude::*;
 
-use super::collapser::{Collapser, Kind};
+use super::collapser::{Collapser, Kind, Plan};
 use super::lists;
 use super::part::Part;
 use super::ranking::stored;
@@ -118,8 +118,9 @@ struct PassBounds {
 
 /// What became of a candidate.
 enum Attempt {
-    /// Collapsed, with this squared error.
-    Collapsed(f64),
+    /// Collapsed, removing this many vertices (two on a seam: both sides), with this
+    /// squared error.
+    Collapsed(usize, f64),
     /// Waits for a later pass, was blocked, or has no edge to collapse.
     Skipped,
     /// Blocked because its collapse was legal but over the error bound.
@@ -313,10 +314,13 @@ fn collapse_pass(
     let mut rest = candidates;
     while in_regions && !rest.is_empty() {
         let over = d.conn.triangle_count().saturating_sub(limit.keep_triangles);
-        let budget = limit
+        // A seam collapse removes two vertices (and two triangles, one a side).
+        let per_collapse = if d.has_twins() { 2 } else { 1 };
+        let budget = (limit
             .remove
             .min(limit.removable)
             .saturating_sub(tally.removed)
+            / per_collapse)
             .min(over.div_ceil(2));
         let size = round.min(rest.len()).min(budget.saturating_sub(1));
         if size < MIN_ROUND {
@@ -449,9 +453,13 @@ fn collapse_in_order(
                 return true;
             }
         }
-        match attempt(part, candidate.vertex(), bounds) {
-            Attempt::Collapsed(error2) => {
-                tally.removed += 1;
+        // Vertices the limit still allows: a seam collapse needs two.
+        let room = limit.map_or(usize::MAX, |l| {
+            l.remove.min(l.removable).saturating_sub(tally.removed)
+        });
+        match attempt(part, candidate.vertex(), bounds, room) {
+            Attempt::Collapsed(removed, error2) => {
+                tally.removed += removed;
                 tally.max_error2 = tally.max_error2.max(error2);
             }
             Attempt::OverBound => tally.over_bound = true,
@@ -493,8 +501,9 @@ fn prefetch_ahead(part: &Part<'_>, candidates: &[Candidate], i: usize) {
 }
 
 /// Re-plans candidate `v`'s cheapest edge and collapses it when it is still within the
-/// pass's threshold, legal and within the error bound; blocks it when it is not.
-fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds) -> Attempt {
+/// pass's threshold, legal and within the error bound (and `room`, the vertices the limit
+/// still allows, takes a seam's two); blocks it when it is not.
+fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt {
     let w = d.best[d.at(v)];
     if w == u32::MAX || d.is_fixed(v) {
         return Attempt::Skipped;
@@ -504,34 +513,100 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds) -> Attempt {
     if d.owns(w) && d.is_fixed(w) {
         return Attempt::Skipped;
     }
-    if !d.gather(v, w) {
+    if !d.gather(v, w) || !gather_seam_sides(d, v, w) {
         return Attempt::Elsewhere;
     }
     let plan = d.plan(v.min(w), v.max(w));
-    if plan.is_some_and(|p| stored(p.cost) > bounds.threshold) {
-        return Attempt::Skipped; // an end took a collapse in this pass: re-planned at its end
+    if let Some(p) = plan.filter(|p| stored(p.cost) > bounds.threshold) {
+        // An end took a collapse in this pass: re-planned at its end. On a seam it may have
+        // been the other side's end, which re-plans that side's edges only: look again.
+        if p.twin.is_some() {
+            let i = d.at(v);
+            d.flags[i] |= RERANK;
+        }
+        return Attempt::Skipped;
     }
     // No plan (the edge's shape changed since it was planned) counts as illegal, so that
-    // every candidate either goes, waits or is blocked: each pass progresses.
-    let legal = plan.is_some_and(|p| d.is_collapse_legal(&p));
+    // every candidate either goes, waits or is blocked: each pass progresses. A seam
+    // collapse with room for one vertex only counts so too: the count stops exactly.
+    let fits = plan.is_some_and(|p| p.twin.is_none() || room >= 2);
+    let legal = fits && plan.is_some_and(|p| d.is_collapse_legal(&p) && twin_is_legal(d, &p));
     let Some(plan) = plan.filter(|p| legal && p.error2 <= bounds.bound2) else {
         // The cost weighs area and colour, not just the error: an edge over the bound is
         // skipped like an illegal one, until its neighbourhood changes.
-        d.block_edge(v, w);
-        let (iv, iw) = (d.at(v), d.at(w));
-        d.flags[iv] |= RERANK;
-        d.flags[iw] |= RERANK;
+        let twin = plan.and_then(|p| p.twin);
+        for (x, y) in [(v, w)].into_iter().chain(twin.map(|[a, b]| (a, b))) {
+            d.block_edge(x, y);
+            let (ix, iy) = (d.at(x), d.at(y));
+            d.flags[ix] |= RERANK;
+            d.flags[iy] |= RERANK;
+        }
         return if legal {
             Attempt::OverBound
         } else {
             Attempt::Skipped
         };
     };
-    // The kept vertex's neighbours after the collapse: the corners of both fans' triangles
-    // off the edge.
+    collapse_and_flag(d, &plan);
+    if let Some([remove, keep]) = plan.twin {
+        let twin = Plan {
+            remove,
+            keep,
+            twin: None,
+            ..plan
+        };
+        d.swap_sides();
+        collapse_and_flag(d, &twin);
+        d.swap_sides();
+    } else if let Some(k2) = d.twin(plan.keep) {
+        // An interior vertex went into a seam vertex, which stays put; its quadric grew,
+        // and with it the cost of the seam edges on the other side.
+        let i = d.at(k2);
+        d.flags[i] |= REPLAN;
+    }
+    Attempt::Collapsed(1 + usize::from(plan.twin.is_some()), plan.error2)
+}
+
+/// For a collapse of `v`–`w` near a texture seam, reads the other side's fans (both ends
+/// have twins) or checks the part owns the one twin (whose edges it re-plans): false when
+/// that is outside the part. The whole owns everything.
+fn gather_seam_sides(d: &mut Part<'_>, v: u32, w: u32) -> bool {
+    match (d.twin(v), d.twin(w)) {
+        (None, None) => true,
+        // Read now, while nothing has changed; `plan` decides whether they collapse.
+        (Some(v2), Some(w2)) => d.owns(v2) && d.owns(w2) && d.gather_twin(v2, w2),
+        (Some(x), None) | (None, Some(x)) => d.owns(x),
+    }
+}
+
+/// Whether a seam collapse's other side (read by [`gather_seam_sides`]) is legal too: the
+/// two sides' neighbourhoods apart and the collapse legal there.
+fn twin_is_legal(d: &mut Part<'_>, plan: &Plan) -> bool {
+    let Some([remove, keep]) = plan.twin else {
+        return true;
+    };
+    if !d.sides_apart() {
+        return false;
+    }
+    let twin = Plan {
+        remove,
+        keep,
+        twin: None,
+        ..*plan
+    };
+    d.swap_sides();
+    let legal = d.is_collapse_legal(&twin);
+    d.swap_sides();
+    legal
+}
+
+/// Performs the legal `plan` (its fans read into the scratch) and flags what the end of the
+/// pass looks at again: the kept vertex and its neighbours after the collapse (the corners
+/// of both fans' triangles off the edge).
+fn collapse_and_flag(d: &mut Part<'_>, plan: &Plan) {
     let k = d.at(plan.keep);
     d.flags[k] |= REPLAN;
-    let (fan_r, fan_k) = d.scratch.fans(&plan);
+    let (fan_r, fan_k) = d.scratch.fans(plan);
     for (fan, other) in [(fan_r, plan.keep), (fan_k, plan.remove)] {
         for f in fan.iter().filter(|f| !f.touches(other)) {
             for x in [f.next, f.prev] {
@@ -539,8 +614,7 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds) -> Attempt {
             }
         }
     }
-    d.collapse(&plan);
-    Attempt::Collapsed(plan.error2)
+    d.collapse(plan);
 }
 
 /// The lists of the vertices [`end_of_pass`] looks at again, kept from pass to pass: all of
