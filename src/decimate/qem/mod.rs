@@ -37,9 +37,11 @@
 //! vertex's colour is interpolated along the edge at the projection of its new position, and
 //! the cost used to order collapses adds `W × |colour difference|² × edge length²` (colour
 //! in 0..=1; the units of `Q`: as if the colour step moved the surface by that fraction of
-//! the edge), so edges across colour changes go last. Per-vertex normals and texture
-//! coordinates are interpolated the same way; per-face colours stay with their surviving
-//! faces. A texture seam (`mesh::seams`) is two boundaries at the same positions: where
+//! the edge), so edges across colour changes go last. Per-vertex normals are interpolated
+//! the same way and weigh in the same way, lightly (`NORMAL_WEIGHT` in `part`: on curved
+//! surfaces the quadric already prices what the normals say; on flat stretches carrying
+//! shading the normals alone order the collapses). Texture coordinates are interpolated;
+//! per-face colours stay with their surviving faces. A texture seam (`mesh::seams`) is two boundaries at the same positions: where
 //! exactly two sides meet, a seam edge collapses together with the other side's edge, to
 //! the same position, costed by the four ends' quadrics (`Part::plan`), and a seam vertex
 //! otherwise only takes in interior neighbours, unmoved; so the sides never part. Seam

@@ -18,6 +18,16 @@ use crate::mesh::topology::{ConnectivityPart, FanTriangle};
 /// A placement may leave the edge's bounding box by at most this many edge lengths.
 const BOX_MARGIN: f64 = 1.0;
 
+/// Weight of a per-vertex normal step in a collapse's cost, against a colour step's 1. On a
+/// curved surface the normals follow the geometry, whose quadric already prices the turn
+/// (about 64 times less than a unit weight would), so only a light weight leaves the
+/// geometric error alone; on flat or nearly flat stretches the quadric says nothing and the
+/// normals alone order the collapses, whatever the weight. Measured: a flat sheet carrying
+/// bumpy shading normals, 90 % removed, mean normal error 10.8° without the term, 5.7° with
+/// any weight; the dragon with its area-weighted vertex normals kept at 10 %, metro mean
+/// error 9.160e-6 without, 9.173e-6 at this weight, 9.32e-6 at 0.01, 1.44e-5 at 1.
+const NORMAL_WEIGHT: f64 = 0.001;
+
 /// Lists a collapse and its checks fill, kept from one collapse to the next.
 #[derive(Debug, Default)]
 pub(super) struct Scratch {
@@ -257,16 +267,25 @@ impl Part<'_> {
         let position = position.as_vec3().as_dvec3();
         let mut cost = q.eval(position);
         let error2 = cost / q.area.max(f64::MIN_POSITIVE);
-        if let Some(c) = self.colors.as_deref() {
+        // Attributes: a colour step along the edge costs as if it moved the surface by that
+        // fraction of the edge (see the module doc); a normal step the same, weighted.
+        let (colors, normals) = (self.colors.as_deref(), self.normals.as_deref());
+        if colors.is_some() || normals.is_some() {
             let step = |r: u32, k: u32| {
-                let dc = Vec3::from_array(c[self.at(r)]) - Vec3::from_array(c[self.at(k)]);
-                dc.length_squared() as f64
+                let (i, j) = (self.at(r), self.at(k));
+                let step2 = |a: Option<&[[f32; 3]]>| {
+                    a.map_or(0.0, |a| {
+                        let d = Vec3::from_array(a[i]) - Vec3::from_array(a[j]);
+                        f64::from(d.length_squared())
+                    })
+                };
+                step2(colors) + NORMAL_WEIGHT * step2(normals)
             };
-            let mut dc2 = step(remove, keep);
+            let mut d2 = step(remove, keep);
             if let Some([r2, k2]) = twin {
-                dc2 += step(r2, k2);
+                d2 += step(r2, k2);
             }
-            cost += q.area * dc2 * (pk - pr).length_squared();
+            cost += q.area * d2 * (pk - pr).length_squared();
         }
         Some(Plan {
             remove,
