@@ -39,6 +39,18 @@ pub(super) struct Plan {
     pub twin: Option<[u32; 2]>,
 }
 
+impl Plan {
+    /// The other side's collapse of a seam plan: its own ends, the same position and cost.
+    pub fn other_side(&self) -> Option<Self> {
+        self.twin.map(|[remove, keep]| Self {
+            remove,
+            keep,
+            twin: None,
+            ..*self
+        })
+    }
+}
+
 /// The working state of one model's decimation.
 pub(super) struct Collapser {
     /// f32 as written: a moved vertex is placed at an f32 position (see `Part::plan`).

@@ -548,13 +548,7 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
         };
     };
     collapse_and_flag(d, &plan);
-    if let Some([remove, keep]) = plan.twin {
-        let twin = Plan {
-            remove,
-            keep,
-            twin: None,
-            ..plan
-        };
+    if let Some(twin) = plan.other_side() {
         d.swap_sides();
         collapse_and_flag(d, &twin);
         d.swap_sides();
@@ -582,18 +576,12 @@ fn gather_seam_sides(d: &mut Part<'_>, v: u32, w: u32) -> bool {
 /// Whether a seam collapse's other side (read by [`gather_seam_sides`]) is legal too: the
 /// two sides' neighbourhoods apart and the collapse legal there.
 fn twin_is_legal(d: &mut Part<'_>, plan: &Plan) -> bool {
-    let Some([remove, keep]) = plan.twin else {
+    let Some(twin) = plan.other_side() else {
         return true;
     };
     if !d.sides_apart() {
         return false;
     }
-    let twin = Plan {
-        remove,
-        keep,
-        twin: None,
-        ..*plan
-    };
     d.swap_sides();
     let legal = d.is_collapse_legal(&twin);
     d.swap_sides();
