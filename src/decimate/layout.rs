@@ -26,6 +26,19 @@ impl Loaded {
         model.triangles[t as usize].map(|v| self.internal[v as usize])
     }
 
+    /// A vertex pairing given in the model's numbering (`pairs[v]` is `v`'s partner or
+    /// `u32::MAX`: texture-seam twins), in internal numbering; empty when nothing is paired.
+    pub fn pairs(&self, pairs: &[u32]) -> Vec<u32> {
+        if pairs.iter().all(|&w| w == u32::MAX) {
+            return Vec::new();
+        }
+        let internal = |w: u32| self.internal.get(w as usize).copied().unwrap_or(u32::MAX);
+        self.order
+            .iter()
+            .map(|&v| pairs.get(v as usize).map_or(u32::MAX, |&w| internal(w)))
+            .collect()
+    }
+
     /// Every loaded face in internal numbering, in `faces` order.
     pub fn triangles(&self, model: &Model) -> Vec<[u32; 3]> {
         self.faces

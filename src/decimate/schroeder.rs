@@ -102,18 +102,7 @@ pub fn decimate_model(
     let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
     let pinned_count = pinned.iter().filter(|&&p| p).count();
     d.pinned = pinned;
-    if twins.iter().any(|&w| w != u32::MAX) {
-        let mut new_id = vec![u32::MAX; model.positions.len()];
-        for (new, &old) in loaded.order.iter().enumerate() {
-            new_id[old as usize] = new as u32;
-        }
-        let renumber = |old: u32| new_id.get(old as usize).copied().unwrap_or(u32::MAX);
-        d.twins = loaded
-            .order
-            .iter()
-            .map(|&v| twins.get(v as usize).map_or(u32::MAX, |&w| renumber(w)))
-            .collect();
-    }
+    d.twins = loaded.pairs(twins);
 
     // 3. classify and rank
     d.rank_all();

@@ -134,14 +134,11 @@ impl Collapser {
     }
 
     /// Pairs the two sides of texture seams: `twins[v]` is `v`'s other side or `u32::MAX`
-    /// (internal numbering). A pair collapses only together, along the seam (see
-    /// `Part::plan`); a vertex with a twin never moves otherwise.
+    /// (internal numbering; empty when no vertex has a twin, see `Loaded::pairs`). A pair
+    /// collapses only together, along the seam (see `Part::plan`); a vertex with a twin
+    /// never moves otherwise.
     pub fn set_twins(&mut self, twins: Vec<u32>) {
-        self.twins = if twins.iter().any(|&w| w != u32::MAX) {
-            twins
-        } else {
-            Vec::new()
-        };
+        self.twins = twins;
     }
 
     /// True when some texture seam's sides collapse together (see [`Self::set_twins`]).

@@ -41,12 +41,14 @@
 //! the same way and weigh in the same way, lightly (`NORMAL_WEIGHT` in `part`: on curved
 //! surfaces the quadric already prices what the normals say; on flat stretches carrying
 //! shading the normals alone order the collapses). Texture coordinates are interpolated;
-//! per-face colours stay with their surviving faces. A texture seam (`mesh::seams`) is two boundaries at the same positions: where
-//! exactly two sides meet, a seam edge collapses together with the other side's edge, to
-//! the same position, costed by the four ends' quadrics (`Part::plan`), and a seam vertex
-//! otherwise only takes in interior neighbours, unmoved; so the sides never part. Seam
-//! junctions (three or more sides) and borders shared with another model
-//! (`mesh::stitches`) are pinned.
+//! per-face colours stay with their surviving faces.
+//!
+//! A texture seam (`mesh::seams`) is two boundaries at the same positions: where exactly
+//! two sides meet, a seam edge collapses together with the other side's edge, to the same
+//! position, costed by the four ends' quadrics (`Part::plan`), and a seam vertex otherwise
+//! only takes in interior neighbours, unmoved; so the sides never part. Seam junctions
+//! (three or more sides) and borders shared with another model (`mesh::stitches`) are
+//! pinned.
 
 mod collapser;
 mod legality;
@@ -141,16 +143,7 @@ fn run(
         .map(|t| order.iter().map(|&v| t[v as usize]).collect());
     let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
     d.pin(order.iter().map(|&v| pinned(v)));
-    if twins.iter().any(|&w| w != u32::MAX) {
-        let internal = &loaded.internal;
-        let renumber = |w: u32| internal.get(w as usize).copied().unwrap_or(u32::MAX);
-        d.set_twins(
-            order
-                .iter()
-                .map(|&v| twins.get(v as usize).map_or(u32::MAX, |&w| renumber(w)))
-                .collect(),
-        );
-    }
+    d.set_twins(loaded.pairs(twins));
     d.recorder = recorder;
 
     // 4. rank
