@@ -13,6 +13,16 @@ use glam::{DVec3, Vec3};
 /// Smallest aspect ratio accepted for a split: the halves must be clearly separated.
 const MIN_ASPECT: f64 = 1e-7;
 
+/// Buffers a triangulation works in, kept from one to the next: no allocation per hole.
+#[derive(Debug, Clone, Default)]
+pub struct Scratch {
+    /// The sub-loops, each a range of `buf`.
+    buf: Vec<u32>,
+    pending: Vec<(usize, usize)>,
+    /// The positions of the loop being split.
+    points: Vec<DVec3>,
+}
+
 /// Triangulates the polygon `loop_verts` (counter-clockwise around `normal`), appending
 /// triangles in loop order (so they keep its orientation) to `out`. Returns false when some
 /// sub-loop has no valid split; `out` may then hold a partial result the caller discards.
@@ -21,10 +31,16 @@ pub fn triangulate(
     loop_verts: &[u32],
     normal: DVec3,
     out: &mut Vec<[u32; 3]>,
+    scratch: &mut Scratch,
 ) -> bool {
     // Sub-loops pending a split, as ranges of one buffer: no allocation per sub-loop.
-    let mut buf: Vec<u32> = Vec::with_capacity(loop_verts.len() * 3);
-    let mut pending: Vec<(usize, usize)> = Vec::with_capacity(loop_verts.len());
+    let Scratch {
+        buf,
+        pending,
+        points,
+    } = scratch;
+    buf.clear();
+    pending.clear();
     buf.extend_from_slice(loop_verts);
     pending.push((0, loop_verts.len()));
     while let Some((start, end)) = pending.pop() {
@@ -36,7 +52,7 @@ pub fn triangulate(
             out.push([buf[start], buf[start + 1], buf[start + 2]]);
             continue;
         }
-        let Some((i, j)) = best_split(positions, &buf[start..end], normal) else {
+        let Some((i, j)) = best_split(positions, &buf[start..end], normal, points) else {
             return false;
         };
         let (i, j) = (start + i, start + j);
@@ -55,13 +71,16 @@ pub fn triangulate(
 /// abandoned as soon as its aspect can no longer beat the best so far (the aspect only falls
 /// as more vertices are measured), so the result is that of the full search, which is cubic
 /// in the loop's length, at a fraction of its cost on large loops.
-fn best_split(positions: &[Vec3], lp: &[u32], normal: DVec3) -> Option<(usize, usize)> {
+fn best_split(
+    positions: &[Vec3],
+    lp: &[u32],
+    normal: DVec3,
+    points: &mut Vec<DVec3>,
+) -> Option<(usize, usize)> {
     let n = lp.len();
-    let loop_points: Vec<DVec3> = lp
-        .iter()
-        .map(|&v| positions[v as usize].as_dvec3())
-        .collect();
-    let p = |k: usize| loop_points[k];
+    points.clear();
+    points.extend(lp.iter().map(|&v| positions[v as usize].as_dvec3()));
+    let p = |k: usize| points[k];
     let mut best: Option<(f64, usize, usize)> = None;
     for i in 0..n {
         for j in i + 2..n {
@@ -132,7 +151,13 @@ mod tests {
             })
             .collect();
         let mut out = Vec::new();
-        assert!(triangulate(&p, &[0, 1, 2, 3, 4, 5], DVec3::Z, &mut out));
+        assert!(triangulate(
+            &p,
+            &[0, 1, 2, 3, 4, 5],
+            DVec3::Z,
+            &mut out,
+            &mut Scratch::default()
+        ));
         assert_eq!(out.len(), 4);
         let expected = 6.0 * 3f64.sqrt() / 4.0;
         assert!((area_z(&p, &out) - expected).abs() < 1e-6);
@@ -155,7 +180,13 @@ mod tests {
             Vec3::new(0.0, 0.0, 0.0),
         ];
         let mut out = Vec::new();
-        assert!(triangulate(&p, &[0, 1, 2, 3, 4, 5], DVec3::Z, &mut out));
+        assert!(triangulate(
+            &p,
+            &[0, 1, 2, 3, 4, 5],
+            DVec3::Z,
+            &mut out,
+            &mut Scratch::default()
+        ));
         assert_eq!(out.len(), 4);
         assert!((area_z(&p, &out) - 3.0).abs() < 1e-12);
         assert!(out.iter().all(|t| area_z(&p, &[*t]) > 0.0));
@@ -164,6 +195,12 @@ mod tests {
     #[test]
     fn collinear_loop_cannot_be_split() {
         let p: Vec<Vec3> = (0..4).map(|k| Vec3::new(k as f32, 0.0, 0.0)).collect();
-        assert!(!triangulate(&p, &[0, 1, 2, 3], DVec3::Z, &mut Vec::new()));
+        assert!(!triangulate(
+            &p,
+            &[0, 1, 2, 3],
+            DVec3::Z,
+            &mut Vec::new(),
+            &mut Scratch::default()
+        ));
     }
 }

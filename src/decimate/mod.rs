@@ -2,12 +2,13 @@
 //! point: [`decimate_scene`] applies a [`Params`] (target, error bound, feature angle) to
 //! every model of a scene and returns a [`Report`].
 
+mod candidates;
 pub mod layout;
 pub mod levels;
+mod lists;
 pub mod loop_split;
 pub mod progressive;
 pub mod qem;
-pub mod queue;
 pub mod schroeder;
 
 use std::time::Instant;

@@ -52,7 +52,6 @@
 
 mod collapser;
 mod legality;
-mod lists;
 mod part;
 mod passes;
 mod planes;

@@ -12,7 +12,7 @@ const CHUNK: usize = 8192;
 /// Writes `f(x)` for every `x` of `src` that gives one to the start of `buf`, in `src`'s
 /// order, on all cores; returns how many. `buf` is grown to `src.len()` when shorter and
 /// never shrunk: what follows the count is stale.
-pub(super) fn filter_map_into<T, U>(
+pub(crate) fn filter_map_into<T, U>(
     src: &[T],
     buf: &mut Vec<U>,
     f: impl Fn(&T) -> Option<U> + Sync,
@@ -40,7 +40,7 @@ where
 }
 
 /// Keeps the items of `list` for which `keep`, in order, on all cores.
-pub(super) fn retain(list: &mut Vec<u32>, keep: impl Fn(u32) -> bool + Sync) {
+pub(crate) fn retain(list: &mut Vec<u32>, keep: impl Fn(u32) -> bool + Sync) {
     let counts: Vec<usize> = list
         .par_chunks_mut(CHUNK)
         .map(|chunk| {

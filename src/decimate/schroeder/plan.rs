@@ -1,0 +1,288 @@
+//! Planning one vertex removal, reading the mesh only: classify the vertex, measure its
+//! decimation criterion, fill its hole by loop splitting and check the fill. Nothing here
+//! writes the mesh, so many removals are planned at once on all cores (`passes`), each
+//! into its own [`Planning`].
+
+use glam::{DVec3, Vec3};
+
+use crate::decimate::loop_split;
+use crate::mesh::classify::{classify, RingGeometry, VertexClass};
+use crate::mesh::topology::{Connectivity, Ring};
+
+/// A fill is rejected when a new triangle's area is this small relative to its longest edge².
+const MIN_RELATIVE_AREA: f64 = 1e-10;
+
+/// What planning one removal writes: the vertex's ring and its geometry, then the fill.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Planning {
+    pub ring: Ring,
+    pub geometry: RingGeometry,
+    /// The triangles that fill the hole.
+    pub fill: Vec<[u32; 3]>,
+    /// Which ring triangles each stretch of `fill` replaces: one region for a closed or open
+    /// ring, one per side of a crease.
+    regions: Vec<FillRegion>,
+    loop_buf: Vec<u32>,
+    triangulation: loop_split::Scratch,
+}
+
+/// The fill triangles from the previous region's `end` up to this `end` replace the ring
+/// triangles `from..to` (indices modulo the ring's length).
+#[derive(Debug, Clone, Copy)]
+struct FillRegion {
+    end: usize,
+    from: usize,
+    to: usize,
+}
+
+/// The mesh as planning reads it.
+#[derive(Clone, Copy)]
+pub(super) struct Surface<'a> {
+    pub conn: &'a Connectivity,
+    pub positions: &'a [Vec3],
+    pub cos_feature: f64,
+}
+
+impl Surface<'_> {
+    /// Classifies `v` into `p`'s ring and returns its class and decimation criterion:
+    /// distance to the loop's average plane (simple), or to the line through its boundary /
+    /// feature neighbours (boundary, interior edge). `None` for vertices that are never
+    /// removed.
+    pub fn evaluate(&self, v: u32, p: &mut Planning) -> Option<(VertexClass, f64)> {
+        let class = classify(
+            self.conn,
+            self.positions,
+            v,
+            self.cos_feature,
+            &mut p.ring,
+            &mut p.geometry,
+        );
+        let at = self.position(v);
+        let verts = &p.ring.verts;
+        let distance = match class {
+            VertexClass::Simple => {
+                let all = 0..p.geometry.crosses.len();
+                let (normal, centre) = self.average_plane(p, at, all)?;
+                normal.dot(at - centre).abs()
+            }
+            VertexClass::Boundary => self.line_distance(at, verts[0], verts[verts.len() - 1]),
+            VertexClass::InteriorEdge { first, second } => {
+                self.line_distance(at, verts[first], verts[second])
+            }
+            _ => return None,
+        };
+        distance.is_finite().then_some((class, distance))
+    }
+
+    /// Plans the removal of `v` into `p` (its ring and the fill): its class and criterion
+    /// distance when the hole can be filled validly.
+    pub fn plan_removal(&self, v: u32, p: &mut Planning) -> Option<(VertexClass, f64)> {
+        let (class, distance) = self.evaluate(v, p)?;
+        p.fill.clear();
+        p.regions.clear();
+        let ok = match class {
+            VertexClass::Simple => self.fill_closed(v, p),
+            VertexClass::Boundary => self.fill_open(v, p),
+            VertexClass::InteriorEdge { first, second } => self.fill_crease(v, first, second, p),
+            _ => false,
+        };
+        (ok && self.fill_is_valid(v, p)).then_some((class, distance))
+    }
+
+    fn position(&self, v: u32) -> DVec3 {
+        self.positions[v as usize].as_dvec3()
+    }
+
+    /// Interior vertex: triangulate the whole closed loop over its average plane.
+    fn fill_closed(&self, v: u32, p: &mut Planning) -> bool {
+        let all = 0..p.geometry.crosses.len();
+        let Some((normal, _)) = self.average_plane(p, self.position(v), all) else {
+            return false;
+        };
+        let r = &p.ring.verts;
+        if r.len() == 3 && self.conn.has_triangle(r[0], r[1], r[2]) {
+            return false; // would duplicate a face: the last step before a tetrahedron
+        }
+        self.fill_whole_ring(normal, p)
+    }
+
+    /// Triangulates the whole ring over the plane of `normal`, as one region.
+    fn fill_whole_ring(&self, normal: DVec3, p: &mut Planning) -> bool {
+        let filled = loop_split::triangulate(
+            self.positions,
+            &p.ring.verts,
+            normal,
+            &mut p.fill,
+            &mut p.triangulation,
+        );
+        p.regions.push(FillRegion {
+            end: p.fill.len(),
+            from: 0,
+            to: p.ring.triangles.len(),
+        });
+        filled
+    }
+
+    /// Boundary vertex: the open path plus the closing edge between its ends.
+    fn fill_open(&self, v: u32, p: &mut Planning) -> bool {
+        let r = &p.ring.verts;
+        let (first, last) = (r[0], r[r.len() - 1]);
+        if r.len() == 2 {
+            // A lone triangle: removing it leaves its far edge on the boundary, which must
+            // then still belong to another triangle.
+            return self.conn.has_edge_avoiding(first, last, v);
+        }
+        if self.conn.has_edge_avoiding(first, last, v) {
+            return false;
+        }
+        let all = 0..p.geometry.crosses.len();
+        let Some((normal, _)) = self.average_plane(p, self.position(v), all) else {
+            return false;
+        };
+        self.fill_whole_ring(normal, p)
+    }
+
+    /// Interior-edge vertex: split along the crease first, then fill each side on its own
+    /// average plane, so the crease line survives.
+    fn fill_crease(&self, v: u32, first: usize, second: usize, p: &mut Planning) -> bool {
+        let r = &p.ring.verts;
+        let k = r.len();
+        if second - first < 2 || k - second + first < 2 {
+            return false; // one side is a single triangle: no room to split
+        }
+        if self.conn.has_edge_avoiding(r[first], r[second], v) {
+            return false;
+        }
+        let at = self.position(v);
+        let sides = [(first, second), (second, first + k)];
+        for (from, to) in sides {
+            let Some((normal, _)) = self.average_plane(p, at, (from..to).map(|i| i % k)) else {
+                return false;
+            };
+            let Planning {
+                ring,
+                fill,
+                loop_buf,
+                triangulation,
+                ..
+            } = p;
+            loop_buf.clear();
+            loop_buf.extend((from..=to).map(|i| ring.verts[i % k]));
+            if !loop_split::triangulate(self.positions, loop_buf, normal, fill, triangulation) {
+                return false;
+            }
+            p.regions.push(FillRegion {
+                end: p.fill.len(),
+                from,
+                to,
+            });
+        }
+        true
+    }
+
+    /// The fill must not flip or degenerate a triangle and must not create an edge that
+    /// already exists elsewhere (the result would be non-manifold). A new triangle is
+    /// compared with the old triangles of its own region only: across a crease the two sides
+    /// may face apart by up to 180°.
+    fn fill_is_valid(&self, v: u32, p: &Planning) -> bool {
+        let r = &p.ring.verts;
+        let k = r.len();
+        let closed = k == p.ring.triangles.len();
+        let is_ring_edge = |a: u32, b: u32| {
+            let (Some(i), Some(j)) = (
+                r.iter().position(|&x| x == a),
+                r.iter().position(|&x| x == b),
+            ) else {
+                return false;
+            };
+            let d = i.abs_diff(j);
+            d == 1 || (closed && d == k - 1)
+        };
+        let crosses = &p.geometry.crosses;
+        let mut start = 0;
+        for &region in &p.regions {
+            // Normal of the old region: the sum of its ring triangles' area vectors.
+            let old: DVec3 = (region.from..region.to).map(|i| crosses[i % k]).sum();
+            for tri in &p.fill[start..region.end] {
+                let [a, b, c] = tri.map(|i| self.position(i));
+                let cross = (b - a).cross(c - a);
+                let longest = (b - a)
+                    .length_squared()
+                    .max((c - b).length_squared())
+                    .max((a - c).length_squared());
+                if cross.length() <= MIN_RELATIVE_AREA * longest {
+                    return false;
+                }
+                // Flip test against the old triangles this one covers: it must face the same
+                // way as at least the region as a whole and as the nearest old triangle.
+                if cross.dot(old) <= 0.0 || !faces_like_old(p, cross, tri, region) {
+                    return false;
+                }
+                // A diagonal of the hole is in two fill triangles, once each way: looked
+                // up once. (The edge closing an open ring and a crease's split edge, in
+                // one triangle, were looked up before the fill was made.)
+                for (x, y) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
+                    if x < y && !is_ring_edge(x, y) && self.conn.has_edge_avoiding(x, y, v) {
+                        return false;
+                    }
+                }
+            }
+            start = region.end;
+        }
+        true
+    }
+
+    /// Area-weighted unit normal and centre of the ring triangles `indices` (of the ring in
+    /// `p`) around the vertex at `at`.
+    fn average_plane(
+        &self,
+        p: &Planning,
+        at: DVec3,
+        indices: impl Iterator<Item = usize>,
+    ) -> Option<(DVec3, DVec3)> {
+        let verts = &p.ring.verts;
+        let mut normal = DVec3::ZERO;
+        let mut centre = DVec3::ZERO;
+        let mut area = 0.0;
+        for i in indices {
+            let a = p.geometry.lengths[i];
+            normal += p.geometry.crosses[i];
+            let pa = self.position(verts[i]);
+            let next = verts.get(i + 1).unwrap_or(&verts[0]);
+            let pb = self.position(*next);
+            centre += a * (at + pa + pb);
+            area += a;
+        }
+        let centre = centre / 3.0;
+        let len = normal.length();
+        if area <= 0.0 || len <= 1e-12 * area {
+            return None;
+        }
+        Some((normal / len, centre / area))
+    }
+
+    /// Distance from `at` to the line through vertices `a` and `b`.
+    fn line_distance(&self, at: DVec3, a: u32, b: u32) -> f64 {
+        let (a, b) = (self.position(a), self.position(b));
+        let dir = b - a;
+        let len2 = dir.length_squared();
+        if len2 <= 0.0 {
+            return (at - a).length();
+        }
+        (at - a).cross(dir).length() / len2.sqrt()
+    }
+}
+
+/// A new triangle faces like the old ring triangles of its region that share one of its
+/// vertices.
+fn faces_like_old(p: &Planning, cross: DVec3, tri: &[u32; 3], region: FillRegion) -> bool {
+    let r = &p.ring.verts;
+    let k = r.len();
+    let crosses = &p.geometry.crosses;
+    (region.from..region.to).all(|i| {
+        let (i, c) = (i % k, crosses[i % k]);
+        let next = if i + 1 == k { r[0] } else { r[i + 1] };
+        let touches = tri.contains(&r[i]) || tri.contains(&next);
+        !touches || cross.dot(c) > -0.5 * cross.length() * c.length()
+    })
+}
