@@ -183,11 +183,12 @@ impl Decimator {
             pinned: vec![false; n],
             twins: Vec::new(),
             twin_planning: Planning::default(),
+            // Marks start below the first pass and batch: nothing has changed yet.
             changed_in: vec![0; n],
-            pass: 0,
+            pass: 1,
             changed: Vec::new(),
             touched_in: vec![0; n],
-            batch: 0,
+            batch: 1,
         }
     }
 
@@ -250,6 +251,8 @@ impl Decimator {
         self.touched_in[v as usize] == self.batch
     }
 
+    /// Notes that `v`'s ring changed: its key is stale for the rest of the pass (it is
+    /// re-ranked at its end) and plans that read it for the rest of the batch.
     fn mark_changed(&mut self, v: u32) {
         self.touched_in[v as usize] = self.batch;
         if !self.changed_now(v) {

@@ -143,15 +143,15 @@ pub(super) fn remove_in_passes(
         let take = (count / PASS_SHARE).min(2 * needed).clamp(1, count);
         cheapest(&all[..count], take, &mut pass, &mut tied);
         d.pass += 1;
-        let stopped = remove_pass(d, &pass, limits, outcome, progress);
+        if remove_pass(d, &pass, limits, outcome, progress) {
+            break; // a count limit: the keys are not needed any more
+        }
+        // In vertex order, so that neighbours share the memory they read.
         let mut changed = std::mem::take(&mut d.changed);
         changed.par_sort_unstable();
         d.rerank(&changed);
+        changed.clear();
         d.changed = changed;
-        d.changed.clear();
-        if stopped {
-            break;
-        }
     }
 }
 
@@ -172,7 +172,7 @@ fn remove_pass(
     let mut order = Vec::with_capacity(BATCH);
     for batch in candidates.chunks(BATCH) {
         let plans = plan_batch(d, batch, &mut order);
-        d.batch += 1;
+        d.batch += 1; // what changes from here on, this batch's plans did not see
         if remove_planned(d, batch, &plans, limits, outcome) {
             return true;
         }
