@@ -253,9 +253,12 @@ fn remove_planned(
         }
         let key = d.keys[v as usize];
         let planned = plans.tasks[task as usize].removal(entry as usize);
-        let removed = match (planned, d.twin(v)) {
-            (_, Some(w)) => remove_twins(d, v, w, key, limits, outcome),
-            (Some((removal, fills)), None) => {
+        if let Some(w) = d.twin(v) {
+            remove_twins(d, v, w, key, limits, outcome);
+            continue;
+        }
+        let removed = match planned {
+            Some((removal, fills)) => {
                 // A removal in this batch changed what the checks of this plan read: plan
                 // again, now.
                 let stale = removal.ring.iter().any(|&u| d.touched_now(u));
@@ -268,12 +271,12 @@ fn remove_planned(
                     false
                 }
             }
-            (None, None) => d.try_remove(v, key),
+            None => d.try_remove(v, key),
         };
         if removed {
             outcome.removed += 1;
             outcome.max_error = outcome.max_error.max(key);
-        } else if d.twin(v).is_none() {
+        } else {
             d.keys[v as usize] = f64::NAN; // kept until a neighbour goes
         }
     }
@@ -281,8 +284,8 @@ fn remove_planned(
 }
 
 /// Removes seam vertex `v` with its twin `w` when both may go and the count leaves room
-/// for two; counts the second of them in `outcome` (the caller counts `v`) and returns
-/// whether they went.
+/// for two, counting them in `outcome`; when they may not, neither is a candidate until a
+/// neighbour goes.
 fn remove_twins(
     d: &mut Decimator,
     v: u32,
@@ -290,23 +293,21 @@ fn remove_twins(
     key: f64,
     limits: &Limits,
     outcome: &mut Outcome,
-) -> bool {
+) {
     if d.changed_now(w) {
-        return false; // its key is stale: both wait for the next pass
+        return; // its key is stale: both wait for the next pass
     }
     // Two vertices and two triangles go: only while both counts allow it.
     let room = limits.remove.saturating_sub(outcome.removed) >= 2
         && d.conn.triangle_count() >= limits.keep_triangles + 2;
     match room.then(|| d.try_remove_twins(v, w, key)).flatten() {
         Some(key) => {
-            outcome.removed += 1;
+            outcome.removed += 2;
             outcome.max_error = outcome.max_error.max(key);
-            true
         }
         None => {
             d.keys[v as usize] = f64::NAN;
             d.keys[w as usize] = f64::NAN;
-            false
         }
     }
 }
