@@ -279,9 +279,6 @@ fn split_attribute<'a, T>(
 
 /// The two corners of `tri` other than `v`, in the triangle's cyclic order after `v`.
 pub(super) fn others(tri: [u32; 3], v: u32) -> [u32; 2] {
-    match tri.iter().position(|&w| w == v) {
-        Some(0) => [tri[1], tri[2]],
-        Some(1) => [tri[2], tri[0]],
-        _ => [tri[0], tri[1]],
-    }
+    let (_, next, prev) = crate::mesh::topology::corner_of(tri, v);
+    [next, prev]
 }

@@ -17,7 +17,7 @@ use rayon::prelude::*;
 
 use super::collapser::others;
 use super::part::Part;
-use crate::mesh::topology::split_mut;
+use crate::mesh::topology::{corner_of, split_mut};
 
 const BLOCKED: u32 = 1 << 31;
 
@@ -138,17 +138,11 @@ impl Part<'_> {
     /// incident triangle, the edge leaving `v` and the edge coming into it.
     fn for_each_edge(&self, v: u32, mut f: impl FnMut(usize, u32)) {
         for &t in self.conn.incident(v) {
-            let tri = self.conn.triangle(t);
-            let i = if tri[0] == v {
-                0
-            } else if tri[1] == v {
-                1
-            } else {
-                2
-            };
+            let (i, next, prev) = corner_of(self.conn.triangle(t), v);
+            const PREV: [usize; 3] = [2, 0, 1];
             let base = 3 * t as usize;
-            f(base + i, tri[(i + 1) % 3]);
-            f(base + (i + 2) % 3, tri[(i + 2) % 3]);
+            f(base + i, next);
+            f(base + PREV[i], prev);
         }
     }
 

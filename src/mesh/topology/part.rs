@@ -198,19 +198,12 @@ impl ConnectivityPart<'_> {
             if !self.owns_slot(t) {
                 return false;
             }
-            let tri = self.triangle(t);
-            let corner = if tri[0] == v {
-                0
-            } else if tri[1] == v {
-                1
-            } else {
-                2
-            };
+            let (corner, next, prev) = super::corner_of(self.triangle(t), v);
             out.push(FanTriangle {
                 t,
-                corner,
-                next: tri[(corner as usize + 1) % 3],
-                prev: tri[(corner as usize + 2) % 3],
+                corner: corner as u8,
+                next,
+                prev,
             });
         }
         true
