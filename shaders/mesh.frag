@@ -1,10 +1,15 @@
 // Mesh fragment shader: two-sided headlight lighting, smooth (interpolated normals) or flat
 // (face normal from screen-space derivatives, so no vertex is duplicated), or unlit colour.
+// The surface colour is the vertex colour times the model's texture (a white texel for an
+// untextured model; a textured one has white vertex colours).
 #version 450
 
 layout(location = 0) in vec3 in_view_position;
 layout(location = 1) in vec3 in_view_normal;
 layout(location = 2) in vec4 in_color;
+layout(location = 3) in vec2 in_uv;
+
+layout(set = 0, binding = 0) uniform sampler2D u_texture;
 
 layout(location = 0) out vec4 out_color;
 
@@ -24,8 +29,11 @@ void main() {
         out_color = vec4(CONST_R, CONST_G, CONST_B, 1.0);
         return;
     }
+    // Texture coordinates have their origin at the image's bottom left, Vulkan's rows start
+    // at the top.
+    vec4 surface = in_color * texture(u_texture, vec2(in_uv.x, 1.0 - in_uv.y));
     if (SHADING == 2) {
-        out_color = in_color;
+        out_color = surface;
         return;
     }
     vec3 n = SHADING == 1
@@ -42,6 +50,6 @@ void main() {
     float diffuse = max(dot(n, light), 0.0);
     vec3 h = normalize(light + to_eye);
     float specular = pow(max(dot(n, h), 0.0), 32.0) * 0.25;
-    vec3 rgb = in_color.rgb * (0.25 + 0.75 * diffuse) + vec3(specular);
-    out_color = vec4(rgb, in_color.a);
+    vec3 rgb = surface.rgb * (0.25 + 0.75 * diffuse) + vec3(specular);
+    out_color = vec4(rgb, surface.a);
 }

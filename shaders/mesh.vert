@@ -7,6 +7,7 @@ layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec4 in_color;
 // Geomorph start of this vertex: it is drawn at mix(in_morph_from, in_position, pc.morph).
 layout(location = 3) in vec3 in_morph_from;
+layout(location = 4) in vec2 in_uv;
 
 layout(push_constant) uniform Push {
     mat4 clip_from_model;
@@ -23,6 +24,7 @@ layout(constant_id = 1) const float POINT_SIZE = 1.0;
 layout(location = 0) out vec3 out_view_position;
 layout(location = 1) out vec3 out_view_normal;
 layout(location = 2) out vec4 out_color;
+layout(location = 3) out vec2 out_uv;
 
 void main() {
     vec4 position = vec4(mix(in_morph_from, in_position, pc.morph), 1.0);
@@ -31,6 +33,7 @@ void main() {
     // scales VRML transforms allow): mat3(view_rows) is that 3x3 transposed already.
     out_view_normal = inverse(mat3(pc.view_rows)) * in_normal;
     out_color = in_color;
+    out_uv = in_uv;
     vec4 clip = pc.clip_from_model * position;
     clip.z -= DEPTH_NUDGE * clip.w;
     gl_Position = clip;

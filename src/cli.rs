@@ -54,6 +54,8 @@ pub struct ShotOptions {
     /// 1–4 viewports: the first shows the original, the others the decimated scene.
     pub viewports: u32,
     pub modes: ShotModes,
+    /// Where relative texture names are read from: the input file's folder.
+    pub texture_dir: PathBuf,
 }
 
 impl Default for ShotOptions {
@@ -63,6 +65,7 @@ impl Default for ShotOptions {
             height: 600,
             viewports: 1,
             modes: ShotModes::default(),
+            texture_dir: PathBuf::from("."),
         }
     }
 }
@@ -283,6 +286,7 @@ where
     if let Some(pm) = &progressive {
         check_progressive(pm, action, &output)?;
     }
+    shot.texture_dir = crate::io::texture_path::folder_of(&input).to_path_buf();
     Ok(Command::Run(Box::new(Args {
         input,
         action,

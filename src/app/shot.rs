@@ -14,6 +14,7 @@ use crate::render::draw::{DrawOptions, ViewportDraw};
 use crate::render::gpu_mesh::GpuScene;
 use crate::render::offscreen::{OffscreenTarget, RgbaImage, OFFSCREEN_FORMAT};
 use crate::render::pipeline::Pipelines;
+use crate::render::texture::Textures;
 use crate::render::tiles::tiles;
 use crate::render::RenderError;
 
@@ -66,13 +67,20 @@ pub fn render(
     let target = OffscreenTarget::new(&context, options.width, options.height)?;
 
     let draw = draw_options(&options.modes);
-    let original = GpuScene::upload(&context, &commands, scene, draw.layers())?;
+    let mut textures = Textures::new(&context, pipelines.texture_layout, &options.texture_dir)?;
+    let original = GpuScene::upload(&context, &commands, &mut textures, scene, draw.layers())?;
     let (decimated, report) = match params {
         Some(params) => {
             let mut copy = scene.clone();
             let report = decimate_scene(&mut copy, params, &mut |_| {});
             (
-                Some(GpuScene::upload(&context, &commands, &copy, draw.layers())?),
+                Some(GpuScene::upload(
+                    &context,
+                    &commands,
+                    &mut textures,
+                    &copy,
+                    draw.layers(),
+                )?),
                 Some(report),
             )
         }

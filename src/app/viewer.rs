@@ -18,6 +18,7 @@ use crate::render::gpu_mesh::GpuScene;
 use crate::render::image::{self, Transition, DEPTH_FORMAT};
 use crate::render::pipeline::Pipelines;
 use crate::render::swapchain::Swapchain;
+use crate::render::texture::Textures;
 
 use super::controller::{Effect, ViewportController};
 use super::glut::{Button, Callbacks, Flow, Special};
@@ -28,6 +29,9 @@ use super::ui::{UiLayer, UiState};
 struct Gpu {
     ui: UiLayer,
     scenes: Vec<(u64, u64, GpuScene)>,
+    /// Uploaded once per name, shared by every viewport's scenes; dropped before the
+    /// pipelines, whose set layout its sets were made with.
+    textures: Textures,
     pipelines: Pipelines,
     frame_commands: Commands,
     upload_commands: Commands,
@@ -115,6 +119,7 @@ impl Viewer {
                 let scene = GpuScene::upload_morphing(
                     &gpu.context,
                     &gpu.upload_commands,
+                    &mut gpu.textures,
                     vp.scene(),
                     morph_from,
                     uploaded.map_or(needed, |layers| layers.union(needed)),
@@ -306,11 +311,18 @@ impl Callbacks for Viewer {
         let swapchain = Swapchain::new(&context, window.as_ref(), size.width, size.height)
             .map_err(|e| e.to_string())?;
         let pipelines = Pipelines::new(&context, swapchain.format).map_err(|e| e.to_string())?;
+        let textures = Textures::new(
+            &context,
+            pipelines.texture_layout,
+            &self.controller.input_dir,
+        )
+        .map_err(|e| e.to_string())?;
         let ui = UiLayer::new(&context, window, swapchain.format)?;
         eprintln!("decimate: drawing with {}", context.device_name);
         self.gpu = Some(Gpu {
             ui,
             scenes: Vec::new(),
+            textures,
             pipelines,
             frame_commands: Commands::new(&context).map_err(|e| e.to_string())?,
             upload_commands: Commands::new(&context).map_err(|e| e.to_string())?,

@@ -163,6 +163,57 @@ impl<'a> Uploader<'a> {
         Ok(buffer)
     }
 
+    /// A device-local sampled image of `format` that will hold `image` (8-bit RGBA) once
+    /// `finish` returns, in `SHADER_READ_ONLY_OPTIMAL` layout.
+    pub fn upload_image(
+        &mut self,
+        name: &str,
+        format: vk::Format,
+        image: &super::offscreen::RgbaImage,
+    ) -> Result<super::image::Image> {
+        use super::image::{transition, Image, COPIED_TO_SAMPLED, TO_COPY_DESTINATION};
+        let staging = Buffer::with_data(
+            self.context,
+            name,
+            vk::BufferUsageFlags::TRANSFER_SRC,
+            &image.pixels,
+        )?;
+        let extent = vk::Extent2D {
+            width: image.width,
+            height: image.height,
+        };
+        let usage = vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST;
+        let target = Image::new(self.context, name, format, extent, usage)?;
+        let region = [vk::BufferImageCopy::default()
+            .image_subresource(
+                vk::ImageSubresourceLayers::default()
+                    .aspect_mask(vk::ImageAspectFlags::COLOR)
+                    .layer_count(1),
+            )
+            .image_extent(vk::Extent3D {
+                width: image.width,
+                height: image.height,
+                depth: 1,
+            })];
+        let device = &self.context.device;
+        // SAFETY: the command buffer is recording; the staging buffer holds width × height
+        // RGBA texels (an `RgbaImage`'s invariant) and lives until `finish` has waited; the
+        // image is alive and owned by the caller, who keeps it until then.
+        unsafe {
+            transition(device, self.cmd, target.handle, format, TO_COPY_DESTINATION);
+            device.cmd_copy_buffer_to_image(
+                self.cmd,
+                staging.handle,
+                target.handle,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &region,
+            );
+            transition(device, self.cmd, target.handle, format, COPIED_TO_SAMPLED);
+        }
+        self.staging.push(staging);
+        Ok(target)
+    }
+
     /// Runs every copy and waits for them; the buffers are then ready to draw from.
     pub fn finish(self) -> Result<()> {
         let barrier = [vk::MemoryBarrier2::default()

@@ -160,6 +160,14 @@ pub unsafe fn record(
                         0,
                         bytes,
                     );
+                    device.cmd_bind_descriptor_sets(
+                        cmd,
+                        vk::PipelineBindPoint::GRAPHICS,
+                        pipelines.layout,
+                        0,
+                        &[mesh.texture],
+                        &[],
+                    );
                     draw_mesh(device, cmd, mesh, mode);
                 }
             }

@@ -1,7 +1,7 @@
 //! `GpuMesh` and `GpuScene`: a scene's `MeshData` uploaded into device-local buffers, once per
 //! decimation (never per frame) and again only when a draw mode needs a list that was left
-//! out (`Layers`), with the world transform of each model and the scene's world-space bounds
-//! for framing the camera.
+//! out (`Layers`), with the world transform of each model, its texture's binding (images are
+//! uploaded once, by `Textures`) and the scene's world-space bounds for framing the camera.
 
 use std::sync::Arc;
 
@@ -14,6 +14,7 @@ use super::commands::Commands;
 use super::context::Context;
 use super::error::{RenderError, Result};
 use super::mesh_data::{Layers, MeshData};
+use super::texture::Textures;
 use crate::mesh::{Model, Scene};
 
 /// Normal segments are this fraction of the scene's bounding-box diagonal.
@@ -22,6 +23,8 @@ const NORMAL_LENGTH: f32 = 0.03;
 /// One model's buffers.
 pub struct GpuMesh {
     pub transform: Mat4,
+    /// The model's texture (the white stand-in when it has none).
+    pub texture: vk::DescriptorSet,
     pub vertices: Buffer,
     pub triangles: Buffer,
     pub triangle_indices: u32,
@@ -52,10 +55,11 @@ impl GpuScene {
     pub fn upload(
         context: &Arc<Context>,
         commands: &Commands,
+        textures: &mut Textures,
         scene: &Scene,
         layers: Layers,
     ) -> Result<Self> {
-        Self::upload_morphing(context, commands, scene, None, layers)
+        Self::upload_morphing(context, commands, textures, scene, None, layers)
     }
 
     /// As [`Self::upload`], with each model's geomorph start positions (`morph_from[i]` for
@@ -64,6 +68,7 @@ impl GpuScene {
     pub fn upload_morphing(
         context: &Arc<Context>,
         commands: &Commands,
+        textures: &mut Textures,
         scene: &Scene,
         morph_from: Option<&[Vec<Vec3>]>,
         layers: Layers,
@@ -81,8 +86,18 @@ impl GpuScene {
                 .max_element();
             let length = normal_length / if scale > 0.0 { scale } else { 1.0 };
             let from = morph_from.and_then(|m| m.get(i)).map(Vec::as_slice);
-            let data = MeshData::build(model, length, from, layers);
-            meshes.push(upload_mesh(&mut uploader, model, &data)?);
+            let mut data = MeshData::build(model, length, from, layers);
+            let has_coordinates = model.texcoords.is_some();
+            let texture = model.texture.as_deref().filter(|_| has_coordinates);
+            let binding = textures.binding(&mut uploader, texture)?;
+            if binding.textured {
+                // VRML 2.0's rule (and what OBJ viewers do with `map_Kd`): an RGB texture
+                // replaces the diffuse colour; the lighting still applies.
+                for v in &mut data.vertices {
+                    v.color = [255, 255, 255, v.color[3]];
+                }
+            }
+            meshes.push(upload_mesh(&mut uploader, model, &data, binding.set)?);
         }
         uploader.finish()?;
         Ok(Self {
@@ -95,7 +110,12 @@ impl GpuScene {
     }
 }
 
-fn upload_mesh(up: &mut Uploader<'_>, model: &Model, data: &MeshData) -> Result<GpuMesh> {
+fn upload_mesh(
+    up: &mut Uploader<'_>,
+    model: &Model,
+    data: &MeshData,
+    texture: vk::DescriptorSet,
+) -> Result<GpuMesh> {
     let count = |n: usize, what: &str| {
         u32::try_from(n).map_err(|_| {
             RenderError::TooLarge(format!("{}: too many {what} to draw ({n})", model.name))
@@ -105,6 +125,7 @@ fn upload_mesh(up: &mut Uploader<'_>, model: &Model, data: &MeshData) -> Result<
     let index = vk::BufferUsageFlags::INDEX_BUFFER;
     Ok(GpuMesh {
         transform: model.transform,
+        texture,
         vertices: up.upload("vertices", vertex, &data.vertices)?,
         triangles: up.upload("triangles", index, &data.triangles)?,
         triangle_indices: count(data.triangles.len(), "triangles")?,

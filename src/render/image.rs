@@ -1,5 +1,5 @@
-//! `Image`: a 2D `vk::Image` with one view and its gpu-allocator memory (colour or depth
-//! attachment), freed in `Drop`.
+//! `Image`: a 2D `vk::Image` with one view and its gpu-allocator memory (a colour or depth
+//! attachment, or a sampled texture), freed in `Drop`.
 
 use std::sync::Arc;
 
@@ -25,8 +25,8 @@ pub struct Image {
 }
 
 impl Image {
-    /// A device-local 2D attachment of `format`; the aspect follows from the format.
-    pub fn new_attachment(
+    /// A device-local 2D image of `format` for `usage`; the aspect follows from the format.
+    pub fn new(
         context: &Arc<Context>,
         name: &str,
         format: vk::Format,
@@ -177,4 +177,24 @@ pub const TO_DEPTH_ATTACHMENT: Transition = Transition {
         vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE.as_raw()
             | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ.as_raw(),
     ),
+};
+
+/// A texture from freshly written by a copy to sampled by fragment shaders.
+pub const COPIED_TO_SAMPLED: Transition = Transition {
+    old: vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+    new: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+    src_stage: vk::PipelineStageFlags2::COPY,
+    src_access: vk::AccessFlags2::TRANSFER_WRITE,
+    dst_stage: vk::PipelineStageFlags2::FRAGMENT_SHADER,
+    dst_access: vk::AccessFlags2::SHADER_SAMPLED_READ,
+};
+
+/// A new image (contents undefined) to the destination of a copy.
+pub const TO_COPY_DESTINATION: Transition = Transition {
+    old: vk::ImageLayout::UNDEFINED,
+    new: vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+    src_stage: vk::PipelineStageFlags2::NONE,
+    src_access: vk::AccessFlags2::NONE,
+    dst_stage: vk::PipelineStageFlags2::COPY,
+    dst_access: vk::AccessFlags2::TRANSFER_WRITE,
 };

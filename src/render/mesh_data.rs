@@ -23,7 +23,7 @@ const PER_TASK: usize = 4096;
 /// Crease angle for smooth shading when the file gives none.
 pub const DEFAULT_CREASE_DEG: f32 = 45.0;
 
-/// One vertex as the vertex shader reads it (locations 0, 1, 2, 3).
+/// One vertex as the vertex shader reads it (locations 0 to 4).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Vertex {
@@ -34,6 +34,9 @@ pub struct Vertex {
     /// Where a geomorph starts this vertex: the shader draws `mix(morph_from, position, t)`
     /// for the push constant `t` (1 when nothing morphs). Equal to `position` by default.
     pub morph_from: [f32; 3],
+    /// Texture coordinates as the file gave them (origin at the image's bottom left); 0
+    /// without any.
+    pub uv: [f32; 2],
 }
 
 /// The optional parts of [`MeshData`]: which line and point lists are built.
@@ -132,6 +135,10 @@ impl MeshData {
             Some(Attribute::PerVertex(c)) if c.len() == model.positions.len() => Some(c),
             _ => None,
         };
+        let texcoords = model
+            .texcoords
+            .as_deref()
+            .filter(|t| t.len() == model.positions.len());
         let color_of_vertex = |v: usize| to_rgba8(vertex_colors.map_or(model.diffuse, |c| c[v]));
 
         let mut data = Self {
@@ -162,6 +169,7 @@ impl MeshData {
                         normal: normal.to_array(),
                         color: face_colors.map_or_else(|| color_of_vertex(vi), |c| to_rgba8(c[t])),
                         morph_from: morph_from.map_or(model.positions[vi], |m| m[vi]).to_array(),
+                        uv: texcoords.map_or([0.0; 2], |t| t[vi]),
                     });
                     if !own_corner {
                         shared[vi] = index;
@@ -398,6 +406,7 @@ fn push_segment(out: &mut Vec<Vertex>, from: Vec3, along: Vec3) {
             normal: along.normalize_or_zero().to_array(),
             color: [255; 4],
             morph_from: p.to_array(),
+            uv: [0.0; 2],
         });
     }
 }
@@ -538,6 +547,27 @@ mod tests {
         assert_eq!(d.vertices[5].color, [0, 0, 255, 255]);
         assert_eq!(d.edges.len(), 2 * 5);
         assert_eq!(d.points.len(), 4);
+    }
+
+    #[test]
+    fn texture_coordinates_follow_their_vertex_onto_split_corners() {
+        let mut m = square();
+        let uv: Vec<[f32; 2]> = (0..m.positions.len())
+            .map(|i| [i as f32 * 0.25, 1.0 - i as f32 * 0.25])
+            .collect();
+        m.texcoords = Some(uv.clone());
+        // Per-face colours give every corner its own vertex: each keeps its coordinates.
+        m.colors = Some(Attribute::PerFace(vec![[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]));
+        let d = MeshData::from_model(&m, 0.5);
+        assert_eq!(d.vertices.len(), 6);
+        let corners = m.triangles.iter().flatten();
+        for (&index, &v) in d.triangles.iter().zip(corners) {
+            assert_eq!(d.vertices[index as usize].uv, uv[v as usize]);
+        }
+        // Coordinates that do not match the positions are ignored, not misread.
+        m.texcoords = Some(vec![[0.5; 2]]);
+        let d = MeshData::from_model(&m, 0.5);
+        assert!(d.vertices.iter().all(|v| v.uv == [0.0; 2]));
     }
 
     #[test]

@@ -15,6 +15,7 @@ pub mod offscreen;
 pub mod pipeline;
 pub mod shader;
 pub mod swapchain;
+pub mod texture;
 pub mod tiles;
 
 pub use error::{RenderError, Result};

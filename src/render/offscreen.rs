@@ -44,14 +44,14 @@ impl OffscreenTarget {
                 "image size {width}x{height} is not drawable"
             )));
         }
-        let color = Image::new_attachment(
+        let color = Image::new(
             context,
             "offscreen colour",
             OFFSCREEN_FORMAT,
             extent,
             vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
         )?;
-        let depth = Image::new_attachment(
+        let depth = Image::new(
             context,
             "offscreen depth",
             DEPTH_FORMAT,

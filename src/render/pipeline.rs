@@ -1,6 +1,6 @@
 //! `Pipelines`: one graphics pipeline per draw mode (filled lit smooth / lit flat / unlit,
-//! edges, points, face normals, vertex normals) over one vertex layout and one push-constant
-//! layout, for a given colour format (dynamic rendering, no render pass). Each mode is the
+//! edges, points, face normals, vertex normals) over one vertex layout, one push-constant
+//! layout and one descriptor set (the model's texture, `render::texture`), for a given colour format (dynamic rendering, no render pass). Each mode is the
 //! same two shaders with different specialization constants and topology.
 
 use std::sync::Arc;
@@ -116,6 +116,8 @@ pub const POINT_SIZE: f32 = 5.0;
 pub struct Pipelines {
     context: Arc<Context>,
     pub layout: vk::PipelineLayout,
+    /// Set 0: binding 0, the model's texture (a combined image sampler, fragment stage).
+    pub texture_layout: vk::DescriptorSetLayout,
     pipelines: Vec<(DrawMode, vk::Pipeline)>,
     pub color_format: vk::Format,
 }
@@ -126,12 +128,31 @@ impl Pipelines {
         let ranges = [vk::PushConstantRange::default()
             .stage_flags(vk::ShaderStageFlags::VERTEX)
             .size(size_of::<PushConstants>() as u32)];
-        let layout_info = vk::PipelineLayoutCreateInfo::default().push_constant_ranges(&ranges);
+        let bindings = [vk::DescriptorSetLayoutBinding::default()
+            .binding(0)
+            .descriptor_type(vk::DescriptorType::COMBINED_IMAGE_SAMPLER)
+            .descriptor_count(1)
+            .stage_flags(vk::ShaderStageFlags::FRAGMENT)];
+        let set_info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings);
         // SAFETY: valid create info on a live device.
-        let layout = unsafe { device.create_pipeline_layout(&layout_info, None)? };
+        let texture_layout = unsafe { device.create_descriptor_set_layout(&set_info, None)? };
+        let set_layouts = [texture_layout];
+        let layout_info = vk::PipelineLayoutCreateInfo::default()
+            .set_layouts(&set_layouts)
+            .push_constant_ranges(&ranges);
+        // SAFETY: valid create info on a live device.
+        let layout = match unsafe { device.create_pipeline_layout(&layout_info, None) } {
+            Ok(layout) => layout,
+            Err(e) => {
+                // SAFETY: the set layout was just created and nothing uses it.
+                unsafe { device.destroy_descriptor_set_layout(texture_layout, None) };
+                return Err(e.into());
+            }
+        };
         let mut this = Self {
             context: context.clone(),
             layout,
+            texture_layout,
             pipelines: Vec::new(),
             color_format,
         };
@@ -220,6 +241,10 @@ impl Pipelines {
                 .location(3)
                 .format(vk::Format::R32G32B32_SFLOAT)
                 .offset(28),
+            vk::VertexInputAttributeDescription::default()
+                .location(4)
+                .format(vk::Format::R32G32_SFLOAT)
+                .offset(40),
         ];
         let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
             .vertex_binding_descriptions(&bindings)
@@ -293,6 +318,9 @@ impl Drop for Pipelines {
             self.context
                 .device
                 .destroy_pipeline_layout(self.layout, None);
+            self.context
+                .device
+                .destroy_descriptor_set_layout(self.texture_layout, None);
         }
     }
 }

@@ -181,7 +181,7 @@ impl Swapchain {
             };
             self.render_finished.push(semaphore);
         }
-        self.depth = Some(Image::new_attachment(
+        self.depth = Some(Image::new(
             &self.context,
             "window depth",
             DEPTH_FORMAT,

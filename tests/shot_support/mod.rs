@@ -125,6 +125,7 @@ pub fn render(
         height: HEIGHT,
         viewports,
         modes,
+        ..ShotOptions::default()
     };
     match shot::render(scene, &options, params, DevicePreference::Cpu) {
         Ok((image, _)) => image,

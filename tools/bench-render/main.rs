@@ -25,6 +25,7 @@ use decimate::render::gpu_mesh::GpuScene;
 use decimate::render::mesh_data::Layers;
 use decimate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
 use decimate::render::pipeline::Pipelines;
+use decimate::render::texture::Textures;
 use decimate::render::tiles::tiles;
 
 fn main() -> ExitCode {
@@ -63,6 +64,12 @@ fn run(
     height: u32,
     frames: usize,
 ) -> Result<(), Box<dyn std::error::Error>> {
+    let folder = match &source {
+        Source::File(path) => {
+            decimate::io::texture_path::folder_of(std::path::Path::new(path)).to_path_buf()
+        }
+        Source::Sphere(_) => std::path::PathBuf::from("."),
+    };
     let scene = match source {
         Source::Sphere(triangles) => {
             // rings × segments × 2 ≈ triangles, with twice as many segments as rings.
@@ -78,17 +85,19 @@ fn run(
     let commands = Commands::new(&context)?;
     let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
     let target = OffscreenTarget::new(&context, width, height)?;
+    let mut textures = Textures::new(&context, pipelines.texture_layout, &folder)?;
     // What a viewport drawing filled triangles uploads, then everything (the table's modes).
     let started = Instant::now();
     drop(GpuScene::upload(
         &context,
         &commands,
+        &mut textures,
         &scene,
         DrawOptions::default().layers(),
     )?);
     let upload_filled = started.elapsed().as_secs_f64() * 1e3;
     let started = Instant::now();
-    let gpu = GpuScene::upload(&context, &commands, &scene, Layers::ALL)?;
+    let gpu = GpuScene::upload(&context, &commands, &mut textures, &scene, Layers::ALL)?;
     let upload = started.elapsed().as_secs_f64() * 1e3;
     let camera = Camera::framing(gpu.bounds);
     println!(
@@ -175,16 +184,20 @@ fn run(
             times[times.len() - 1]
         );
     }
-    slider_moves(&context, &commands, &pipelines, &target, &scene, &camera)
+    let gpu = (&context, &commands, &pipelines, &target);
+    slider_moves(gpu, &mut textures, &scene, &camera)
 }
 
 /// The slider's moves, timed: down to three quarters, half, a quarter and the base of the
 /// progressive mesh, then back up to half and the original.
 fn slider_moves(
-    context: &std::sync::Arc<Context>,
-    commands: &Commands,
-    pipelines: &Pipelines,
-    target: &OffscreenTarget,
+    (context, commands, pipelines, target): (
+        &std::sync::Arc<Context>,
+        &Commands,
+        &Pipelines,
+        &OffscreenTarget,
+    ),
+    textures: &mut Textures,
     scene: &Scene,
     camera: &Camera,
 ) -> Result<(), Box<dyn std::error::Error>> {
@@ -206,8 +219,14 @@ fn slider_moves(
         lod.set_vertices(vertices, started);
         let level = started.elapsed().as_secs_f64() * 1e3;
         let t = Instant::now();
-        let gpu =
-            GpuScene::upload_morphing(context, commands, lod.scene(), lod.morph_from(), layers)?;
+        let gpu = GpuScene::upload_morphing(
+            context,
+            commands,
+            textures,
+            lod.scene(),
+            lod.morph_from(),
+            layers,
+        )?;
         let upload = t.elapsed().as_secs_f64() * 1e3;
         let t = Instant::now();
         let views: Vec<_> = tiles(1, width, height)
@@ -226,7 +245,13 @@ fn slider_moves(
         drop(gpu);
         let t = Instant::now();
         if lod.settle() {
-            drop(GpuScene::upload(context, commands, lod.scene(), layers)?);
+            drop(GpuScene::upload(
+                context,
+                commands,
+                textures,
+                lod.scene(),
+                layers,
+            )?);
         }
         let settle = t.elapsed().as_secs_f64() * 1e3;
         let total = started.elapsed().as_secs_f64() * 1e3;

@@ -1,0 +1,374 @@
+//! `Textures`: the images models' texture coordinates map, each read once per name (PNG),
+//! uploaded once and bound through one descriptor set; a 1×1 white image stands for "no
+//! texture", so every draw binds a set and untextured models come out exactly as before.
+//!
+//! Names are resolved as the file gave them (`Model::texture`): relative to the input file's
+//! folder, absolute, or a `file:` URL. Other URLs are not fetched, and only PNG images are
+//! decoded (the `png` crate is already here for screenshots; no JPEG decoder is): such a
+//! model is drawn in its material colour, and the reason is given once per name on stderr.
+//! Images larger than `MAX_SIDE` are halved until they fit, as every device takes that size.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::buffer::Uploader;
+use super::context::Context;
+use super::error::Result;
+use super::image::Image;
+use super::offscreen::RgbaImage;
+use crate::io::texture_path::has_url_scheme;
+
+/// Largest side uploaded: `maxImageDimension2D` is at least 4096 on every Vulkan device.
+pub const MAX_SIDE: u32 = 4096;
+
+/// Distinct textures one viewer or shot can hold (descriptor sets in the pool); more are
+/// drawn in their material colour, with a warning.
+const MAX_TEXTURES: u32 = 256;
+
+/// Texture images are sampled as stored, like vertex colours (UNORM, no sRGB decoding), so
+/// that a texel's bytes reach the screen as the file gave them.
+const FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
+
+/// One uploaded image and the set that binds it.
+struct Entry {
+    _image: Image,
+    set: vk::DescriptorSet,
+}
+
+/// A model's texture as a draw binds it.
+#[derive(Debug, Clone, Copy)]
+pub struct Binding {
+    pub set: vk::DescriptorSet,
+    /// True when an image was found and drawn; false: the white stand-in.
+    pub textured: bool,
+}
+
+/// Every texture uploaded so far, by name, and the white stand-in.
+pub struct Textures {
+    context: Arc<Context>,
+    layout: vk::DescriptorSetLayout,
+    pool: vk::DescriptorPool,
+    sampler: vk::Sampler,
+    folder: PathBuf,
+    white: Option<Entry>,
+    /// `None`: the name could not be drawn (said once, then the stand-in is used).
+    by_name: HashMap<String, Option<Entry>>,
+}
+
+impl Textures {
+    /// An empty set of textures for sets of `layout` (binding 0: a combined image sampler),
+    /// whose relative names are read from `folder`.
+    pub fn new(
+        context: &Arc<Context>,
+        layout: vk::DescriptorSetLayout,
+        folder: &Path,
+    ) -> Result<Self> {
+        let device = &context.device;
+        let sizes = [vk::DescriptorPoolSize::default()
+            .ty(vk::DescriptorType::COMBINED_IMAGE_SAMPLER)
+            .descriptor_count(MAX_TEXTURES + 1)];
+        let pool_info = vk::DescriptorPoolCreateInfo::default()
+            .max_sets(MAX_TEXTURES + 1)
+            .pool_sizes(&sizes);
+        // SAFETY: valid create info on a live device.
+        let pool = unsafe { device.create_descriptor_pool(&pool_info, None)? };
+        let mut this = Self {
+            context: context.clone(),
+            layout,
+            pool,
+            sampler: vk::Sampler::null(),
+            folder: folder.to_path_buf(),
+            white: None,
+            by_name: HashMap::new(),
+        };
+        // Repeating, as VRML's `repeatS`/`repeatT` and OBJ default to; linear filtering.
+        let sampler_info = vk::SamplerCreateInfo::default()
+            .mag_filter(vk::Filter::LINEAR)
+            .min_filter(vk::Filter::LINEAR)
+            .mipmap_mode(vk::SamplerMipmapMode::NEAREST)
+            .address_mode_u(vk::SamplerAddressMode::REPEAT)
+            .address_mode_v(vk::SamplerAddressMode::REPEAT)
+            .address_mode_w(vk::SamplerAddressMode::REPEAT)
+            .max_lod(0.0);
+        // SAFETY: valid create info on a live device.
+        this.sampler = unsafe { device.create_sampler(&sampler_info, None)? };
+        Ok(this)
+    }
+
+    /// The binding for `model_texture` (a model's `texture` and whether it has coordinates),
+    /// uploading the image through `up` the first time a name is met.
+    pub fn binding(&mut self, up: &mut Uploader<'_>, texture: Option<&str>) -> Result<Binding> {
+        if let Some(name) = texture {
+            if !self.by_name.contains_key(name) {
+                let entry = match read(name, &self.folder) {
+                    Ok(image) if self.by_name.len() < MAX_TEXTURES as usize => {
+                        Some(self.upload(up, name, &image)?)
+                    }
+                    Ok(_) => {
+                        eprintln!(
+                            "decimate: warning: texture {name:?} not drawn: more than \
+                             {MAX_TEXTURES} textures"
+                        );
+                        None
+                    }
+                    Err(why) => {
+                        eprintln!("decimate: warning: texture {name:?} not drawn: {why}");
+                        None
+                    }
+                };
+                self.by_name.insert(name.to_owned(), entry);
+            }
+            if let Some(Some(entry)) = self.by_name.get(name) {
+                return Ok(Binding {
+                    set: entry.set,
+                    textured: true,
+                });
+            }
+        }
+        if self.white.is_none() {
+            let white = RgbaImage {
+                width: 1,
+                height: 1,
+                pixels: vec![255; 4],
+            };
+            self.white = Some(self.upload(up, "white texture", &white)?);
+        }
+        Ok(Binding {
+            set: self
+                .white
+                .as_ref()
+                .map_or(vk::DescriptorSet::null(), |e| e.set),
+            textured: false,
+        })
+    }
+
+    /// Uploads `image` and writes a set that samples it.
+    fn upload(&self, up: &mut Uploader<'_>, name: &str, image: &RgbaImage) -> Result<Entry> {
+        let image = up.upload_image(name, FORMAT, image)?;
+        let layouts = [self.layout];
+        let alloc = vk::DescriptorSetAllocateInfo::default()
+            .descriptor_pool(self.pool)
+            .set_layouts(&layouts);
+        let device = &self.context.device;
+        // SAFETY: the pool and layout are alive; the pool has room (`MAX_TEXTURES` + 1 sets,
+        // checked by the caller).
+        let set = unsafe { device.allocate_descriptor_sets(&alloc)? }[0];
+        let info = [vk::DescriptorImageInfo::default()
+            .sampler(self.sampler)
+            .image_view(image.view)
+            .image_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)];
+        let write = [vk::WriteDescriptorSet::default()
+            .dst_set(set)
+            .dst_binding(0)
+            .descriptor_type(vk::DescriptorType::COMBINED_IMAGE_SAMPLER)
+            .image_info(&info)];
+        // SAFETY: the set is not in use by any command yet; the view and sampler are alive
+        // for as long as the set is (both owned here).
+        unsafe { device.update_descriptor_sets(&write, &[]) };
+        Ok(Entry { _image: image, set })
+    }
+}
+
+impl Drop for Textures {
+    fn drop(&mut self) {
+        // SAFETY: owners wait for the GPU before dropping; destroying the pool frees its sets,
+        // the images are dropped after (fields), and nothing samples them any more.
+        unsafe {
+            self.context.device.destroy_descriptor_pool(self.pool, None);
+            self.context.device.destroy_sampler(self.sampler, None);
+        }
+    }
+}
+
+/// The file a texture name points at, or why it is not read.
+pub fn resolve(name: &str, folder: &Path) -> std::result::Result<PathBuf, String> {
+    if let Some(rest) = name.strip_prefix("file://") {
+        // `file:///abs/path` or `file://localhost/abs/path`.
+        let path = rest.strip_prefix("localhost").unwrap_or(rest);
+        return Ok(PathBuf::from(path));
+    }
+    if let Some(rest) = name.strip_prefix("file:") {
+        return Ok(folder.join(rest));
+    }
+    if has_url_scheme(name) {
+        return Err("URLs are not fetched".into());
+    }
+    Ok(folder.join(name.replace('\\', "/")))
+}
+
+/// Reads and decodes the image `name` names (relative to `folder`), halved until it fits
+/// `MAX_SIDE`.
+pub fn read(name: &str, folder: &Path) -> std::result::Result<RgbaImage, String> {
+    let path = resolve(name, folder)?;
+    let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut image = decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    while image.width > MAX_SIDE || image.height > MAX_SIDE {
+        image = halve(&image);
+    }
+    Ok(image)
+}
+
+/// Decodes a PNG image of any colour type and depth into 8-bit RGBA.
+pub fn decode(bytes: &[u8]) -> std::result::Result<RgbaImage, String> {
+    if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+        let kind = if bytes.starts_with(&[0xff, 0xd8, 0xff]) {
+            "a JPEG image"
+        } else {
+            "not a PNG image"
+        };
+        return Err(format!("{kind}: only PNG textures are drawn"));
+    }
+    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    // Palettes and low depths expanded to 8 bits, 16 bits stripped to 8.
+    decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
+    let mut reader = decoder.read_info().map_err(|e| e.to_string())?;
+    let size = reader
+        .output_buffer_size()
+        .ok_or_else(|| "image too large".to_string())?;
+    let mut buffer = vec![0; size];
+    let frame = reader.next_frame(&mut buffer).map_err(|e| e.to_string())?;
+    let (width, height) = (frame.width, frame.height);
+    let data = &buffer[..frame.buffer_size()];
+    let rows = frame.line_size;
+    let channels = match frame.color_type {
+        png::ColorType::Grayscale => 1,
+        png::ColorType::GrayscaleAlpha => 2,
+        png::ColorType::Rgb => 3,
+        png::ColorType::Rgba => 4,
+        png::ColorType::Indexed => return Err("palette left unexpanded".into()),
+    };
+    let mut pixels = Vec::with_capacity(width as usize * height as usize * 4);
+    for row in data.chunks_exact(rows).take(height as usize) {
+        for px in row.chunks_exact(channels).take(width as usize) {
+            pixels.extend_from_slice(&match *px {
+                [g] => [g, g, g, 255],
+                [g, a] => [g, g, g, a],
+                [r, g, b] => [r, g, b, 255],
+                [r, g, b, a] => [r, g, b, a],
+                _ => [0, 0, 0, 255],
+            });
+        }
+    }
+    Ok(RgbaImage {
+        width,
+        height,
+        pixels,
+    })
+}
+
+/// `image` at half its size (each side rounded up; a side of 1 stays), each pixel the mean of
+/// the up to four it covers.
+fn halve(image: &RgbaImage) -> RgbaImage {
+    let (w, h) = (image.width.div_ceil(2), image.height.div_ceil(2));
+    let at = |x: u32, y: u32, c: usize| {
+        let (x, y) = (x.min(image.width - 1), y.min(image.height - 1));
+        u32::from(image.pixels[(y * image.width + x) as usize * 4 + c])
+    };
+    let mut pixels = Vec::with_capacity(w as usize * h as usize * 4);
+    for y in 0..h {
+        for x in 0..w {
+            for c in 0..4 {
+                let sum = at(2 * x, 2 * y, c)
+                    + at(2 * x + 1, 2 * y, c)
+                    + at(2 * x, 2 * y + 1, c)
+                    + at(2 * x + 1, 2 * y + 1, c);
+                pixels.push(((sum + 2) / 4) as u8);
+            }
+        }
+    }
+    RgbaImage {
+        width: w,
+        height: h,
+        pixels,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn png_of(width: u32, height: u32, color: png::ColorType, data: &[u8]) -> Vec<u8> {
+        let mut out = Vec::new();
+        let mut encoder = png::Encoder::new(&mut out, width, height);
+        encoder.set_color(color);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder
+            .write_header()
+            .unwrap_or_else(|e| panic!("header: {e}"));
+        writer
+            .write_image_data(data)
+            .unwrap_or_else(|e| panic!("data: {e}"));
+        drop(writer);
+        out
+    }
+
+    #[test]
+    fn png_images_of_every_colour_type_decode_to_rgba() {
+        let rgb = png_of(2, 1, png::ColorType::Rgb, &[255, 0, 0, 0, 0, 255]);
+        let image = decode(&rgb).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!((image.width, image.height), (2, 1));
+        assert_eq!(image.pixels, [255, 0, 0, 255, 0, 0, 255, 255]);
+        let gray = png_of(1, 2, png::ColorType::Grayscale, &[10, 200]);
+        let image = decode(&gray).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(image.pixels, [10, 10, 10, 255, 200, 200, 200, 255]);
+        let rgba = png_of(1, 1, png::ColorType::Rgba, &[1, 2, 3, 4]);
+        assert_eq!(decode(&rgba).map(|i| i.pixels), Ok(vec![1, 2, 3, 4]));
+    }
+
+    #[test]
+    fn jpeg_and_garbage_are_refused_with_the_reason() {
+        let jpeg = decode(&[0xff, 0xd8, 0xff, 0xe0, 0, 0])
+            .err()
+            .unwrap_or_default();
+        assert!(jpeg.contains("JPEG") && jpeg.contains("only PNG"), "{jpeg}");
+        let junk = decode(b"hello").err().unwrap_or_default();
+        assert!(junk.contains("not a PNG"), "{junk}");
+        // A PNG cut short fails to decode instead of panicking.
+        let rgb = png_of(4, 4, png::ColorType::Rgb, &[7; 48]);
+        assert!(decode(&rgb[..rgb.len() / 2]).is_err());
+    }
+
+    #[test]
+    fn names_resolve_beside_the_file_and_urls_are_not_fetched() {
+        let folder = Path::new("/models/scan");
+        assert_eq!(resolve("skin.png", folder), Ok(folder.join("skin.png")));
+        assert_eq!(
+            resolve("maps\\skin.png", folder),
+            Ok(folder.join("maps/skin.png"))
+        );
+        assert_eq!(
+            resolve("file:///tmp/a.png", folder),
+            Ok(PathBuf::from("/tmp/a.png"))
+        );
+        assert_eq!(
+            resolve("/abs/a.png", folder),
+            Ok(PathBuf::from("/abs/a.png"))
+        );
+        assert!(resolve("http://example.com/a.png", folder).is_err());
+        let missing = read("nowhere.png", Path::new("/nonexistent-folder"))
+            .err()
+            .unwrap_or_default();
+        assert!(missing.contains("nowhere.png"), "{missing}");
+    }
+
+    #[test]
+    fn large_images_are_halved_to_the_mean_of_their_pixels() {
+        let image = RgbaImage {
+            width: 3,
+            height: 2,
+            pixels: [[0, 0, 0, 255], [100, 100, 100, 255], [40, 40, 40, 255]]
+                .into_iter()
+                .cycle()
+                .take(6)
+                .flatten()
+                .collect(),
+        };
+        let half = halve(&image);
+        assert_eq!((half.width, half.height), (2, 1));
+        assert_eq!(&half.pixels[..4], &[50, 50, 50, 255]);
+        assert_eq!(&half.pixels[4..], &[40, 40, 40, 255]);
+    }
+}

@@ -1,0 +1,202 @@
+//! Textured models through the built binary on lavapipe: the image a VRML 2.0 `ImageTexture`
+//! names, read beside the file (not the working folder), drawn the right way up, before and
+//! after decimation; an image that cannot be read leaves the model in its material colour
+//! with a warning naming the texture.
+
+mod shot_support;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use decimate::render::offscreen::RgbaImage;
+use shot_support::{background, close, pixel};
+
+const LAVAPIPE: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+
+/// A fresh scratch folder under target/, so parallel tests never share files.
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("shot_textures-{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("models/maps"))
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+    dir
+}
+
+/// An 8 × 8 PNG: the top half red, the bottom half blue.
+fn write_texture(path: &Path) {
+    let mut pixels = Vec::new();
+    for row in 0..8 {
+        for _ in 0..8 {
+            pixels.extend_from_slice(if row < 4 {
+                &[230, 20, 20]
+            } else {
+                &[20, 20, 230]
+            });
+        }
+    }
+    let file = std::fs::File::create(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut encoder = png::Encoder::new(file, 8, 8);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder
+        .write_header()
+        .unwrap_or_else(|e| panic!("png: {e}"));
+    writer
+        .write_image_data(&pixels)
+        .unwrap_or_else(|e| panic!("png: {e}"));
+}
+
+/// A flat `n × n` grid in the xy plane (y up), its texture coordinates spanning the image
+/// (v = 1 at the top, as VRML has it), textured with `maps/checker.png`.
+fn write_grid(path: &Path, n: usize) {
+    let mut points = String::new();
+    let mut uvs = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
+            points.push_str(&format!("{} {} 0, ", 2.0 * u - 1.0, 2.0 * v - 1.0));
+            uvs.push_str(&format!("{u} {v}, "));
+        }
+    }
+    let mut faces = String::new();
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i;
+            let (b, c, d) = (a + 1, a + n + 2, a + n + 1);
+            faces.push_str(&format!("{a} {b} {c} -1 {a} {c} {d} -1 "));
+        }
+    }
+    let text = format!(
+        "#VRML V2.0 utf8\nShape {{\n  appearance Appearance {{\n    \
+         texture ImageTexture {{ url \"maps/checker.png\" }}\n  }}\n  \
+         geometry IndexedFaceSet {{\n    coord Coordinate {{ point [ {points} ] }}\n    \
+         texCoord TextureCoordinate {{ point [ {uvs} ] }}\n    coordIndex [ {faces} ]\n  }}\n}}\n"
+    );
+    std::fs::write(path, text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+}
+
+/// Takes a shot of `models/grid.wrl` from `dir` (so that relative names must be read beside
+/// the file, not from the working folder) and reads it back.
+fn shot(dir: &Path, extra: &[&str]) -> (Output, RgbaImage) {
+    let out_png = dir.join("shot.png");
+    let mut args = vec![
+        "models/grid.wrl",
+        "shot",
+        "-o",
+        "shot.png",
+        "--size",
+        "320x240",
+    ];
+    args.extend_from_slice(extra);
+    let out = Command::new(env!("CARGO_BIN_EXE_decimate"))
+        .args(&args)
+        .current_dir(dir)
+        .env("VK_ICD_FILENAMES", LAVAPIPE)
+        .env("VK_DRIVER_FILES", LAVAPIPE)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run decimate: {e}"));
+    assert!(
+        out.status.success(),
+        "decimate failed ({}): {}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&out_png).unwrap_or_else(|e| panic!("{}: {e}", out_png.display())),
+    ));
+    let mut reader = decoder.read_info().unwrap_or_else(|e| panic!("png: {e}"));
+    let mut pixels = vec![0; reader.output_buffer_size().unwrap_or(0)];
+    let info = reader
+        .next_frame(&mut pixels)
+        .unwrap_or_else(|e| panic!("png: {e}"));
+    assert_eq!(info.color_type, png::ColorType::Rgba);
+    let image = RgbaImage {
+        width: info.width,
+        height: info.height,
+        pixels,
+    };
+    (out, image)
+}
+
+/// The rows of viewport `x0..x1` that the model covers: (first, last).
+fn model_rows(image: &RgbaImage, x0: u32, x1: u32) -> (u32, u32) {
+    let bg = background();
+    let covered = |y: u32| (x0..x1).any(|x| !close(pixel(image, x, y), bg, 6));
+    let first = (0..image.height).find(|&y| covered(y));
+    let last = (0..image.height).rev().find(|&y| covered(y));
+    match (first, last) {
+        (Some(a), Some(b)) if b > a + 20 => (a, b),
+        _ => panic!("the model is not visible in columns {x0}..{x1}"),
+    }
+}
+
+/// Counts the model's pixels in rows `y0..y1` of columns `x0..x1` that are mostly red and
+/// mostly blue.
+fn red_and_blue(image: &RgbaImage, (x0, x1): (u32, u32), (y0, y1): (u32, u32)) -> (usize, usize) {
+    let (mut red, mut blue) = (0, 0);
+    for y in y0..y1 {
+        for x in x0..x1 {
+            let [r, g, b, _] = pixel(image, x, y).map(u32::from);
+            red += usize::from(r > 2 * b + 20 && r > 2 * g + 20);
+            blue += usize::from(b > 2 * r + 20 && b > 2 * g + 20);
+        }
+    }
+    (red, blue)
+}
+
+/// Asserts the model in columns `x0..x1` shows the texture the right way up: its upper part
+/// red, its lower part blue.
+fn assert_red_over_blue(image: &RgbaImage, x0: u32, x1: u32) {
+    let (top, bottom) = model_rows(image, x0, x1);
+    let third = (bottom - top) / 3;
+    let (red_up, blue_up) = red_and_blue(image, (x0, x1), (top, top + third));
+    let (red_down, blue_down) = red_and_blue(image, (x0, x1), (bottom - third, bottom));
+    assert!(
+        red_up > 200 && blue_up < red_up / 20,
+        "upper third: {red_up} red, {blue_up} blue pixels"
+    );
+    assert!(
+        blue_down > 200 && red_down < blue_down / 20,
+        "lower third: {red_down} red, {blue_down} blue pixels"
+    );
+}
+
+#[test]
+fn a_png_texture_beside_the_file_is_drawn_the_right_way_up_before_and_after_decimation() {
+    let dir = scratch("drawn");
+    write_texture(&dir.join("models/maps/checker.png"));
+    write_grid(&dir.join("models/grid.wrl"), 12);
+    let (out, image) = shot(&dir, &["--viewports", "2", "-p", "80"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("not drawn"), "{stderr}");
+    // The summary says the grid was decimated: the right viewport shows fewer triangles.
+    assert!(stderr.contains("removed"), "{stderr}");
+    let half = image.width / 2;
+    assert_red_over_blue(&image, 0, half - 2);
+    assert_red_over_blue(&image, half + 2, image.width);
+}
+
+#[test]
+fn an_unreadable_texture_leaves_the_material_colour_and_says_why() {
+    let dir = scratch("unreadable");
+    write_grid(&dir.join("models/grid.wrl"), 4);
+    // Missing, then a JPEG (only PNG is decoded): drawn untextured, with the reason.
+    for (bytes, reason) in [
+        (None, "checker.png"),
+        (Some(vec![0xff, 0xd8, 0xff, 0xe0, 0, 16]), "JPEG"),
+    ] {
+        if let Some(bytes) = &bytes {
+            std::fs::write(dir.join("models/maps/checker.png"), bytes)
+                .unwrap_or_else(|e| panic!("{e}"));
+        }
+        let (out, image) = shot(&dir, &[]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            stderr.contains("texture \"maps/checker.png\" not drawn") && stderr.contains(reason),
+            "{stderr}"
+        );
+        let (top, bottom) = model_rows(&image, 0, image.width);
+        let (red, blue) = red_and_blue(&image, (0, image.width), (top, bottom));
+        assert_eq!((red, blue), (0, 0), "an untextured grid is grey");
+    }
+}
