@@ -1,7 +1,7 @@
-//! Textured models through the built binary on lavapipe: the image a VRML 2.0 `ImageTexture`
-//! names, read beside the file (not the working folder), drawn the right way up, before and
-//! after decimation; an image that cannot be read leaves the model in its material colour
-//! with a warning naming the texture.
+//! Textured models through the built binary on lavapipe: the image (PNG or JPEG) a VRML 2.0
+//! `ImageTexture` names, read beside the file (not the working folder), drawn the right way
+//! up, before and after decimation; an image that cannot be read leaves the model in its
+//! material colour with a warning naming the texture.
 
 mod shot_support;
 
@@ -22,7 +22,8 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// An 8 × 8 PNG: the top half red, the bottom half blue.
+/// An 8 × 8 image, the top half red, the bottom half blue: a PNG, or a JPEG when the name
+/// ends so.
 fn write_texture(path: &Path) {
     let mut pixels = Vec::new();
     for row in 0..8 {
@@ -33,6 +34,12 @@ fn write_texture(path: &Path) {
                 &[20, 20, 230]
             });
         }
+    }
+    if path.extension().is_some_and(|e| e == "jpg") {
+        jpeg_encoder::Encoder::new_file(path, 95)
+            .and_then(|e| e.encode(&pixels, 8, 8, jpeg_encoder::ColorType::Rgb))
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        return;
     }
     let file = std::fs::File::create(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut encoder = png::Encoder::new(file, 8, 8);
@@ -47,8 +54,8 @@ fn write_texture(path: &Path) {
 }
 
 /// A flat `n × n` grid in the xy plane (y up), its texture coordinates spanning the image
-/// (v = 1 at the top, as VRML has it), textured with `maps/checker.png`.
-fn write_grid(path: &Path, n: usize) {
+/// (v = 1 at the top, as VRML has it), textured with `maps/{image}`.
+fn write_grid(path: &Path, n: usize, image: &str) {
     let mut points = String::new();
     let mut uvs = String::new();
     for j in 0..=n {
@@ -68,7 +75,7 @@ fn write_grid(path: &Path, n: usize) {
     }
     let text = format!(
         "#VRML V2.0 utf8\nShape {{\n  appearance Appearance {{\n    \
-         texture ImageTexture {{ url \"maps/checker.png\" }}\n  }}\n  \
+         texture ImageTexture {{ url \"maps/{image}\" }}\n  }}\n  \
          geometry IndexedFaceSet {{\n    coord Coordinate {{ point [ {points} ] }}\n    \
          texCoord TextureCoordinate {{ point [ {uvs} ] }}\n    coordIndex [ {faces} ]\n  }}\n}}\n"
     );
@@ -162,28 +169,36 @@ fn assert_red_over_blue(image: &RgbaImage, x0: u32, x1: u32) {
 }
 
 #[test]
-fn a_png_texture_beside_the_file_is_drawn_the_right_way_up_before_and_after_decimation() {
-    let dir = scratch("drawn");
-    write_texture(&dir.join("models/maps/checker.png"));
-    write_grid(&dir.join("models/grid.wrl"), 12);
-    let (out, image) = shot(&dir, &["--viewports", "2", "-p", "80"]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!stderr.contains("not drawn"), "{stderr}");
-    // The summary says the grid was decimated: the right viewport shows fewer triangles.
-    assert!(stderr.contains("removed"), "{stderr}");
-    let half = image.width / 2;
-    assert_red_over_blue(&image, 0, half - 2);
-    assert_red_over_blue(&image, half + 2, image.width);
+fn a_png_or_jpeg_texture_beside_the_file_is_drawn_the_right_way_up_before_and_after_decimation() {
+    for image in ["checker.png", "checker.jpg"] {
+        let dir = scratch(image);
+        write_texture(&dir.join("models/maps").join(image));
+        write_grid(&dir.join("models/grid.wrl"), 12, image);
+        let (out, image) = shot(&dir, &["--viewports", "2", "-p", "80"]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!stderr.contains("not drawn"), "{stderr}");
+        // The summary says the grid was decimated: the right viewport shows fewer triangles.
+        assert!(stderr.contains("removed"), "{stderr}");
+        let half = image.width / 2;
+        assert_red_over_blue(&image, 0, half - 2);
+        assert_red_over_blue(&image, half + 2, image.width);
+    }
 }
 
 #[test]
 fn an_unreadable_texture_leaves_the_material_colour_and_says_why() {
     let dir = scratch("unreadable");
-    write_grid(&dir.join("models/grid.wrl"), 4);
-    // Missing, then a JPEG (only PNG is decoded): drawn untextured, with the reason.
+    write_grid(&dir.join("models/grid.wrl"), 4, "checker.png");
+    // Missing, then a GIF, then a JPEG cut short: drawn untextured, with the reason.
+    let mut jpeg = Vec::new();
+    jpeg_encoder::Encoder::new(&mut jpeg, 90)
+        .encode(&[200; 8 * 8 * 3], 8, 8, jpeg_encoder::ColorType::Rgb)
+        .unwrap_or_else(|e| panic!("{e}"));
+    jpeg.truncate(jpeg.len() / 2);
     for (bytes, reason) in [
         (None, "checker.png"),
-        (Some(vec![0xff, 0xd8, 0xff, 0xe0, 0, 16]), "JPEG"),
+        (Some(b"GIF89a".to_vec()), "neither a PNG nor a JPEG"),
+        (Some(jpeg), "JPEG"),
     ] {
         if let Some(bytes) = &bytes {
             std::fs::write(dir.join("models/maps/checker.png"), bytes)

@@ -3,9 +3,9 @@
 //! texture", so every draw binds a set and untextured models come out exactly as before.
 //!
 //! Names are resolved as the file gave them (`Model::texture`): relative to the input file's
-//! folder, absolute, or a `file:` URL. Other URLs are not fetched, and only PNG images are
-//! decoded (the `png` crate is already here for screenshots; no JPEG decoder is): such a
-//! model is drawn in its material colour, and the reason is given once per name on stderr.
+//! folder, absolute, or a `file:` URL. Other URLs are not fetched, and only PNG and JPEG
+//! images are decoded (by their first bytes, whatever the name says): another model is drawn
+//! in its material colour, and the reason is given once per name on stderr.
 //! Images larger than `MAX_SIDE` are halved until they fit, as every device takes that size.
 
 use std::collections::HashMap;
@@ -211,15 +211,13 @@ pub fn read(name: &str, folder: &Path) -> std::result::Result<RgbaImage, String>
     Ok(image)
 }
 
-/// Decodes a PNG image of any colour type and depth into 8-bit RGBA.
+/// Decodes a PNG (any colour type and depth) or JPEG image into 8-bit RGBA.
 pub fn decode(bytes: &[u8]) -> std::result::Result<RgbaImage, String> {
+    if bytes.starts_with(&[0xff, 0xd8, 0xff]) {
+        return decode_jpeg(bytes);
+    }
     if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
-        let kind = if bytes.starts_with(&[0xff, 0xd8, 0xff]) {
-            "a JPEG image"
-        } else {
-            "not a PNG image"
-        };
-        return Err(format!("{kind}: only PNG textures are drawn"));
+        return Err("neither a PNG nor a JPEG image: only those are drawn".into());
     }
     let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
     // Palettes and low depths expanded to 8 bits, 16 bits stripped to 8.
@@ -251,6 +249,28 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<RgbaImage, String> {
                 _ => [0, 0, 0, 255],
             });
         }
+    }
+    Ok(RgbaImage {
+        width,
+        height,
+        pixels,
+    })
+}
+
+/// Decodes a JPEG image (baseline or progressive, colour or grey) into 8-bit RGBA.
+fn decode_jpeg(bytes: &[u8]) -> std::result::Result<RgbaImage, String> {
+    let options = zune_core::options::DecoderOptions::default()
+        .jpeg_set_out_colorspace(zune_core::colorspace::ColorSpace::RGBA);
+    let mut decoder =
+        zune_jpeg::JpegDecoder::new_with_options(std::io::Cursor::new(bytes), options);
+    let pixels = decoder.decode().map_err(|e| format!("JPEG: {e:?}"))?;
+    let info = decoder.info().ok_or("JPEG: no image header")?;
+    let (width, height) = (u32::from(info.width), u32::from(info.height));
+    if pixels.len() != width as usize * height as usize * 4 {
+        return Err(format!(
+            "JPEG: {} bytes decoded for {width} × {height} RGBA texels",
+            pixels.len()
+        ));
     }
     Ok(RgbaImage {
         width,
@@ -319,13 +339,37 @@ mod tests {
     }
 
     #[test]
-    fn jpeg_and_garbage_are_refused_with_the_reason() {
-        let jpeg = decode(&[0xff, 0xd8, 0xff, 0xe0, 0, 0])
-            .err()
-            .unwrap_or_default();
-        assert!(jpeg.contains("JPEG") && jpeg.contains("only PNG"), "{jpeg}");
-        let junk = decode(b"hello").err().unwrap_or_default();
-        assert!(junk.contains("not a PNG"), "{junk}");
+    fn jpeg_images_decode_to_rgba_near_their_colours() {
+        // 16 × 8: left half red, right half blue (JPEG is lossy: compared within a margin).
+        let mut rgb = Vec::new();
+        for _ in 0..8 {
+            for x in 0..16 {
+                rgb.extend_from_slice(if x < 8 {
+                    &[220, 30, 30]
+                } else {
+                    &[30, 30, 220]
+                });
+            }
+        }
+        let mut bytes = Vec::new();
+        jpeg_encoder::Encoder::new(&mut bytes, 95)
+            .encode(&rgb, 16, 8, jpeg_encoder::ColorType::Rgb)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let image = decode(&bytes).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!((image.width, image.height), (16, 8));
+        let texel = |x: usize, y: usize| &image.pixels[(y * 16 + x) * 4..][..4];
+        let near = |a: &[u8], b: [u8; 4]| a.iter().zip(b).all(|(&a, b)| a.abs_diff(b) <= 12);
+        assert!(near(texel(2, 3), [220, 30, 30, 255]), "{:?}", texel(2, 3));
+        assert!(near(texel(13, 5), [30, 30, 220, 255]), "{:?}", texel(13, 5));
+        // Cut short, it fails with the reason instead of panicking.
+        let cut = decode(&bytes[..bytes.len() / 2]);
+        assert!(cut.as_ref().is_err_and(|e| e.contains("JPEG")), "{cut:?}");
+    }
+
+    #[test]
+    fn other_bytes_are_refused_with_the_reason() {
+        let junk = decode(b"GIF89a").err().unwrap_or_default();
+        assert!(junk.contains("neither a PNG nor a JPEG"), "{junk}");
         // A PNG cut short fails to decode instead of panicking.
         let rgb = png_of(4, 4, png::ColorType::Rgb, &[7; 48]);
         assert!(decode(&rgb[..rgb.len() / 2]).is_err());
