@@ -1,7 +1,7 @@
 // Mesh fragment shader: two-sided headlight lighting, smooth (interpolated normals) or flat
 // (face normal from screen-space derivatives, so no vertex is duplicated), or unlit colour.
-// The surface colour is the vertex colour times the model's texture (a white texel for an
-// untextured model; a textured one has white vertex colours).
+// The surface colour is the vertex colour times the bound texture (a white texel for an
+// untextured model or with textures off; a textured model's vertex colour is white).
 #version 450
 
 layout(location = 0) in vec3 in_view_position;

@@ -14,6 +14,9 @@ layout(push_constant) uniform Push {
     // The top three rows of the affine view-from-model matrix (v * view_rows = view xyz).
     mat3x4 view_rows;
     float morph;
+    // 1: the bound texture replaces the vertex colour (VRML 2.0's rule for RGB textures;
+    // lighting still applies); 0: the vertex colour, times a white texel.
+    float textured;
 } pc;
 
 // Overlays (edges, points, normals) are pulled towards the eye by this fraction of the
@@ -32,7 +35,7 @@ void main() {
     // The normal matrix, inverse transpose of the view's 3x3 (correct under the non-uniform
     // scales VRML transforms allow): mat3(view_rows) is that 3x3 transposed already.
     out_view_normal = inverse(mat3(pc.view_rows)) * in_normal;
-    out_color = in_color;
+    out_color = pc.textured > 0.5 ? vec4(1.0, 1.0, 1.0, in_color.a) : in_color;
     out_uv = in_uv;
     vec4 clip = pc.clip_from_model * position;
     clip.z -= DEPTH_NUDGE * clip.w;

@@ -30,6 +30,8 @@ pub struct ShotModes {
     pub vertex_normals: bool,
     pub flat: bool,
     pub unlit: bool,
+    /// Textured models in their material colour instead (`--mode untextured`).
+    pub untextured: bool,
 }
 
 impl Default for ShotModes {
@@ -42,6 +44,7 @@ impl Default for ShotModes {
             vertex_normals: false,
             flat: false,
             unlit: false,
+            untextured: false,
         }
     }
 }
@@ -144,7 +147,7 @@ action-options for shot (offscreen render to PNG, no window):
   --size WxH            image size (DEFAULT: 800x600)
   --viewports N         1-4 viewports: the original, then the decimated scene
   --mode LIST           comma-separated: triangles,edges,points,normals,vertex-normals,
-                        flat,unlit (DEFAULT: triangles)
+                        flat,unlit,untextured (DEFAULT: triangles)
   -p / -v / ...         decimation target, as for nogui
 
 typical usage:           decimate model.wrl
@@ -394,10 +397,11 @@ fn modes(s: &str) -> Result<ShotModes, CliError> {
             "vertex-normals" => m.vertex_normals = true,
             "flat" => m.flat = true,
             "unlit" => m.unlit = true,
+            "untextured" => m.untextured = true,
             other => {
                 return Err(CliError(format!(
                     "--mode: unknown mode '{other}' (expected triangles, edges, points, \
-                     normals, vertex-normals, flat, unlit)"
+                     normals, vertex-normals, flat, unlit, untextured)"
                 )))
             }
         }

@@ -182,6 +182,11 @@ fn a_png_or_jpeg_texture_beside_the_file_is_drawn_the_right_way_up_before_and_af
         let half = image.width / 2;
         assert_red_over_blue(&image, 0, half - 2);
         assert_red_over_blue(&image, half + 2, image.width);
+        // Textures off (the viewer's T): the grid in its material colour.
+        let (_, image) = shot(&dir, &["--mode", "untextured"]);
+        let (top, bottom) = model_rows(&image, 0, image.width);
+        let (red, blue) = red_and_blue(&image, (0, image.width), (top, bottom));
+        assert_eq!((red, blue), (0, 0), "textures off: a grey grid");
     }
 }
 

@@ -198,6 +198,7 @@ impl ViewportController {
             Action::ToggleVertexNormals => options.vertex_normals ^= true,
             Action::ToggleLighting => options.lighting ^= true,
             Action::ToggleSmooth => options.smooth ^= true,
+            Action::ToggleTexture => options.textures ^= true,
             Action::ToggleNavigation => {
                 let camera = &mut self.current_mut().camera;
                 let next = match camera.navigation {

@@ -33,6 +33,8 @@ pub enum Action {
     ToggleVertexNormals,
     ToggleLighting,
     ToggleSmooth,
+    /// Textured models textured or in their material colour.
+    ToggleTexture,
     /// Model control (trackball) ↔ eye control (first person).
     ToggleNavigation,
     AddViewport,
@@ -141,6 +143,7 @@ pub fn menu() -> Vec<MenuEntry> {
                 entry("Vertex normals", Some("N"), Action::ToggleVertexNormals),
                 entry("Lighting", Some("l"), Action::ToggleLighting),
                 entry("Smooth / flat shading", Some("s"), Action::ToggleSmooth),
+                entry("Texture", Some("T"), Action::ToggleTexture),
             ],
         ),
         submenu(
@@ -177,6 +180,7 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'N' => Action::ToggleVertexNormals,
                 'l' => Action::ToggleLighting,
                 's' => Action::ToggleSmooth,
+                'T' => Action::ToggleTexture,
                 'm' => Action::ToggleNavigation,
                 'a' => Action::AddViewport,
                 'x' => Action::RemoveViewport,

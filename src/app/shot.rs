@@ -47,6 +47,7 @@ pub fn draw_options(modes: &ShotModes) -> DrawOptions {
         vertex_normals: modes.vertex_normals,
         lighting: !modes.unlit,
         smooth: !modes.flat,
+        textures: !modes.untextured,
     }
 }
 

@@ -27,6 +27,8 @@ pub struct DrawOptions {
     pub vertex_normals: bool,
     pub lighting: bool,
     pub smooth: bool,
+    /// Textured models drawn textured (else in their material colour).
+    pub textures: bool,
 }
 
 impl Default for DrawOptions {
@@ -39,6 +41,7 @@ impl Default for DrawOptions {
             vertex_normals: false,
             lighting: true,
             smooth: true,
+            textures: true,
         }
     }
 }
@@ -142,11 +145,14 @@ pub unsafe fn record(
             };
             for mesh in &view.scene.meshes {
                 let view_from_model = view_matrix * mesh.transform;
+                let textured = view.options.textures && mesh.textured;
                 let push = PushConstants::new(
                     clip_from_view * view_from_model,
                     view_from_model,
                     view.morph,
+                    textured,
                 );
+                let set = if textured { mesh.texture } else { mesh.plain };
                 // SAFETY: `PushConstants` is plain `repr(C)` floats, exactly the layout's range.
                 unsafe {
                     let bytes = std::slice::from_raw_parts(
@@ -165,7 +171,7 @@ pub unsafe fn record(
                         vk::PipelineBindPoint::GRAPHICS,
                         pipelines.layout,
                         0,
-                        &[mesh.texture],
+                        &[set],
                         &[],
                     );
                     draw_mesh(device, cmd, mesh, mode);

@@ -23,8 +23,12 @@ const NORMAL_LENGTH: f32 = 0.03;
 /// One model's buffers.
 pub struct GpuMesh {
     pub transform: Mat4,
-    /// The model's texture (the white stand-in when it has none).
+    /// The model's texture (the white stand-in when it has none), and the stand-in, bound
+    /// when textures are off.
     pub texture: vk::DescriptorSet,
+    pub plain: vk::DescriptorSet,
+    /// True when `texture` is the model's own image.
+    pub textured: bool,
     pub vertices: Buffer,
     pub triangles: Buffer,
     pub triangle_indices: u32,
@@ -86,18 +90,14 @@ impl GpuScene {
                 .max_element();
             let length = normal_length / if scale > 0.0 { scale } else { 1.0 };
             let from = morph_from.and_then(|m| m.get(i)).map(Vec::as_slice);
-            let mut data = MeshData::build(model, length, from, layers);
+            let data = MeshData::build(model, length, from, layers);
             let has_coordinates = model.texcoords.is_some();
             let texture = model.texture.as_deref().filter(|_| has_coordinates);
             let binding = textures.binding(&mut uploader, texture)?;
-            if binding.textured {
-                // VRML 2.0's rule (and what OBJ viewers do with `map_Kd`): an RGB texture
-                // replaces the diffuse colour; the lighting still applies.
-                for v in &mut data.vertices {
-                    v.color = [255, 255, 255, v.color[3]];
-                }
-            }
-            meshes.push(upload_mesh(&mut uploader, model, &data, binding.set)?);
+            let plain = textures.white(&mut uploader)?;
+            let mut mesh = upload_mesh(&mut uploader, model, &data, plain)?;
+            (mesh.texture, mesh.textured) = (binding.set, binding.textured);
+            meshes.push(mesh);
         }
         uploader.finish()?;
         Ok(Self {
@@ -114,7 +114,7 @@ fn upload_mesh(
     up: &mut Uploader<'_>,
     model: &Model,
     data: &MeshData,
-    texture: vk::DescriptorSet,
+    plain: vk::DescriptorSet,
 ) -> Result<GpuMesh> {
     let count = |n: usize, what: &str| {
         u32::try_from(n).map_err(|_| {
@@ -125,7 +125,9 @@ fn upload_mesh(
     let index = vk::BufferUsageFlags::INDEX_BUFFER;
     Ok(GpuMesh {
         transform: model.transform,
-        texture,
+        texture: plain,
+        plain,
+        textured: false,
         vertices: up.upload("vertices", vertex, &data.vertices)?,
         triangles: up.upload("triangles", index, &data.triangles)?,
         triangle_indices: count(data.triangles.len(), "triangles")?,

@@ -90,11 +90,18 @@ pub struct PushConstants {
     pub view_rows: [f32; 12],
     /// Geomorph factor: vertices are drawn at `mix(morph_from, position, morph)`.
     pub morph: f32,
-    pub _pad: [f32; 3],
+    /// 1 when the bound texture replaces the vertex colour, 0 when it is the white stand-in.
+    pub textured: f32,
+    pub _pad: [f32; 2],
 }
 
 impl PushConstants {
-    pub fn new(clip_from_model: glam::Mat4, view_from_model: glam::Mat4, morph: f32) -> Self {
+    pub fn new(
+        clip_from_model: glam::Mat4,
+        view_from_model: glam::Mat4,
+        morph: f32,
+        textured: bool,
+    ) -> Self {
         let t = view_from_model.transpose();
         let mut view_rows = [0.0; 12];
         view_rows[0..4].copy_from_slice(&t.x_axis.to_array());
@@ -104,7 +111,8 @@ impl PushConstants {
             clip_from_model: clip_from_model.to_cols_array(),
             view_rows,
             morph,
-            _pad: [0.0; 3],
+            textured: f32::from(u8::from(textured)),
+            _pad: [0.0; 2],
         }
     }
 }

@@ -128,6 +128,15 @@ impl Textures {
                 });
             }
         }
+        Ok(Binding {
+            set: self.white(up)?,
+            textured: false,
+        })
+    }
+
+    /// The white stand-in's set: what an untextured model binds, and a textured one when
+    /// textures are off.
+    pub fn white(&mut self, up: &mut Uploader<'_>) -> Result<vk::DescriptorSet> {
         if self.white.is_none() {
             let white = RgbaImage {
                 width: 1,
@@ -136,13 +145,10 @@ impl Textures {
             };
             self.white = Some(self.upload(up, "white texture", &white)?);
         }
-        Ok(Binding {
-            set: self
-                .white
-                .as_ref()
-                .map_or(vk::DescriptorSet::null(), |e| e.set),
-            textured: false,
-        })
+        Ok(self
+            .white
+            .as_ref()
+            .map_or(vk::DescriptorSet::null(), |e| e.set))
     }
 
     /// Uploads `image` and writes a set that samples it.

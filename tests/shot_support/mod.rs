@@ -98,6 +98,7 @@ pub fn modes(list: &str) -> ShotModes {
     for word in list.split(',') {
         match word {
             "triangles" => m.triangles = true,
+            "untextured" => m.untextured = true,
             "edges" => m.edges = true,
             "points" => m.points = true,
             "normals" => m.face_normals = true,
