@@ -1,7 +1,8 @@
 //! Textured models through the built binary on lavapipe: the image (PNG or JPEG) a VRML 2.0
 //! `ImageTexture` names, read beside the file (not the working folder), drawn the right way
 //! up, before and after decimation; an image that cannot be read leaves the model in its
-//! material colour with a warning naming the texture.
+//! material colour with a warning naming the texture; a fine texture seen from afar shows
+//! its average colour (mip levels), not a moiré.
 
 mod shot_support;
 
@@ -219,4 +220,72 @@ fn an_unreadable_texture_leaves_the_material_colour_and_says_why() {
         let (red, blue) = red_and_blue(&image, (0, image.width), (top, bottom));
         assert_eq!((red, blue), (0, 0), "an untextured grid is grey");
     }
+}
+
+/// A `size` × `size` PNG of one-texel columns, red and blue in turn.
+fn write_stripes(path: &Path, size: u32) {
+    let mut pixels = Vec::with_capacity((size * size * 3) as usize);
+    for _ in 0..size {
+        for x in 0..size {
+            pixels.extend_from_slice(if x % 2 == 0 {
+                &[230, 20, 20]
+            } else {
+                &[20, 20, 230]
+            });
+        }
+    }
+    let file = std::fs::File::create(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut encoder = png::Encoder::new(file, size, size);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder
+        .write_header()
+        .unwrap_or_else(|e| panic!("png: {e}"));
+    writer
+        .write_image_data(&pixels)
+        .unwrap_or_else(|e| panic!("png: {e}"));
+}
+
+#[test]
+fn a_fine_texture_seen_from_afar_shows_its_average_colour_not_a_moire() {
+    let dir = scratch("stripes");
+    // 1024 stripes across a grid about 200 pixels wide: five texels to a pixel.
+    write_stripes(&dir.join("models/maps/stripes.png"), 1024);
+    write_grid(&dir.join("models/grid.wrl"), 4, "stripes.png");
+    let (out, image) = shot(&dir, &[]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("not drawn"), "{stderr}");
+    // The middle of the grid, clear of its edges.
+    let (top, bottom) = model_rows(&image, 0, image.width);
+    let margin = (bottom - top) / 5;
+    let (y0, y1) = (top + margin, bottom - margin);
+    let bg = background();
+    let covered: Vec<u32> = (0..image.width)
+        .filter(|&x| !close(pixel(&image, x, (y0 + y1) / 2), bg, 6))
+        .collect();
+    let (first, last) = match (covered.first(), covered.last()) {
+        (Some(&a), Some(&b)) if b > a + 40 => (a, b),
+        _ => panic!("the grid is not visible across the middle row"),
+    };
+    let (x0, x1) = (first + margin, last - margin);
+    let pixels = ((x1 - x0) * (y1 - y0)) as usize;
+    // Sampled from the full-size image alone, most pixels land on one stripe or the other.
+    let (red, blue) = red_and_blue(&image, (x0, x1), (y0, y1));
+    assert!(
+        red + blue < pixels / 100,
+        "{red} red and {blue} blue pixels of {pixels}: the stripes alias"
+    );
+    // Averaged, they are purple: as much red as blue, both well above green.
+    let (mut r, mut g, mut b) = (0u64, 0u64, 0u64);
+    for y in y0..y1 {
+        for x in x0..x1 {
+            let [pr, pg, pb, _] = pixel(&image, x, y).map(u64::from);
+            (r, g, b) = (r + pr, g + pg, b + pb);
+        }
+    }
+    assert!(
+        r.abs_diff(b) * 10 < r + b && r > 2 * g && b > 2 * g,
+        "mean colour {:?}: not the stripes' purple",
+        [r, g, b].map(|c| c / pixels as u64)
+    );
 }

@@ -163,42 +163,65 @@ impl<'a> Uploader<'a> {
         Ok(buffer)
     }
 
-    /// A device-local sampled image of `format` that will hold `image` (8-bit RGBA) once
-    /// `finish` returns, in `SHADER_READ_ONLY_OPTIMAL` layout.
+    /// A device-local sampled image of `format` that will hold `levels` (8-bit RGBA; the
+    /// full-size image first, then each mip level at half the size of the one before, as
+    /// Vulkan sizes them) once `finish` returns, in `SHADER_READ_ONLY_OPTIMAL` layout.
     pub fn upload_image(
         &mut self,
         name: &str,
         format: vk::Format,
-        image: &super::offscreen::RgbaImage,
+        levels: &[super::offscreen::RgbaImage],
     ) -> Result<super::image::Image> {
         use super::image::{transition, Image, COPIED_TO_SAMPLED, TO_COPY_DESTINATION};
+        let Some(base) = levels.first() else {
+            return Err(RenderError::EmptyImage(name.to_owned()));
+        };
+        let mut bytes = Vec::with_capacity(levels.iter().map(|l| l.pixels.len()).sum());
+        let mut regions = Vec::with_capacity(levels.len());
+        for (level, image) in levels.iter().enumerate() {
+            regions.push(
+                vk::BufferImageCopy::default()
+                    // RGBA8 texels: every offset is a multiple of the texel size, 4.
+                    .buffer_offset(bytes.len() as vk::DeviceSize)
+                    .image_subresource(
+                        vk::ImageSubresourceLayers::default()
+                            .aspect_mask(vk::ImageAspectFlags::COLOR)
+                            .mip_level(level as u32)
+                            .layer_count(1),
+                    )
+                    .image_extent(vk::Extent3D {
+                        width: image.width,
+                        height: image.height,
+                        depth: 1,
+                    }),
+            );
+            bytes.extend_from_slice(&image.pixels);
+        }
         let staging = Buffer::with_data(
             self.context,
             name,
             vk::BufferUsageFlags::TRANSFER_SRC,
-            &image.pixels,
+            &bytes,
         )?;
         let extent = vk::Extent2D {
-            width: image.width,
-            height: image.height,
+            width: base.width,
+            height: base.height,
         };
         let usage = vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST;
-        let target = Image::new(self.context, name, format, extent, usage)?;
-        let region = [vk::BufferImageCopy::default()
-            .image_subresource(
-                vk::ImageSubresourceLayers::default()
-                    .aspect_mask(vk::ImageAspectFlags::COLOR)
-                    .layer_count(1),
-            )
-            .image_extent(vk::Extent3D {
-                width: image.width,
-                height: image.height,
-                depth: 1,
-            })];
+        let target = Image::with_levels(
+            self.context,
+            name,
+            format,
+            extent,
+            usage,
+            regions.len() as u32,
+        )?;
         let device = &self.context.device;
-        // SAFETY: the command buffer is recording; the staging buffer holds width × height
-        // RGBA texels (an `RgbaImage`'s invariant) and lives until `finish` has waited; the
-        // image is alive and owned by the caller, who keeps it until then.
+        // SAFETY: the command buffer is recording; the staging buffer holds every level's
+        // width × height RGBA texels (an `RgbaImage`'s invariant) at its region's offset and
+        // lives until `finish` has waited; each level's extent is the image's at that level
+        // (the caller's contract); the image is alive and owned by the caller, who keeps it
+        // until then.
         unsafe {
             transition(device, self.cmd, target.handle, format, TO_COPY_DESTINATION);
             device.cmd_copy_buffer_to_image(
@@ -206,7 +229,7 @@ impl<'a> Uploader<'a> {
                 staging.handle,
                 target.handle,
                 vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                &region,
+                &regions,
             );
             transition(device, self.cmd, target.handle, format, COPIED_TO_SAMPLED);
         }

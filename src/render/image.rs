@@ -1,5 +1,5 @@
 //! `Image`: a 2D `vk::Image` with one view and its gpu-allocator memory (a colour or depth
-//! attachment, or a sampled texture), freed in `Drop`.
+//! attachment, or a sampled texture with its mip levels), freed in `Drop`.
 
 use std::sync::Arc;
 
@@ -33,6 +33,18 @@ impl Image {
         extent: vk::Extent2D,
         usage: vk::ImageUsageFlags,
     ) -> Result<Self> {
+        Self::with_levels(context, name, format, extent, usage, 1)
+    }
+
+    /// As [`Self::new`], with `levels` mip levels (at least one), all in its view.
+    pub fn with_levels(
+        context: &Arc<Context>,
+        name: &str,
+        format: vk::Format,
+        extent: vk::Extent2D,
+        usage: vk::ImageUsageFlags,
+        levels: u32,
+    ) -> Result<Self> {
         let device = &context.device;
         let info = vk::ImageCreateInfo::default()
             .image_type(vk::ImageType::TYPE_2D)
@@ -42,7 +54,7 @@ impl Image {
                 height: extent.height.max(1),
                 depth: 1,
             })
-            .mip_levels(1)
+            .mip_levels(levels.max(1))
             .array_layers(1)
             .samples(vk::SampleCountFlags::TYPE_1)
             .tiling(vk::ImageTiling::OPTIMAL)
@@ -88,11 +100,11 @@ impl Image {
     }
 }
 
-/// The whole image, with the aspect its format implies.
+/// The whole image (every mip level), with the aspect its format implies.
 pub fn subresource_range(format: vk::Format) -> vk::ImageSubresourceRange {
     vk::ImageSubresourceRange::default()
         .aspect_mask(aspect(format))
-        .level_count(1)
+        .level_count(vk::REMAINING_MIP_LEVELS)
         .layer_count(1)
 }
 

@@ -7,6 +7,9 @@
 //! images are decoded (by their first bytes, whatever the name says): another model is drawn
 //! in its material colour, and the reason is given once per name on stderr.
 //! Images larger than `MAX_SIDE` are halved until they fit, as every device takes that size.
+//! Each image is uploaded with its full chain of mip levels (box-filtered here, on the CPU,
+//! so that every driver shows the same) and sampled trilinearly: a textured scan seen from
+//! afar shows its texture's average colours instead of shimmering.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -84,15 +87,17 @@ impl Textures {
             white: None,
             by_name: HashMap::new(),
         };
-        // Repeating, as VRML's `repeatS`/`repeatT` and OBJ default to; linear filtering.
+        // Repeating, as VRML's `repeatS`/`repeatT` and OBJ default to; trilinear filtering
+        // over every mip level.
         let sampler_info = vk::SamplerCreateInfo::default()
             .mag_filter(vk::Filter::LINEAR)
             .min_filter(vk::Filter::LINEAR)
-            .mipmap_mode(vk::SamplerMipmapMode::NEAREST)
+            .mipmap_mode(vk::SamplerMipmapMode::LINEAR)
             .address_mode_u(vk::SamplerAddressMode::REPEAT)
             .address_mode_v(vk::SamplerAddressMode::REPEAT)
             .address_mode_w(vk::SamplerAddressMode::REPEAT)
-            .max_lod(0.0);
+            .min_lod(0.0)
+            .max_lod(vk::LOD_CLAMP_NONE);
         // SAFETY: valid create info on a live device.
         this.sampler = unsafe { device.create_sampler(&sampler_info, None)? };
         Ok(this)
@@ -105,7 +110,7 @@ impl Textures {
             if !self.by_name.contains_key(name) {
                 let entry = match read(name, &self.folder) {
                     Ok(image) if self.by_name.len() < MAX_TEXTURES as usize => {
-                        Some(self.upload(up, name, &image)?)
+                        Some(self.upload(up, name, image)?)
                     }
                     Ok(_) => {
                         eprintln!(
@@ -143,7 +148,7 @@ impl Textures {
                 height: 1,
                 pixels: vec![255; 4],
             };
-            self.white = Some(self.upload(up, "white texture", &white)?);
+            self.white = Some(self.upload(up, "white texture", white)?);
         }
         Ok(self
             .white
@@ -151,9 +156,9 @@ impl Textures {
             .map_or(vk::DescriptorSet::null(), |e| e.set))
     }
 
-    /// Uploads `image` and writes a set that samples it.
-    fn upload(&self, up: &mut Uploader<'_>, name: &str, image: &RgbaImage) -> Result<Entry> {
-        let image = up.upload_image(name, FORMAT, image)?;
+    /// Uploads `image` with its mip levels and writes a set that samples it.
+    fn upload(&self, up: &mut Uploader<'_>, name: &str, image: RgbaImage) -> Result<Entry> {
+        let image = up.upload_image(name, FORMAT, &mip_chain(image))?;
         let layouts = [self.layout];
         let alloc = vk::DescriptorSetAllocateInfo::default()
             .descriptor_pool(self.pool)
@@ -283,6 +288,55 @@ fn decode_jpeg(bytes: &[u8]) -> std::result::Result<RgbaImage, String> {
         height,
         pixels,
     })
+}
+
+/// `image` and its mip levels, down to 1 × 1: each level's sides are half the previous
+/// level's, rounded down (at least 1), as Vulkan sizes an image's levels.
+pub fn mip_chain(image: RgbaImage) -> Vec<RgbaImage> {
+    let mut levels = vec![image];
+    while let Some(last) = levels.last().filter(|l| l.width > 1 || l.height > 1) {
+        let next = next_level(last);
+        levels.push(next);
+    }
+    levels
+}
+
+/// The mip level below `image`: sides halved, rounded down (at least 1); each texel the
+/// rounded mean of the texels of `image` it covers (two by two; along an odd side, the last
+/// texel of the level takes in three, so that no texel is left out).
+fn next_level(image: &RgbaImage) -> RgbaImage {
+    let (w, h) = (image.width, image.height);
+    let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+    // Texels `span(i)` of a side of `n` cover texel `i` of the side of `m` below it.
+    let span = |i: u32, n: u32, m: u32| {
+        let (a, b) = (u64::from(i) * u64::from(n), u64::from(i + 1) * u64::from(n));
+        (a / u64::from(m)) as u32..(b / u64::from(m)) as u32
+    };
+    let mut pixels = Vec::with_capacity(nw as usize * nh as usize * 4);
+    for y in 0..nh {
+        let rows = span(y, h, nh);
+        for x in 0..nw {
+            let columns = span(x, w, nw);
+            let mut sum = [0u32; 4];
+            let mut count = 0u32;
+            for sy in rows.clone() {
+                for sx in columns.clone() {
+                    let at = (sy as usize * w as usize + sx as usize) * 4;
+                    for (total, &value) in sum.iter_mut().zip(&image.pixels[at..at + 4]) {
+                        *total += u32::from(value);
+                    }
+                    count += 1;
+                }
+            }
+            let count = count.max(1);
+            pixels.extend(sum.map(|total| ((total + count / 2) / count) as u8));
+        }
+    }
+    RgbaImage {
+        width: nw,
+        height: nh,
+        pixels,
+    }
 }
 
 /// `image` at half its size (each side rounded up; a side of 1 stays), each pixel the mean of
@@ -420,5 +474,61 @@ mod tests {
         assert_eq!((half.width, half.height), (2, 1));
         assert_eq!(&half.pixels[..4], &[50, 50, 50, 255]);
         assert_eq!(&half.pixels[4..], &[40, 40, 40, 255]);
+    }
+
+    #[test]
+    fn mip_levels_halve_down_to_one_texel_and_keep_the_mean_colour() {
+        // A 6 × 3 checker of single black and white texels, with a red first column.
+        let mut pixels = Vec::new();
+        for y in 0..3u32 {
+            for x in 0..6u32 {
+                pixels.extend_from_slice(&match (x, (x + y) % 2) {
+                    (0, _) => [255, 0, 0, 255],
+                    (_, 0) => [0, 0, 0, 255],
+                    _ => [255, 255, 255, 255],
+                });
+            }
+        }
+        let chain = mip_chain(RgbaImage {
+            width: 6,
+            height: 3,
+            pixels,
+        });
+        // Vulkan's sizes: each side halved, rounded down, at least 1.
+        let sizes: Vec<(u32, u32)> = chain.iter().map(|l| (l.width, l.height)).collect();
+        assert_eq!(sizes, [(6, 3), (3, 1), (1, 1)]);
+        for level in &chain {
+            assert_eq!(
+                level.pixels.len(),
+                (level.width * level.height * 4) as usize
+            );
+        }
+        // Level 1: the odd row count puts all three rows in each texel; columns two by two.
+        // The first texel: three red texels and the checker's column 1 (white, black, white).
+        let level1 = &chain[1].pixels;
+        assert_eq!(&level1[..4], &[213, 85, 85, 255]);
+        // The others: three black and three white texels, mid grey.
+        assert_eq!(&level1[4..8], &[128, 128, 128, 255]);
+        assert_eq!(&level1[8..12], &[128, 128, 128, 255]);
+        // The last level: the mean of the level above.
+        assert_eq!(&chain[2].pixels[..], &[156, 114, 114, 255]);
+        // One texel has no level below; a 1-wide strip halves along its length only.
+        assert_eq!(
+            mip_chain(RgbaImage {
+                width: 1,
+                height: 1,
+                pixels: vec![9; 4]
+            })
+            .len(),
+            1
+        );
+        let strip = mip_chain(RgbaImage {
+            width: 1,
+            height: 4,
+            pixels: vec![7; 16],
+        });
+        let sizes: Vec<(u32, u32)> = strip.iter().map(|l| (l.width, l.height)).collect();
+        assert_eq!(sizes, [(1, 4), (1, 2), (1, 1)]);
+        assert!(strip.iter().all(|l| l.pixels.iter().all(|&v| v == 7)));
     }
 }
