@@ -14,7 +14,7 @@ use super::commands::Commands;
 use super::context::Context;
 use super::error::{RenderError, Result};
 use super::mesh_data::{Layers, MeshData};
-use super::texture::Textures;
+use super::texture::{Binding, Textures};
 use crate::mesh::{Model, Scene};
 
 /// Normal segments are this fraction of the scene's bounding-box diagonal.
@@ -95,9 +95,7 @@ impl GpuScene {
             let texture = model.texture.as_deref().filter(|_| has_coordinates);
             let binding = textures.binding(&mut uploader, texture)?;
             let plain = textures.white(&mut uploader)?;
-            let mut mesh = upload_mesh(&mut uploader, model, &data, plain)?;
-            (mesh.texture, mesh.textured) = (binding.set, binding.textured);
-            meshes.push(mesh);
+            meshes.push(upload_mesh(&mut uploader, model, &data, binding, plain)?);
         }
         uploader.finish()?;
         Ok(Self {
@@ -110,10 +108,12 @@ impl GpuScene {
     }
 }
 
+/// Uploads one model's lists; it draws with `texture`, or with `plain` when textures are off.
 fn upload_mesh(
     up: &mut Uploader<'_>,
     model: &Model,
     data: &MeshData,
+    texture: Binding,
     plain: vk::DescriptorSet,
 ) -> Result<GpuMesh> {
     let count = |n: usize, what: &str| {
@@ -125,9 +125,9 @@ fn upload_mesh(
     let index = vk::BufferUsageFlags::INDEX_BUFFER;
     Ok(GpuMesh {
         transform: model.transform,
-        texture: plain,
+        texture: texture.set,
         plain,
-        textured: false,
+        textured: texture.textured,
         vertices: up.upload("vertices", vertex, &data.vertices)?,
         triangles: up.upload("triangles", index, &data.triangles)?,
         triangle_indices: count(data.triangles.len(), "triangles")?,
