@@ -42,15 +42,20 @@ fn write_texture(path: &Path) {
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         return;
     }
+    write_png(path, 8, &pixels);
+}
+
+/// Writes a `size` × `size` RGB PNG.
+fn write_png(path: &Path, size: u32, rgb: &[u8]) {
     let file = std::fs::File::create(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut encoder = png::Encoder::new(file, 8, 8);
+    let mut encoder = png::Encoder::new(file, size, size);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
     let mut writer = encoder
         .write_header()
         .unwrap_or_else(|e| panic!("png: {e}"));
     writer
-        .write_image_data(&pixels)
+        .write_image_data(rgb)
         .unwrap_or_else(|e| panic!("png: {e}"));
 }
 
@@ -234,16 +239,7 @@ fn write_stripes(path: &Path, size: u32) {
             });
         }
     }
-    let file = std::fs::File::create(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut encoder = png::Encoder::new(file, size, size);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder
-        .write_header()
-        .unwrap_or_else(|e| panic!("png: {e}"));
-    writer
-        .write_image_data(&pixels)
-        .unwrap_or_else(|e| panic!("png: {e}"));
+    write_png(path, size, &pixels);
 }
 
 #[test]
