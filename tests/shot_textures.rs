@@ -232,7 +232,7 @@ fn write_stripes(path: &Path, size: u32) {
     let mut pixels = Vec::with_capacity((size * size * 3) as usize);
     for _ in 0..size {
         for x in 0..size {
-            pixels.extend_from_slice(if x % 2 == 0 {
+            pixels.extend_from_slice(if x.is_multiple_of(2) {
                 &[230, 20, 20]
             } else {
                 &[20, 20, 230]

@@ -6,10 +6,10 @@
 //! folder, absolute, or a `file:` URL. Other URLs are not fetched, and only PNG and JPEG
 //! images are decoded (by their first bytes, whatever the name says): another model is drawn
 //! in its material colour, and the reason is given once per name on stderr.
-//! Images larger than `MAX_SIDE` are halved until they fit, as every device takes that size.
-//! Each image is uploaded with its full chain of mip levels (box-filtered here, on the CPU,
-//! so that every driver shows the same) and sampled trilinearly: a textured scan seen from
-//! afar shows its texture's average colours instead of shimmering.
+//! Each image is uploaded with its chain of mip levels (box-filtered here, on the CPU, so that
+//! every driver shows the same) and sampled trilinearly: a textured scan seen from afar shows
+//! its texture's average colours instead of shimmering. An image larger than `MAX_SIDE`
+//! starts at its first level that fits, as every device takes that size.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -210,16 +210,11 @@ pub fn resolve(name: &str, folder: &Path) -> std::result::Result<PathBuf, String
     Ok(folder.join(name.replace('\\', "/")))
 }
 
-/// Reads and decodes the image `name` names (relative to `folder`), halved until it fits
-/// `MAX_SIDE`.
+/// Reads and decodes the image `name` names (relative to `folder`).
 pub fn read(name: &str, folder: &Path) -> std::result::Result<RgbaImage, String> {
     let path = resolve(name, folder)?;
     let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut image = decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
-    while image.width > MAX_SIDE || image.height > MAX_SIDE {
-        image = halve(&image);
-    }
-    Ok(image)
+    decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// Decodes a PNG (any colour type and depth) or JPEG image into 8-bit RGBA.
@@ -290,9 +285,15 @@ fn decode_jpeg(bytes: &[u8]) -> std::result::Result<RgbaImage, String> {
     })
 }
 
-/// `image` and its mip levels, down to 1 × 1: each level's sides are half the previous
-/// level's, rounded down (at least 1), as Vulkan sizes an image's levels.
-pub fn mip_chain(image: RgbaImage) -> Vec<RgbaImage> {
+/// The mip levels of `image` that fit `MAX_SIDE`, down to 1 × 1: each level's sides are
+/// half the previous level's, rounded down (at least 1), as Vulkan sizes an image's levels.
+/// An image too large to upload starts at its first level that fits.
+fn mip_chain(image: RgbaImage) -> Vec<RgbaImage> {
+    let fits = |l: &RgbaImage| l.width <= MAX_SIDE && l.height <= MAX_SIDE;
+    let mut image = image;
+    while !fits(&image) {
+        image = next_level(&image);
+    }
     let mut levels = vec![image];
     while let Some(last) = levels.last().filter(|l| l.width > 1 || l.height > 1) {
         let next = next_level(last);
@@ -335,33 +336,6 @@ fn next_level(image: &RgbaImage) -> RgbaImage {
     RgbaImage {
         width: nw,
         height: nh,
-        pixels,
-    }
-}
-
-/// `image` at half its size (each side rounded up; a side of 1 stays), each pixel the mean of
-/// the up to four it covers.
-fn halve(image: &RgbaImage) -> RgbaImage {
-    let (w, h) = (image.width.div_ceil(2), image.height.div_ceil(2));
-    let at = |x: u32, y: u32, c: usize| {
-        let (x, y) = (x.min(image.width - 1), y.min(image.height - 1));
-        u32::from(image.pixels[(y * image.width + x) as usize * 4 + c])
-    };
-    let mut pixels = Vec::with_capacity(w as usize * h as usize * 4);
-    for y in 0..h {
-        for x in 0..w {
-            for c in 0..4 {
-                let sum = at(2 * x, 2 * y, c)
-                    + at(2 * x + 1, 2 * y, c)
-                    + at(2 * x, 2 * y + 1, c)
-                    + at(2 * x + 1, 2 * y + 1, c);
-                pixels.push(((sum + 2) / 4) as u8);
-            }
-        }
-    }
-    RgbaImage {
-        width: w,
-        height: h,
         pixels,
     }
 }
@@ -459,21 +433,26 @@ mod tests {
     }
 
     #[test]
-    fn large_images_are_halved_to_the_mean_of_their_pixels() {
-        let image = RgbaImage {
-            width: 3,
-            height: 2,
-            pixels: [[0, 0, 0, 255], [100, 100, 100, 255], [40, 40, 40, 255]]
-                .into_iter()
-                .cycle()
-                .take(6)
-                .flatten()
-                .collect(),
+    fn an_image_too_large_to_upload_starts_at_its_first_level_that_fits() {
+        // 8200 × 3: two levels down (2050 × 1) is the first that fits 4096.
+        let texel = |x: u32| {
+            if x.is_multiple_of(2) {
+                [0, 0, 0, 255]
+            } else {
+                [100, 60, 20, 255]
+            }
         };
-        let half = halve(&image);
-        assert_eq!((half.width, half.height), (2, 1));
-        assert_eq!(&half.pixels[..4], &[50, 50, 50, 255]);
-        assert_eq!(&half.pixels[4..], &[40, 40, 40, 255]);
+        let pixels = (0..3).flat_map(|_| (0..8200).flat_map(texel)).collect();
+        let chain = mip_chain(RgbaImage {
+            width: 8200,
+            height: 3,
+            pixels,
+        });
+        let sizes: Vec<(u32, u32)> = chain.iter().take(3).map(|l| (l.width, l.height)).collect();
+        assert_eq!(sizes, [(2050, 1), (1025, 1), (512, 1)]);
+        assert_eq!(chain.last().map(|l| (l.width, l.height)), Some((1, 1)));
+        // Every texel the mean of the stripes it stands for.
+        assert!(chain[0].pixels.chunks(4).all(|t| t == [50, 30, 10, 255]));
     }
 
     #[test]
