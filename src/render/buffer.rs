@@ -174,8 +174,22 @@ impl<'a> Uploader<'a> {
     ) -> Result<super::image::Image> {
         use super::image::{transition, Image, COPIED_TO_SAMPLED, TO_COPY_DESTINATION};
         let Some(base) = levels.first() else {
-            return Err(RenderError::EmptyImage(name.to_owned()));
+            return Err(RenderError::BadLevels(format!("image {name:?}: no levels")));
         };
+        for (i, level) in levels.iter().enumerate() {
+            let side = |full: u32| full.checked_shr(i as u32).unwrap_or(0).max(1);
+            let (w, h) = (side(base.width), side(base.height));
+            if (level.width, level.height) != (w, h)
+                || level.pixels.len() != w as usize * h as usize * 4
+            {
+                return Err(RenderError::BadLevels(format!(
+                    "image {name:?}: level {i} is {} × {} ({} bytes), not {w} × {h} RGBA",
+                    level.width,
+                    level.height,
+                    level.pixels.len()
+                )));
+            }
+        }
         let mut bytes = Vec::with_capacity(levels.iter().map(|l| l.pixels.len()).sum());
         let mut regions = Vec::with_capacity(levels.len());
         for (level, image) in levels.iter().enumerate() {
@@ -218,10 +232,9 @@ impl<'a> Uploader<'a> {
         )?;
         let device = &self.context.device;
         // SAFETY: the command buffer is recording; the staging buffer holds every level's
-        // width × height RGBA texels (an `RgbaImage`'s invariant) at its region's offset and
-        // lives until `finish` has waited; each level's extent is the image's at that level
-        // (the caller's contract); the image is alive and owned by the caller, who keeps it
-        // until then.
+        // width × height RGBA texels at its region's offset and lives until `finish` has
+        // waited; each level's extent is the image's at that level (both checked above); the
+        // image is alive and owned by the caller, who keeps it until then.
         unsafe {
             transition(device, self.cmd, target.handle, format, TO_COPY_DESTINATION);
             device.cmd_copy_buffer_to_image(

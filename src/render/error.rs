@@ -24,9 +24,9 @@ pub enum RenderError {
     /// A mesh or image is larger than the renderer supports.
     #[error("{0}")]
     TooLarge(String),
-    /// An image was to be uploaded with no level at all.
-    #[error("image {0:?} has no levels to upload")]
-    EmptyImage(String),
+    /// An image's levels do not have the sizes Vulkan gives an image's mip levels.
+    #[error("{0}")]
+    BadLevels(String),
     /// A thread panicked while holding the memory allocator.
     #[error("the GPU memory allocator is unusable after a panic")]
     AllocatorPoisoned,
