@@ -245,7 +245,7 @@ fn write_stripes(path: &Path, size: u32) {
 #[test]
 fn a_fine_texture_seen_from_afar_shows_its_average_colour_not_a_moire() {
     let dir = scratch("stripes");
-    // 1024 stripes across a grid about 200 pixels wide: five texels to a pixel.
+    // 1024 stripes across a grid about 130 pixels wide: eight texels to a pixel.
     write_stripes(&dir.join("models/maps/stripes.png"), 1024);
     write_grid(&dir.join("models/grid.wrl"), 4, "stripes.png");
     let (out, image) = shot(&dir, &[]);
