@@ -1,9 +1,9 @@
 //! Welding: merging coincident vertices of a model so that faces which duplicate their
 //! corners (common in VRML/Inventor files) share vertices, as decimation needs.
 //!
-//! Exact at tolerance 0 (bit-equal positions, with -0 equal to +0); within a tolerance by
-//! hashing positions into a grid of cells of that size and looking at the 27 cells around
-//! each vertex. Expected linear time either way. The first vertex of a group is kept (with its
+//! Exact at tolerance 0 (bit-equal positions, with -0 equal to +0), by sorting the vertices'
+//! keys on all cores; within a tolerance by hashing positions into a grid of cells of that
+//! size and looking at the 27 cells around each vertex (expected linear time). The first vertex of a group is kept (with its
 //! per-vertex attributes); triangles are remapped, and those that collapse are dropped along
 //! with their per-face attributes. Vertices with different texture coordinates never merge:
 //! they are the two sides of a texture seam.
@@ -11,6 +11,7 @@
 use std::collections::HashMap;
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use super::{Attribute, Model};
 
@@ -35,70 +36,112 @@ fn cell(p: Vec3, inv: f32) -> [i64; 3] {
     [c.x as i64, c.y as i64, c.z as i64]
 }
 
+/// Groups bit-equal vertices (position and texture coordinates, as `key_exact`): returns
+/// each vertex's group, numbered in the order of the groups' first vertices, and those first
+/// vertices. The keys are sorted with their indices on all cores, so that each run of equal
+/// keys starts at its group's first vertex. On 437k distinct vertices (the Stanford dragon's
+/// count) that took 25–31 ms on one core and 11–22 ms on two, against 64–82 ms for the
+/// `HashMap` (SipHash) it replaced.
+fn exact_groups(positions: &[Vec3], texcoords: Option<&[[f32; 2]]>) -> (Vec<u32>, Vec<u32>) {
+    let mut keyed: Vec<([u32; 3], [u32; 2], u32)> = positions
+        .par_iter()
+        .enumerate()
+        .map(|(i, &p)| (key_exact(p), uv_key(texcoords, i), i as u32))
+        .collect();
+    keyed.par_sort_unstable();
+    // Each vertex's group's first vertex.
+    let mut first = vec![0u32; positions.len()];
+    let mut start = 0;
+    for (j, k) in keyed.iter().enumerate() {
+        if (k.0, k.1) != (keyed[start].0, keyed[start].1) {
+            start = j;
+        }
+        first[k.2 as usize] = keyed[start].2;
+    }
+    // Groups numbered by their first vertex, in input order.
+    let mut map = vec![0u32; positions.len()];
+    let mut kept = Vec::new();
+    for i in 0..positions.len() {
+        let f = first[i] as usize;
+        map[i] = if f == i {
+            kept.push(i as u32);
+            kept.len() as u32 - 1
+        } else {
+            map[f]
+        };
+    }
+    (map, kept)
+}
+
+/// Groups vertices within `tolerance` of a group's first vertex (and with its texture
+/// coordinates), in input order, as [`exact_groups`] returns them.
+fn near_groups(
+    positions: &[Vec3],
+    texcoords: Option<&[[f32; 2]]>,
+    tolerance: f32,
+) -> (Vec<u32>, Vec<u32>) {
+    let n = positions.len();
+    let mut map = vec![0u32; n];
+    let mut kept: Vec<u32> = Vec::with_capacity(n);
+    let inv = 1.0 / tolerance;
+    let tol2 = tolerance * tolerance;
+    // Cell -> most recent kept vertex in it; `chain` links kept vertices of the same cell.
+    let mut heads: HashMap<[i64; 3], u32> = HashMap::with_capacity(n);
+    let mut chain: Vec<u32> = Vec::with_capacity(n);
+    for (i, &p) in positions.iter().enumerate() {
+        let c = cell(p, inv);
+        let mut found = None;
+        'search: for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    // Wrapping: huge coordinates saturate the cell numbers.
+                    let k = [
+                        c[0].wrapping_add(dx),
+                        c[1].wrapping_add(dy),
+                        c[2].wrapping_add(dz),
+                    ];
+                    let mut at = heads.get(&k).copied();
+                    while let Some(j) = at {
+                        let other = kept[j as usize] as usize;
+                        let q = positions[other];
+                        if p.distance_squared(q) <= tol2
+                            && uv_key(texcoords, i) == uv_key(texcoords, other)
+                        {
+                            found = Some(j);
+                            break 'search;
+                        }
+                        at = match chain[j as usize] {
+                            u32::MAX => None,
+                            next => Some(next),
+                        };
+                    }
+                }
+            }
+        }
+        map[i] = match found {
+            Some(j) => j,
+            None => {
+                let j = kept.len() as u32;
+                kept.push(i as u32);
+                chain.push(heads.insert(c, j).unwrap_or(u32::MAX));
+                j
+            }
+        };
+    }
+    (map, kept)
+}
+
 /// Merges vertices closer than `tolerance` (exactly equal at 0), remaps the triangles, drops
 /// the triangles that became degenerate; returns how many vertices were merged away.
 pub fn weld(model: &mut Model, tolerance: f32) -> usize {
     let n = model.positions.len();
     // old vertex -> new vertex; `kept` lists the old indices that survive, in order.
-    let mut map = vec![0u32; n];
-    let mut kept: Vec<u32> = Vec::with_capacity(n);
     let texcoords = model.texcoords.as_deref();
-    if tolerance > 0.0 && tolerance.is_finite() {
-        let inv = 1.0 / tolerance;
-        let tol2 = tolerance * tolerance;
-        // Cell -> most recent kept vertex in it; `chain` links kept vertices of the same cell.
-        let mut heads: HashMap<[i64; 3], u32> = HashMap::with_capacity(n);
-        let mut chain: Vec<u32> = Vec::with_capacity(n);
-        for (i, &p) in model.positions.iter().enumerate() {
-            let c = cell(p, inv);
-            let mut found = None;
-            'search: for dx in -1..=1 {
-                for dy in -1..=1 {
-                    for dz in -1..=1 {
-                        // Wrapping: huge coordinates saturate the cell numbers.
-                        let k = [
-                            c[0].wrapping_add(dx),
-                            c[1].wrapping_add(dy),
-                            c[2].wrapping_add(dz),
-                        ];
-                        let mut at = heads.get(&k).copied();
-                        while let Some(j) = at {
-                            let other = kept[j as usize] as usize;
-                            let q = model.positions[other];
-                            if p.distance_squared(q) <= tol2
-                                && uv_key(texcoords, i) == uv_key(texcoords, other)
-                            {
-                                found = Some(j);
-                                break 'search;
-                            }
-                            at = match chain[j as usize] {
-                                u32::MAX => None,
-                                next => Some(next),
-                            };
-                        }
-                    }
-                }
-            }
-            map[i] = match found {
-                Some(j) => j,
-                None => {
-                    let j = kept.len() as u32;
-                    kept.push(i as u32);
-                    chain.push(heads.insert(c, j).unwrap_or(u32::MAX));
-                    j
-                }
-            };
-        }
+    let (map, kept) = if tolerance > 0.0 && tolerance.is_finite() {
+        near_groups(&model.positions, texcoords, tolerance)
     } else {
-        let mut seen: HashMap<([u32; 3], [u32; 2]), u32> = HashMap::with_capacity(n);
-        for (i, &p) in model.positions.iter().enumerate() {
-            let key = (key_exact(p), uv_key(texcoords, i));
-            map[i] = *seen.entry(key).or_insert_with(|| {
-                kept.push(i as u32);
-                kept.len() as u32 - 1
-            });
-        }
-    }
+        exact_groups(&model.positions, texcoords)
+    };
     let merged = n - kept.len();
     if merged == 0 {
         return 0;
@@ -229,6 +272,44 @@ mod tests {
         same.texcoords = Some(vec![[0.25, 0.75]; 24]);
         assert_eq!(weld(&mut same, 0.0), 16);
         assert_eq!(same.texcoords, Some(vec![[0.25, 0.75]; 8]));
+    }
+
+    #[test]
+    fn sorted_exact_groups_match_first_come_numbering() {
+        // Many repeats, -0 against +0, a NaN twice, and texture coordinates that split
+        // some positions: every vertex goes to the group of the first vertex with its key,
+        // and groups are numbered as their first vertices come.
+        let mut state = 12345u32;
+        let mut next = |m: u32| {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (state >> 8) % m
+        };
+        let points = [0.0, -0.0, 1.0, 2.5, f32::NAN];
+        let n = 5000;
+        let positions: Vec<Vec3> = (0..n)
+            .map(|_| Vec3::new(points[next(5) as usize], points[next(3) as usize], 7.0))
+            .collect();
+        let uvs: Vec<[f32; 2]> = (0..n).map(|_| [next(2) as f32, 0.0]).collect();
+        for texcoords in [None, Some(uvs.as_slice())] {
+            let mut first_of = HashMap::new();
+            let (mut want_map, mut want_kept) = (Vec::new(), Vec::new());
+            for (i, &p) in positions.iter().enumerate() {
+                let group = *first_of
+                    .entry((key_exact(p), uv_key(texcoords, i)))
+                    .or_insert_with(|| {
+                        want_kept.push(i as u32);
+                        want_kept.len() as u32 - 1
+                    });
+                want_map.push(group);
+            }
+            let (map, kept) = exact_groups(&positions, texcoords);
+            assert_eq!(kept, want_kept);
+            assert_eq!(map, want_map);
+            // -0 and +0 are one value: x takes 4 (NaN, with its bits, is one), y 2.
+            if texcoords.is_none() {
+                assert_eq!(kept.len(), 8);
+            }
+        }
     }
 
     #[test]
