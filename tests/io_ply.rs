@@ -76,6 +76,26 @@ fn ply_index_out_of_range_is_an_error() {
     assert!(e.to_string().contains("out of range"), "{e}");
 }
 
+#[test]
+fn ascii_ply_indices_read_the_same_in_any_number_form() {
+    // Plain digits take a fast path; leading zeros, a decimal point, an exponent and a plus
+    // sign still name the same integers, and a fraction or a minus sign is still an error.
+    let square = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+                  property float z\nelement face 2\nproperty list uchar int vertex_indices\n\
+                  end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+    let s = read(
+        "forms.ply",
+        format!("{square}3 0 1 2\n3.0 000 2e0 +3\n").as_bytes(),
+    )
+    .scene;
+    assert_eq!(s.models[0].triangles, vec![[0, 1, 2], [0, 2, 3]]);
+    for bad in ["2.5", "-2", "4294967296"] {
+        let src = format!("{square}3 0 1 2\n3 0 3 {bad}\n");
+        let e = parse_bytes(src.into_bytes(), Path::new("bad.ply")).unwrap_err();
+        assert!(e.to_string().contains("non-negative integer"), "{bad}: {e}");
+    }
+}
+
 fn read(name: &str, src: &[u8]) -> ReadOutcome {
     parse_bytes(src.to_vec(), Path::new(name)).unwrap_or_else(|e| panic!("{e}"))
 }
