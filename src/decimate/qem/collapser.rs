@@ -92,7 +92,7 @@ impl Collapser {
         let n = positions.len();
         let conn = Connectivity::from_triangles(n, triangles);
         let (kinds, quadrics) = planes::kinds_and_quadrics(&conn, &positions, cos_feature);
-        let costs = EdgeCosts::new(conn.triangles().len());
+        let costs = EdgeCosts::new(conn.triangles());
         Self {
             positions,
             costs,

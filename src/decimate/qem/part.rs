@@ -172,9 +172,11 @@ impl Part<'_> {
     pub fn prefetch_fan(&self, v: u32, costs: bool) {
         if self.owns(v) {
             for &t in self.conn.incident(v) {
-                self.conn.prefetch_triangle(t);
                 if costs {
-                    self.costs.prefetch(3 * t as usize);
+                    // The planning's copy of the corners lies beside the costs.
+                    self.costs.prefetch(t);
+                } else {
+                    self.conn.prefetch_triangle(t);
                 }
             }
         }
@@ -450,6 +452,9 @@ impl Part<'_> {
         let fan = &fans[usize::from(ends[0] != plan.remove)];
         self.conn
             .collapse_edge(plan.remove, plan.keep, fan, renamed, deleted);
+        for &t in renamed.iter() {
+            self.costs.set_corners(t, self.conn.triangle(t));
+        }
         if let Some(recorder) = self.recorder.as_deref_mut() {
             recorder.collapse(CollapseRecord {
                 keep: plan.keep,
