@@ -100,9 +100,10 @@ impl Quadric {
         let i12 = a01 * a02 - a00 * a12;
         let i22 = a00 * a11 - a01 * a01;
         let [b0, b1, b2] = self.b;
-        let x = -(c0 * b0 + i01 * b1 + i02 * b2) / det;
-        let y = -(i01 * b0 + i11 * b1 + i12 * b2) / det;
-        let z = -(i02 * b0 + i12 * b1 + i22 * b2) / det;
+        let inv = -1.0 / det;
+        let x = (c0 * b0 + i01 * b1 + i02 * b2) * inv;
+        let y = (i01 * b0 + i11 * b1 + i12 * b2) * inv;
+        let z = (i02 * b0 + i12 * b1 + i22 * b2) * inv;
         let p = DVec3::new(x, y, z);
         p.is_finite().then_some(p)
     }
