@@ -3,10 +3,10 @@
 //!
 //! Exact at tolerance 0 (bit-equal positions, with -0 equal to +0), by sorting the vertices'
 //! keys on all cores; within a tolerance by hashing positions into a grid of cells of that
-//! size and looking at the 27 cells around each vertex (expected linear time). The first vertex of a group is kept (with its
-//! per-vertex attributes); triangles are remapped, and those that collapse are dropped along
-//! with their per-face attributes. Vertices with different texture coordinates never merge:
-//! they are the two sides of a texture seam.
+//! size and looking at the 27 cells around each vertex (expected linear time). The first
+//! vertex of a group is kept (with its per-vertex attributes); triangles are remapped, and
+//! those that collapse are dropped along with their per-face attributes. Vertices with
+//! different texture coordinates never merge: they are the two sides of a texture seam.
 
 use std::collections::HashMap;
 

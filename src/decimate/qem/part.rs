@@ -167,8 +167,9 @@ impl Part<'_> {
         }
     }
 
-    /// Starts loading `v`'s incident triangles, and with `costs` their edge costs (a hint;
-    /// `v`'s incident list should be loaded by now).
+    /// Starts loading `v`'s incident triangles: the connectivity's, or with `costs` the
+    /// planning's records of them (corners and edge costs) (a hint; `v`'s incident list
+    /// should be loaded by now).
     pub fn prefetch_fan(&self, v: u32, costs: bool) {
         if self.owns(v) {
             for &t in self.conn.incident(v) {
