@@ -135,8 +135,8 @@ fn near_groups(
 /// the triangles that became degenerate; returns how many vertices were merged away.
 pub fn weld(model: &mut Model, tolerance: f32) -> usize {
     let n = model.positions.len();
-    // old vertex -> new vertex; `kept` lists the old indices that survive, in order.
     let texcoords = model.texcoords.as_deref();
+    // old vertex -> new vertex; `kept` lists the old indices that survive, in order.
     let (map, kept) = if tolerance > 0.0 && tolerance.is_finite() {
         near_groups(&model.positions, texcoords, tolerance)
     } else {
