@@ -311,3 +311,27 @@ fn usage_help_and_bad_arguments() {
         assert!(stderr(&o).contains("usage:"), "{args:?}");
     }
 }
+
+/// The viewer on a machine with no display: a non-zero exit and a message that says which
+/// display it tried, not a panic. A display name that no server has stands in for a
+/// headless machine whatever the test runs under.
+#[test]
+fn gui_without_a_display_names_the_display_it_tried() {
+    let dir = std::env::temp_dir().join(format!("decimate-cli-nodisplay-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let out = Command::new(env!("CARGO_BIN_EXE_decimate"))
+        .args([asset("test004.wrl").as_str(), "gui"])
+        .current_dir(&dir)
+        .env("DISPLAY", ":9999")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("run decimate");
+    let _ = std::fs::remove_dir_all(&dir);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "stderr: {err}");
+    assert!(
+        err.contains("cannot open the X11 display (DISPLAY=:9999)"),
+        "stderr: {err}"
+    );
+    assert!(!err.contains("panicked"), "stderr: {err}");
+}

@@ -74,10 +74,13 @@ struct Glut<'a, C: Callbacks> {
 /// returns [`Flow::Quit`] or the window is closed.
 pub fn main_loop<C: Callbacks>(title: &str, callbacks: &mut C) -> Result<(), String> {
     use winit::platform::x11::EventLoopBuilderExtX11;
-    let event_loop = EventLoop::builder()
-        .with_x11()
-        .build()
-        .map_err(|e| format!("cannot open the X11 display: {e} (is DISPLAY set?)"))?;
+    let event_loop = EventLoop::builder().with_x11().build().map_err(|e| {
+        let display = match std::env::var("DISPLAY") {
+            Ok(d) => format!("DISPLAY={d}"),
+            Err(_) => "DISPLAY is not set".to_string(),
+        };
+        format!("cannot open the X11 display ({display}): {e}")
+    })?;
     let mut glut = Glut {
         title: title.to_string(),
         callbacks,
