@@ -1,6 +1,7 @@
-//! Schroeder vertex removal at scale: a mesh large enough that every pass plans its
-//! removals in several batches on all cores, and that removals later in a batch find their
-//! plans stale (a removal before them changed what their checks read) and plan again. What
+//! Schroeder vertex removal at scale: a mesh large enough that passes run in regions on
+//! all cores, that the candidates on region borders and the last ones before the target
+//! are planned in several batches, and that removals later in a batch find their plans
+//! stale (a removal before them changed what their checks read) and plan again. What
 //! a user would notice if that went wrong: a broken mesh (non-manifold, flipped or
 //! degenerate triangles), a count off the target, a different result on another machine.
 
@@ -125,4 +126,44 @@ fn a_flat_double_pyramid_loses_one_apex_not_both() {
     let broken = measure::invariant_violations(&before, &after);
     assert!(broken.is_empty(), "{broken:?}");
     assert!(measure::volume(&after) > 0.0);
+}
+
+#[test]
+fn an_open_box_in_regions_keeps_its_faces_edges_and_rim_on_any_cores() {
+    // A finely meshed cube without its top: flat faces, creases along its edges, corners,
+    // and a boundary rim, large enough for the passes to run in regions. Vertex removal on
+    // a flat face is exact, and creases, corners and the rim's corners stay, so the area and
+    // the bounding box are the box's.
+    let mut before = shapes::cube(70, 2.0);
+    before
+        .triangles
+        .retain(|t| !t.iter().all(|&v| before.positions[v as usize].z > 0.999));
+    let used = before.used_vertex_count();
+    assert!(used > 20_000, "{used} vertices: several regions");
+    let remove = used * 95 / 100;
+    let params = Params {
+        target: Target::RemoveVertices(remove),
+        ..Params::default()
+    };
+    let after = run(before.clone(), &params);
+    assert_eq!(after.used_vertex_count(), used - remove);
+    let broken = measure::invariant_violations(&before, &after);
+    assert!(broken.is_empty(), "{broken:?}");
+    let (a0, a1) = (measure::area(&before), measure::area(&after));
+    assert!((a1 / a0 - 1.0).abs() < 1e-4, "area {a0} -> {a1}");
+    let bounds = |m: &Model| {
+        m.triangles.iter().flatten().fold(
+            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+            |(lo, hi), &v| {
+                let p = m.positions[v as usize];
+                (lo.min(p), hi.max(p))
+            },
+        )
+    };
+    assert_eq!(bounds(&after), bounds(&before));
+    for threads in [1, 3] {
+        let again = on_threads(threads, &before, &params);
+        assert_eq!(again.triangles, after.triangles, "{threads} threads");
+        assert_eq!(again.positions, after.positions, "{threads} threads");
+    }
 }

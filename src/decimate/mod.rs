@@ -9,6 +9,7 @@ mod lists;
 pub mod loop_split;
 pub mod progressive;
 pub mod qem;
+mod regions;
 pub mod schroeder;
 
 use std::time::Instant;

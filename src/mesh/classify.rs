@@ -15,7 +15,7 @@
 
 use glam::{DVec3, Vec3};
 
-use super::topology::{Connectivity, Ring, RingShape};
+use super::topology::{Adjacency, Ring, RingShape};
 
 /// What a vertex is, for decimation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -54,9 +54,9 @@ pub struct RingGeometry {
 }
 
 /// Classifies `v`. Fills `ring` with its one-ring and `geometry` with its triangles'
-/// normals and areas.
+/// normals and areas. `conn` is the whole mesh or a part owning `v`'s triangles.
 pub fn classify(
-    conn: &Connectivity,
+    conn: &impl Adjacency,
     positions: &[Vec3],
     v: u32,
     cos_feature: f64,
@@ -132,6 +132,7 @@ pub fn classify(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::topology::Connectivity;
 
     fn classify_vertex(positions: &[Vec3], tris: &[[u32; 3]], v: u32) -> VertexClass {
         let conn = Connectivity::new(positions.len(), tris);

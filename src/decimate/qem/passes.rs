@@ -30,6 +30,7 @@ use super::part::Part;
 use super::ranking::stored;
 use crate::decimate::candidates::{cheapest, Candidate};
 use crate::decimate::lists;
+use crate::decimate::regions::{round_size, Regions};
 use crate::decimate::schroeder::{Limits, Outcome};
 
 /// One pass takes the cheapest `1 / PASS_SHARE` of the candidate vertices. On the dragon
@@ -40,31 +41,6 @@ use crate::decimate::schroeder::{Limits, Outcome};
 /// Larger passes are cheaper because a vertex kept several times in a pass is re-planned
 /// once.
 const PASS_SHARE: usize = 3;
-
-/// Regions a pass is cut into when it runs on all cores: a fixed number, so that the result
-/// is the same on any machine. More regions balance the cores better but put more
-/// candidates on borders.
-const REGIONS: usize = 16;
-
-/// The border candidates' second round runs in this many times fewer regions (at least
-/// two), shifted by half a region. Borders of ranges of a Morton order lie on the same
-/// octree planes however the ranges are shifted, so fewer, larger regions take more of
-/// them in: on the dragon kept at 10 %, of 87.5k border candidates, 56.6k were still on a
-/// border with 16 shifted regions, 34.5k with 4 and 23.3k with 2 (and the whole run was
-/// about 7 % faster).
-const BORDER_MERGE: usize = 8;
-
-/// Fewer vertices per region than this and the passes run on one core.
-const MIN_REGION: usize = 4096;
-
-/// A pass in regions goes in this many rounds of its cheapest candidates, each round's
-/// border candidates on the whole mesh before the next round: a border candidate then waits
-/// for at most a round's more expensive ones. On the dragon kept at 10 %, one round gave a
-/// mean error of 9.18e-6, four 9.155e-6 (as on one core).
-const ROUNDS: usize = 4;
-
-/// Fewer candidates than this are not worth a round in regions.
-const MIN_ROUND: usize = 1024;
 
 /// Candidates whose data is requested from memory ahead of their turn.
 const PREFETCH_AHEAD: usize = 4;
@@ -143,7 +119,8 @@ pub(super) fn collapse_in_passes(
         .filter(|&v| !d.conn.incident(v).is_empty())
         .count();
     let removable = used.saturating_sub(4);
-    let regions = [Regions::of(d, false), Regions::of(d, true)];
+    let regions =
+        [false, true].map(|shifted| Regions::new(d.vertex_count(), d.conn.triangles(), shifted));
     let mut skipped_for_error = false;
     let mut live: Vec<u32> = (0..n).into_par_iter().collect();
     // The lists are kept from pass to pass and edited in place: a fresh list each pass
@@ -211,7 +188,6 @@ fn collapse_pass(
     tally: &mut Tally,
 ) -> bool {
     let in_regions = regions[0].count() > 1 && d.recorder.is_none();
-    let round = candidates.len().div_ceil(ROUNDS).max(MIN_ROUND);
     let mut rest = candidates;
     while in_regions && !rest.is_empty() {
         let over = d.conn.triangle_count().saturating_sub(limit.keep_triangles);
@@ -223,8 +199,8 @@ fn collapse_pass(
             .saturating_sub(tally.removed)
             / per_collapse)
             .min(over.div_ceil(2));
-        let size = round.min(rest.len()).min(budget.saturating_sub(1));
-        if size < MIN_ROUND {
+        let size = round_size(candidates.len(), rest.len(), budget);
+        if size == 0 {
             break;
         }
         let (chunk, tail) = rest.split_at(size);
@@ -243,62 +219,6 @@ fn collapse_pass(
     stopped
 }
 
-/// The vertex and slot ranges of the regions.
-struct Regions {
-    vertex_starts: Vec<u32>,
-    slot_starts: Vec<u32>,
-}
-
-impl Regions {
-    /// `REGIONS` equal ranges of vertex ids (fewer on a small mesh; `shifted`: `BORDER_MERGE`
-    /// times fewer, shifted by half an unshifted range, the first one longer and the last
-    /// shorter), each with the triangle slots whose smallest corner is in its range — all
-    /// of them while nothing collapsed yet, as `layout::load` orders triangles by their
-    /// smallest vertex. (Were they in another order, only more candidates would end up on
-    /// borders.)
-    fn of(d: &Collapser, shifted: bool) -> Self {
-        let n = d.vertex_count();
-        let count = (n / MIN_REGION).clamp(1, REGIONS);
-        let shift = if shifted { n / count / 2 } else { 0 };
-        let count = if shifted {
-            (count / BORDER_MERGE).max(2).min(count)
-        } else {
-            count
-        };
-        let vertex_starts: Vec<u32> = (0..count)
-            .map(|i| {
-                if i == 0 {
-                    0
-                } else {
-                    (i * n / count - shift) as u32
-                }
-            })
-            .collect();
-        let triangles = d.conn.triangles();
-        let mut slot_starts: Vec<u32> = Vec::with_capacity(count);
-        for &v0 in &vertex_starts {
-            let at = triangles.partition_point(|tri| tri.iter().min().is_some_and(|&m| m < v0));
-            let previous = slot_starts.last().copied().unwrap_or(0);
-            slot_starts.push((at as u32).max(previous));
-        }
-        Self {
-            vertex_starts,
-            slot_starts,
-        }
-    }
-
-    fn count(&self) -> usize {
-        self.vertex_starts.len()
-    }
-
-    /// The region vertex `v` belongs to.
-    fn of_vertex(&self, v: u32) -> usize {
-        self.vertex_starts
-            .partition_point(|&s| s <= v)
-            .saturating_sub(1)
-    }
-}
-
 /// Runs the pass's `candidates` (in cost order) in regions on all cores, adding what they
 /// did to `tally`; returns the candidates on borders, in cost order, for the whole mesh.
 fn collapse_in_regions(
@@ -308,10 +228,7 @@ fn collapse_in_regions(
     bounds: PassBounds,
     tally: &mut Tally,
 ) -> Vec<Candidate> {
-    let mut per_region: Vec<Vec<Candidate>> = vec![Vec::new(); regions.count()];
-    for &c in candidates {
-        per_region[regions.of_vertex(c.vertex())].push(c);
-    }
+    let per_region = regions.distribute(candidates);
     let parts = d.split(&regions.vertex_starts, &regions.slot_starts);
     let results: Vec<(Tally, Vec<u32>)> = parts
         .into_par_iter()
@@ -548,34 +465,4 @@ fn end_of_pass(d: &mut Part<'_>, live: &[u32], lists: &mut Flagged) {
     d.replan(&keeps[..kept]);
     d.rerank(&others[..other], RELEASE);
     d.flags.fill(0);
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::mesh::shapes;
-
-    #[test]
-    fn regions_cover_the_vertices_and_own_the_slots_of_their_triangles() {
-        let d = Collapser::from_model(&shapes::uv_sphere(100, 200));
-        for shifted in [false, true] {
-            let regions = Regions::of(&d, shifted);
-            let n = d.vertex_count() as u32;
-            let count = n as usize / MIN_REGION;
-            let expected = if shifted { count.min(2) } else { count };
-            assert_eq!(regions.count(), expected);
-            assert_eq!(regions.vertex_starts[0], 0);
-            assert_eq!(regions.slot_starts[0], 0);
-            assert!(regions.vertex_starts.windows(2).all(|w| w[0] < w[1]));
-            assert!(regions.slot_starts.windows(2).all(|w| w[0] <= w[1]));
-            // Every triangle lies in the slot range of the region of its smallest corner.
-            let slot_region =
-                |t: usize| regions.slot_starts.partition_point(|&s| s as usize <= t) - 1;
-            for (t, tri) in d.conn.triangles().iter().enumerate() {
-                let first = tri.iter().copied().min().unwrap_or(0);
-                assert_eq!(slot_region(t), regions.of_vertex(first), "triangle {t}");
-            }
-            assert_eq!(regions.of_vertex(n - 1), regions.count() - 1);
-        }
-    }
 }

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 
 use super::collapser::Kind;
 use super::quadric::Quadric;
-use crate::mesh::topology::{Connectivity, Ring, RingShape};
+use crate::mesh::topology::{Adjacency, Connectivity, Ring, RingShape};
 
 /// Weight of boundary and feature constraint planes relative to an area-weighted face plane.
 const CONSTRAINT_WEIGHT: f64 = 100.0;

@@ -21,7 +21,9 @@
 //!    feature edge) and rejecting fills that flip or degenerate a triangle or create an edge
 //!    that already exists (non-manifold) — such a vertex is kept until a neighbour goes; a
 //!    vertex whose ring a removal changed waits for the next pass, re-ranked at the end of
-//!    this one; removals are planned on all cores, a batch at a time, and made one by one;
+//!    this one; removals run in regions on all cores (`regions`) while a round of them
+//!    cannot reach the target, the rest (and those on region borders) planned on all cores
+//!    a batch at a time and made one by one;
 //! 5. compact: live vertices and triangles (and their colours, normals and texture
 //!    coordinates, which a removal never changes) back into the model's arrays.
 //!
@@ -31,6 +33,7 @@
 
 mod passes;
 mod plan;
+mod regions;
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -192,7 +195,7 @@ impl Decimator {
         }
     }
 
-    fn surface(&self) -> Surface<'_> {
+    fn surface(&self) -> Surface<'_, Connectivity> {
         Surface {
             conn: &self.conn,
             positions: &self.positions,

@@ -7,10 +7,13 @@
 //! changed has a stale key: it waits, and it is re-ranked with every other changed vertex
 //! at the pass's end, on all cores.
 //!
-//! Removals are planned a batch at a time on all cores (planning only reads the mesh) and
-//! made one by one, in order, on the whole mesh. A plan is made again when a removal
+//! A pass runs in rounds of its cheapest candidates on all cores, in regions
+//! (`schroeder::regions`: each plans and makes the removals whose whole neighbourhood it
+//! owns), while a round cannot reach the target. The rest, and each round's candidates on
+//! region borders, run on the whole mesh: planned a batch at a time on all cores (planning
+//! only reads the mesh) and made one by one, in order. A plan is made again when a removal
 //! before it in the pass changed the neighbourhood of one of its ring's vertices (which
-//! its checks read), so every removal is made as if planned in its turn: the result is the
+//! its checks read), so every removal is made as if planned in its turn. The result is the
 //! same on any number of cores, and the count stops exactly at the target.
 
 use rayon::prelude::*;
@@ -19,6 +22,7 @@ use super::plan::Planning;
 use super::{Decimator, Limits, Outcome, Removal, RELAX_STEP_DEG};
 use crate::decimate::candidates::{cheapest, Candidate};
 use crate::decimate::lists;
+use crate::decimate::regions::{round_size, Regions};
 
 /// One pass takes the cheapest `1 / PASS_SHARE` of the candidates. Metro's mean error
 /// (300k samples) at 50 % / 90 % removed, against the greedy queue this replaced: dragon
@@ -103,6 +107,8 @@ pub(super) fn remove_in_passes(
     progress: &mut dyn FnMut(usize),
 ) {
     let mut live: Vec<u32> = (0..d.positions.len() as u32).collect();
+    let regions =
+        [false, true].map(|shifted| Regions::new(d.positions.len(), d.conn.triangles(), shifted));
     // Kept from pass to pass and refilled in place.
     let (mut all, mut pass, mut tied) = (Vec::new(), Vec::new(), Vec::new());
     loop {
@@ -143,7 +149,7 @@ pub(super) fn remove_in_passes(
         let take = (count / PASS_SHARE).min(2 * needed).clamp(1, count);
         cheapest(&all[..count], take, &mut pass, &mut tied);
         d.pass += 1;
-        if remove_pass(d, &pass, limits, outcome, progress) {
+        if remove_pass(d, &regions, &pass, limits, outcome, progress) {
             break; // a count limit: the keys are not needed any more
         }
         // In vertex order, so that neighbours share the memory they read.
@@ -160,9 +166,48 @@ fn reached(d: &Decimator, limits: &Limits, outcome: &Outcome) -> bool {
     outcome.removed >= limits.remove || d.conn.triangle_count() <= limits.keep_triangles
 }
 
-/// Removes the pass's `candidates` (in key order), a batch at a time; true when a count
-/// limit stopped it.
+/// Removes the pass's `candidates` (in key order); true when a count limit stopped it.
+/// Rounds of the cheapest candidates run in `regions` while a round cannot reach a limit
+/// (a removal takes one vertex and at most two triangles), each round's border candidates
+/// on the whole mesh after it; the rest runs on the whole mesh. A seam's two sides go
+/// together on the whole mesh only, so a model with seams has no rounds in regions.
 fn remove_pass(
+    d: &mut Decimator,
+    regions: &[Regions; 2],
+    candidates: &[Candidate],
+    limits: &Limits,
+    outcome: &mut Outcome,
+    progress: &mut dyn FnMut(usize),
+) -> bool {
+    let in_regions = regions[0].count() > 1 && d.twins.is_empty();
+    let mut rest = candidates;
+    while in_regions && !rest.is_empty() {
+        let over = d
+            .conn
+            .triangle_count()
+            .saturating_sub(limits.keep_triangles);
+        let budget = limits
+            .remove
+            .saturating_sub(outcome.removed)
+            .min(over.div_ceil(2));
+        let size = round_size(candidates.len(), rest.len(), budget);
+        if size == 0 {
+            break;
+        }
+        let (round, tail) = rest.split_at(size);
+        let border = d.remove_in_regions(&regions[0], round, outcome);
+        let border = d.remove_in_regions(&regions[1], &border, outcome);
+        if remove_on_whole(d, &border, limits, outcome, progress) {
+            return true;
+        }
+        rest = tail;
+    }
+    remove_on_whole(d, rest, limits, outcome, progress)
+}
+
+/// Removes `candidates` (in key order) on the whole mesh, a batch at a time; true when a
+/// count limit stopped it.
+fn remove_on_whole(
     d: &mut Decimator,
     candidates: &[Candidate],
     limits: &Limits,

@@ -7,7 +7,7 @@ use glam::{DVec3, Vec3};
 
 use crate::decimate::loop_split;
 use crate::mesh::classify::{classify, RingGeometry, VertexClass};
-use crate::mesh::topology::{Connectivity, Ring};
+use crate::mesh::topology::{Adjacency, Ring};
 
 /// A fill is rejected when a new triangle's area is this small relative to its longest edge².
 const MIN_RELATIVE_AREA: f64 = 1e-10;
@@ -35,15 +35,15 @@ struct FillRegion {
     to: usize,
 }
 
-/// The mesh as planning reads it.
-#[derive(Clone, Copy)]
-pub(super) struct Surface<'a> {
-    pub conn: &'a Connectivity,
+/// The mesh as planning reads it: the whole, or a region's part (which must own the
+/// vertex planned, its ring and their triangles: see `regions`).
+pub(super) struct Surface<'a, C> {
+    pub conn: &'a C,
     pub positions: &'a [Vec3],
     pub cos_feature: f64,
 }
 
-impl Surface<'_> {
+impl<C: Adjacency> Surface<'_, C> {
     /// Classifies `v` into `p`'s ring and returns its class and decimation criterion:
     /// distance to the loop's average plane (simple), or to the line through its boundary /
     /// feature neighbours (boundary, interior edge). `None` for vertices that are never

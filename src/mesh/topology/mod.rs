@@ -234,25 +234,36 @@ impl Connectivity {
         self.unlink(from, t);
         self.link(to, t);
     }
+}
+
+/// Read access to a mesh's incidence, whole or a part of it: what the one-ring and the edge
+/// queries are made of, so that they run the same on a [`Connectivity`] and on a
+/// [`ConnectivityPart`] (which answers only for what it owns: ask first).
+pub trait Adjacency {
+    /// Live triangles incident to `v`.
+    fn incident(&self, v: u32) -> &[u32];
+
+    /// The corners of triangle slot `t`.
+    fn triangle(&self, t: u32) -> [u32; 3];
 
     /// True when some live triangle not incident to `except` has the edge `a`–`b`.
-    pub fn has_edge_avoiding(&self, a: u32, b: u32, except: u32) -> bool {
+    fn has_edge_avoiding(&self, a: u32, b: u32, except: u32) -> bool {
         self.incident(a).iter().any(|&t| {
-            let tri = self.triangles[t as usize];
+            let tri = self.triangle(t);
             tri.contains(&b) && !tri.contains(&except)
         })
     }
 
     /// True when a live triangle with exactly the vertices `a`, `b`, `c` exists.
-    pub fn has_triangle(&self, a: u32, b: u32, c: u32) -> bool {
+    fn has_triangle(&self, a: u32, b: u32, c: u32) -> bool {
         self.incident(a).iter().any(|&t| {
-            let tri = self.triangles[t as usize];
+            let tri = self.triangle(t);
             tri.contains(&b) && tri.contains(&c)
         })
     }
 
     /// Fills `ring` with the ordered one-ring of `v` and says what shape it has.
-    pub fn ring(&self, v: u32, ring: &mut Ring) -> RingShape {
+    fn ring(&self, v: u32, ring: &mut Ring) -> RingShape {
         ring.verts.clear();
         ring.triangles.clear();
         ring.pairs.clear();
@@ -264,7 +275,7 @@ impl Connectivity {
             return RingShape::Complex;
         }
         for &t in incident {
-            let [a, b, c] = self.triangles[t as usize];
+            let [a, b, c] = self.triangle(t);
             let (x, y) = if a == v {
                 (b, c)
             } else if b == v {
@@ -342,6 +353,30 @@ impl Connectivity {
         } else {
             RingShape::Open
         }
+    }
+}
+
+impl Adjacency for Connectivity {
+    #[inline]
+    fn incident(&self, v: u32) -> &[u32] {
+        Self::incident(self, v)
+    }
+
+    #[inline]
+    fn triangle(&self, t: u32) -> [u32; 3] {
+        Self::triangle(self, t)
+    }
+}
+
+impl Adjacency for ConnectivityPart<'_> {
+    #[inline]
+    fn incident(&self, v: u32) -> &[u32] {
+        ConnectivityPart::incident(self, v)
+    }
+
+    #[inline]
+    fn triangle(&self, t: u32) -> [u32; 3] {
+        ConnectivityPart::triangle(self, t)
     }
 }
 

@@ -255,6 +255,36 @@ impl ConnectivityPart<'_> {
         self.incidence[r].len = 0;
     }
 
+    /// Replaces the live triangles in slots `old` by `fill` (no more of them), as removing
+    /// a vertex and filling its hole does. `fill[i]` takes slot `old[old.len() - 1 - i]`,
+    /// the slot the whole mesh's free list gives it when `old` is removed in order and
+    /// `fill` added in order (so what a slot carries, a per-face attribute, passes to the
+    /// triangle that covers its place the same way); the slots left over are killed. Every
+    /// corner, old and new, must be owned, each with room for the triangles it gains (see
+    /// [`Self::has_room`]).
+    pub fn replace_triangles(&mut self, old: &[u32], fill: &[[u32; 3]]) {
+        debug_assert!(fill.len() <= old.len(), "a fill larger than its hole");
+        for &t in old {
+            let tri = self.triangles[self.slot(t)];
+            for v in tri {
+                self.unlink(v, t);
+            }
+        }
+        let (left_over, reused) = old.split_at(old.len().saturating_sub(fill.len()));
+        for (&t, &tri) in reused.iter().rev().zip(fill) {
+            let i = self.slot(t);
+            self.triangles[i] = tri;
+            for v in tri {
+                self.link(v, t);
+            }
+        }
+        for &t in left_over {
+            let i = self.slot(t);
+            self.alive[i] = false;
+            self.removed.push(t);
+        }
+    }
+
     /// Ends the part: the slots it killed, for [`Connectivity::absorb`].
     pub fn finish(self) -> Vec<u32> {
         self.removed
@@ -356,6 +386,45 @@ mod tests {
             ]
         );
         assert!(fan[1].touches(3) && !fan[1].touches(2));
+    }
+
+    #[test]
+    fn replacing_a_fan_in_a_part_matches_the_whole_meshs_remove_and_add() {
+        // Vertex 0 in the middle of a closed fan of six (rim 1..=6), in part 0 (vertices
+        // 0..7, slots 0..6), beside a lone triangle in part 1 (vertices 7..10, slot 6).
+        let mut tris: Vec<[u32; 3]> = (1..=6u32).map(|i| [0, i, i % 6 + 1]).collect();
+        tris.push([7, 8, 9]);
+        let fill = [[1, 2, 3], [1, 3, 4], [1, 4, 6], [4, 5, 6]];
+        let old: Vec<u32> = (0..6).collect();
+        let mut serial = Connectivity::new(10, &tris);
+        for &t in &old {
+            serial.remove_triangle(t);
+        }
+        let slots: Vec<u32> = fill.iter().map(|&tri| serial.add_triangle(tri)).collect();
+        assert_eq!(slots, vec![5, 4, 3, 2]);
+
+        let mut c = Connectivity::new(10, &tris);
+        let mut parts = c.split(&[0, 7], &[0, 6]);
+        parts[0].replace_triangles(&old, &fill);
+        for (&t, tri) in slots.iter().zip(fill) {
+            assert_eq!(parts[0].triangle(t), tri);
+        }
+        assert!(parts[0].incident(0).is_empty());
+        for v in 1..=6 {
+            let mut mine = parts[0].incident(v).to_vec();
+            let mut theirs = serial.incident(v).to_vec();
+            mine.sort_unstable();
+            theirs.sort_unstable();
+            assert_eq!(mine, theirs, "vertex {v}");
+        }
+        let removed: Vec<u32> = parts
+            .into_iter()
+            .flat_map(ConnectivityPart::finish)
+            .collect();
+        assert_eq!(removed, vec![0, 1]);
+        c.absorb(removed);
+        assert_eq!(c.triangle_count(), serial.triangle_count());
+        assert_eq!(c.alive_ids().collect::<Vec<_>>(), vec![2, 3, 4, 5, 6]);
     }
 
     #[test]
