@@ -200,6 +200,7 @@ fn remove_pass(
         if remove_on_whole(d, &border, limits, outcome, progress) {
             return true;
         }
+        progress(outcome.removed);
         rest = tail;
     }
     remove_on_whole(d, rest, limits, outcome, progress)
