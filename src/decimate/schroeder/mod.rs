@@ -89,18 +89,8 @@ pub fn decimate_model(
     twins: &[u32],
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
-    // 1. load, renumbered along a Morton curve, triangles sorted by their first vertex:
-    //    memory locality for everything below
-    let mut loaded = layout::load(model);
-    let positions: Vec<Vec3> = loaded
-        .order
-        .iter()
-        .map(|&v| model.positions[v as usize])
-        .collect();
-    let mut faces = std::mem::take(&mut loaded.faces);
-    faces.sort_by_cached_key(|&t| loaded.triangle(model, t).into_iter().min());
-    loaded.faces = faces;
-    let triangles = loaded.triangles(model);
+    // 1. load
+    let (loaded, positions, triangles) = load(model);
     let pinned: Vec<bool> = loaded
         .order
         .iter()
@@ -132,6 +122,23 @@ pub fn decimate_model(
         d.write_back(model, &loaded.order, &loaded.faces);
     }
     outcome
+}
+
+/// `model` as the decimation works on it: renumbered along a Morton curve, triangles
+/// sorted by their smallest vertex (memory locality for everything after, and the order
+/// `regions` cut by). Returns the renumbering, the positions and the triangles.
+fn load(model: &Model) -> (layout::Loaded, Vec<Vec3>, Vec<[u32; 3]>) {
+    let mut loaded = layout::load(model);
+    let positions: Vec<Vec3> = loaded
+        .order
+        .iter()
+        .map(|&v| model.positions[v as usize])
+        .collect();
+    let mut faces = std::mem::take(&mut loaded.faces);
+    faces.sort_by_cached_key(|&t| loaded.triangle(model, t).into_iter().min());
+    loaded.faces = faces;
+    let triangles = loaded.triangles(model);
+    (loaded, positions, triangles)
 }
 
 /// The working state of one model's decimation.

@@ -137,15 +137,7 @@ pub(super) fn remove_in_passes(
             outcome.exhausted = true;
             break;
         }
-        // A removal takes one vertex and (closed) two triangles.
-        let over = d
-            .conn
-            .triangle_count()
-            .saturating_sub(limits.keep_triangles);
-        let needed = limits
-            .remove
-            .saturating_sub(outcome.removed)
-            .min(over.div_ceil(2));
+        let needed = allowed(d, limits, outcome);
         let take = (count / PASS_SHARE).min(2 * needed).clamp(1, count);
         cheapest(&all[..count], take, &mut pass, &mut tied);
         d.pass += 1;
@@ -161,6 +153,19 @@ pub(super) fn remove_in_passes(
     }
 }
 
+/// Removals the count limits still allow, at most: a removal takes one vertex and at most
+/// two triangles (a closed ring's; an open one's takes one).
+fn allowed(d: &Decimator, limits: &Limits, outcome: &Outcome) -> usize {
+    let over = d
+        .conn
+        .triangle_count()
+        .saturating_sub(limits.keep_triangles);
+    limits
+        .remove
+        .saturating_sub(outcome.removed)
+        .min(over.div_ceil(2))
+}
+
 /// True when a count limit is met.
 fn reached(d: &Decimator, limits: &Limits, outcome: &Outcome) -> bool {
     outcome.removed >= limits.remove || d.conn.triangle_count() <= limits.keep_triangles
@@ -168,7 +173,7 @@ fn reached(d: &Decimator, limits: &Limits, outcome: &Outcome) -> bool {
 
 /// Removes the pass's `candidates` (in key order); true when a count limit stopped it.
 /// Rounds of the cheapest candidates run in `regions` while a round cannot reach a limit
-/// (a removal takes one vertex and at most two triangles), each round's border candidates
+/// (see [`allowed`]), each round's border candidates
 /// on the whole mesh after it; the rest runs on the whole mesh. A seam's two sides go
 /// together on the whole mesh only, so a model with seams has no rounds in regions.
 fn remove_pass(
@@ -182,15 +187,7 @@ fn remove_pass(
     let in_regions = regions[0].count() > 1 && d.twins.is_empty();
     let mut rest = candidates;
     while in_regions && !rest.is_empty() {
-        let over = d
-            .conn
-            .triangle_count()
-            .saturating_sub(limits.keep_triangles);
-        let budget = limits
-            .remove
-            .saturating_sub(outcome.removed)
-            .min(over.div_ceil(2));
-        let size = round_size(candidates.len(), rest.len(), budget);
+        let size = round_size(candidates.len(), rest.len(), allowed(d, limits, outcome));
         if size == 0 {
             break;
         }

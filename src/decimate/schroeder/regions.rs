@@ -216,23 +216,14 @@ impl Region<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::decimate::layout;
     use crate::mesh::{measure, shapes, Model};
 
     /// A bumpy sphere (poles of valence 240, whose lists spill) loaded as a decimation
     /// loads it, ranked, with its candidates in key order.
     fn ranked() -> (Model, Decimator, Vec<Candidate>) {
         let model = shapes::bumpy_sphere(120, 240);
-        let mut loaded = layout::load(&model);
-        let positions: Vec<Vec3> = loaded
-            .order
-            .iter()
-            .map(|&v| model.positions[v as usize])
-            .collect();
-        let mut faces = std::mem::take(&mut loaded.faces);
-        faces.sort_by_cached_key(|&t| loaded.triangle(&model, t).into_iter().min());
-        loaded.faces = faces;
-        let mut d = Decimator::new(positions, &loaded.triangles(&model), 30.0);
+        let (_, positions, triangles) = super::super::load(&model);
+        let mut d = Decimator::new(positions, &triangles, 30.0);
         d.rank_all();
         let mut candidates: Vec<Candidate> = d
             .keys
