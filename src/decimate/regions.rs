@@ -23,16 +23,16 @@ const REGIONS: usize = 16;
 const BORDER_MERGE: usize = 8;
 
 /// Fewer vertices per region than this and the passes run on one core.
-pub(crate) const MIN_REGION: usize = 4096;
+const MIN_REGION: usize = 4096;
 
 /// A pass in regions goes in this many rounds of its cheapest candidates, each round's
 /// border candidates on the whole mesh before the next round: a border candidate then waits
 /// for at most a round's more expensive ones. On the dragon kept at 10 % by qem, one round
 /// gave a mean error of 9.18e-6, four 9.155e-6 (as on one core).
-pub(crate) const ROUNDS: usize = 4;
+const ROUNDS: usize = 4;
 
 /// Fewer candidates than this are not worth a round in regions.
-pub(crate) const MIN_ROUND: usize = 1024;
+const MIN_ROUND: usize = 1024;
 
 /// The vertex and slot ranges of the regions.
 pub(crate) struct Regions {

@@ -11,8 +11,8 @@
 //! vertex re-picks its cheapest edge. Within a pass the order is the cached one; across
 //! passes the thresholds rise, so the sequence stays close to greedy (see `PASS_SHARE`).
 //!
-//! A pass runs on all cores, in `ROUNDS` rounds of its cheapest candidates: the vertices
-//! are cut into `REGIONS` ranges of ids (spatial blocks: ids follow a Morton curve) and
+//! A pass runs on all cores, in rounds of its cheapest candidates (`decimate::regions`):
+//! the vertices are cut into 16 ranges of ids (spatial blocks: ids follow a Morton curve) and
 //! each region collapses, in cost order, those of the round's candidates whose whole
 //! neighbourhood it owns (`Part::gather`). Collapses in different regions touch
 //! disjoint data, so they commute: the result depends neither on the threads' timing nor
