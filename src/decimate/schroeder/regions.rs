@@ -21,6 +21,10 @@ use crate::decimate::candidates::Candidate;
 use crate::decimate::regions::Regions;
 use crate::mesh::topology::{split_mut, ConnectivityPart};
 
+/// Candidates whose data is asked for ahead of their turn, per stage of
+/// [`Region::prefetch_ahead`].
+const AHEAD: usize = 2;
+
 /// One region's share of a decimation: its part of the connectivity and of the per-vertex
 /// state, indexed from `v0`.
 struct Region<'a> {
@@ -113,7 +117,8 @@ impl Region<'_> {
     /// Tries `candidates` in order: each still current one whose neighbourhood the region
     /// owns is removed, or kept until a neighbour goes when its hole cannot be filled.
     fn remove_in_order(mut self, candidates: &[Candidate]) -> Done {
-        for &c in candidates {
+        for (n, &c) in candidates.iter().enumerate() {
+            self.prefetch_ahead(candidates, n);
             let v = c.vertex();
             if self.changed_in[self.at(v)] == self.pass {
                 continue; // its key is stale: re-ranked at the pass's end
@@ -140,6 +145,36 @@ impl Region<'_> {
         }
         self.done.freed = self.conn.finish();
         self.done
+    }
+
+    /// Asks for the data of the candidates ahead of candidate `n`, in three stages as each
+    /// becomes addressable: a candidate's incident list, then its triangles, then its ring
+    /// vertices' incident lists (which the ownership check and the fill's checks read).
+    fn prefetch_ahead(&self, candidates: &[Candidate], n: usize) {
+        let conn = &self.conn;
+        let listed = |k: usize| {
+            candidates
+                .get(n + k)
+                .map(|c| c.vertex())
+                .filter(|&v| conn.has_room(v, 0))
+        };
+        if let Some(c) = candidates.get(n + 3 * AHEAD) {
+            conn.prefetch_incident(c.vertex());
+        }
+        if let Some(v) = listed(2 * AHEAD) {
+            for &t in conn.incident(v) {
+                conn.prefetch_triangle(t);
+            }
+        }
+        if let Some(v) = listed(AHEAD) {
+            for &t in conn.incident(v) {
+                if conn.owns_slot(t) {
+                    for u in conn.triangle(t) {
+                        conn.prefetch_incident(u);
+                    }
+                }
+            }
+        }
     }
 
     /// True when the region owns `v`, its ring, and every triangle of them all (none of
