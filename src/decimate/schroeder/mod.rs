@@ -230,16 +230,47 @@ impl Decimator {
         self.keys = keys;
     }
 
-    /// Ranks `vertices` afresh, on all cores.
+    /// Ranks `vertices` (ascending) afresh, on all cores, asking for each vertex's data
+    /// ahead of its turn: its incident list, then its triangles, then its neighbours'
+    /// positions.
     fn rerank(&mut self, vertices: &[u32]) {
         let this = &*self;
         let keys: Vec<f64> = vertices
-            .par_iter()
-            .with_min_len(1024)
-            .map_init(Planning::default, |planning, &v| this.key(v, planning))
+            .par_chunks(1024)
+            .flat_map_iter(|chunk| {
+                let mut planning = Planning::default();
+                (0..chunk.len()).map(move |n| {
+                    this.prefetch_ahead(chunk, n);
+                    this.key(chunk[n], &mut planning)
+                })
+            })
             .collect();
         for (&v, key) in vertices.iter().zip(keys) {
             self.keys[v as usize] = key;
+        }
+    }
+
+    /// Asks for the data [`Self::key`] reads of the vertices ahead of `vertices[n]`, in
+    /// three stages as each becomes addressable (hints only).
+    fn prefetch_ahead(&self, vertices: &[u32], n: usize) {
+        const AHEAD: usize = 2;
+        let conn = &self.conn;
+        if let Some(&v) = vertices.get(n + 3 * AHEAD) {
+            conn.prefetch_incident(v);
+        }
+        if let Some(&v) = vertices.get(n + 2 * AHEAD) {
+            for &t in conn.incident(v) {
+                conn.prefetch_triangle(t);
+            }
+        }
+        if let Some(&v) = vertices.get(n + AHEAD) {
+            for &t in conn.incident(v) {
+                for u in conn.triangle(t) {
+                    if let Some(p) = self.positions.get(u as usize) {
+                        crate::mesh::prefetch(p);
+                    }
+                }
+            }
         }
     }
 
