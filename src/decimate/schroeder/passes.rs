@@ -173,9 +173,9 @@ fn reached(d: &Decimator, limits: &Limits, outcome: &Outcome) -> bool {
 
 /// Removes the pass's `candidates` (in key order); true when a count limit stopped it.
 /// Rounds of the cheapest candidates run in `regions` while a round cannot reach a limit
-/// (see [`allowed`]), each round's border candidates
-/// on the whole mesh after it; the rest runs on the whole mesh. A seam's two sides go
-/// together on the whole mesh only, so a model with seams has no rounds in regions.
+/// (see [`allowed`]), each round's border candidates on the whole mesh after it; the rest
+/// runs on the whole mesh. A seam's two sides go together on the whole mesh only, so a
+/// model with seams has no rounds in regions.
 fn remove_pass(
     d: &mut Decimator,
     regions: &[Regions; 2],

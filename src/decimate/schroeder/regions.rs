@@ -38,6 +38,8 @@ struct Region<'a> {
     changed_in: &'a mut [u32],
     pass: u32,
     planning: Planning,
+    /// Scratch for [`Region::hold_neighbours`].
+    held: Vec<u32>,
     done: Done,
 }
 
@@ -52,8 +54,6 @@ struct Done {
     changed: Vec<u32>,
     /// Slots killed.
     freed: Vec<u32>,
-    /// Scratch for [`Region::hold_neighbours`].
-    held: Vec<u32>,
 }
 
 impl Decimator {
@@ -87,6 +87,7 @@ impl Decimator {
                     changed_in: changed_in.next()?,
                     pass,
                     planning: Planning::default(),
+                    held: Vec::new(),
                     done: Done::default(),
                 })
             })
@@ -206,7 +207,7 @@ impl Region<'_> {
         if !self.conn.owns_vertex(v) || !self.conn.has_room(v, 0) {
             return;
         }
-        let mut ring = std::mem::take(&mut self.done.held);
+        let mut ring = std::mem::take(&mut self.held);
         ring.clear();
         for &t in self.conn.incident(v) {
             if self.conn.owns_slot(t) {
@@ -221,7 +222,7 @@ impl Region<'_> {
         for &u in &ring {
             self.mark_changed(u);
         }
-        self.done.held = ring;
+        self.held = ring;
     }
 
     /// Removes `v` as planned: its triangles replaced by the fill, `key` accumulated
