@@ -159,6 +159,7 @@ pub(super) fn collapse_in_passes(
             threshold: pass[take - 1].cost(),
             bound2,
         };
+        drop_mutual_duplicates(&mut pass, &d.best);
         let mut tally = Tally::default();
         let stopped = collapse_pass(d, &regions, &pass, bounds, limit, &mut tally);
         outcome.removed += tally.removed;
@@ -173,6 +174,18 @@ pub(super) fn collapse_in_passes(
     }
     progress(outcome.removed);
     outcome
+}
+
+/// Drops from `pass` (in cost order) the larger end of every edge that is the cheapest of
+/// both its ends (`best`): the two stand side by side, at the same cost, and the second
+/// would only find its other end gone, or fail as the first did. On the dragon kept at 10 %
+/// that is 390k of 1.08M tries, and a tenth of the time spent collapsing in regions.
+fn drop_mutual_duplicates(pass: &mut Vec<Candidate>, best: &[u32]) {
+    pass.retain(|c| {
+        let v = c.vertex();
+        let w = best[v as usize];
+        w > v || best.get(w as usize) != Some(&v)
+    });
 }
 
 /// Collapses the pass's `candidates` (in cost order) within `limit`, adding what became of
@@ -337,10 +350,13 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
     let plan = d.plan(v.min(w), v.max(w));
     if let Some(p) = plan.filter(|p| stored(p.cost) > bounds.threshold) {
         // An end took a collapse in this pass: re-planned at its end. On a seam it may have
-        // been the other side's end, which re-plans that side's edges only: look again.
+        // been the other side's end, which re-plans that side's edges only: both ends look
+        // again (the other end may have been dropped from the pass as a duplicate).
         if p.twin.is_some() {
-            let i = d.at(v);
-            d.flags[i] |= RERANK;
+            for x in [v, w] {
+                let i = d.at(x);
+                d.flags[i] |= RERANK;
+            }
         }
         return Attempt::Skipped;
     }
@@ -465,4 +481,28 @@ fn end_of_pass(d: &mut Part<'_>, live: &[u32], lists: &mut Flagged) {
     d.replan(&keeps[..kept]);
     d.rerank(&others[..other], RELEASE);
     d.flags.fill(0);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_mutual_cheapest_edge_is_tried_once_from_its_smaller_end() {
+        // 0 and 3 are each other's cheapest edge, as are 4 and 5; 1's is 3 (not mutual),
+        // 2 has none, 6's is 4 (whose own is 5).
+        let best = [3, 3, u32::MAX, 0, 5, 4, 4];
+        let mut pass: Vec<Candidate> = [(1.0, 0), (1.0, 3), (2.0, 1), (2.5, 2), (3.0, 4)]
+            .into_iter()
+            .chain([(3.0, 5), (4.0, 6)])
+            .map(|(cost, v)| Candidate::new(cost, v))
+            .collect();
+        drop_mutual_duplicates(&mut pass, &best);
+        let kept: Vec<u32> = pass.iter().map(|c| c.vertex()).collect();
+        assert_eq!(
+            kept,
+            [0, 1, 2, 4, 6],
+            "in cost order, each mutual pair once"
+        );
+    }
 }
