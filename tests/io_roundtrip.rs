@@ -38,6 +38,7 @@ fn scene() -> Scene {
         normals: Some(Attribute::PerFace(vec![Vec3::Z, Vec3::X])),
         texcoords: None,
         texture: None,
+        texture_repeat: [true; 2],
         material: None,
         diffuse: [0.25, 0.5, 0.75],
         crease_angle: Some(0.5),

@@ -285,3 +285,95 @@ fn a_fine_texture_seen_from_afar_shows_its_average_colour_not_a_moire() {
         [r, g, b].map(|c| c / pixels as u64)
     );
 }
+
+/// An 8 × 8 PNG, its left half red and its right half blue.
+fn write_halves(path: &Path) {
+    let mut pixels = Vec::new();
+    for _ in 0..8 {
+        for column in 0..8 {
+            pixels.extend_from_slice(if column < 4 {
+                &[230, 20, 20]
+            } else {
+                &[20, 20, 230]
+            });
+        }
+    }
+    write_png(path, 8, &pixels);
+}
+
+/// A flat `n × n` grid like [`write_grid`]'s whose u runs twice across the image (0 to 2
+/// from left to right), its `ImageTexture` with `fields` added (`repeatS FALSE`, …).
+fn write_wide_grid(path: &Path, n: usize, image: &str, fields: &str) {
+    let mut points = String::new();
+    let mut uvs = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
+            points.push_str(&format!("{} {} 0, ", 2.0 * u - 1.0, 2.0 * v - 1.0));
+            uvs.push_str(&format!("{} {v}, ", 2.0 * u));
+        }
+    }
+    let mut faces = String::new();
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i;
+            let (b, c, d) = (a + 1, a + n + 2, a + n + 1);
+            faces.push_str(&format!("{a} {b} {c} -1 {a} {c} {d} -1 "));
+        }
+    }
+    let text = format!(
+        "#VRML V2.0 utf8\nShape {{\n  appearance Appearance {{\n    \
+         texture ImageTexture {{ url \"maps/{image}\" {fields} }}\n  }}\n  \
+         geometry IndexedFaceSet {{\n    coord Coordinate {{ point [ {points} ] }}\n    \
+         texCoord TextureCoordinate {{ point [ {uvs} ] }}\n    coordIndex [ {faces} ]\n  }}\n}}\n"
+    );
+    std::fs::write(path, text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+}
+
+#[test]
+fn a_texture_repeats_unless_the_file_says_it_clamps() {
+    // u from 0 to 2: repeating, the grid's quarters are red, blue, red, blue; clamped along
+    // u (`repeatS FALSE`), everything right of u = 1 takes the image's right edge: blue.
+    for (fields, third_quarter_red) in [("", true), ("repeatS FALSE", false)] {
+        let dir = scratch(if fields.is_empty() { "repeat" } else { "clamp" });
+        write_halves(&dir.join("models/maps/halves.png"));
+        write_wide_grid(&dir.join("models/grid.wrl"), 8, "halves.png", fields);
+        let (out, image) = shot(&dir, &[]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!stderr.contains("not drawn"), "{stderr}");
+        let (top, bottom) = model_rows(&image, 0, image.width);
+        let bg = background();
+        let middle = (top + bottom) / 2;
+        let covered: Vec<u32> = (0..image.width)
+            .filter(|&x| !close(pixel(&image, x, middle), bg, 6))
+            .collect();
+        let (left, right) = match (covered.first(), covered.last()) {
+            (Some(&a), Some(&b)) if b > a + 40 => (a, b),
+            _ => panic!("the grid is not visible across the middle row"),
+        };
+        let quarter = (right - left) / 4;
+        let rows = (top + 4, bottom - 4);
+        // Inside each quarter, clear of the texel edges where filtering blends the colours.
+        let inner = |q: u32| {
+            (
+                left + q * quarter + quarter / 4,
+                left + (q + 1) * quarter - quarter / 4,
+            )
+        };
+        let colours: Vec<(usize, usize)> = (0..4)
+            .map(|q| red_and_blue(&image, inner(q), rows))
+            .collect();
+        let is_red = |(red, blue): (usize, usize)| red > 100 && blue < red / 20;
+        let is_blue = |(red, blue): (usize, usize)| blue > 100 && red < blue / 20;
+        assert!(
+            is_red(colours[0]) && is_blue(colours[1]),
+            "{fields:?}: {colours:?}"
+        );
+        assert!(is_blue(colours[3]), "{fields:?}: {colours:?}");
+        if third_quarter_red {
+            assert!(is_red(colours[2]), "repeating: {colours:?}");
+        } else {
+            assert!(is_blue(colours[2]), "clamped: {colours:?}");
+        }
+    }
+}

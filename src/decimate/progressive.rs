@@ -122,6 +122,7 @@ impl ProgressiveModel {
             normals: None,
             texcoords: None,
             texture: fine.texture.clone(),
+            texture_repeat: fine.texture_repeat,
             material: fine.material.clone(),
             diffuse: fine.diffuse,
             crease_angle: fine.crease_angle,

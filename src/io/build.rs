@@ -312,6 +312,7 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         normals,
         texcoords: texcoords.map(|_| vtexcoords),
         texture: None,
+        texture_repeat: [true; 2],
         material: None,
         diffuse,
         crease_angle,

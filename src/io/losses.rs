@@ -92,6 +92,27 @@ pub fn losses(scene: &Scene, format: Option<Format>) -> Vec<String> {
             have(imaged)
         ));
     }
+    // A texture that does not repeat: OBJ's `-clamp` covers both directions at once, PLY
+    // says nothing of wrapping.
+    let wrap_lost = models
+        .iter()
+        .filter(|m| m.texcoords.is_some() && m.texture.is_some())
+        .filter(|m| match format {
+            Format::Obj => m.texture_repeat[0] != m.texture_repeat[1],
+            _ => m.texture_repeat != [true; 2],
+        })
+        .count();
+    if keeps_images && wrap_lost > 0 {
+        let reason = if format == Format::Obj {
+            "an MTL clamps a texture along both directions or neither"
+        } else {
+            "a PLY does not say how a texture wraps"
+        };
+        out.push(format!(
+            "{name} output writes the texture as repeating where the input clamps it \
+             ({wrap_lost} of {all} models; {reason})"
+        ));
+    }
     out
 }
 
@@ -175,6 +196,27 @@ mod tests {
             models: vec![textured(Some("a.png")), textured(Some("a.png"))],
         };
         assert!(losses(&one_image, Some(Format::Ply)).is_empty());
+        // Clamped along u only: neither OBJ nor PLY can say so; clamped both ways, OBJ can.
+        let mut half = one_image.clone();
+        half.models[0].texture_repeat = [false, true];
+        for (f, reason) in [
+            (
+                Format::Obj,
+                "an MTL clamps a texture along both directions or neither",
+            ),
+            (Format::Ply, "a PLY does not say how a texture wraps"),
+        ] {
+            assert_eq!(
+                losses(&half, Some(f)),
+                vec![format!(
+                    "{} output writes the texture as repeating where the input clamps it \
+                     (1 of 2 models; {reason})",
+                    if f == Format::Obj { "OBJ" } else { "PLY" }
+                )]
+            );
+        }
+        half.models[0].texture_repeat = [false; 2];
+        assert!(losses(&half, Some(Format::Obj)).is_empty());
         assert_eq!(
             losses(&one_image, Some(Format::Off)),
             vec!["OFF output does not name the texture image (2 models have them)"]

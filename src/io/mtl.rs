@@ -40,6 +40,9 @@ pub struct Material {
     pub diffuse: Option<[f32; 3]>,
     /// `map_Kd`'s file name as written (relative to the MTL file's folder), if given.
     pub texture: Option<String>,
+    /// `map_Kd -clamp on`: the texture does not repeat (coordinates outside 0..=1 take the
+    /// image's edge texels).
+    pub clamp: bool,
 }
 
 /// Reads an MTL file's materials, in file order; `file` is named in the warnings.
@@ -62,6 +65,7 @@ pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<String>) {
                 name: rest.to_string(),
                 diffuse: None,
                 texture: None,
+                clamp: false,
             });
             continue;
         }
@@ -85,7 +89,7 @@ pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<String>) {
         let read = if key == "Kd" {
             kd(rest).map(|c| m.diffuse = Some(c))
         } else {
-            map_file(rest).map(|t| m.texture = Some(t))
+            map_file(rest).map(|(t, clamp)| (m.texture, m.clamp) = (Some(t), clamp))
         };
         if let Err(why) = read {
             warnings.push(format!("{f}:{line}: {key}: {why}; line skipped"));
@@ -137,8 +141,9 @@ fn option_values(option: &str) -> Option<(usize, bool)> {
     })
 }
 
-/// `map_Kd`'s file name: what is left after the options, spaces inside kept.
-fn map_file(rest: &str) -> Result<String, String> {
+/// `map_Kd`'s file name (what is left after the options, spaces inside kept) and whether
+/// its options say `-clamp on`.
+fn map_file(rest: &str) -> Result<(String, bool), String> {
     // Each word with where it starts, so the file name can be cut out whole.
     let mut spans = Vec::new();
     let mut start = None;
@@ -153,6 +158,7 @@ fn map_file(rest: &str) -> Result<String, String> {
         }
     }
     let mut i = 0;
+    let mut clamp = false;
     while let Some(&(_, word)) = spans.get(i) {
         if !word.starts_with('-') {
             break;
@@ -180,9 +186,12 @@ fn map_file(rest: &str) -> Result<String, String> {
         if taken == 0 {
             return Err(format!("option '{word}' without a value"));
         }
+        if word == "-clamp" {
+            clamp = spans[i - 1].1 == "on";
+        }
     }
     match spans.get(i) {
-        Some(&(at, _)) => Ok(rest[at..].trim_end().to_string()),
+        Some(&(at, _)) => Ok((rest[at..].trim_end().to_string(), clamp)),
         None => Err("no file name".to_string()),
     }
 }
@@ -247,6 +256,7 @@ pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) {
         }
         if model.texcoords.is_some() {
             model.texture.clone_from(&m.texture);
+            model.texture_repeat = [!m.clamp; 2];
         }
     }
     if !unknown.is_empty() {
@@ -271,6 +281,9 @@ pub struct MtlEntry {
     pub name: String,
     pub diffuse: [f32; 3],
     pub texture: Option<String>,
+    /// Written as `-clamp on`: the texture repeats along neither u nor v. (MTL has one
+    /// setting for both: a texture that repeats along one only is written repeating.)
+    pub clamp: bool,
 }
 
 /// The materials an OBJ output needs, and each model's entry; `None` when no model has a
@@ -315,7 +328,7 @@ pub fn plan(scene: &Scene) -> Option<MtlPlan> {
     let mut entries: Vec<MtlEntry> = Vec::new();
     let mut names: HashSet<String> = HashSet::new();
     // Each entry by the name it was wanted under (before `_K` was added) and its look.
-    let mut by_look: HashMap<(String, [u32; 3], Option<String>), usize> = HashMap::new();
+    let mut by_look: HashMap<(String, [u32; 3], Option<String>, bool), usize> = HashMap::new();
     let mut next_suffix: HashMap<String, usize> = HashMap::new();
     let mut of_model = Vec::with_capacity(scene.models.len());
     for (i, m) in scene.models.iter().enumerate() {
@@ -324,8 +337,14 @@ pub fn plan(scene: &Scene) -> Option<MtlPlan> {
             n => n,
         };
         let (diffuse, texture) = (m.diffuse, mapped_texture(m).cloned());
+        let clamp = texture.is_some() && m.texture_repeat == [false; 2];
         // Same wanted name and same look: the same entry.
-        let look = (wanted.clone(), diffuse.map(f32::to_bits), texture.clone());
+        let look = (
+            wanted.clone(),
+            diffuse.map(f32::to_bits),
+            texture.clone(),
+            clamp,
+        );
         let index = match by_look.get(&look) {
             Some(&e) => e,
             None => {
@@ -341,6 +360,7 @@ pub fn plan(scene: &Scene) -> Option<MtlPlan> {
                     name,
                     diffuse,
                     texture,
+                    clamp,
                 });
                 by_look.insert(look, entries.len() - 1);
                 entries.len() - 1
@@ -366,7 +386,8 @@ pub fn write_mtl_to(w: &mut impl Write, entries: &[MtlEntry]) -> std::io::Result
             let t: String = t.chars().filter(|c| !c.is_control()).collect();
             // A name starting with '-' would read as an option.
             let dot = if t.starts_with('-') { "./" } else { "" };
-            writeln!(w, "map_Kd {dot}{t}")?;
+            let clamp = if e.clamp { "-clamp on " } else { "" };
+            writeln!(w, "map_Kd {clamp}{dot}{t}")?;
         }
     }
     w.flush()
@@ -378,20 +399,22 @@ mod tests {
 
     #[test]
     fn map_kd_options_are_skipped_and_the_file_name_kept_whole() {
-        assert_eq!(map_file("skin.jpg").as_deref(), Ok("skin.jpg"));
+        let file = |rest: &str| map_file(rest).map(|(f, _)| f);
+        assert_eq!(map_file("skin.jpg"), Ok(("skin.jpg".into(), false)));
         assert_eq!(
-            map_file("-s 1 1 1 -o 0 0 -clamp on -bm 0.5 my skin.jpg").as_deref(),
-            Ok("my skin.jpg")
+            map_file("-s 1 1 1 -o 0 0 -clamp on -bm 0.5 my skin.jpg"),
+            Ok(("my skin.jpg".into(), true))
         );
+        assert_eq!(map_file("-clamp off a.png"), Ok(("a.png".into(), false)));
         // Fewer numbers than three: the next option or the file name ends them.
-        assert_eq!(map_file("-s 2 tex/a.png").as_deref(), Ok("tex/a.png"));
-        assert_eq!(map_file("-mm 0 1 b.png").as_deref(), Ok("b.png"));
+        assert_eq!(file("-s 2 tex/a.png").as_deref(), Ok("tex/a.png"));
+        assert_eq!(file("-mm 0 1 b.png").as_deref(), Ok("b.png"));
         // An option needs its value and leaves a file name, or the line is refused.
         assert!(map_file("-o 1")
             .unwrap_err()
             .contains("'-o' without a value"));
         assert!(map_file("-clamp").unwrap_err().contains("no file name"));
-        assert_eq!(map_file("-s 1 -x.png").as_deref(), Ok("-x.png"));
+        assert_eq!(file("-s 1 -x.png").as_deref(), Ok("-x.png"));
         assert!(map_file("-zz a.png").unwrap_err().contains("'-zz'"));
         assert!(map_file("").is_err());
     }

@@ -180,6 +180,7 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("VertexProperty", "materialBinding" | "normalBinding") => Word,
             ("Cube", "width" | "height" | "depth") => Floats,
             ("Texture2", "filename") => Strings,
+            ("Texture2", "wrapS" | "wrapT") => Word,
             ("ResetTransform", "whatToReset") => Word,
             _ => return None,
         }),
@@ -194,6 +195,7 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Shape", "appearance" | "geometry") => Node,
             ("Appearance", "material" | "texture") => Node,
             ("ImageTexture", "url") => Strings,
+            ("ImageTexture", "repeatS" | "repeatT") => Bool,
             ("Material", "diffuseColor") => Floats,
             ("IndexedFaceSet", "coord" | "color" | "normal" | "texCoord") => Node,
             ("IndexedFaceSet", "coordIndex" | "colorIndex" | "normalIndex" | "texCoordIndex") => {

@@ -28,7 +28,7 @@
 //! | diffuse                    | rgb              | the material's colour                                     |
 //! | crease flag, crease angle  | flag, f32        | radians; the angle is there (0) when the flag is 0        |
 //! | solid                      | flag             |                                                           |
-//! | attributes                 | u8               | bit 0 per-vertex colours, bit 1 per-face colours, bit 2 per-vertex normals, bit 3 texture coordinates, bit 4 texture image, bit 5 material name; bits 0 and 1 exclusive, bits 6–7 zero |
+//! | attributes                 | u8               | bit 0 per-vertex colours, bit 1 per-face colours, bit 2 per-vertex normals, bit 3 texture coordinates, bit 4 texture image, bit 5 material name, bits 6 and 7 the image clamps along u and along v (with bit 4 only; otherwise it repeats); bits 0 and 1 exclusive |
 //! | image name length          | u32              | bit 4 only: N                                             |
 //! | image name                 | N bytes          | bit 4 only: UTF-8, the texture image as the input named it |
 //! | material name length       | u32              | bit 5 only: N                                             |
@@ -83,6 +83,8 @@ const VERTEX_NORMALS: u8 = 4;
 const TEXCOORDS: u8 = 8;
 const TEXTURE_IMAGE: u8 = 16;
 const MATERIAL_NAME: u8 = 32;
+const CLAMP_U: u8 = 64;
+const CLAMP_V: u8 = 128;
 
 /// Writes `pm` to `path` via a temporary file beside it and a rename. A model that fails
 /// [`ProgressiveModel::validate`] (or that the layout cannot hold, such as per-face normals)
@@ -136,6 +138,8 @@ struct Attributes {
     texcoords: bool,
     texture_image: bool,
     material_name: bool,
+    /// The image does not repeat along u, along v (`Model::texture_repeat`).
+    clamp: [bool; 2],
 }
 
 impl Attributes {
@@ -147,6 +151,7 @@ impl Attributes {
             texcoords: m.texcoords.is_some(),
             texture_image: m.texture.is_some(),
             material_name: m.material.is_some(),
+            clamp: m.texture_repeat.map(|r| m.texture.is_some() && !r),
         }
     }
 
@@ -158,6 +163,8 @@ impl Attributes {
             | bit(self.texcoords, TEXCOORDS)
             | bit(self.texture_image, TEXTURE_IMAGE)
             | bit(self.material_name, MATERIAL_NAME)
+            | bit(self.clamp[0], CLAMP_U)
+            | bit(self.clamp[1], CLAMP_V)
     }
 
     fn from_bits(bits: u8) -> Option<Self> {
@@ -166,9 +173,12 @@ impl Attributes {
             | VERTEX_NORMALS
             | TEXCOORDS
             | TEXTURE_IMAGE
-            | MATERIAL_NAME;
+            | MATERIAL_NAME
+            | CLAMP_U
+            | CLAMP_V;
         let both_colors = VERTEX_COLORS | FACE_COLORS;
-        if bits & !all != 0 || bits & both_colors == both_colors {
+        let clamp_without_image = bits & (CLAMP_U | CLAMP_V) != 0 && bits & TEXTURE_IMAGE == 0;
+        if bits & !all != 0 || bits & both_colors == both_colors || clamp_without_image {
             return None;
         }
         Some(Self {
@@ -178,6 +188,7 @@ impl Attributes {
             texcoords: bits & TEXCOORDS != 0,
             texture_image: bits & TEXTURE_IMAGE != 0,
             material_name: bits & MATERIAL_NAME != 0,
+            clamp: [bits & CLAMP_U != 0, bits & CLAMP_V != 0],
         })
     }
 
@@ -560,7 +571,7 @@ fn header(c: &mut Cursor<'_>) -> Parse<(Model, Attributes, usize, usize)> {
     let a = Attributes::from_bits(bits).ok_or_else(|| {
         c.bad(
             at,
-            format!("attribute flags {bits:#04x}: expected bits 0, 1 (not both) and 2 to 5 only"),
+            format!("attribute flags {bits:#04x}: expected bits 0, 1 (not both) and 2 to 7 only, 6 and 7 with 4"),
         )
     })?;
     let mut text = |what: &str| -> Parse<String> {
@@ -586,6 +597,7 @@ fn header(c: &mut Cursor<'_>) -> Parse<(Model, Attributes, usize, usize)> {
         crease_angle: creased.then_some(crease),
         solid,
         texture,
+        texture_repeat: a.clamp.map(|c| !c),
         material,
         ..Model::default()
     };
@@ -806,6 +818,30 @@ mod tests {
             let expected = format!("the {what} is not UTF-8");
             assert!(e.as_ref().is_some_and(|e| e.contains(&expected)), "{e:?}");
         }
+    }
+
+    #[test]
+    fn a_clamped_texture_reads_back_clamped_and_clamp_bits_need_an_image() {
+        let mut m = textured(shapes::uv_sphere(6, 8));
+        m.texture = Some("decal.png".into());
+        m.texture_repeat = [false, true];
+        let pm = progressive(vec![m]);
+        let b = bytes(&pm);
+        let header = 16 + 4 + pm.models[0].base.name.len() + 64 + 12 + 5 + 1;
+        assert_eq!(b[header], 8 | 16 | 64, "bits 3, 4 and 6");
+        let back = parse(&b).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(back.models[0].base.texture_repeat, [false, true]);
+        assert_eq!(back, pm);
+        // Clamping with no image named: refused at the attribute byte.
+        let mut plain = textured(shapes::uv_sphere(6, 8));
+        plain.texture = None;
+        let mut b = bytes(&progressive(vec![plain]));
+        b[header] |= 128;
+        let e = parse(&b).err().map(|e| e.to_string());
+        assert!(
+            e.as_ref().is_some_and(|e| e.contains("6 and 7 with 4")),
+            "{e:?}"
+        );
     }
 
     #[test]

@@ -32,6 +32,8 @@ struct State {
     texcoords: Option<Rc<Node>>,
     /// `Texture2`'s file name.
     texture: Option<String>,
+    /// `Texture2`'s `wrapS`, `wrapT`: true for REPEAT (the default), false for CLAMP.
+    texture_repeat: [bool; 2],
     material: Option<Rc<Node>>,
     material_binding: Binding,
     normal_binding: Binding,
@@ -49,6 +51,7 @@ impl Default for State {
             normals: None,
             texcoords: None,
             texture: None,
+            texture_repeat: [true; 2],
             material: None,
             material_binding: Binding::Overall,
             normal_binding: Binding::Default,
@@ -215,7 +218,8 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
                 .strings("filename")
                 .first()
                 .filter(|f| !f.is_empty())
-                .cloned()
+                .cloned();
+            state.texture_repeat = [wrap(node, "wrapS")?, wrap(node, "wrapT")?];
         }
         "Material" | "BaseColor" => state.material = Some(node.clone()),
         "MaterialBinding" => state.material_binding = binding(node)?,
@@ -238,6 +242,18 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
         _ => {}
     }
     Ok(())
+}
+
+/// `Texture2`'s wrap `field`: true for REPEAT (also when absent), false for CLAMP.
+fn wrap(node: &Node, field: &str) -> PResult<bool> {
+    match node.word(field) {
+        None | Some("REPEAT") => Ok(true),
+        Some("CLAMP") => Ok(false),
+        Some(w) => Err(ParseError::new(
+            node.line_of(field),
+            format!("expected REPEAT or CLAMP in Texture2's {field}, found '{w}'"),
+        )),
+    }
 }
 
 fn binding(node: &Node) -> PResult<Binding> {
@@ -550,6 +566,7 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
     };
     let mut model = build(spec, ctx.warnings)?;
     model.texture = state.texture.clone();
+    model.texture_repeat = state.texture_repeat;
     if model.triangles.is_empty() {
         return Ok(());
     }

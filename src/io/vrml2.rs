@@ -84,11 +84,13 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
         .clone()
         .or_else(|| node.def.clone())
         .unwrap_or_else(|| format!("{}_{}", geometry.kind, ctx.models.len() + 1));
-    let texture = node
+    let image = node
         .node("appearance")
         .and_then(|a| a.node("texture"))
-        .filter(|t| t.kind == "ImageTexture")
-        .and_then(|t| t.strings("url").first().cloned());
+        .filter(|t| t.kind == "ImageTexture");
+    let texture = image.and_then(|t| t.strings("url").first().cloned());
+    let texture_repeat =
+        ["repeatS", "repeatT"].map(|field| image.and_then(|t| t.boolean(field)).unwrap_or(true));
     let boxed;
     let spec = match geometry.kind.as_str() {
         "IndexedFaceSet" => {
@@ -190,6 +192,7 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
     };
     let mut model = build(spec, ctx.warnings)?;
     model.texture = texture;
+    model.texture_repeat = texture_repeat;
     if model.triangles.is_empty() {
         return Ok(());
     }

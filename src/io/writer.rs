@@ -138,6 +138,11 @@ fn write_model(w: &mut impl Write, m: &Model, names: &mut HashSet<String>) -> io
     if let Some(url) = &m.texture {
         write!(w, " texture ImageTexture {{ url ")?;
         write_string(w, url)?;
+        for (field, repeat) in ["repeatS", "repeatT"].iter().zip(m.texture_repeat) {
+            if !repeat {
+                write!(w, " {field} FALSE")?;
+            }
+        }
         write!(w, " }}")?;
     }
     writeln!(w, " }}")?;

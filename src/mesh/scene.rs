@@ -62,6 +62,10 @@ pub struct Model {
     /// relative to the file's folder: VRML 2.0's `ImageTexture`, Inventor's `Texture2`, an
     /// OBJ's `map_Kd`); `io::rebase_textures` re-expresses it for another folder.
     pub texture: Option<String>,
+    /// Whether the texture repeats along u and along v beyond 0..=1 (VRML 2.0's
+    /// `repeatS`/`repeatT`, Inventor's `wrapS`/`wrapT`, an MTL's `-clamp`); where it does
+    /// not, coordinates outside take the image's edge texels. Both true unless a file says.
+    pub texture_repeat: [bool; 2],
     /// The material's name as the file gave it (OBJ `usemtl`), if any: what an OBJ output
     /// names its `newmtl` after.
     pub material: Option<String>,
@@ -84,6 +88,7 @@ impl Default for Model {
             normals: None,
             texcoords: None,
             texture: None,
+            texture_repeat: [true; 2],
             material: None,
             diffuse: Self::DEFAULT_DIFFUSE,
             crease_angle: None,

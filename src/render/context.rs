@@ -23,7 +23,14 @@ pub struct Capabilities {
     pub wide_lines: bool,
     /// Largest supported line width.
     pub max_line_width: f32,
+    /// The anisotropy textures are sampled with (`samplerAnisotropy`, at most
+    /// [`MAX_ANISOTROPY`]); `None` without the feature: trilinear only.
+    pub max_anisotropy: Option<f32>,
 }
+
+/// The most anisotropy asked of a sampler: 16 samples along a texel footprint's long axis
+/// is what desktop GPUs offer and what viewers commonly use.
+pub const MAX_ANISOTROPY: f32 = 16.0;
 
 impl Capabilities {
     /// `wanted` clamped to what the device can draw.
@@ -133,11 +140,18 @@ impl Context {
             max_point_size: properties.limits.point_size_range[1],
             wide_lines: features.wide_lines == vk::TRUE,
             max_line_width: properties.limits.line_width_range[1],
+            max_anisotropy: (features.sampler_anisotropy == vk::TRUE).then(|| {
+                properties
+                    .limits
+                    .max_sampler_anisotropy
+                    .clamp(1.0, MAX_ANISOTROPY)
+            }),
         };
 
         let enabled = vk::PhysicalDeviceFeatures::default()
             .large_points(capabilities.large_points)
-            .wide_lines(capabilities.wide_lines);
+            .wide_lines(capabilities.wide_lines)
+            .sampler_anisotropy(capabilities.max_anisotropy.is_some());
         let mut features13 = vk::PhysicalDeviceVulkan13Features::default()
             .dynamic_rendering(true)
             .synchronization2(true);

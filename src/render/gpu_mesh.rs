@@ -93,7 +93,7 @@ impl GpuScene {
             let data = MeshData::build(model, length, from, layers);
             let has_coordinates = model.texcoords.is_some();
             let texture = model.texture.as_deref().filter(|_| has_coordinates);
-            let binding = textures.binding(&mut uploader, texture)?;
+            let binding = textures.binding(&mut uploader, texture, model.texture_repeat)?;
             let plain = textures.white(&mut uploader)?;
             meshes.push(upload_mesh(&mut uploader, model, &data, binding, plain)?);
         }

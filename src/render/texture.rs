@@ -7,8 +7,10 @@
 //! images are decoded (by their first bytes, whatever the name says): another model is drawn
 //! in its material colour, and the reason is given once per name on stderr.
 //! Each image is uploaded with its chain of mip levels (box-filtered here, on the CPU, so that
-//! every driver shows the same) and sampled trilinearly: a textured scan seen from afar shows
-//! its texture's average colours instead of shimmering. An image larger than `MAX_SIDE`
+//! every driver shows the same) and sampled trilinearly, and anisotropically where the device
+//! can: a textured scan seen from afar shows its texture's average colours instead of
+//! shimmering. A texture repeats or clamps to its edge texels along u and v as the model says
+//! (`Model::texture_repeat`). An image larger than `MAX_SIDE`
 //! starts at its first level that fits, as every device takes that size.
 
 use std::collections::HashMap;
@@ -49,16 +51,24 @@ pub struct Binding {
     pub textured: bool,
 }
 
-/// Every texture uploaded so far, by name, and the white stand-in.
+/// Every texture uploaded so far, by name and wrapping, and the white stand-in.
 pub struct Textures {
     context: Arc<Context>,
     layout: vk::DescriptorSetLayout,
     pool: vk::DescriptorPool,
-    sampler: vk::Sampler,
+    /// One sampler per wrapping: index `repeat u + 2 × repeat v` ([`sampler_index`]).
+    samplers: [vk::Sampler; 4],
     folder: PathBuf,
     white: Option<Entry>,
-    /// `None`: the name could not be drawn (said once, then the stand-in is used).
-    by_name: HashMap<String, Option<Entry>>,
+    /// `None`: the name could not be drawn (said once, then the stand-in is used). The same
+    /// image wrapped two ways is two entries (two sets; rare enough not to share the image).
+    by_name: HashMap<(String, [bool; 2]), Option<Entry>>,
+}
+
+/// The sampler for a texture that repeats (or else clamps to its edge texels) along u and
+/// along v, as `Model::texture_repeat` says.
+fn sampler_index(repeat: [bool; 2]) -> usize {
+    usize::from(repeat[0]) + 2 * usize::from(repeat[1])
 }
 
 impl Textures {
@@ -82,35 +92,58 @@ impl Textures {
             context: context.clone(),
             layout,
             pool,
-            sampler: vk::Sampler::null(),
+            samplers: [vk::Sampler::null(); 4],
             folder: folder.to_path_buf(),
             white: None,
             by_name: HashMap::new(),
         };
-        // Repeating, as VRML's `repeatS`/`repeatT` and OBJ default to; trilinear filtering
-        // over every mip level.
-        let sampler_info = vk::SamplerCreateInfo::default()
-            .mag_filter(vk::Filter::LINEAR)
-            .min_filter(vk::Filter::LINEAR)
-            .mipmap_mode(vk::SamplerMipmapMode::LINEAR)
-            .address_mode_u(vk::SamplerAddressMode::REPEAT)
-            .address_mode_v(vk::SamplerAddressMode::REPEAT)
-            .address_mode_w(vk::SamplerAddressMode::REPEAT)
-            .min_lod(0.0)
-            .max_lod(vk::LOD_CLAMP_NONE);
-        // SAFETY: valid create info on a live device.
-        this.sampler = unsafe { device.create_sampler(&sampler_info, None)? };
+        // Trilinear filtering over every mip level, anisotropic where the device can (a
+        // textured floor seen at a grazing angle stays sharp instead of blurring into its
+        // smallest levels); repeating or clamped to the edge texels along each direction.
+        let anisotropy = context.capabilities.max_anisotropy;
+        for (i, sampler) in this.samplers.iter_mut().enumerate() {
+            let mode = |repeat: bool| {
+                if repeat {
+                    vk::SamplerAddressMode::REPEAT
+                } else {
+                    vk::SamplerAddressMode::CLAMP_TO_EDGE
+                }
+            };
+            let sampler_info = vk::SamplerCreateInfo::default()
+                .mag_filter(vk::Filter::LINEAR)
+                .min_filter(vk::Filter::LINEAR)
+                .mipmap_mode(vk::SamplerMipmapMode::LINEAR)
+                .address_mode_u(mode(i & 1 != 0))
+                .address_mode_v(mode(i & 2 != 0))
+                .address_mode_w(vk::SamplerAddressMode::REPEAT)
+                .anisotropy_enable(anisotropy.is_some())
+                .max_anisotropy(anisotropy.unwrap_or(1.0))
+                .min_lod(0.0)
+                .max_lod(vk::LOD_CLAMP_NONE);
+            // SAFETY: valid create info on a live device; anisotropy is enabled only when the
+            // device was created with `samplerAnisotropy` (`Capabilities::max_anisotropy`).
+            // A sampler made before an error is destroyed with the others in `drop`.
+            *sampler = unsafe { device.create_sampler(&sampler_info, None)? };
+        }
         Ok(this)
     }
 
-    /// The binding for `model_texture` (a model's `texture` and whether it has coordinates),
-    /// uploading the image through `up` the first time a name is met.
-    pub fn binding(&mut self, up: &mut Uploader<'_>, texture: Option<&str>) -> Result<Binding> {
+    /// The binding for `texture` (a model's image, when it has coordinates) wrapped as
+    /// `repeat` says (`Model::texture_repeat`), uploading the image through `up` the first
+    /// time a name is met with that wrapping.
+    pub fn binding(
+        &mut self,
+        up: &mut Uploader<'_>,
+        texture: Option<&str>,
+        repeat: [bool; 2],
+    ) -> Result<Binding> {
         if let Some(name) = texture {
-            if !self.by_name.contains_key(name) {
+            let key = (name.to_owned(), repeat);
+            if !self.by_name.contains_key(&key) {
+                let sampler = self.samplers[sampler_index(repeat)];
                 let entry = match read(name, &self.folder) {
                     Ok(image) if self.by_name.len() < MAX_TEXTURES as usize => {
-                        Some(self.upload(up, name, image)?)
+                        Some(self.upload(up, name, image, sampler)?)
                     }
                     Ok(_) => {
                         eprintln!(
@@ -124,9 +157,9 @@ impl Textures {
                         None
                     }
                 };
-                self.by_name.insert(name.to_owned(), entry);
+                self.by_name.insert(key.clone(), entry);
             }
-            if let Some(Some(entry)) = self.by_name.get(name) {
+            if let Some(Some(entry)) = self.by_name.get(&key) {
                 return Ok(Binding {
                     set: entry.set,
                     textured: true,
@@ -148,7 +181,8 @@ impl Textures {
                 height: 1,
                 pixels: vec![255; 4],
             };
-            self.white = Some(self.upload(up, "white texture", white)?);
+            let sampler = self.samplers[sampler_index([true; 2])];
+            self.white = Some(self.upload(up, "white texture", white, sampler)?);
         }
         Ok(self
             .white
@@ -156,8 +190,14 @@ impl Textures {
             .map_or(vk::DescriptorSet::null(), |e| e.set))
     }
 
-    /// Uploads `image` with its mip levels and writes a set that samples it.
-    fn upload(&self, up: &mut Uploader<'_>, name: &str, image: RgbaImage) -> Result<Entry> {
+    /// Uploads `image` with its mip levels and writes a set that samples it with `sampler`.
+    fn upload(
+        &self,
+        up: &mut Uploader<'_>,
+        name: &str,
+        image: RgbaImage,
+        sampler: vk::Sampler,
+    ) -> Result<Entry> {
         let image = up.upload_image(name, FORMAT, &mip_chain(image))?;
         let layouts = [self.layout];
         let alloc = vk::DescriptorSetAllocateInfo::default()
@@ -168,7 +208,7 @@ impl Textures {
         // checked by the caller).
         let set = unsafe { device.allocate_descriptor_sets(&alloc)? }[0];
         let info = [vk::DescriptorImageInfo::default()
-            .sampler(self.sampler)
+            .sampler(sampler)
             .image_view(image.view)
             .image_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)];
         let write = [vk::WriteDescriptorSet::default()
@@ -189,7 +229,10 @@ impl Drop for Textures {
         // the images are dropped after (fields), and nothing samples them any more.
         unsafe {
             self.context.device.destroy_descriptor_pool(self.pool, None);
-            self.context.device.destroy_sampler(self.sampler, None);
+            for &sampler in &self.samplers {
+                // Destroying a null handle (a sampler never made) is a no-op.
+                self.context.device.destroy_sampler(sampler, None);
+            }
         }
     }
 }
