@@ -62,13 +62,19 @@ fn write_png(path: &Path, size: u32, rgb: &[u8]) {
 /// A flat `n × n` grid in the xy plane (y up), its texture coordinates spanning the image
 /// (v = 1 at the top, as VRML has it), textured with `maps/{image}`.
 fn write_grid(path: &Path, n: usize, image: &str) {
+    write_textured_grid(path, n, image, 1.0, "");
+}
+
+/// [`write_grid`]'s grid with u running from 0 to `u_span` from left to right, its
+/// `ImageTexture` with `fields` added (`repeatS FALSE`, …).
+fn write_textured_grid(path: &Path, n: usize, image: &str, u_span: f32, fields: &str) {
     let mut points = String::new();
     let mut uvs = String::new();
     for j in 0..=n {
         for i in 0..=n {
             let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
             points.push_str(&format!("{} {} 0, ", 2.0 * u - 1.0, 2.0 * v - 1.0));
-            uvs.push_str(&format!("{u} {v}, "));
+            uvs.push_str(&format!("{} {v}, ", u_span * u));
         }
     }
     let mut faces = String::new();
@@ -81,7 +87,7 @@ fn write_grid(path: &Path, n: usize, image: &str) {
     }
     let text = format!(
         "#VRML V2.0 utf8\nShape {{\n  appearance Appearance {{\n    \
-         texture ImageTexture {{ url \"maps/{image}\" }}\n  }}\n  \
+         texture ImageTexture {{ url \"maps/{image}\" {fields} }}\n  }}\n  \
          geometry IndexedFaceSet {{\n    coord Coordinate {{ point [ {points} ] }}\n    \
          texCoord TextureCoordinate {{ point [ {uvs} ] }}\n    coordIndex [ {faces} ]\n  }}\n}}\n"
     );
@@ -301,35 +307,6 @@ fn write_halves(path: &Path) {
     write_png(path, 8, &pixels);
 }
 
-/// A flat `n × n` grid like [`write_grid`]'s whose u runs twice across the image (0 to 2
-/// from left to right), its `ImageTexture` with `fields` added (`repeatS FALSE`, …).
-fn write_wide_grid(path: &Path, n: usize, image: &str, fields: &str) {
-    let mut points = String::new();
-    let mut uvs = String::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
-            points.push_str(&format!("{} {} 0, ", 2.0 * u - 1.0, 2.0 * v - 1.0));
-            uvs.push_str(&format!("{} {v}, ", 2.0 * u));
-        }
-    }
-    let mut faces = String::new();
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            let (b, c, d) = (a + 1, a + n + 2, a + n + 1);
-            faces.push_str(&format!("{a} {b} {c} -1 {a} {c} {d} -1 "));
-        }
-    }
-    let text = format!(
-        "#VRML V2.0 utf8\nShape {{\n  appearance Appearance {{\n    \
-         texture ImageTexture {{ url \"maps/{image}\" {fields} }}\n  }}\n  \
-         geometry IndexedFaceSet {{\n    coord Coordinate {{ point [ {points} ] }}\n    \
-         texCoord TextureCoordinate {{ point [ {uvs} ] }}\n    coordIndex [ {faces} ]\n  }}\n}}\n"
-    );
-    std::fs::write(path, text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-}
-
 #[test]
 fn a_texture_repeats_unless_the_file_says_it_clamps() {
     // u from 0 to 2: repeating, the grid's quarters are red, blue, red, blue; clamped along
@@ -337,7 +314,7 @@ fn a_texture_repeats_unless_the_file_says_it_clamps() {
     for (fields, third_quarter_red) in [("", true), ("repeatS FALSE", false)] {
         let dir = scratch(if fields.is_empty() { "repeat" } else { "clamp" });
         write_halves(&dir.join("models/maps/halves.png"));
-        write_wide_grid(&dir.join("models/grid.wrl"), 8, "halves.png", fields);
+        write_textured_grid(&dir.join("models/grid.wrl"), 8, "halves.png", 2.0, fields);
         let (out, image) = shot(&dir, &[]);
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(!stderr.contains("not drawn"), "{stderr}");

@@ -61,12 +61,10 @@ fn inventor(wrap: &str) -> String {
     )
 }
 
-/// Decimates `input` (written as `name` in a fresh folder) to `out` and reads the result
-/// back: its one model's `texture_repeat`, and the output's folder.
-fn through(name: &str, input: &str, out: &str) -> ([bool; 2], PathBuf) {
-    let dir = scratch(&format!("{name}-{out}"));
-    std::fs::write(dir.join(name), input).unwrap_or_else(|e| panic!("{e}"));
-    let run = decimate(&dir, &[name, "nogui", "-p", "50", "-o", out]);
+/// Decimates `name` in `dir` by half to `out` (no warnings) and reads the result back: its
+/// one model's `texture_repeat`, checking it still names `decal.png`.
+fn decimate_and_read(dir: &Path, name: &str, out: &str) -> [bool; 2] {
+    let run = decimate(dir, &[name, "nogui", "-p", "50", "-o", out]);
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{name} -> {out}: {stderr}");
     assert!(!stderr.contains("warning"), "{name} -> {out}: {stderr}");
@@ -77,7 +75,15 @@ fn through(name: &str, input: &str, out: &str) -> ([bool; 2], PathBuf) {
         panic!("{name} -> {out}: one model expected");
     };
     assert_eq!(m.texture.as_deref(), Some("decal.png"), "{name} -> {out}");
-    (m.texture_repeat, dir)
+    m.texture_repeat
+}
+
+/// Writes `input` as `name` in a fresh folder and [`decimate_and_read`]s it to `out`; also
+/// returns the folder.
+fn through(name: &str, input: &str, out: &str) -> ([bool; 2], PathBuf) {
+    let dir = scratch(&format!("{name}-{out}"));
+    std::fs::write(dir.join(name), input).unwrap_or_else(|e| panic!("{e}"));
+    (decimate_and_read(&dir, name, out), dir)
 }
 
 #[test]
@@ -135,18 +141,7 @@ fn an_mtl_clamp_comes_in_and_goes_out_as_clamp_on() {
     )
     .unwrap_or_else(|e| panic!("{e}"));
     for out in ["out.wrl", "out.obj"] {
-        let run = decimate(&dir, &["in.obj", "nogui", "-p", "50", "-o", out]);
-        let stderr = String::from_utf8_lossy(&run.stderr);
-        assert!(run.status.success(), "{out}: {stderr}");
-        assert!(!stderr.contains("warning"), "{out}: {stderr}");
-        let scene = decimate::io::read_scene(&dir.join(out))
-            .unwrap_or_else(|e| panic!("{out}: {e}"))
-            .scene;
-        let [m] = scene.models.as_slice() else {
-            panic!("{out}: one model expected");
-        };
-        assert_eq!(m.texture.as_deref(), Some("decal.png"), "{out}");
-        assert_eq!(m.texture_repeat, [false, false], "{out}");
+        assert_eq!(decimate_and_read(&dir, "in.obj", out), [false; 2], "{out}");
     }
     let mtl = std::fs::read_to_string(dir.join("out.mtl")).unwrap_or_default();
     assert!(mtl.contains("map_Kd -clamp on decal.png"), "{mtl}");
