@@ -1,6 +1,8 @@
 //! pmp's `is_collapse_legal` for a planned collapse, as a chain of small checks: the link
 //! condition (no non-manifold result), no duplicate triangle, no flipped or degenerate
-//! triangle. Vertex kinds (boundary, complex) were already applied by `plan`.
+//! triangle, in space and (with texture coordinates) in the texture. Vertex kinds (boundary, complex) were already applied by `plan`.
+
+use glam::DVec2;
 
 use super::collapser::Plan;
 use super::part::Part;
@@ -9,12 +11,16 @@ use crate::mesh::topology::FanTriangle;
 /// A triangle is degenerate when its area is this small relative to its longest edge².
 const MIN_RELATIVE_AREA: f64 = 1e-8;
 
+/// A triangle's area in the texture may shrink to this fraction of what it was, no further.
+const MIN_TEXTURE_AREA: f64 = 1e-6;
+
 impl Part<'_> {
     /// Whether the planned collapse of the edge [`Part::gather`] read last is legal.
     pub fn is_collapse_legal(&mut self, plan: &Plan) -> bool {
         self.link_condition_holds(plan)
             && self.no_duplicate_triangle(plan)
             && self.no_triangle_flips_or_degenerates(plan)
+            && self.no_texture_flips(plan)
     }
 
     /// Link condition (Dey et al.): the ends share no neighbour but the apexes of the
@@ -77,6 +83,41 @@ impl Part<'_> {
             }
             let both_common = common.contains(&f.next) && common.contains(&f.prev);
             !both_common || !fan_k.iter().any(|g| g.touches(f.next) && g.touches(f.prev))
+        })
+    }
+
+    /// With texture coordinates, every triangle that survives around either end keeps its
+    /// orientation in the texture and some of its area there, the kept vertex taking the
+    /// coordinates `collapse` gives it (interpolated along the edge): otherwise the image
+    /// would show mirrored or smeared across it. A triangle with no area in the texture
+    /// already is left alone.
+    fn no_texture_flips(&self, plan: &Plan) -> bool {
+        let Some(t) = self.texcoords.as_deref() else {
+            return true;
+        };
+        let uv = |v: u32| {
+            let [u, v] = t[self.at(v)];
+            DVec2::new(f64::from(u), f64::from(v))
+        };
+        let s = f64::from(self.edge_fraction(plan));
+        let new = uv(plan.keep) + s * (uv(plan.remove) - uv(plan.keep));
+        let (fan_r, fan_k) = self.fans(plan);
+        [
+            (plan.remove, fan_r, plan.keep),
+            (plan.keep, fan_k, plan.remove),
+        ]
+        .iter()
+        .all(|&(v, fan, other)| {
+            let old = uv(v);
+            fan.iter().all(|f| {
+                if f.touches(other) {
+                    return true; // collapses away
+                }
+                let [x, y] = [f.next, f.prev].map(uv);
+                let before = (x - old).perp_dot(y - old);
+                let after = (x - new).perp_dot(y - new);
+                before == 0.0 || after * before.signum() > MIN_TEXTURE_AREA * before.abs()
+            })
         })
     }
 

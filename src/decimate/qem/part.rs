@@ -410,18 +410,24 @@ impl Part<'_> {
         best
     }
 
+    /// Where the kept vertex's attributes are taken along the edge, from the kept end (0) to
+    /// the removed one (1): at the projection of its new position on the edge.
+    pub fn edge_fraction(&self, plan: &Plan) -> f32 {
+        let (pr, pk) = (self.position(plan.remove), self.position(plan.keep));
+        let edge = pr - pk;
+        if edge.length_squared() > 0.0 {
+            ((plan.position - pk).dot(edge) / edge.length_squared()).clamp(0.0, 1.0) as f32
+        } else {
+            0.0
+        }
+    }
+
     /// Performs a legal collapse of the edge [`Self::gather`] read last; the kept vertex's
     /// edges are left to be re-planned.
     pub fn collapse(&mut self, plan: &Plan) {
         let (r, k) = (self.at(plan.remove), self.at(plan.keep));
-        // Attributes at the projection of the new position on the edge.
         let (pr, pk) = (self.position(plan.remove), self.position(plan.keep));
-        let edge = pr - pk;
-        let s = if edge.length_squared() > 0.0 {
-            ((plan.position - pk).dot(edge) / edge.length_squared()).clamp(0.0, 1.0) as f32
-        } else {
-            0.0
-        };
+        let s = self.edge_fraction(plan);
         let lerp = |x: [f32; 3], y: [f32; 3]| {
             (Vec3::from_array(y) + s * (Vec3::from_array(x) - Vec3::from_array(y))).to_array()
         };
