@@ -102,6 +102,11 @@ pub fn decimate_model(
     let pinned_count = pinned.iter().filter(|&&p| p).count();
     d.pinned = pinned;
     d.twins = loaded.pairs(twins);
+    d.texcoords = model
+        .texcoords
+        .as_ref()
+        .filter(|t| t.len() == model.positions.len())
+        .map(|t| loaded.order.iter().map(|&v| t[v as usize]).collect());
 
     // 3. classify and rank
     d.rank_all();
@@ -144,6 +149,9 @@ fn load(model: &Model) -> (layout::Loaded, Vec<Vec3>, Vec<[u32; 3]>) {
 /// The working state of one model's decimation.
 struct Decimator {
     positions: Vec<Vec3>,
+    /// One pair per vertex when the model has texture coordinates: fills are checked in
+    /// the texture too.
+    texcoords: Option<Vec<[f32; 2]>>,
     conn: Connectivity,
     /// Error already accumulated around each vertex by earlier removals.
     accumulated: Vec<f64>,
@@ -186,6 +194,7 @@ impl Decimator {
         Self {
             conn: Connectivity::new(n, triangles),
             positions,
+            texcoords: None,
             accumulated: vec![0.0; n],
             keys: vec![f64::NAN; n],
             cos_feature: feature_angle_deg.to_radians().cos(),
@@ -206,6 +215,7 @@ impl Decimator {
         Surface {
             conn: &self.conn,
             positions: &self.positions,
+            texcoords: self.texcoords.as_deref(),
             cos_feature: self.cos_feature,
         }
     }

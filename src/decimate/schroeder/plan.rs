@@ -3,7 +3,7 @@
 //! writes the mesh, so many removals are planned at once on all cores (`passes`), each
 //! into its own [`Planning`].
 
-use glam::{DVec3, Vec3};
+use glam::{DVec2, DVec3, Vec3};
 
 use crate::decimate::loop_split;
 use crate::mesh::classify::{classify, RingGeometry, VertexClass};
@@ -11,6 +11,10 @@ use crate::mesh::topology::{Adjacency, Ring};
 
 /// A fill is rejected when a new triangle's area is this small relative to its longest edge².
 const MIN_RELATIVE_AREA: f64 = 1e-10;
+
+/// A fill is rejected when a new triangle's area in the texture is this small relative to
+/// the area there of the old triangles it replaces.
+const MIN_TEXTURE_AREA: f64 = 1e-6;
 
 /// What planning one removal writes: the vertex's ring and its geometry, then the fill.
 #[derive(Debug, Clone, Default)]
@@ -40,6 +44,8 @@ struct FillRegion {
 pub(super) struct Surface<'a, C> {
     pub conn: &'a C,
     pub positions: &'a [Vec3],
+    /// One pair per vertex, when the model has texture coordinates.
+    pub texcoords: Option<&'a [[f32; 2]]>,
     pub cos_feature: f64,
 }
 
@@ -203,6 +209,9 @@ impl<C: Adjacency> Surface<'_, C> {
         for &region in &p.regions {
             // Normal of the old region: the sum of its ring triangles' area vectors.
             let old: DVec3 = (region.from..region.to).map(|i| crosses[i % k]).sum();
+            if !self.fill_keeps_texture(v, p, region, &p.fill[start..region.end]) {
+                return false;
+            }
             for tri in &p.fill[start..region.end] {
                 let [a, b, c] = tri.map(|i| self.position(i));
                 let cross = (b - a).cross(c - a);
@@ -230,6 +239,36 @@ impl<C: Adjacency> Surface<'_, C> {
             start = region.end;
         }
         true
+    }
+
+    /// With texture coordinates, the `fill` of `region` faces in the texture the way the
+    /// old triangles it replaces did together, each new triangle with some area there:
+    /// otherwise the image would show mirrored or smeared across it. A region with no area
+    /// in the texture already is left alone.
+    fn fill_keeps_texture(
+        &self,
+        v: u32,
+        p: &Planning,
+        region: FillRegion,
+        fill: &[[u32; 3]],
+    ) -> bool {
+        let Some(t) = self.texcoords else {
+            return true;
+        };
+        let uv = |x: u32| {
+            let [u, v] = t[x as usize];
+            DVec2::new(f64::from(u), f64::from(v))
+        };
+        let area = |[a, b, c]: [u32; 3]| (uv(b) - uv(a)).perp_dot(uv(c) - uv(a));
+        let r = &p.ring.verts;
+        let k = r.len();
+        let old: f64 = (region.from..region.to)
+            .map(|i| area([v, r[i % k], r[(i + 1) % k]]))
+            .sum();
+        old == 0.0
+            || fill
+                .iter()
+                .all(|&tri| area(tri) * old.signum() > MIN_TEXTURE_AREA * old.abs())
     }
 
     /// Area-weighted unit normal and centre of the ring triangles `indices` (of the ring in

@@ -32,6 +32,8 @@ struct Region<'a> {
     conn: ConnectivityPart<'a>,
     /// All of them: a removal moves no vertex.
     positions: &'a [Vec3],
+    /// All of them, when the model has texture coordinates.
+    texcoords: Option<&'a [[f32; 2]]>,
     cos_feature: f64,
     keys: &'a mut [f64],
     accumulated: &'a mut [f64],
@@ -71,6 +73,7 @@ impl Decimator {
         let mut accumulated = split_mut(&mut self.accumulated, &starts).into_iter();
         let mut changed_in = split_mut(&mut self.changed_in, &starts).into_iter();
         let (positions, cos_feature, pass) = (&self.positions[..], self.cos_feature, self.pass);
+        let texcoords = self.texcoords.as_deref();
         let parts: Vec<Region<'_>> = self
             .conn
             .split(&regions.vertex_starts, &regions.slot_starts)
@@ -81,6 +84,7 @@ impl Decimator {
                     v0,
                     conn,
                     positions,
+                    texcoords,
                     cos_feature,
                     keys: keys.next()?,
                     accumulated: accumulated.next()?,
@@ -132,6 +136,7 @@ impl Region<'_> {
             let surface = Surface {
                 conn: &self.conn,
                 positions: self.positions,
+                texcoords: self.texcoords,
                 cos_feature: self.cos_feature,
             };
             let i = self.at(v);
