@@ -4,8 +4,9 @@
 //! Read ([`parse_mtl`]): `newmtl NAME`, `Kd r [g b]` (the diffuse colour, clamped to 0..1;
 //! one value means grey) and `map_Kd [options] FILE` (the diffuse texture; the options
 //! `-blendu`, `-blendv`, `-cc`, `-clamp`, `-imfchan`, `-type`, `-bm`, `-boost`, `-texres`
-//! (one value), `-mm` (two) and `-o`, `-s`, `-t` (one to three numbers) are skipped; what is
-//! left is the file name, spaces included). Other texture maps (`map_Ks`, `bump`, …) are
+//! (one value), `-mm` (two) and `-o`, `-s`, `-t` (one to three numbers) are skipped, but
+//! for `-clamp on`, which makes the texture clamp instead of repeat; what is left is the file
+//! name, spaces included). Other texture maps (`map_Ks`, `bump`, …) are
 //! skipped with one warning per file, other statements (`Ka`, `Ks`, `Ns`, `d`, `illum`, …)
 //! silently. A bad line is a warning naming the file and line, and is skipped: materials
 //! only change how a model looks, so they never stop a file from being read.
@@ -21,7 +22,8 @@
 //! after the model's material, else after the model (spaces and `#` made `_`; `_2`, `_3` …
 //! added where two different materials would share a name), with `Ka 0 0 0`, `Kd`,
 //! `Ks 0 0 0`, `d 1`, `illum 1` (plain diffuse shading in every viewer) and `map_Kd` for a
-//! model whose texture the OBJ maps (it has one texture coordinate pair per vertex).
+//! model whose texture the OBJ maps (it has one texture coordinate pair per vertex), with
+//! `-clamp on` when the texture repeats along neither direction.
 
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
