@@ -1,6 +1,7 @@
 //! pmp's `is_collapse_legal` for a planned collapse, as a chain of small checks: the link
 //! condition (no non-manifold result), no duplicate triangle, no flipped or degenerate
-//! triangle, in space and (with texture coordinates) in the texture. Vertex kinds (boundary, complex) were already applied by `plan`.
+//! triangle, in space and (with texture coordinates) in the texture. Vertex kinds (boundary,
+//! complex) were already applied by `plan`.
 
 use glam::DVec2;
 
