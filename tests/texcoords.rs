@@ -606,7 +606,10 @@ fn a_model_all_seams_says_why_it_stops() {
 /// quads, u warped a little along v so that the map is not affine): its poles are rows of
 /// coincident vertices (welded into seam junctions) and its u = 0 / u = 1 column a seam.
 /// Every triangle faces the same way in the texture.
-fn lat_long_sphere_obj(rings: usize, segments: usize) -> String {
+/// With `exact`, positions are written to six decimals, so that the two ends of each ring
+/// (φ = 0 and 2π) and each pole's row are the same points: the seam has two sides that
+/// meet (twins), not a crack.
+fn lat_long_sphere_obj(rings: usize, segments: usize, exact: bool) -> String {
     use std::f32::consts::PI;
     let (mut vertices, mut texcoords, mut faces) = (String::new(), String::new(), String::new());
     for j in 0..=rings {
@@ -619,7 +622,11 @@ fn lat_long_sphere_obj(rings: usize, segments: usize) -> String {
                 theta.cos(),
                 theta.sin() * phi.sin(),
             );
-            vertices += &format!("v {} {} {}\n", r * x, r * y, r * z);
+            vertices += &if exact {
+                format!("v {:.6} {:.6} {:.6}\n", r * x, r * y, r * z)
+            } else {
+                format!("v {} {} {}\n", r * x, r * y, r * z)
+            };
             let v = 1.0 - j as f32 / rings as f32;
             let u = i as f32 / segments as f32 + 0.03 * (6.0 * PI * v).sin();
             texcoords += &format!("vt {u} {v}\n");
@@ -659,7 +666,7 @@ fn texture_orientations(obj: &Obj) -> (usize, usize, usize) {
 
 #[test]
 fn no_decimation_turns_a_triangle_over_or_flat_in_the_texture() {
-    let input = lat_long_sphere_obj(40, 80);
+    let input = lat_long_sphere_obj(40, 80, false);
     assert_eq!(
         texture_orientations(&read_obj(&input)),
         (6240, 0, 0),
@@ -681,4 +688,68 @@ fn no_decimation_turns_a_triangle_over_or_flat_in_the_texture() {
             );
         }
     }
+}
+
+#[test]
+fn schroeder_decimates_a_seamed_texture_in_regions_alike_on_any_number_of_cores() {
+    // About 20k vertices: enough for regions; the seam's sides are left to the whole mesh.
+    let input = lat_long_sphere_obj(100, 200, true);
+    let mut outputs = Vec::new();
+    for threads in ["1", "3"] {
+        let dir = std::env::temp_dir().join(format!(
+            "decimate-texcoords-seam-regions-{threads}-{}",
+            std::process::id()
+        ));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("in.obj"), &input).unwrap();
+        let run = Command::new(env!("CARGO_BIN_EXE_decimate"))
+            .args(["in.obj", "nogui", "-p", "90", "-o", "out.obj"])
+            .current_dir(&dir)
+            .env("RAYON_NUM_THREADS", threads)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert!(run.status.success(), "{threads} threads: {stderr}");
+        // No warning: nothing in the file was dropped.
+        assert!(!stderr.contains("warning"), "{stderr}");
+        outputs.push(std::fs::read_to_string(dir.join("out.obj")).unwrap());
+        std::fs::remove_dir_all(&dir).ok();
+    }
+    assert!(outputs[0] == outputs[1], "the same mesh on 1 and 3 threads");
+    let out = read_obj(&outputs[0]);
+    // The seam is still two sides: points with two coordinate pairs.
+    let mut pairs: HashMap<[u32; 3], Vec<[u32; 2]>> = HashMap::new();
+    for tri in &out.triangles {
+        for &(p, t) in tri {
+            let uv = out.texcoords[t].map(f32::to_bits);
+            let at = pairs.entry(out.positions[p].map(f32::to_bits)).or_default();
+            if !at.contains(&uv) {
+                at.push(uv);
+            }
+        }
+    }
+    let sided = pairs.values().filter(|uvs| uvs.len() == 2).count();
+    assert!(sided > 10, "{sided} points on the seam");
+    let (kept, flipped, flat) = texture_orientations(&out);
+    assert_eq!((flipped, flat), (0, 0), "{kept} facing the input's way");
+    // Closed: welded by position, every edge has two triangles (the seam did not open).
+    let mut id = HashMap::new();
+    let welded: Vec<usize> = out
+        .positions
+        .iter()
+        .map(|p| {
+            let n = id.len();
+            *id.entry(p.map(f32::to_bits)).or_insert(n)
+        })
+        .collect();
+    let mut edges: HashMap<(usize, usize), usize> = HashMap::new();
+    for tri in &out.triangles {
+        let v = tri.map(|(p, _)| welded[p]);
+        for (a, b) in [(v[0], v[1]), (v[1], v[2]), (v[2], v[0])] {
+            *edges.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let open = edges.values().filter(|&&n| n != 2).count();
+    assert_eq!(open, 0, "edges not shared by exactly two triangles");
+    assert!(kept > 3000, "{kept} triangles");
 }

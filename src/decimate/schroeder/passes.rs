@@ -174,8 +174,8 @@ fn reached(d: &Decimator, limits: &Limits, outcome: &Outcome) -> bool {
 /// Removes the pass's `candidates` (in key order); true when a count limit stopped it.
 /// Rounds of the cheapest candidates run in `regions` while a round cannot reach a limit
 /// (see [`allowed`]), each round's border candidates on the whole mesh after it; the rest
-/// runs on the whole mesh. A seam's two sides go together on the whole mesh only, so a
-/// model with seams has no rounds in regions.
+/// runs on the whole mesh. A seam's two sides go together on the whole mesh only: regions
+/// leave them to it, as they leave border candidates.
 fn remove_pass(
     d: &mut Decimator,
     regions: &[Regions; 2],
@@ -184,7 +184,7 @@ fn remove_pass(
     outcome: &mut Outcome,
     progress: &mut dyn FnMut(usize),
 ) -> bool {
-    let in_regions = regions[0].count() > 1 && d.twins.is_empty();
+    let in_regions = regions[0].count() > 1;
     let mut rest = candidates;
     while in_regions && !rest.is_empty() {
         let size = round_size(candidates.len(), rest.len(), allowed(d, limits, outcome));
