@@ -566,7 +566,10 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
     };
     let mut model = build(spec, ctx.warnings)?;
     model.texture = state.texture.clone();
-    model.texture_repeat = state.texture_repeat;
+    if model.texture.is_some() {
+        // Wrapping means nothing without an image: left at the default, as `.pm` files keep it.
+        model.texture_repeat = state.texture_repeat;
+    }
     if model.triangles.is_empty() {
         return Ok(());
     }

@@ -192,7 +192,10 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
     };
     let mut model = build(spec, ctx.warnings)?;
     model.texture = texture;
-    model.texture_repeat = texture_repeat;
+    if model.texture.is_some() {
+        // Wrapping means nothing without an image: left at the default, as `.pm` files keep it.
+        model.texture_repeat = texture_repeat;
+    }
     if model.triangles.is_empty() {
         return Ok(());
     }
