@@ -80,8 +80,9 @@ fn decimate_and_read(dir: &Path, name: &str, out: &str) -> [bool; 2] {
 
 /// Writes `input` as `name` in a fresh folder and [`decimate_and_read`]s it to `out`; also
 /// returns the folder.
-fn through(name: &str, input: &str, out: &str) -> ([bool; 2], PathBuf) {
-    let dir = scratch(&format!("{name}-{out}"));
+fn through(test: &str, name: &str, input: &str, out: &str) -> ([bool; 2], PathBuf) {
+    // Tests run at once: each in a directory of its own.
+    let dir = scratch(&format!("{test}-{name}-{out}"));
     std::fs::write(dir.join(name), input).unwrap_or_else(|e| panic!("{e}"));
     (decimate_and_read(&dir, name, out), dir)
 }
@@ -105,7 +106,7 @@ fn vrml_and_inventor_wrapping_is_kept_through_decimation_into_vrml() {
             [true, false],
         ),
     ] {
-        let (repeat, dir) = through(name, &input, "out.wrl");
+        let (repeat, dir) = through(label, name, &input, "out.wrl");
         assert_eq!(repeat, expected, "{label}");
         // Written only where it is not the default, as a VRML 2.0 reader expects it.
         let text = std::fs::read_to_string(dir.join("out.wrl")).unwrap_or_default();
@@ -168,7 +169,7 @@ fn an_inventor_wrap_it_does_not_have_is_named_with_its_line() {
 #[test]
 fn outputs_that_cannot_say_clamp_say_so() {
     // Clamped along s only: an MTL has one switch for both directions.
-    let (_, dir) = through("in.wrl", &vrml2("repeatS FALSE"), "out.wrl");
+    let (_, dir) = through("obj", "in.wrl", &vrml2("repeatS FALSE"), "out.wrl");
     let run = decimate(&dir, &["out.wrl", "nogui", "-p", "0", "-o", "again.obj"]);
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{stderr}");
