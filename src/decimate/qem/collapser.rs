@@ -10,6 +10,7 @@ use super::part::{Part, Scratch};
 use super::planes;
 use super::quadric::Quadric;
 use super::ranking::EdgeCosts;
+use super::texture::{texture_quadrics, TextureQuadrics};
 use crate::decimate::layout::{compact, Compacted};
 use crate::decimate::progressive::Recorder;
 use crate::mesh::topology::{split_mut, Connectivity};
@@ -37,6 +38,10 @@ pub(super) struct Plan {
     /// On a texture seam, the other side's edge (its removed end, its kept end): it
     /// collapses in the same step, to the same position (see `Part::plan`).
     pub twin: Option<[u32; 2]>,
+    /// The kept vertex's texture coordinates, when the texture's quadric gives them (an
+    /// interior collapse of a textured model); otherwise they are interpolated along the
+    /// edge.
+    pub texcoords: Option<[f32; 2]>,
 }
 
 impl Plan {
@@ -46,6 +51,7 @@ impl Plan {
             remove,
             keep,
             twin: None,
+            texcoords: None,
             ..*self
         })
     }
@@ -60,8 +66,12 @@ pub(super) struct Collapser {
     quadrics: Vec<Quadric>,
     colors: Option<Vec<[f32; 3]>>,
     normals: Option<Vec<[f32; 3]>>,
-    /// Texture coordinates, interpolated as the normals are.
+    /// Texture coordinates: placed by the texture's quadrics when there are some,
+    /// otherwise interpolated as the normals are.
     pub texcoords: Option<Vec<[f32; 2]>>,
+    /// The texture's part of every vertex's error, with the texture coordinates' scale to
+    /// model units (see [`Self::weigh_texture`]).
+    texture: Option<TextureQuadrics>,
     /// Planned cost of every edge, per half-edge slot.
     costs: EdgeCosts,
     /// Each vertex's cheapest unblocked edge: the other end (`u32::MAX`: none) and its cost.
@@ -102,6 +112,7 @@ impl Collapser {
             colors,
             normals,
             texcoords: None,
+            texture: None,
             best: vec![u32::MAX; n],
             best_cost: vec![f32::INFINITY; n],
             has_blocked: vec![false; n],
@@ -122,6 +133,15 @@ impl Collapser {
             .map(|&v| model.positions[v as usize])
             .collect();
         Self::new(positions, loaded.triangles(model), None, None, 0.5)
+    }
+
+    /// Weighs the texture into every collapse's cost and placement (Hoppe's quadric, see
+    /// `TextureQuadric`), when there are texture coordinates with an area in the texture.
+    pub fn weigh_texture(&mut self) {
+        self.texture = self
+            .texcoords
+            .as_deref()
+            .and_then(|t| texture_quadrics(&self.conn, &self.positions, t, &self.kinds));
     }
 
     /// Makes the flagged vertices fixed: they never move, and no edge at them collapses.
@@ -153,6 +173,7 @@ impl Collapser {
 
     /// Everything, as one part (it records collapses when there is a recorder).
     pub fn whole(&mut self) -> Part<'_> {
+        let texture_scale = self.texture.as_ref().map_or(1.0, |t| t.scale);
         Part {
             v0: 0,
             whole: true,
@@ -163,6 +184,8 @@ impl Collapser {
             colors: self.colors.as_deref_mut(),
             normals: self.normals.as_deref_mut(),
             texcoords: self.texcoords.as_deref_mut(),
+            texture_quadrics: self.texture.as_mut().map(|t| &mut t.quadrics[..]),
+            texture_scale,
             costs: &self.costs,
             best: &mut self.best,
             best_cost: &mut self.best_cost,
@@ -182,6 +205,9 @@ impl Collapser {
         let mut colors = split_attribute(self.colors.as_deref_mut(), &vs).into_iter();
         let mut normals = split_attribute(self.normals.as_deref_mut(), &vs).into_iter();
         let mut texcoords = split_attribute(self.texcoords.as_deref_mut(), &vs).into_iter();
+        let texture_scale = self.texture.as_ref().map_or(1.0, |t| t.scale);
+        let texture_quadrics = self.texture.as_mut().map(|t| &mut t.quadrics[..]);
+        let mut texture_quadrics = split_attribute(texture_quadrics, &vs).into_iter();
         let mut positions = split_mut(&mut self.positions, &vs).into_iter();
         let mut kinds = split_mut(&mut self.kinds, &vs).into_iter();
         let mut quadrics = split_mut(&mut self.quadrics, &vs).into_iter();
@@ -206,6 +232,8 @@ impl Collapser {
                     colors: colors.next()?,
                     normals: normals.next()?,
                     texcoords: texcoords.next()?,
+                    texture_quadrics: texture_quadrics.next()?,
+                    texture_scale,
                     costs,
                     best: best.next()?,
                     best_cost: best_cost.next()?,

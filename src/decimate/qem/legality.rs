@@ -100,8 +100,10 @@ impl Part<'_> {
             let [u, v] = t[self.at(v)];
             DVec2::new(f64::from(u), f64::from(v))
         };
-        let s = f64::from(self.edge_fraction(plan));
-        let new = uv(plan.keep) + s * (uv(plan.remove) - uv(plan.keep));
+        let Some([u, v]) = self.new_texcoords(plan) else {
+            return true;
+        };
+        let new = DVec2::new(f64::from(u), f64::from(v));
         let (fan_r, fan_k) = self.fans(plan);
         [
             (plan.remove, fan_r, plan.keep),

@@ -10,7 +10,8 @@
 //!    rounded to f32 before it is checked, so every check sees what is written;
 //! 2. connect: vertex → triangle incidence (`mesh::topology`);
 //! 3. kinds and quadrics (`planes`, one pass over the vertices' ordered rings, on all
-//!    cores): each vertex's kind (interior, boundary, complex) from its ring's shape; every
+//!    cores; `texture` for a textured model's): each vertex's kind (interior, boundary,
+//!    complex) from its ring's shape; every
 //!    triangle adds its plane weighted by its area; every boundary edge adds a plane through
 //!    the edge perpendicular to its triangle, weighted `CONSTRAINT_WEIGHT` × length², and so
 //!    does every feature edge (dihedral angle above the feature angle) on both sides,
@@ -40,8 +41,16 @@
 //! the edge), so edges across colour changes go last. Per-vertex normals are interpolated
 //! the same way and weigh in the same way, lightly (`NORMAL_WEIGHT` in `part`: on curved
 //! surfaces the quadric already prices what the normals say; on flat stretches carrying
-//! shading the normals alone order the collapses). Texture coordinates are interpolated;
-//! per-face colours stay with their surviving faces.
+//! shading the normals alone order the collapses). Per-face colours stay with their
+//! surviving faces.
+//!
+//! Texture coordinates take the 1998 paper's route, in the form of Hoppe's 1999 quadric
+//! (`quadric::TextureQuadric`, built in `texture`): every triangle's coordinates are an
+//! affine map over its plane, and a vertex is priced by how far the image slides over the
+//! surface from the maps of the triangles it stands for. The kept vertex takes the
+//! coordinates that slide it least, and a moved vertex is placed to keep the geometric error
+//! and the slide (weighted by `TEXTURE_WEIGHT` in `part`) low together. `--max-error` and the
+//! reported error stay geometric.
 //!
 //! A texture seam (`mesh::seams`) is two boundaries at the same positions: where exactly
 //! two sides meet, a seam edge collapses together with the other side's edge, to the same
@@ -57,6 +66,7 @@ mod passes;
 mod planes;
 mod quadric;
 mod ranking;
+mod texture;
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -140,6 +150,7 @@ fn run(
         .as_ref()
         .filter(|t| t.len() == n as usize)
         .map(|t| order.iter().map(|&v| t[v as usize]).collect());
+    d.weigh_texture();
     let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
     d.pin(order.iter().map(|&v| pinned(v)));
     d.set_twins(loaded.pairs(twins));
