@@ -120,16 +120,11 @@ impl Quadric {
 /// textured models only.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct TextureQuadric {
-    /// `Σ area·|g·p + d|²` over both channels, as a quadric in `p` (`a00 a01 a02 a11 a12
-    /// a22`, `b`, `c`, as in [`Quadric`]).
-    a: [f64; 6],
-    b: [f64; 3],
-    c: f64,
+    /// `Σ area·|g·p + d|²` over both channels, as a quadric in `p`, with `Σ area`.
+    maps: Quadric,
     /// `Σ area·g` and `Σ area·d`, per channel.
     g: [DVec3; 2],
     d: [f64; 2],
-    /// `Σ area`.
-    area: f64,
 }
 
 impl TextureQuadric {
@@ -146,25 +141,20 @@ impl TextureQuadric {
         let area = 0.5 * det.sqrt();
         let inverse = gram.inverse();
         let (ds1, ds2) = (s[1] - s[0], s[2] - s[0]);
-        let mut q = Self {
-            area,
-            ..Self::default()
-        };
+        let mut q = Self::default();
+        q.maps.area = area;
         for (j, (x1, x2)) in [(ds1.x, ds2.x), (ds1.y, ds2.y)].into_iter().enumerate() {
             // g in the triangle's plane with g·e1 = ds1, g·e2 = ds2.
             let ab = inverse * DVec2::new(x1, x2);
             let g = ab.x * e1 + ab.y * e2;
             let d = s[0][j] - g.dot(p[0]);
-            q.a[0] += area * g.x * g.x;
-            q.a[1] += area * g.x * g.y;
-            q.a[2] += area * g.x * g.z;
-            q.a[3] += area * g.y * g.y;
-            q.a[4] += area * g.y * g.z;
-            q.a[5] += area * g.z * g.z;
-            for (b, gi) in q.b.iter_mut().zip(g.to_array()) {
-                *b += area * gi * d;
+            let n = g.length();
+            if n > 0.0 {
+                // The map's square as a plane's: area·|g|²·(ĝ·p + d/|g|)².
+                q.maps.add(&Quadric::plane(g / n, d / n, area * n * n));
+            } else {
+                q.maps.c += area * d * d;
             }
-            q.c += area * d * d;
             q.g[j] = area * g;
             q.d[j] = area * d;
         }
@@ -172,25 +162,19 @@ impl TextureQuadric {
     }
 
     fn is_finite(&self) -> bool {
-        self.a.iter().chain(&self.b).all(|x| x.is_finite())
-            && self.c.is_finite()
+        let m = &self.maps;
+        m.a.iter().chain(&m.b).all(|x| x.is_finite())
+            && m.c.is_finite()
             && self.g.iter().all(|g| g.is_finite())
     }
 
     #[inline]
     pub fn add(&mut self, o: &Self) {
-        for i in 0..6 {
-            self.a[i] += o.a[i];
-        }
-        for i in 0..3 {
-            self.b[i] += o.b[i];
-        }
-        self.c += o.c;
+        self.maps.add(&o.maps);
         for j in 0..2 {
             self.g[j] += o.g[j];
             self.d[j] += o.d[j];
         }
-        self.area += o.area;
     }
 
     #[inline]
@@ -204,36 +188,37 @@ impl TextureQuadric {
     /// add to the geometric quadric, so that a placement minimises both.
     pub fn at_best_coordinates(&self, weight: f64) -> Quadric {
         let mut q = Quadric::default();
-        if self.area <= 0.0 {
+        let m = &self.maps;
+        if m.area <= 0.0 {
             return q;
         }
-        let w = 1.0 / self.area;
+        let w = 1.0 / m.area;
         let [g0, g1] = self.g;
         let outer = |i: usize, k: usize| g0[i] * g0[k] + g1[i] * g1[k];
         let pairs = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
         for (a, (i, k)) in q.a.iter_mut().zip(pairs) {
-            *a = weight * (self.a[a_index(i, k)] - w * outer(i, k));
+            *a = weight * (m.a[a_index(i, k)] - w * outer(i, k));
         }
         for (i, b) in q.b.iter_mut().enumerate() {
-            *b = weight * (self.b[i] - w * (g0[i] * self.d[0] + g1[i] * self.d[1]));
+            *b = weight * (m.b[i] - w * (g0[i] * self.d[0] + g1[i] * self.d[1]));
         }
-        q.c = weight * (self.c - w * (self.d[0] * self.d[0] + self.d[1] * self.d[1]));
+        q.c = weight * (m.c - w * (self.d[0] * self.d[0] + self.d[1] * self.d[1]));
         q
     }
 
     /// The best coordinates at `p`: the area-weighted mean of the triangles' maps there.
     pub fn best_coordinates(&self, p: DVec3) -> DVec2 {
-        let w = 1.0 / self.area.max(f64::MIN_POSITIVE);
+        let w = 1.0 / self.maps.area.max(f64::MIN_POSITIVE);
         DVec2::new(self.g[0].dot(p) + self.d[0], self.g[1].dot(p) + self.d[1]) * w
     }
 
     /// How much `E(p, s)` exceeds `E` at the best coordinates (see
     /// [`Self::at_best_coordinates`]), for the coordinates `s`.
     pub fn excess(&self, p: DVec3, s: DVec2) -> f64 {
-        if self.area <= 0.0 {
+        if self.maps.area <= 0.0 {
             return 0.0;
         }
-        (self.best_coordinates(p) - s).length_squared() * self.area
+        (self.best_coordinates(p) - s).length_squared() * self.maps.area
     }
 }
 
@@ -290,14 +275,14 @@ mod tests {
                 t.add(&f);
             }
         }
-        assert!(t.area > 1.0);
+        assert!(t.maps.area > 1.0);
         let q = t.at_best_coordinates(1.0);
         for p in [lift(0.5, -0.4), lift(-3.0, 2.0)] {
             assert!(q.eval(p) < 1e-9, "{}", q.eval(p));
             assert!((t.best_coordinates(p) - map(p)).length() < 1e-9);
             // Other coordinates cost area × distance².
             let off = map(p) + DVec2::new(0.1, 0.0);
-            assert!((t.excess(p, off) - 0.01 * t.area).abs() < 1e-9);
+            assert!((t.excess(p, off) - 0.01 * t.maps.area).abs() < 1e-9);
         }
         // Off the plane the map still holds: a texture alone does not hold the surface.
         assert!(q.eval(centre + DVec3::Z) >= 0.0);
