@@ -11,11 +11,11 @@
 //! 2. connect: vertex → triangle incidence (`mesh::topology`);
 //! 3. kinds and quadrics (`planes`, one pass over the vertices' ordered rings, on all
 //!    cores; `texture` for a textured model's): each vertex's kind (interior, boundary,
-//!    complex) from its ring's shape; every
-//!    triangle adds its plane weighted by its area; every boundary edge adds a plane through
-//!    the edge perpendicular to its triangle, weighted `CONSTRAINT_WEIGHT` × length², and so
-//!    does every feature edge (dihedral angle above the feature angle) on both sides,
-//!    weighted by how sharp it is, so that outlines and creases stay put;
+//!    complex) from its ring's shape; every triangle adds its plane weighted by its area;
+//!    every boundary edge adds a plane through the edge perpendicular to its triangle,
+//!    weighted `CONSTRAINT_WEIGHT` × length², and so does every feature edge (dihedral angle
+//!    above the feature angle) on both sides, weighted by how sharp it is, so that outlines
+//!    and creases stay put;
 //! 4. rank (`ranking`): every edge's collapse is planned once (which end goes, where the
 //!    other one moves) and its cost cached per half-edge slot; every vertex notes its
 //!    cheapest edge — on all cores;
@@ -47,10 +47,12 @@
 //! Texture coordinates take the 1998 paper's route, in the form of Hoppe's 1999 quadric
 //! (`quadric::TextureQuadric`, built in `texture`): every triangle's coordinates are an
 //! affine map over its plane, and a vertex is priced by how far the image slides over the
-//! surface from the maps of the triangles it stands for. The kept vertex takes the
-//! coordinates that slide it least, and a moved vertex is placed to keep the geometric error
-//! and the slide (weighted by `TEXTURE_WEIGHT` in `part`) low together. `--max-error` and the
-//! reported error stay geometric.
+//! surface from the maps of the triangles it stands for. A moved vertex is placed to keep
+//! the geometric error and the slide (weighted by `TEXTURE_WEIGHT` in `part`) low together;
+//! the kept end of an interior edge takes the coordinates that slide the image least, that of
+//! a boundary or seam edge (or one that stays put) coordinates interpolated along the edge,
+//! which keep it on the texture's outline. `--max-error` and the reported error stay
+//! geometric.
 //!
 //! A texture seam (`mesh::seams`) is two boundaries at the same positions: where exactly
 //! two sides meet, a seam edge collapses together with the other side's edge, to the same

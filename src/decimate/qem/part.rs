@@ -313,7 +313,7 @@ impl Part<'_> {
             // The texture's error at the best coordinates (rounding aside, never below the
             // geometric error alone).
             cost = cost.max(placed.eval(position));
-            if free && ka == Kind::Interior && kb == Kind::Interior {
+            if ka == Kind::Interior && kb == Kind::Interior {
                 let best = side.best_coordinates(position) / self.texture_scale;
                 texcoords = Some(best.as_vec2().to_array());
             } else if let Some(t) = self.texcoords.as_deref() {
