@@ -13,7 +13,7 @@ use super::collapser::Kind;
 use super::quadric::TextureQuadric;
 use crate::mesh::topology::Connectivity;
 
-/// Vertices per rayon task.
+/// Vertices (or triangles) per rayon task.
 const PER_TASK: usize = 4096;
 
 /// The texture's quadrics of a model.
@@ -39,16 +39,27 @@ pub(super) fn texture_quadrics(
             tri.map(|v| DVec2::from(texcoords[v as usize].map(f64::from))),
         )
     };
-    let (surface, texture) = (0..conn.triangles().len() as u32)
-        .into_par_iter()
-        .filter(|&t| conn.is_alive(t))
-        .map(|t| {
-            let ([a, b, c], [s, u, w]) = corners(t);
-            let surface = 0.5 * (b - a).cross(c - a).length();
-            let texture = 0.5 * (u - s).perp_dot(w - s).abs();
-            (surface, texture)
+    // Summed in fixed chunks, in order: the same scale, to the last bit, on any number of
+    // cores (rayon's own reduction splits by the thread count).
+    let (surface, texture) = conn
+        .triangles()
+        .par_chunks(PER_TASK)
+        .enumerate()
+        .map(|(c, chunk)| {
+            let first = (c * PER_TASK) as u32;
+            (first..first + chunk.len() as u32)
+                .filter(|&t| conn.is_alive(t))
+                .map(|t| {
+                    let ([a, b, c], [s, u, w]) = corners(t);
+                    let surface = 0.5 * (b - a).cross(c - a).length();
+                    let texture = 0.5 * (u - s).perp_dot(w - s).abs();
+                    (surface, texture)
+                })
+                .fold((0.0, 0.0), |x, y| (x.0 + y.0, x.1 + y.1))
         })
-        .reduce(|| (0.0, 0.0), |x, y| (x.0 + y.0, x.1 + y.1));
+        .collect::<Vec<(f64, f64)>>()
+        .into_iter()
+        .fold((0.0, 0.0), |x, y| (x.0 + y.0, x.1 + y.1));
     let scale = (surface / texture).sqrt();
     if !(texture > 0.0 && scale.is_finite() && scale > 0.0) {
         return None;
