@@ -76,6 +76,32 @@ fn ply_index_out_of_range_is_an_error() {
     assert!(e.to_string().contains("out of range"), "{e}");
 }
 
+/// Found by `tests/fuzz_inputs.rs`: an infinite colour read, then made a progressive mesh
+/// that did not read back. A vertex's colour and normal must be finite, as its position is
+/// (texture coordinates that are not are skipped with a warning, see below).
+#[test]
+fn a_non_finite_colour_or_normal_names_its_line() {
+    let header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+                  property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n\
+                  property float nx\nproperty float ny\nproperty float nz\nproperty float s\n\
+                  property float t\nelement face 1\nproperty list uchar int vertex_indices\n\
+                  end_header\n";
+    let good = "0 0 0 1 2 3 0 0 1 0 0\n1 0 0 1 2 3 0 0 1 1 0\n";
+    for (last, what) in [
+        (
+            "0 1 0 1 1e39 3 0 0 1 0 1",
+            "vertex 2's green is not a finite number (inf)",
+        ),
+        (
+            "0 1 0 1 2 3 0 nan 1 0 1",
+            "vertex 2's ny is not a finite number (NaN)",
+        ),
+    ] {
+        let src = format!("{header}{good}{last}\n3 0 1 2\n");
+        let e = parse_bytes(src.into_bytes(), Path::new("bad.ply")).unwrap_err();
+        assert_eq!(e.to_string(), format!("bad.ply:20: {what}"));
+    }
+}
 #[test]
 fn ascii_ply_indices_read_the_same_in_any_number_form() {
     // Plain digits take a fast path; leading zeros, a decimal point, an exponent and a plus

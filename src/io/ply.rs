@@ -405,6 +405,21 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
                         ));
                     }
                     coords.extend([px, py, pz]);
+                    // Colours and normals are numbers too: an infinite one would reach
+                    // the renderer and every writer (texture coordinates that are not
+                    // finite are skipped below, with a warning).
+                    let mut used = color.iter().flatten().chain(normal.iter().flatten());
+                    if let Some(&k) = used.find(|&&k| !(vals[k] as f32).is_finite()) {
+                        return Err(ParseError::new(
+                            body.line,
+                            format!(
+                                "vertex {}'s {} is not a finite number ({})",
+                                coords.len() / 3 - 1,
+                                el.props[k].name,
+                                vals[k] as f32
+                            ),
+                        ));
+                    }
                     if let Some(c) = color {
                         let scale = if el.props[c[0]].ty == Ty::U8 {
                             1.0 / 255.0

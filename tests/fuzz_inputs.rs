@@ -1,0 +1,630 @@
+//! Damaged files of every format the program reads: thousands of seeded mutations of small
+//! valid files (bytes flipped, spans cut or repeated, numbers made huge, negative, NaN,
+//! tokens out of place, files truncated). Each must either fail with an error that names
+//! the file, or read as a scene that both algorithms decimate and every writer writes —
+//! never a panic (an overflow in this debug build too), a hang or an allocation the file's
+//! size does not justify. A failure names the seed file and mutation number, and leaves the
+//! mutant under the target's temporary folder to reproduce it.
+//!
+//! `FUZZ_MUTANTS=N` runs N mutants per seed instead of the default (a longer hunt:
+//! `FUZZ_MUTANTS=20000 cargo test --release --test fuzz_inputs`).
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use decimate::decimate::{
+    decimate_scene, decimate_scene_progressive, Algorithm, ErrorBound, Params, Target,
+};
+use decimate::io::{self, parse_bytes};
+use decimate::mesh::{shapes, Attribute, Scene};
+
+/// Mutants per seed file in the default run.
+const MUTANTS: usize = 150;
+
+/// A single mutant taking longer than this is a hang.
+const HANG: Duration = Duration::from_secs(20);
+
+/// A small deterministic generator (xorshift64*): the same mutants on every run.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+/// Tokens a damaged or hostile file might hold where a number or keyword was.
+const TOKENS: &[&str] = &[
+    "-1",
+    "0",
+    "-0",
+    "1",
+    "3",
+    "65535",
+    "2147483647",
+    "2147483648",
+    "4294967295",
+    "4294967296",
+    "18446744073709551615",
+    "99999999999999999999",
+    "1e39",
+    "1e309",
+    "-1e309",
+    "nan",
+    "NaN",
+    "inf",
+    "-inf",
+    "0x10",
+    "1.5",
+    "-2.5e-320",
+    "",
+    " ",
+    "\n",
+    "\r\n",
+    "\0",
+    "{",
+    "}",
+    "[",
+    "]",
+    ",",
+    "#",
+    "\"",
+    "/",
+    "//",
+    "\\",
+    "DEF A",
+    "USE A",
+    "DEF A Separator {",
+    "USE Missing",
+    "Separator {",
+    "Transform { children [",
+    "Shape { geometry IndexedFaceSet { coordIndex [ 0 1 2 -1 ] } }",
+    "coordIndex [ 0 1 99999 -1 ]",
+    "point [ 1 2 3 ]",
+    "f 1 2 3",
+    "f -1 -2 -3",
+    "f 0 0 0",
+    "f 1/1/1 2/2/2 3/3/3",
+    "v 1 2 3",
+    "vt 0.5 0.5",
+    "usemtl m",
+    "mtllib missing.mtl",
+    "element vertex 4000000000",
+    "element face 2000000000",
+    "property list uchar int vertex_indices",
+    "property list uint uint vertex_indices",
+    "property float x",
+    "format binary_big_endian 1.0",
+    "format ascii 1.0",
+    "end_header\n",
+    "facet normal 0 0 1",
+    "outer loop",
+    "vertex 1 2 3",
+    "endloop",
+    "endfacet",
+    "OFF",
+    "COFF",
+    "4000000000 1 0",
+    "ImageTexture { url \"a.png\" }",
+    "TextureCoordinate2 { point [ 0 0, 1 0 ] }",
+    "texCoordIndex [ 0 1 2 -1 ]",
+    "colorPerVertex FALSE",
+    "normalPerVertex TRUE",
+    "MaterialBinding { value PER_FACE_INDEXED }",
+    "NormalBinding { value PER_VERTEX }",
+    "Scale { scaleFactor 0 0 0 }",
+    "MatrixTransform { matrix 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 }",
+    "Rotation { rotation 0 0 0 1 }",
+    "\u{feff}",
+    "é",
+];
+
+/// One mutation of `bytes`.
+fn mutate(rng: &mut Rng, bytes: &mut Vec<u8>) {
+    let len = bytes.len();
+    let at = rng.below(len + 1);
+    match rng.below(9) {
+        // A byte changed.
+        0 if len > 0 => {
+            let i = rng.below(len);
+            bytes[i] = rng.next() as u8;
+        }
+        // A bit flipped (a binary file's count or index off by a power of two).
+        1 if len > 0 => {
+            let i = rng.below(len);
+            bytes[i] ^= 1 << rng.below(8);
+        }
+        // A span cut.
+        2 => {
+            let end = (at + 1 + rng.below(64)).min(len);
+            bytes.drain(at.min(end)..end);
+        }
+        // A span repeated elsewhere.
+        3 if len > 0 => {
+            let start = rng.below(len);
+            let end = (start + 1 + rng.below(128)).min(len);
+            let span = bytes[start..end].to_vec();
+            bytes.splice(at..at, span);
+        }
+        // Truncated.
+        4 => bytes.truncate(at),
+        // A number replaced by a hostile one.
+        5 => {
+            let digits: Vec<usize> = (0..len).filter(|&i| bytes[i].is_ascii_digit()).collect();
+            if let Some(&i) = digits.get(rng.below(digits.len())) {
+                let mut end = i;
+                while end < len && (bytes[end].is_ascii_digit() || b".eE-+".contains(&bytes[end])) {
+                    end += 1;
+                }
+                let token = TOKENS[rng.below(12)];
+                bytes.splice(i..end, token.bytes());
+            }
+        }
+        // Four random little-endian bytes (a binary count or index).
+        6 if len >= 4 => {
+            let i = rng.below(len - 3);
+            let value = match rng.below(4) {
+                0 => u32::MAX,
+                1 => u32::MAX / 2 + 1,
+                2 => rng.next() as u32,
+                _ => (rng.next() % 64) as u32,
+            };
+            bytes[i..i + 4].copy_from_slice(&value.to_le_bytes());
+        }
+        // A token inserted.
+        _ => {
+            let token = TOKENS[rng.below(TOKENS.len())];
+            bytes.splice(at..at, token.bytes());
+        }
+    }
+}
+
+/// What must hold for a scene that read: both algorithms decimate it, to a percentage, to
+/// counts and under an error bound, and every writer writes the result.
+fn exercise(scene: &Scene) {
+    assert_finite(scene);
+    let targets = [
+        (Target::RemovePercent(50.0), None),
+        (Target::RemovePercent(100.0), None),
+        (Target::KeepVertices(5), None),
+        (Target::KeepTriangles(3), None),
+        (Target::ErrorOnly, Some(ErrorBound::DiagonalFraction(0.01))),
+    ];
+    for algorithm in [Algorithm::Schroeder, Algorithm::Qem] {
+        for (target, max_error) in targets {
+            let mut copy = scene.clone();
+            let params = Params {
+                target,
+                max_error,
+                algorithm,
+                ..Params::default()
+            };
+            let report = decimate_scene(&mut copy, &params, &mut |_| {});
+            assert_eq!(report.models.len(), copy.models.len() + dropped(&report));
+            write_everything(&copy);
+        }
+    }
+    let mut copy = scene.clone();
+    let params = Params {
+        algorithm: Algorithm::Qem,
+        ..Params::default()
+    };
+    let (_, pm) = decimate_scene_progressive(&mut copy, &params, &mut |_| {});
+    let mut bytes = Vec::new();
+    io::progressive::write_progressive_to(&mut bytes, &pm).expect("writes to memory");
+    // What was written reads back.
+    if let Err(e) = io::progressive::parse_progressive(&bytes, Path::new("again.pm")) {
+        panic!("a written progressive mesh does not read back: {e}");
+    }
+}
+
+/// Every number a scene that read holds is finite: a reader refuses what is not.
+fn assert_finite(scene: &Scene) {
+    for m in &scene.models {
+        let finite = |values: &[f32]| values.iter().all(|x| x.is_finite());
+        assert!(
+            m.positions.iter().all(|p| p.is_finite()),
+            "{}: a position",
+            m.name
+        );
+        let attribute = |a: &Option<Attribute<[f32; 3]>>| match a {
+            Some(Attribute::PerVertex(v) | Attribute::PerFace(v)) => v.iter().all(|x| finite(x)),
+            None => true,
+        };
+        assert!(attribute(&m.colors), "{}: a colour", m.name);
+        let normals = match &m.normals {
+            Some(Attribute::PerVertex(v) | Attribute::PerFace(v)) => {
+                v.iter().all(|n| n.is_finite())
+            }
+            None => true,
+        };
+        assert!(normals, "{}: a normal", m.name);
+        let texcoords = m
+            .texcoords
+            .as_deref()
+            .is_none_or(|t| t.iter().all(|x| finite(x)));
+        assert!(texcoords, "{}: texture coordinates", m.name);
+        assert!(finite(&m.diffuse), "{}: the diffuse colour", m.name);
+        assert!(m.transform.is_finite(), "{}: the transform", m.name);
+    }
+}
+
+fn dropped(report: &decimate::decimate::Report) -> usize {
+    report.models.iter().filter(|m| m.dropped).count()
+}
+
+/// Writes `scene` in every format, to memory.
+fn write_everything(scene: &Scene) {
+    let mut out = Vec::new();
+    io::write_vrml2_to(&mut out, scene).expect("writes to memory");
+    out.clear();
+    io::ply::write_ply_to(&mut out, scene).expect("writes to memory");
+    out.clear();
+    io::obj::write_obj_to(&mut out, scene).expect("writes to memory");
+    out.clear();
+    io::stl::write_stl_to(&mut out, scene).expect("writes to memory");
+    out.clear();
+    io::off::write_off_to(&mut out, scene).expect("writes to memory");
+}
+
+/// The small valid files the mutants start from, one or more per format, as (file name,
+/// bytes): the name's extension says the format where the content does not.
+fn seeds() -> Vec<(&'static str, Vec<u8>)> {
+    let mut sphere = shapes::bumpy_sphere(5, 8);
+    let n = sphere.positions.len();
+    sphere.colors = Some(Attribute::PerVertex(
+        (0..n).map(|i| [i as f32 / n as f32, 0.5, 0.25]).collect(),
+    ));
+    sphere.texcoords = Some(
+        sphere
+            .positions
+            .iter()
+            .map(|p| [0.5 + 0.5 * p.x, 0.5 + 0.5 * p.y])
+            .collect(),
+    );
+    sphere.texture = Some("image.png".into());
+    let mut cube = shapes::cube(2, 2.0);
+    cube.name = "Cube".into();
+    let scene = Scene {
+        models: vec![sphere, cube],
+    };
+    let written = |write: fn(&mut Vec<u8>, &Scene) -> std::io::Result<()>| {
+        let mut bytes = Vec::new();
+        write(&mut bytes, &scene).expect("writes to memory");
+        bytes
+    };
+    let mut pm_scene = Scene {
+        models: vec![shapes::bumpy_sphere(4, 6)],
+    };
+    let (_, pm) = decimate_scene_progressive(&mut pm_scene, &Params::default(), &mut |_| {});
+    let mut pm_bytes = Vec::new();
+    io::progressive::write_progressive_to(&mut pm_bytes, &pm).expect("writes to memory");
+    vec![
+        ("seed.wrl", written(io::write_vrml2_to)),
+        ("seed.ply", written(io::ply::write_ply_to)),
+        ("seed.obj", written(io::obj::write_obj_to)),
+        ("seed.stl", written(io::stl::write_stl_to)),
+        ("seed.off", written(io::off::write_off_to)),
+        ("seed.pm", pm_bytes),
+        ("vrml1.wrl", VRML1.as_bytes().to_vec()),
+        ("inventor.iv", INVENTOR.as_bytes().to_vec()),
+        ("nodes.iv", INVENTOR_NODES.as_bytes().to_vec()),
+        ("nodes.wrl", VRML2_NODES.as_bytes().to_vec()),
+        ("ascii.ply", ASCII_PLY.as_bytes().to_vec()),
+        ("ascii.stl", ASCII_STL.as_bytes().to_vec()),
+        ("colour.off", COLOUR_OFF.as_bytes().to_vec()),
+        ("faces.obj", OBJ.as_bytes().to_vec()),
+    ]
+}
+
+const VRML1: &str = "#VRML V1.0 ascii
+Separator {
+  DEF Look Material { diffuseColor [ 1 0 0, 0 1 0, 0 0 1 ] }
+  MaterialBinding { value PER_FACE }
+  ShapeHints { vertexOrdering COUNTERCLOCKWISE creaseAngle 0.5 }
+  Transform { translation 1 0 0 scaleFactor 2 2 2 }
+  Coordinate3 { point [ 0 0 0, 1 0 0, 1 1 0, 0 1 0, 0.5 0.5 1 ] }
+  Normal { vector [ 0 0 1 ] }
+  NormalBinding { value OVERALL }
+  TextureCoordinate2 { point [ 0 0, 1 0, 1 1, 0 1 ] }
+  IndexedFaceSet {
+    coordIndex [ 0 1 4 -1, 1 2 4 -1, 2 3 4 -1, 3 0 4 -1, 0 3 2 1 -1 ]
+    textureCoordIndex [ 0 1 2 -1, 1 2 3 -1, 2 3 0 -1, 3 0 1 -1, 0 1 2 3 -1 ]
+  }
+  Separator { USE Look Cube { width 2 } }
+}
+";
+
+const INVENTOR: &str = "#Inventor V2.1 ascii
+Separator {
+  Material { diffuseColor 0.8 0.2 0.2 }
+  Coordinate3 { point [ 0 0 0, 1 0 0, 1 1 0, 0 1 0, 0.5 0.5 1 ] }
+  IndexedFaceSet { coordIndex [ 0 1 4 -1, 1 2 4 -1, 2 3 4 -1, 3 0 4 -1, 0 3 2 1 -1 ] }
+  Texture2 { filename \"wood.png\" wrapS CLAMP }
+  Translation { translation 3 0 0 }
+  Sphere { radius 0.5 }
+}
+";
+
+/// Inventor's other shapes and bindings: strips, quads, per-vertex materials, arrays.
+const INVENTOR_NODES: &str = "#Inventor V2.1 ascii
+Separator {
+  ShapeHints { vertexOrdering CLOCKWISE shapeType SOLID faceType UNKNOWN_FACE_TYPE creaseAngle 1 }
+  Material { diffuseColor [ 1 0 0, 0 1 0, 0 0 1, 1 1 0 ] }
+  MaterialBinding { value PER_VERTEX_INDEXED }
+  Coordinate3 { point [ 0 0 0, 1 0 0, 1 1 0, 0 1 0, 0 0 1, 1 0 1, 1 1 1, 0 1 1 ] }
+  IndexedTriangleStripSet {
+    coordIndex [ 0 1 3 2 7 6 -1, 4 5 0 1 -1 ]
+    materialIndex [ 0 1 2 3 0 1 -1, 2 3 0 1 -1 ]
+  }
+  TransformSeparator {
+    RotationXYZ { axis Y angle 0.5 }
+    Array { numElements1 2 separation1 3 0 0
+      FaceSet { numVertices [ 4, 3 ] }
+    }
+  }
+  Switch { whichChild 0 Separator { QuadMesh { verticesPerColumn 2 verticesPerRow 4 } } }
+  Separator {
+    NormalBinding { value PER_FACE }
+    Normal { vector [ 0 0 1, 0 0 -1 ] }
+    TextureCoordinateBinding { value PER_VERTEX }
+    TextureCoordinate2 { point [ 0 0, 1 0, 1 1, 0 1 ] }
+    VertexProperty { vertex [ 0 0 0, 2 0 0, 2 2 0, 0 2 0 ] }
+    TriangleStripSet { numVertices [ 4 ] }
+  }
+  LevelOfDetail { screenArea [ 100 ] Cube { } Sphere { } }
+}
+";
+
+/// VRML 2.0's grouping nodes, instancing and an IndexedFaceSet with every field: concave
+/// polygons, colour and normal indices, texture coordinates.
+const VRML2_NODES: &str = "#VRML V2.0 utf8
+DEF Root Transform {
+  translation 1 2 3 rotation 0 1 0 0.7 scale 2 2 2 center 0.5 0 0
+  children [
+    DEF Piece Shape {
+      appearance Appearance {
+        material Material { diffuseColor 0.2 0.4 0.6 }
+        texture ImageTexture { url [ \"wood.png\" \"wood.jpg\" ] repeatS FALSE }
+      }
+      geometry IndexedFaceSet {
+        coord Coordinate { point [ 0 0 0, 2 0 0, 2 2 0, 1 1 0, 0 2 0, 1 0 1 ] }
+        coordIndex [ 0 1 2 3 4 -1, 0 5 1 -1, 1 5 2 -1 ]
+        convex FALSE solid FALSE ccw FALSE creaseAngle 0.8
+        color Color { color [ 1 0 0, 0 1 0, 0 0 1 ] }
+        colorPerVertex FALSE colorIndex [ 0 1 2 ]
+        normal Normal { vector [ 0 0 1, 0 -1 0 ] }
+        normalPerVertex TRUE normalIndex [ 0 0 0 0 0 -1, 1 1 1 -1, 1 1 1 -1 ]
+        texCoord TextureCoordinate { point [ 0 0, 1 0, 1 1, 0.5 0.5, 0 1, 0.5 0 ] }
+        texCoordIndex [ 0 1 2 3 4 -1, 0 5 1 -1, 1 5 2 -1 ]
+      }
+    }
+    Group { children [ Transform { translation 5 0 0 children USE Piece } ] }
+    Switch { whichChoice 0 choice [ Shape { geometry Box { size 1 2 3 } } ] }
+    LOD { range [ 10 ] level [ Billboard { children USE Piece } Group { } ] }
+    Anchor { children Collision { children [ USE Piece ] } }
+  ]
+}
+Transform { children USE Root }
+";
+
+const ASCII_PLY: &str = "ply
+format ascii 1.0
+comment a pyramid
+element vertex 5
+property float x
+property float y
+property float z
+property uchar red
+property uchar green
+property uchar blue
+property float nx
+property float ny
+property float nz
+property float s
+property float t
+element face 5
+property list uchar int vertex_indices
+end_header
+0 0 0 255 0 0 0 0 1 0 0
+1 0 0 0 255 0 0 0 1 1 0
+1 1 0 0 0 255 0 0 1 1 1
+0 1 0 255 255 0 0 0 1 0 1
+0.5 0.5 1 0 255 255 0 0 1 0.5 0.5
+3 0 1 4
+3 1 2 4
+3 2 3 4
+3 3 0 4
+4 0 3 2 1
+";
+
+const ASCII_STL: &str = "solid pyramid
+facet normal 0 0 -1
+ outer loop
+  vertex 0 0 0
+  vertex 1 1 0
+  vertex 1 0 0
+ endloop
+endfacet
+facet normal 0 0 -1
+ outer loop
+  vertex 0 0 0
+  vertex 0 1 0
+  vertex 1 1 0
+ endloop
+endfacet
+facet normal 0 -1 1
+ outer loop
+  vertex 0 0 0
+  vertex 1 0 0
+  vertex 0.5 0.5 1
+ endloop
+endfacet
+facet normal 1 0 1
+ outer loop
+  vertex 1 0 0
+  vertex 1 1 0
+  vertex 0.5 0.5 1
+ endloop
+endfacet
+facet normal 0 1 1
+ outer loop
+  vertex 1 1 0
+  vertex 0 1 0
+  vertex 0.5 0.5 1
+ endloop
+endfacet
+facet normal -1 0 1
+ outer loop
+  vertex 0 1 0
+  vertex 0 0 0
+  vertex 0.5 0.5 1
+ endloop
+endfacet
+endsolid pyramid
+";
+
+const COLOUR_OFF: &str = "COFF
+# a pyramid, coloured
+5 5 0
+0 0 0 255 0 0 255
+1 0 0 0 255 0 255
+1 1 0 0 0 255 255
+0 1 0 255 255 0 255
+0.5 0.5 1 0 255 255 255
+3 0 1 4
+3 1 2 4 1.0 0.0 0.0
+3 2 3 4
+3 3 0 4
+4 0 3 2 1
+";
+
+const OBJ: &str = "# a pyramid
+mtllib pyramid.mtl
+o Pyramid
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0 0.5 0.5 0.5
+v 0.5 0.5 1
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+vn 0 0 1
+g sides
+usemtl red
+f 1/1/1 2/2/1 5/3/1
+f 2/2 3/3 5/4
+f -3//1 -2//1 -1//1
+f 4 1 5
+s off
+usemtl blue
+f 1 4 3 2
+l 1 2
+p 3
+";
+
+#[test]
+fn damaged_files_of_every_format_never_panic_hang_or_lose_the_file_name() {
+    let mutants = std::env::var("FUZZ_MUTANTS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(MUTANTS);
+    // Panics are caught and counted; their default report would flood the output.
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let current: Arc<Mutex<(String, usize, Instant)>> =
+        Arc::new(Mutex::new((String::new(), 0, Instant::now())));
+    let done = Arc::new(AtomicBool::new(false));
+    let watchdog = {
+        let (current, done) = (Arc::clone(&current), Arc::clone(&done));
+        std::thread::spawn(move || {
+            while !done.load(Ordering::Relaxed) {
+                std::thread::sleep(Duration::from_millis(200));
+                let Some((name, i, since)) = current.lock().ok().map(|c| c.clone()) else {
+                    continue;
+                };
+                if since.elapsed() > HANG {
+                    eprintln!("mutant {i} of {name} ran for over {HANG:?}: a hang");
+                    std::process::exit(1);
+                }
+            }
+        })
+    };
+    let keep = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fuzz_inputs");
+    let mut failures = Vec::new();
+    let (mut read, mut refused) = (0usize, 0usize);
+    for (name, seed) in seeds() {
+        let path = Path::new(name);
+        // The seed itself reads.
+        assert!(
+            parse_bytes(seed.clone(), path).is_ok(),
+            "the seed {name} does not read"
+        );
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ seed.len() as u64);
+        for i in 0..mutants {
+            let mut bytes = seed.clone();
+            for _ in 0..1 + rng.below(3) {
+                mutate(&mut rng, &mut bytes);
+            }
+            if let Ok(mut c) = current.lock() {
+                *c = (name.to_string(), i, Instant::now());
+            }
+            let outcome = catch_unwind(AssertUnwindSafe(|| {
+                match parse_bytes(bytes.clone(), path) {
+                    Ok(outcome) => {
+                        exercise(&outcome.scene);
+                        Ok(())
+                    }
+                    Err(e) => {
+                        let message = e.to_string();
+                        assert!(
+                            message.starts_with(name),
+                            "does not name the file: {message}"
+                        );
+                        Err(())
+                    }
+                }
+            }));
+            match outcome {
+                Ok(Ok(())) => read += 1,
+                Ok(Err(())) => refused += 1,
+                Err(panic) => {
+                    let what = panic
+                        .downcast_ref::<String>()
+                        .cloned()
+                        .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                        .unwrap_or_default();
+                    let _ = std::fs::create_dir_all(&keep);
+                    let file = keep.join(format!("{i}-{name}"));
+                    let _ = std::fs::write(&file, &bytes);
+                    failures.push(format!("{name} mutant {i} ({}): {what}", file.display()));
+                }
+            }
+        }
+    }
+    done.store(true, Ordering::Relaxed);
+    let _ = watchdog.join();
+    std::panic::set_hook(hook);
+    eprintln!("{read} mutants read and decimated, {refused} refused with an error");
+    assert!(
+        failures.is_empty(),
+        "{} of {} mutants panicked:\n{}",
+        failures.len(),
+        read + refused + failures.len(),
+        failures.join("\n")
+    );
+    // Both outcomes are exercised: a fuzz run that refuses everything tests little.
+    assert!(read > 0 && refused > 0, "read {read}, refused {refused}");
+}
