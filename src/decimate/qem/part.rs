@@ -131,6 +131,30 @@ impl Part<'_> {
         self.kind(v) == Kind::Fixed
     }
 
+    /// Whether the fans in the other side's scratch (see [`Self::swap_sides`]) reach `x`.
+    pub fn other_side_touches(&self, x: u32) -> bool {
+        self.scratch
+            .twin_fans
+            .iter()
+            .flatten()
+            .any(|f| f.touches(x))
+    }
+
+    /// Whether `a` and `b` share an edge; `None` when `a`'s fan is not this part's.
+    pub fn joined(&self, a: u32, b: u32) -> Option<bool> {
+        if !self.owns(a) {
+            return None;
+        }
+        let mut joined = false;
+        for &t in self.conn.incident(a) {
+            if !self.conn.owns_slot(t) {
+                return None;
+            }
+            joined |= self.conn.triangle(t).contains(&b);
+        }
+        Some(joined)
+    }
+
     /// Reads the fans of the edge `v`–`w`'s ends into the scratch, for the checks and the
     /// collapse; false when collapsing it (either way) would read or write what this part
     /// does not own: both ends, their triangles (slots) and those triangles' corners, with

@@ -364,6 +364,10 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
         return Attempt::Elsewhere;
     }
     let plan = d.plan(v.min(w), v.max(w));
+    // Asked before anything is decided: a collapse this part cannot judge goes elsewhere.
+    let Some(welded) = plan.map_or(Some(true), |p| seam_stays_manifold(d, &p)) else {
+        return Attempt::Elsewhere;
+    };
     if let Some(p) = plan.filter(|p| stored(p.cost) > bounds.threshold) {
         // An end took a collapse in this pass: re-planned at its end. On a seam it may have
         // been the other side's end, which re-plans that side's edges only: both ends look
@@ -380,7 +384,8 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
     // every candidate either goes, waits or is blocked: each pass progresses. A seam
     // collapse with room for one vertex only counts so too: the count stops exactly.
     let fits = plan.is_some_and(|p| p.twin.is_none() || room >= 2);
-    let legal = fits && plan.is_some_and(|p| d.is_collapse_legal(&p) && twin_is_legal(d, &p));
+    let legal =
+        fits && welded && plan.is_some_and(|p| d.is_collapse_legal(&p) && twin_is_legal(d, &p));
     let Some(plan) = plan.filter(|p| legal && p.error2 <= bounds.bound2) else {
         // The cost weighs area and colour, not just the error: an edge over the bound is
         // skipped like an illegal one, until its neighbourhood changes.
@@ -436,6 +441,59 @@ fn twin_is_legal(d: &mut Part<'_>, plan: &Plan) -> bool {
     let legal = d.is_collapse_legal(&twin);
     d.swap_sides();
     legal
+}
+
+/// Whether a collapse at a texture seam keeps the surface manifold once its seams are
+/// closed (welded, as a viewer shows it). An edge that a collapse makes between two seam
+/// vertices inside one side must not also join their other sides: it would then have four
+/// triangles. So a new neighbour of the kept end, on a seam, whose edge to it will be
+/// interior must not be joined to the kept end's other side (a plain collapse into a seam
+/// vertex), or to the other side's merged ends (a seam collapse, both sides at once). Such a
+/// neighbour that is pinned (a junction of three or more sides, a shared border) is refused
+/// outright: its other sides are not known here. `None` when a plain collapse's other side
+/// is outside the part.
+fn seam_stays_manifold(d: &mut Part<'_>, plan: &Plan) -> Option<bool> {
+    let Some(k2) = d.twin(plan.keep) else {
+        return Some(true);
+    };
+    let Some(twin) = plan.other_side() else {
+        for x in new_interior_neighbours(d, plan) {
+            if d.is_fixed(x) {
+                return Some(false);
+            }
+            if let Some(x2) = d.twin(x) {
+                if d.joined(k2, x2)? {
+                    return Some(false);
+                }
+            }
+        }
+        return Some(true);
+    };
+    let clear = |d: &Part<'_>, plan: &Plan| {
+        new_interior_neighbours(d, plan)
+            .all(|x| !d.is_fixed(x) && !d.twin(x).is_some_and(|x2| d.other_side_touches(x2)))
+    };
+    let here = clear(d, plan);
+    d.swap_sides();
+    let there = clear(d, &twin);
+    d.swap_sides();
+    Some(here && there)
+}
+
+/// The removed end's neighbours that become the kept end's, through an edge with two
+/// triangles (inside the side, not on its outline); each once or twice.
+fn new_interior_neighbours<'a>(d: &'a Part<'_>, plan: &Plan) -> impl Iterator<Item = u32> + 'a {
+    let (fan_r, fan_k) = d.fans(plan);
+    let (keep, remove) = (plan.keep, plan.remove);
+    fan_r
+        .iter()
+        .filter(move |f| !f.touches(keep))
+        .flat_map(|f| [f.next, f.prev])
+        .filter(move |&x| {
+            !fan_k.iter().any(|g| g.touches(x))
+                && fan_r.iter().filter(|f| f.touches(x)).count() == 2
+                && x != remove
+        })
 }
 
 /// Performs the legal `plan` (its fans read into the scratch) and flags what the end of the

@@ -42,7 +42,7 @@ use super::layout::{self, compact, Compacted};
 use crate::mesh::classify::VertexClass;
 use crate::mesh::topology::Connectivity;
 use crate::mesh::{Attribute, Model};
-use plan::{Planning, Surface};
+use plan::{Planning, SeamSides, Surface};
 
 /// How far one model may be decimated.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -217,6 +217,10 @@ impl Decimator {
             positions: &self.positions,
             texcoords: self.texcoords.as_deref(),
             cos_feature: self.cos_feature,
+            seams: (!self.twins.is_empty()).then_some(SeamSides {
+                twins: &self.twins,
+                pinned: &self.pinned,
+            }),
         }
     }
 
@@ -387,11 +391,46 @@ impl Decimator {
         };
         let (ring_v, ring_w) = (&first.ring.verts, &second.ring.verts);
         let apart = !ring_w.iter().any(|u| *u == v || ring_v.contains(u)) && !ring_v.contains(&w);
-        (class_w == VertexClass::Boundary && ends(first) == ends(second) && apart).then(|| {
+        // A seam between two junctions keeps a vertex of its own (as with qem, whose
+        // pinned junctions never collapse): closed by one edge from junction to junction,
+        // it could lie on another seam between the same two (welded: four triangles).
+        let r = &first.ring.verts;
+        let pinned = |i: usize| r.get(i).is_some_and(|&u| self.pinned[u as usize]);
+        let between_junctions = pinned(0) && pinned(r.len().wrapping_sub(1));
+        let joined =
+            between_junctions || self.fills_join(first, second) || self.fills_join(second, first);
+        let fits = class_w == VertexClass::Boundary && ends(first) == ends(second) && apart;
+        (fits && !joined).then(|| {
             (
                 distance_v + self.accumulated[v as usize],
                 distance_w + self.accumulated[w as usize],
             )
+        })
+    }
+
+    /// Whether a new edge of `first`'s fill between two seam vertices (other than the edge
+    /// closing its hole, on the seam) has its twin in `second`'s fill: welded, that edge
+    /// would have four triangles (see `Surface::joins_seam_sides`).
+    fn fills_join(&self, first: &Planning, second: &Planning) -> bool {
+        let r = &first.ring.verts;
+        let end = |x: u32| r.first() == Some(&x) || r.last() == Some(&x);
+        let ring_edge = |x: u32, y: u32| {
+            r.windows(2)
+                .any(|p| (p[0], p[1]) == (x, y) || (p[1], p[0]) == (x, y))
+        };
+        first.fill.iter().any(|tri| {
+            (0..3).any(|i| {
+                let (x, y) = (tri[i], tri[(i + 1) % 3]);
+                let Some((x2, y2)) = self.twin(x).zip(self.twin(y)) else {
+                    return false;
+                };
+                // The hole's closing edge and the ring's own edges are not new.
+                let new = !(ring_edge(x, y) || end(x) && end(y));
+                new && second
+                    .fill
+                    .iter()
+                    .any(|t| t.contains(&x2) && t.contains(&y2))
+            })
         })
     }
 

@@ -47,6 +47,31 @@ pub(super) struct Surface<'a, C> {
     /// One pair per vertex, when the model has texture coordinates.
     pub texcoords: Option<&'a [[f32; 2]]>,
     pub cos_feature: f64,
+    /// The two sides of texture seams, on the whole mesh when the model has any; `None` in
+    /// a region, which leaves removals next to a seam to the whole mesh.
+    pub seams: Option<SeamSides<'a>>,
+}
+
+/// Each seam vertex's other side (`u32::MAX`: none) and the pinned vertices (seam
+/// junctions, shared borders), by vertex id.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct SeamSides<'a> {
+    pub twins: &'a [u32],
+    pub pinned: &'a [bool],
+}
+
+impl SeamSides<'_> {
+    pub fn twin(&self, v: u32) -> Option<u32> {
+        self.twins
+            .get(v as usize)
+            .copied()
+            .filter(|&w| w != u32::MAX)
+    }
+
+    /// On a seam: with a twin, or pinned (a junction's other sides are not known).
+    pub fn on_seam(&self, v: u32) -> bool {
+        self.twin(v).is_some() || self.pinned.get(v as usize).copied().unwrap_or(false)
+    }
 }
 
 impl<C: Adjacency> Surface<'_, C> {
@@ -234,11 +259,34 @@ impl<C: Adjacency> Surface<'_, C> {
                     if x < y && !is_ring_edge(x, y) && self.conn.has_edge_avoiding(x, y, v) {
                         return false;
                     }
+                    // An open ring's closing edge lies on the outline: on a seam, the
+                    // other side's removal closes its hole with the same edge.
+                    let closing = !closed && is_ring_end(r, x) && is_ring_end(r, y);
+                    if x < y && !is_ring_edge(x, y) && !closing && self.joins_seam_sides(x, y) {
+                        return false;
+                    }
                 }
             }
             start = region.end;
         }
         true
+    }
+
+    /// Whether a new edge `x`–`y` inside one side of a texture seam would join its ends'
+    /// other sides too: welded, as a viewer shows the model, that edge would have four
+    /// triangles. So when both ends are on a seam, their twins must not be joined already,
+    /// and neither may be pinned (a junction: its other sides are not known here).
+    pub fn joins_seam_sides(&self, x: u32, y: u32) -> bool {
+        let Some(seams) = self.seams else {
+            return false;
+        };
+        if !(seams.on_seam(x) && seams.on_seam(y)) {
+            return false;
+        }
+        match (seams.twin(x), seams.twin(y)) {
+            (Some(x2), Some(y2)) => self.conn.has_edge_avoiding(x2, y2, u32::MAX),
+            _ => true,
+        }
     }
 
     /// With texture coordinates, the `fill` of `region` faces in the texture the way the
@@ -314,6 +362,11 @@ impl<C: Adjacency> Surface<'_, C> {
 
 /// A new triangle faces like the old ring triangles of its region that share one of its
 /// vertices.
+/// Whether `x` is the first or last of the open ring `r`.
+fn is_ring_end(r: &[u32], x: u32) -> bool {
+    r.first() == Some(&x) || r.last() == Some(&x)
+}
+
 fn faces_like_old(p: &Planning, cross: DVec3, tri: &[u32; 3], region: FillRegion) -> bool {
     let r = &p.ring.verts;
     let k = r.len();

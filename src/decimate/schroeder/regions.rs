@@ -40,6 +40,8 @@ struct Region<'a> {
     texcoords: Option<&'a [[f32; 2]]>,
     /// Texture-seam twins by vertex id, all of them (empty when the model has none).
     twins: &'a [u32],
+    /// Pinned vertices by vertex id, all of them.
+    pinned: &'a [bool],
     cos_feature: f64,
     keys: &'a mut [f64],
     accumulated: &'a mut [f64],
@@ -80,7 +82,7 @@ impl Decimator {
         let mut changed_in = split_mut(&mut self.changed_in, &starts).into_iter();
         let (positions, cos_feature, pass) = (&self.positions[..], self.cos_feature, self.pass);
         let texcoords = self.texcoords.as_deref();
-        let twins = &self.twins[..];
+        let (twins, pinned) = (&self.twins[..], &self.pinned[..]);
         let parts: Vec<Region<'_>> = self
             .conn
             .split(&regions.vertex_starts, &regions.slot_starts)
@@ -93,6 +95,7 @@ impl Decimator {
                     positions,
                     texcoords,
                     twins,
+                    pinned,
                     cos_feature,
                     keys: keys.next()?,
                     accumulated: accumulated.next()?,
@@ -136,8 +139,9 @@ impl Region<'_> {
             if self.changed_in[self.at(v)] == self.pass {
                 continue; // its key is stale: re-ranked at the pass's end
             }
-            let has_twin = self.twins.get(v as usize).is_some_and(|&w| w != u32::MAX);
-            if has_twin || !self.owns_neighbourhood(v) {
+            let twin = |u: u32| self.twins.get(u as usize).is_some_and(|&w| w != u32::MAX);
+            // Next to a seam, a fill is checked against the other side: on the whole mesh.
+            if twin(v) || !self.owns_neighbourhood(v) || self.near_seam(v) {
                 self.done.border.push(c);
                 self.hold_neighbours(v);
                 continue;
@@ -147,6 +151,7 @@ impl Region<'_> {
                 positions: self.positions,
                 texcoords: self.texcoords,
                 cos_feature: self.cos_feature,
+                seams: None,
             };
             let i = self.at(v);
             if surface.plan_removal(v, &mut self.planning).is_some() {
@@ -212,6 +217,36 @@ impl Region<'_> {
                             && conn.incident(u).iter().all(|&s| conn.owns_slot(s)))
                 })
         })
+    }
+
+    /// Whether filling the owned `v`'s hole could join two seam vertices (with a twin or
+    /// pinned) by a new edge, when the model has seams: two of its neighbours are on a seam
+    /// and are not already joined through one of its triangles.
+    fn near_seam(&self, v: u32) -> bool {
+        if self.twins.is_empty() {
+            return false;
+        }
+        let on_seam = |u: u32| {
+            self.twins.get(u as usize).is_some_and(|&w| w != u32::MAX)
+                || self.pinned.get(u as usize).copied().unwrap_or(false)
+        };
+        let mut seam = [u32::MAX; 2];
+        for &t in self.conn.incident(v) {
+            for u in self.conn.triangle(t) {
+                if u == v || !on_seam(u) || seam.contains(&u) {
+                    continue;
+                }
+                if seam[0] != u32::MAX && seam[1] != u32::MAX {
+                    return true; // a third
+                }
+                seam[usize::from(seam[0] != u32::MAX)] = u;
+            }
+        }
+        seam[1] != u32::MAX
+            && !self.conn.incident(v).iter().any(|&t| {
+                let tri = self.conn.triangle(t);
+                tri.contains(&seam[0]) && tri.contains(&seam[1])
+            })
     }
 
     /// Keeps the neighbours of `v`, a candidate left to the whole mesh, from going before
