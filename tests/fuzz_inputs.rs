@@ -21,27 +21,14 @@ use decimate::decimate::{
 use decimate::io::{self, parse_bytes};
 use decimate::mesh::{shapes, Attribute, Scene};
 
+mod rng_support;
+use rng_support::Rng;
+
 /// Mutants per seed file in the default run.
 const MUTANTS: usize = 150;
 
 /// A single mutant taking longer than this is a hang.
 const HANG: Duration = Duration::from_secs(20);
-
-/// A small deterministic generator (xorshift64*): the same mutants on every run.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
 
 /// Tokens a damaged or hostile file might hold where a number or keyword was.
 const TOKENS: &[&str] = &[
@@ -132,27 +119,27 @@ const TOKENS: &[&str] = &[
 /// One mutation of `bytes`.
 fn mutate(rng: &mut Rng, bytes: &mut Vec<u8>) {
     let len = bytes.len();
-    let at = rng.below(len + 1);
-    match rng.below(9) {
+    let at = rng.index(len + 1);
+    match rng.index(9) {
         // A byte changed.
         0 if len > 0 => {
-            let i = rng.below(len);
+            let i = rng.index(len);
             bytes[i] = rng.next() as u8;
         }
         // A bit flipped (a binary file's count or index off by a power of two).
         1 if len > 0 => {
-            let i = rng.below(len);
-            bytes[i] ^= 1 << rng.below(8);
+            let i = rng.index(len);
+            bytes[i] ^= 1 << rng.index(8);
         }
         // A span cut.
         2 => {
-            let end = (at + 1 + rng.below(64)).min(len);
+            let end = (at + 1 + rng.index(64)).min(len);
             bytes.drain(at.min(end)..end);
         }
         // A span repeated elsewhere.
         3 if len > 0 => {
-            let start = rng.below(len);
-            let end = (start + 1 + rng.below(128)).min(len);
+            let start = rng.index(len);
+            let end = (start + 1 + rng.index(128)).min(len);
             let span = bytes[start..end].to_vec();
             bytes.splice(at..at, span);
         }
@@ -161,19 +148,19 @@ fn mutate(rng: &mut Rng, bytes: &mut Vec<u8>) {
         // A number replaced by a hostile one.
         5 => {
             let digits: Vec<usize> = (0..len).filter(|&i| bytes[i].is_ascii_digit()).collect();
-            if let Some(&i) = digits.get(rng.below(digits.len())) {
+            if let Some(&i) = digits.get(rng.index(digits.len())) {
                 let mut end = i;
                 while end < len && (bytes[end].is_ascii_digit() || b".eE-+".contains(&bytes[end])) {
                     end += 1;
                 }
-                let token = TOKENS[rng.below(12)];
+                let token = TOKENS[rng.index(12)];
                 bytes.splice(i..end, token.bytes());
             }
         }
         // Four random little-endian bytes (a binary count or index).
         6 if len >= 4 => {
-            let i = rng.below(len - 3);
-            let value = match rng.below(4) {
+            let i = rng.index(len - 3);
+            let value = match rng.index(4) {
                 0 => u32::MAX,
                 1 => u32::MAX / 2 + 1,
                 2 => rng.next() as u32,
@@ -183,7 +170,7 @@ fn mutate(rng: &mut Rng, bytes: &mut Vec<u8>) {
         }
         // A token inserted.
         _ => {
-            let token = TOKENS[rng.below(TOKENS.len())];
+            let token = TOKENS[rng.index(TOKENS.len())];
             bytes.splice(at..at, token.bytes());
         }
     }
@@ -575,7 +562,7 @@ fn damaged_files_of_every_format_never_panic_hang_or_lose_the_file_name() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ seed.len() as u64);
         for i in 0..mutants {
             let mut bytes = seed.clone();
-            for _ in 0..1 + rng.below(3) {
+            for _ in 0..1 + rng.index(3) {
                 mutate(&mut rng, &mut bytes);
             }
             if let Ok(mut c) = current.lock() {
