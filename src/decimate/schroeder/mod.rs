@@ -42,7 +42,7 @@ use super::layout::{self, compact, Compacted};
 use crate::mesh::classify::VertexClass;
 use crate::mesh::topology::Connectivity;
 use crate::mesh::{Attribute, Model};
-use plan::{Planning, SeamSides, Surface};
+use plan::{is_ring_end, Planning, SeamSides, Surface};
 
 /// How far one model may be decimated.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -413,7 +413,7 @@ impl Decimator {
     /// would have four triangles (see `Surface::joins_seam_sides`).
     fn fills_join(&self, first: &Planning, second: &Planning) -> bool {
         let r = &first.ring.verts;
-        let end = |x: u32| r.first() == Some(&x) || r.last() == Some(&x);
+        let end = |x: u32| is_ring_end(r, x);
         let ring_edge = |x: u32, y: u32| {
             r.windows(2)
                 .any(|p| (p[0], p[1]) == (x, y) || (p[1], p[0]) == (x, y))

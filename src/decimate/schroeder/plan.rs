@@ -61,6 +61,7 @@ pub(super) struct SeamSides<'a> {
 }
 
 impl SeamSides<'_> {
+    /// `v`'s other side, when it has one.
     pub fn twin(&self, v: u32) -> Option<u32> {
         self.twins
             .get(v as usize)
@@ -360,13 +361,13 @@ impl<C: Adjacency> Surface<'_, C> {
     }
 }
 
-/// A new triangle faces like the old ring triangles of its region that share one of its
-/// vertices.
 /// Whether `x` is the first or last of the open ring `r`.
-fn is_ring_end(r: &[u32], x: u32) -> bool {
+pub(super) fn is_ring_end(r: &[u32], x: u32) -> bool {
     r.first() == Some(&x) || r.last() == Some(&x)
 }
 
+/// A new triangle faces like the old ring triangles of its region that share one of its
+/// vertices.
 fn faces_like_old(p: &Planning, cross: DVec3, tri: &[u32; 3], region: FillRegion) -> bool {
     let r = &p.ring.verts;
     let k = r.len();

@@ -19,7 +19,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::plan::{Planning, Surface};
+use super::plan::{Planning, SeamSides, Surface};
 use super::{Decimator, Outcome};
 use crate::decimate::candidates::Candidate;
 use crate::decimate::regions::Regions;
@@ -38,10 +38,9 @@ struct Region<'a> {
     positions: &'a [Vec3],
     /// All of them, when the model has texture coordinates.
     texcoords: Option<&'a [[f32; 2]]>,
-    /// Texture-seam twins by vertex id, all of them (empty when the model has none).
-    twins: &'a [u32],
-    /// Pinned vertices by vertex id, all of them.
-    pinned: &'a [bool],
+    /// Texture-seam twins and pinned vertices by vertex id, all of them (no twins when the
+    /// model has no seams).
+    seams: SeamSides<'a>,
     cos_feature: f64,
     keys: &'a mut [f64],
     accumulated: &'a mut [f64],
@@ -82,7 +81,10 @@ impl Decimator {
         let mut changed_in = split_mut(&mut self.changed_in, &starts).into_iter();
         let (positions, cos_feature, pass) = (&self.positions[..], self.cos_feature, self.pass);
         let texcoords = self.texcoords.as_deref();
-        let (twins, pinned) = (&self.twins[..], &self.pinned[..]);
+        let seams = SeamSides {
+            twins: &self.twins,
+            pinned: &self.pinned,
+        };
         let parts: Vec<Region<'_>> = self
             .conn
             .split(&regions.vertex_starts, &regions.slot_starts)
@@ -94,8 +96,7 @@ impl Decimator {
                     conn,
                     positions,
                     texcoords,
-                    twins,
-                    pinned,
+                    seams,
                     cos_feature,
                     keys: keys.next()?,
                     accumulated: accumulated.next()?,
@@ -139,9 +140,8 @@ impl Region<'_> {
             if self.changed_in[self.at(v)] == self.pass {
                 continue; // its key is stale: re-ranked at the pass's end
             }
-            let twin = |u: u32| self.twins.get(u as usize).is_some_and(|&w| w != u32::MAX);
             // Next to a seam, a fill is checked against the other side: on the whole mesh.
-            if twin(v) || !self.owns_neighbourhood(v) || self.near_seam(v) {
+            if self.seams.twin(v).is_some() || !self.owns_neighbourhood(v) || self.near_seam(v) {
                 self.done.border.push(c);
                 self.hold_neighbours(v);
                 continue;
@@ -223,17 +223,13 @@ impl Region<'_> {
     /// pinned) by a new edge, when the model has seams: two of its neighbours are on a seam
     /// and are not already joined through one of its triangles.
     fn near_seam(&self, v: u32) -> bool {
-        if self.twins.is_empty() {
+        if self.seams.twins.is_empty() {
             return false;
         }
-        let on_seam = |u: u32| {
-            self.twins.get(u as usize).is_some_and(|&w| w != u32::MAX)
-                || self.pinned.get(u as usize).copied().unwrap_or(false)
-        };
         let mut seam = [u32::MAX; 2];
         for &t in self.conn.incident(v) {
             for u in self.conn.triangle(t) {
-                if u == v || !on_seam(u) || seam.contains(&u) {
+                if u == v || !self.seams.on_seam(u) || seam.contains(&u) {
                     continue;
                 }
                 if seam[0] != u32::MAX && seam[1] != u32::MAX {
