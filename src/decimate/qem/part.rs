@@ -142,17 +142,13 @@ impl Part<'_> {
 
     /// Whether `a` and `b` share an edge; `None` when `a`'s fan is not this part's.
     pub fn joined(&self, a: u32, b: u32) -> Option<bool> {
-        if !self.owns(a) {
-            return None;
-        }
-        let mut joined = false;
-        for &t in self.conn.incident(a) {
-            if !self.conn.owns_slot(t) {
-                return None;
-            }
-            joined |= self.conn.triangle(t).contains(&b);
-        }
-        Some(joined)
+        let fan_owned = self.owns(a)
+            && self
+                .conn
+                .incident(a)
+                .iter()
+                .all(|&t| self.conn.owns_slot(t));
+        fan_owned.then(|| self.edge_triangles(a, b) > 0)
     }
 
     /// Reads the fans of the edge `v`–`w`'s ends into the scratch, for the checks and the

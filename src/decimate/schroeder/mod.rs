@@ -217,10 +217,14 @@ impl Decimator {
             positions: &self.positions,
             texcoords: self.texcoords.as_deref(),
             cos_feature: self.cos_feature,
-            seams: (!self.twins.is_empty()).then_some(SeamSides {
-                twins: &self.twins,
-                pinned: &self.pinned,
-            }),
+            seams: (!self.twins.is_empty()).then(|| self.seam_sides()),
+        }
+    }
+
+    fn seam_sides(&self) -> SeamSides<'_> {
+        SeamSides {
+            twins: &self.twins,
+            pinned: &self.pinned,
         }
     }
 
@@ -290,10 +294,7 @@ impl Decimator {
 
     /// `v`'s other side on a texture seam, when it has one.
     fn twin(&self, v: u32) -> Option<u32> {
-        self.twins
-            .get(v as usize)
-            .copied()
-            .filter(|&w| w != u32::MAX)
+        self.seam_sides().twin(v)
     }
 
     /// Whether `v`'s ring changed in this pass.
