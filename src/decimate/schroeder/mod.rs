@@ -63,6 +63,10 @@ pub struct Limits {
 /// How much the feature angle grows each time a count target could not otherwise be met.
 pub const RELAX_STEP_DEG: f64 = 15.0;
 
+/// Beside a pass in `Decimator::changed_in`: the vertex was held back in that pass, not
+/// changed (see `Region::hold_neighbours`).
+const HELD: u32 = 1 << 31;
+
 /// What decimating one model did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Outcome {
@@ -169,7 +173,8 @@ struct Decimator {
     /// A seam removal's second side.
     twin_planning: Planning,
     /// The pass in which each vertex's ring last changed (a removal took it or a
-    /// neighbour), and the pass now running: a changed vertex's key is stale.
+    /// neighbour), and the pass now running: a changed vertex's key is stale. A vertex a
+    /// region held back (`HELD` beside the pass) waits like a changed one but keeps its key.
     changed_in: Vec<u32>,
     pass: u32,
     /// The vertices changed in this pass, each once: re-ranked at its end.
@@ -297,9 +302,10 @@ impl Decimator {
         self.seam_sides().twin(v)
     }
 
-    /// Whether `v`'s ring changed in this pass.
+    /// Whether `v` waits for the next pass: its ring changed in this one (its key is
+    /// stale), or a region held it back.
     fn changed_now(&self, v: u32) -> bool {
-        self.changed_in[v as usize] == self.pass
+        self.changed_in[v as usize] & !HELD == self.pass
     }
 
     /// Whether `v`'s neighbourhood changed since this batch was planned.
@@ -311,7 +317,8 @@ impl Decimator {
     /// re-ranked at its end) and plans that read it for the rest of the batch.
     fn mark_changed(&mut self, v: u32) {
         self.touched_in[v as usize] = self.batch;
-        if !self.changed_now(v) {
+        // A held vertex is listed now: its ring does change.
+        if self.changed_in[v as usize] != self.pass {
             self.changed_in[v as usize] = self.pass;
             self.changed.push(v);
         }
