@@ -7,7 +7,7 @@
 use glam::{DVec3, Vec3};
 
 use super::part::{Part, Scratch};
-use super::planes;
+use super::planes::{self, Constraints};
 use super::quadric::Quadric;
 use super::ranking::EdgeCosts;
 use super::texture::{texture_quadrics, TextureQuadrics};
@@ -91,17 +91,17 @@ pub(super) struct Collapser {
 
 impl Collapser {
     /// The state for `triangles` over `positions`: connectivity, every vertex's kind and
-    /// starting quadric (`planes`; `cos_feature` picks the constrained feature edges).
+    /// starting quadric (`planes`, with the edges `constraints` says are constrained).
     pub fn new(
         positions: Vec<Vec3>,
         triangles: Vec<[u32; 3]>,
         colors: Option<Vec<[f32; 3]>>,
         normals: Option<Vec<[f32; 3]>>,
-        cos_feature: f64,
+        constraints: Constraints<'_>,
     ) -> Self {
         let n = positions.len();
         let conn = Connectivity::from_triangles(n, triangles);
-        let (kinds, quadrics) = planes::kinds_and_quadrics(&conn, &positions, cos_feature);
+        let (kinds, quadrics) = planes::kinds_and_quadrics(&conn, &positions, constraints);
         let costs = EdgeCosts::new(conn.triangles());
         Self {
             positions,
@@ -132,7 +132,11 @@ impl Collapser {
             .iter()
             .map(|&v| model.positions[v as usize])
             .collect();
-        Self::new(positions, loaded.triangles(model), None, None, 0.5)
+        let constraints = Constraints {
+            cos_feature: 0.5,
+            seam: &[],
+        };
+        Self::new(positions, loaded.triangles(model), None, None, constraints)
     }
 
     /// Weighs the texture into every collapse's cost and placement (Hoppe's quadric, see

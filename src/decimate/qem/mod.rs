@@ -13,9 +13,10 @@
 //!    cores; `texture` for a textured model's): each vertex's kind (interior, boundary,
 //!    complex) from its ring's shape; every triangle adds its plane weighted by its area;
 //!    every boundary edge adds a plane through the edge perpendicular to its triangle,
-//!    weighted `CONSTRAINT_WEIGHT` × length², and so does every feature edge (dihedral angle
-//!    above the feature angle) on both sides, weighted by how sharp it is, so that outlines
-//!    and creases stay put;
+//!    weighted `CONSTRAINT_WEIGHT` × length² (`SEAM_WEIGHT` on a texture seam, whose sides
+//!    move together), and so does every feature edge (dihedral angle above the feature
+//!    angle) on both sides, weighted by how sharp it is, so that outlines and creases stay
+//!    put;
 //! 4. rank (`ranking`): every edge's collapse is planned once (which end goes, where the
 //!    other one moves) and its cost cached per half-edge slot; every vertex notes its
 //!    cheapest edge — on all cores;
@@ -146,16 +147,30 @@ fn run(
 
     // 2. connect, 3. quadrics (one pass over the vertices' rings)
     let cos_feature = limits.feature_angle_deg.to_radians().cos();
-    let mut d = Collapser::new(positions, triangles, colors, normals, cos_feature);
+    let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
+    let twins = loaded.pairs(twins);
+    // On a seam: one of two sides (twinned) or where more meet (pinned; shared borders are
+    // pinned too, but never collapse either).
+    let seam: Vec<bool> = if twins.is_empty() {
+        Vec::new()
+    } else {
+        (order.iter().zip(&twins))
+            .map(|(&v, &w)| w != u32::MAX || pinned(v))
+            .collect()
+    };
+    let constraints = planes::Constraints {
+        cos_feature,
+        seam: &seam,
+    };
+    let mut d = Collapser::new(positions, triangles, colors, normals, constraints);
     d.texcoords = model
         .texcoords
         .as_ref()
         .filter(|t| t.len() == n as usize)
         .map(|t| order.iter().map(|&v| t[v as usize]).collect());
     d.weigh_texture();
-    let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
     d.pin(order.iter().map(|&v| pinned(v)));
-    d.set_twins(loaded.pairs(twins));
+    d.set_twins(twins);
     d.recorder = recorder;
 
     // 4. rank
