@@ -308,6 +308,11 @@ impl Decimator {
         self.changed_in[v as usize] & !HELD == self.pass
     }
 
+    /// Whether `v`'s ring changed in this pass (held back is not changed).
+    fn ring_changed_now(&self, v: u32) -> bool {
+        self.changed_in[v as usize] == self.pass
+    }
+
     /// Whether `v`'s neighbourhood changed since this batch was planned.
     fn touched_now(&self, v: u32) -> bool {
         self.touched_in[v as usize] == self.batch
@@ -318,7 +323,7 @@ impl Decimator {
     fn mark_changed(&mut self, v: u32) {
         self.touched_in[v as usize] = self.batch;
         // A held vertex is listed now: its ring does change.
-        if self.changed_in[v as usize] != self.pass {
+        if !self.ring_changed_now(v) {
             self.changed_in[v as usize] = self.pass;
             self.changed.push(v);
         }

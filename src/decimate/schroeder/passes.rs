@@ -337,7 +337,10 @@ fn remove_twins(
     limits: &Limits,
     outcome: &mut Outcome,
 ) {
-    if d.changed_now(w) {
+    // Only a change waits, not a hold: the other side is held by the region that left
+    // its seam neighbour here, as that neighbour holds this side, and both would wait
+    // for ever (keys unchanged, nothing removed, pass after pass).
+    if d.ring_changed_now(w) {
         return; // its key is stale: both wait for the next pass
     }
     // Two vertices and two triangles go: only while both counts allow it.

@@ -81,14 +81,17 @@ impl<C: Adjacency> Surface<'_, C> {
     /// feature neighbours (boundary, interior edge). `None` for vertices that are never
     /// removed.
     pub fn evaluate(&self, v: u32, p: &mut Planning) -> Option<(VertexClass, f64)> {
-        let class = classify(
+        let class = match classify(
             self.conn,
             self.positions,
             v,
             self.cos_feature,
             &mut p.ring,
             &mut p.geometry,
-        );
+        ) {
+            VertexClass::Corner if self.seam_turns_freely(v, p) => VertexClass::Boundary,
+            class => class,
+        };
         let at = self.position(v);
         let verts = &p.ring.verts;
         let distance = match class {
@@ -104,6 +107,25 @@ impl<C: Adjacency> Surface<'_, C> {
             _ => return None,
         };
         distance.is_finite().then_some((class, distance))
+    }
+
+    /// Whether `v`, classified a corner into `p`, is one side of a two-sided texture seam
+    /// with no crease inside its open ring: a corner only by the sharp turn of its outline.
+    /// A chart's outline follows the triangles it was cut along and zig-zags; as a true
+    /// boundary's corners, every turn would stay, the seams would stay dense while the
+    /// charts' insides went, and whole charts would go flat. Both sides go together, so the
+    /// surface stays whole whatever the outline does.
+    fn seam_turns_freely(&self, v: u32, p: &Planning) -> bool {
+        let Some(seams) = self.seams else {
+            return false;
+        };
+        let RingGeometry { crosses, lengths } = &p.geometry;
+        let open = p.ring.verts.len() == crosses.len() + 1;
+        let crease = (1..crosses.len()).any(|i| {
+            let len = lengths[i - 1] * lengths[i];
+            len > 0.0 && crosses[i - 1].dot(crosses[i]) < self.cos_feature * len
+        });
+        seams.twin(v).is_some() && open && !crease
     }
 
     /// Plans the removal of `v` into `p` (its ring and the fill): its class and criterion
