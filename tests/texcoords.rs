@@ -820,6 +820,27 @@ fn qem_keeps_the_image_where_the_input_had_it() {
     assert_eq!((flipped, flat), (0, 0));
 }
 
+/// Runs `command` (output discarded) and returns its exit status; fails the test, naming
+/// `what`, when it runs for over two minutes (each run here takes well under a second).
+fn run_for_at_most_two_minutes(mut command: Command, what: &str) -> std::process::ExitStatus {
+    let mut child = command
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            return status;
+        }
+        if start.elapsed() > std::time::Duration::from_secs(120) {
+            child.kill().ok();
+            panic!("{what} did not finish in two minutes");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+}
+
 #[test]
 fn qem_reaches_its_target_on_a_seamed_sphere_in_regions_alike_on_any_number_of_cores() {
     // 40 % of a 20k-vertex seamed sphere, in regions: its last passes once held a single
@@ -834,25 +855,12 @@ fn qem_reaches_its_target_on_a_seamed_sphere_in_regions_alike_on_any_number_of_c
     let mut outputs = Vec::new();
     for threads in ["1", "3"] {
         let out = format!("out-{threads}.obj");
-        let mut child = Command::new(env!("CARGO_BIN_EXE_decimate"))
+        let mut command = Command::new(env!("CARGO_BIN_EXE_decimate"));
+        command
             .args(["in.obj", "nogui", "-a", "qem", "-p", "40", "-o", &out])
             .current_dir(&dir)
-            .env("RAYON_NUM_THREADS", threads)
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::null())
-            .spawn()
-            .unwrap();
-        let start = std::time::Instant::now();
-        let status = loop {
-            if let Some(status) = child.try_wait().unwrap() {
-                break status;
-            }
-            if start.elapsed() > std::time::Duration::from_secs(120) {
-                child.kill().ok();
-                panic!("qem did not finish in two minutes on {threads} threads (it takes well under a second)");
-            }
-            std::thread::sleep(std::time::Duration::from_millis(50));
-        };
+            .env("RAYON_NUM_THREADS", threads);
+        let status = run_for_at_most_two_minutes(command, &format!("qem on {threads} threads"));
         assert!(status.success(), "{threads} threads");
         outputs.push(std::fs::read_to_string(dir.join(out)).unwrap());
     }
@@ -1025,33 +1033,21 @@ fn both_algorithms_finish_a_sphere_in_many_charts_at_any_target() {
     // region leaves a seam vertex to the whole mesh and holds its neighbours back, and
     // two seam vertices whose twins held each other waited pass after pass (and held
     // back, a vertex whose hole could not be filled was re-ranked as if changed, and
-    // tried again each pass). Each run takes well under a second in release.
+    // tried again each pass).
     let dir =
         std::env::temp_dir().join(format!("decimate-texcoords-finish-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("in.obj"), charted_sphere_obj(100, 200)).unwrap();
     for algorithm in ["schroeder", "qem"] {
         for percent in ["99", "99.9"] {
-            let mut child = Command::new(env!("CARGO_BIN_EXE_decimate"))
+            let mut command = Command::new(env!("CARGO_BIN_EXE_decimate"));
+            command
                 .args([
                     "in.obj", "nogui", "-a", algorithm, "-p", percent, "-o", "out.obj",
                 ])
-                .current_dir(&dir)
-                .stdout(std::process::Stdio::null())
-                .stderr(std::process::Stdio::null())
-                .spawn()
-                .unwrap();
-            let start = std::time::Instant::now();
-            let status = loop {
-                if let Some(status) = child.try_wait().unwrap() {
-                    break status;
-                }
-                if start.elapsed() > std::time::Duration::from_secs(120) {
-                    child.kill().ok();
-                    panic!("{algorithm} at {percent} % did not finish in two minutes");
-                }
-                std::thread::sleep(std::time::Duration::from_millis(50));
-            };
+                .current_dir(&dir);
+            let status =
+                run_for_at_most_two_minutes(command, &format!("{algorithm} at {percent} %"));
             assert!(status.success(), "{algorithm} at {percent} %");
             let out = read_obj(&std::fs::read_to_string(dir.join("out.obj")).unwrap());
             let open = welded_edges(&out).values().filter(|&&n| n != 2).count();

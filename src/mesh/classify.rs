@@ -53,6 +53,20 @@ pub struct RingGeometry {
     pub lengths: Vec<f64>,
 }
 
+impl RingGeometry {
+    /// Whether the edge between ring triangles `i` and `j` is a feature edge: their normals
+    /// part by more than the angle whose cosine is `cos_feature`.
+    pub fn is_feature(&self, i: usize, j: usize, cos_feature: f64) -> bool {
+        let len = self.lengths[i] * self.lengths[j];
+        len > 0.0 && self.crosses[i].dot(self.crosses[j]) < cos_feature * len
+    }
+
+    /// Whether an open ring (its triangles in order) has a feature edge inside it.
+    pub fn has_inner_feature(&self, cos_feature: f64) -> bool {
+        (1..self.crosses.len()).any(|i| self.is_feature(i - 1, i, cos_feature))
+    }
+}
+
 /// Classifies `v`. Fills `ring` with its one-ring and `geometry` with its triangles'
 /// normals and areas. `conn` is the whole mesh or a part owning `v`'s triangles.
 pub fn classify(
@@ -83,19 +97,17 @@ pub fn classify(
         lengths.push(c.length());
         a = b;
     }
-    let is_feature = |i: usize, j: usize| {
-        let len = lengths[i] * lengths[j];
-        len > 0.0 && crosses[i].dot(crosses[j]) < cos_feature * len
-    };
+    let geometry = &*geometry;
+    let is_feature = |i: usize, j: usize| geometry.is_feature(i, j, cos_feature);
     let sharp_turn = |a: u32, b: u32| {
         let d1 = (p - positions[a as usize].as_dvec3()).normalize_or_zero();
         let d2 = (positions[b as usize].as_dvec3() - p).normalize_or_zero();
         d1.dot(d2) < cos_feature
     };
-    let k = crosses.len();
+    let k = geometry.crosses.len();
     if shape == RingShape::Open {
         // Interior ring edges are verts[1..k]; each lies between ring triangles i-1 and i.
-        if (1..k).any(|i| is_feature(i - 1, i)) {
+        if geometry.has_inner_feature(cos_feature) {
             return VertexClass::Corner;
         }
         return if sharp_turn(ring.verts[0], ring.verts[k]) {

@@ -67,6 +67,12 @@ pub const RELAX_STEP_DEG: f64 = 15.0;
 /// changed (see `Region::hold_neighbours`).
 const HELD: u32 = 1 << 31;
 
+/// Whether a vertex whose `changed_in` mark is `mark` waits in pass `pass`: its ring
+/// changed in that pass, or it was held back.
+fn waits(mark: u32, pass: u32) -> bool {
+    mark & !HELD == pass
+}
+
 /// What decimating one model did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Outcome {
@@ -305,7 +311,7 @@ impl Decimator {
     /// Whether `v` waits for the next pass: its ring changed in this one (its key is
     /// stale), or a region held it back.
     fn changed_now(&self, v: u32) -> bool {
-        self.changed_in[v as usize] & !HELD == self.pass
+        waits(self.changed_in[v as usize], self.pass)
     }
 
     /// Whether `v`'s ring changed in this pass (held back is not changed).

@@ -119,13 +119,8 @@ impl<C: Adjacency> Surface<'_, C> {
         let Some(seams) = self.seams else {
             return false;
         };
-        let RingGeometry { crosses, lengths } = &p.geometry;
-        let open = p.ring.verts.len() == crosses.len() + 1;
-        let crease = (1..crosses.len()).any(|i| {
-            let len = lengths[i - 1] * lengths[i];
-            len > 0.0 && crosses[i - 1].dot(crosses[i]) < self.cos_feature * len
-        });
-        seams.twin(v).is_some() && open && !crease
+        let open = p.ring.verts.len() == p.geometry.crosses.len() + 1;
+        seams.twin(v).is_some() && open && !p.geometry.has_inner_feature(self.cos_feature)
     }
 
     /// Plans the removal of `v` into `p` (its ring and the fill): its class and criterion

@@ -20,7 +20,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::plan::{Planning, SeamSides, Surface};
-use super::{Decimator, Outcome, HELD};
+use super::{waits, Decimator, Outcome, HELD};
 use crate::decimate::candidates::Candidate;
 use crate::decimate::regions::Regions;
 use crate::mesh::topology::{split_mut, ConnectivityPart};
@@ -137,7 +137,7 @@ impl Region<'_> {
         for (n, &c) in candidates.iter().enumerate() {
             self.prefetch_ahead(candidates, n);
             let v = c.vertex();
-            if self.changed_in[self.at(v)] & !HELD == self.pass {
+            if waits(self.changed_in[self.at(v)], self.pass) {
                 continue; // its key is stale (re-ranked at the pass's end), or held back
             }
             // Next to a seam, a fill is checked against the other side: on the whole mesh.
@@ -268,7 +268,7 @@ impl Region<'_> {
         }
         for &u in &ring {
             let i = self.at(u);
-            if self.changed_in[i] & !HELD != self.pass {
+            if !waits(self.changed_in[i], self.pass) {
                 self.changed_in[i] = self.pass | HELD;
             }
         }
@@ -322,6 +322,17 @@ mod tests {
         (d, candidates)
     }
 
+    /// An outcome before anything is removed (features from 30°, as [`ranked`] ranks).
+    fn nothing_yet() -> Outcome {
+        Outcome {
+            removed: 0,
+            max_error: 0.0,
+            exhausted: false,
+            feature_angle_deg: 30.0,
+            pinned: 0,
+        }
+    }
+
     /// Removes `candidates` in order on the whole mesh, as the passes do there (those whose
     /// ring changed in this pass wait); returns how many went.
     fn one_by_one(d: &mut Decimator, candidates: &[Candidate]) -> usize {
@@ -370,13 +381,7 @@ mod tests {
             .collect();
         assert!(straddling.len() > 100, "{} straddle", straddling.len());
         let keys = d.keys.clone();
-        let mut outcome = Outcome {
-            removed: 0,
-            max_error: 0.0,
-            exhausted: false,
-            feature_angle_deg: 30.0,
-            pinned: 0,
-        };
+        let mut outcome = nothing_yet();
         let border = d.remove_in_regions(&regions, &straddling, &mut outcome);
         // Left to the whole mesh, or held back by one left before.
         assert_eq!(outcome.removed, 0);
@@ -407,13 +412,7 @@ mod tests {
         assert!(regions.count() >= 4, "{} regions", regions.count());
         let before = live(&d);
         let round = &candidates[..candidates.len() / 4];
-        let mut outcome = Outcome {
-            removed: 0,
-            max_error: 0.0,
-            exhausted: false,
-            feature_angle_deg: 30.0,
-            pinned: 0,
-        };
+        let mut outcome = nothing_yet();
         // The same round on the whole mesh, one candidate at a time, for comparison.
         let (mut serial, _) = ranked();
         serial.pass = d.pass;
