@@ -53,27 +53,20 @@ pub struct RingGeometry {
     pub lengths: Vec<f64>,
 }
 
-impl RingGeometry {
-    /// Whether the edge between ring triangles `i` and `j` is a feature edge: their normals
-    /// part by more than the angle whose cosine is `cos_feature`.
-    pub fn is_feature(&self, i: usize, j: usize, cos_feature: f64) -> bool {
-        let len = self.lengths[i] * self.lengths[j];
-        len > 0.0 && self.crosses[i].dot(self.crosses[j]) < cos_feature * len
-    }
-
-    /// Whether an open ring (its triangles in order) has a feature edge inside it.
-    pub fn has_inner_feature(&self, cos_feature: f64) -> bool {
-        (1..self.crosses.len()).any(|i| self.is_feature(i - 1, i, cos_feature))
-    }
-}
-
 /// Classifies `v`. Fills `ring` with its one-ring and `geometry` with its triangles'
 /// normals and areas. `conn` is the whole mesh or a part owning `v`'s triangles.
+///
+/// With `seam_side` (`v` is one side of a two-sided texture seam), an open ring's outline
+/// may turn freely: no sharp turn makes a corner, only a crease. A chart's outline follows
+/// the triangles it was cut along and zig-zags; its two sides go together, so the surface
+/// stays whole whatever the outline does, and kept as corners every turn would keep the
+/// seams dense while the charts' insides went.
 pub fn classify(
     conn: &impl Adjacency,
     positions: &[Vec3],
     v: u32,
     cos_feature: f64,
+    seam_side: bool,
     ring: &mut Ring,
     geometry: &mut RingGeometry,
 ) -> VertexClass {
@@ -97,20 +90,22 @@ pub fn classify(
         lengths.push(c.length());
         a = b;
     }
-    let geometry = &*geometry;
-    let is_feature = |i: usize, j: usize| geometry.is_feature(i, j, cos_feature);
+    let is_feature = |i: usize, j: usize| {
+        let len = lengths[i] * lengths[j];
+        len > 0.0 && crosses[i].dot(crosses[j]) < cos_feature * len
+    };
     let sharp_turn = |a: u32, b: u32| {
         let d1 = (p - positions[a as usize].as_dvec3()).normalize_or_zero();
         let d2 = (positions[b as usize].as_dvec3() - p).normalize_or_zero();
         d1.dot(d2) < cos_feature
     };
-    let k = geometry.crosses.len();
+    let k = crosses.len();
     if shape == RingShape::Open {
         // Interior ring edges are verts[1..k]; each lies between ring triangles i-1 and i.
-        if geometry.has_inner_feature(cos_feature) {
+        if (1..k).any(|i| is_feature(i - 1, i)) {
             return VertexClass::Corner;
         }
-        return if sharp_turn(ring.verts[0], ring.verts[k]) {
+        return if !seam_side && sharp_turn(ring.verts[0], ring.verts[k]) {
             VertexClass::Corner
         } else {
             VertexClass::Boundary
@@ -147,6 +142,11 @@ mod tests {
     use crate::mesh::topology::Connectivity;
 
     fn classify_vertex(positions: &[Vec3], tris: &[[u32; 3]], v: u32) -> VertexClass {
+        classify_side(positions, tris, v, false)
+    }
+
+    /// As [`classify_vertex`], saying whether `v` is one side of a texture seam.
+    fn classify_side(positions: &[Vec3], tris: &[[u32; 3]], v: u32, seam: bool) -> VertexClass {
         let conn = Connectivity::new(positions.len(), tris);
         let cos = 30f64.to_radians().cos();
         classify(
@@ -154,6 +154,7 @@ mod tests {
             positions,
             v,
             cos,
+            seam,
             &mut Ring::default(),
             &mut RingGeometry::default(),
         )
@@ -198,6 +199,16 @@ mod tests {
         assert!(matches!(c, VertexClass::InteriorEdge { .. }), "{c:?}");
         // A boundary vertex on the crease has a feature edge inside its ring: corner.
         assert_eq!(classify_vertex(&p, &t, 1), VertexClass::Corner);
+    }
+
+    #[test]
+    fn a_seam_sides_outline_turns_freely_but_a_crease_stays_a_corner() {
+        // The flat grid's corner turns 90° along its outline: on a seam, no corner.
+        let (p, t) = grid(|_, _| 0.0);
+        assert_eq!(classify_side(&p, &t, 0, true), VertexClass::Boundary);
+        // The folded grid's vertex 1 has a crease inside its ring: a corner still.
+        let (p, t) = grid(|x, _| if x > 1.0 { x - 1.0 } else { 0.0 });
+        assert_eq!(classify_side(&p, &t, 1, true), VertexClass::Corner);
     }
 
     #[test]

@@ -81,17 +81,16 @@ impl<C: Adjacency> Surface<'_, C> {
     /// feature neighbours (boundary, interior edge). `None` for vertices that are never
     /// removed.
     pub fn evaluate(&self, v: u32, p: &mut Planning) -> Option<(VertexClass, f64)> {
-        let class = match classify(
+        let seam_side = self.seams.is_some_and(|s| s.twin(v).is_some());
+        let class = classify(
             self.conn,
             self.positions,
             v,
             self.cos_feature,
+            seam_side,
             &mut p.ring,
             &mut p.geometry,
-        ) {
-            VertexClass::Corner if self.seam_turns_freely(v, p) => VertexClass::Boundary,
-            class => class,
-        };
+        );
         let at = self.position(v);
         let verts = &p.ring.verts;
         let distance = match class {
@@ -107,20 +106,6 @@ impl<C: Adjacency> Surface<'_, C> {
             _ => return None,
         };
         distance.is_finite().then_some((class, distance))
-    }
-
-    /// Whether `v`, classified a corner into `p`, is one side of a two-sided texture seam
-    /// with no crease inside its open ring: a corner only by the sharp turn of its outline.
-    /// A chart's outline follows the triangles it was cut along and zig-zags; as a true
-    /// boundary's corners, every turn would stay, the seams would stay dense while the
-    /// charts' insides went, and whole charts would go flat. Both sides go together, so the
-    /// surface stays whole whatever the outline does.
-    fn seam_turns_freely(&self, v: u32, p: &Planning) -> bool {
-        let Some(seams) = self.seams else {
-            return false;
-        };
-        let open = p.ring.verts.len() == p.geometry.crosses.len() + 1;
-        seams.twin(v).is_some() && open && !p.geometry.has_inner_feature(self.cos_feature)
     }
 
     /// Plans the removal of `v` into `p` (its ring and the fill): its class and criterion
