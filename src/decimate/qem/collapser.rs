@@ -4,6 +4,8 @@
 //! The operations live on `Part`: planning and collapsing in `part`, the checks in
 //! `legality`, the cost cache in `ranking`; the loop is in `passes`.
 
+use std::collections::HashMap;
+
 use glam::{DVec3, Vec3};
 
 use super::part::{Part, Scratch};
@@ -21,6 +23,11 @@ use crate::mesh::{Attribute, Model};
 pub(super) enum Kind {
     Interior,
     Boundary,
+    /// Pinned (a texture seam's junction of three or more sides, a border shared with
+    /// another model): never moves and never goes, but takes in a neighbour where it
+    /// stands — an interior one, or one along a boundary edge (on a seam, with the other
+    /// side's, into its copy there).
+    Anchored,
     /// Non-manifold, inconsistently oriented, too high a valence, or unused: never moved.
     Fixed,
 }
@@ -87,6 +94,10 @@ pub(super) struct Collapser {
     /// none); empty when the model has no such seam. Never changes: twins collapse together,
     /// so the kept ones stay twins.
     twins: Vec<u32>,
+    /// The next of the pinned vertices at the same position, in a cycle (the copies of a
+    /// seam junction, one per side; `u32::MAX`: none); empty when none share a position.
+    /// Never changes: pinned vertices never move.
+    copies: Vec<u32>,
 }
 
 impl Collapser {
@@ -119,6 +130,7 @@ impl Collapser {
             flags: vec![0; n],
             recorder: None,
             twins: Vec::new(),
+            copies: Vec::new(),
         }
     }
 
@@ -148,11 +160,32 @@ impl Collapser {
             .and_then(|t| texture_quadrics(&self.conn, &self.positions, t, &self.kinds));
     }
 
-    /// Makes the flagged vertices fixed: they never move, and no edge at them collapses.
+    /// Anchors the flagged vertices: they never move nor go, but may take in neighbours
+    /// (see [`Kind::Anchored`]; a fixed one stays fixed).
     pub fn pin(&mut self, pinned: impl IntoIterator<Item = bool>) {
-        for (kind, pin) in self.kinds.iter_mut().zip(pinned) {
-            if pin {
-                *kind = Kind::Fixed;
+        // Position (bits) -> the first and the last anchored vertex found there.
+        let mut at: HashMap<[u32; 3], (u32, u32)> = HashMap::new();
+        let n = self.kinds.len();
+        for (v, (kind, pin)) in self.kinds.iter_mut().zip(pinned).enumerate() {
+            if !pin {
+                continue;
+            }
+            if *kind != Kind::Fixed {
+                *kind = Kind::Anchored;
+            }
+            let v = v as u32;
+            let key = self.positions[v as usize]
+                .to_array()
+                .map(|x| (x + 0.0).to_bits());
+            let (first, last) = at.entry(key).or_insert((v, v));
+            if *last != v {
+                // Close the cycle through the new copy.
+                if self.copies.is_empty() {
+                    self.copies = vec![u32::MAX; n];
+                }
+                self.copies[*last as usize] = v;
+                self.copies[v as usize] = *first;
+                *last = v;
             }
         }
     }
@@ -197,6 +230,7 @@ impl Collapser {
             flags: &mut self.flags,
             recorder: self.recorder.as_mut(),
             twins: &self.twins,
+            copies: &self.copies,
             scratch: Scratch::default(),
         }
     }
@@ -221,6 +255,7 @@ impl Collapser {
         let mut flags = split_mut(&mut self.flags, &vs).into_iter();
         let costs = &self.costs;
         let twins = &self.twins;
+        let copies = &self.copies;
         let conns = self.conn.split(vertex_starts, slot_starts);
         conns
             .into_iter()
@@ -245,6 +280,7 @@ impl Collapser {
                     flags: flags.next()?,
                     recorder: None,
                     twins,
+                    copies,
                     scratch: Scratch::default(),
                 })
             })
@@ -313,4 +349,84 @@ fn split_attribute<'a, T>(
 pub(super) fn others(tri: [u32; 3], v: u32) -> [u32; 2] {
     let (_, next, prev) = crate::mesh::topology::corner_of(tri, v);
     [next, prev]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 2 × 2 grid of unit squares in z = 0, each cut along its diagonal from its first
+    /// corner: point `(x, y)` is vertex `3y + x`; 4 is the only interior one.
+    fn grid() -> Collapser {
+        let positions = (0..9)
+            .map(|i| Vec3::new((i % 3) as f32, (i / 3) as f32, 0.0))
+            .collect();
+        let triangles = [0, 1, 3, 4]
+            .into_iter()
+            .flat_map(|a| [[a, a + 1, a + 4], [a, a + 4, a + 3]])
+            .collect();
+        let constraints = Constraints {
+            cos_feature: 0.5,
+            seam: &[],
+        };
+        Collapser::new(positions, triangles, None, None, constraints)
+    }
+
+    #[test]
+    fn a_pinned_vertex_takes_its_neighbours_in_where_it_stands() {
+        let mut d = grid();
+        d.pin((0..9).map(|v| v == 1));
+        let part = d.whole();
+        assert_eq!(part.kind(1), Kind::Anchored);
+        // The interior neighbour goes into it, which stays put.
+        let plan = part.plan(1, 4).expect("interior into pinned");
+        assert_eq!((plan.remove, plan.keep), (4, 1));
+        assert_eq!(plan.position, DVec3::new(1.0, 0.0, 0.0));
+        // So does a neighbour along the outline.
+        let plan = part.plan(0, 1).expect("along the outline into pinned");
+        assert_eq!((plan.remove, plan.keep), (0, 1));
+        assert_eq!(plan.position, DVec3::new(1.0, 0.0, 0.0));
+        // Two pinned ends: neither may go.
+        let mut d = grid();
+        d.pin((0..9).map(|v| v <= 1));
+        assert!(d.whole().plan(0, 1).is_none());
+    }
+
+    #[test]
+    fn pinned_vertices_at_one_point_are_copies_of_each_other() {
+        // Three triangles meeting at the origin, each with its own vertex there (a seam
+        // junction's copies), and a lone pinned vertex elsewhere.
+        let positions = [
+            [0, 0],
+            [1, 0],
+            [0, 1],
+            [0, 0],
+            [-1, 0],
+            [0, -1],
+            [0, 0],
+            [1, -1],
+        ]
+        .into_iter()
+        .map(|[x, y]| Vec3::new(x as f32, y as f32, 0.0))
+        .chain([Vec3::new(1.0, 1.0, 0.0)])
+        .collect();
+        let triangles = vec![[0, 1, 2], [3, 4, 5], [6, 7, 8]];
+        let constraints = Constraints {
+            cos_feature: 0.5,
+            seam: &[],
+        };
+        let mut d = Collapser::new(positions, triangles, None, None, constraints);
+        d.pin((0..9).map(|v| [0, 3, 6, 8].contains(&v)));
+        let part = d.whole();
+        let mut copies: Vec<u32> = part.copies(3).collect();
+        assert_eq!(copies[0], 3, "itself first");
+        copies.sort_unstable();
+        assert_eq!(copies, [0, 3, 6]);
+        assert_eq!(
+            part.copies(8).collect::<Vec<_>>(),
+            [8],
+            "alone at its point"
+        );
+        assert_eq!(part.copies(1).collect::<Vec<_>>(), [1], "not pinned");
+    }
 }

@@ -60,7 +60,11 @@
 //! position, costed by the four ends' quadrics (`Part::plan`), and a seam vertex otherwise
 //! only takes in interior neighbours, unmoved; so the sides never part. Seam junctions
 //! (three or more sides) and borders shared with another model (`mesh::stitches`) are
-//! pinned.
+//! pinned (`Kind::Anchored`): they never move nor go, but take in neighbours where they
+//! stand — an interior one, or one along the outline; on a seam both sides' edges go
+//! together into the junction's copies there. A collapse into a vertex with copies (a
+//! twin, a junction's) must leave the surface manifold once the seams are welded
+//! (`passes::seam_stays_manifold`).
 
 mod collapser;
 mod legality;
@@ -83,7 +87,8 @@ use collapser::Collapser;
 /// Decimates `model` in place by quadric edge collapse within `limits` (the feature angle
 /// only picks the feature edges that are constrained; it is never relaxed — QEM needs no
 /// relaxing to reach a count). Vertices flagged in `pins` (indexed like the model's
-/// positions: seam junctions, shared borders) never move; vertices `twins` pairs (the two
+/// positions: seam junctions, shared borders) never move nor go, but may take in their
+/// neighbours where they stand; vertices `twins` pairs (the two
 /// sides of a texture seam, `mesh::seams::Seams::twin`; may be empty) move only together,
 /// along the seam. `progress` gets the running removal count.
 pub fn decimate_model(

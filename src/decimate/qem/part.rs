@@ -97,6 +97,9 @@ pub(super) struct Part<'a> {
     pub recorder: Option<&'a mut Recorder>,
     /// Texture-seam twins, by vertex id (the whole mesh's, read only; empty when none).
     pub twins: &'a [u32],
+    /// Anchored vertices' next copy at their position (the whole mesh's, read only; see
+    /// `Collapser::pin`).
+    pub copies: &'a [u32],
     pub scratch: Scratch,
 }
 
@@ -279,25 +282,29 @@ impl Part<'_> {
     /// | interior | boundary | interior  | the interior end into the boundary end, unmoved: a boundary vertex moves only along its boundary |
     /// | boundary | boundary | boundary  | either way, to the optimum (the constraint planes keep it on the outline) |
     /// | boundary | boundary | interior  | none: it would pinch the surface                  |
+    /// | interior | anchored | any       | the interior end into the anchored end, unmoved   |
+    /// | boundary | anchored | boundary  | the boundary end into the anchored end, unmoved   |
+    /// | boundary | anchored | interior  | none: it would pinch the surface                  |
+    /// | anchored | anchored | any       | none: neither may go                              |
     #[inline(always)]
     pub fn plan(&self, a: u32, b: u32) -> Option<Plan> {
         let (ka, kb) = (self.kind(a), self.kind(b));
-        let (remove, keep, free) = match (ka, kb) {
-            (Kind::Fixed, _) | (_, Kind::Fixed) => return None,
-            (Kind::Interior, Kind::Interior) => (a, b, true),
-            (Kind::Interior, Kind::Boundary) => (a, b, false),
-            (Kind::Boundary, Kind::Interior) => (b, a, false),
-            (Kind::Boundary, Kind::Boundary) => {
-                if self.edge_triangles(a, b) != 1 {
-                    return None;
-                }
-                (a, b, true)
-            }
+        let along_boundary = |(remove, keep, free)| {
+            (self.edge_triangles(remove, keep) == 1).then_some((remove, keep, free, true))
+        };
+        let (remove, keep, free, along_boundary) = match (ka, kb) {
+            (Kind::Fixed, _) | (_, Kind::Fixed) | (Kind::Anchored, Kind::Anchored) => return None,
+            (Kind::Interior, Kind::Interior) => (a, b, true, false),
+            (Kind::Interior, Kind::Boundary | Kind::Anchored) => (a, b, false, false),
+            (Kind::Boundary | Kind::Anchored, Kind::Interior) => (b, a, false, false),
+            (Kind::Boundary, Kind::Boundary) => along_boundary((a, b, true))?,
+            (Kind::Boundary, Kind::Anchored) => along_boundary((a, b, false))?,
+            (Kind::Anchored, Kind::Boundary) => along_boundary((b, a, false))?,
         };
         let (remove, keep, twin) = if self.twins.is_empty() {
             (remove, keep, None)
         } else {
-            self.seam_sides(remove, keep, free, ka == Kind::Boundary)?
+            self.seam_sides(remove, keep, free, along_boundary)?
         };
         let mut q = self.quadrics[self.at(a)].sum(&self.quadrics[self.at(b)]);
         if let Some([r2, k2]) = twin {
@@ -393,7 +400,7 @@ impl Part<'_> {
     }
 
     /// What texture seams make of the collapse `remove` → `keep` (`free`: the kept end
-    /// moves; `along_boundary`: both ends are on the boundary): `None` when it would part a
+    /// moves; `along_boundary`: the edge is on the boundary): `None` when it would part a
     /// seam's sides; otherwise its ends, with the other side's edge when it is a seam edge.
     ///
     /// A vertex with a twin may stay where it is while an interior neighbour collapses into
@@ -401,7 +408,8 @@ impl Part<'_> {
     /// have twins that are the ends of another boundary edge, and the two edges collapse in
     /// the same step to the same position (the plan's quadric is the four ends'). Which end
     /// goes is decided on the side whose smaller end is the smaller id, so that the plan is
-    /// the same from either side.
+    /// the same from either side. A seam vertex beside a junction goes into it with its
+    /// twin, which goes into the junction's copy on its side, both unmoved.
     fn seam_sides(
         &self,
         remove: u32,
@@ -412,6 +420,16 @@ impl Part<'_> {
         match (self.twin(remove), self.twin(keep)) {
             (None, None) => Some((remove, keep, None)),
             (None, Some(_)) if !free => Some((remove, keep, None)),
+            // Into a junction's copy along a seam: the other side's edge goes into its own
+            // copy, so that the two sides stay together.
+            (Some(r2), None) if along_boundary && self.kind(keep) == Kind::Anchored => {
+                let k2 = self.anchor_copy(r2, keep)??;
+                let owned = self.owns(k2);
+                if !(r2 != keep && k2 != remove && owned && self.kind(r2) == Kind::Boundary) {
+                    return None;
+                }
+                Some((remove, keep, Some([r2, k2])))
+            }
             (Some(r2), Some(k2)) if free && along_boundary => {
                 let distinct = r2 != keep && k2 != remove && r2 != k2;
                 let owned = self.owns(r2) && self.owns(k2);
@@ -434,6 +452,62 @@ impl Part<'_> {
             }
             _ => None,
         }
+    }
+
+    /// `x` and the other vertices at its position that stand for the same point of the
+    /// surface: its twin across a seam, or a junction's other copies.
+    pub fn copies(&self, x: u32) -> impl Iterator<Item = u32> + '_ {
+        let twin = self.twin(x);
+        let mut next = Some(x);
+        std::iter::from_fn(move || {
+            let c = next?;
+            next = match twin {
+                Some(t) => (c == x).then_some(t),
+                None => self
+                    .copies
+                    .get(c as usize)
+                    .copied()
+                    .filter(|&n| n != x && n != u32::MAX),
+            };
+            Some(c)
+        })
+    }
+
+    /// `x`'s neighbour across a boundary edge that is anchored at `anchor`'s position (the
+    /// copy on `x`'s side of the texture-seam junction `anchor`, when `x` is on a seam), or
+    /// `Some(None)` when there is none; `None` when `x`'s fan is not all this part's.
+    pub fn anchor_copy(&self, x: u32, anchor: u32) -> Option<Option<u32>> {
+        if !(self.owns(x) && self.conn.has_room(x, 0)) {
+            return None;
+        }
+        let incident = self.conn.incident(x);
+        if !incident.iter().all(|&t| self.conn.owns_slot(t)) {
+            return None;
+        }
+        let at = self.positions[self.at(anchor)];
+        let mut copy = None;
+        for &t in incident {
+            for y in others(self.conn.triangle(t), x) {
+                let anchored = self.owns(y)
+                    && self.kind(y) == Kind::Anchored
+                    && self.positions[self.at(y)] == at;
+                if anchored && copy.is_none() && self.edge_triangles(x, y) == 1 {
+                    copy = Some(y);
+                }
+            }
+        }
+        Some(copy)
+    }
+
+    /// The other sides of the seam vertices in the fans [`Self::gather`] read (with
+    /// `both_sides`, also in the other side's, [`Self::gather_twin`]), with repeats.
+    pub fn seam_neighbours_twins(&self, both_sides: bool) -> impl Iterator<Item = u32> + '_ {
+        let s = &self.scratch;
+        let twin_fans = both_sides.then_some(&s.twin_fans);
+        (s.fans.iter().chain(twin_fans.into_iter().flatten()))
+            .flatten()
+            .flat_map(|f| [f.next, f.prev])
+            .filter_map(|x| self.twin(x))
     }
 
     /// Swaps the ends and fans [`Self::gather`] read with the other side's of a seam

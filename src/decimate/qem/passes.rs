@@ -368,6 +368,9 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
     let Some(welded) = plan.map_or(Some(true), |p| seam_stays_manifold(d, &p)) else {
         return Attempt::Elsewhere;
     };
+    if !plan.is_none_or(|p| owns_seam_neighbours_twins(d, &p)) {
+        return Attempt::Elsewhere;
+    }
     if let Some(p) = plan.filter(|p| stored(p.cost) > bounds.threshold) {
         // An end took a collapse in this pass: re-planned at its end. On a seam it may have
         // been the other side's end, which re-plans that side's edges only: both ends look
@@ -413,6 +416,15 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
         let i = d.at(k2);
         d.flags[i] |= REPLAN;
     }
+    if d.kind(plan.keep) == Kind::Anchored {
+        // A junction's quadric grew: so did the cost of collapsing the seams that leave its
+        // other copies, planned from the twins of those leaving this one (a superset).
+        let twins: Vec<u32> = d.seam_neighbours_twins(plan.twin.is_some()).collect();
+        for x in twins {
+            let i = d.at(x);
+            d.flags[i] |= REPLAN;
+        }
+    }
     Attempt::Collapsed(1 + usize::from(plan.twin.is_some()), plan.error2)
 }
 
@@ -424,8 +436,28 @@ fn gather_seam_sides(d: &mut Part<'_>, v: u32, w: u32) -> bool {
         (None, None) => true,
         // Read now, while nothing has changed; `plan` decides whether they collapse.
         (Some(v2), Some(w2)) => d.owns(v2) && d.owns(w2) && d.gather_twin(v2, w2),
+        // Into a junction: the other side's edge ends at the junction's copy there.
+        (Some(v2), None) if d.kind(w) == Kind::Anchored => match d.anchor_copy(v2, w) {
+            Some(Some(w2)) => d.gather_twin(v2, w2),
+            Some(None) => true,
+            None => false,
+        },
+        (None, Some(w2)) if d.kind(v) == Kind::Anchored => match d.anchor_copy(w2, v) {
+            Some(Some(v2)) => d.gather_twin(v2, w2),
+            Some(None) => true,
+            None => false,
+        },
         (Some(x), None) | (None, Some(x)) => d.owns(x),
     }
+}
+
+/// Whether the part owns the other side of every seam vertex around a collapse into a
+/// junction (`keep` anchored): those hold costs of seam collapses into the junction's other
+/// copies, which count the junction's quadric, and are re-planned (see [`attempt`]).
+fn owns_seam_neighbours_twins(d: &Part<'_>, plan: &Plan) -> bool {
+    d.kind(plan.keep) != Kind::Anchored
+        || d.seam_neighbours_twins(plan.twin.is_some())
+            .all(|x| d.owns(x))
 }
 
 /// Whether a seam collapse's other side (read by [`gather_seam_sides`]) is legal too: the
@@ -443,57 +475,62 @@ fn twin_is_legal(d: &mut Part<'_>, plan: &Plan) -> bool {
     legal
 }
 
-/// Whether a collapse at a texture seam keeps the surface manifold once its seams are
-/// closed (welded, as a viewer shows it). An edge that a collapse makes between two seam
-/// vertices inside one side must not also join their other sides: it would then have four
-/// triangles. So a new neighbour of the kept end, on a seam, whose edge to it will be
-/// interior must not be joined to the kept end's other side (a plain collapse into a seam
-/// vertex), or to the other side's merged ends (a seam collapse, both sides at once). Such a
-/// neighbour that is pinned (a junction of three or more sides, a shared border) is refused
-/// outright: its other sides are not known here. `None` when a plain collapse's other side
-/// is outside the part.
+/// Whether a collapse keeps the surface manifold once its seams are closed (welded, as a
+/// viewer shows it): every edge it makes to the kept end must have as many triangles
+/// welded as it will have on its side (two inside, one on the outline, doubled with a seam
+/// collapse's other side). So no other copy of the kept end (its twin across a seam, a
+/// junction's other copies) may be joined already to a copy of a new neighbour; and with
+/// a seam collapse, the copies of a new neighbour inside one side must not reach the other
+/// side's collapse, whose kept end could be joined to them too. (That kept end is joined
+/// already to the copies of the new neighbours on the outline, its edge's apexes: the other
+/// side's own link condition judges those.) Only a collapse into a vertex with copies can
+/// make such an edge. `None` when a copy's fan is outside the part.
 fn seam_stays_manifold(d: &mut Part<'_>, plan: &Plan) -> Option<bool> {
-    let Some(k2) = d.twin(plan.keep) else {
+    if d.twin(plan.keep).is_none() && d.kind(plan.keep) != Kind::Anchored {
         return Some(true);
-    };
+    }
+    let keeps = [plan.keep, plan.twin.map_or(plan.keep, |[_, k2]| k2)];
+    let seam = plan.twin.is_some();
+    let here = side_stays_manifold(d, plan, keeps, seam)?;
     let Some(twin) = plan.other_side() else {
-        for x in new_interior_neighbours(d, plan) {
-            if d.is_fixed(x) {
+        return Some(here);
+    };
+    d.swap_sides();
+    let there = side_stays_manifold(d, &twin, keeps, seam);
+    d.swap_sides();
+    Some(here && there?)
+}
+
+/// [`seam_stays_manifold`] on the side whose fans the scratch holds (`keeps`: both sides'
+/// kept ends; `seam`: a seam collapse, whose other side's fans are the scratch's other ones).
+fn side_stays_manifold(d: &Part<'_>, plan: &Plan, keeps: [u32; 2], seam: bool) -> Option<bool> {
+    for (x, inside) in new_neighbours(d, plan) {
+        for y in d.copies(x) {
+            if seam && inside && y != x && d.other_side_touches(y) {
                 return Some(false);
             }
-            if let Some(x2) = d.twin(x) {
-                if d.joined(k2, x2)? {
+            for c in d.copies(plan.keep).filter(|c| !keeps.contains(c)) {
+                if d.joined(c, y)? {
                     return Some(false);
                 }
             }
         }
-        return Some(true);
-    };
-    let clear = |d: &Part<'_>, plan: &Plan| {
-        new_interior_neighbours(d, plan)
-            .all(|x| !d.is_fixed(x) && !d.twin(x).is_some_and(|x2| d.other_side_touches(x2)))
-    };
-    let here = clear(d, plan);
-    d.swap_sides();
-    let there = clear(d, &twin);
-    d.swap_sides();
-    Some(here && there)
+    }
+    Some(true)
 }
 
-/// The removed end's neighbours that become the kept end's, through an edge with two
-/// triangles (inside the side, not on its outline); each once or twice.
-fn new_interior_neighbours<'a>(d: &'a Part<'_>, plan: &Plan) -> impl Iterator<Item = u32> + 'a {
+/// The removed end's neighbours that become the kept end's, each with whether its edge to
+/// the kept end will be inside the surface (two triangles; otherwise on the outline); each
+/// once per triangle it is in.
+fn new_neighbours<'a>(d: &'a Part<'_>, plan: &Plan) -> impl Iterator<Item = (u32, bool)> + 'a {
     let (fan_r, fan_k) = d.fans(plan);
     let (keep, remove) = (plan.keep, plan.remove);
     fan_r
         .iter()
         .filter(move |f| !f.touches(keep))
         .flat_map(|f| [f.next, f.prev])
-        .filter(move |&x| {
-            !fan_k.iter().any(|g| g.touches(x))
-                && fan_r.iter().filter(|f| f.touches(x)).count() == 2
-                && x != remove
-        })
+        .filter(move |&x| x != remove && !fan_k.iter().any(|g| g.touches(x)))
+        .map(move |x| (x, fan_r.iter().filter(|f| f.touches(x)).count() == 2))
 }
 
 /// Performs the legal `plan` (its fans read into the scratch) and flags what the end of the
