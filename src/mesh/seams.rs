@@ -7,6 +7,8 @@
 
 use std::collections::HashMap;
 
+use glam::Vec3;
+
 use super::Model;
 
 /// A model's texture seams, found in one pass over its used vertices' positions.
@@ -62,6 +64,52 @@ pub fn find(model: &Model) -> Seams {
     seams
 }
 
+/// The pinned vertices (`pinned`, by vertex) that share a position, linked in cycles: entry
+/// `v` is the next one at `v`'s position (a junction's copies, one per side), `u32::MAX`
+/// for a vertex that shares it with no other. Empty when no two share a position.
+pub fn copy_cycles(positions: &[Vec3], pinned: &[bool]) -> Vec<u32> {
+    let mut cycles = Vec::new();
+    // Position (bits, -0 folded into +0) -> the first and the last pinned vertex there.
+    let mut at: HashMap<[u32; 3], (u32, u32)> = HashMap::new();
+    for (v, p) in positions.iter().enumerate() {
+        if !pinned.get(v).copied().unwrap_or(false) {
+            continue;
+        }
+        let v = v as u32;
+        let key = [p.x, p.y, p.z].map(|x| (x + 0.0).to_bits());
+        let (first, last) = at.entry(key).or_insert((v, v));
+        if *last != v {
+            if cycles.is_empty() {
+                cycles = vec![u32::MAX; positions.len()];
+            }
+            // Close the cycle through the new copy.
+            cycles[*last as usize] = v;
+            cycles[v as usize] = *first;
+            *last = v;
+        }
+    }
+    cycles
+}
+
+/// `v` and the other vertices at its position that stand for the same point of the
+/// surface: its twin across a seam (`twins`, `u32::MAX`: none), or the other copies of a
+/// pinned junction (`cycles`, from [`copy_cycles`]). Either slice may be empty.
+pub fn copies<'a>(v: u32, twins: &'a [u32], cycles: &'a [u32]) -> impl Iterator<Item = u32> + 'a {
+    let twin = twins.get(v as usize).copied().filter(|&t| t != u32::MAX);
+    let mut next = Some(v);
+    std::iter::from_fn(move || {
+        let c = next?;
+        next = match twin {
+            Some(t) => (c == v).then_some(t),
+            None => cycles
+                .get(c as usize)
+                .copied()
+                .filter(|&n| n != v && n != u32::MAX),
+        };
+        Some(c)
+    })
+}
+
 /// One flag per vertex: true when a triangle uses it.
 fn used_vertices(model: &Model) -> Vec<bool> {
     let mut used = vec![false; model.positions.len()];
@@ -78,7 +126,6 @@ fn used_vertices(model: &Model) -> Vec<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec3;
 
     #[test]
     fn the_two_sides_of_a_seam_are_flagged_and_nothing_else() {
@@ -107,6 +154,38 @@ mod tests {
         let none = find(&untextured);
         assert!(none.on_seam.iter().all(|&s| !s));
         assert!(none.twin.iter().all(|&t| t == u32::MAX));
+    }
+
+    #[test]
+    fn pinned_vertices_at_one_point_are_copies_of_each_other() {
+        // A junction's three copies (0, 3, 6), a lone pinned vertex (8), twins (1, 4).
+        let positions = [
+            [0, 0],
+            [1, 0],
+            [0, 1],
+            [0, 0],
+            [1, 0],
+            [0, -1],
+            [0, 0],
+            [1, -1],
+        ]
+        .into_iter()
+        .map(|[x, y]| Vec3::new(x as f32, y as f32, 0.0))
+        .chain([Vec3::ONE])
+        .collect::<Vec<_>>();
+        let pinned: Vec<bool> = (0..9).map(|v| [0, 3, 6, 8].contains(&v)).collect();
+        let cycles = copy_cycles(&positions, &pinned);
+        let mut twins = vec![u32::MAX; 9];
+        (twins[1], twins[4]) = (4, 1);
+        let of = |v: u32| copies(v, &twins, &cycles).collect::<Vec<_>>();
+        let mut junction = of(3);
+        assert_eq!(junction[0], 3, "itself first");
+        junction.sort_unstable();
+        assert_eq!(junction, [0, 3, 6]);
+        assert_eq!(of(8), [8], "alone at its point");
+        assert_eq!(of(4), [4, 1], "a twin");
+        assert_eq!(of(2), [2], "neither");
+        assert!(copy_cycles(&positions, &[false; 9]).is_empty());
     }
 
     #[test]

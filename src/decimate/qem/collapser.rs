@@ -4,8 +4,6 @@
 //! The operations live on `Part`: planning and collapsing in `part`, the checks in
 //! `legality`, the cost cache in `ranking`; the loop is in `passes`.
 
-use std::collections::HashMap;
-
 use glam::{DVec3, Vec3};
 
 use super::part::{Part, Scratch};
@@ -162,32 +160,13 @@ impl Collapser {
 
     /// Anchors the flagged vertices: they never move nor go, but may take in neighbours
     /// (see [`Kind::Anchored`]; a fixed one stays fixed).
-    pub fn pin(&mut self, pinned: impl IntoIterator<Item = bool>) {
-        // Position (bits) -> the first and the last anchored vertex found there.
-        let mut at: HashMap<[u32; 3], (u32, u32)> = HashMap::new();
-        let n = self.kinds.len();
-        for (v, (kind, pin)) in self.kinds.iter_mut().zip(pinned).enumerate() {
-            if !pin {
-                continue;
-            }
-            if *kind != Kind::Fixed {
+    pub fn pin(&mut self, pinned: &[bool]) {
+        for (kind, &pin) in self.kinds.iter_mut().zip(pinned) {
+            if pin && *kind != Kind::Fixed {
                 *kind = Kind::Anchored;
             }
-            let v = v as u32;
-            let key = self.positions[v as usize]
-                .to_array()
-                .map(|x| (x + 0.0).to_bits());
-            let (first, last) = at.entry(key).or_insert((v, v));
-            if *last != v {
-                // Close the cycle through the new copy.
-                if self.copies.is_empty() {
-                    self.copies = vec![u32::MAX; n];
-                }
-                self.copies[*last as usize] = v;
-                self.copies[v as usize] = *first;
-                *last = v;
-            }
         }
+        self.copies = crate::mesh::seams::copy_cycles(&self.positions, pinned);
     }
 
     /// Pairs the two sides of texture seams: `twins[v]` is `v`'s other side or `u32::MAX`
@@ -375,7 +354,7 @@ mod tests {
     #[test]
     fn a_pinned_vertex_takes_its_neighbours_in_where_it_stands() {
         let mut d = grid();
-        d.pin((0..9).map(|v| v == 1));
+        d.pin(&(0..9).map(|v| v == 1).collect::<Vec<_>>());
         let part = d.whole();
         assert_eq!(part.kind(1), Kind::Anchored);
         // The interior neighbour goes into it, which stays put.
@@ -388,45 +367,7 @@ mod tests {
         assert_eq!(plan.position, DVec3::new(1.0, 0.0, 0.0));
         // Two pinned ends: neither may go.
         let mut d = grid();
-        d.pin((0..9).map(|v| v <= 1));
+        d.pin(&(0..9).map(|v| v <= 1).collect::<Vec<_>>());
         assert!(d.whole().plan(0, 1).is_none());
-    }
-
-    #[test]
-    fn pinned_vertices_at_one_point_are_copies_of_each_other() {
-        // Three triangles meeting at the origin, each with its own vertex there (a seam
-        // junction's copies), and a lone pinned vertex elsewhere.
-        let positions = [
-            [0, 0],
-            [1, 0],
-            [0, 1],
-            [0, 0],
-            [-1, 0],
-            [0, -1],
-            [0, 0],
-            [1, -1],
-        ]
-        .into_iter()
-        .map(|[x, y]| Vec3::new(x as f32, y as f32, 0.0))
-        .chain([Vec3::new(1.0, 1.0, 0.0)])
-        .collect();
-        let triangles = vec![[0, 1, 2], [3, 4, 5], [6, 7, 8]];
-        let constraints = Constraints {
-            cos_feature: 0.5,
-            seam: &[],
-        };
-        let mut d = Collapser::new(positions, triangles, None, None, constraints);
-        d.pin((0..9).map(|v| [0, 3, 6, 8].contains(&v)));
-        let part = d.whole();
-        let mut copies: Vec<u32> = part.copies(3).collect();
-        assert_eq!(copies[0], 3, "itself first");
-        copies.sort_unstable();
-        assert_eq!(copies, [0, 3, 6]);
-        assert_eq!(
-            part.copies(8).collect::<Vec<_>>(),
-            [8],
-            "alone at its point"
-        );
-        assert_eq!(part.copies(1).collect::<Vec<_>>(), [1], "not pinned");
     }
 }

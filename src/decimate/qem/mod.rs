@@ -174,7 +174,7 @@ fn run(
         .filter(|t| t.len() == n as usize)
         .map(|t| order.iter().map(|&v| t[v as usize]).collect());
     d.weigh_texture();
-    d.pin(order.iter().map(|&v| pinned(v)));
+    d.pin(&order.iter().map(|&v| pinned(v)).collect::<Vec<_>>());
     d.set_twins(twins);
     d.recorder = recorder;
 

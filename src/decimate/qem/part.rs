@@ -457,20 +457,7 @@ impl Part<'_> {
     /// `x` and the other vertices at its position that stand for the same point of the
     /// surface: its twin across a seam, or a junction's other copies.
     pub fn copies(&self, x: u32) -> impl Iterator<Item = u32> + '_ {
-        let twin = self.twin(x);
-        let mut next = Some(x);
-        std::iter::from_fn(move || {
-            let c = next?;
-            next = match twin {
-                Some(t) => (c == x).then_some(t),
-                None => self
-                    .copies
-                    .get(c as usize)
-                    .copied()
-                    .filter(|&n| n != x && n != u32::MAX),
-            };
-            Some(c)
-        })
+        crate::mesh::seams::copies(x, self.twins, self.copies)
     }
 
     /// `x`'s neighbour across a boundary edge that is anchored at `anchor`'s position (the

@@ -14,7 +14,10 @@
 //!    the key bounds the distance to the original surface (as VTK's later implementation
 //!    of the paper does); pinned vertices (seam junctions, `mesh::seams`; borders shared
 //!    with another model, `mesh::stitches`) are never candidates, and the two
-//!    sides of a texture seam (twins) go together or not at all (`try_remove_twins`);
+//!    sides of a texture seam (twins) go together or not at all (`try_remove_twins`); a
+//!    fill's new edge between seam vertices must not meet an edge between other copies of
+//!    its ends (twins, a junction's copies, `mesh::seams::copies`), so that the welded
+//!    surface stays manifold;
 //! 4. remove (`passes`): in passes over the cheapest share of the candidates, in key order:
 //!    remove each, filling its hole by recursive loop splitting (`loop_split`, planned in
 //!    `plan`), keeping creases (an interior-edge vertex's loop is first split along its
@@ -40,7 +43,7 @@ use rayon::prelude::*;
 
 use super::layout::{self, compact, Compacted};
 use crate::mesh::classify::VertexClass;
-use crate::mesh::topology::Connectivity;
+use crate::mesh::topology::{Adjacency, Connectivity};
 use crate::mesh::{Attribute, Model};
 use plan::{is_ring_end, Planning, SeamSides, Surface};
 
@@ -110,6 +113,7 @@ pub fn decimate_model(
     // 2. connect
     let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
     let pinned_count = pinned.iter().filter(|&&p| p).count();
+    d.copies = crate::mesh::seams::copy_cycles(&d.positions, &pinned);
     d.pinned = pinned;
     d.twins = loaded.pairs(twins);
     d.texcoords = model
@@ -176,6 +180,8 @@ struct Decimator {
     /// Each seam vertex's other side, removed only together with it (`u32::MAX`: none;
     /// empty when the model has no such pairs).
     twins: Vec<u32>,
+    /// Pinned vertices' next copy at their position (`mesh::seams::copy_cycles`).
+    copies: Vec<u32>,
     /// A seam removal's second side.
     twin_planning: Planning,
     /// The pass in which each vertex's ring last changed (a removal took it or a
@@ -212,6 +218,7 @@ impl Decimator {
             planning: Planning::default(),
             pinned: vec![false; n],
             twins: Vec::new(),
+            copies: Vec::new(),
             twin_planning: Planning::default(),
             // Marks start below the first pass and batch: nothing has changed yet.
             changed_in: vec![0; n],
@@ -236,6 +243,7 @@ impl Decimator {
         SeamSides {
             twins: &self.twins,
             pinned: &self.pinned,
+            copies: &self.copies,
         }
     }
 
@@ -410,14 +418,9 @@ impl Decimator {
         };
         let (ring_v, ring_w) = (&first.ring.verts, &second.ring.verts);
         let apart = !ring_w.iter().any(|u| *u == v || ring_v.contains(u)) && !ring_v.contains(&w);
-        // A seam between two junctions keeps a vertex of its own (as with qem, whose
-        // pinned junctions never collapse): closed by one edge from junction to junction,
-        // it could lie on another seam between the same two (welded: four triangles).
-        let r = &first.ring.verts;
-        let pinned = |i: usize| r.get(i).is_some_and(|&u| self.pinned[u as usize]);
-        let between_junctions = pinned(0) && pinned(r.len().wrapping_sub(1));
-        let joined =
-            between_junctions || self.fills_join(first, second) || self.fills_join(second, first);
+        let joined = self.junctions_joined(ring_v, ring_w)
+            || self.fills_join(first, second)
+            || self.fills_join(second, first);
         let fits = class_w == VertexClass::Boundary && ends(first) == ends(second) && apart;
         (fits && !joined).then(|| {
             (
@@ -427,9 +430,32 @@ impl Decimator {
         })
     }
 
+    /// Whether the seam between two junctions that a removal's rings (`first`, `second`:
+    /// both sides') end at would close onto an edge between other copies of the two — a
+    /// second seam between the same junctions, or a chart's inside: welded, that edge
+    /// would have more than two triangles. False when a ring does not end at two pinned
+    /// vertices.
+    fn junctions_joined(&self, first: &[u32], second: &[u32]) -> bool {
+        let (Some(&b), Some(&c)) = (first.first(), first.last()) else {
+            return false;
+        };
+        if !(self.pinned[b as usize] && self.pinned[c as usize]) {
+            return false;
+        }
+        let ends = [b, c, second[0], second[second.len() - 1]];
+        let seams = self.seam_sides();
+        seams.copies(b).any(|b2| {
+            seams.copies(c).any(|c2| {
+                !(ends.contains(&b2) && ends.contains(&c2))
+                    && self.conn.has_edge_avoiding(b2, c2, u32::MAX)
+            })
+        })
+    }
+
     /// Whether a new edge of `first`'s fill between two seam vertices (other than the edge
-    /// closing its hole, on the seam) has its twin in `second`'s fill: welded, that edge
-    /// would have four triangles (see `Surface::joins_seam_sides`).
+    /// closing its hole, on the seam) meets another copy of itself (its ends' twins, a
+    /// junction's other copies) in `second`'s fill: welded, that edge would have four
+    /// triangles (see `Surface::joins_seam_sides`).
     fn fills_join(&self, first: &Planning, second: &Planning) -> bool {
         let r = &first.ring.verts;
         let end = |x: u32| is_ring_end(r, x);
@@ -440,15 +466,15 @@ impl Decimator {
         first.fill.iter().any(|tri| {
             (0..3).any(|i| {
                 let (x, y) = (tri[i], tri[(i + 1) % 3]);
-                let Some((x2, y2)) = self.twin(x).zip(self.twin(y)) else {
-                    return false;
-                };
                 // The hole's closing edge and the ring's own edges are not new.
                 let new = !(ring_edge(x, y) || end(x) && end(y));
-                new && second
-                    .fill
-                    .iter()
-                    .any(|t| t.contains(&x2) && t.contains(&y2))
+                let seams = self.seam_sides();
+                new && seams.copies(x).any(|x2| {
+                    seams.copies(y).any(|y2| {
+                        (x2, y2) != (x, y)
+                            && (second.fill.iter()).any(|t| t.contains(&x2) && t.contains(&y2))
+                    })
+                })
             })
         })
     }

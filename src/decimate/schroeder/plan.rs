@@ -58,9 +58,11 @@ pub(super) struct Surface<'a, C> {
 pub(super) struct SeamSides<'a> {
     pub twins: &'a [u32],
     pub pinned: &'a [bool],
+    /// Pinned vertices' next copy at their position (`mesh::seams::copy_cycles`).
+    pub copies: &'a [u32],
 }
 
-impl SeamSides<'_> {
+impl<'a> SeamSides<'a> {
     /// `v`'s other side, when it has one.
     pub fn twin(&self, v: u32) -> Option<u32> {
         self.twins
@@ -69,9 +71,14 @@ impl SeamSides<'_> {
             .filter(|&w| w != u32::MAX)
     }
 
-    /// On a seam: with a twin, or pinned (a junction's other sides are not known).
+    /// On a seam: with a twin, or pinned (a junction's copy, a shared border).
     pub fn on_seam(&self, v: u32) -> bool {
         self.twin(v).is_some() || self.pinned.get(v as usize).copied().unwrap_or(false)
+    }
+
+    /// `v` and the other vertices standing for its point: its twin, a junction's copies.
+    pub fn copies(self, v: u32) -> impl Iterator<Item = u32> + 'a {
+        crate::mesh::seams::copies(v, self.twins, self.copies)
     }
 }
 
@@ -275,10 +282,9 @@ impl<C: Adjacency> Surface<'_, C> {
         true
     }
 
-    /// Whether a new edge `x`–`y` inside one side of a texture seam would join its ends'
-    /// other sides too: welded, as a viewer shows the model, that edge would have four
-    /// triangles. So when both ends are on a seam, their twins must not be joined already,
-    /// and neither may be pinned (a junction: its other sides are not known here).
+    /// Whether a new edge `x`–`y` inside one side of a texture seam would meet an edge of
+    /// its ends' other copies (their twins, a junction's other copies): welded, as a viewer
+    /// shows the model, that edge would have four triangles or more.
     pub fn joins_seam_sides(&self, x: u32, y: u32) -> bool {
         let Some(seams) = self.seams else {
             return false;
@@ -286,10 +292,11 @@ impl<C: Adjacency> Surface<'_, C> {
         if !(seams.on_seam(x) && seams.on_seam(y)) {
             return false;
         }
-        match (seams.twin(x), seams.twin(y)) {
-            (Some(x2), Some(y2)) => self.conn.has_edge_avoiding(x2, y2, u32::MAX),
-            _ => true,
-        }
+        seams.copies(x).any(|x2| {
+            seams
+                .copies(y)
+                .any(|y2| (x2, y2) != (x, y) && self.conn.has_edge_avoiding(x2, y2, u32::MAX))
+        })
     }
 
     /// With texture coordinates, the `fill` of `region` faces in the texture the way the

@@ -84,6 +84,7 @@ impl Decimator {
         let seams = SeamSides {
             twins: &self.twins,
             pinned: &self.pinned,
+            copies: &self.copies,
         };
         let parts: Vec<Region<'_>> = self
             .conn
