@@ -44,7 +44,7 @@ pub fn find(model: &Model) -> Seams {
         if !used[v] {
             continue;
         }
-        let key = [p.x, p.y, p.z].map(|x| (x + 0.0).to_bits());
+        let key = position_key(*p);
         let entry = at.entry(key).or_insert((v as u32, u32::MAX, 0));
         entry.2 += 1;
         if entry.2 >= 2 {
@@ -69,14 +69,14 @@ pub fn find(model: &Model) -> Seams {
 /// for a vertex that shares it with no other. Empty when no two share a position.
 pub fn copy_cycles(positions: &[Vec3], pinned: &[bool]) -> Vec<u32> {
     let mut cycles = Vec::new();
-    // Position (bits, -0 folded into +0) -> the first and the last pinned vertex there.
+    // Position key -> the first and the last pinned vertex there.
     let mut at: HashMap<[u32; 3], (u32, u32)> = HashMap::new();
     for (v, p) in positions.iter().enumerate() {
         if !pinned.get(v).copied().unwrap_or(false) {
             continue;
         }
         let v = v as u32;
-        let key = [p.x, p.y, p.z].map(|x| (x + 0.0).to_bits());
+        let key = position_key(*p);
         let (first, last) = at.entry(key).or_insert((v, v));
         if *last != v {
             if cycles.is_empty() {
@@ -108,6 +108,11 @@ pub fn copies<'a>(v: u32, twins: &'a [u32], cycles: &'a [u32]) -> impl Iterator<
         };
         Some(c)
     })
+}
+
+/// The bits of position `p`, `-0` folded into `0`: equal keys, the same point exactly.
+pub fn position_key(p: Vec3) -> [u32; 3] {
+    [p.x, p.y, p.z].map(|x| (x + 0.0).to_bits())
 }
 
 /// One flag per vertex: true when a triangle uses it.

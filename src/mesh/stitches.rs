@@ -85,10 +85,11 @@ fn border_vertices(model: &Model) -> Vec<u32> {
 
 /// The bits of vertex `v`'s world position, `-0` folded into `0`.
 fn world_key(model: &Model, v: u32) -> [u32; 3] {
-    let p = model
-        .transform
-        .transform_point3(model.positions[v as usize]);
-    [p.x, p.y, p.z].map(|x| (x + 0.0).to_bits())
+    super::seams::position_key(
+        model
+            .transform
+            .transform_point3(model.positions[v as usize]),
+    )
 }
 
 #[cfg(test)]

@@ -43,6 +43,7 @@ use rayon::prelude::*;
 
 use super::layout::{self, compact, Compacted};
 use crate::mesh::classify::VertexClass;
+use crate::mesh::seams::position_key;
 use crate::mesh::topology::{Adjacency, Connectivity};
 use crate::mesh::{Attribute, Model};
 use plan::{is_ring_end, Planning, SeamSides, Surface};
@@ -408,11 +409,7 @@ impl Decimator {
         let (class_w, distance_w) = surface.plan_removal(w, second)?;
         let ends = |p: &Planning| {
             let r = &p.ring.verts;
-            let at = |i: usize| {
-                self.positions[r[i] as usize]
-                    .to_array()
-                    .map(|x| (x + 0.0).to_bits())
-            };
+            let at = |i: usize| position_key(self.positions[r[i] as usize]);
             let (a, b) = (at(0), at(r.len() - 1));
             (a.min(b), a.max(b))
         };
@@ -442,7 +439,10 @@ impl Decimator {
         if !(self.pinned[b as usize] && self.pinned[c as usize]) {
             return false;
         }
-        let ends = [b, c, second[0], second[second.len() - 1]];
+        let (Some(&b2), Some(&c2)) = (second.first(), second.last()) else {
+            return false;
+        };
+        let ends = [b, c, b2, c2];
         let seams = self.seam_sides();
         seams.copies(b).any(|b2| {
             seams.copies(c).any(|c2| {
@@ -463,12 +463,12 @@ impl Decimator {
             r.windows(2)
                 .any(|p| (p[0], p[1]) == (x, y) || (p[1], p[0]) == (x, y))
         };
+        let seams = self.seam_sides();
         first.fill.iter().any(|tri| {
             (0..3).any(|i| {
                 let (x, y) = (tri[i], tri[(i + 1) % 3]);
                 // The hole's closing edge and the ring's own edges are not new.
                 let new = !(ring_edge(x, y) || end(x) && end(y));
-                let seams = self.seam_sides();
                 new && seams.copies(x).any(|x2| {
                     seams.copies(y).any(|y2| {
                         (x2, y2) != (x, y)
