@@ -199,12 +199,21 @@ fn two_shapes_in_one_file_keep_two_progressive_models() {
 /// textured by (x, y) and cut by a seam down x = 0.5: the squares right of it map to a
 /// second island, shifted by 2 in u, so the seam's points are there once per side.
 fn textured_grid(n: u32, z: impl Fn(f32, f32) -> f32) -> Model {
+    textured_grid_in(n, z, |i, _| u32::from(2 * i >= n))
+}
+
+/// As [`textured_grid`], the square `(i, j)` in texture island `island(i, j)`.
+fn textured_grid_in(
+    n: u32,
+    z: impl Fn(f32, f32) -> f32,
+    island: impl Fn(u32, u32) -> u32,
+) -> Model {
     let (mut positions, mut texcoords, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
     let mut ids = std::collections::HashMap::new();
     let at = |i: u32| i as f32 / n as f32;
     for j in 0..n {
         for i in 0..n {
-            let island = u32::from(2 * i >= n);
+            let island = island(i, j);
             let mut id = |i: u32, j: u32| {
                 *ids.entry((i, j, island)).or_insert_with(|| {
                     let (x, y) = (at(i), at(j));
@@ -294,6 +303,28 @@ fn texture_coordinates_come_back_exactly_and_rebuilt_levels_keep_the_mapping() {
         let off = (uv[0] - shift - p[0]).abs().max((uv[1] - p[1]).abs());
         assert!(off < 1e-5, "{p:?} maps to {uv:?}");
     }
+}
+
+#[test]
+fn collapses_into_a_seam_junction_come_back_exactly() {
+    // Four islands meet at the grid's centre: a junction of four sides, pinned, which takes
+    // its neighbours in where it stands (with a seam vertex, both sides at once). Those
+    // collapses are recorded like any other, and refined away like any other.
+    let n = 40;
+    let z = |x: f32, y: f32| 0.2 * (3.0 * x).sin() * (2.0 * y).cos();
+    let quarters = textured_grid_in(n, z, |i, j| {
+        u32::from(2 * i >= n) + 2 * u32::from(2 * j >= n)
+    });
+    let (_dir, input, out, pm) = run_progressive_as("obj", vec![quarters]);
+    assert_round_trip(&input, &out, &pm);
+    let centre = glam::Vec3::new(0.5, 0.5, z(0.5, 0.5));
+    let copies = |m: &Model| m.positions.iter().filter(|&&p| p == centre).count();
+    assert_eq!(copies(&input.models[0]), 4, "the input's junction");
+    assert_eq!(
+        copies(&out.models[0]),
+        4,
+        "the junction stays, once per island"
+    );
 }
 
 #[test]
