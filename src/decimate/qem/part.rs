@@ -460,30 +460,18 @@ impl Part<'_> {
         crate::mesh::seams::copies(x, self.twins, self.copies)
     }
 
-    /// `x`'s neighbour across a boundary edge that is anchored at `anchor`'s position (the
-    /// copy on `x`'s side of the texture-seam junction `anchor`, when `x` is on a seam), or
-    /// `Some(None)` when there is none; `None` when `x`'s fan is not all this part's.
+    /// The copy of the anchored `anchor` (a texture-seam junction's, see [`Self::copies`])
+    /// that `x` is joined to by a boundary edge: the junction on `x`'s side, or `Some(None)`
+    /// when there is none; `None` when `x`'s fan is not all this part's.
     pub fn anchor_copy(&self, x: u32, anchor: u32) -> Option<Option<u32>> {
-        if !(self.owns(x) && self.conn.has_room(x, 0)) {
-            return None;
-        }
-        let incident = self.conn.incident(x);
-        if !incident.iter().all(|&t| self.conn.owns_slot(t)) {
-            return None;
-        }
-        let at = self.positions[self.at(anchor)];
-        let mut copy = None;
-        for &t in incident {
-            for y in others(self.conn.triangle(t), x) {
-                let anchored = self.owns(y)
-                    && self.kind(y) == Kind::Anchored
-                    && self.positions[self.at(y)] == at;
-                if anchored && copy.is_none() && self.edge_triangles(x, y) == 1 {
-                    copy = Some(y);
-                }
-            }
-        }
-        Some(copy)
+        let fan_owned = self.owns(x)
+            && self.conn.has_room(x, 0)
+            && (self.conn.incident(x).iter()).all(|&t| self.conn.owns_slot(t));
+        fan_owned.then(|| {
+            self.copies(anchor).find(|&c| {
+                self.owns(c) && self.kind(c) == Kind::Anchored && self.edge_triangles(x, c) == 1
+            })
+        })
     }
 
     /// The other sides of the seam vertices in the fans [`Self::gather`] read (with

@@ -439,16 +439,12 @@ impl Decimator {
         if !(self.pinned[b as usize] && self.pinned[c as usize]) {
             return false;
         }
-        let (Some(&b2), Some(&c2)) = (second.first(), second.last()) else {
+        let (Some(&b_other), Some(&c_other)) = (second.first(), second.last()) else {
             return false;
         };
-        let ends = [b, c, b2, c2];
-        let seams = self.seam_sides();
-        seams.copies(b).any(|b2| {
-            seams.copies(c).any(|c2| {
-                !(ends.contains(&b2) && ends.contains(&c2))
-                    && self.conn.has_edge_avoiding(b2, c2, u32::MAX)
-            })
+        let ends = [b, c, b_other, c_other];
+        self.seam_sides().copy_pairs(b, c).any(|(x, y)| {
+            !(ends.contains(&x) && ends.contains(&y)) && self.conn.has_edge_avoiding(x, y, u32::MAX)
         })
     }
 
@@ -469,11 +465,9 @@ impl Decimator {
                 let (x, y) = (tri[i], tri[(i + 1) % 3]);
                 // The hole's closing edge and the ring's own edges are not new.
                 let new = !(ring_edge(x, y) || end(x) && end(y));
-                new && seams.copies(x).any(|x2| {
-                    seams.copies(y).any(|y2| {
-                        (x2, y2) != (x, y)
-                            && (second.fill.iter()).any(|t| t.contains(&x2) && t.contains(&y2))
-                    })
+                new && seams.copy_pairs(x, y).any(|(x2, y2)| {
+                    (x2, y2) != (x, y)
+                        && (second.fill.iter()).any(|t| t.contains(&x2) && t.contains(&y2))
                 })
             })
         })

@@ -80,6 +80,12 @@ impl<'a> SeamSides<'a> {
     pub fn copies(self, v: u32) -> impl Iterator<Item = u32> + 'a {
         crate::mesh::seams::copies(v, self.twins, self.copies)
     }
+
+    /// Every pair of a copy of `x` and a copy of `y` (see [`Self::copies`]), `(x, y)` first.
+    pub fn copy_pairs(self, x: u32, y: u32) -> impl Iterator<Item = (u32, u32)> + 'a {
+        self.copies(x)
+            .flat_map(move |x2| self.copies(y).map(move |y2| (x2, y2)))
+    }
 }
 
 impl<C: Adjacency> Surface<'_, C> {
@@ -292,11 +298,9 @@ impl<C: Adjacency> Surface<'_, C> {
         if !(seams.on_seam(x) && seams.on_seam(y)) {
             return false;
         }
-        seams.copies(x).any(|x2| {
-            seams
-                .copies(y)
-                .any(|y2| (x2, y2) != (x, y) && self.conn.has_edge_avoiding(x2, y2, u32::MAX))
-        })
+        seams
+            .copy_pairs(x, y)
+            .any(|(x2, y2)| (x2, y2) != (x, y) && self.conn.has_edge_avoiding(x2, y2, u32::MAX))
     }
 
     /// With texture coordinates, the `fill` of `region` faces in the texture the way the
