@@ -196,7 +196,7 @@ pub fn summary(report: &Report) -> String {
             "  dropped (fewer than 4 vertices left)".to_string()
         } else if m.fully_decimated && m.pinned > 0 {
             format!(
-                "  fully decimated ({} vertices are pinned on texture seams or shared borders)",
+                "  fully decimated ({} vertices are pinned on texture seams or borders)",
                 m.pinned
             )
         } else if m.fully_decimated {

@@ -134,6 +134,8 @@ action-options for nogui (one target is MANDATORY):
                         raised in 15-degree steps when a count target cannot be met
                         otherwise (never for -p 100 or --max-error alone)
   --keep-features       never raise the feature angle: stop short of the target instead
+  --keep-border         never move or remove a vertex on the open border (edges of one
+                        triangle): pieces of one mesh decimated apart still fit together
   --no-weld             do not merge coincident vertices before decimating
   --progressive FILE    also write the collapses as vertex splits (FILE.pm), to rebuild
                         any level between the result and the input (implies -a qem);
@@ -227,6 +229,7 @@ where
             "--progressive" => progressive = Some(PathBuf::from(value(&arg)?)),
             "--no-weld" => weld = false,
             "--keep-features" => params.keep_features = true,
+            "--keep-border" => params.keep_border = true,
             "--overwrite" => overwrite = true,
             "-q" | "--quiet" => quiet = true,
             "--size" => {
@@ -561,7 +564,9 @@ mod tests {
     #[test]
     fn error_bounds_and_shot_options() {
         let a = run(&["m.wrl", "nogui", "-p", "90", "--keep-features"]);
-        assert!(a.params.keep_features);
+        assert!(a.params.keep_features && !a.params.keep_border);
+        let a = run(&["m.wrl", "nogui", "-p", "90", "--keep-border"]);
+        assert!(a.params.keep_border && !a.params.keep_features);
         let a = run(&["m.wrl", "nogui", "--max-error", "0.5%"]);
         assert_eq!(a.params.target, Target::ErrorOnly);
         assert_eq!(

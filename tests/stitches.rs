@@ -145,3 +145,94 @@ fn two_halves_of_a_sphere_stay_closed_after_decimation() {
         );
     }
 }
+
+/// `triangles` as an OBJ of one object, corners at the same position as one vertex.
+fn obj_of(triangles: &[[[f32; 3]; 3]]) -> String {
+    let mut index: HashMap<[u32; 3], usize> = HashMap::new();
+    let (mut points, mut faces) = (String::new(), String::new());
+    for t in triangles {
+        let ids = t.map(|p| {
+            let next = index.len() + 1;
+            *index.entry(p.map(f32::to_bits)).or_insert_with(|| {
+                points += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+                next
+            })
+        });
+        faces += &format!("f {} {} {}\n", ids[0], ids[1], ids[2]);
+    }
+    format!("o half\n{points}{faces}")
+}
+
+#[test]
+fn halves_decimated_in_separate_runs_still_meet_with_keep_border() {
+    let dir = tempfile::tempdir().unwrap();
+    let halves = read_objects(&hemispheres_obj(12, 30, 64));
+    let inputs: Vec<_> = ["north", "south"]
+        .iter()
+        .zip(&halves)
+        .map(|(name, half)| {
+            let path = dir.path().join(format!("{name}.obj"));
+            std::fs::write(&path, obj_of(half)).unwrap();
+            assert_eq!(open_edges(half.iter().copied()), 64, "{name}: the equator");
+            path
+        })
+        .collect();
+    let before: usize = halves.iter().map(Vec::len).sum();
+    for (algorithm, percent, keep) in [
+        ("schroeder", "80", true),
+        ("qem", "80", true),
+        ("qem", "99", true),
+        ("schroeder", "80", false),
+        ("qem", "80", false),
+    ] {
+        // Each half on its own, as a tile of a larger mesh would be.
+        let outputs: Vec<Vec<[[f32; 3]; 3]>> = inputs
+            .iter()
+            .map(|input| {
+                let output = input.with_extension(format!("{algorithm}-{percent}-{keep}.obj"));
+                let mut command = Command::new(env!("CARGO_BIN_EXE_decimate"));
+                command
+                    .arg(input)
+                    .args(["nogui", "-a", algorithm, "-p", percent, "-o"])
+                    .arg(&output);
+                if keep {
+                    command.arg("--keep-border");
+                }
+                let run = command.output().unwrap();
+                let stderr = String::from_utf8_lossy(&run.stderr);
+                assert!(run.status.success(), "{algorithm}: {stderr}");
+                let objects = read_objects(&std::fs::read_to_string(&output).unwrap());
+                assert_eq!(objects.len(), 1, "{algorithm}: one object in, one out");
+                objects.into_iter().flatten().collect()
+            })
+            .collect();
+        let after: usize = outputs.iter().map(Vec::len).sum();
+        let case = format!("{algorithm} -p {percent}, keep border {keep}");
+        assert!(
+            after < before / 3,
+            "{case}: {after} of {before} triangles left"
+        );
+        let cracks = open_edges(outputs.iter().flatten().copied());
+        if !keep {
+            // Each run takes its own shortcuts along the equator: the halves part.
+            assert!(cracks > 0, "{case}: the halves meet without the option");
+            continue;
+        }
+        for half in &outputs {
+            assert_eq!(
+                open_edges(half.iter().copied()),
+                64,
+                "{case}: the equator kept"
+            );
+        }
+        assert_eq!(
+            cracks, 0,
+            "{case}: the halves no longer meet along the equator"
+        );
+        if percent == "99" {
+            // As in one run with the halves stitched: the fewest triangles over 64 border
+            // points, 62 a half.
+            assert_eq!(after, 2 * 62, "{case}");
+        }
+    }
+}

@@ -211,6 +211,48 @@ fn a_flat_textured_grid_keeps_an_exact_mapping_and_its_seam() {
 }
 
 #[test]
+fn keep_border_holds_the_outline_but_a_seam_still_simplifies() {
+    // The seam down x = 0.5 is two borders in the file (its sides are split by their
+    // texture pairs) but none on screen: --keep-border pins the grid's outline, 4 × 32
+    // edges on 128 points, and leaves the seam to simplify (its 31 inner points a side).
+    let n = 32;
+    let obj = grid_obj(n, |x, y| [x, y, 0.1 * (6.0 * x).sin() * (5.0 * y).cos()]);
+    let on_outline = |p: &[f32; 3]| p[0] == 0.0 || p[0] == 1.0 || p[1] == 0.0 || p[1] == 1.0;
+    let outline = |out: &Obj| {
+        let mut points: Vec<[u32; 3]> = (out.positions.iter())
+            .filter(|p| on_outline(p))
+            .map(|p| p.map(|x| (x + 0.0).to_bits())) // -0 as 0
+            .collect();
+        points.sort_unstable();
+        points.dedup();
+        points
+    };
+    let before = outline(&read_obj(&obj));
+    assert_eq!(before.len(), 4 * n);
+    for algorithm in ["schroeder", "qem"] {
+        let out = decimate(
+            &format!("keep-border-{algorithm}"),
+            &obj,
+            &["-a", algorithm, "-p", "90", "--keep-border"],
+        );
+        check_layout(&out);
+        assert_eq!(outline(&out), before, "{algorithm}: the outline moved");
+        // Inside the outline 90 % of everything else went, and the seam with it.
+        let inside = out.positions.iter().filter(|p| !on_outline(p)).count();
+        assert!(
+            inside < 300,
+            "{algorithm}: {inside} vertices inside the outline"
+        );
+        let [left, right] = seam_vertices(&out);
+        assert!(
+            left == right && left < n / 2,
+            "{algorithm}: seam sides of {left} and {right} points"
+        );
+        check_obj_seam(&out, n, algorithm);
+    }
+}
+
+#[test]
 fn a_curved_textured_surface_stays_closed_along_its_seam() {
     // The larger grid (23k vertices) is collapsed in regions on all cores: a seam collapse
     // there needs both sides in one region.
@@ -576,8 +618,7 @@ fn a_model_all_seams_says_why_it_stops() {
         // triangle touches are on a seam. The two corners at the diagonals' ends have two
         // sides each: pairs that both algorithms would take away together, not pinned (none
         // can go: a lone triangle loses no corner).
-        let expected =
-            "fully decimated (90 vertices are pinned on texture seams or shared borders)";
+        let expected = "fully decimated (90 vertices are pinned on texture seams or borders)";
         assert!(
             stderr.contains("vertices 96 -> 96") && stderr.contains(expected),
             "{algorithm}: {stderr}"

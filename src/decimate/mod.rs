@@ -60,6 +60,9 @@ pub struct Params {
     pub feature_angle_deg: f64,
     /// Never relax the feature angle to reach a count target (see [`decimate_scene`]).
     pub keep_features: bool,
+    /// Never move or remove a vertex on a model's open border
+    /// (`mesh::stitches::open_border_vertices`): pieces of one mesh decimated apart still fit.
+    pub keep_border: bool,
     pub algorithm: Algorithm,
 }
 
@@ -70,6 +73,7 @@ impl Default for Params {
             max_error: None,
             feature_angle_deg: 30.0,
             keep_features: false,
+            keep_border: false,
             algorithm: Algorithm::default(),
         }
     }
@@ -92,8 +96,8 @@ pub struct ModelReport {
     pub fully_decimated: bool,
     /// True when the model fell under four vertices and was dropped from the scene.
     pub dropped: bool,
-    /// Vertices kept because they lie on a texture seam or a border shared with another
-    /// model.
+    /// Vertices kept because they lie on a texture seam, on a border shared with another
+    /// model, or (`keep_border`) on the open border.
     pub pinned: usize,
 }
 
@@ -177,15 +181,24 @@ fn run(
         .sum::<usize>()
         .max(1);
 
-    // Pinned: texture seams and borders shared with another model (cracks otherwise).
+    // Pinned: texture seams and borders shared with another model (cracks otherwise), and
+    // with `keep_border` every open border.
     let shared = stitches::shared_border_vertices(scene);
     let mut reports = Vec::with_capacity(scene.models.len());
     let mut done = 0usize;
     for (i, model) in scene.models.iter_mut().enumerate() {
         // Both algorithms take a seam's two sides away together (`twins`); junctions of
         // three or more sides and shared borders are pinned.
-        let shared = &shared[i];
-        let on_shared = |v: u32| shared.get(v as usize).copied().unwrap_or(false);
+        let border = if params.keep_border {
+            stitches::open_border_vertices(model)
+        } else {
+            Vec::new()
+        };
+        let (shared, border) = (&shared[i], &border);
+        let on_shared = |v: u32| {
+            let flag = |flags: &[bool]| flags.get(v as usize).copied().unwrap_or(false);
+            flag(shared) || flag(border)
+        };
         let seams = seams::find(model);
         let mut twins = seams.twin;
         for v in 0..twins.len() as u32 {
