@@ -20,7 +20,7 @@ use decimate::render::pipeline::Pipelines;
 use decimate::render::texture::Textures;
 use decimate::render::tiles::Rect;
 use glam::{Mat4, Quat, Vec3};
-use shot_support::{background, close, modes, pixel, HEIGHT, WIDTH};
+use shot_support::{background, close, modes, pixel, write_rgb_png, HEIGHT, WIDTH};
 
 /// Texels across the image, and texels per rail (red, then blue).
 const TEXELS: u32 = 256;
@@ -50,16 +50,7 @@ fn write_rails(path: &Path) {
             });
         }
     }
-    let file = std::fs::File::create(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut encoder = png::Encoder::new(file, TEXELS, TEXELS);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder
-        .write_header()
-        .unwrap_or_else(|e| panic!("png: {e}"));
-    writer
-        .write_image_data(&pixels)
-        .unwrap_or_else(|e| panic!("png: {e}"));
+    write_rgb_png(path, TEXELS, &pixels);
 }
 
 /// A 4 × 4 floor textured with `rails.png` (u across, v along the rails), turned so that

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use decimate::render::offscreen::RgbaImage;
-use shot_support::{background, close, pixel};
+use shot_support::{background, close, pixel, write_rgb_png};
 
 const LAVAPIPE: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
 
@@ -42,21 +42,7 @@ fn write_texture(path: &Path) {
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         return;
     }
-    write_png(path, 8, &pixels);
-}
-
-/// Writes a `size` × `size` RGB PNG.
-fn write_png(path: &Path, size: u32, rgb: &[u8]) {
-    let file = std::fs::File::create(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut encoder = png::Encoder::new(file, size, size);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder
-        .write_header()
-        .unwrap_or_else(|e| panic!("png: {e}"));
-    writer
-        .write_image_data(rgb)
-        .unwrap_or_else(|e| panic!("png: {e}"));
+    write_rgb_png(path, 8, &pixels);
 }
 
 /// A flat `n × n` grid in the xy plane (y up), its texture coordinates spanning the image
@@ -245,7 +231,7 @@ fn write_stripes(path: &Path, size: u32) {
             });
         }
     }
-    write_png(path, size, &pixels);
+    write_rgb_png(path, size, &pixels);
 }
 
 #[test]
@@ -304,7 +290,7 @@ fn write_halves(path: &Path) {
             });
         }
     }
-    write_png(path, 8, &pixels);
+    write_rgb_png(path, 8, &pixels);
 }
 
 #[test]

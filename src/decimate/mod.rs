@@ -188,14 +188,14 @@ fn run(
     let mut done = 0usize;
     for (i, model) in scene.models.iter_mut().enumerate() {
         // Both algorithms take a seam's two sides away together (`twins`); junctions of
-        // three or more sides and shared borders are pinned.
+        // three or more sides, shared borders and (`keep_border`) open borders are pinned.
         let border = if params.keep_border {
             stitches::open_border_vertices(model)
         } else {
             Vec::new()
         };
         let (shared, border) = (&shared[i], &border);
-        let on_shared = |v: u32| {
+        let on_pinned_border = |v: u32| {
             let flag = |flags: &[bool]| flags.get(v as usize).copied().unwrap_or(false);
             flag(shared) || flag(border)
         };
@@ -203,14 +203,14 @@ fn run(
         let mut twins = seams.twin;
         for v in 0..twins.len() as u32 {
             let w = twins[v as usize];
-            if w != u32::MAX && (on_shared(v) || on_shared(w)) {
+            if w != u32::MAX && (on_pinned_border(v) || on_pinned_border(w)) {
                 twins[v as usize] = u32::MAX;
             }
         }
         let pins: Vec<bool> = (0..seams.on_seam.len() as u32)
             .map(|v| {
                 let paired = twins.get(v as usize).is_some_and(|&w| w != u32::MAX);
-                on_shared(v) || (seams.on_seam[v as usize] && !paired)
+                on_pinned_border(v) || (seams.on_seam[v as usize] && !paired)
             })
             .collect();
         let max_error = match params.max_error {

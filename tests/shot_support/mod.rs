@@ -295,3 +295,17 @@ fn diff_image(actual: &RgbaImage, golden: &RgbaImage) -> RgbaImage {
         pixels,
     }
 }
+
+/// Writes a `size` × `size` RGB PNG.
+pub fn write_rgb_png(path: &Path, size: u32, rgb: &[u8]) {
+    let file = std::fs::File::create(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut encoder = png::Encoder::new(file, size, size);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder
+        .write_header()
+        .unwrap_or_else(|e| panic!("png: {e}"));
+    writer
+        .write_image_data(rgb)
+        .unwrap_or_else(|e| panic!("png: {e}"));
+}
