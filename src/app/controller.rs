@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use glam::Vec2;
 
-use crate::decimate::Params;
+use crate::decimate::{Algorithm, Params};
 use crate::mesh::Scene;
 use crate::render::camera::Navigation;
 use crate::render::tiles::{tiles, Rect};
@@ -106,14 +106,19 @@ impl ViewportController {
     /// A decimate event for the current viewport only.
     pub fn decimate(&mut self, event: DecimateEvent) {
         let i = self.current;
+        let done = self.decimate_current(event);
+        self.message = format!("viewport {}: {done}", i + 1);
+    }
+
+    /// Decimates the current viewport; says what was done.
+    fn decimate_current(&mut self, event: DecimateEvent) -> String {
         let report = self.current_mut().decimate(event);
         let what = match event.kind {
             DecimateKind::Percentage => format!("{:.0} %", event.amount),
             DecimateKind::Number => format!("{:.0} vertices", event.amount),
         };
-        self.message = format!(
-            "viewport {}: removed {} ({} vertices) in {:.3} s{}",
-            i + 1,
+        format!(
+            "removed {} ({} vertices) in {:.3} s{}",
             what,
             report.vertices_removed(),
             report.seconds,
@@ -122,7 +127,24 @@ impl ViewportController {
             } else {
                 ""
             }
-        );
+        )
+    }
+
+    /// The current viewport's algorithm or border setting changed: its last decimation, if
+    /// it shows one, is made again with the new settings, so that they can be compared
+    /// side by side with another viewport's.
+    fn settings_changed(&mut self) {
+        let i = self.current;
+        let settings = self.current_viewport().settings();
+        match self.current_viewport().last_event() {
+            Some(event) => {
+                let done = self.decimate_current(event);
+                self.message = format!("viewport {}: {settings}; {done}", i + 1);
+            }
+            None => {
+                self.message = format!("viewport {}: {settings} from the next decimation", i + 1)
+            }
+        }
     }
 
     /// "Decimate to N vertices": a NUMBER event for the difference from the original.
@@ -190,6 +212,18 @@ impl ViewportController {
                     }
                     None => format!("viewport {}: level-of-detail slider off", i + 1),
                 };
+            }
+            Action::ToggleAlgorithm => {
+                let params = &mut self.current_mut().params;
+                params.algorithm = match params.algorithm {
+                    Algorithm::Schroeder => Algorithm::Qem,
+                    Algorithm::Qem => Algorithm::Schroeder,
+                };
+                self.settings_changed();
+            }
+            Action::ToggleKeepBorder => {
+                self.current_mut().params.keep_border ^= true;
+                self.settings_changed();
             }
             Action::ToggleTriangles => options.triangles ^= true,
             Action::ToggleEdges => options.edges ^= true,
@@ -331,6 +365,81 @@ mod tests {
             "10 % after 90 % must go back up: {after_10} < {after_90}"
         );
         assert_eq!(c.current_viewport().original().vertex_count(), 121);
+    }
+
+    /// Every vertex position of the current viewport's scene, as bits.
+    fn positions(c: &ViewportController) -> Vec<[u32; 3]> {
+        let scene = c.current_viewport().scene();
+        let points = scene.models.iter().flat_map(|m| &m.positions);
+        points.map(|p| p.to_array().map(f32::to_bits)).collect()
+    }
+
+    #[test]
+    fn two_viewports_compare_the_algorithms_on_the_same_target() {
+        let sphere = crate::mesh::shapes::bumpy_sphere(12, 24);
+        let original: Vec<[u32; 3]> = (sphere.positions.iter())
+            .map(|p| p.to_array().map(f32::to_bits))
+            .collect();
+        let n = sphere.used_vertex_count();
+        let scene = Scene {
+            models: vec![sphere],
+        };
+        let mut c = ViewportController::new(scene, Params::default(), 800, 600);
+        key(&mut c, Key::Char('a'));
+        key(&mut c, Key::Char('8'));
+        // Viewport 2, vertex removal (the command line's default): original points only.
+        let kept = c.current_viewport().vertex_count();
+        assert_eq!(kept, n - (0.8 * n as f64).round() as usize);
+        assert!(positions(&c).iter().all(|p| original.contains(p)));
+        assert!(c
+            .current_viewport()
+            .status()
+            .contains("decimated by schroeder"));
+        // A switch makes the same decimation again by quadric edge collapse: the same
+        // count, vertices moved.
+        key(&mut c, Key::Char('A'));
+        assert!(
+            c.message
+                .starts_with("viewport 2: quadric edge collapse, border free; removed 80 %"),
+            "{}",
+            c.message
+        );
+        assert_eq!(c.current_viewport().vertex_count(), kept);
+        assert!(positions(&c).iter().any(|p| !original.contains(p)));
+        assert!(c.current_viewport().status().contains("decimated by qem"));
+        // Viewport 1 was not decimated: the switch holds for its next decimation.
+        key(&mut c, Key::Tab);
+        key(&mut c, Key::Char('A'));
+        assert_eq!(
+            c.message,
+            "viewport 1: quadric edge collapse, border free from the next decimation"
+        );
+        assert_eq!(c.current_viewport().vertex_count(), n);
+        key(&mut c, Key::Char('8'));
+        assert_eq!(c.current_viewport().vertex_count(), kept);
+    }
+
+    #[test]
+    fn keeping_the_border_holds_the_plane_outline() {
+        let mut c = controller();
+        key(&mut c, Key::Char('0'));
+        // As far as possible, the plane goes down to its four corners (test003)…
+        assert_eq!(c.current_viewport().vertex_count(), 4);
+        // …or, its border kept, to the 40 points of its outline, decimated again at once.
+        key(&mut c, Key::Char('b'));
+        assert!(
+            c.message.contains("border kept; removed 100 %"),
+            "{}",
+            c.message
+        );
+        assert_eq!(c.current_viewport().vertex_count(), 40);
+        let outline = |p: &[u32; 3]| {
+            let [x, y, _] = p.map(f32::from_bits);
+            x == 0.0 || x == 10.0 || y == 0.0 || y == 10.0
+        };
+        assert!(positions(&c).iter().all(outline));
+        key(&mut c, Key::Char('b'));
+        assert_eq!(c.current_viewport().vertex_count(), 4);
     }
 
     #[test]

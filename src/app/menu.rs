@@ -26,6 +26,12 @@ pub enum Action {
     AskVertexCount,
     /// The level-of-detail slider (a progressive mesh by quadric edge collapse) on or off.
     ToggleLod,
+    /// The current viewport's algorithm: vertex removal ↔ quadric edge collapse (its last
+    /// decimation is made again with the other).
+    ToggleAlgorithm,
+    /// The current viewport's open border kept or free (`--keep-border`; its last decimation
+    /// is made again).
+    ToggleKeepBorder,
     ToggleTriangles,
     ToggleEdges,
     TogglePoints,
@@ -127,6 +133,16 @@ pub fn menu() -> Vec<MenuEntry> {
         Action::AskVertexCount,
     ));
     decimate.push(entry(
+        "Algorithm: vertex removal / quadric edge collapse",
+        Some("A"),
+        Action::ToggleAlgorithm,
+    ));
+    decimate.push(entry(
+        "Keep the open border / let it go",
+        Some("b"),
+        Action::ToggleKeepBorder,
+    ));
+    decimate.push(entry(
         "Level-of-detail slider (qem, geomorph)",
         Some("L"),
         Action::ToggleLod,
@@ -188,6 +204,8 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'h' => Action::ToggleHelp,
                 'v' => Action::AskVertexCount,
                 'L' => Action::ToggleLod,
+                'A' => Action::ToggleAlgorithm,
+                'b' => Action::ToggleKeepBorder,
                 'q' => Action::Quit,
                 _ => return None,
             }
@@ -294,6 +312,8 @@ mod tests {
         for a in [
             Action::AskVertexCount,
             Action::ToggleLod,
+            Action::ToggleAlgorithm,
+            Action::ToggleKeepBorder,
             Action::ToggleTriangles,
             Action::ToggleEdges,
             Action::TogglePoints,

@@ -6,7 +6,7 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use crate::decimate::{decimate_scene, Params, Report, Target};
+use crate::decimate::{decimate_scene, Algorithm, Params, Report, Target};
 use crate::mesh::Scene;
 use crate::render::camera::{Camera, Navigation};
 use crate::render::draw::DrawOptions;
@@ -28,7 +28,10 @@ pub struct Viewport {
     pub generation: u64,
     /// The last decimation's report.
     pub last: Option<Report>,
-    /// Feature angle and error bound for decimate events.
+    /// The last decimation's event, made again when the algorithm or the border setting
+    /// changes.
+    last_event: Option<DecimateEvent>,
+    /// Algorithm, feature angle, error bound and border setting for decimate events.
     pub params: Params,
     /// The level-of-detail slider, when it is on.
     lod: Option<LodView>,
@@ -46,6 +49,7 @@ impl Viewport {
             camera,
             generation: 0,
             last: None,
+            last_event: None,
             params,
             lod: None,
         }
@@ -120,7 +124,28 @@ impl Viewport {
         self.scene = scene;
         self.lod = None;
         self.generation += 1;
+        self.last_event = Some(event);
         self.last.insert(report)
+    }
+
+    /// The last decimate event, when the scene shown is still its result (not the
+    /// level-of-detail slider's).
+    pub fn last_event(&self) -> Option<DecimateEvent> {
+        self.last_event.filter(|_| self.lod.is_none())
+    }
+
+    /// The algorithm and border setting decimate events use, in words.
+    pub fn settings(&self) -> String {
+        let algorithm = match self.params.algorithm {
+            Algorithm::Schroeder => "vertex removal",
+            Algorithm::Qem => "quadric edge collapse",
+        };
+        let border = if self.params.keep_border {
+            "border kept"
+        } else {
+            "border free"
+        };
+        format!("{algorithm}, {border}")
     }
 
     /// Vertices shown now (used by some triangle).
@@ -152,7 +177,11 @@ impl Viewport {
                 lod.build_seconds
             ));
         } else if let Some(r) = &self.last {
-            s.push_str(&format!(", decimated in {:.3} s", r.seconds));
+            let by = match self.params.algorithm {
+                Algorithm::Schroeder => "schroeder",
+                Algorithm::Qem => "qem",
+            };
+            s.push_str(&format!(", decimated by {by} in {:.3} s", r.seconds));
             if r.fully_decimated() {
                 s.push_str(" — fully decimated");
             }
