@@ -417,6 +417,14 @@ mod tests {
         assert_eq!(c.current_viewport().vertex_count(), n);
         key(&mut c, Key::Char('8'));
         assert_eq!(c.current_viewport().vertex_count(), kept);
+        // The level-of-detail slider shows its own levels: a switch then waits too.
+        key(&mut c, Key::Char('L'));
+        key(&mut c, Key::Char('A'));
+        assert_eq!(
+            c.message,
+            "viewport 1: vertex removal, border free from the next decimation"
+        );
+        assert!(!c.current_viewport().status().contains("decimated by"));
     }
 
     #[test]

@@ -69,7 +69,12 @@ impl Viewport {
     pub fn toggle_lod(&mut self) {
         match self.lod.take() {
             Some(lod) => self.scene = lod.scene().clone(),
-            None => self.lod = Some(LodView::new(&self.original, &self.params)),
+            None => {
+                self.lod = Some(LodView::new(&self.original, &self.params));
+                // What is shown is the slider's level from now on, not the last decimation.
+                self.last = None;
+                self.last_event = None;
+            }
         }
         self.generation += 1;
     }
@@ -128,10 +133,10 @@ impl Viewport {
         self.last.insert(report)
     }
 
-    /// The last decimate event, when the scene shown is still its result (not the
-    /// level-of-detail slider's).
+    /// The last decimate event, while the scene shown is its result (the level-of-detail
+    /// slider forgets it).
     pub fn last_event(&self) -> Option<DecimateEvent> {
-        self.last_event.filter(|_| self.lod.is_none())
+        self.last_event
     }
 
     /// The algorithm and border setting decimate events use, in words.
