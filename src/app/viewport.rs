@@ -26,11 +26,9 @@ pub struct Viewport {
     pub camera: Camera,
     /// Bumped whenever `scene` changes, so the renderer knows to upload it again.
     pub generation: u64,
-    /// The last decimation's report.
-    pub last: Option<Report>,
-    /// The last decimation's event, made again when the algorithm or the border setting
-    /// changes.
-    last_event: Option<DecimateEvent>,
+    /// The last decimation's event (made again when the algorithm or the border setting
+    /// changes) and report, while the scene shown is its result.
+    pub last: Option<(DecimateEvent, Report)>,
     /// Algorithm, feature angle, error bound and border setting for decimate events.
     pub params: Params,
     /// The level-of-detail slider, when it is on.
@@ -49,7 +47,6 @@ impl Viewport {
             camera,
             generation: 0,
             last: None,
-            last_event: None,
             params,
             lod: None,
         }
@@ -73,7 +70,6 @@ impl Viewport {
                 self.lod = Some(LodView::new(&self.original, &self.params));
                 // What is shown is the slider's level from now on, not the last decimation.
                 self.last = None;
-                self.last_event = None;
             }
         }
         self.generation += 1;
@@ -129,14 +125,13 @@ impl Viewport {
         self.scene = scene;
         self.lod = None;
         self.generation += 1;
-        self.last_event = Some(event);
-        self.last.insert(report)
+        &self.last.insert((event, report)).1
     }
 
     /// The last decimate event, while the scene shown is its result (the level-of-detail
     /// slider forgets it).
     pub fn last_event(&self) -> Option<DecimateEvent> {
-        self.last_event
+        self.last.as_ref().map(|(event, _)| *event)
     }
 
     /// The algorithm and border setting decimate events use, in words.
@@ -181,7 +176,7 @@ impl Viewport {
                 ", level of detail (qem, built in {:.3} s)",
                 lod.build_seconds
             ));
-        } else if let Some(r) = &self.last {
+        } else if let Some((_, r)) = &self.last {
             let by = match self.params.algorithm {
                 Algorithm::Schroeder => "schroeder",
                 Algorithm::Qem => "qem",
