@@ -360,10 +360,18 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
     if d.owns(w) && d.is_fixed(w) {
         return Attempt::Skipped;
     }
+    // An edge off the outline and off seams is planned from its ends alone: one an end of
+    // which took a collapse in this pass and now costs more than the threshold waits
+    // without its fans being read (on the dragon kept at 10 %, 96k of 683k tries).
+    let early = (d.owns(w) && d.twins.is_empty() && plans_without_fans(d.kind(v), d.kind(w)))
+        .then(|| d.plan(v.min(w), v.max(w)));
+    if early.is_some_and(|p| p.is_some_and(|p| stored(p.cost) > bounds.threshold)) {
+        return Attempt::Skipped;
+    }
     if !d.gather(v, w) || !gather_seam_sides(d, v, w) {
         return Attempt::Elsewhere;
     }
-    let plan = d.plan(v.min(w), v.max(w));
+    let plan = early.unwrap_or_else(|| d.plan(v.min(w), v.max(w)));
     // Asked before anything is decided: a collapse this part cannot judge goes elsewhere.
     let Some(welded) = plan.map_or(Some(true), |p| seam_stays_manifold(d, &p)) else {
         return Attempt::Elsewhere;
@@ -426,6 +434,12 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
         }
     }
     Attempt::Collapsed(1 + usize::from(plan.twin.is_some()), plan.error2)
+}
+
+/// Whether `Part::plan` decides an edge between vertices of these kinds without counting
+/// the edge's triangles: when one end is interior (the edge is inside the surface).
+fn plans_without_fans(a: Kind, b: Kind) -> bool {
+    a == Kind::Interior || b == Kind::Interior
 }
 
 /// For a collapse of `v`–`w` near a texture seam, reads the other side's fans (both ends
