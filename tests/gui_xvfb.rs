@@ -248,6 +248,59 @@ fn changed_pixels(
     changed
 }
 
+/// The mean x of the pixels of the 1024-wide RGB screenshot `shot` in rows `ys` that are
+/// not the background (the commonest colour there): where the model is drawn.
+fn drawn_centre_x(shot: &[u8], ys: std::ops::Range<usize>) -> f64 {
+    let pixel = |x: usize, y: usize| {
+        let i = (y * 1024 + x) * 3;
+        shot.get(i..i + 3).map(|p| [p[0], p[1], p[2]])
+    };
+    let mut counts = std::collections::HashMap::new();
+    for y in ys.clone() {
+        for x in 0..1024 {
+            if let Some(p) = pixel(x, y) {
+                *counts.entry(p).or_insert(0usize) += 1;
+            }
+        }
+    }
+    let background = counts.into_iter().max_by_key(|&(_, n)| n).map(|(p, _)| p);
+    let (mut sum, mut n) = (0.0, 0usize);
+    for y in ys {
+        for x in 0..1024 {
+            if let (Some(p), Some(b)) = (pixel(x, y), background) {
+                if (0..3).any(|c| p[c].abs_diff(b[c]) > 16) {
+                    sum += x as f64;
+                    n += 1;
+                }
+            }
+        }
+    }
+    assert!(n > 100, "nothing drawn in the screenshot ({n} pixels)");
+    sum / n as f64
+}
+
+/// Drags the pointer in window `wid` from `from` to `to` in small steps between the `press`
+/// and `release` xdotool commands, then lets a frame land.
+fn drag_with(wid: &str, press: &[&str], release: &[&str], from: (i32, i32), to: (i32, i32)) {
+    let at = |(x, y): (i32, i32)| {
+        run(
+            "xdotool",
+            &["mousemove", "--window", wid, &x.to_string(), &y.to_string()],
+        )
+    };
+    at(from);
+    std::thread::sleep(Duration::from_millis(300));
+    run("xdotool", press);
+    std::thread::sleep(Duration::from_millis(200));
+    for step in 1..=10 {
+        let between = |a: i32, b: i32| a + (b - a) * step / 10;
+        at((between(from.0, to.0), between(from.1, to.1)));
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    run("xdotool", release);
+    std::thread::sleep(Duration::from_millis(800));
+}
+
 /// Starts the viewer on `cube.wrl` in `dir`, its stderr going to `log`.
 fn spawn_viewer(dir: &Path, log: &Path) -> Viewer {
     let file = std::fs::File::create(log)
@@ -387,6 +440,31 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     assert!(
         changed > 500,
         "the edges did not appear: {changed} pixels changed in the middle of the window"
+    );
+
+    // The middle button drags the view across the window: the wireframe follows the pointer
+    // 200 px to the right (the point under it at the model centre's depth exactly; the cube's
+    // nearer front faces, most of its lines, a little more). Shift + left drag (for a
+    // touchpad: no middle button) brings it back where it was. Rows between the
+    // level-of-detail slider and the status line.
+    let centre = |shot: &[u8]| drawn_centre_x(shot, 84..640);
+    let start = centre(&wire);
+    let middle = (["mousedown", "2"], ["mouseup", "2"]);
+    drag_with(&wid, &middle.0, &middle.1, (400, 380), (600, 380));
+    let panned = centre(&screenshot(&dir.join("panned.rgb")));
+    assert!(
+        (170.0..260.0).contains(&(panned - start)),
+        "a 200 px middle drag moved the model from x {start:.0} to {panned:.0}"
+    );
+    run("xdotool", &["keydown", "Shift_L"]);
+    std::thread::sleep(Duration::from_millis(300));
+    let left = (["mousedown", "1"], ["mouseup", "1"]);
+    drag_with(&wid, &left.0, &left.1, (600, 380), (400, 380));
+    run("xdotool", &["keyup", "Shift_L"]);
+    let back = centre(&screenshot(&dir.join("panned-back.rgb")));
+    assert!(
+        (back - start).abs() < 3.0,
+        "Shift + left drag back: the model is at x {back:.0}, it started at {start:.0}"
     );
 
     // q quits. xdotool sends the key's press and release as two events; a viewer that quits

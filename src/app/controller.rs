@@ -181,6 +181,15 @@ impl ViewportController {
         self.current_mut().camera.drag(delta);
     }
 
+    /// Middle-drag (or Shift + left-drag) by `delta` pixels in the current viewport: pans.
+    pub fn pan(&mut self, delta: Vec2) {
+        let Some(rect) = self.rects().get(self.current).copied() else {
+            return;
+        };
+        let (height, aspect) = (rect.height as f32, rect.aspect());
+        self.current_mut().camera.pan(delta, height, aspect);
+    }
+
     /// Wheel steps in the current viewport.
     pub fn wheel(&mut self, steps: f32) {
         self.current_mut().camera.wheel(steps);
@@ -339,6 +348,21 @@ mod tests {
             assert_eq!(get(&c.viewports()[1].options), !before, "key {k}");
             assert_eq!(get(&c.viewports()[0].options), before, "key {k} leaked");
         }
+    }
+
+    #[test]
+    fn panning_slides_the_current_viewport_only_and_reset_undoes_it() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        // Two viewports side by side in 800 × 600: the pointer over the right one.
+        c.pointer_at(600.0, 300.0);
+        assert_eq!(c.current(), 1);
+        let framed = c.viewports()[1].camera.clone();
+        c.pan(Vec2::new(40.0, -25.0));
+        assert_ne!(c.viewports()[1].camera, framed, "the right viewport pans");
+        assert_eq!(c.viewports()[0].camera, framed, "the left one stays");
+        key(&mut c, Key::Char('r'));
+        assert_eq!(c.viewports()[1].camera, framed);
     }
 
     #[test]

@@ -67,6 +67,10 @@ struct Glut<'a, C: Callbacks> {
     callbacks: &'a mut C,
     window: Option<Arc<Window>>,
     cursor: PhysicalPosition<f64>,
+    /// Shift is held.
+    shift: bool,
+    /// The left button went down with Shift: it is reported as the middle one until it is up.
+    left_is_middle: bool,
     error: Option<String>,
 }
 
@@ -86,6 +90,8 @@ pub fn main_loop<C: Callbacks>(title: &str, callbacks: &mut C) -> Result<(), Str
         callbacks,
         window: None,
         cursor: PhysicalPosition::new(0.0, 0.0),
+        shift: false,
+        left_is_middle: false,
         error: None,
     };
     event_loop
@@ -180,15 +186,29 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
                 self.cursor = position;
                 self.callbacks.motion(position.x, position.y);
             }
+            WindowEvent::ModifiersChanged(modifiers) => {
+                self.shift = modifiers.state().shift_key();
+            }
             WindowEvent::MouseInput { state, button, .. } => {
+                let pressed = state == ElementState::Pressed;
                 let button = match button {
-                    winit::event::MouseButton::Left => Some(Button::Left),
+                    // Shift + left stands for the middle button (panning) where there is
+                    // none, as on a touchpad; its release goes with its press.
+                    winit::event::MouseButton::Left => {
+                        if pressed {
+                            self.left_is_middle = self.shift;
+                        }
+                        Some(if self.left_is_middle {
+                            Button::Middle
+                        } else {
+                            Button::Left
+                        })
+                    }
                     winit::event::MouseButton::Right => Some(Button::Right),
                     winit::event::MouseButton::Middle => Some(Button::Middle),
                     _ => None,
                 };
                 if let Some(b) = button {
-                    let pressed = state == ElementState::Pressed;
                     flow = self
                         .callbacks
                         .mouse(b, pressed, self.cursor.x, self.cursor.y);

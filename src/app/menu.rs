@@ -243,7 +243,8 @@ pub fn key_help() -> String {
     walk(&menu(), &mut text);
     text.push_str(
         "  Esc   Quit\n\
-         mouse: left drag turns the model (looks around in eye control), wheel zooms (walks)\n\
+         mouse: left drag turns the model (looks around in eye control), wheel zooms (walks),\n\
+         \x20      middle or Shift + left drag pans (steps sideways)\n\
          eye control: arrows and W/S walk\n",
     );
     text

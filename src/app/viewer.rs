@@ -48,6 +48,8 @@ pub struct Viewer {
     resized: bool,
     pointer: (f64, f64),
     dragging: bool,
+    /// The middle button (or Shift + left) is down: moves pan.
+    panning: bool,
     popup_at: Option<egui::Pos2>,
     popup_just_opened: bool,
     field: Option<String>,
@@ -66,6 +68,7 @@ impl Viewer {
             resized: false,
             pointer: (0.0, 0.0),
             dragging: false,
+            panning: false,
             popup_at: None,
             popup_just_opened: false,
             field: None,
@@ -399,6 +402,12 @@ impl Callbacks for Viewer {
                 self.dragging = true;
             }
             (Button::Left, false) => self.dragging = false,
+            (Button::Middle, true) => {
+                self.popup_at = None;
+                self.controller.pointer_at(x, y);
+                self.panning = true;
+            }
+            (Button::Middle, false) => self.panning = false,
             _ => {}
         }
         Flow::Continue
@@ -409,6 +418,8 @@ impl Callbacks for Viewer {
         self.pointer = (x, y);
         if self.dragging {
             self.controller.drag(delta);
+        } else if self.panning {
+            self.controller.pan(delta);
         } else if self.popup_at.is_none() {
             self.controller.pointer_at(x, y);
         }

@@ -1,6 +1,8 @@
 //! `Camera`: the two navigation modes of the original viewer — model control (a trackball that
 //! turns the model about the centre of its bounding box) and eye control (a first-person eye
-//! that looks around and walks) — plus framing on a bounding box and the projection.
+//! that looks around and walks) — plus panning (the view slides across the screen, so that a
+//! detail can be brought to the middle and zoomed into), framing on a bounding box and the
+//! projection.
 //!
 //! The model's orientation is kept in both modes, so switching mode never jumps: eye control
 //! starts where model control's eye is, looking at the centre.
@@ -61,6 +63,9 @@ pub struct Camera {
     orientation: Quat,
     /// Eye distance from the centre in model control.
     distance: f32,
+    /// Model control: how far the view slid across the screen (world units, x right, y up,
+    /// at the centre's depth); the eye looks at `centre + pan` and zooms towards it.
+    pan: Vec2,
     /// Eye control: position and look angles, relative to the model-control frame.
     eye: Vec3,
     yaw: f32,
@@ -76,6 +81,7 @@ impl Camera {
             bounds,
             orientation: Quat::from_rotation_x(DEFAULT_PITCH) * Quat::from_rotation_y(DEFAULT_YAW),
             distance,
+            pan: Vec2::ZERO,
             eye: bounds.centre() + Vec3::Z * distance,
             yaw: 0.0,
             pitch: 0.0,
@@ -92,7 +98,7 @@ impl Camera {
     /// Switches between model and eye control; eye control starts at model control's eye.
     pub fn set_navigation(&mut self, navigation: Navigation) {
         if navigation == Navigation::Eye && self.navigation == Navigation::Model {
-            self.eye = self.bounds.centre() + Vec3::Z * self.distance;
+            self.eye = self.target() + Vec3::Z * self.distance;
             self.yaw = 0.0;
             self.pitch = 0.0;
         }
@@ -112,6 +118,39 @@ impl Camera {
                 self.pitch = (self.pitch - delta.y * TURN_PER_PIXEL).clamp(-1.5, 1.5);
             }
         }
+    }
+
+    /// A pan by `delta` pixels in a viewport `height` pixels tall of this aspect ratio
+    /// (width / height): the model follows the pointer, the point under it at the centre's
+    /// depth staying under it (model control); in eye control the eye steps sideways and up
+    /// as far.
+    pub fn pan(&mut self, delta: Vec2, height: f32, aspect: f32) {
+        if !(height.is_finite() && height >= 1.0) {
+            return;
+        }
+        let depth = match self.navigation {
+            Navigation::Model => self.distance,
+            Navigation::Eye => (self.eye - self.bounds.centre())
+                .length()
+                .max(self.bounds.radius()),
+        };
+        // World units per pixel at that depth: the view's height there over its pixels.
+        let per_pixel = 2.0 * depth * (fov_y(aspect) * 0.5).tan() / height;
+        let slide = Vec2::new(-delta.x, delta.y) * per_pixel;
+        match self.navigation {
+            Navigation::Model => self.pan += slide,
+            Navigation::Eye => {
+                let dir = self.look_direction();
+                let side = dir.cross(Vec3::Y).normalize_or_zero();
+                let up = side.cross(dir);
+                self.eye += side * slide.x + up * slide.y;
+            }
+        }
+    }
+
+    /// Where model control's eye looks: the box centre, slid by the pan.
+    fn target(&self) -> Vec3 {
+        self.bounds.centre() + self.pan.extend(0.0)
     }
 
     /// Wheel `steps` (positive: towards the model): zooms, or walks forward.
@@ -154,7 +193,9 @@ impl Camera {
             * Mat4::from_quat(self.orientation)
             * Mat4::from_translation(-centre);
         let eye_view = match self.navigation {
-            Navigation::Model => look_to_mat4(centre + Vec3::Z * self.distance, -Vec3::Z, Vec3::Y),
+            Navigation::Model => {
+                look_to_mat4(self.target() + Vec3::Z * self.distance, -Vec3::Z, Vec3::Y)
+            }
             Navigation::Eye => look_to_mat4(self.eye, self.look_direction(), Vec3::Y),
         };
         eye_view * turn_model
@@ -173,19 +214,27 @@ impl Camera {
                 (self.eye - self.bounds.centre()).length() + r * 2.0,
             ),
         };
-        let aspect = if aspect.is_finite() && aspect > 0.0 {
-            aspect
-        } else {
-            1.0
-        };
-        // A portrait viewport keeps the field of view across its narrow side, so the framed
-        // model fits in both directions.
-        let fov_y = if aspect < 1.0 {
-            2.0 * ((FOV_Y * 0.5).tan() / aspect).atan()
-        } else {
-            FOV_Y
-        };
-        perspective(fov_y, aspect, near, far.max(near * 2.0))
+        perspective(fov_y(aspect), usable(aspect), near, far.max(near * 2.0))
+    }
+}
+
+/// An aspect ratio fit to project with: 1 when it is not a positive number.
+fn usable(aspect: f32) -> f32 {
+    if aspect.is_finite() && aspect > 0.0 {
+        aspect
+    } else {
+        1.0
+    }
+}
+
+/// The vertical field of view of a viewport of this aspect ratio: a portrait one keeps the
+/// field of view across its narrow side, so the framed model fits in both directions.
+fn fov_y(aspect: f32) -> f32 {
+    let aspect = usable(aspect);
+    if aspect < 1.0 {
+        2.0 * ((FOV_Y * 0.5).tan() / aspect).atan()
+    } else {
+        FOV_Y
     }
 }
 
@@ -253,6 +302,62 @@ mod tests {
         assert!(near.x.abs() > project(&before, Vec3::X).x.abs());
         c.drag(Vec2::new(40.0, 10.0));
         c.reset();
+        assert_eq!(c, before);
+    }
+
+    #[test]
+    fn panning_keeps_the_grabbed_point_under_the_pointer_and_zooms_towards_it() {
+        // An 800 × 600 viewport and a 300 × 900 one (portrait: a wider field of view).
+        for (width, height) in [(800.0f32, 600.0f32), (300.0, 900.0)] {
+            let aspect = width / height;
+            let mut c = Camera::framing(unit_box());
+            c.drag(Vec2::new(30.0, -20.0));
+            let to_pixels = |c: &Camera, p: Vec3| {
+                let ndc = project_with_aspect(c, p, aspect);
+                Vec2::new((ndc.x + 1.0) * 0.5 * width, (ndc.y + 1.0) * 0.5 * height)
+            };
+            let before = to_pixels(&c, Vec3::ZERO);
+            // Right by 120 px and down by 45 px (window y grows downwards).
+            c.pan(Vec2::new(120.0, 45.0), height, aspect);
+            let after = to_pixels(&c, Vec3::ZERO);
+            // Vulkan's clip y points down the screen, as window pixels do.
+            let moved = after - before;
+            assert!(
+                (moved - Vec2::new(120.0, 45.0)).length() < 0.5,
+                "{width}×{height}: the centre moved by {moved:?}"
+            );
+            // Zooming in keeps the panned-to point where it is on screen and enlarges about it.
+            // The point at the middle of the view, at the centre's depth (the model is turned).
+            let target = c.view().inverse().transform_point3(-Vec3::Z * c.distance);
+            assert!((to_pixels(&c, target) - Vec2::new(width, height) * 0.5).length() < 0.5);
+            let at = to_pixels(&c, target);
+            let beside = to_pixels(&c, target + Vec3::X * 0.1);
+            c.wheel(5.0);
+            assert!((to_pixels(&c, target) - at).length() < 0.5);
+            assert!((to_pixels(&c, target + Vec3::X * 0.1) - at).length() > (beside - at).length());
+            // Reset brings the framed view back.
+            c.reset();
+            assert_eq!(c.pan, Vec2::ZERO);
+            assert!(project(&c, Vec3::ZERO).truncate().length() < 1e-4);
+        }
+    }
+
+    #[test]
+    fn panning_in_eye_control_steps_sideways_without_turning() {
+        let mut c = Camera::framing(unit_box());
+        c.set_navigation(Navigation::Eye);
+        let (eye, look) = (c.eye, c.look_direction());
+        c.pan(Vec2::new(-50.0, 0.0), 600.0, 1.0);
+        let step = c.eye - eye;
+        assert!(step.x > 0.0, "dragging left moves the eye right: {step:?}");
+        assert!(
+            step.dot(look).abs() < 1e-6 && step.y.abs() < 1e-6,
+            "{step:?}"
+        );
+        assert_eq!(c.look_direction(), look);
+        // A degenerate viewport pans nothing.
+        let before = c.clone();
+        c.pan(Vec2::new(10.0, 10.0), 0.0, 1.0);
         assert_eq!(c, before);
     }
 
