@@ -63,6 +63,16 @@ pub(super) fn kinds_and_quadrics(
     positions: &[Vec3],
     constraints: Constraints<'_>,
 ) -> (Vec<Kind>, Vec<Quadric>) {
+    // Each triangle's plane once (a triangle is in three rings).
+    let planes: Vec<FacePlane> = conn
+        .triangles()
+        .par_iter()
+        .with_min_len(PER_TASK)
+        .map(|tri| {
+            let [a, b, c] = tri.map(|w| positions[w as usize].as_dvec3());
+            FacePlane::of(a, b, c)
+        })
+        .collect();
     (0..positions.len() as u32)
         .into_par_iter()
         .with_min_len(PER_TASK)
@@ -77,7 +87,7 @@ pub(super) fn kinds_and_quadrics(
                 let quadric = if kind == Kind::Fixed {
                     Quadric::default()
                 } else {
-                    ring_quadric(conn, positions, v, ring, kind, constraints, faces)
+                    ring_quadric(positions, &planes, v, ring, kind, constraints, faces)
                 };
                 (kind, quadric)
             },
@@ -88,10 +98,48 @@ pub(super) fn kinds_and_quadrics(
 /// A ring triangle's unit normal and its plane weighted by its area (`None`: no area).
 type Face = Option<(DVec3, Quadric)>;
 
-/// The planes `v` stands for, from its ring; `faces` is scratch.
+/// A triangle's unit normal, plane offset and area (zero area: no plane).
+#[derive(Debug, Clone, Copy)]
+struct FacePlane {
+    normal: DVec3,
+    d: f64,
+    area: f64,
+}
+
+impl FacePlane {
+    fn of(a: DVec3, b: DVec3, c: DVec3) -> Self {
+        let cross = (b - a).cross(c - a);
+        let len = cross.length();
+        if len <= 0.0 {
+            return Self {
+                normal: DVec3::ZERO,
+                d: 0.0,
+                area: 0.0,
+            };
+        }
+        let normal = cross / len;
+        Self {
+            normal,
+            d: -normal.dot(a),
+            area: 0.5 * len,
+        }
+    }
+
+    /// Its unit normal and its plane weighted by its area.
+    fn face(&self) -> Face {
+        (self.area > 0.0).then(|| {
+            let mut q = Quadric::plane(self.normal, self.d, self.area);
+            q.area = self.area;
+            (self.normal, q)
+        })
+    }
+}
+
+/// The planes `v` stands for, from its ring and the triangles' `planes`; `faces` is
+/// scratch.
 fn ring_quadric(
-    conn: &Connectivity,
     positions: &[Vec3],
+    planes: &[FacePlane],
     v: u32,
     ring: &Ring,
     kind: Kind,
@@ -100,10 +148,7 @@ fn ring_quadric(
 ) -> Quadric {
     let at = |w: u32| positions[w as usize].as_dvec3();
     faces.clear();
-    faces.extend(ring.triangles.iter().map(|&t| {
-        let [a, b, c] = conn.triangle(t).map(at);
-        face_plane(a, b, c)
-    }));
+    faces.extend(ring.triangles.iter().map(|&t| planes[t as usize].face()));
     let mut sum = Quadric::default();
     for (_, face) in faces.iter().flatten() {
         sum.add(face);
@@ -158,20 +203,6 @@ fn ring_quadric(
         }
     }
     sum
-}
-
-/// The triangle `a b c`'s unit normal and its plane weighted by its area.
-fn face_plane(a: DVec3, b: DVec3, c: DVec3) -> Face {
-    let cross = (b - a).cross(c - a);
-    let len = cross.length();
-    if len <= 0.0 {
-        return None;
-    }
-    let normal = cross / len;
-    let area = 0.5 * len;
-    let mut q = Quadric::plane(normal, -normal.dot(a), area);
-    q.area = area;
-    Some((normal, q))
 }
 
 #[cfg(test)]
