@@ -98,7 +98,7 @@ pub(super) fn kinds_and_quadrics(
 /// A ring triangle's unit normal and its plane weighted by its area (`None`: no area).
 type Face = Option<(DVec3, Quadric)>;
 
-/// A triangle's unit normal, plane offset and area (zero area: no plane).
+/// A triangle's unit normal, plane offset and area (a zero normal: no area, no plane).
 #[derive(Debug, Clone, Copy)]
 struct FacePlane {
     normal: DVec3,
@@ -127,7 +127,7 @@ impl FacePlane {
 
     /// Its unit normal and its plane weighted by its area.
     fn face(&self) -> Face {
-        (self.area > 0.0).then(|| {
+        (self.normal != DVec3::ZERO).then(|| {
             let mut q = Quadric::plane(self.normal, self.d, self.area);
             q.area = self.area;
             (self.normal, q)
