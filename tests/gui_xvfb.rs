@@ -405,13 +405,13 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
         changed * 10 > 360 * 40,
         "the level-of-detail slider did not appear: {changed} pixels changed"
     );
-    run("xdotool", &["mousemove", "--window", &wid, "100", "40"]);
-    std::thread::sleep(Duration::from_millis(300));
-    run("xdotool", &["mousedown", "1"]);
-    std::thread::sleep(Duration::from_millis(300));
-    run("xdotool", &["mousemove", "--window", &wid, "120", "40"]);
-    std::thread::sleep(Duration::from_millis(200));
-    run("xdotool", &["mouseup", "1"]);
+    drag_with(
+        &wid,
+        &["mousedown", "1"],
+        &["mouseup", "1"],
+        (100, 40),
+        (120, 40),
+    );
     // Let the geomorph end (0.3 s) before saving.
     std::thread::sleep(Duration::from_secs(1));
     let _ = std::fs::remove_file(&out);
