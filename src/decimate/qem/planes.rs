@@ -76,27 +76,21 @@ pub(super) fn kinds_and_quadrics(
     (0..positions.len() as u32)
         .into_par_iter()
         .with_min_len(PER_TASK)
-        .map_init(
-            || (Ring::default(), Vec::new()),
-            |(ring, faces), v| {
-                let kind = match conn.ring(v, ring) {
-                    RingShape::Closed => Kind::Interior,
-                    RingShape::Open => Kind::Boundary,
-                    RingShape::Isolated | RingShape::Complex => Kind::Fixed,
-                };
-                let quadric = if kind == Kind::Fixed {
-                    Quadric::default()
-                } else {
-                    ring_quadric(positions, &planes, v, ring, kind, constraints, faces)
-                };
-                (kind, quadric)
-            },
-        )
+        .map_init(Ring::default, |ring, v| {
+            let kind = match conn.ring(v, ring) {
+                RingShape::Closed => Kind::Interior,
+                RingShape::Open => Kind::Boundary,
+                RingShape::Isolated | RingShape::Complex => Kind::Fixed,
+            };
+            let quadric = if kind == Kind::Fixed {
+                Quadric::default()
+            } else {
+                ring_quadric(positions, &planes, v, ring, kind, constraints)
+            };
+            (kind, quadric)
+        })
         .unzip()
 }
-
-/// A ring triangle's unit normal and its plane weighted by its area (`None`: no area).
-type Face = Option<(DVec3, Quadric)>;
 
 /// A triangle's unit normal, plane offset and area (a zero normal: no area, no plane).
 #[derive(Debug, Clone, Copy)]
@@ -125,18 +119,22 @@ impl FacePlane {
         }
     }
 
-    /// Its unit normal and its plane weighted by its area.
-    fn face(&self) -> Face {
-        (self.normal != DVec3::ZERO).then(|| {
-            let mut q = Quadric::plane(self.normal, self.d, self.area);
+    /// Its unit normal, when it has a plane.
+    fn normal(&self) -> Option<DVec3> {
+        (self.normal != DVec3::ZERO).then_some(self.normal)
+    }
+
+    /// Its plane weighted by its area, with the area, when it has a plane.
+    fn quadric(&self) -> Option<Quadric> {
+        self.normal().map(|n| {
+            let mut q = Quadric::plane(n, self.d, self.area);
             q.area = self.area;
-            (self.normal, q)
+            q
         })
     }
 }
 
-/// The planes `v` stands for, from its ring and the triangles' `planes`; `faces` is
-/// scratch.
+/// The planes `v` stands for, from its ring and the triangles' `planes`.
 fn ring_quadric(
     positions: &[Vec3],
     planes: &[FacePlane],
@@ -144,14 +142,17 @@ fn ring_quadric(
     ring: &Ring,
     kind: Kind,
     constraints: Constraints<'_>,
-    faces: &mut Vec<Face>,
 ) -> Quadric {
     let at = |w: u32| positions[w as usize].as_dvec3();
-    faces.clear();
-    faces.extend(ring.triangles.iter().map(|&t| planes[t as usize].face()));
+    // Ring triangle `i`'s normal, when it has a plane.
+    let normal = |i: usize| planes[ring.triangles[i] as usize].normal();
     let mut sum = Quadric::default();
-    for (_, face) in faces.iter().flatten() {
-        sum.add(face);
+    for q in ring
+        .triangles
+        .iter()
+        .filter_map(|&t| planes[t as usize].quadric())
+    {
+        sum.add(&q);
     }
     let k = ring.triangles.len();
     let closed = kind == Kind::Interior;
@@ -164,21 +165,25 @@ fn ring_quadric(
         let after = (j < k).then_some(j);
         // The edge as its triangle `i` runs it: v → x in triangle j, x → v in triangle j - 1.
         let run = |i: usize| if i == j { (v, x) } else { (x, v) };
-        let plane = |(u, w): (u32, u32), n: DVec3, weight: f64| {
+        let mut constrain = |(u, w): (u32, u32), n: DVec3, weight: f64| {
             let (pu, pw) = (at(u), at(w));
             let edge = pw - pu;
             let side = edge.cross(n).normalize_or_zero();
-            Quadric::plane(side, -side.dot(pu), weight * edge.length_squared())
+            sum.add(&Quadric::plane(
+                side,
+                -side.dot(pu),
+                weight * edge.length_squared(),
+            ));
         };
         match (before, after) {
             (Some(i), None) | (None, Some(i)) => {
-                if let Some((n, _)) = faces[i] {
+                if let Some(n) = normal(i) {
                     let weight = if constraints.on_seam(v) && constraints.on_seam(x) {
                         SEAM_WEIGHT
                     } else {
                         CONSTRAINT_WEIGHT
                     };
-                    sum.add(&plane(run(i), n, weight));
+                    constrain(run(i), n, weight);
                 }
             }
             (Some(a), Some(b)) => {
@@ -188,15 +193,15 @@ fn ring_quadric(
                 } else {
                     (b, a)
                 };
-                let Some((n, _)) = faces[i] else {
+                let Some(n) = normal(i) else {
                     continue;
                 };
-                let n2 = faces[o].map_or(DVec3::ZERO, |(n2, _)| n2);
+                let n2 = normal(o).unwrap_or(DVec3::ZERO);
                 let cos = n.dot(n2);
                 if cos < constraints.cos_feature {
                     let weight = FEATURE_WEIGHT * (1.0 - cos).powi(6);
-                    sum.add(&plane(run(i), n, weight));
-                    sum.add(&plane(run(i), n2, weight));
+                    constrain(run(i), n, weight);
+                    constrain(run(i), n2, weight);
                 }
             }
             (None, None) => {}
