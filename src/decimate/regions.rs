@@ -11,7 +11,9 @@ use super::candidates::Candidate;
 
 /// Regions a pass is cut into when it runs on all cores: a fixed number, so that the result
 /// is the same on any machine. More regions balance the cores better but put more
-/// candidates on borders.
+/// candidates on borders. Regions small enough for the cache do not pay off: on the dragon
+/// kept at 10 % by qem, 32 or 64 regions ran no faster on 2 cores (5 alternating runs),
+/// for a mean error of 9.166e-6 and 9.159e-6 against 9.154e-6.
 const REGIONS: usize = 16;
 
 /// The border candidates' second round runs in this many times fewer regions (at least
