@@ -39,19 +39,18 @@ use crate::decimate::schroeder::{Limits, Outcome};
 /// 9.16e-6 / 2.39e-4, 1.9 s; 4: 9.16e-6 / 2.39e-4, 1.7 s; 3: 9.15e-6 / 3.28e-4, 1.6 s;
 /// 2: 9.18e-6 / 3.14e-4, 1.4 s; 1 (one sort, greedy with stale costs): 1.17e-5, 1.3 s.
 /// Larger passes are cheaper because a vertex kept several times in a pass is re-planned
-/// once. What they lose is the cheap collapses that follow one around its kept vertex: those
-/// join the order only when it is re-planned, at the pass's end. Holding a pass of all
-/// candidates closer to its order does not bring them back: letting a candidate go only
-/// while its fresh cost stays under that of the candidate a tenth, a twentieth or a
-/// fiftieth of the pass ahead of it gave 1.14e-5, 1.06e-5 and 1.01e-5, in 1.15 to 1.4
-/// times the time of the plain pass of all (medians of 3 runs). Most of that loss is a
-/// vertex kept earlier in the pass collapsing again at whatever its fresh cost (a pass of
-/// all has no threshold): locking every edge of a kept vertex for the rest of the pass, as
-/// meshoptimizer's passes lock neighbourhoods, gave 9.46e-6, but the many locked tries made
-/// it 0.94 times the time of share 3, not 0.8 (share 3 locked: 9.13e-6, as fast as now).
-/// Bigger passes only near the end (up to twice what is still needed, once under twice
-/// the target) were 4-5 % faster at 9.15e-6; starting them at 2.5 or 3 times the target
-/// gave 1.09e-5 or 1.06e-5 (one pass took every candidate), too fragile to adopt.
+/// once. What they lose is mostly a vertex kept earlier in the pass collapsing again at
+/// whatever its fresh cost (a pass of all candidates has no threshold): locking every edge
+/// of a kept vertex for the rest of the pass, as meshoptimizer's passes lock
+/// neighbourhoods, gave 9.46e-6, but the many locked tries made it 0.94 times the time of
+/// share 3, not 0.8 (share 3 locked: 9.13e-6, as fast as now). Holding a pass of all
+/// candidates closer to its order costs more than it brings back: letting a candidate go
+/// only while its fresh cost stays under that of the candidate a tenth, a twentieth or a
+/// fiftieth of the pass ahead of it gave 1.14e-5, 1.06e-5 and 1.01e-5, in 1.15 to 1.4 times
+/// the time of the plain pass of all (medians of 3 runs). Bigger passes only near the end
+/// (up to twice what is still needed, once under twice the target) were 4-5 % faster at
+/// 9.15e-6; starting them at 2.5 or 3 times the target gave 1.09e-5 or 1.06e-5 (one pass
+/// took every candidate), too fragile to adopt.
 const PASS_SHARE: usize = 3;
 
 /// Candidates whose data is requested from memory ahead of their turn.
