@@ -1,13 +1,10 @@
 //! The binaries' global allocator: the system's, asking the kernel to back large blocks
 //! (the mesh arrays: tens of MB for a million-triangle scan) with transparent huge pages.
 //!
-//! Decimation and metro visit those arrays in a data-dependent order, so with 4 KiB pages
-//! nearly every cache miss also misses the TLB, and first touching a block costs a page
-//! fault per 4 KiB. On the dragon (871k triangles, qem to 10 %) building the incident
-//! lists took 22–32 ms with 4 KiB pages and 11–15 ms with huge ones, the whole decimation
-//! 0.85–0.92 s and 0.76–0.88 s. Linux's default `madvise` mode gives huge pages only to
-//! memory that asks, hence the advice; elsewhere, or with huge pages off, the advice is a
-//! no-op and allocation is the system's.
+//! Decimation and metro visit those arrays in a data-dependent order: with 4 KiB pages
+//! nearly every cache miss also misses the TLB (docs/design.md#huge-pages). Linux's default
+//! `madvise` mode gives huge pages only to memory that asks, hence the advice; elsewhere it
+//! is a no-op and allocation is the system's.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 

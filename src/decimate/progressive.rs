@@ -415,8 +415,8 @@ struct Collapse {
     deleted_end: u32,
 }
 
-/// Filled by the collapse loop, one [`Recorder::collapse`] per edge collapse. Flat arrays,
-/// no allocation per collapse: on the dragon (392k collapses) this is about 40 MiB.
+/// Filled by the collapse loop, one [`Recorder::collapse`] per edge collapse: flat arrays,
+/// no allocation per collapse (docs/design.md#progressive).
 #[derive(Debug, Clone, Default)]
 pub struct Recorder {
     collapses: Vec<Collapse>,

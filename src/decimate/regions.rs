@@ -10,18 +10,13 @@
 use super::candidates::Candidate;
 
 /// Regions a pass is cut into when it runs on all cores: a fixed number, so that the result
-/// is the same on any machine. More regions balance the cores better but put more
-/// candidates on borders. Regions small enough for the cache do not pay off: on the dragon
-/// kept at 10 % by qem, 32 or 64 regions ran no faster on 2 cores (5 alternating runs),
-/// for a mean error of 9.166e-6 and 9.159e-6 against 9.154e-6.
+/// is the same on any machine; more balance the cores but put more candidates on borders
+/// (docs/design.md#regions).
 const REGIONS: usize = 16;
 
 /// The border candidates' second round runs in this many times fewer regions (at least
-/// two), shifted by half a region. Borders of ranges of a Morton order lie on the same
-/// octree planes however the ranges are shifted, so fewer, larger regions take more of
-/// them in: on the dragon kept at 10 % by qem, of 87.5k border candidates, 56.6k were still
-/// on a border with 16 shifted regions, 34.5k with 4 and 23.3k with 2 (and the whole run
-/// was about 7 % faster).
+/// two), shifted by half a region: Morton-range borders lie on the same octree planes however
+/// shifted, so only larger regions take many of them in (docs/design.md#regions).
 const BORDER_MERGE: usize = 8;
 
 /// Fewer vertices per region than this and the passes run on one core.
@@ -29,8 +24,7 @@ const MIN_REGION: usize = 4096;
 
 /// A pass in regions goes in this many rounds of its cheapest candidates, each round's
 /// border candidates on the whole mesh before the next round: a border candidate then waits
-/// for at most a round's more expensive ones. On the dragon kept at 10 % by qem, one round
-/// gave a mean error of 9.18e-6, four 9.155e-6 (as on one core).
+/// for at most a round's more expensive ones (docs/design.md#regions).
 const ROUNDS: usize = 4;
 
 /// Fewer candidates than this are not worth a round in regions.

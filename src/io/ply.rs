@@ -176,8 +176,7 @@ impl<'a> Body<'a> {
         let v = if self.format == Format::Ascii {
             let t = self.token(what)?;
             // Nearly every index and count is plain decimal digits: read them without a
-            // float parse (nine digits cannot overflow). On the dragon's 871k faces that
-            // is three values in four of the body.
+            // float parse (nine digits cannot overflow).
             if t.len() <= 9 && t.iter().all(u8::is_ascii_digit) {
                 return Ok(t.iter().fold(0, |n, &d| 10 * n + u32::from(d - b'0')));
             }

@@ -39,9 +39,7 @@ fn cell(p: Vec3, inv: f32) -> [i64; 3] {
 /// Groups bit-equal vertices (position and texture coordinates, as `key_exact`): returns
 /// each vertex's group, numbered in the order of the groups' first vertices, and those first
 /// vertices. The keys are sorted with their indices on all cores, so that each run of equal
-/// keys starts at its group's first vertex. On 437k distinct vertices (the Stanford dragon's
-/// count) that took 25–31 ms on one core and 11–22 ms on two, against 64–82 ms for the
-/// `HashMap` (SipHash) it replaced.
+/// keys starts at its group's first vertex: faster than a hash map (docs/design.md#weld).
 fn exact_groups(positions: &[Vec3], texcoords: Option<&[[f32; 2]]>) -> (Vec<u32>, Vec<u32>) {
     let mut keyed: Vec<([u32; 3], [u32; 2], u32)> = positions
         .par_iter()

@@ -2,8 +2,8 @@
 //! triangle, edge and point index lists, and the face / vertex normal line segments — built
 //! from a `Model` once per decimation, with no Vulkan in sight (so it is unit-tested).
 //! Only the vertices and triangles are always built; the line and point lists are
-//! [`Layers`] built when a draw mode needs them (on the dragon they are four fifths of the
-//! bytes, and a slider move or a decimation should not wait for lists nobody draws).
+//! [`Layers`] built when a draw mode needs them: they are most of the bytes, and a slider move
+//! should not wait for lists nobody draws (docs/design.md#viewer-upload).
 //!
 //! Vertices are shared between triangles (indexed drawing), except where a corner needs its
 //! own: with per-face colours, and at creases — a vertex whose faces differ by more than the

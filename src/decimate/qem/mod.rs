@@ -1,70 +1,11 @@
-//! Quadric edge collapse: M. Garland, P. S. Heckbert, "Surface Simplification Using Quadric
-//! Error Metrics", SIGGRAPH 1997, with the boundary constraint planes of that paper and the
-//! area weighting of Garland's thesis (1999) and of "Simplifying Surfaces with Color and
-//! Texture using Quadric Error Metrics" (Garland, Heckbert, IEEE Visualization 1998).
+//! Quadric edge collapse (Garland, Heckbert, SIGGRAPH 1997; area weighting, colour and
+//! texture after their 1998 paper and Hoppe 1999): a collapsed edge's kept vertex moves to
+//! the point that minimises the area-weighted squared distance to the planes it stands for.
 //!
-//! The pipeline over flat arrays, one stage per step:
-//! 1. load (`layout`): renumber vertices along a Morton curve (`mesh::spatial`) and order
-//!    triangles by their first vertex, for locality; drop triangles with out-of-range
-//!    indices; positions are stored in f32, as written, and worked in f64: a placement is
-//!    rounded to f32 before it is checked, so every check sees what is written;
-//! 2. connect: vertex → triangle incidence (`mesh::topology`);
-//! 3. kinds and quadrics (`planes`, one pass over the vertices' ordered rings, on all
-//!    cores; `texture` for a textured model's): each vertex's kind (interior, boundary,
-//!    complex) from its ring's shape; every triangle adds its plane weighted by its area;
-//!    every boundary edge adds a plane through the edge perpendicular to its triangle,
-//!    weighted `CONSTRAINT_WEIGHT` × length² (`SEAM_WEIGHT` on a texture seam, whose sides
-//!    move together), and so does every feature edge (dihedral angle above the feature
-//!    angle) on both sides, weighted by how sharp it is, so that outlines and creases stay
-//!    put;
-//! 4. rank (`ranking`): every edge's collapse is planned once (which end goes, where the
-//!    other one moves) and its cost cached per half-edge slot; every vertex notes its
-//!    cheapest edge — on all cores;
-//! 5. collapse (`passes`): in passes, each over the cheapest share of the vertices' best
-//!    edges in cost order: re-plan, check it is legal (`legality`: a chain of small named
-//!    checks; an illegal edge is blocked until its neighbourhood changes), perform it, add
-//!    the quadrics, interpolate attributes (`part`); a pass that cannot reach the target
-//!    collapses in spatial regions on all cores, each a disjoint `Part` of the arrays, with
-//!    the same result on any number of cores; at the end of a pass the kept vertices'
-//!    edges are re-planned and the touched vertices re-pick their cheapest edge;
-//! 6. compact: live vertices (at their new positions) and triangles back into the model.
-//!
-//! Collapses are ordered by the quadric itself, `Q(p)` (area × squared distance, as in the
-//! paper), so that large flat-ish regions do not coarsen before small curved ones. The error
-//! of a placement is `sqrt(Q(p) / W)`, `W` the summed triangle area behind the quadric — an
-//! area-weighted RMS distance to the planes the vertex stands for, in model units. That is
-//! what `--max-error` bounds (a collapse above it is skipped) and what the report gives.
-//!
-//! Per-vertex colours take a simpler route than the 1998 paper's extended quadric: the kept
-//! vertex's colour is interpolated along the edge at the projection of its new position, and
-//! the cost used to order collapses adds `W × |colour difference|² × edge length²` (colour
-//! in 0..=1; the units of `Q`: as if the colour step moved the surface by that fraction of
-//! the edge), so edges across colour changes go last. Per-vertex normals are interpolated
-//! the same way and weigh in the same way, lightly (`NORMAL_WEIGHT` in `part`: on curved
-//! surfaces the quadric already prices what the normals say; on flat stretches carrying
-//! shading the normals alone order the collapses). Per-face colours stay with their
-//! surviving faces.
-//!
-//! Texture coordinates take the 1998 paper's route, in the form of Hoppe's 1999 quadric
-//! (`quadric::TextureQuadric`, built in `texture`): every triangle's coordinates are an
-//! affine map over its plane, and a vertex is priced by how far the image slides over the
-//! surface from the maps of the triangles it stands for. A moved vertex is placed to keep
-//! the geometric error and the slide (weighted by `TEXTURE_WEIGHT` in `part`) low together;
-//! the kept end of an interior edge takes the coordinates that slide the image least, that of
-//! a boundary or seam edge (or one that stays put) coordinates interpolated along the edge,
-//! which keep it on the texture's outline. `--max-error` and the reported error stay
-//! geometric.
-//!
-//! A texture seam (`mesh::seams`) is two boundaries at the same positions: where exactly
-//! two sides meet, a seam edge collapses together with the other side's edge, to the same
-//! position, costed by the four ends' quadrics (`Part::plan`), and a seam vertex otherwise
-//! only takes in interior neighbours, unmoved; so the sides never part. Seam junctions
-//! (three or more sides) and borders shared with another model (`mesh::stitches`) are
-//! pinned (`Kind::Anchored`): they never move nor go, but take in neighbours where they
-//! stand — an interior one, or one along the outline; on a seam both sides' edges go
-//! together into the junction's copies there. A collapse into a vertex with copies (a
-//! twin, a junction's) must leave the surface manifold once the seams are welded
-//! (`passes::seam_stays_manifold`).
+//! Stages over flat arrays: load in Morton order (`layout`) → connect (`mesh::topology`) →
+//! kinds and quadrics (`planes`, `texture`) → rank every edge (`ranking`) → collapse in
+//! passes (`passes`; `legality` checks, `part` performs) → compact back into the model.
+//! Error, attributes, seams and pins: docs/design.md#qem.
 
 mod collapser;
 mod legality;

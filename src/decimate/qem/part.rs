@@ -18,24 +18,13 @@ use crate::mesh::topology::{ConnectivityPart, FanTriangle};
 /// A placement may leave the edge's bounding box by at most this many edge lengths.
 const BOX_MARGIN: f64 = 1.0;
 
-/// Weight of a per-vertex normal step in a collapse's cost, against a colour step's 1. On a
-/// curved surface the normals follow the geometry, whose quadric already prices the turn
-/// (about 64 times less than a unit weight would), so only a light weight leaves the
-/// geometric error alone; on flat or nearly flat stretches the quadric says nothing and the
-/// normals alone order the collapses, whatever the weight. Measured: a flat sheet carrying
-/// bumpy shading normals, 90 % removed, mean normal error 10.8° without the term, 5.7° with
-/// any weight; the dragon with its area-weighted vertex normals kept at 10 %, metro mean
-/// error 9.160e-6 without, 9.173e-6 at this weight, 9.32e-6 at 0.01, 1.44e-5 at 1.
+/// Weight of a per-vertex normal step in a collapse's cost, against a colour step's 1: light,
+/// since on curved surfaces the quadric already prices the turn, while on flat stretches the
+/// normals alone order the collapses (docs/design.md#qem-normal-weight).
 const NORMAL_WEIGHT: f64 = 0.001;
 
 /// Weight of the texture's error (the area × squared distance the image slides over the
-/// surface, `TextureQuadric`) against the geometric error's 1. Measured on bumpy
-/// latitude–longitude spheres (20k and 80k vertices, 90 % removed; the mean distance the
-/// image slid, against the mapping of the input's, and the metro mean error, both in radii):
-/// coordinates interpolated along the edge, as before, 8.3e-3 and 2.2e-3 slid, 8.3e-4 and
-/// 1.8e-4 error; the quadric's best coordinates at weight 0, 3.1e-3 and 6.4e-4 slid, the
-/// error unchanged; 0.03: 2.5e-3 and 4.6e-4, 9.0e-4 and 2.0e-4; this, 2.2e-3 and 4.0e-4,
-/// 1.0e-3 and 2.1e-4; 1 (as much as the geometry): 1.6e-3 and 3.2e-4, 1.3e-3 and 2.5e-4.
+/// surface, `TextureQuadric`) against the geometric error's 1 (docs/design.md#qem-texture-weight).
 const TEXTURE_WEIGHT: f64 = 0.1;
 
 /// Lists a collapse and its checks fill, kept from one collapse to the next.

@@ -33,24 +33,8 @@ use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
 use crate::decimate::schroeder::{Limits, Outcome};
 
-/// One pass takes the cheapest `1 / PASS_SHARE` of the candidate vertices. On the dragon
-/// kept at 10 % (metro mean / max, time of the whole decimation on 2 cores): the greedy
-/// queue this replaced 9.15e-6 / 2.39e-4 in 2.9 s; 16: 9.16e-6 / 2.41e-4, 2.1 s; 8:
-/// 9.16e-6 / 2.39e-4, 1.9 s; 4: 9.16e-6 / 2.39e-4, 1.7 s; 3: 9.15e-6 / 3.28e-4, 1.6 s;
-/// 2: 9.18e-6 / 3.14e-4, 1.4 s; 1 (one sort, greedy with stale costs): 1.17e-5, 1.3 s.
-/// Larger passes are cheaper because a vertex kept several times in a pass is re-planned
-/// once. What they lose is mostly a vertex kept earlier in the pass collapsing again at
-/// whatever its fresh cost (a pass of all candidates has no threshold): locking every edge
-/// of a kept vertex for the rest of the pass, as meshoptimizer's passes lock
-/// neighbourhoods, gave 9.46e-6, but the many locked tries made it 0.94 times the time of
-/// share 3, not 0.8 (share 3 locked: 9.13e-6, as fast as now). Holding a pass of all
-/// candidates closer to its order costs more than it brings back: letting a candidate go
-/// only while its fresh cost stays under that of the candidate a tenth, a twentieth or a
-/// fiftieth of the pass ahead of it gave 1.14e-5, 1.06e-5 and 1.01e-5, in 1.15 to 1.4 times
-/// the time of the plain pass of all (medians of 3 runs). Bigger passes only near the end
-/// (up to twice what is still needed, once under twice the target) were 4-5 % faster at
-/// 9.15e-6; starting them at 2.5 or 3 times the target gave 1.09e-5 or 1.06e-5 (one pass
-/// took every candidate), too fragile to adopt.
+/// One pass takes the cheapest `1 / PASS_SHARE` of the candidate vertices: bigger passes
+/// are faster but cost mean error (docs/design.md#qem-pass-share).
 const PASS_SHARE: usize = 3;
 
 /// Candidates whose data is requested from memory ahead of their turn.
@@ -189,13 +173,10 @@ pub(super) fn collapse_in_passes(
 }
 
 /// Drops from `pass` (in cost order) the larger end of every edge that is the cheapest of
-/// both its ends (`best`) when both are in the pass: the two mostly stand side by side, at
-/// the same cost, and the second would only find its other end gone, or fail as the first
-/// did. On the dragon kept at 10 % that is 390k of 1.08M tries, and about 12 % of the CPU
-/// time spent collapsing in regions. The smaller end must be in the pass: a vertex's cost
-/// can be a stale one (see `end_of_pass`), and a pass that dropped its only try would make
-/// no progress, and the next pass would be the same. `in_pass` is a bit per vertex, all
-/// clear, and left so.
+/// both its ends (`best`) when both are in the pass: the second try would only find its other
+/// end gone, or fail as the first did (docs/design.md#qem-mutual-edges). The smaller end must
+/// be in the pass: its cost may be stale (see `end_of_pass`), and a pass that dropped its only
+/// try would make no progress. `in_pass` is a bit per vertex, all clear, and left so.
 fn drop_mutual_duplicates(pass: &mut Vec<Candidate>, best: &[u32], in_pass: &mut [u64]) {
     let bit = |v: u32| ((v / 64) as usize, 1u64 << (v % 64));
     for c in pass.iter() {
@@ -371,9 +352,9 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
     if d.owns(w) && d.is_fixed(w) {
         return Attempt::Skipped;
     }
-    // An edge off the outline and off seams is planned from its ends alone: one an end of
-    // which took a collapse in this pass and now costs more than the threshold waits
-    // without its fans being read (on the dragon kept at 10 %, 96k of 683k tries).
+    // An edge off the outline and off seams is planned from its ends alone: one whose end
+    // took a collapse in this pass and now costs over the threshold waits without its fans
+    // being read (docs/design.md#qem-mutual-edges).
     let early = (d.owns(w) && d.twins.is_empty() && plans_without_fans(d.kind(v), d.kind(w)))
         .then(|| d.plan(v.min(w), v.max(w)));
     if early.is_some_and(|p| p.is_some_and(|p| stored(p.cost) > bounds.threshold)) {

@@ -17,23 +17,13 @@ use crate::mesh::topology::{Adjacency, Connectivity, Ring, RingShape};
 const CONSTRAINT_WEIGHT: f64 = 100.0;
 
 /// Weight of a texture seam's constraint planes (an edge between two vertices on seams),
-/// relative to an area-weighted face plane. A seam is two boundaries whose sides collapse
-/// together, so the surface stays whole whatever its outline does, and the texture's own
-/// quadric already prices the image sliding along it: weighted as a true boundary, seams
-/// stayed dense while the charts' insides went, and a sphere cut into 64 charts (20k
-/// vertices) kept at 5 % came out 0.0143 off its surface on average (metro mean, radius 1)
-/// with its image slid 0.0065, against 0.0027 and 0.0012 at this weight (0.0022 and
-/// 0.0011 at 0.3, 0.0019 and 0.0010 at 0.1; but at 2 % kept the image slid more at 0.1 on
-/// both of two differently cut spheres, at 0.3 on one). meshoptimizer likewise weighs seam
-/// edges 10–20 times less than border edges.
+/// relative to an area-weighted face plane: a seam's sides collapse together, so it is priced
+/// as a face plane, not a boundary (docs/design.md#qem-seam-weight).
 const SEAM_WEIGHT: f64 = 1.0;
 
 /// Weight of a feature edge's planes, times `(1 - cos(dihedral))⁶` (15 at a right angle,
-/// 0.2 at 60°, 0.01 at 45°): a scan's many mild "features" barely constrain — any real
-/// weight on them raises the mean error — while sharp creases hold and keep the maximum
-/// down. On the dragon kept at 10 % (metro, 10⁶ samples): with no feature planes mean
-/// 9.08e-6 / max 1.10e-3; 400·(1 - cos)² 9.43e-6 / 1.47e-4; this 9.15e-6 / 2.39e-4
-/// (vtkQuadricDecimation 9.19e-6 / 1.01e-3, MeshLab 1.04e-5 / 4.97e-4).
+/// 0.2 at 60°, 0.01 at 45°): sharp creases hold, a scan's mild "features" barely constrain
+/// (docs/design.md#qem-feature-weight).
 const FEATURE_WEIGHT: f64 = 15.0;
 
 /// Vertices per rayon task.

@@ -1,15 +1,9 @@
 //! The Garland–Heckbert error quadric: the summed squared distance to a set of weighted
 //! planes, `Q(p) = pᵀAp + 2b·p + c`, with the triangle area behind it.
 //!
-//! Kept in f64 in model coordinates, 88 bytes a vertex. In f32 in model coordinates it
-//! cannot work: `c` and `2b·p` are of the order of `weight × (distance to the origin)²` and
-//! cancel down to `weight × error²`, about eight orders of magnitude less on the dragon. In
-//! f32 about each vertex's own position (44 bytes padded to one 64-byte line, 28 MB instead
-//! of 38 on the dragon; a plan moves one end's quadric to the other's position first, a
-//! collapse both to the new one) the terms stay of the order of the error and it works, but
-//! on the dragon kept at 10 % it was no faster (16 alternating pairs of runs, median ratio
-//! 1.00; presumably the plan's extra arithmetic ate the lighter loads) and the mean error
-//! rose from 9.160e-6 to 9.170e-6, so it was not adopted.
+//! Kept in f64 in model coordinates, 88 bytes a vertex: in f32, `c` and `2b·p` cancel down
+//! to `weight × error²` and lose it; f32 about each vertex's own position works but was no
+//! faster (docs/design.md#quadric-precision).
 
 use glam::{DMat2, DVec2, DVec3};
 

@@ -2,11 +2,10 @@
 //!
 //! One entry per half-edge: entry `i` of triangle slot `t` is the edge from corner `i` to
 //! corner `i + 1` (slots are never reused: collapses rename corners in place), stored beside
-//! a copy of the slot's corners (see [`EdgeCosts`]; on the dragon kept at 10 %, 2 cores,
-//! 16 alternating runs: 0.97 times the time of separate arrays, for 18 MB more at the
-//! peak). Both entries of an edge lie in the fans of both its ends and hold the same cost,
-//! planned once, always as `plan(min, max)`, so that whichever end plans it the value is the
-//! same. A blocked entry (the collapse was illegal or over the error bound; cleared when the
+//! a copy of the slot's corners (see [`EdgeCosts`]; docs/design.md#qem-cost-cache). Both
+//! entries of an edge lie in the fans of both its ends and hold the same cost, planned once,
+//! always as `plan(min, max)`, so that whichever end plans it the value is the same. A
+//! blocked entry (the collapse was illegal or over the error bound; cleared when the
 //! neighbourhood changes) has its sign bit set.
 //!
 //! Entries are atomics so that ranking runs on every core: each fan is planned by one
@@ -30,9 +29,7 @@ const FAN_MEMO: usize = 24;
 const MIN_PER_TASK: usize = 2048;
 
 /// How many vertices ahead of its turn a vertex's data is asked for, per stage of
-/// [`Part::pipelined`]. On the dragon kept at 10 % (one core), re-planning the kept
-/// vertices took 0.49 s without asking ahead, 0.40 s with only the neighbours' quadrics
-/// asked for before a fan is planned, 0.30 s with the three stages.
+/// [`Part::pipelined`]: enough to overlap the cache misses (docs/design.md#qem-cost-cache).
 const AHEAD: usize = 2;
 
 /// The costs a fan planned so far, by their other end: each edge of a closed fan is in two
@@ -254,9 +251,7 @@ impl Part<'_> {
     /// An edge is planned from its smaller end. A task plans an ascending range of vertices
     /// in order, so a vertex finds its edges to smaller vertices of its own range planned
     /// already and reads their costs; only a vertex with a neighbour below its range looks
-    /// at its edges again, once every range is done. On the dragon (871k triangles, 2 cores)
-    /// that is 38.5k vertices of 435k, and ranking takes about 55 ms instead of 67 with a
-    /// second look at every vertex.
+    /// at its edges again, once every range is done (docs/design.md#qem-cost-cache).
     pub fn rank_all(&mut self) {
         let best = std::mem::take(&mut self.best);
         let best_cost = std::mem::take(&mut self.best_cost);
@@ -316,16 +311,9 @@ impl Part<'_> {
     /// is planned from both ends: each then knows all its costs without waiting for the
     /// other, and both store the same value.
     ///
-    /// Every edge of the fan, in one batch at the end of the pass, is the fastest way found
-    /// (dragon kept at 10 %, 2 cores, alternating runs against this). A fan's plans do not
-    /// depend on each other, so their long chains of arithmetic overlap, and the pipelined
-    /// loads hide the misses. Two alternatives plan less and were slower:
-    /// - at each collapse, while the fan is in cache: 33 passes instead of 29, collapsing
-    ///   about 400 ms instead of 280 and the end of the passes about 75 instead of 200;
-    ///   1.16 times the time;
-    /// - lazily, keeping old costs as lower bounds and planning only while the cheapest is
-    ///   stale: 1.76M plans instead of 2.5M, but each waits on the one before, and marking
-    ///   the old costs is another walk over the fans; 1.28 times the time.
+    /// Every edge of the fan, in one batch at the end of the pass: a fan's plans do not depend
+    /// on each other, so they overlap and the pipelined loads hide the misses. Re-planning at
+    /// each collapse, or lazily, was slower (docs/design.md#qem-replan).
     pub fn replan(&mut self, vertices: &[u32]) {
         self.update_best(vertices, MIN_PER_TASK / 4, true, |this, v| {
             (this.plan_fan(v), true)

@@ -32,7 +32,7 @@
 //!
 //! Nothing in the loop is quadratic in the mesh size: a removal costs O(valence²) (its
 //! loop's splitting more, bounded by the valence cap of `mesh::topology`), a pass O(n) to
-//! select its candidates (a dozen passes take the dragon to 10 %).
+//! select its candidates, and a scan takes a dozen or so passes.
 
 mod passes;
 mod plan;

@@ -24,12 +24,8 @@ use crate::decimate::candidates::{cheapest, Candidate};
 use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
 
-/// One pass takes the cheapest `1 / PASS_SHARE` of the candidates. Metro's mean error
-/// (300k samples) at 50 % / 90 % removed, against the greedy queue this replaced: dragon
-/// (871k triangles) 4.13e-6 / 3.02e-5 (queue 4.54e-6 / 3.14e-5); dragon at 1/4 resolution
-/// 1.46e-5 / 2.30e-4 (1.53e-5 / 2.41e-4); a 1M-triangle sphere 3.42e-5 / 6.67e-5 (3.38e-5 /
-/// 6.67e-5), in about half the time. A share of 3 gave about the same errors, 1 (every
-/// candidate, up to twice what is needed) errors up to a third higher at the maximum.
+/// One pass takes the cheapest `1 / PASS_SHARE` of the candidates: as accurate as the
+/// greedy queue it replaced, in about half the time (docs/design.md#schroeder-pass-share).
 const PASS_SHARE: usize = 2;
 
 /// Candidates planned together before any of them is removed.

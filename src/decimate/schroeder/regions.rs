@@ -3,9 +3,8 @@
 //! owns — the vertex, its ring, and every triangle of them both, the triangles that
 //! planning's checks read and removal rewrites. The others are left to the caller: a
 //! second, shifted cut, then the whole mesh. Their neighbours in the region wait for the
-//! next pass, as they would had the candidate gone in its turn: on `dragon_res2` kept at
-//! 20k triangles, letting them go first raised metro's mean error from 3.35e-4 (the whole
-//! mesh, one removal at a time) to 3.50e-4; holding them gives 3.14e-4.
+//! next pass, as they would had the candidate gone in its turn; letting them go first costs
+//! accuracy (docs/design.md#schroeder-regions).
 //!
 //! A seam vertex with a twin (the other side of a texture seam, removed only together with
 //! it) is left to the whole mesh like a border candidate, its neighbours held the same way;
