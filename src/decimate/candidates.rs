@@ -38,7 +38,7 @@ impl Candidate {
 
 /// Bits of a candidate's key that pick its bucket in [`cheapest`]: the sign, the exponent
 /// and three bits of the mantissa of its cost, so that a bucket spans under 10 % of it (a
-/// few thousand of the dragon's candidates at most), and the histogram stays small.
+/// few thousand candidates of a scan of a million triangles), and the histogram stays small.
 const BUCKET_BITS: u32 = 12;
 
 /// The `take` cheapest of `candidates` (distinct), sorted, into `out` (`tied` is scratch):
