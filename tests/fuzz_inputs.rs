@@ -208,9 +208,9 @@ fn exercise(scene: &Scene) {
     };
     let (_, pm) = decimate_scene_progressive(&mut copy, &params, &mut |_| {});
     let mut bytes = Vec::new();
-    io::progressive::write_progressive_to(&mut bytes, &pm).expect("writes to memory");
+    io::progressive_file::write_progressive_to(&mut bytes, &pm).expect("writes to memory");
     // What was written reads back.
-    if let Err(e) = io::progressive::parse_progressive(&bytes, Path::new("again.pm")) {
+    if let Err(e) = io::progressive_file::parse_progressive(&bytes, Path::new("again.pm")) {
         panic!("a written progressive mesh does not read back: {e}");
     }
 }
@@ -295,7 +295,7 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
     };
     let (_, pm) = decimate_scene_progressive(&mut pm_scene, &Params::default(), &mut |_| {});
     let mut pm_bytes = Vec::new();
-    io::progressive::write_progressive_to(&mut pm_bytes, &pm).expect("writes to memory");
+    io::progressive_file::write_progressive_to(&mut pm_bytes, &pm).expect("writes to memory");
     vec![
         ("seed.wrl", written(io::write_vrml2_to)),
         ("seed.ply", written(io::ply::write_ply_to)),

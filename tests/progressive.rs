@@ -7,9 +7,9 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use decimate::decimate::progressive::{Lod, ProgressiveScene, VertexSplit};
-use decimate::io::progressive::{parse_progressive, read_progressive, MAGIC};
+use decimate::io::progressive_file::{parse_progressive, read_progressive, MAGIC};
 use decimate::io::{read_scene, write_scene, ReadError};
+use decimate::mesh::progressive::{Lod, ProgressiveScene, VertexSplit};
 use decimate::mesh::{build::build_scene, measure, shapes, Attribute, Model, Scene};
 
 fn decimate(dir: &Path, args: &[&str]) -> Output {
@@ -570,7 +570,7 @@ fn wrong_magic_version_index_count_or_number_is_named_with_its_byte() {
 #[ignore]
 fn timing_of_a_million_triangle_sphere() {
     use decimate::decimate::{decimate_scene_progressive, Algorithm, Params, Target};
-    use decimate::io::progressive::write_progressive;
+    use decimate::io::progressive_file::write_progressive;
     use std::time::Instant;
 
     let mut scene = Scene {

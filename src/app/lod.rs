@@ -14,8 +14,8 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 
-use crate::decimate::progressive::{Lod, ProgressiveModel};
 use crate::decimate::{decimate_scene_progressive, Algorithm, Params, Target};
+use crate::mesh::progressive::{Lod, ProgressiveModel};
 use crate::mesh::Scene;
 
 /// How long a geomorph takes.

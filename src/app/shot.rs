@@ -6,6 +6,7 @@ use std::path::Path;
 
 use crate::cli::{ShotModes, ShotOptions};
 use crate::decimate::{decimate_scene, Params, Report};
+use crate::io::texture_image;
 use crate::mesh::Scene;
 use crate::render::camera::Camera;
 use crate::render::commands::Commands;
@@ -68,7 +69,11 @@ pub fn render(
     let target = OffscreenTarget::new(&context, options.width, options.height)?;
 
     let draw = draw_options(&options.modes);
-    let mut textures = Textures::new(&context, pipelines.texture_layout, &options.texture_dir)?;
+    let mut textures = Textures::new(
+        &context,
+        pipelines.texture_layout,
+        texture_image::reader(&options.texture_dir),
+    )?;
     let original = GpuScene::upload(&context, &commands, &mut textures, scene, draw.layers())?;
     let (decimated, report) = match params {
         Some(params) => {

@@ -6,8 +6,8 @@
 //! coarsest the file holds, and never splits one side of a texture seam without the other
 //! (it keeps one vertex fewer instead).
 
-use super::progressive::ProgressiveScene;
 use super::{Shares, Target};
+use crate::mesh::progressive::ProgressiveScene;
 
 /// The level (splits applied to the base) of each model of `pm` for `target`; `None` for a
 /// target that is no count (an error bound alone: the file records no errors).

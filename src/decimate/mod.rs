@@ -5,16 +5,20 @@
 mod candidates;
 pub mod layout;
 pub mod levels;
+mod limits;
 mod lists;
-pub mod loop_split;
-pub mod progressive;
 pub mod qem;
 mod regions;
 pub mod schroeder;
+pub mod summary;
 
 use std::time::Instant;
 
 use crate::mesh::{seams, stitches, Scene};
+
+pub use limits::{Limits, Outcome};
+
+use crate::mesh::progressive::{ProgressiveModel, ProgressiveScene};
 
 /// How far to decimate. Counts are over the whole scene and shared among its models in
 /// proportion to their vertex counts.
@@ -145,21 +149,21 @@ pub fn decimate_scene_progressive(
     scene: &mut Scene,
     params: &Params,
     progress: &mut dyn FnMut(f32),
-) -> (Report, progressive::ProgressiveScene) {
+) -> (Report, ProgressiveScene) {
     let params = Params {
         algorithm: Algorithm::Qem,
         ..*params
     };
     let mut models = Vec::new();
     let report = run(scene, &params, progress, Some(&mut models));
-    (report, progressive::ProgressiveScene { models })
+    (report, ProgressiveScene { models })
 }
 
 fn run(
     scene: &mut Scene,
     params: &Params,
     progress: &mut dyn FnMut(f32),
-    mut record: Option<&mut Vec<progressive::ProgressiveModel>>,
+    mut record: Option<&mut Vec<ProgressiveModel>>,
 ) -> Report {
     let start = Instant::now();
     let vertices: Vec<usize> = scene.models.iter().map(|m| m.used_vertex_count()).collect();
@@ -222,7 +226,7 @@ fn run(
                     .map_or(0.0, |(lo, hi)| (hi - lo).length() as f64)
             }
         };
-        let limits = schroeder::Limits {
+        let limits = Limits {
             remove: removals[i],
             keep_triangles: keep_triangles[i],
             max_error,

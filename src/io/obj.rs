@@ -24,7 +24,6 @@
 //! diffuse colour other than the default, `FILE.mtl` is written beside `FILE.obj` (`mtl`),
 //! named by `mtllib`, and each model's `o` is followed by its `usemtl`.
 
-use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -33,121 +32,10 @@ use glam::Mat4;
 
 use super::mtl::MtlPlan;
 
-use super::build::{build, Bind, ShapeSpec, TexCoords};
-use super::lexer::{parse_f32, parse_int, PResult, ParseError};
+use super::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
+use super::text::{number, parse_int, shown, words, Lines, PResult, ParseError};
 use super::{ReadOutcome, WriteError};
 use crate::mesh::{Attribute, Model, Scene};
-
-/// Logical lines of a text file: `(line number of its first physical line, text)`, with
-/// `#` comments cut off and, when `continuation` is set, lines ending in `\` joined to the
-/// next. Borrowed unless joined.
-pub(crate) struct Lines<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-    line: usize,
-    continuation: bool,
-}
-
-impl<'a> Lines<'a> {
-    pub(crate) fn new(bytes: &'a [u8], continuation: bool) -> Self {
-        Self {
-            bytes,
-            pos: 0,
-            line: 0,
-            continuation,
-        }
-    }
-
-    /// The line number of the last line read (for end-of-file messages).
-    pub(crate) fn last_line(&self) -> usize {
-        self.line.max(1)
-    }
-
-    pub(crate) fn physical(&mut self) -> Option<&'a [u8]> {
-        if self.pos >= self.bytes.len() {
-            return None;
-        }
-        let rest = &self.bytes[self.pos..];
-        let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
-        self.pos += end + 1;
-        self.line += 1;
-        let mut text = &rest[..end];
-        if let Some(hash) = text.iter().position(|&b| b == b'#') {
-            text = &text[..hash];
-        }
-        Some(text)
-    }
-}
-
-fn trim_end(mut s: &[u8]) -> &[u8] {
-    while let [rest @ .., last] = s {
-        if last.is_ascii_whitespace() {
-            s = rest;
-        } else {
-            break;
-        }
-    }
-    s
-}
-
-impl<'a> Iterator for Lines<'a> {
-    type Item = (usize, Cow<'a, [u8]>);
-
-    fn next(&mut self) -> Option<Self::Item> {
-        let first = self.physical()?;
-        let start = self.line;
-        if !self.continuation || trim_end(first).last() != Some(&b'\\') {
-            return Some((start, Cow::Borrowed(first)));
-        }
-        let mut joined = Vec::new();
-        let mut cur = first;
-        loop {
-            let t = trim_end(cur);
-            match t.split_last() {
-                Some((b'\\', body)) => {
-                    joined.extend_from_slice(body);
-                    joined.push(b' ');
-                    match self.physical() {
-                        Some(next) => cur = next,
-                        None => break,
-                    }
-                }
-                _ => {
-                    joined.extend_from_slice(cur);
-                    break;
-                }
-            }
-        }
-        Some((start, Cow::Owned(joined)))
-    }
-}
-
-/// The whitespace-separated words of a line.
-pub(crate) fn words(s: &[u8]) -> impl Iterator<Item = &[u8]> {
-    s.split(|b| b.is_ascii_whitespace())
-        .filter(|w| !w.is_empty())
-}
-
-/// A word for messages (at most 40 characters).
-pub(crate) fn shown(w: &[u8]) -> String {
-    String::from_utf8_lossy(w).chars().take(40).collect()
-}
-
-/// Parses a finite number or fails naming what it was for.
-pub(crate) fn number(w: Option<&[u8]>, line: usize, what: &str) -> PResult<f32> {
-    let w = w.ok_or_else(|| ParseError::new(line, format!("missing {what}")))?;
-    match parse_f32(w) {
-        Some(v) if v.is_finite() => Ok(v),
-        Some(_) => Err(ParseError::new(
-            line,
-            format!("{what} is not a finite number ('{}')", shown(w)),
-        )),
-        None => Err(ParseError::new(
-            line,
-            format!("expected a number for {what}, found '{}'", shown(w)),
-        )),
-    }
-}
 
 /// True when the first statement of the file (after comments) is an OBJ one.
 pub(crate) fn looks_like_obj(bytes: &[u8]) -> bool {

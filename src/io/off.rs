@@ -18,9 +18,9 @@ use std::path::Path;
 
 use glam::Mat4;
 
-use super::build::{build, Bind, ShapeSpec, TexCoords};
-use super::lexer::{parse_int, PResult, ParseError};
-use super::obj::{number, shown, words, Lines};
+use super::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
+use super::text::{number, shown, words, Lines};
+use super::text::{parse_int, PResult, ParseError};
 use super::WriteError;
 use crate::mesh::{Attribute, Scene};
 

@@ -21,8 +21,8 @@ use std::path::Path;
 
 use glam::{Mat4, Vec3};
 
-use super::build::{build, Bind, ShapeSpec, TexCoords};
-use super::lexer::{PResult, ParseError};
+use super::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
+use super::text::{PResult, ParseError};
 use super::WriteError;
 use crate::mesh::{Attribute, Scene};
 

@@ -66,7 +66,9 @@
 //! twin, a junction's) must leave the surface manifold once the seams are welded
 //! (`passes::seam_stays_manifold`).
 
+mod collapse_plan;
 mod collapser;
+mod edge_costs;
 mod legality;
 mod part;
 mod passes;
@@ -79,8 +81,8 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::layout;
-use super::progressive::{ProgressiveModel, Recorder};
-use super::schroeder::{Limits, Outcome};
+use super::{Limits, Outcome};
+use crate::mesh::progressive::{ProgressiveModel, Recorder};
 use crate::mesh::{Attribute, Model};
 use collapser::Collapser;
 

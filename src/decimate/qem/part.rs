@@ -9,10 +9,10 @@
 
 use glam::{DVec2, DVec3, Vec3};
 
-use super::collapser::{others, Kind, Plan};
+use super::collapse_plan::{others, Kind, Plan};
+use super::edge_costs::EdgeCosts;
 use super::quadric::{Quadric, TextureQuadric};
-use super::ranking::EdgeCosts;
-use crate::decimate::progressive::{CollapseRecord, Recorder};
+use crate::mesh::progressive::{CollapseRecord, Recorder};
 use crate::mesh::topology::{ConnectivityPart, FanTriangle};
 
 /// A placement may leave the edge's bounding box by at most this many edge lengths.

@@ -34,6 +34,7 @@
 //! loop's splitting more, bounded by the valence cap of `mesh::topology`), a pass O(n) to
 //! select its candidates (a dozen passes take the dragon to 10 %).
 
+pub mod loop_split;
 mod passes;
 mod plan;
 mod regions;
@@ -42,27 +43,12 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::layout::{self, compact, Compacted};
+use super::{Limits, Outcome};
 use crate::mesh::classify::VertexClass;
 use crate::mesh::seams::position_key;
 use crate::mesh::topology::{Adjacency, Connectivity};
 use crate::mesh::{Attribute, Model};
 use plan::{is_ring_end, Planning, SeamSides, Surface};
-
-/// How far one model may be decimated.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Limits {
-    /// Most vertices to remove.
-    pub remove: usize,
-    /// Stop once this many triangles or fewer are left.
-    pub keep_triangles: usize,
-    /// Never make a removal whose error exceeds this (model units).
-    pub max_error: f64,
-    /// Dihedral angle in degrees above which an edge is a feature edge.
-    pub feature_angle_deg: f64,
-    /// When no candidate is left before `remove`/`keep_triangles` is reached, raise the
-    /// feature angle in `RELAX_STEP_DEG` steps (up to 180°) and go on.
-    pub relax_features: bool,
-}
 
 /// How much the feature angle grows each time a count target could not otherwise be met.
 pub const RELAX_STEP_DEG: f64 = 15.0;
@@ -75,21 +61,6 @@ const HELD: u32 = 1 << 31;
 /// changed in that pass, or it was held back.
 fn waits(mark: u32, pass: u32) -> bool {
     mark & !HELD == pass
-}
-
-/// What decimating one model did.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Outcome {
-    pub removed: usize,
-    /// Largest key of a removal made (accumulated distance, model units).
-    pub max_error: f64,
-    /// True when no candidate was left: nothing more can be removed.
-    pub exhausted: bool,
-    /// The feature angle in force at the end (larger than asked when relaxed).
-    pub feature_angle_deg: f64,
-    /// Vertices never removed because they were pinned (texture seams, `mesh::seams`, and
-    /// borders shared with another model, `mesh::stitches`).
-    pub pinned: usize,
 }
 
 /// Decimates `model` in place within `limits`, never removing a vertex flagged in `pins`

@@ -19,10 +19,11 @@
 use rayon::prelude::*;
 
 use super::plan::Planning;
-use super::{Decimator, Limits, Outcome, Removal, RELAX_STEP_DEG};
+use super::{Decimator, Removal, RELAX_STEP_DEG};
 use crate::decimate::candidates::{cheapest, Candidate};
 use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
+use crate::decimate::{Limits, Outcome};
 
 /// One pass takes the cheapest `1 / PASS_SHARE` of the candidates. Metro's mean error
 /// (300k samples) at 50 % / 90 % removed, against the greedy queue this replaced: dragon

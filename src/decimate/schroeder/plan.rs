@@ -5,7 +5,7 @@
 
 use glam::{DVec2, DVec3, Vec3};
 
-use crate::decimate::loop_split;
+use super::loop_split;
 use crate::mesh::classify::{classify, RingGeometry, VertexClass};
 use crate::mesh::topology::{Adjacency, Ring};
 

@@ -69,7 +69,7 @@ use std::path::Path;
 use glam::{Mat4, Vec3};
 
 use super::{write_atomically, ReadError, WriteError};
-use crate::decimate::progressive::{ProgressiveModel, ProgressiveScene, VertexSplit};
+use crate::mesh::progressive::{ProgressiveModel, ProgressiveScene, VertexSplit};
 use crate::mesh::{Attribute, Model};
 
 /// The first eight bytes of every progressive-mesh file.
