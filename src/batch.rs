@@ -2,7 +2,7 @@
 //! (and a progress bar on long runs) on stderr, and write the result in the format the
 //! output's extension names (VRML 2.0 by default; `io::write_scene`) — never over the input
 //! unless `--overwrite` says so. With `--progressive FILE` the collapses are recorded too
-//! (`decimate_scene_progressive`) and written to FILE as vertex splits (`io::progressive`).
+//! (`simplify_scene_progressive`) and written to FILE as vertex splits (`io::progressive`).
 //! When the input is such a file, nothing is decimated: each model's level that meets the
 //! target is rebuilt from the base by its vertex splits (`decimate::levels`), exactly as the
 //! recorded decimation left it at that count. Texture names are rebased from the input's
@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 use crate::cli::Args;
 use crate::decimate::levels::levels_for;
 use crate::decimate::summary::counts_column;
-use crate::decimate::{decimate_scene, decimate_scene_progressive, Report};
+use crate::decimate::{simplify_scene, simplify_scene_progressive, Report};
 use crate::io;
 use crate::mesh::progressive::{Lod, ProgressiveScene};
 use crate::mesh::Scene;
@@ -155,10 +155,10 @@ fn decimate(scene: &mut Scene, args: &Args) -> (Report, Option<ProgressiveScene>
     let mut bar = Progress::new(!args.quiet && std::io::stderr().is_terminal());
     let mut update = |f| bar.update(f);
     let result = if args.progressive.is_some() {
-        let (report, pm) = decimate_scene_progressive(scene, &args.params, &mut update);
+        let (report, pm) = simplify_scene_progressive(scene, &args.params, &mut update);
         (report, Some(pm))
     } else {
-        (decimate_scene(scene, &args.params, &mut update), None)
+        (simplify_scene(scene, &args.params, &mut update), None)
     };
     bar.finish();
     result

@@ -554,6 +554,31 @@ fn no_import_cycle_between_files() {
 }
 
 #[test]
+fn no_two_source_files_share_a_name() {
+    let src = src_dir();
+    let mut by_name: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for file in source_files(&src) {
+        let name = file
+            .path
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string());
+        if let Some(name) = name.filter(|n| n != "mod.rs") {
+            by_name.entry(name).or_default().push(shown(&file, &src));
+        }
+    }
+    let twins: Vec<String> = by_name
+        .into_values()
+        .filter(|paths| paths.len() > 1)
+        .map(|paths| paths.join(", "))
+        .collect();
+    assert!(
+        twins.is_empty(),
+        "file names used twice:\n{}",
+        twins.join("\n")
+    );
+}
+
+#[test]
 fn the_checker_sees_grouped_uses_and_inline_paths() {
     let text = "use crate::{mesh::Model, io::{obj, ply::read as r}};\n\
                 // use crate::render::x;\n\

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use crate::cli::{ShotModes, ShotOptions};
-use crate::decimate::{decimate_scene, Params, Report};
+use crate::decimate::{simplify_scene, Params, Report};
 use crate::io::texture_image;
 use crate::mesh::Scene;
 use crate::render::camera::Camera;
@@ -78,7 +78,7 @@ pub fn render(
     let (decimated, report) = match params {
         Some(params) => {
             let mut copy = scene.clone();
-            let report = decimate_scene(&mut copy, params, &mut |_| {});
+            let report = simplify_scene(&mut copy, params, &mut |_| {});
             (
                 Some(GpuScene::upload(
                     &context,

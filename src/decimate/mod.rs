@@ -1,6 +1,7 @@
-//! Decimation algorithms, one module per algorithm, over `mesh` arrays, behind one entry
-//! point: [`decimate_scene`] applies a [`Params`] (target, error bound, feature angle) to
-//! every model of a scene and returns a [`Report`].
+//! Decimation algorithms, one module per algorithm (`schroeder` vertex removal, `qem` quadric
+//! edge collapse), over `mesh` arrays, behind one entry point: [`simplify_scene`] applies a
+//! [`Params`] (target, error bound, feature angle) to every model of a scene and returns a
+//! [`Report`].
 
 mod candidates;
 pub mod layout;
@@ -62,7 +63,7 @@ pub struct Params {
     pub max_error: Option<ErrorBound>,
     /// Dihedral angle in degrees above which an edge is a feature edge.
     pub feature_angle_deg: f64,
-    /// Never relax the feature angle to reach a count target (see [`decimate_scene`]).
+    /// Never relax the feature angle to reach a count target (see [`simplify_scene`]).
     pub keep_features: bool,
     /// Never move or remove a vertex on a model's open border
     /// (`mesh::stitches::open_border_vertices`): pieces of one mesh decimated apart still fit.
@@ -137,15 +138,15 @@ impl Report {
 /// left first, the feature angle is relaxed step by step. "As far as possible" (`-p 100`),
 /// an error bound alone, or `keep_features` never relax it, so features such as a cube's
 /// corners survive them. Quadric edge collapse never needs to relax it.
-pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
+pub fn simplify_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
     run(scene, params, progress, None)
 }
 
-/// As [`decimate_scene`] with quadric edge collapse (whatever `params.algorithm` says: vertex
+/// As [`simplify_scene`] with quadric edge collapse (whatever `params.algorithm` says: vertex
 /// removal has no vertex splits to record), and records every collapse: model `i` of the
 /// returned progressive scene has the decimated model `i` as its base and refines back to
 /// the input's model `i`. Models the four-vertex rule drops are dropped from both.
-pub fn decimate_scene_progressive(
+pub fn simplify_scene_progressive(
     scene: &mut Scene,
     params: &Params,
     progress: &mut dyn FnMut(f32),

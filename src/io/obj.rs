@@ -51,7 +51,7 @@ pub(crate) fn looks_like_obj(bytes: &[u8]) -> bool {
 }
 
 /// The faces of one `o` / `g` group that use one material.
-struct Part {
+struct MaterialPart {
     /// The `usemtl` name in force for these faces, if any.
     material: Option<String>,
     corners: Vec<u32>,
@@ -66,7 +66,7 @@ struct Part {
 /// first used in it.
 struct Group {
     name: String,
-    parts: Vec<Part>,
+    parts: Vec<MaterialPart>,
     /// Each material's part (a file may switch materials very often).
     by_material: HashMap<Option<String>, usize>,
 }
@@ -84,7 +84,7 @@ impl Group {
     fn part(&mut self, material: &Option<String>, line: usize) -> usize {
         let parts = &mut self.parts;
         *self.by_material.entry(material.clone()).or_insert_with(|| {
-            parts.push(Part {
+            parts.push(MaterialPart {
                 material: material.clone(),
                 corners: Vec::new(),
                 texcoords: Vec::new(),
@@ -98,7 +98,7 @@ impl Group {
     /// The group's models-to-be with their names: the group's own name when all its faces
     /// share one material, else `group (material)` for each part (`(no material)` for faces
     /// before the first `usemtl`).
-    fn into_named_parts(self) -> impl Iterator<Item = (String, Part)> {
+    fn into_named_parts(self) -> impl Iterator<Item = (String, MaterialPart)> {
         let split = self.parts.len() > 1;
         let name = self.name;
         self.parts.into_iter().map(move |p| {

@@ -13,7 +13,7 @@ use std::collections::HashMap;
 use glam::{Mat4, Vec3};
 
 use super::text::{PResult, ParseError};
-use super::triangulate::{triangulate, Scratch};
+use super::triangulate::{triangulate, EarBuffers};
 use crate::mesh::{Attribute, Model};
 
 /// How an attribute's values (flat, three floats each) are bound to a shape's polygons.
@@ -208,7 +208,7 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         Vec::with_capacity(corners.len().saturating_sub(ends.len() * 2));
     let mut fcolors: Vec<[f32; 3]> = Vec::new();
     let mut fnormals: Vec<Vec3> = Vec::new();
-    let mut scratch = Scratch::default();
+    let mut scratch = EarBuffers::default();
     let mut pts: Vec<Vec3> = Vec::new();
     let mut cut: Vec<[u32; 3]> = Vec::new();
     let mut degenerate = 0usize;

@@ -2,16 +2,16 @@
 //! lent out as one whole [`Part`] or as disjoint parts (one range of vertices and of
 //! triangle slots each, for collapsing on several cores), and writing the result back.
 //! The operations live on `Part`: planning and collapsing in `part`, the checks in
-//! `legality`, the cost cache in `ranking`; the loop is in `passes`.
+//! `legality`, the cost cache in `ranking`; the loop is in `collapse_passes`.
 
 use glam::Vec3;
 
 use super::collapse_plan::Kind;
 use super::edge_costs::EdgeCosts;
-use super::part::{Part, Scratch};
+use super::part::{CollapseLists, Part};
 use super::planes::{self, Constraints};
 use super::quadric::Quadric;
-use super::texture::{texture_quadrics, TextureQuadrics};
+use super::texture_quadrics::{texture_quadrics, TextureQuadrics};
 use crate::decimate::layout::{compact, Compacted};
 use crate::mesh::progressive::Recorder;
 use crate::mesh::topology::{split_mut, Connectivity};
@@ -39,7 +39,7 @@ pub(super) struct Collapser {
     pub best_cost: Vec<f32>,
     /// Vertices with a blocked edge.
     has_blocked: Vec<bool>,
-    /// What each vertex needs at the end of a pass (`passes`).
+    /// What each vertex needs at the end of a pass (`collapse_passes`).
     flags: Vec<u8>,
     /// Set when the collapses are recorded for a progressive mesh.
     pub recorder: Option<Recorder>,
@@ -165,7 +165,7 @@ impl Collapser {
             recorder: self.recorder.as_mut(),
             twins: &self.twins,
             copies: &self.copies,
-            scratch: Scratch::default(),
+            scratch: CollapseLists::default(),
         }
     }
 
@@ -215,7 +215,7 @@ impl Collapser {
                     recorder: None,
                     twins,
                     copies,
-                    scratch: Scratch::default(),
+                    scratch: CollapseLists::default(),
                 })
             })
             .collect()

@@ -18,13 +18,13 @@
 //!    fill's new edge between seam vertices must not meet an edge between other copies of
 //!    its ends (twins, a junction's copies, `mesh::seams::copies`), so that the welded
 //!    surface stays manifold;
-//! 4. remove (`passes`): in passes over the cheapest share of the candidates, in key order:
+//! 4. remove (`removal_passes`): in passes over the cheapest share of the candidates, in key order:
 //!    remove each, filling its hole by recursive loop splitting (`loop_split`, planned in
 //!    `plan`), keeping creases (an interior-edge vertex's loop is first split along its
 //!    feature edge) and rejecting fills that flip or degenerate a triangle or create an edge
 //!    that already exists (non-manifold) — such a vertex is kept until a neighbour goes; a
 //!    vertex whose ring a removal changed waits for the next pass, re-ranked at the end of
-//!    this one; removals run in regions on all cores (`regions`) while a round of them
+//!    this one; removals run in regions on all cores (`region_removal`) while a round of them
 //!    cannot reach the target, the rest (and those on region borders) planned on all cores
 //!    a batch at a time and made one by one;
 //! 5. compact: live vertices and triangles (and their colours, normals and texture
@@ -35,9 +35,9 @@
 //! select its candidates (a dozen passes take the dragon to 10 %).
 
 pub mod loop_split;
-mod passes;
 mod plan;
-mod regions;
+mod region_removal;
+mod removal_passes;
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -105,7 +105,7 @@ pub fn decimate_model(
         feature_angle_deg: limits.feature_angle_deg,
         pinned: pinned_count,
     };
-    passes::remove_in_passes(&mut d, limits, &mut outcome, progress);
+    removal_passes::remove_in_passes(&mut d, limits, &mut outcome, progress);
     progress(outcome.removed);
 
     // 5. compact
@@ -117,7 +117,7 @@ pub fn decimate_model(
 
 /// `model` as the decimation works on it: renumbered along a Morton curve, triangles
 /// sorted by their smallest vertex (memory locality for everything after, and the order
-/// `regions` cut by). Returns the renumbering, the positions and the triangles.
+/// `region_removal` cut by). Returns the renumbering, the positions and the triangles.
 fn load(model: &Model) -> (layout::Loaded, Vec<Vec3>, Vec<[u32; 3]>) {
     let mut loaded = layout::load(model);
     let positions: Vec<Vec3> = loaded

@@ -224,7 +224,7 @@ fn refused(dir: &Path, name: &str, bytes: &[u8]) -> String {
 #[test]
 #[ignore]
 fn timing_of_a_million_triangle_sphere() {
-    use decimate::decimate::{decimate_scene_progressive, Algorithm, Params, Target};
+    use decimate::decimate::{simplify_scene_progressive, Algorithm, Params, Target};
     use decimate::io::progressive_file::write_progressive;
     use std::time::Instant;
 
@@ -238,7 +238,7 @@ fn timing_of_a_million_triangle_sphere() {
         ..Params::default()
     };
     let start = Instant::now();
-    let (_, pm) = decimate_scene_progressive(&mut scene, &params, &mut |_| {});
+    let (_, pm) = simplify_scene_progressive(&mut scene, &params, &mut |_| {});
     let decimated = start.elapsed();
     let dir = tempfile::tempdir().unwrap_or_else(|e| panic!("temporary directory: {e}"));
     let path = dir.path().join("sphere.pm");
