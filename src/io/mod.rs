@@ -23,13 +23,13 @@ pub mod off;
 pub mod ply;
 pub mod progressive_file;
 pub mod replace;
-pub mod shape_to_model;
+mod shape_to_model;
 pub mod stl;
-pub mod text;
+mod text;
 pub mod texture_image;
 pub mod texture_path;
 pub mod triangulate;
-pub mod vrml;
+mod vrml;
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -43,7 +43,7 @@ pub use off::write_off;
 pub use ply::write_ply;
 pub use stl::write_stl;
 pub use texture_path::{rebase_textures, rebased};
-pub use vrml::vrml2_writer::write_vrml2_to;
+pub use vrml::write_vrml2_to;
 
 /// What went wrong reading a scene: always names the file, and the line where there is one.
 #[derive(Debug, thiserror::Error)]

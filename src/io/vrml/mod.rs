@@ -8,11 +8,12 @@ mod lexer;
 mod parse;
 mod vrml1;
 mod vrml2;
-pub mod vrml2_writer;
+mod vrml2_writer;
 
 use std::collections::HashSet;
 
 pub(crate) use parse::Dialect;
+pub use vrml2_writer::write_vrml2_to;
 
 use super::{ReadOutcome, MAX_MODELS, MAX_TRIANGLES};
 use crate::io::text::{PResult, ParseError};
