@@ -3,25 +3,27 @@
 //! the point that minimises the area-weighted squared distance to the planes it stands for.
 //!
 //! Stages over flat arrays: load in Morton order (`layout`) → connect (`mesh::topology`) →
-//! kinds and quadrics (`planes`, `texture`) → rank every edge (`ranking`) → collapse in
-//! passes (`passes`; `legality` checks, `part` performs) → compact back into the model.
-//! Error, attributes, seams and pins: docs/design.md#qem.
+//! kinds and quadrics (`planes`, `texture_quadrics`) → rank every edge (`ranking`) →
+//! collapse in passes (`collapse_passes`; `legality` checks, `part` performs) → compact back
+//! into the model. Error, attributes, seams and pins: docs/design.md#qem.
 
+mod collapse_passes;
+mod collapse_plan;
 mod collapser;
+mod edge_costs;
 mod legality;
 mod part;
-mod passes;
 mod planes;
 mod quadric;
 mod ranking;
-mod texture;
+mod texture_quadrics;
 
 use glam::Vec3;
 use rayon::prelude::*;
 
 use super::layout;
-use super::progressive::{ProgressiveModel, Recorder};
-use super::schroeder::{Limits, Outcome};
+use super::{Limits, Outcome};
+use crate::mesh::progressive::{ProgressiveModel, Recorder};
 use crate::mesh::{Attribute, Model};
 use collapser::Collapser;
 
@@ -123,7 +125,7 @@ fn run(
     d.whole().rank_all();
 
     // 5. collapse
-    let mut outcome = passes::collapse_in_passes(&mut d, limits, progress);
+    let mut outcome = collapse_passes::collapse_in_passes(&mut d, limits, progress);
     outcome.pinned = (0..n).filter(|&v| pinned(v)).count();
 
     // 6. compact
