@@ -8,6 +8,7 @@
 use std::path::PathBuf;
 
 use crate::decimate::{Algorithm, ErrorBound, Params, Target};
+use crate::render::draw::DrawOptions;
 
 /// What the program does after reading the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -20,35 +21,6 @@ pub enum Action {
     Shot,
 }
 
-/// Draw modes a `shot` can ask for (`--mode edges,points,...`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ShotModes {
-    pub triangles: bool,
-    pub edges: bool,
-    pub points: bool,
-    pub face_normals: bool,
-    pub vertex_normals: bool,
-    pub flat: bool,
-    pub unlit: bool,
-    /// Textured models in their material colour instead (`--mode untextured`).
-    pub untextured: bool,
-}
-
-impl Default for ShotModes {
-    fn default() -> Self {
-        Self {
-            triangles: true,
-            edges: false,
-            points: false,
-            face_normals: false,
-            vertex_normals: false,
-            flat: false,
-            unlit: false,
-            untextured: false,
-        }
-    }
-}
-
 /// Options of the `shot` action.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ShotOptions {
@@ -56,7 +28,8 @@ pub struct ShotOptions {
     pub height: u32,
     /// 1–4 viewports: the first shows the original, the others the decimated scene.
     pub viewports: u32,
-    pub modes: ShotModes,
+    /// What each viewport draws (`--mode`).
+    pub modes: DrawOptions,
     /// Where relative texture names are read from: the input file's folder.
     pub texture_dir: PathBuf,
 }
@@ -67,7 +40,7 @@ impl Default for ShotOptions {
             width: 800,
             height: 600,
             viewports: 1,
-            modes: ShotModes::default(),
+            modes: DrawOptions::default(),
             texture_dir: PathBuf::from("."),
         }
     }
@@ -244,7 +217,7 @@ where
                 }
                 shot.viewports = n;
             }
-            "--mode" => shot.modes = modes(&value(&arg)?)?,
+            "--mode" => shot.modes = draw_modes(&value(&arg)?)?,
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(CliError(format!("unknown option '{s}'")))
             }
@@ -386,10 +359,11 @@ fn size(s: &str) -> Result<(u32, u32), CliError> {
     Ok((w, h))
 }
 
-fn modes(s: &str) -> Result<ShotModes, CliError> {
-    let mut m = ShotModes {
+/// The draw toggles of a `--mode` list (the viewer's toggles, shading words meaning "off").
+pub fn draw_modes(s: &str) -> Result<DrawOptions, CliError> {
+    let mut m = DrawOptions {
         triangles: false,
-        ..ShotModes::default()
+        ..DrawOptions::default()
     };
     for word in s.split(',').map(str::trim).filter(|w| !w.is_empty()) {
         match word {
@@ -398,9 +372,9 @@ fn modes(s: &str) -> Result<ShotModes, CliError> {
             "points" => m.points = true,
             "normals" => m.face_normals = true,
             "vertex-normals" => m.vertex_normals = true,
-            "flat" => m.flat = true,
-            "unlit" => m.unlit = true,
-            "untextured" => m.untextured = true,
+            "flat" => m.smooth = false,
+            "unlit" => m.lighting = false,
+            "untextured" => m.textures = false,
             other => {
                 return Err(CliError(format!(
                     "--mode: unknown mode '{other}' (expected triangles, edges, points, \
@@ -587,7 +561,9 @@ mod tests {
             (a.shot.width, a.shot.height, a.shot.viewports),
             (640, 480, 4)
         );
-        assert!(a.shot.modes.edges && a.shot.modes.flat && !a.shot.modes.triangles);
+        assert!(a.shot.modes.edges && !a.shot.modes.smooth && !a.shot.modes.triangles);
+        assert!(a.shot.modes.lighting && a.shot.modes.textures);
+        assert_eq!(run(&["m.wrl", "shot"]).shot.modes, DrawOptions::default());
         assert_eq!(a.output, PathBuf::from("shot.png"));
         assert!(parse(["m.wrl", "shot", "--viewports", "5"]).is_err());
         assert!(parse(["m.wrl", "shot", "--size", "0x10"]).is_err());

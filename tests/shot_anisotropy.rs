@@ -8,7 +8,6 @@ mod shot_support;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use decimate::app::shot::draw_options;
 use decimate::mesh::{Model, Scene};
 use decimate::render::camera::{Bounds, Camera};
 use decimate::render::commands::Commands;
@@ -122,7 +121,7 @@ fn render(scene: &Scene, dir: &Path, anisotropic: bool) -> RgbaImage {
     let commands = Commands::new(&context).unwrap_or_else(|e| fail(&e));
     let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT).unwrap_or_else(|e| fail(&e));
     let target = OffscreenTarget::new(&context, WIDTH, HEIGHT).unwrap_or_else(|e| fail(&e));
-    let draw = draw_options(&modes("triangles,unlit"));
+    let draw = modes("triangles,unlit");
     let mut textures =
         Textures::new(&context, pipelines.texture_layout, dir).unwrap_or_else(|e| fail(&e));
     let gpu = GpuScene::upload(&context, &commands, &mut textures, scene, draw.layers())

@@ -13,6 +13,7 @@ use crate::render::camera::Navigation;
 use crate::render::tiles::{tiles, Rect};
 
 use super::menu::{Action, DecimateEvent, DecimateKind};
+use super::save::{save_path, SavePath};
 use super::viewport::Viewport;
 
 /// At most this many viewports, as in the original.
@@ -37,8 +38,10 @@ pub struct ViewportController {
     width: u32,
     height: u32,
     pub help: bool,
-    /// Where F3 saves (`out.wrl` in the working directory).
+    /// Where F3 saves (`out.wrl` in the working directory), unless that is an input.
     pub save_path: PathBuf,
+    /// The files the scene was read from: no save ever writes over one of them.
+    pub inputs: Vec<PathBuf>,
     /// The folder the scene was read from: its relative texture names are relative to it,
     /// and F3 re-expresses them for `save_path`'s folder.
     pub input_dir: PathBuf,
@@ -59,6 +62,7 @@ impl ViewportController {
             height,
             help: false,
             save_path: PathBuf::from("out.wrl"),
+            inputs: Vec::new(),
             input_dir: PathBuf::from("."),
             message: String::new(),
         }
@@ -110,23 +114,21 @@ impl ViewportController {
         self.message = format!("viewport {}: {done}", i + 1);
     }
 
-    /// Decimates the current viewport; says what was done.
+    /// Decimates the current viewport; says what was asked and what is shown now (the same
+    /// counts as the status line).
     fn decimate_current(&mut self, event: DecimateEvent) -> String {
         let report = self.current_mut().decimate(event);
-        let what = match event.kind {
-            DecimateKind::Percentage => format!("{:.0} %", event.amount),
-            DecimateKind::Number => format!("{:.0} vertices", event.amount),
+        let (seconds, fully) = (report.seconds, report.fully_decimated());
+        let asked = match event.kind {
+            DecimateKind::Percentage => format!("removed {:.0} %", event.amount),
+            DecimateKind::Number => format!("asked to remove {:.0} vertices", event.amount),
         };
+        let vp = self.current_viewport();
         format!(
-            "removed {} ({} vertices) in {:.3} s{}",
-            what,
-            report.vertices_removed(),
-            report.seconds,
-            if report.fully_decimated() {
-                " — fully decimated"
-            } else {
-                ""
-            }
+            "{asked}: {} vertices, {} triangles left in {seconds:.3} s{}",
+            vp.vertex_count(),
+            vp.triangle_count(),
+            if fully { " — fully decimated" } else { "" }
         )
     }
 
@@ -147,19 +149,40 @@ impl ViewportController {
         }
     }
 
-    /// "Decimate to N vertices": a NUMBER event for the difference from the original.
-    pub fn decimate_to(&mut self, vertices: usize) {
-        let original: usize = self
-            .original
-            .models
-            .iter()
+    /// Vertices of the original scene (used by some triangle).
+    pub fn original_vertices(&self) -> usize {
+        (self.original.models.iter())
             .map(crate::mesh::Model::used_vertex_count)
-            .sum();
-        let remove = original.saturating_sub(vertices);
-        self.decimate(DecimateEvent {
-            amount: remove as f64,
-            kind: DecimateKind::Number,
-        });
+            .sum()
+    }
+
+    /// "Decimate to N vertices": 0 is key `0` (remove 100 %: as far as possible, features
+    /// kept), any other count a NUMBER event for the difference from the original.
+    pub fn decimate_to(&mut self, vertices: usize) {
+        let original = self.original_vertices();
+        let event = if vertices == 0 {
+            DecimateEvent {
+                amount: 100.0,
+                kind: DecimateKind::Percentage,
+            }
+        } else if let Some(remove) = original.checked_sub(vertices) {
+            DecimateEvent {
+                amount: remove as f64,
+                kind: DecimateKind::Number,
+            }
+        } else {
+            self.message = format!("{vertices} vertices is more than the original's {original}");
+            return;
+        };
+        self.decimate(event);
+    }
+
+    /// The vertex-count field was submitted with `text`: decimates to that count, or says
+    /// why the text is no count of this scene (the field stays open with the message).
+    pub fn submit_vertex_count(&mut self, text: &str) -> Result<(), String> {
+        let n = parse_vertex_count(text, self.original_vertices())?;
+        self.decimate_to(n);
+        Ok(())
     }
 
     /// The level-of-detail slider of the current viewport moved to `vertices`.
@@ -279,18 +302,59 @@ impl ViewportController {
     }
 
     /// F3: the current viewport's scene as VRML 2.0, its texture names rebased for the
-    /// folder it is saved in.
+    /// folder it is saved in; written through a temporary file and a rename, and never over
+    /// an input file (then to `out-1.wrl`…, said in the message).
     fn save(&mut self) {
         self.current_mut().settle();
-        let path = self.save_path.clone();
-        let to_dir = crate::io::texture_path::folder_of(&path);
+        let n = self.current + 1;
+        let Some(target) = save_path(&self.save_path, &self.inputs) else {
+            self.message = format!(
+                "cannot save: {} and its numbered alternatives are all input files",
+                self.save_path.display()
+            );
+            eprintln!("decimate: {}", self.message);
+            return;
+        };
+        let path = target.path();
+        let to_dir = crate::io::texture_path::folder_of(path);
         let scene = crate::io::rebased(self.current_viewport().scene(), &self.input_dir, to_dir);
-        self.message = match crate::io::write_vrml2(&scene, &path) {
-            Ok(()) => format!("saved viewport {} as {}", self.current + 1, path.display()),
-            Err(e) => format!("cannot save: {e}"),
+        self.message = match (crate::io::write_vrml2(&scene, path), &target) {
+            (Ok(()), SavePath::AsAsked(_)) => format!("saved viewport {n} as {}", path.display()),
+            (Ok(()), SavePath::Instead(_)) => format!(
+                "{} is the input file, not written over: saved viewport {n} as {}",
+                self.save_path.display(),
+                path.display()
+            ),
+            (Err(e), _) => format!("cannot save: {e}"),
         };
         eprintln!("decimate: {}", self.message);
     }
+}
+
+/// A vertex count typed into the field: a whole number from 0 to `original` (digit groups may
+/// be separated by `,` or `_`).
+pub fn parse_vertex_count(text: &str, original: usize) -> Result<usize, String> {
+    let range = format!("type a whole number from 0 to {original} (0: as far as possible)");
+    let digits: String = text
+        .trim()
+        .chars()
+        .filter(|c| !matches!(c, ',' | '_'))
+        .collect();
+    if digits.is_empty() {
+        return Err(format!("no number: {range}"));
+    }
+    let n: usize = match digits.parse() {
+        Ok(n) => n,
+        Err(_) if digits.bytes().all(|b| b.is_ascii_digit()) => usize::MAX,
+        Err(_) => return Err(format!("'{}' is not a vertex count: {range}", text.trim())),
+    };
+    if n > original {
+        return Err(format!(
+            "{} is more than the original's {original} vertices: {range}",
+            text.trim()
+        ));
+    }
+    Ok(n)
 }
 
 #[cfg(test)]
@@ -523,11 +587,61 @@ mod tests {
     }
 
     #[test]
-    fn decimate_to_n_vertices_is_a_number_event() {
+    fn decimate_to_n_vertices_reaches_n_and_says_the_counts_shown() {
         let mut c = controller();
-        c.decimate_to(60);
-        assert!(c.message.contains("61 vertices"), "{}", c.message);
+        assert_eq!(c.submit_vertex_count(" 60\n"), Ok(()));
+        assert_eq!(c.current_viewport().vertex_count(), 60);
+        let triangles = c.current_viewport().triangle_count();
+        assert!(
+            c.message
+                .contains(&format!(": 60 vertices, {triangles} triangles left")),
+            "{}",
+            c.message
+        );
         assert_eq!(c.current_viewport().generation, 1);
+        // All of them: nothing removed, the original shown.
+        assert_eq!(c.submit_vertex_count("121"), Ok(()));
+        assert_eq!(c.current_viewport().vertex_count(), 121);
+    }
+
+    #[test]
+    fn the_vertex_field_refuses_what_is_no_count_of_the_scene() {
+        let mut c = controller();
+        for (text, says) in [
+            ("abc", "'abc' is not a vertex count"),
+            ("-5", "'-5' is not a vertex count"),
+            ("12.5", "'12.5' is not a vertex count"),
+            ("", "no number"),
+            ("99999", "99999 is more than the original's 121 vertices"),
+            ("99999999999999999999999", "is more than the original's 121"),
+        ] {
+            let e = c.submit_vertex_count(text).unwrap_err();
+            assert!(e.contains(says), "{text:?}: {e}");
+            assert!(e.contains("from 0 to 121"), "{text:?}: {e}");
+        }
+        assert_eq!(c.current_viewport().generation, 0, "nothing was decimated");
+        assert_eq!(parse_vertex_count("1,000", 5000), Ok(1000));
+    }
+
+    #[test]
+    fn zero_vertices_is_key_zero() {
+        let cube = Scene {
+            models: vec![crate::mesh::shapes::test004()],
+        };
+        let mut by_key = ViewportController::new(cube.clone(), Params::default(), 800, 600);
+        key(&mut by_key, Key::Char('0'));
+        let mut by_field = ViewportController::new(cube, Params::default(), 800, 600);
+        assert_eq!(by_field.submit_vertex_count("0"), Ok(()));
+        for c in [&by_key, &by_field] {
+            let vp = c.current_viewport();
+            // The cube's eight corners are features: "as far as possible" keeps them.
+            assert_eq!((vp.vertex_count(), vp.triangle_count()), (8, 12));
+            assert!(
+                c.message.contains("8 vertices, 12 triangles left"),
+                "{}",
+                c.message
+            );
+        }
     }
 
     #[test]
@@ -591,6 +705,35 @@ mod tests {
             saved.scene.models[0].used_vertex_count(),
             c.current_viewport().vertex_count()
         );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn f3_never_writes_over_the_input_file() {
+        let dir = std::env::temp_dir().join(format!("decimate-f3-in-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        let input = dir.join("out.wrl");
+        crate::io::write_vrml2(&plane(), &input).unwrap_or_else(|e| panic!("{e}"));
+        let before = std::fs::read(&input).unwrap_or_else(|e| panic!("{e}"));
+        let mut c = controller();
+        c.save_path = input.clone();
+        c.inputs = vec![input.clone()];
+        key(&mut c, Key::Char('5'));
+        key(&mut c, Key::F3);
+        assert_eq!(
+            std::fs::read(&input).unwrap_or_else(|e| panic!("{e}")),
+            before,
+            "the input changed"
+        );
+        let instead = dir.join("out-1.wrl");
+        assert!(c.message.contains("out-1.wrl"), "{}", c.message);
+        assert!(c.message.contains("input"), "{}", c.message);
+        let saved = crate::io::read_scene(&instead).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(saved.scene.models[0].used_vertex_count(), 60);
+        // No temporary file is left beside them.
+        let names = std::fs::read_dir(&dir).map_or(0, |d| d.count());
+        assert_eq!(names, 2);
         let _ = std::fs::remove_dir_all(&dir);
     }
 

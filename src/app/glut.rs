@@ -12,6 +12,7 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{Key as WinitKey, NamedKey};
 use winit::window::{Window, WindowId};
 
+use super::error::AppError;
 use super::menu::Key;
 
 /// Mouse buttons, as GLUT names them.
@@ -41,9 +42,9 @@ pub enum Flow {
 /// The viewer's callbacks. Positions are physical pixels from the window's top-left corner.
 pub trait Callbacks {
     /// The window exists: create what draws into it. An error ends the loop.
-    fn create(&mut self, window: &Arc<Window>) -> Result<(), String>;
-    /// Draw a frame.
-    fn display(&mut self, window: &Window) -> Flow;
+    fn create(&mut self, window: &Arc<Window>) -> Result<(), AppError>;
+    /// Draw a frame. An error ends the loop, and `main_loop` returns it.
+    fn display(&mut self, window: &Window) -> Result<Flow, AppError>;
     /// The window was resized.
     fn reshape(&mut self, width: u32, height: u32);
     /// A bound or printable key was pressed.
@@ -71,19 +72,22 @@ struct Glut<'a, C: Callbacks> {
     shift: bool,
     /// The left button went down with Shift: it is reported as the middle one until it is up.
     left_is_middle: bool,
-    error: Option<String>,
+    error: Option<AppError>,
 }
 
 /// Opens a window titled `title` and runs the event loop with `callbacks` until one of them
 /// returns [`Flow::Quit`] or the window is closed.
-pub fn main_loop<C: Callbacks>(title: &str, callbacks: &mut C) -> Result<(), String> {
+pub fn main_loop<C: Callbacks>(title: &str, callbacks: &mut C) -> Result<(), AppError> {
     use winit::platform::x11::EventLoopBuilderExtX11;
     let event_loop = EventLoop::builder().with_x11().build().map_err(|e| {
         let display = match std::env::var("DISPLAY") {
             Ok(d) => format!("DISPLAY={d}"),
             Err(_) => "DISPLAY is not set".to_string(),
         };
-        format!("cannot open the X11 display ({display}): {e}")
+        AppError::Display {
+            display,
+            message: e.to_string(),
+        }
     })?;
     let mut glut = Glut {
         title: title.to_string(),
@@ -96,7 +100,7 @@ pub fn main_loop<C: Callbacks>(title: &str, callbacks: &mut C) -> Result<(), Str
     };
     event_loop
         .run_app(&mut glut)
-        .map_err(|e| format!("event loop: {e}"))?;
+        .map_err(|e| AppError::EventLoop(e.to_string()))?;
     match glut.error {
         Some(e) => Err(e),
         None => Ok(()),
@@ -121,7 +125,7 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
         let window = match event_loop.create_window(attributes) {
             Ok(w) => Arc::new(w),
             Err(e) => {
-                self.error = Some(format!("cannot create the window: {e}"));
+                self.error = Some(AppError::Window(e.to_string()));
                 event_loop.exit();
                 return;
             }
@@ -152,8 +156,13 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
             WindowEvent::RedrawRequested => {
                 // Drawn on demand only: no redraw is requested from here, so an idle viewer
                 // leaves the (shared, often software) GPU alone.
-                if self.callbacks.display(&window) == Flow::Quit {
-                    self.quit(event_loop);
+                match self.callbacks.display(&window) {
+                    Ok(Flow::Continue) => {}
+                    Ok(Flow::Quit) => self.quit(event_loop),
+                    Err(e) => {
+                        self.error = Some(e);
+                        self.quit(event_loop);
+                    }
                 }
                 return;
             }

@@ -2,9 +2,11 @@
 //! viewer, both over `render`. `run` is what `main` calls for the `gui` and `shot` actions.
 
 pub mod controller;
+pub mod error;
 pub mod glut;
 pub mod lod;
 pub mod menu;
+pub mod save;
 pub mod shot;
 pub mod ui;
 pub mod viewer;
@@ -36,6 +38,7 @@ fn run_gui(scene: Scene, args: &Args) -> ExitCode {
     // motion events for the viewports the controller owns.
     let mut controller = controller::ViewportController::new(scene, args.params, 1024, 720);
     controller.input_dir = crate::io::texture_path::folder_of(&args.input).to_path_buf();
+    controller.inputs = vec![args.input.clone()];
     let mut viewer = viewer::Viewer::new(controller, entries);
     // (6) Hand control to the main loop.
     let title = format!("decimate — {}", args.input.display());

@@ -4,13 +4,13 @@
 
 use std::path::Path;
 
-use crate::cli::{ShotModes, ShotOptions};
+use crate::cli::ShotOptions;
 use crate::decimate::{decimate_scene, Params, Report};
 use crate::mesh::Scene;
 use crate::render::camera::Camera;
 use crate::render::commands::Commands;
 use crate::render::context::{Context, DevicePreference};
-use crate::render::draw::{DrawOptions, ViewportDraw};
+use crate::render::draw::ViewportDraw;
 use crate::render::gpu_mesh::GpuScene;
 use crate::render::offscreen::{OffscreenTarget, RgbaImage, OFFSCREEN_FORMAT};
 use crate::render::pipeline::Pipelines;
@@ -37,20 +37,6 @@ pub enum ShotError {
     },
 }
 
-/// The draw toggles a `--mode` list asks for.
-pub fn draw_options(modes: &ShotModes) -> DrawOptions {
-    DrawOptions {
-        triangles: modes.triangles,
-        edges: modes.edges,
-        points: modes.points,
-        face_normals: modes.face_normals,
-        vertex_normals: modes.vertex_normals,
-        lighting: !modes.unlit,
-        smooth: !modes.flat,
-        textures: !modes.untextured,
-    }
-}
-
 /// A picture of `scene` and, when `params` is given, of its decimated copy.
 ///
 /// Viewport 1 shows the original and viewports 2–4 the decimated scene; with a single
@@ -67,7 +53,7 @@ pub fn render(
     let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
     let target = OffscreenTarget::new(&context, options.width, options.height)?;
 
-    let draw = draw_options(&options.modes);
+    let draw = options.modes;
     let mut textures = Textures::new(&context, pipelines.texture_layout, &options.texture_dir)?;
     let original = GpuScene::upload(&context, &commands, &mut textures, scene, draw.layers())?;
     let (decimated, report) = match params {

@@ -9,11 +9,11 @@
 use std::path::{Path, PathBuf};
 
 use decimate::app::shot;
-use decimate::cli::{ShotModes, ShotOptions};
+use decimate::cli::ShotOptions;
 use decimate::decimate::Params;
 use decimate::mesh::{Model, Scene};
 use decimate::render::context::DevicePreference;
-use decimate::render::draw::BACKGROUND;
+use decimate::render::draw::{DrawOptions, BACKGROUND};
 use decimate::render::offscreen::RgbaImage;
 use glam::{Mat4, Vec3};
 
@@ -89,36 +89,16 @@ pub fn sphere(rings: u32, segments: u32, transform: Mat4) -> Scene {
     }
 }
 
-/// The modes of a `--mode` list.
-pub fn modes(list: &str) -> ShotModes {
-    let mut m = ShotModes {
-        triangles: false,
-        ..ShotModes::default()
-    };
-    for word in list.split(',') {
-        match word {
-            "triangles" => m.triangles = true,
-            "untextured" => m.untextured = true,
-            "edges" => m.edges = true,
-            "points" => m.points = true,
-            "normals" => m.face_normals = true,
-            "vertex-normals" => m.vertex_normals = true,
-            "flat" => m.flat = true,
-            "unlit" => m.unlit = true,
-            other => panic!("unknown mode {other}"),
-        }
-    }
-    if !(m.edges || m.points) {
-        m.triangles = true;
-    }
-    m
+/// The draw toggles of a `--mode` list, parsed as the command line parses it.
+pub fn modes(list: &str) -> DrawOptions {
+    decimate::cli::draw_modes(list).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Renders in-process on lavapipe; a missing Vulkan is a test failure with the reason.
 pub fn render(
     scene: &Scene,
     viewports: u32,
-    modes: ShotModes,
+    modes: DrawOptions,
     params: Option<&Params>,
 ) -> RgbaImage {
     let options = ShotOptions {
