@@ -30,6 +30,10 @@ pub struct ShotOptions {
     pub viewports: u32,
     /// What each viewport draws (`--mode`).
     pub modes: DrawOptions,
+    /// Captions on the viewports (`--labels` / `--no-labels`); by default with more than one.
+    pub labels: Option<bool>,
+    /// One target per decimated viewport (`-p 60,80,90`); empty when one target was given.
+    pub targets: Vec<Target>,
     /// Where relative texture names are read from: the input file's folder.
     pub texture_dir: PathBuf,
 }
@@ -41,6 +45,8 @@ impl Default for ShotOptions {
             height: 600,
             viewports: 1,
             modes: DrawOptions::default(),
+            labels: None,
+            targets: Vec::new(),
             texture_dir: PathBuf::from("."),
         }
     }
@@ -123,7 +129,10 @@ action-options for shot (offscreen render to PNG, no window):
   --viewports N         1-4 viewports: the original, then the decimated scene
   --mode LIST           comma-separated: triangles,edges,points,normals,vertex-normals,
                         flat,unlit,untextured (DEFAULT: triangles)
-  -p / -v / ...         decimation target, as for nogui
+  --labels, --no-labels a caption on each viewport: what it shows, its counts
+                        (DEFAULT: on with more than one viewport)
+  -p / -v / ...         decimation target, as for nogui; a list such as -p 60,80,90
+                        gives each decimated viewport its own (and --viewports 4)
 
 typical usage:           decimate model.wrl
 typical usage for nogui: decimate model.wrl nogui -p 100 -o output.wrl
@@ -143,6 +152,9 @@ where
     let mut algorithm: Option<Algorithm> = None;
     let mut progressive: Option<PathBuf> = None;
     let mut target: Option<Target> = None;
+    // Every target of a list (`-p 60,80,90`): one per decimated viewport of a shot.
+    let mut targets: Vec<Target> = Vec::new();
+    let mut viewports: Option<u32> = None;
     let mut weld = true;
     let mut overwrite = false;
     let mut quiet = false;
@@ -158,25 +170,35 @@ where
             "--version" | "-V" => return Ok(Command::Version),
             "-o" | "--output" => output = Some(PathBuf::from(value(&arg)?)),
             "-p" | "--percent" => {
-                let p: f64 = number(&arg, &value(&arg)?)?;
-                if !(0.0..=100.0).contains(&p) {
+                let list: Vec<f64> = numbers(&arg, &value(&arg)?)?;
+                if let Some(p) = list.iter().find(|p| !(0.0..=100.0).contains(*p)) {
                     return Err(CliError(format!(
                         "{arg}: the percentage must be between 0 and 100, got {p}"
                     )));
                 }
-                set_target(&mut target, Target::RemovePercent(p))?;
+                targets = list.into_iter().map(Target::RemovePercent).collect();
+                set_target(&mut target, targets[0])?;
             }
             "-v" | "--vertices" => {
-                let n = number(&arg, &value(&arg)?)?;
-                set_target(&mut target, Target::RemoveVertices(n))?;
+                targets = numbers(&arg, &value(&arg)?)?
+                    .into_iter()
+                    .map(Target::RemoveVertices)
+                    .collect();
+                set_target(&mut target, targets[0])?;
             }
             "--keep-vertices" => {
-                let n = number(&arg, &value(&arg)?)?;
-                set_target(&mut target, Target::KeepVertices(n))?;
+                targets = numbers(&arg, &value(&arg)?)?
+                    .into_iter()
+                    .map(Target::KeepVertices)
+                    .collect();
+                set_target(&mut target, targets[0])?;
             }
             "--keep-triangles" => {
-                let n = number(&arg, &value(&arg)?)?;
-                set_target(&mut target, Target::KeepTriangles(n))?;
+                targets = numbers(&arg, &value(&arg)?)?
+                    .into_iter()
+                    .map(Target::KeepTriangles)
+                    .collect();
+                set_target(&mut target, targets[0])?;
             }
             "--max-error" => params.max_error = Some(error_bound(&value(&arg)?)?),
             "--feature-angle" => {
@@ -215,8 +237,10 @@ where
                 if !(1..=4).contains(&n) {
                     return Err(CliError(format!("--viewports: expected 1 to 4, got {n}")));
                 }
-                shot.viewports = n;
+                viewports = Some(n);
             }
+            "--labels" => shot.labels = Some(true),
+            "--no-labels" => shot.labels = Some(false),
             "--mode" => shot.modes = draw_modes(&value(&arg)?)?,
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(CliError(format!("unknown option '{s}'")))
@@ -266,6 +290,7 @@ where
         check_progressive(pm, action, &output)?;
     }
     shot.texture_dir = crate::io::texture_path::folder_of(&input).to_path_buf();
+    shot_targets(&mut shot, targets, viewports, action)?;
     Ok(Command::Run(Box::new(Args {
         input,
         action,
@@ -312,6 +337,49 @@ fn check_progressive(
     Ok(())
 }
 
+/// A list of targets is one per decimated viewport of a shot: it sets the viewport count
+/// when `--viewports` is not given, and must fit the count when it is.
+fn shot_targets(
+    shot: &mut ShotOptions,
+    targets: Vec<Target>,
+    viewports: Option<u32>,
+    action: Action,
+) -> Result<(), CliError> {
+    if targets.len() > 1 && action != Action::Shot {
+        return Err(CliError(format!(
+            "a list of {} targets gives each decimated viewport of a shot its own; {} takes one",
+            targets.len(),
+            if action == Action::NoGui {
+                "nogui"
+            } else {
+                "the viewer"
+            }
+        )));
+    }
+    let decimated = targets.len() as u32;
+    if decimated > 3 {
+        return Err(CliError(format!(
+            "{decimated} targets: at most 3, for the viewports beside the original"
+        )));
+    }
+    shot.viewports = match viewports {
+        Some(n) if targets.len() > 1 && decimated > n.saturating_sub(1) => {
+            return Err(CliError(format!(
+                "--viewports {n}: {decimated} targets need {} viewports (the first shows the \
+                 original)",
+                decimated + 1
+            )))
+        }
+        Some(n) => n,
+        None if targets.len() > 1 => (decimated + 1).min(4),
+        None => 1,
+    };
+    if targets.len() > 1 {
+        shot.targets = targets;
+    }
+    Ok(())
+}
+
 fn set_target(slot: &mut Option<Target>, t: Target) -> Result<(), CliError> {
     if slot.is_some() {
         return Err(CliError(
@@ -326,6 +394,11 @@ fn number<T: std::str::FromStr>(name: &str, s: &str) -> Result<T, CliError> {
     s.trim()
         .parse()
         .map_err(|_| CliError(format!("{name}: expected a number, got '{s}'")))
+}
+
+/// A comma-separated list of numbers (`60,80,90`), at least one.
+fn numbers<T: std::str::FromStr>(name: &str, s: &str) -> Result<Vec<T>, CliError> {
+    s.split(',').map(|item| number(name, item)).collect()
 }
 
 fn error_bound(s: &str) -> Result<ErrorBound, CliError> {
@@ -566,6 +639,62 @@ mod tests {
         assert_eq!(run(&["m.wrl", "shot"]).shot.modes, DrawOptions::default());
         assert_eq!(a.output, PathBuf::from("shot.png"));
         assert!(parse(["m.wrl", "shot", "--viewports", "5"]).is_err());
+        assert_eq!(a.shot.labels, None);
+        let a = run(&["m.wrl", "shot", "--no-labels"]);
+        assert_eq!(a.shot.labels, Some(false));
         assert!(parse(["m.wrl", "shot", "--size", "0x10"]).is_err());
+    }
+
+    #[test]
+    fn a_list_of_targets_gives_each_decimated_viewport_its_own() {
+        let a = run(&[
+            "m.wrl",
+            "shot",
+            "-p",
+            "60,80,90",
+            "--mode",
+            "triangles,edges",
+        ]);
+        assert_eq!(a.shot.viewports, 4);
+        assert_eq!(
+            a.shot.targets,
+            [60.0, 80.0, 90.0].map(Target::RemovePercent).to_vec()
+        );
+        assert_eq!(a.params.target, Target::RemovePercent(60.0));
+        let a = run(&[
+            "m.wrl",
+            "shot",
+            "--keep-triangles",
+            "500,100",
+            "--viewports",
+            "4",
+        ]);
+        assert_eq!(a.shot.viewports, 4);
+        assert_eq!(
+            a.shot.targets,
+            [500, 100].map(Target::KeepTriangles).to_vec()
+        );
+        let a = run(&["m.wrl", "shot", "-p", "60"]);
+        assert_eq!((a.shot.viewports, a.shot.targets.len()), (1, 0));
+        for (args, says) in [
+            (
+                &["m.wrl", "shot", "-p", "60,80,90", "--viewports", "3"][..],
+                "need 4 viewports",
+            ),
+            (&["m.wrl", "shot", "-p", "10,20,30,40"], "at most 3"),
+            (
+                &["m.wrl", "shot", "-p", "60,180"],
+                "between 0 and 100, got 180",
+            ),
+            (
+                &["m.wrl", "shot", "-p", "60,,90"],
+                "-p: expected a number, got ''",
+            ),
+            (&["m.wrl", "nogui", "-p", "60,80"], "nogui takes one"),
+            (&["m.wrl", "-v", "6,8"], "the viewer takes one"),
+        ] {
+            let e = parse(args.iter().copied()).unwrap_err();
+            assert!(e.0.contains(says), "{args:?}: {e}");
+        }
     }
 }

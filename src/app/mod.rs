@@ -4,6 +4,7 @@
 pub mod controller;
 pub mod error;
 pub mod glut;
+pub mod labels;
 pub mod lod;
 pub mod menu;
 pub mod save;
@@ -60,8 +61,10 @@ fn run_shot(scene: &Scene, args: &Args) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    if let (Some(report), false) = (report, args.quiet) {
-        eprint!("{}", crate::batch::summary(&report));
+    if !args.quiet {
+        for report in &report {
+            eprint!("{}", crate::batch::summary(report));
+        }
     }
     if let Err(e) = shot::write_png(&image, &args.output) {
         eprintln!("decimate: cannot write {e}");

@@ -12,7 +12,10 @@ use winit::window::Window;
 use crate::render::commands::Commands;
 use crate::render::context::Context;
 
+use crate::render::tiles::Rect;
+
 use super::error::AppError;
+use super::labels;
 use super::menu::{Action, MenuEntry, MenuItem};
 
 /// What the user did in the UI this frame.
@@ -55,6 +58,8 @@ pub struct UiState<'a> {
     /// The current viewport's level-of-detail slider, if it is on: least and most vertices,
     /// and the count it is at.
     pub lod: Option<(usize, usize, usize)>,
+    /// Each viewport's rectangle (physical pixels) and caption.
+    pub captions: &'a [(Rect, String)],
 }
 
 /// egui context, winit glue and Vulkan renderer.
@@ -136,9 +141,12 @@ impl UiLayer {
             status,
             help,
             lod,
+            captions,
         } = ui_state;
+        let scale = window.scale_factor() as f32;
         let output = self.ctx.run_ui(input, |ui| {
             let ctx = ui.ctx().clone();
+            labels::paint(&ctx, captions, scale);
             egui::Area::new(egui::Id::new("status"))
                 .anchor(egui::Align2::LEFT_BOTTOM, egui::vec2(6.0, -6.0))
                 .show(&ctx, |ui| {

@@ -177,6 +177,9 @@ impl Viewer {
             (lo, hi, l.target())
         });
         let help = self.controller.help.then_some(self.help_text.as_str());
+        let captions: Vec<_> = (self.controller.rects().into_iter())
+            .zip(self.controller.viewports().iter().map(|vp| vp.caption()))
+            .collect();
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(UiResult::default());
         };
@@ -193,6 +196,7 @@ impl Viewer {
                 status: &status,
                 help,
                 lod,
+                captions: &captions,
             },
         )
     }
@@ -327,35 +331,9 @@ fn record_viewports(
         draw::clear_tiles(device, cmd, extent, &rects, highlight);
         draw::record(device, cmd, &gpu.pipelines, views);
         device.cmd_end_rendering(cmd);
-        begin_overlay(device, cmd, frame.view, extent);
+        draw::begin_overlay(device, cmd, frame.view, extent);
     }
     Ok(())
-}
-
-/// Begins a colour-only pass that keeps what was drawn (for the UI).
-///
-/// # Safety
-/// `cmd` must be recording outside rendering, `view` in the colour-attachment layout.
-unsafe fn begin_overlay(
-    device: &ash::Device,
-    cmd: vk::CommandBuffer,
-    view: vk::ImageView,
-    extent: vk::Extent2D,
-) {
-    let color = [vk::RenderingAttachmentInfo::default()
-        .image_view(view)
-        .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
-        .load_op(vk::AttachmentLoadOp::LOAD)
-        .store_op(vk::AttachmentStoreOp::STORE)];
-    let info = vk::RenderingInfo::default()
-        .render_area(vk::Rect2D {
-            offset: vk::Offset2D::default(),
-            extent,
-        })
-        .layer_count(1)
-        .color_attachments(&color);
-    // SAFETY: guaranteed by the caller.
-    unsafe { device.cmd_begin_rendering(cmd, &info) };
 }
 
 impl Callbacks for Viewer {

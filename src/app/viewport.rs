@@ -12,6 +12,7 @@ use crate::render::camera::{Camera, Navigation};
 use crate::render::draw::DrawOptions;
 use crate::render::gpu_mesh::scene_bounds;
 
+use super::labels;
 use super::lod::LodView;
 use super::menu::{DecimateEvent, DecimateKind};
 
@@ -111,13 +112,8 @@ impl Viewport {
     /// Decimates from the original (never from the already decimated scene), so "90 %" always
     /// means 90 % of the original's vertices.
     pub fn decimate(&mut self, event: DecimateEvent) -> &Report {
-        let target = match event.kind {
-            DecimateKind::Percentage => Target::RemovePercent(event.amount.clamp(0.0, 100.0)),
-            // The request is capped at what can be removed by the decimator itself.
-            DecimateKind::Number => Target::RemoveVertices(event.amount.max(0.0) as usize),
-        };
         let params = Params {
-            target,
+            target: target_of(event),
             ..self.params
         };
         let mut scene = (*self.original).clone();
@@ -164,6 +160,23 @@ impl Viewport {
         self.scene().triangle_count()
     }
 
+    /// The caption over the viewport: what it shows ("original", its target and algorithm,
+    /// or the level-of-detail slider) and its counts.
+    pub fn caption(&self) -> String {
+        let what = if self.lod.is_some() {
+            "level of detail (qem)".to_string()
+        } else if let Some((event, _)) = &self.last {
+            format!(
+                "{} ({})",
+                labels::target_words(target_of(*event), self.params.max_error),
+                labels::algorithm_name(self.params.algorithm)
+            )
+        } else {
+            "original".to_string()
+        };
+        labels::caption(&what, self.vertex_count(), self.triangle_count())
+    }
+
     /// The status line: counts, last decimation time, "fully decimated".
     pub fn status(&self) -> String {
         let mut s = format!(
@@ -191,5 +204,14 @@ impl Viewport {
             Navigation::Eye => " [eye control]",
         });
         s
+    }
+}
+
+/// The decimation target of a decimate event.
+fn target_of(event: DecimateEvent) -> Target {
+    match event.kind {
+        DecimateKind::Percentage => Target::RemovePercent(event.amount.clamp(0.0, 100.0)),
+        // The request is capped at what can be removed by the decimator itself.
+        DecimateKind::Number => Target::RemoveVertices(event.amount.max(0.0) as usize),
     }
 }

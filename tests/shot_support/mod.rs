@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use decimate::app::shot;
 use decimate::cli::ShotOptions;
-use decimate::decimate::Params;
+use decimate::decimate::{Params, Report};
 use decimate::mesh::{Model, Scene};
 use decimate::render::context::DevicePreference;
 use decimate::render::draw::{DrawOptions, BACKGROUND};
@@ -94,7 +94,8 @@ pub fn modes(list: &str) -> DrawOptions {
     decimate::cli::draw_modes(list).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// Renders in-process on lavapipe; a missing Vulkan is a test failure with the reason.
+/// Renders in-process on lavapipe, without captions; a missing Vulkan is a test failure with
+/// the reason.
 pub fn render(
     scene: &Scene,
     viewports: u32,
@@ -106,10 +107,20 @@ pub fn render(
         height: HEIGHT,
         viewports,
         modes,
+        labels: Some(false),
         ..ShotOptions::default()
     };
-    match shot::render(scene, &options, params, DevicePreference::Cpu) {
-        Ok((image, _)) => image,
+    render_with(scene, &options, params).0
+}
+
+/// Renders `options` in-process on lavapipe; the picture and the decimations' reports.
+pub fn render_with(
+    scene: &Scene,
+    options: &ShotOptions,
+    params: Option<&Params>,
+) -> (RgbaImage, Vec<Report>) {
+    match shot::render(scene, options, params, DevicePreference::Cpu) {
+        Ok(r) => r,
         Err(e) => panic!(
             "Vulkan rendering is unavailable, so the shot tests cannot run: {e}\n\
              install lavapipe: apt-get install mesa-vulkan-drivers libvulkan1"
