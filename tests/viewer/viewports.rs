@@ -2,14 +2,13 @@
 //! framing the whole model; the world transform of a model is honoured when framing; the
 //! report's four-up figure, each viewport with its own target and a caption.
 
-mod shot_support;
-
 use decimate::cli::ShotOptions;
 use decimate::decimate::{Params, Target};
 use decimate::mesh::Scene;
 use decimate::render::offscreen::RgbaImage;
 use glam::{Mat4, Vec3};
-use shot_support::*;
+
+use crate::support::shot::*;
 
 #[test]
 fn four_viewports_tile_the_picture_and_each_shows_the_model() {
