@@ -38,6 +38,8 @@ pub struct ViewportController {
     width: u32,
     height: u32,
     pub help: bool,
+    /// Every viewport shows the current one's camera (`c`).
+    pub linked: bool,
     /// Where F3 saves (`out.wrl` in the working directory), unless that is an input.
     pub save_path: PathBuf,
     /// The files the scene was read from: no save ever writes over one of them.
@@ -61,6 +63,7 @@ impl ViewportController {
             width,
             height,
             help: false,
+            linked: false,
             save_path: PathBuf::from("out.wrl"),
             inputs: Vec::new(),
             input_dir: PathBuf::from("."),
@@ -202,6 +205,7 @@ impl ViewportController {
     /// Left-drag by `delta` pixels in the current viewport.
     pub fn drag(&mut self, delta: Vec2) {
         self.current_mut().camera.drag(delta);
+        self.follow_current_camera();
     }
 
     /// Middle-drag (or Shift + left-drag) by `delta` pixels in the current viewport: pans.
@@ -211,16 +215,29 @@ impl ViewportController {
         };
         let (height, aspect) = (rect.height as f32, rect.aspect());
         self.current_mut().camera.pan(delta, height, aspect);
+        self.follow_current_camera();
     }
 
     /// Wheel steps in the current viewport.
     pub fn wheel(&mut self, steps: f32) {
         self.current_mut().camera.wheel(steps);
+        self.follow_current_camera();
     }
 
     /// Arrow / W S keys: walk in eye control.
     pub fn walk(&mut self, forward: f32, right: f32) {
         self.current_mut().camera.walk(forward, right);
+        self.follow_current_camera();
+    }
+
+    /// With linked cameras, every viewport takes the current one's camera.
+    fn follow_current_camera(&mut self) {
+        if self.linked {
+            let camera = self.current_viewport().camera.clone();
+            for vp in &mut self.viewports {
+                vp.camera = camera.clone();
+            }
+        }
     }
 
     /// Runs `action`; returns what the window must do about it.
@@ -272,8 +289,21 @@ impl ViewportController {
                     Navigation::Eye => Navigation::Model,
                 };
                 camera.set_navigation(next);
+                self.follow_current_camera();
             }
-            Action::ResetView => self.current_mut().camera.reset(),
+            Action::ResetView => {
+                self.current_mut().camera.reset();
+                self.follow_current_camera();
+            }
+            Action::ToggleLinkedCameras => {
+                self.linked ^= true;
+                self.follow_current_camera();
+                self.message = if self.linked {
+                    format!("cameras linked to viewport {}'s", self.current + 1)
+                } else {
+                    "each viewport has its own camera".into()
+                };
+            }
             Action::AddViewport => {
                 if self.viewports.len() < MAX_VIEWPORTS {
                     let id = self.next_id;
@@ -281,6 +311,10 @@ impl ViewportController {
                     self.viewports
                         .push(Viewport::new(id, self.original.clone(), self.params));
                     self.current = self.viewports.len() - 1;
+                    if self.linked {
+                        // A new viewport joins the others' shared camera.
+                        self.viewports[self.current].camera = self.viewports[0].camera.clone();
+                    }
                 } else {
                     self.message = format!("at most {MAX_VIEWPORTS} viewports");
                 }
@@ -427,6 +461,31 @@ mod tests {
         assert_eq!(c.viewports()[0].camera, framed, "the left one stays");
         key(&mut c, Key::Char('r'));
         assert_eq!(c.viewports()[1].camera, framed);
+    }
+
+    #[test]
+    fn linked_cameras_follow_the_current_viewport() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        c.pointer_at(600.0, 300.0);
+        c.drag(Vec2::new(30.0, 10.0));
+        assert_ne!(c.viewports()[0].camera, c.viewports()[1].camera);
+        // c: the others take the current one's camera, and follow it from then on.
+        key(&mut c, Key::Char('c'));
+        assert_eq!(c.viewports()[0].camera, c.viewports()[1].camera);
+        c.pointer_at(100.0, 300.0);
+        assert_eq!(c.current(), 0);
+        c.drag(Vec2::new(-50.0, 20.0));
+        c.wheel(2.0);
+        c.pan(Vec2::new(15.0, 5.0));
+        assert_eq!(c.viewports()[0].camera, c.viewports()[1].camera);
+        key(&mut c, Key::Char('a'));
+        assert_eq!(c.viewports()[2].camera, c.viewports()[0].camera);
+        // c again: each its own.
+        key(&mut c, Key::Char('c'));
+        c.drag(Vec2::new(40.0, 0.0));
+        assert_ne!(c.viewports()[2].camera, c.viewports()[0].camera);
+        assert_eq!(c.viewports()[0].camera, c.viewports()[1].camera);
     }
 
     #[test]

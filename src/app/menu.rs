@@ -43,6 +43,8 @@ pub enum Action {
     ToggleTexture,
     /// Model control (trackball) ↔ eye control (first person).
     ToggleNavigation,
+    /// Every viewport follows the current one's camera (on) or keeps its own (off).
+    ToggleLinkedCameras,
     AddViewport,
     RemoveViewport,
     NextViewport,
@@ -167,6 +169,7 @@ pub fn menu() -> Vec<MenuEntry> {
             vec![
                 entry("Model / eye control", Some("m"), Action::ToggleNavigation),
                 entry("Reset view", Some("r"), Action::ResetView),
+                entry("Linked cameras", Some("c"), Action::ToggleLinkedCameras),
                 entry("Add viewport (original)", Some("a"), Action::AddViewport),
                 entry("Remove viewport", Some("x"), Action::RemoveViewport),
                 entry("Next viewport", Some("Tab"), Action::NextViewport),
@@ -201,6 +204,7 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'a' => Action::AddViewport,
                 'x' => Action::RemoveViewport,
                 'r' => Action::ResetView,
+                'c' => Action::ToggleLinkedCameras,
                 'h' => Action::ToggleHelp,
                 'v' => Action::AskVertexCount,
                 'L' => Action::ToggleLod,
@@ -327,6 +331,7 @@ mod tests {
             Action::RemoveViewport,
             Action::NextViewport,
             Action::ResetView,
+            Action::ToggleLinkedCameras,
             Action::ToggleHelp,
             Action::Save,
             Action::Quit,

@@ -94,3 +94,53 @@ fn edges_alone_show_the_background_between_them() {
     assert!(solid_centre > 0.99, "solid centre covered {solid_centre}");
     assert!(wire_centre < 0.6, "wireframe centre covered {wire_centre}");
 }
+
+/// A floor: a 20 × 20 grid of quads in y = 0, seen from the default view's slight height,
+/// so its triangles lie at a grazing angle to the eye.
+fn floor() -> decimate::mesh::Scene {
+    let n = 20u32;
+    let mut m = decimate::mesh::Model {
+        diffuse: [0.6, 0.6, 0.6],
+        ..Default::default()
+    };
+    for j in 0..=n {
+        for i in 0..=n {
+            m.positions.push(glam::Vec3::new(i as f32, 0.0, j as f32));
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let v = j * (n + 1) + i;
+            m.triangles.push([v, v + n + 2, v + 1]);
+            m.triangles.push([v, v + n + 1, v + n + 2]);
+        }
+    }
+    decimate::mesh::Scene { models: vec![m] }
+}
+
+#[test]
+fn edges_over_a_grazing_surface_are_unbroken() {
+    // Every edge of a floor is on its visible surface: drawn over the triangles, each must
+    // show as fully as drawn alone — a surface poking through the lines would dash them.
+    let scene = floor();
+    let alone = render(&scene, 1, modes("edges"), None);
+    let over = render(&scene, 1, modes("triangles,edges"), None);
+    let (light, dark) = ([217, 224, 242, 255], [13, 13, 20, 255]);
+    let (mut drawn, mut kept) = (0usize, 0usize);
+    for y in 0..HEIGHT {
+        for x in 0..WIDTH {
+            if close(pixel(&alone, x, y), light, 40) {
+                drawn += 1;
+                kept += usize::from(close(pixel(&over, x, y), dark, 40));
+            }
+        }
+    }
+    assert!(drawn > 2000, "only {drawn} edge pixels drawn alone");
+    let share = kept as f64 / drawn as f64;
+    assert!(
+        share > 0.97,
+        "{:.1} % of the edge pixels show over the surface",
+        share * 100.0
+    );
+    assert_matches_golden("floor_triangles_edges", &over);
+}
