@@ -144,3 +144,61 @@ fn edges_over_a_grazing_surface_are_unbroken() {
     );
     assert_matches_golden("floor_triangles_edges", &over);
 }
+
+/// A UV sphere split along the meridian facing the camera as a texture seam splits it: the
+/// vertices there have a second copy, used by the faces on one side, with u = 1 instead of 0.
+fn seamed_sphere() -> (decimate::mesh::Scene, decimate::mesh::Scene) {
+    let (rings, segments) = (16u32, 32u32);
+    let mut whole = decimate::mesh::shapes::uv_sphere(rings, segments);
+    whole.diffuse = [0.45, 0.65, 0.85];
+    let n = whole.positions.len() as u32;
+    let column = |v: u32| (v != 0 && v != n - 1).then(|| (v - 1) % segments);
+    // The meridian at phi = 270°, which faces +z, the default view's side.
+    let seam = segments * 3 / 4;
+    let uv = |v: u32| {
+        let p = whole.positions[v as usize];
+        let u = column(v).map_or(0.5, |s| s as f32 / segments as f32);
+        [u, 0.5 + 0.5 * p.y]
+    };
+    let mut split = whole.clone();
+    split.texcoords = Some((0..n).map(uv).collect());
+    let mut copy = std::collections::HashMap::new();
+    for v in (0..n).filter(|&v| column(v) == Some(seam)) {
+        copy.insert(v, split.positions.len() as u32);
+        split.positions.push(whole.positions[v as usize]);
+        if let Some(t) = &mut split.texcoords {
+            t.push([1.0, uv(v)[1]]);
+        }
+    }
+    for t in &mut split.triangles {
+        if t.iter().any(|&v| column(v) == Some(seam - 1)) {
+            for v in t.iter_mut() {
+                *v = copy.get(v).copied().unwrap_or(*v);
+            }
+        }
+    }
+    let scene = |m| decimate::mesh::Scene { models: vec![m] };
+    (scene(whole), scene(split))
+}
+
+#[test]
+fn a_texture_seam_does_not_show_in_the_shading() {
+    // Texture off: the seamed sphere must look exactly like the whole one, smooth or flat.
+    let (whole, seamed) = seamed_sphere();
+    assert_eq!(
+        seamed.models[0].positions.len(),
+        whole.models[0].positions.len() + 15
+    );
+    for mode in ["triangles,untextured", "triangles,untextured,flat"] {
+        let a = render(&whole, 1, modes(mode), None);
+        let b = render(&seamed, 1, modes(mode), None);
+        let differ = different_fraction(&a, &b, 3);
+        assert!(
+            differ < 0.0005,
+            "{mode}: {:.2} % of the pixels show the seam",
+            differ * 100.0
+        );
+    }
+    let image = render(&seamed, 1, modes("triangles,untextured"), None);
+    assert_matches_golden("sphere_seamed_smooth", &image);
+}
