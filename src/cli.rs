@@ -71,6 +71,9 @@ pub struct Args {
     pub progressive: Option<PathBuf>,
     /// No summary or progress on stderr.
     pub quiet: bool,
+    /// `--crease-angle`: degrees between faces above which smooth shading keeps an edge
+    /// sharp, for every model (the viewer and shot; 180 is fully smooth).
+    pub crease_angle: Option<f32>,
     pub shot: ShotOptions,
 }
 
@@ -129,6 +132,8 @@ action-options for shot (offscreen render to PNG, no window):
   --viewports N         1-4 viewports: the original, then the decimated scene
   --mode LIST           comma-separated: triangles,edges,points,normals,vertex-normals,
                         flat,unlit,untextured (DEFAULT: triangles)
+  --crease-angle DEG     smooth shading keeps edges whose faces meet at more than DEG
+                        sharp (DEFAULT: the file's creaseAngle, else 45; 180: smooth)
   --labels, --no-labels a caption on each viewport: what it shows, its counts
                         (DEFAULT: on with more than one viewport)
   -p / -v / ...         decimation target, as for nogui; a list such as -p 60,80,90
@@ -158,6 +163,7 @@ where
     let mut weld = true;
     let mut overwrite = false;
     let mut quiet = false;
+    let mut crease_angle: Option<f32> = None;
     let mut shot = ShotOptions::default();
 
     while let Some(arg) = it.next() {
@@ -239,6 +245,15 @@ where
                 }
                 viewports = Some(n);
             }
+            "--crease-angle" => {
+                let a: f32 = number(&arg, &value(&arg)?)?;
+                if !(0.0..=180.0).contains(&a) {
+                    return Err(CliError(format!(
+                        "--crease-angle: expected degrees between 0 and 180, got {a}"
+                    )));
+                }
+                crease_angle = Some(a);
+            }
             "--labels" => shot.labels = Some(true),
             "--no-labels" => shot.labels = Some(false),
             "--mode" => shot.modes = draw_modes(&value(&arg)?)?,
@@ -291,6 +306,11 @@ where
     }
     shot.texture_dir = crate::io::texture_path::folder_of(&input).to_path_buf();
     shot_targets(&mut shot, targets, viewports, action)?;
+    if crease_angle.is_some() && action == Action::NoGui {
+        return Err(CliError(
+            "--crease-angle is an option of the viewer and shot (shading only)".into(),
+        ));
+    }
     Ok(Command::Run(Box::new(Args {
         input,
         action,
@@ -301,6 +321,7 @@ where
         overwrite,
         progressive,
         quiet,
+        crease_angle,
         shot,
     })))
 }
@@ -643,6 +664,36 @@ mod tests {
         let a = run(&["m.wrl", "shot", "--no-labels"]);
         assert_eq!(a.shot.labels, Some(false));
         assert!(parse(["m.wrl", "shot", "--size", "0x10"]).is_err());
+    }
+
+    #[test]
+    fn the_crease_angle_is_for_the_viewer_and_shot() {
+        assert_eq!(
+            run(&["m.wrl", "--crease-angle", "180"]).crease_angle,
+            Some(180.0)
+        );
+        assert_eq!(
+            run(&["m.wrl", "shot", "--crease-angle", "60"]).crease_angle,
+            Some(60.0)
+        );
+        assert_eq!(run(&["m.wrl"]).crease_angle, None);
+        for (args, says) in [
+            (
+                &["m.wrl", "--crease-angle", "200"][..],
+                "between 0 and 180, got 200",
+            ),
+            (
+                &["m.wrl", "shot", "--crease-angle", "x"],
+                "--crease-angle: expected a number",
+            ),
+            (
+                &["m.wrl", "nogui", "-p", "5", "--crease-angle", "60"],
+                "viewer and shot",
+            ),
+        ] {
+            let e = parse(args.iter().copied()).unwrap_err();
+            assert!(e.0.contains(says), "{args:?}: {e}");
+        }
     }
 
     #[test]

@@ -282,6 +282,15 @@ impl ViewportController {
             Action::ToggleLighting => options.lighting ^= true,
             Action::ToggleSmooth => options.smooth ^= true,
             Action::ToggleTexture => options.textures ^= true,
+            Action::CreaseAngle(delta) => {
+                let n = self.current + 1;
+                self.message = match self.current_mut().change_crease(f32::from(delta)) {
+                    Some(d) => format!("viewport {n}: crease angle {d:.0}° (180: fully smooth)"),
+                    None => format!(
+                        "viewport {n}: the level-of-detail slider keeps the original's crease angle"
+                    ),
+                };
+            }
             Action::ToggleNavigation => {
                 let camera = &mut self.current_mut().camera;
                 let next = match camera.navigation {
@@ -486,6 +495,28 @@ mod tests {
         c.drag(Vec2::new(40.0, 0.0));
         assert_ne!(c.viewports()[2].camera, c.viewports()[0].camera);
         assert_eq!(c.viewports()[0].camera, c.viewports()[1].camera);
+    }
+
+    #[test]
+    fn brackets_change_the_crease_angle_of_the_current_viewport() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        key(&mut c, Key::Char(']'));
+        assert!(c.message.contains("crease angle 60°"), "{}", c.message);
+        assert_eq!(c.current_viewport().generation, 1, "uploaded again");
+        for _ in 0..10 {
+            key(&mut c, Key::Char(']'));
+        }
+        assert!(c.message.contains("crease angle 180°"), "{}", c.message);
+        let crease =
+            |c: &ViewportController, i: usize| c.viewports()[i].scene().models[0].crease_angle;
+        assert_eq!(crease(&c, 1), Some(std::f32::consts::PI));
+        assert_eq!(crease(&c, 0), None, "the other viewport keeps its own");
+        // A decimation keeps it; [ goes back down.
+        key(&mut c, Key::Char('5'));
+        assert_eq!(crease(&c, 1), Some(std::f32::consts::PI));
+        key(&mut c, Key::Char('['));
+        assert!(c.message.contains("crease angle 165°"), "{}", c.message);
     }
 
     #[test]

@@ -41,6 +41,8 @@ pub enum Action {
     ToggleSmooth,
     /// Textured models textured or in their material colour.
     ToggleTexture,
+    /// The current viewport's crease angle up or down by this many degrees (0 to 180).
+    CreaseAngle(i16),
     /// Model control (trackball) ↔ eye control (first person).
     ToggleNavigation,
     /// Every viewport follows the current one's camera (on) or keeps its own (off).
@@ -162,6 +164,16 @@ pub fn menu() -> Vec<MenuEntry> {
                 entry("Lighting", Some("l"), Action::ToggleLighting),
                 entry("Smooth / flat shading", Some("s"), Action::ToggleSmooth),
                 entry("Texture", Some("T"), Action::ToggleTexture),
+                entry(
+                    "Crease angle −15° (sharper)",
+                    Some("["),
+                    Action::CreaseAngle(-15),
+                ),
+                entry(
+                    "Crease angle +15° (smoother)",
+                    Some("]"),
+                    Action::CreaseAngle(15),
+                ),
             ],
         ),
         submenu(
@@ -205,6 +217,8 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'x' => Action::RemoveViewport,
                 'r' => Action::ResetView,
                 'c' => Action::ToggleLinkedCameras,
+                '[' => Action::CreaseAngle(-15),
+                ']' => Action::CreaseAngle(15),
                 'h' => Action::ToggleHelp,
                 'v' => Action::AskVertexCount,
                 'L' => Action::ToggleLod,
@@ -332,6 +346,8 @@ mod tests {
             Action::NextViewport,
             Action::ResetView,
             Action::ToggleLinkedCameras,
+            Action::CreaseAngle(15),
+            Action::CreaseAngle(-15),
             Action::ToggleHelp,
             Action::Save,
             Action::Quit,

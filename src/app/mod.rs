@@ -19,8 +19,13 @@ use crate::cli::{Action, Args};
 use crate::mesh::Scene;
 
 /// Runs the `gui` or `shot` action on an already built scene.
-pub fn run(scene: Scene, args: &Args) -> ExitCode {
+pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
     crate::threads::join_pool();
+    if let Some(degrees) = args.crease_angle {
+        for m in &mut scene.models {
+            m.crease_angle = Some(degrees.to_radians());
+        }
+    }
     match args.action {
         Action::Shot => run_shot(&scene, args),
         Action::Gui | Action::NoGui => run_gui(scene, args),

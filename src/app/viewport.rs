@@ -11,6 +11,7 @@ use crate::mesh::Scene;
 use crate::render::camera::{Camera, Navigation};
 use crate::render::draw::DrawOptions;
 use crate::render::gpu_mesh::scene_bounds;
+use crate::render::mesh_data::DEFAULT_CREASE_DEG;
 
 use super::labels;
 use super::lod::LodView;
@@ -34,6 +35,8 @@ pub struct Viewport {
     pub params: Params,
     /// The level-of-detail slider, when it is on.
     lod: Option<LodView>,
+    /// The crease angle set with `[` / `]`, in degrees; `None`: each model's own.
+    crease_deg: Option<f32>,
 }
 
 impl Viewport {
@@ -50,6 +53,7 @@ impl Viewport {
             last: None,
             params,
             lod: None,
+            crease_deg: None,
         }
     }
 
@@ -119,9 +123,36 @@ impl Viewport {
         let mut scene = (*self.original).clone();
         let report = decimate_scene(&mut scene, &params, &mut |_| {});
         self.scene = scene;
+        self.apply_crease();
         self.lod = None;
         self.generation += 1;
         &self.last.insert((event, report)).1
+    }
+
+    /// Changes the crease angle by `delta` degrees (from the first model's own, else
+    /// `DEFAULT_CREASE_DEG`), kept within 0 to 180; returns it. Not while the
+    /// level-of-detail slider is on (`None`): its levels keep the original's.
+    pub fn change_crease(&mut self, delta: f32) -> Option<f32> {
+        if self.lod.is_some() {
+            return None;
+        }
+        let own = (self.scene.models.first())
+            .and_then(|m| m.crease_angle)
+            .map_or(DEFAULT_CREASE_DEG, f32::to_degrees);
+        let degrees = (self.crease_deg.unwrap_or(own).round() + delta).clamp(0.0, 180.0);
+        self.crease_deg = Some(degrees);
+        self.apply_crease();
+        self.generation += 1;
+        Some(degrees)
+    }
+
+    /// Gives every model of the scene shown the crease angle set with `[` / `]`, if any.
+    fn apply_crease(&mut self) {
+        if let Some(degrees) = self.crease_deg {
+            for m in &mut self.scene.models {
+                m.crease_angle = Some(degrees.to_radians());
+            }
+        }
     }
 
     /// The last decimate event, while the scene shown is its result (the level-of-detail
