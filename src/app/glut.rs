@@ -7,8 +7,8 @@ use std::sync::Arc;
 
 use winit::application::ApplicationHandler;
 use winit::dpi::{LogicalSize, PhysicalPosition};
-use winit::event::{ElementState, MouseScrollDelta, WindowEvent};
-use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::event::{ElementState, MouseScrollDelta, StartCause, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::keyboard::{Key as WinitKey, NamedKey};
 use winit::window::{Window, WindowId};
 
@@ -59,6 +59,10 @@ pub trait Callbacks {
     fn wheel(&mut self, steps: f32);
     /// Every raw event goes here first (for the UI layer); `true` means it was consumed.
     fn filter(&mut self, window: &Window, event: &WindowEvent) -> bool;
+    /// When the window must be drawn again without any event (a status message expiring).
+    fn wake_at(&self) -> Option<std::time::Instant> {
+        None
+    }
     /// The loop is ending: free GPU objects while the window still exists.
     fn destroy(&mut self);
 }
@@ -115,6 +119,19 @@ impl<C: Callbacks> Glut<'_, C> {
 }
 
 impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
+    fn new_events(&mut self, _event_loop: &ActiveEventLoop, cause: StartCause) {
+        if let (StartCause::ResumeTimeReached { .. }, Some(window)) = (cause, &self.window) {
+            window.request_redraw();
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        event_loop.set_control_flow(match self.callbacks.wake_at() {
+            Some(at) => ControlFlow::WaitUntil(at),
+            None => ControlFlow::Wait,
+        });
+    }
+
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.window.is_some() {
             return;

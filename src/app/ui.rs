@@ -150,7 +150,9 @@ impl UiLayer {
             egui::Area::new(egui::Id::new("status"))
                 .anchor(egui::Align2::LEFT_BOTTOM, egui::vec2(6.0, -6.0))
                 .show(&ctx, |ui| {
-                    egui::Frame::popup(ui.style()).show(ui, |ui| ui.label(status));
+                    egui::Frame::popup(ui.style()).show(ui, |ui| {
+                        ui.add(egui::Label::new(status).wrap_mode(egui::TextWrapMode::Extend))
+                    });
                 });
             if let Some((lo, hi, at)) = lod {
                 egui::Area::new(egui::Id::new("level of detail"))

@@ -4,7 +4,7 @@
 //! `Action`s through the same menu data as the popup.
 
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use ash::vk;
 use glam::Vec2;
@@ -56,7 +56,12 @@ pub struct Viewer {
     popup_just_opened: bool,
     field: Option<VertexField>,
     help_text: String,
+    /// The last message of the status line and when it expires.
+    message: Option<(String, Instant)>,
 }
+
+/// How long a message stays in the status line.
+const MESSAGE_LIFETIME: Duration = Duration::from_secs(6);
 
 impl Viewer {
     /// (4) The menus are built by the caller and handed in; nothing touches the GPU until the
@@ -75,6 +80,7 @@ impl Viewer {
             popup_just_opened: false,
             field: None,
             help_text: key_help(),
+            message: None,
         }
     }
 
@@ -95,19 +101,27 @@ impl Viewer {
         }
     }
 
-    fn status(&self) -> String {
+    /// The status line, one line: the last message while it is fresh, else the current
+    /// viewport's state.
+    fn status(&mut self) -> String {
+        let now = Instant::now();
+        let message = std::mem::take(&mut self.controller.message);
+        if !message.is_empty() {
+            self.message = Some((message, now + MESSAGE_LIFETIME));
+        }
+        if let Some((message, until)) = &self.message {
+            if now < *until {
+                return message.clone();
+            }
+            self.message = None;
+        }
         let vp = self.controller.current_viewport();
-        let mut s = format!(
+        format!(
             "viewport {}/{}: {}",
             self.controller.current() + 1,
             self.controller.viewports().len(),
             vp.status()
-        );
-        if !self.controller.message.is_empty() {
-            s.push('\n');
-            s.push_str(&self.controller.message);
-        }
-        s
+        )
     }
 
     /// Uploads the scenes whose generation changed, or whose draw modes now need a list that
@@ -463,6 +477,10 @@ impl Callbacks for Viewer {
         // While the popup or the field is open, egui owns the pointer and keyboard it uses.
         let ui_open = self.popup_at.is_some() || self.field.is_some();
         consumed && (ui_open || gpu.ui.wants_pointer())
+    }
+
+    fn wake_at(&self) -> Option<Instant> {
+        self.message.as_ref().map(|(_, until)| *until)
     }
 
     fn destroy(&mut self) {
