@@ -25,6 +25,8 @@ pub enum Effect {
     None,
     /// Open the vertex-count text field.
     AskVertexCount,
+    /// Save a picture of the viewports (the window draws it).
+    SavePicture,
     Quit,
 }
 
@@ -339,9 +341,32 @@ impl ViewportController {
             Action::NextViewport => self.current = (self.current + 1) % self.viewports.len(),
             Action::ToggleHelp => self.help ^= true,
             Action::Save => self.save(),
+            Action::SavePicture => return Effect::SavePicture,
             Action::Quit => return Effect::Quit,
         }
         Effect::None
+    }
+
+    /// Whether the toggle `action` is on for the current viewport (the popup's check marks);
+    /// `None` when `action` is no toggle.
+    pub fn checked(&self, action: Action) -> Option<bool> {
+        let vp = self.current_viewport();
+        let o = &vp.options;
+        Some(match action {
+            Action::ToggleTriangles => o.triangles,
+            Action::ToggleEdges => o.edges,
+            Action::TogglePoints => o.points,
+            Action::ToggleFaceNormals => o.face_normals,
+            Action::ToggleVertexNormals => o.vertex_normals,
+            Action::ToggleLighting => o.lighting,
+            Action::ToggleSmooth => o.smooth,
+            Action::ToggleTexture => o.textures,
+            Action::ToggleLod => vp.lod().is_some(),
+            Action::ToggleKeepBorder => vp.params.keep_border,
+            Action::ToggleLinkedCameras => self.linked,
+            Action::ToggleHelp => self.help,
+            _ => return None,
+        })
     }
 
     /// F3: the current viewport's scene as VRML 2.0, its texture names rebased for the
@@ -517,6 +542,29 @@ mod tests {
         assert_eq!(crease(&c, 1), Some(std::f32::consts::PI));
         key(&mut c, Key::Char('['));
         assert!(c.message.contains("crease angle 165°"), "{}", c.message);
+    }
+
+    #[test]
+    fn the_menu_checks_the_toggles_that_are_on() {
+        let mut c = controller();
+        assert_eq!(c.checked(Action::ToggleTriangles), Some(true));
+        assert_eq!(c.checked(Action::ToggleEdges), Some(false));
+        key(&mut c, Key::Char('e'));
+        key(&mut c, Key::Char('c'));
+        assert_eq!(c.checked(Action::ToggleEdges), Some(true));
+        assert_eq!(c.checked(Action::ToggleLinkedCameras), Some(true));
+        assert_eq!(c.checked(Action::ResetView), None, "no toggle");
+        // Every toggle of the menu has a state to show.
+        for a in crate::app::menu::actions(&crate::app::menu::menu()) {
+            let name = format!("{a:?}");
+            assert_eq!(
+                c.checked(a).is_some(),
+                name.starts_with("Toggle")
+                    && name != "ToggleAlgorithm"
+                    && name != "ToggleNavigation",
+                "{name}"
+            );
+        }
     }
 
     #[test]

@@ -185,6 +185,7 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
             }
             WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
                 let key = match &event.logical_key {
+                    WinitKey::Named(NamedKey::F2) => Some(Key::F2),
                     WinitKey::Named(NamedKey::F3) => Some(Key::F3),
                     WinitKey::Named(NamedKey::Tab) => Some(Key::Tab),
                     WinitKey::Named(NamedKey::Escape) => Some(Key::Escape),

@@ -54,6 +54,8 @@ pub enum Action {
     ToggleHelp,
     /// Save the current viewport's scene as `out.wrl`.
     Save,
+    /// Save a picture of the window's viewports as `window.png`.
+    SavePicture,
     Quit,
 }
 
@@ -61,6 +63,7 @@ pub enum Action {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Key {
     Char(char),
+    F2,
     F3,
     Tab,
     Escape,
@@ -188,6 +191,11 @@ pub fn menu() -> Vec<MenuEntry> {
             ],
         ),
         entry("Save as out.wrl", Some("F3"), Action::Save),
+        entry(
+            "Save a picture as window.png",
+            Some("F2"),
+            Action::SavePicture,
+        ),
         entry("Help", Some("h"), Action::ToggleHelp),
         entry("Quit", Some("q"), Action::Quit),
     ]
@@ -196,6 +204,7 @@ pub fn menu() -> Vec<MenuEntry> {
 /// The action bound to `key`, if any.
 pub fn action_for_key(key: Key) -> Option<Action> {
     Some(match key {
+        Key::F2 => Action::SavePicture,
         Key::F3 => Action::Save,
         Key::Tab => Action::NextViewport,
         Key::Escape => Action::Quit,
@@ -274,6 +283,7 @@ mod tests {
 
     fn key_of(label_key: &str) -> Key {
         match label_key {
+            "F2" => Key::F2,
             "F3" => Key::F3,
             "Tab" => Key::Tab,
             k => Key::Char(k.chars().next().unwrap_or(' ')),
@@ -350,6 +360,7 @@ mod tests {
             Action::CreaseAngle(-15),
             Action::ToggleHelp,
             Action::Save,
+            Action::SavePicture,
             Action::Quit,
         ] {
             assert!(all.contains(&a), "{a:?} is missing from the menu");

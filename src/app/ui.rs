@@ -47,6 +47,8 @@ pub struct VertexField {
 /// What the UI shows this frame.
 pub struct UiState<'a> {
     pub menu: &'a [MenuEntry],
+    /// Whether a toggle of the menu is on (`None`: not a toggle).
+    pub checked: &'a dyn Fn(Action) -> Option<bool>,
     /// Where the popup is open (logical points), if it is.
     pub popup_at: Option<egui::Pos2>,
     /// The popup opened with this frame's click, which must not count as "clicked elsewhere".
@@ -135,6 +137,7 @@ impl UiLayer {
         let mut result = UiResult::default();
         let UiState {
             menu,
+            checked,
             popup_at,
             popup_just_opened,
             mut field,
@@ -185,7 +188,7 @@ impl UiLayer {
                     .show(&ctx, |ui| {
                         egui::Frame::menu(ui.style()).show(ui, |ui| {
                             ui.set_min_width(180.0);
-                            menu_entries(ui, menu, &mut result.action);
+                            menu_entries(ui, menu, checked, &mut result.action);
                         });
                     });
                 if !popup_just_opened
@@ -273,7 +276,12 @@ fn vertex_field(ctx: &egui::Context, field: &mut VertexField, result: &mut UiRes
 }
 
 /// The menu entries as buttons; submenus as nested menu buttons.
-fn menu_entries(ui: &mut egui::Ui, entries: &[MenuEntry], chosen: &mut Option<Action>) {
+fn menu_entries(
+    ui: &mut egui::Ui,
+    entries: &[MenuEntry],
+    checked: &dyn Fn(Action) -> Option<bool>,
+    chosen: &mut Option<Action>,
+) {
     for e in entries {
         match &e.item {
             MenuItem::Action(a) => {
@@ -281,14 +289,19 @@ fn menu_entries(ui: &mut egui::Ui, entries: &[MenuEntry], chosen: &mut Option<Ac
                     Some(k) => format!("{}    [{k}]", e.label),
                     None => e.label.clone(),
                 };
-                if ui.button(label).clicked() {
+                // A toggle shows whether it is on with a check mark.
+                let clicked = match checked(*a) {
+                    Some(mut on) => ui.checkbox(&mut on, label).clicked(),
+                    None => ui.button(label).clicked(),
+                };
+                if clicked {
                     *chosen = Some(*a);
                     ui.close();
                 }
             }
             MenuItem::Submenu(sub) => {
                 ui.menu_button(format!("{}  >", e.label), |ui| {
-                    menu_entries(ui, sub, chosen)
+                    menu_entries(ui, sub, checked, chosen)
                 });
             }
         }

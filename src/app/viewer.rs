@@ -3,6 +3,7 @@
 //! uploaded again only when that viewport's scene changes), and turns window events into
 //! `Action`s through the same menu data as the popup.
 
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -16,6 +17,7 @@ use crate::render::context::{Context, DevicePreference};
 use crate::render::draw::{self, ViewportDraw, BACKGROUND};
 use crate::render::gpu_mesh::GpuScene;
 use crate::render::image::{self, Transition, DEPTH_FORMAT};
+use crate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
 use crate::render::pipeline::Pipelines;
 use crate::render::swapchain::{Frame, Swapchain};
 use crate::render::texture::Textures;
@@ -24,7 +26,10 @@ use crate::render::RenderError;
 use super::controller::{Effect, ViewportController};
 use super::error::AppError;
 use super::glut::{Button, Callbacks, Flow, Special};
+use super::labels::HeadlessCaptions;
 use super::menu::{action_for_key, key_help, Key, MenuEntry};
+use super::save::{save_path, SavePath};
+use super::shot::write_png;
 use super::ui::{UiLayer, UiResult, UiState, VertexField};
 
 /// GPU objects of the window; field order is drop order (UI and meshes before the context).
@@ -59,6 +64,9 @@ pub struct Viewer {
     /// The last message of the status line and when it expires.
     message: Option<(String, Instant)>,
 }
+
+/// Where F2 saves the window's picture.
+const PICTURE: &str = "window.png";
 
 /// How long a message stays in the status line.
 const MESSAGE_LIFETIME: Duration = Duration::from_secs(6);
@@ -97,8 +105,56 @@ impl Viewer {
                 });
                 Flow::Continue
             }
+            Effect::SavePicture => {
+                let message = match self.save_picture() {
+                    Ok(message) => message,
+                    Err(e) => format!("cannot save the picture: {e}"),
+                };
+                eprintln!("decimate: {message}");
+                self.controller.message = message;
+                Flow::Continue
+            }
             Effect::Quit => Flow::Quit,
         }
+    }
+
+    /// F2: the viewports and their captions as drawn now, rendered again offscreen and
+    /// written to `window.png` (never over an input; through a temporary file).
+    fn save_picture(&mut self) -> Result<String, AppError> {
+        let Some(gpu) = self.gpu.as_mut() else {
+            return Ok("no window to picture yet".into());
+        };
+        let wanted = PathBuf::from(PICTURE);
+        let Some(target) = save_path(&wanted, &self.controller.inputs) else {
+            return Ok(format!(
+                "cannot save: {PICTURE} and its alternatives are inputs"
+            ));
+        };
+        let extent = gpu.swapchain.extent;
+        gpu.context.wait_idle()?;
+        // The window's pipelines draw in the swapchain's format; the picture is RGBA.
+        let pipelines = Pipelines::new(&gpu.context, OFFSCREEN_FORMAT)?;
+        let offscreen = OffscreenTarget::new(&gpu.context, extent.width, extent.height)?;
+        let views = viewport_draws(&gpu.scenes, &self.controller, extent, Instant::now());
+        let captions: Vec<_> = (self.controller.rects_for(extent.width, extent.height))
+            .into_iter()
+            .zip(self.controller.viewports().iter().map(|vp| vp.caption()))
+            .collect();
+        let commands = &gpu.upload_commands;
+        let mut overlay = HeadlessCaptions::new(&gpu.context, commands, extent, &captions)?;
+        let mut record = |cmd| overlay.record(cmd);
+        let image = offscreen
+            .render_with_overlay(commands, &pipelines, &views, true, Some(&mut record))?
+            .ok_or_else(|| RenderError::TooLarge("no picture was read back".into()))?;
+        let path = target.path();
+        Ok(match write_png(&image, path) {
+            Ok(()) if matches!(target, SavePath::Instead(_)) => format!(
+                "{PICTURE} is an input file, not written over: saved the window as {}",
+                path.display()
+            ),
+            Ok(()) => format!("saved the window as {}", path.display()),
+            Err(e) => format!("cannot save the picture: {e}"),
+        })
     }
 
     /// The status line, one line: the last message while it is fresh, else the current
@@ -204,6 +260,7 @@ impl Viewer {
             &gpu.upload_commands,
             UiState {
                 menu: &self.menu,
+                checked: &|a| self.controller.checked(a),
                 popup_at: self.popup_at.map(|p| egui::pos2(p.x / scale, p.y / scale)),
                 popup_just_opened: self.popup_just_opened,
                 field: self.field.as_mut(),

@@ -388,6 +388,37 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
         read_log(&log_path)
     );
 
+    // F2: a picture of the window as window.png: the window's size, the model on it.
+    run("xdotool", &["key", "--window", &wid, "F2"]);
+    let picture = dir.join("window.png");
+    wait_for("window.png", Duration::from_secs(30), &log_path, || {
+        picture.exists()
+    });
+    std::thread::sleep(Duration::from_millis(300));
+    let file = std::fs::File::open(&picture).unwrap_or_else(|e| panic!("{e}"));
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .unwrap_or_else(|e| panic!("window.png: {e}"));
+    let mut pixels = vec![0; reader.output_buffer_size().unwrap_or(0)];
+    let info = reader
+        .next_frame(&mut pixels)
+        .unwrap_or_else(|e| panic!("window.png: {e}"));
+    assert!(
+        info.width >= 800 && info.height >= 600,
+        "window.png is {}x{}",
+        info.width,
+        info.height
+    );
+    let corner = &pixels[..4];
+    let drawn = pixels
+        .chunks(4)
+        .filter(|p| p.iter().zip(corner).any(|(a, b)| a.abs_diff(*b) > 16))
+        .count();
+    assert!(
+        drawn * 20 > (info.width * info.height) as usize,
+        "window.png shows little but background: {drawn} pixels"
+    );
+
     // v opens "Decimate to N vertices": a word is refused and the field stays open (else the
     // digits typed next would be decimate keys), Enter submits 100, F3 saves exactly that.
     run("xdotool", &["key", "--window", &wid, "v"]);
