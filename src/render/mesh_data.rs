@@ -393,8 +393,10 @@ impl Welded<'_> {
 }
 
 /// For each vertex the first vertex at the same position, or `None` when all positions
-/// differ (no copies to weld).
+/// differ (no copies to weld). Only a textured model has copies: the scene builder welds
+/// every other coincident vertex.
 fn welded_ids(model: &Model) -> Option<Vec<u32>> {
+    model.texcoords.as_ref()?;
     let mut first = std::collections::HashMap::with_capacity(model.positions.len());
     let id: Vec<u32> = (model.positions.iter().enumerate())
         .map(|(v, p)| {
@@ -515,11 +517,16 @@ mod tests {
         let whole = crate::mesh::shapes::uv_sphere(12, 24);
         let mut split = whole.clone();
         let bottom = whole.positions.len() as u32 - 1;
+        // Texture coordinates are what splits vertices at a seam; their values do not matter.
+        split.texcoords = Some(vec![[0.0; 2]; whole.positions.len()]);
         let meridian = |v: u32, s: u32| v != 0 && v != bottom && (v - 1) % 24 == s;
         let mut copy = std::collections::HashMap::new();
         for v in (0..bottom).filter(|&v| meridian(v, 0)) {
             copy.insert(v, split.positions.len() as u32);
             split.positions.push(whole.positions[v as usize]);
+            if let Some(t) = &mut split.texcoords {
+                t.push([1.0, 0.0]);
+            }
         }
         for t in &mut split.triangles {
             if t.iter().any(|&v| meridian(v, 23)) {
