@@ -73,6 +73,25 @@ impl ViewportController {
         }
     }
 
+    /// Shows `scene`, read from `path`, instead: one viewport of it, the cameras framed on it;
+    /// the algorithm, border and link settings stay.
+    pub fn open(&mut self, scene: Scene, path: &std::path::Path) {
+        let original = Arc::new(scene);
+        self.viewports = vec![Viewport::new(self.next_id, original.clone(), self.params)];
+        self.next_id += 1;
+        self.original = original;
+        self.current = 0;
+        self.inputs = vec![path.to_path_buf()];
+        self.input_dir = crate::io::texture_path::folder_of(path).to_path_buf();
+        let vp = self.current_viewport();
+        self.message = format!(
+            "opened {}: {} vertices, {} triangles",
+            path.display(),
+            vp.vertex_count(),
+            vp.triangle_count()
+        );
+    }
+
     pub fn viewports(&self) -> &[Viewport] {
         &self.viewports
     }
@@ -565,6 +584,40 @@ mod tests {
                 "{name}"
             );
         }
+    }
+
+    #[test]
+    fn a_dropped_file_replaces_the_viewports_and_becomes_the_input() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        key(&mut c, Key::Char('5'));
+        let cube = Scene {
+            models: vec![crate::mesh::shapes::test004()],
+        };
+        let dir = std::env::temp_dir().join(format!("decimate-drop-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        let path = dir.join("out.wrl");
+        crate::io::write_vrml2(&cube, &path).unwrap_or_else(|e| panic!("{e}"));
+        let before = std::fs::read(&path).unwrap_or_else(|e| panic!("{e}"));
+        c.open(cube, &path);
+        assert_eq!(c.viewports().len(), 1);
+        assert_eq!(c.current_viewport().vertex_count(), 602);
+        assert!(
+            c.message.contains("602 vertices, 1200 triangles"),
+            "{}",
+            c.message
+        );
+        assert_eq!(c.original_vertices(), 602);
+        // F3 now keeps the dropped file too.
+        c.save_path = path.clone();
+        key(&mut c, Key::F3);
+        assert_eq!(
+            std::fs::read(&path).unwrap_or_else(|e| panic!("{e}")),
+            before
+        );
+        assert!(dir.join("out-1.wrl").exists());
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

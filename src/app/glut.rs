@@ -59,6 +59,8 @@ pub trait Callbacks {
     fn wheel(&mut self, steps: f32);
     /// Every raw event goes here first (for the UI layer); `true` means it was consumed.
     fn filter(&mut self, window: &Window, event: &WindowEvent) -> bool;
+    /// A file was dropped onto the window.
+    fn dropped(&mut self, _window: &Window, _path: std::path::PathBuf) {}
     /// When the window must be drawn again without any event (a status message expiring).
     fn wake_at(&self) -> Option<std::time::Instant> {
         None
@@ -169,6 +171,7 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
         let mut flow = Flow::Continue;
         match event {
             WindowEvent::CloseRequested => flow = Flow::Quit,
+            WindowEvent::DroppedFile(path) => self.callbacks.dropped(&window, path),
             WindowEvent::Resized(size) => self.callbacks.reshape(size.width, size.height),
             WindowEvent::RedrawRequested => {
                 // Drawn on demand only: no redraw is requested from here, so an idle viewer

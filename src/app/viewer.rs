@@ -118,6 +118,22 @@ impl Viewer {
         }
     }
 
+    /// A new scene was opened: its textures are read from its own folder, and nothing of
+    /// the old one stays on the GPU.
+    fn reload_textures(&mut self) -> Result<(), AppError> {
+        let Some(gpu) = self.gpu.as_mut() else {
+            return Ok(());
+        };
+        gpu.context.wait_idle()?;
+        gpu.scenes.clear();
+        gpu.textures = Textures::new(
+            &gpu.context,
+            gpu.pipelines.texture_layout,
+            &self.controller.input_dir,
+        )?;
+        Ok(())
+    }
+
     /// F2: the viewports and their captions as drawn now, rendered again offscreen and
     /// written to `window.png` (never over an input; through a temporary file).
     fn save_picture(&mut self) -> Result<String, AppError> {
@@ -534,6 +550,23 @@ impl Callbacks for Viewer {
         // While the popup or the field is open, egui owns the pointer and keyboard it uses.
         let ui_open = self.popup_at.is_some() || self.field.is_some();
         consumed && (ui_open || gpu.ui.wants_pointer())
+    }
+
+    fn dropped(&mut self, window: &Window, path: PathBuf) {
+        match crate::io::read_scene(&path) {
+            Ok(outcome) => {
+                let scene = crate::mesh::build::build_scene(outcome.scene, true);
+                self.controller.open(scene, &path);
+                self.field = None;
+                self.popup_at = None;
+                window.set_title(&format!("decimate — {}", path.display()));
+                if let Err(e) = self.reload_textures() {
+                    self.controller.message = format!("{}: textures: {e}", path.display());
+                }
+            }
+            Err(e) => self.controller.message = format!("cannot open {e}"),
+        }
+        eprintln!("decimate: {}", self.controller.message);
     }
 
     fn wake_at(&self) -> Option<Instant> {
