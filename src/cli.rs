@@ -126,7 +126,8 @@ action-options for nogui (one target is MANDATORY):
   --overwrite           allow -o or --progressive to name an input file
   -q, --quiet           no summary or progress on stderr
 
-action-options for shot (offscreen render to PNG, no window):
+action-options for shot (offscreen render to PNG, no window; --mode and --crease-angle
+also set what the viewer draws):
   -o filename           the PNG to write (DEFAULT: shot.png)
   --size WxH            image size (DEFAULT: 800x600)
   --viewports N         1-4 viewports: the original, then the decimated scene

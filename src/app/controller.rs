@@ -10,6 +10,7 @@ use glam::Vec2;
 use crate::decimate::{Algorithm, Params};
 use crate::mesh::Scene;
 use crate::render::camera::Navigation;
+use crate::render::draw::DrawOptions;
 use crate::render::tiles::{tiles, Rect};
 
 use super::menu::{Action, DecimateEvent, DecimateKind};
@@ -42,6 +43,8 @@ pub struct ViewportController {
     pub help: bool,
     /// Every viewport shows the current one's camera (`c`).
     pub linked: bool,
+    /// What a new viewport draws (the command line's `--mode`).
+    draw_options: DrawOptions,
     /// Where F3 saves (`out.wrl` in the working directory), unless that is an input.
     pub save_path: PathBuf,
     /// The files the scene was read from: no save ever writes over one of them.
@@ -66,6 +69,7 @@ impl ViewportController {
             height,
             help: false,
             linked: false,
+            draw_options: DrawOptions::default(),
             save_path: PathBuf::from("out.wrl"),
             inputs: Vec::new(),
             input_dir: PathBuf::from("."),
@@ -73,11 +77,21 @@ impl ViewportController {
         }
     }
 
+    /// Every viewport, and each one added later, draws with `options` (`--mode`).
+    pub fn set_draw_options(&mut self, options: DrawOptions) {
+        self.draw_options = options;
+        for vp in &mut self.viewports {
+            vp.options = options;
+        }
+    }
+
     /// Shows `scene`, read from `path`, instead: one viewport of it, the cameras framed on it;
     /// the algorithm, border and link settings stay.
     pub fn open(&mut self, scene: Scene, path: &std::path::Path) {
         let original = Arc::new(scene);
-        self.viewports = vec![Viewport::new(self.next_id, original.clone(), self.params)];
+        let mut first = Viewport::new(self.next_id, original.clone(), self.params);
+        first.options = self.draw_options;
+        self.viewports = vec![first];
         self.next_id += 1;
         self.original = original;
         self.current = 0;
@@ -338,8 +352,9 @@ impl ViewportController {
                 if self.viewports.len() < MAX_VIEWPORTS {
                     let id = self.next_id;
                     self.next_id += 1;
-                    self.viewports
-                        .push(Viewport::new(id, self.original.clone(), self.params));
+                    let mut vp = Viewport::new(id, self.original.clone(), self.params);
+                    vp.options = self.draw_options;
+                    self.viewports.push(vp);
                     self.current = self.viewports.len() - 1;
                     if self.linked {
                         // A new viewport joins the others' shared camera.
@@ -483,7 +498,7 @@ mod tests {
         let mut c = controller();
         key(&mut c, Key::Char('a'));
         assert_eq!(c.current(), 1);
-        type Get = fn(&crate::render::draw::DrawOptions) -> bool;
+        type Get = fn(&DrawOptions) -> bool;
         let toggles: [(char, Get); 7] = [
             ('t', |o| o.triangles),
             ('e', |o| o.edges),
@@ -618,6 +633,18 @@ mod tests {
         );
         assert!(dir.join("out-1.wrl").exists());
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn the_command_lines_modes_reach_every_viewport() {
+        let mut c = controller();
+        let modes = crate::cli::draw_modes("edges,flat").unwrap_or_else(|e| panic!("{e}"));
+        c.set_draw_options(modes);
+        key(&mut c, Key::Char('a'));
+        for vp in c.viewports() {
+            assert_eq!(vp.options, modes);
+        }
+        assert!(!modes.triangles && modes.edges && !modes.smooth);
     }
 
     #[test]

@@ -45,6 +45,7 @@ fn run_gui(scene: Scene, args: &Args) -> ExitCode {
     let mut controller = controller::ViewportController::new(scene, args.params, 1024, 720);
     controller.input_dir = crate::io::texture_path::folder_of(&args.input).to_path_buf();
     controller.inputs = vec![args.input.clone()];
+    controller.set_draw_options(args.shot.modes);
     let mut viewer = viewer::Viewer::new(controller, entries);
     // (6) Hand control to the main loop.
     let title = format!("decimate — {}", args.input.display());
