@@ -69,7 +69,7 @@ fn run_shot(scene: &Scene, args: &Args) -> ExitCode {
     };
     if !args.quiet {
         for report in &report {
-            eprint!("{}", crate::batch::summary(report));
+            eprint!("{}", report.summary());
         }
     }
     if let Err(e) = shot::write_png(&image, &args.output) {

@@ -6,7 +6,8 @@
 use std::path::Path;
 
 use crate::cli::ShotOptions;
-use crate::decimate::{decimate_scene, Params, Report, Target};
+use crate::decimate::{simplify_scene, Params, Report, Target};
+use crate::io::texture_image;
 use crate::mesh::Scene;
 use crate::render::camera::Camera;
 use crate::render::commands::Commands;
@@ -88,7 +89,11 @@ pub fn render(
     let target = OffscreenTarget::new(&context, options.width, options.height)?;
 
     let draw = options.modes;
-    let mut textures = Textures::new(&context, pipelines.texture_layout, &options.texture_dir)?;
+    let mut textures = Textures::new(
+        &context,
+        pipelines.texture_layout,
+        texture_image::reader(&options.texture_dir),
+    )?;
     let original = GpuScene::upload(&context, &commands, &mut textures, scene, draw.layers())?;
     let rects = tiles(options.viewports as usize, options.width, options.height);
     let shown = viewport_params(rects.len(), params, &options.targets);
@@ -98,7 +103,7 @@ pub fn render(
             continue;
         }
         let mut copy = scene.clone();
-        let report = decimate_scene(&mut copy, p, &mut |_| {});
+        let report = simplify_scene(&mut copy, p, &mut |_| {});
         let what = format!(
             "{} ({})",
             labels::target_words(p.target, p.max_error),

@@ -11,6 +11,7 @@ use ash::vk;
 use glam::Vec2;
 use winit::window::Window;
 
+use crate::io::texture_image;
 use crate::render::camera::Navigation;
 use crate::render::commands::Commands;
 use crate::render::context::{Context, DevicePreference};
@@ -129,7 +130,7 @@ impl Viewer {
         gpu.textures = Textures::new(
             &gpu.context,
             gpu.pipelines.texture_layout,
-            &self.controller.input_dir,
+            texture_image::reader(&self.controller.input_dir),
         )?;
         Ok(())
     }
@@ -438,7 +439,7 @@ impl Callbacks for Viewer {
         let textures = Textures::new(
             &context,
             pipelines.texture_layout,
-            &self.controller.input_dir,
+            texture_image::reader(&self.controller.input_dir),
         )?;
         let ui = UiLayer::new(&context, window, swapchain.format)?;
         eprintln!("decimate: drawing with {}", context.device_name);
