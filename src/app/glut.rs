@@ -12,7 +12,7 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::keyboard::{Key as WinitKey, NamedKey};
 use winit::window::{Window, WindowId};
 
-use super::error::AppError;
+use super::app_error::AppError;
 use super::menu::Key;
 
 /// Mouse buttons, as GLUT names them.

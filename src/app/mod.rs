@@ -1,8 +1,8 @@
 //! The viewer side of the program: the `shot` action (offscreen picture) and the interactive
 //! viewer, both over `render`. `run` is what `main` calls for the `gui` and `shot` actions.
 
+pub mod app_error;
 pub mod controller;
-pub mod error;
 pub mod glut;
 pub mod labels;
 pub mod lod;

@@ -14,7 +14,7 @@ use crate::render::context::Context;
 
 use crate::render::tiles::Rect;
 
-use super::error::AppError;
+use super::app_error::AppError;
 use super::labels;
 use super::menu::{Action, MenuEntry, MenuItem};
 

@@ -24,8 +24,8 @@ use crate::render::swapchain::{Frame, Swapchain};
 use crate::render::texture::Textures;
 use crate::render::RenderError;
 
+use super::app_error::AppError;
 use super::controller::{Effect, ViewportController};
-use super::error::AppError;
 use super::glut::{Button, Callbacks, Flow, Special};
 use super::labels::HeadlessCaptions;
 use super::menu::{action_for_key, key_help, Key, MenuEntry};
