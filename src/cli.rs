@@ -90,8 +90,10 @@ pub struct Args {
     /// `--progressive`: also write the collapses as vertex splits to this file (nogui; the
     /// algorithm is then quadric edge collapse).
     pub progressive: Option<PathBuf>,
-    /// No summary or progress on stderr.
+    /// No summary or progress on stderr (warnings that mean lost data are still printed).
     pub quiet: bool,
+    /// `--lenient`: an unknown field of a known node is a warning, not an error.
+    pub lenient: bool,
     pub shot: ShotOptions,
 }
 
@@ -142,7 +144,10 @@ action-options for nogui (one target is MANDATORY):
                         with FILE.pm as the input, nogui rebuilds the level the target
                         asks for (never below the base) instead of decimating
   --overwrite           allow -o or --progressive to name an input file
-  -q, --quiet           no summary or progress on stderr
+  -q, --quiet           no summary, progress or warnings on stderr, except warnings
+                        that say part of the input was not read
+  --lenient             read a VRML / Inventor node's unknown fields as a warning (the
+                        value skipped) rather than an error
 
 action-options for shot (offscreen render to PNG, no window):
   -o filename           the PNG to write (DEFAULT: shot.png)
@@ -173,6 +178,7 @@ where
     let mut weld = true;
     let mut overwrite = false;
     let mut quiet = false;
+    let mut lenient = false;
     let mut shot = ShotOptions::default();
 
     while let Some(arg) = it.next() {
@@ -232,6 +238,7 @@ where
             "--keep-border" => params.keep_border = true,
             "--overwrite" => overwrite = true,
             "-q" | "--quiet" => quiet = true,
+            "--lenient" => lenient = true,
             "--size" => {
                 let (w, h) = size(&value(&arg)?)?;
                 shot.width = w;
@@ -292,6 +299,12 @@ where
     if let Some(pm) = &progressive {
         check_progressive(pm, action, &output)?;
     }
+    if action == Action::NoGui && crate::io::Format::from_path(&output).is_none() {
+        return Err(CliError(format!(
+            "-o {}: no writer knows this extension (expected .wrl, .vrml, .ply, .obj, .stl or .off)",
+            output.display()
+        )));
+    }
     shot.texture_dir = crate::io::texture_path::folder_of(&input).to_path_buf();
     Ok(Command::Run(Box::new(Args {
         input,
@@ -303,6 +316,7 @@ where
         overwrite,
         progressive,
         quiet,
+        lenient,
         shot,
     })))
 }

@@ -64,6 +64,37 @@ pub struct ShapeSpec<'a> {
     pub index_field: &'static str,
 }
 
+impl<'a> ShapeSpec<'a> {
+    /// A tessellated primitive (`Sphere`, `Cone`, `Cylinder`): counter-clockwise, solid when
+    /// closed, creased as `primitives::CREASE_ANGLE` says.
+    pub fn primitive(
+        name: String,
+        transform: Mat4,
+        coords: &'a [f32],
+        geo: Geo,
+        colors: Bind<'a>,
+        diffuse: [f32; 3],
+        line: usize,
+    ) -> Self {
+        Self {
+            name,
+            transform,
+            coords,
+            corners: geo.corners,
+            ends: geo.ends,
+            colors,
+            normals: Bind::None,
+            texcoords: None,
+            ccw: true,
+            solid: false,
+            crease_angle: Some(super::primitives::CREASE_ANGLE),
+            diffuse,
+            line,
+            index_field: "its parts",
+        }
+    }
+}
+
 /// Splits an MFInt32 index list with `-1` separators into corners and polygon ends. A missing
 /// final `-1` closes the last polygon. Other negative values are errors.
 pub fn split_polygons(
@@ -416,6 +447,20 @@ pub struct Geo {
 }
 
 impl Geo {
+    /// Triangles of a tessellated primitive, each part (side, bottom, top) a PER_PART value.
+    pub fn triangles(t: &super::primitives::Tessellation) -> Self {
+        let corners: Vec<u32> = t.triangles.iter().flatten().copied().collect();
+        let n = t.triangles.len() as u32;
+        Self {
+            seq_no: corners.clone(),
+            raw_pos: corners.clone(),
+            corners,
+            ends: (1..=n).map(|i| i * 3).collect(),
+            face_no: (0..n).collect(),
+            part_no: t.part.clone(),
+        }
+    }
+
     /// Polygons from an indexed face set's split coordIndex.
     pub fn faces(corners: Vec<u32>, ends: Vec<u32>, pos: Vec<usize>) -> Self {
         let nf = ends.len() as u32;

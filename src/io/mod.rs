@@ -16,6 +16,8 @@
 //! format cannot hold, said before writing).
 
 mod build;
+mod fields;
+mod include;
 mod lexer;
 pub mod losses;
 pub mod mtl;
@@ -23,6 +25,7 @@ pub mod obj;
 pub mod off;
 mod parse;
 pub mod ply;
+mod primitives;
 pub mod progressive;
 pub mod replace;
 pub mod stl;
@@ -101,6 +104,13 @@ pub struct ReadOutcome {
     pub material_libraries: Vec<String>,
 }
 
+/// True when a reader's warning means part of the file was not read (a skipped node,
+/// shape, face or attribute): `-q` still prints those. Readers word such warnings with
+/// "skipped" or "ignored".
+pub fn means_lost_data(warning: &str) -> bool {
+    warning.contains("skipped") || warning.contains("ignored")
+}
+
 /// Most models one file may expand to (DEF/USE instancing can multiply them).
 pub const MAX_MODELS: usize = 1_000_000;
 /// Most triangles one file may expand to.
@@ -111,6 +121,7 @@ pub const MAX_TRIANGLES: usize = 200_000_000;
 pub(crate) struct Budget {
     models: usize,
     triangles: usize,
+    copies: usize,
     warned: HashSet<String>,
 }
 
@@ -124,6 +135,19 @@ impl Budget {
                 format!(
                     "the scene expands to more than {MAX_MODELS} shapes or {MAX_TRIANGLES} triangles (DEF/USE instancing?)"
                 ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Counts one copy made by an `Array` or `MultipleCopy` node: nested copies multiply,
+    /// and even copies of nothing take time, so their total is bounded like the models'.
+    pub(crate) fn copy(&mut self, line: usize) -> PResult<()> {
+        self.copies += 1;
+        if self.copies > MAX_MODELS {
+            return Err(ParseError::new(
+                line,
+                format!("the scene makes more than {MAX_MODELS} copies (nested Array or MultipleCopy nodes?)"),
             ));
         }
         Ok(())
@@ -187,15 +211,28 @@ impl Format {
     }
 }
 
+/// How strictly a scene file is read.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    /// An unknown field of a known VRML / Inventor node is a warning (its value skipped)
+    /// instead of an error (`--lenient`).
+    pub lenient: bool,
+}
+
 /// Reads a VRML 1.0, VRML 2.0, Open Inventor ASCII, PLY, OBJ, STL or OFF file (optionally
 /// gzipped); an OBJ's material libraries are read from its folder and applied (see `mtl`).
 pub fn read_scene(path: &Path) -> Result<ReadOutcome, ReadError> {
+    read_scene_with(path, ReadOptions::default())
+}
+
+/// [`read_scene`] with `options`.
+pub fn read_scene_with(path: &Path, options: ReadOptions) -> Result<ReadOutcome, ReadError> {
     let io_err = |source| ReadError::Io {
         file: path.to_path_buf(),
         source,
     };
     let bytes = std::fs::read(path).map_err(io_err)?;
-    let mut outcome = parse_bytes(bytes, path)?;
+    let mut outcome = parse_bytes_with(bytes, path, Format::from_path(path), options)?;
     mtl::apply_materials(&mut outcome, path);
     Ok(outcome)
 }
@@ -203,7 +240,12 @@ pub fn read_scene(path: &Path) -> Result<ReadOutcome, ReadError> {
 /// Reads a scene from memory; `file_name` is used in messages, and its extension says the
 /// format when the content does not.
 pub fn parse_bytes(bytes: Vec<u8>, file_name: &Path) -> Result<ReadOutcome, ReadError> {
-    parse_bytes_with(bytes, file_name, Format::from_path(file_name))
+    parse_bytes_with(
+        bytes,
+        file_name,
+        Format::from_path(file_name),
+        ReadOptions::default(),
+    )
 }
 
 /// Reads a scene from text (tests, tools); `file_name` is used in messages.
@@ -215,6 +257,7 @@ fn parse_bytes_with(
     mut bytes: Vec<u8>,
     path: &Path,
     by_name: Option<Format>,
+    options: ReadOptions,
 ) -> Result<ReadOutcome, ReadError> {
     let file = path.to_path_buf();
     if bytes.starts_with(&[0x1f, 0x8b]) {
@@ -255,7 +298,7 @@ fn parse_bytes_with(
     }
     let first_line_end = bytes
         .iter()
-        .position(|&b| b == b'\n')
+        .position(|&b| matches!(b, b'\n' | b'\r'))
         .unwrap_or(bytes.len());
     let header = String::from_utf8_lossy(&bytes[..first_line_end]);
     let header = header.trim_end();
@@ -323,7 +366,7 @@ fn parse_bytes_with(
             ),
         )));
     };
-    parse_on_big_stack(&bytes, dialect).map_err(syntax)
+    parse_on_big_stack(&bytes, path, dialect, options).map_err(syntax)
 }
 
 /// Stack for parsing: the node nesting limit (`parse::MAX_DEPTH`) times the deepest
@@ -332,23 +375,38 @@ const PARSE_STACK: usize = 256 << 20;
 
 /// Parses and walks the node tree on a thread with a known, large stack (the recursion is
 /// bounded by `parse::MAX_DEPTH`, but callers' threads may have small stacks).
-fn parse_on_big_stack(bytes: &[u8], dialect: parse::Dialect) -> PResult<ReadOutcome> {
+fn parse_on_big_stack(
+    bytes: &[u8],
+    path: &Path,
+    dialect: parse::Dialect,
+    options: ReadOptions,
+) -> PResult<ReadOutcome> {
     std::thread::scope(|s| {
         match std::thread::Builder::new()
             .name("scene-parser".into())
             .stack_size(PARSE_STACK)
-            .spawn_scoped(s, || parse_tree(bytes, dialect))
+            .spawn_scoped(s, || parse_tree(bytes, path, dialect, options))
         {
             Ok(handle) => handle
                 .join()
                 .unwrap_or_else(|_| Err(ParseError::new(1, "internal error: the parser panicked"))),
-            Err(_) => parse_tree(bytes, dialect),
+            Err(_) => parse_tree(bytes, path, dialect, options),
         }
     })
 }
 
-fn parse_tree(bytes: &[u8], dialect: parse::Dialect) -> PResult<ReadOutcome> {
+/// Parses the node tree of `bytes` (read from `path`: `File` nodes are relative to its folder)
+/// and walks it into models.
+fn parse_tree(
+    bytes: &[u8],
+    path: &Path,
+    dialect: parse::Dialect,
+    options: ReadOptions,
+) -> PResult<ReadOutcome> {
     let mut parser = parse::Parser::new(bytes, dialect);
+    parser.lenient = options.lenient;
+    parser.origin = Some(path.to_path_buf());
+    parser.including = path.canonicalize().into_iter().collect();
     let roots = parser.parse_file()?;
     let mut warnings = std::mem::take(&mut parser.warnings);
     let models = match dialect {

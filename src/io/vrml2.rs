@@ -13,7 +13,8 @@ use super::build::{
     build, explicit, resolve, split_polygons, texcoords_per_vertex, Bind, Binding, Geo, ShapeSpec,
 };
 use super::lexer::PResult;
-use super::parse::Node;
+use super::parse::{Node, USE_KIND};
+use super::primitives::{self, Parts, Tessellation};
 use super::vrml1::{box_corners, compose, rotation, vec3};
 use super::Ctx;
 use crate::mesh::Model;
@@ -30,6 +31,9 @@ pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>) -> PResult<Vec<Model
 fn traverse(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
     if node.skipped {
         return Ok(());
+    }
+    if node.kind == USE_KIND {
+        return through_use(node, |target| traverse(target, transform, ctx));
     }
     match node.kind.as_str() {
         "Transform" => {
@@ -69,7 +73,21 @@ fn traverse(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> 
     Ok(())
 }
 
+/// Runs `walk` on the node a `USE` names; an error inside names the USE and the DEF lines.
+fn through_use(used: &Rc<Node>, walk: impl FnOnce(&Rc<Node>) -> PResult<()>) -> PResult<()> {
+    let target = used.target();
+    let name = used.def.as_deref().unwrap_or_default();
+    walk(target).map_err(|e| e.used_at(used.line, name, target.line))
+}
+
 fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
+    match node.node_or_use("geometry") {
+        Some(g) if g.kind == USE_KIND => through_use(g, |_| shape_geometry(node, transform, ctx)),
+        _ => shape_geometry(node, transform, ctx),
+    }
+}
+
+fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
     let Some(geometry) = node.node("geometry").filter(|g| !g.skipped) else {
         return Ok(());
     };
@@ -92,6 +110,7 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
     let texture_repeat =
         ["repeatS", "repeatT"].map(|field| image.and_then(|t| t.boolean(field)).unwrap_or(true));
     let boxed;
+    let tess;
     let spec = match geometry.kind.as_str() {
         "IndexedFaceSet" => {
             let coords = geometry
@@ -178,6 +197,20 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
                 index_field: "Box",
             }
         }
+        "Sphere" | "Cone" | "Cylinder" => {
+            tess = primitive(geometry);
+            let mut spec = ShapeSpec::primitive(
+                name,
+                transform,
+                &tess.coords,
+                Geo::triangles(&tess),
+                Bind::None,
+                diffuse,
+                geometry.line,
+            );
+            spec.solid = tess.closed;
+            spec
+        }
         other => {
             ctx.budget.warn_once(
                 ctx.warnings,
@@ -202,4 +235,22 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
     ctx.budget.spend(model.triangles.len(), node.line)?;
     ctx.models.push(model);
     Ok(())
+}
+
+/// A `Sphere`, `Cone` or `Cylinder` at Coin's default complexity, with the parts its
+/// `side`, `top` and `bottom` fields keep (negative sizes taken as positive, as Coin does).
+fn primitive(g: &Node) -> Tessellation {
+    let size = |field: &str, default: f32| g.float(field).map_or(default, f32::abs);
+    let on = |field: &str| g.boolean(field).unwrap_or(true);
+    let parts = Parts {
+        side: on("side"),
+        top: on("top"),
+        bottom: on("bottom"),
+    };
+    let c = primitives::DEFAULT_COMPLEXITY;
+    match g.kind.as_str() {
+        "Sphere" => primitives::sphere(size("radius", 1.0), c),
+        "Cylinder" => primitives::cylinder(size("radius", 1.0), size("height", 2.0), c, parts),
+        _ => primitives::cone(size("bottomRadius", 1.0), size("height", 2.0), c, parts),
+    }
 }
