@@ -343,7 +343,8 @@ Separator {
 }
 ";
 
-/// Inventor's other shapes and bindings: strips, quads, per-vertex materials, arrays.
+/// Inventor's other shapes and bindings: strips, quads, per-vertex materials, arrays,
+/// primitives, node kits.
 const INVENTOR_NODES: &str = "#Inventor V2.1 ascii
 Separator {
   ShapeHints { vertexOrdering CLOCKWISE shapeType SOLID faceType UNKNOWN_FACE_TYPE creaseAngle 1 }
@@ -370,6 +371,17 @@ Separator {
     TriangleStripSet { numVertices [ 4 ] }
   }
   LevelOfDetail { screenArea [ 100 ] Cube { } Sphere { } }
+  Complexity { value 0.2 }
+  Cylinder { parts (SIDES | TOP) radius 0.5 height 2 }
+  Cone { parts ALL bottomRadius 1 height 1 }
+  MultipleCopy { matrix [ 1 0 0 0 0 1 0 0 0 0 1 0 4 0 0 1 ] Sphere { radius 0.5 } }
+  Switch { whichChild 1 Cube { } Switch { whichChild -2 Cube { } Cylinder { } } }
+  ShapeKit {
+    transform Transform { translation 0 3 0 }
+    localTransform Transform { scaleFactor 2 1 1 }
+    shape Cone { }
+  }
+  IndexedTriangleMesh { coordIndex [ 0 1 3 2 -1 ] }
 }
 ";
 
@@ -400,6 +412,9 @@ DEF Root Transform {
     Switch { whichChoice 0 choice [ Shape { geometry Box { size 1 2 3 } } ] }
     LOD { range [ 10 ] level [ Billboard { children USE Piece } Group { } ] }
     Anchor { children Collision { children [ USE Piece ] } }
+    Shape { geometry Sphere { radius 0.5 } }
+    Shape { geometry Cone { side FALSE } }
+    Shape { geometry Cylinder { top FALSE height 3 } }
   ]
 }
 Transform { children USE Root }

@@ -338,7 +338,66 @@ MultipleCopy { matrix [ 1 0 0 0  0 1 0 0  0 0 1 0  0 0 20 1,
     assert!((hi.y - lo.y - 4.0).abs() < 1e-4, "{lo} {hi}");
     assert!((lo.z - 28.0).abs() < 1e-4, "{lo}");
     let (lo, hi) = bounds(&s.models[6]);
-    assert!((hi.y - lo.y - 2.0).abs() < 1e-4 && (lo.z - 19.0).abs() < 1e-4, "{lo}");
+    assert!(
+        (hi.y - lo.y - 2.0).abs() < 1e-4 && (lo.z - 19.0).abs() < 1e-4,
+        "{lo}"
+    );
+}
+
+#[test]
+fn node_kits_are_walked_for_their_parts_in_the_kits_order() {
+    let s = read(
+        "#Inventor V2.1 ascii
+Separator {
+  DEF Body SeparatorKit {
+    appearance AppearanceKit { material Material { diffuseColor 1 0 0 } }
+    transform Transform { translation 10 0 0 }
+    childList NodeKitListPart {
+      containerTypeName \"Separator\"
+      childTypeNames [ \"ShapeKit\" ]
+      containerNode Separator {
+        ShapeKit {
+          transform Transform { translation 0 5 0 }
+          localTransform Transform { scaleFactor 3 3 3 }
+          shape Sphere { }
+          childList NodeKitListPart { containerNode Separator { ShapeKit { shape Cube { } } } }
+        }
+      }
+    }
+  }
+  Cube { }
+}",
+    );
+    assert_eq!(s.models.len(), 3);
+    let counts: Vec<usize> = s.models.iter().map(|m| m.triangles.len()).collect();
+    assert_eq!(counts, [390, 12, 12]);
+    // The sphere: both kits' transforms, then its own local scale.
+    let (lo, hi) = bounds(&s.models[0]);
+    assert!(
+        (lo.y - 2.0).abs() < 1e-4 && (hi.y - 8.0).abs() < 1e-4,
+        "{lo} {hi}"
+    );
+    // The kit's child: the kits' transforms, not the sibling shape's local scale.
+    let (lo, hi) = bounds(&s.models[1]);
+    assert!(near(lo, Vec3::new(9.0, 4.0, -1.0)) && near(hi, Vec3::new(11.0, 6.0, 1.0)));
+    assert_eq!(s.models[1].diffuse, [1.0, 0.0, 0.0]);
+    // Nothing leaks out of the kit.
+    let (lo, hi) = bounds(&s.models[2]);
+    assert!(near(lo, Vec3::splat(-1.0)) && near(hi, Vec3::ONE));
+    assert_eq!(s.models[2].diffuse, [0.8, 0.8, 0.8]);
+}
+
+#[test]
+fn a_switch_choosing_minus_two_inherits_the_enclosing_choice() {
+    let s = read(
+        "#Inventor V2.1 ascii
+Switch { whichChild 1
+  Cube { }
+  Separator { Switch { whichChild -2 Sphere { } Cone { } } }
+}",
+    );
+    let counts: Vec<usize> = s.models.iter().map(|m| m.triangles.len()).collect();
+    assert_eq!(counts, [38]);
 }
 
 #[test]
@@ -434,8 +493,14 @@ fn control_bytes_carriage_returns_and_wrong_headers() {
     // Lines ended by a carriage return alone: read, and errors counted in those lines.
     let s = read("#Inventor V2.1 ascii\rSeparator {\r Cube { }\r}\r");
     assert_eq!(s.models[0].triangles.len(), 12);
-    let e = fail("#Inventor V2.1 ascii\rSeparator {\r Cube { width x }\r}\r", "cr.iv");
-    assert!(e.starts_with("cr.iv:3: expected a number for 'width'"), "{e}");
+    let e = fail(
+        "#Inventor V2.1 ascii\rSeparator {\r Cube { width x }\r}\r",
+        "cr.iv",
+    );
+    assert!(
+        e.starts_with("cr.iv:3: expected a number for 'width'"),
+        "{e}"
+    );
     // A VRML 2.0 header over an Inventor body.
     let e = fail("#VRML V2.0 utf8\nSeparator {\n Cube { }\n}", "header.wrl");
     assert!(

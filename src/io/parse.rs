@@ -253,8 +253,21 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
     }
 }
 
+/// Inventor node kits (and the draggers and manipulators, which are kits): their parts are
+/// fields holding nodes, walked by `vrml1` in the kit's order. `NodeKitListPart` holds a
+/// kit's `childList`.
+pub fn is_kit(kind: &str) -> bool {
+    kind.ends_with("Kit")
+        || kind.ends_with("Dragger")
+        || kind.ends_with("Manip")
+        || kind == "NodeKitListPart"
+}
+
 /// Node kinds whose fields are parsed (the rest are skipped by structure).
 fn is_known(dialect: Dialect, kind: &str) -> bool {
+    if dialect == Dialect::Vrml1 && is_kit(kind) {
+        return true;
+    }
     match dialect {
         Dialect::Vrml1 => matches!(
             kind,
@@ -716,6 +729,9 @@ impl<'a> Parser<'a> {
     fn parse_field(&mut self, node: &mut Node, name_tok: Token) -> PResult<()> {
         let name = self.lex.text(&name_tok);
         let Some(kind) = field_kind(self.dialect, &node.kind, &name) else {
+            if is_kit(&node.kind) {
+                return self.parse_kit_field(node, name);
+            }
             if !fields::is_field_of(self.dialect, &node.kind, &name) {
                 self.unknown_field(node, &name_tok, &name)?;
             }
@@ -804,6 +820,32 @@ impl<'a> Parser<'a> {
             return Ok(());
         }
         node.fields.push(Field { name, line, value });
+        Ok(())
+    }
+
+    /// A field of a node kit: a part (a node, `DEF`/`USE`, or `NULL`) kept as an SFNode
+    /// value, or any other value skipped by structure.
+    fn parse_kit_field(&mut self, node: &mut Node, name: String) -> PResult<()> {
+        let t = self.lex.peek()?;
+        let line = t.line;
+        let part = if self.is_word(&t, b"DEF") || self.is_word(&t, b"USE") {
+            self.parse_statement()?
+        } else if t.kind == Tok::Word {
+            // A node type is followed by '{'; any other word is an enum value.
+            self.lex.next()?;
+            if self.lex.peek()?.kind != Tok::LBrace {
+                return Ok(());
+            }
+            Some(self.parse_node_body(t, None)?)
+        } else {
+            return self.skip_value();
+        };
+        node.fields.retain(|f| f.name != name);
+        node.fields.push(Field {
+            name,
+            line,
+            value: Value::Node(part),
+        });
         Ok(())
     }
 

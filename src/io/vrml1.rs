@@ -19,7 +19,7 @@ use super::build::{
     Binding, Geo, ShapeSpec, TexCoords,
 };
 use super::lexer::{PResult, ParseError};
-use super::parse::{Node, USE_KIND};
+use super::parse::{is_kit, Node, Value, USE_KIND};
 use super::primitives::{self, Parts};
 use super::Ctx;
 use crate::mesh::Model;
@@ -45,6 +45,8 @@ struct State {
     crease_angle: Option<f32>,
     /// `Complexity`'s value as the primitives use it (0..=1).
     complexity: f32,
+    /// The choice of the last Switch traversed, for a Switch below whose `whichChild` is -2.
+    switch_choice: i32,
 }
 
 impl Default for State {
@@ -64,6 +66,7 @@ impl Default for State {
             solid: false,
             crease_angle: None,
             complexity: primitives::DEFAULT_COMPLEXITY,
+            switch_choice: -1,
         }
     }
 }
@@ -161,10 +164,14 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
             }
         }
         "Switch" | "Blinker" => {
-            // -1 none, -2 inherit (nothing to inherit from here: none), -3 all.
-            let which =
-                node.int("whichChild")
-                    .unwrap_or(if node.kind == "Blinker" { 0 } else { -1 });
+            // -1 none, -2 the enclosing switch's choice, -3 all; the choice is inherited by
+            // switches below (Inventor's switch element).
+            let default = if node.kind == "Blinker" { 0 } else { -1 };
+            let mut which = node.int("whichChild").unwrap_or(default);
+            if which == -2 {
+                which = state.switch_choice;
+            }
+            state.switch_choice = which;
             if which == -3 {
                 for c in &node.children {
                     traverse(c, state, ctx)?;
@@ -263,7 +270,84 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
         | "QuadMesh"
         | "Cube" => shape(node, state, ctx)?,
         "Sphere" | "Cone" | "Cylinder" => primitive(node, state, ctx)?,
+        k if is_kit(k) => kit(node, state, ctx)?,
         _ => {}
+    }
+    Ok(())
+}
+
+/// The property parts of Inventor's node kits, in the order their catalogs traverse them
+/// (SeparatorKit, AppearanceKit, ShapeKit); `localTransform` and `shape` follow in a scope
+/// of their own, then `childList`.
+const KIT_PROPERTY_PARTS: [&str; 25] = [
+    "callbackList",
+    "pickStyle",
+    "appearance",
+    "lightModel",
+    "environment",
+    "drawStyle",
+    "material",
+    "complexity",
+    "texture2",
+    "font",
+    "units",
+    "transform",
+    "texture2Transform",
+    "materialBinding",
+    "normalBinding",
+    "textureCoordinateBinding",
+    "shapeHints",
+    "coordinate3",
+    "coordinate4",
+    "normal",
+    "textureCoordinate2",
+    "textureCoordinateFunction",
+    "profileCoordinate2",
+    "profileCoordinate3",
+    "profileList",
+];
+
+/// A node kit: its property parts, then its shape under `localTransform`, then `childList`
+/// (a `NodeKitListPart`, whose `containerNode` holds the children), then any other part (a
+/// dragger's) in a scope of its own. Kits separate their state, except the appearance kit
+/// and the list part, whose properties are meant for what follows them.
+fn kit(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()> {
+    let separate = !matches!(node.kind.as_str(), "AppearanceKit" | "NodeKitListPart");
+    let mut own;
+    let st = if separate {
+        own = state.clone();
+        &mut own
+    } else {
+        state
+    };
+    for part in KIT_PROPERTY_PARTS {
+        if let Some(p) = node.node_or_use(part) {
+            traverse(p, st, ctx)?;
+        }
+    }
+    let mut shape_state = st.clone();
+    for part in ["localTransform", "shape"] {
+        if let Some(p) = node.node_or_use(part) {
+            traverse(p, &mut shape_state, ctx)?;
+        }
+    }
+    for part in ["childList", "containerNode"] {
+        if let Some(p) = node.node_or_use(part) {
+            traverse(p, st, ctx)?;
+        }
+    }
+    let walked = |name: &str| {
+        KIT_PROPERTY_PARTS.contains(&name)
+            || matches!(
+                name,
+                "localTransform" | "shape" | "childList" | "containerNode"
+            )
+    };
+    for f in node.fields.iter().filter(|f| !walked(&f.name)) {
+        if let Value::Node(Some(p)) = &f.value {
+            let mut inner = st.clone();
+            traverse(p, &mut inner, ctx)?;
+        }
     }
     Ok(())
 }
