@@ -145,7 +145,8 @@ action-options for nogui (one target is MANDATORY):
                         asks for (never below the base) instead of decimating
   --overwrite           allow -o or --progressive to name an input file
   -q, --quiet           no summary, progress or warnings on stderr, except warnings
-                        that say part of the input was not read
+                        that say part of the input is not read or of the result not
+                        written
   --lenient             read a VRML / Inventor node's unknown fields as a warning (the
                         value skipped) rather than an error
 

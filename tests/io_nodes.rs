@@ -140,8 +140,13 @@ fn vrml1_cones_with_each_parts_mask() {
         let s = read(&src);
         let want = if side { n } else { 0 } + if bottom { n - 2 } else { 0 };
         if want == 0 {
-            // A cone has no top: TOP alone draws nothing.
-            assert!(s.models.is_empty(), "{mask}");
+            // A cone has no top: TOP alone draws nothing, and says so.
+            let o = parse_str(&src, "t.wrl").unwrap();
+            assert!(o.scene.models.is_empty(), "{mask}");
+            assert_eq!(
+                o.warnings,
+                ["line 2: 'Cone' of zero size or with no parts skipped"]
+            );
             continue;
         }
         let m = &s.models[0];

@@ -137,7 +137,7 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
         }
         "MultipleCopy" => {
             let m = node.floats("matrix").unwrap_or(&[]);
-            if m.len() % 16 != 0 {
+            if !m.len().is_multiple_of(16) {
                 return Err(ParseError::new(
                     node.line_of("matrix"),
                     format!(
@@ -797,6 +797,14 @@ fn size(node: &Node, field: &str, default: f32) -> f32 {
     node.float(field).map_or(default, f32::abs)
 }
 
+/// Says that a primitive of zero size, or with no parts, was skipped.
+pub fn skip_empty(node: &Node, ctx: &mut Ctx<'_>) {
+    ctx.warnings.push(format!(
+        "line {}: '{}' of zero size or with no parts skipped",
+        node.line, node.kind
+    ));
+}
+
 /// `Sphere`, `Cone` or `Cylinder`, tessellated at the state's complexity.
 fn primitive(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
     let parts = match node.word("parts") {
@@ -827,6 +835,10 @@ fn primitive(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
             parts,
         ),
     };
+    if t.triangles.is_empty() {
+        skip_empty(node, ctx);
+        return Ok(());
+    }
     let geo = Geo::triangles(&t);
     let colors = match state.material_binding {
         Binding::PerPart | Binding::PerPartIndexed => resolve(

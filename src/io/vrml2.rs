@@ -15,7 +15,7 @@ use super::build::{
 use super::lexer::PResult;
 use super::parse::{Node, USE_KIND};
 use super::primitives::{self, Parts, Tessellation};
-use super::vrml1::{box_corners, compose, rotation, vec3};
+use super::vrml1::{box_corners, compose, rotation, skip_empty, vec3};
 use super::Ctx;
 use crate::mesh::Model;
 
@@ -112,69 +112,7 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
     let boxed;
     let tess;
     let spec = match geometry.kind.as_str() {
-        "IndexedFaceSet" => {
-            let coords = geometry
-                .node("coord")
-                .and_then(|c| c.floats("point"))
-                .unwrap_or(&[]);
-            let raw = geometry.ints("coordIndex").unwrap_or(&[]);
-            let line = geometry.line_of("coordIndex");
-            let (c, e, p) = split_polygons(raw, line, "coordIndex")?;
-            let geo = Geo::faces(c, e, p);
-            let per_vertex = |name: &str| geometry.boolean(name).unwrap_or(true);
-            let binding = |index: Option<&[i32]>, per_vertex: bool| match (
-                per_vertex,
-                explicit(index).is_some(),
-            ) {
-                (true, _) => Binding::PerVertexIndexed,
-                (false, true) => Binding::PerFaceIndexed,
-                (false, false) => Binding::PerFace,
-            };
-            let color_values = geometry
-                .node("color")
-                .and_then(|c| c.floats("color"))
-                .unwrap_or(&[]);
-            let normal_values = geometry
-                .node("normal")
-                .and_then(|n| n.floats("vector"))
-                .unwrap_or(&[]);
-            let ci = geometry.ints("colorIndex");
-            let ni = geometry.ints("normalIndex");
-            let colors = resolve(
-                binding(ci, per_vertex("colorPerVertex")),
-                color_values,
-                ci,
-                &geo,
-            );
-            let normals = resolve(
-                binding(ni, per_vertex("normalPerVertex")),
-                normal_values,
-                ni,
-                &geo,
-            );
-            let texcoord_values = geometry
-                .node("texCoord")
-                .and_then(|t| t.floats("point"))
-                .unwrap_or(&[]);
-            let texcoords =
-                texcoords_per_vertex(texcoord_values, geometry.ints("texCoordIndex"), &geo, true);
-            ShapeSpec {
-                name,
-                transform,
-                coords,
-                corners: geo.corners,
-                ends: geo.ends,
-                colors,
-                normals,
-                texcoords,
-                ccw: geometry.boolean("ccw").unwrap_or(true),
-                solid: geometry.boolean("solid").unwrap_or(true),
-                crease_angle: geometry.float("creaseAngle"),
-                diffuse,
-                line,
-                index_field: "coordIndex",
-            }
-        }
+        "IndexedFaceSet" => indexed_face_set(geometry, name, transform, diffuse)?,
         "Box" => {
             boxed = box_corners(vec3(geometry.floats("size"), Vec3::splat(2.0)) * 0.5);
             let faces: [u32; 24] = [
@@ -199,6 +137,10 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
         }
         "Sphere" | "Cone" | "Cylinder" => {
             tess = primitive(geometry);
+            if tess.triangles.is_empty() {
+                skip_empty(geometry, ctx);
+                return Ok(());
+            }
             let mut spec = ShapeSpec::primitive(
                 name,
                 transform,
@@ -253,4 +195,72 @@ fn primitive(g: &Node) -> Tessellation {
         "Cylinder" => primitives::cylinder(size("radius", 1.0), size("height", 2.0), c, parts),
         _ => primitives::cone(size("bottomRadius", 1.0), size("height", 2.0), c, parts),
     }
+}
+
+/// An IndexedFaceSet's polygons with their colours, normals and texture coordinates
+/// (`colorPerVertex` / `normalPerVertex`, with or without index lists).
+fn indexed_face_set(
+    g: &Node,
+    name: String,
+    transform: Mat4,
+    diffuse: [f32; 3],
+) -> PResult<ShapeSpec<'_>> {
+    let coords = g
+        .node("coord")
+        .and_then(|c| c.floats("point"))
+        .unwrap_or(&[]);
+    let raw = g.ints("coordIndex").unwrap_or(&[]);
+    let line = g.line_of("coordIndex");
+    let (c, e, p) = split_polygons(raw, line, "coordIndex")?;
+    let geo = Geo::faces(c, e, p);
+    let per_vertex = |name: &str| g.boolean(name).unwrap_or(true);
+    let binding =
+        |index: Option<&[i32]>, per_vertex: bool| match (per_vertex, explicit(index).is_some()) {
+            (true, _) => Binding::PerVertexIndexed,
+            (false, true) => Binding::PerFaceIndexed,
+            (false, false) => Binding::PerFace,
+        };
+    let color_values = g
+        .node("color")
+        .and_then(|c| c.floats("color"))
+        .unwrap_or(&[]);
+    let normal_values = g
+        .node("normal")
+        .and_then(|n| n.floats("vector"))
+        .unwrap_or(&[]);
+    let ci = g.ints("colorIndex");
+    let ni = g.ints("normalIndex");
+    let colors = resolve(
+        binding(ci, per_vertex("colorPerVertex")),
+        color_values,
+        ci,
+        &geo,
+    );
+    let normals = resolve(
+        binding(ni, per_vertex("normalPerVertex")),
+        normal_values,
+        ni,
+        &geo,
+    );
+    let texcoord_values = g
+        .node("texCoord")
+        .and_then(|t| t.floats("point"))
+        .unwrap_or(&[]);
+    let texcoords = texcoords_per_vertex(texcoord_values, g.ints("texCoordIndex"), &geo, true);
+    Ok(ShapeSpec {
+        name,
+        transform,
+        coords,
+        corners: geo.corners,
+        ends: geo.ends,
+        colors,
+        normals,
+        texcoords,
+        ccw: g.boolean("ccw").unwrap_or(true),
+        solid: g.boolean("solid").unwrap_or(true),
+        crease_angle: g.float("creaseAngle"),
+        diffuse,
+        line,
+        index_field: "coordIndex",
+    })
 }
