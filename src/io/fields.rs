@@ -85,7 +85,14 @@ fn vrml1_fields(kind: &str) -> Option<&'static [&'static str]> {
         ],
         "BaseColor" => &["rgb"],
         "MaterialBinding" | "NormalBinding" | "TextureCoordinateBinding" => &["value"],
-        "ShapeHints" => &["vertexOrdering", "shapeType", "faceType", "creaseAngle"],
+        // `hints` is Inventor 1.0's mask of SOLID, ORDERED (counter-clockwise) and CONVEX.
+        "ShapeHints" => &[
+            "vertexOrdering",
+            "shapeType",
+            "faceType",
+            "creaseAngle",
+            "hints",
+        ],
         "IndexedFaceSet" | "IndexedTriangleStripSet" | "IndexedTriangleMesh" => INDEXED_SHAPE,
         "FaceSet" | "TriangleStripSet" => &["startIndex", "numVertices", "vertexProperty"],
         "QuadMesh" => &[

@@ -167,7 +167,7 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Material", "diffuseColor") => Floats,
             ("BaseColor", "rgb") => Floats,
             ("MaterialBinding" | "NormalBinding" | "TextureCoordinateBinding", "value") => Word,
-            ("ShapeHints", "vertexOrdering" | "shapeType" | "faceType") => Word,
+            ("ShapeHints", "vertexOrdering" | "shapeType" | "faceType" | "hints") => Word,
             ("ShapeHints", "creaseAngle") => Floats,
             (
                 "Transform",

@@ -257,6 +257,12 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
             let ordering = node.word("vertexOrdering").unwrap_or("UNKNOWN_ORDERING");
             state.ccw = ordering != "CLOCKWISE";
             state.solid = ordering != "UNKNOWN_ORDERING" && node.word("shapeType") == Some("SOLID");
+            // Inventor 1.0: `hints (SOLID | ORDERED | CONVEX)`, ORDERED meaning counter-clockwise.
+            if let Some(hints) = node.word("hints") {
+                let has = |h: &str| hints.split('|').any(|w| w.trim() == h);
+                state.ccw = true;
+                state.solid = has("SOLID") && has("ORDERED");
+            }
             if let Some(a) = node.float("creaseAngle") {
                 state.crease_angle = Some(a);
             }

@@ -241,10 +241,11 @@ Shape { geometry Cone { } }",
 }
 
 #[test]
-fn inventor_1_indexed_triangle_mesh_is_read_as_strips() {
+fn inventor_1_indexed_triangle_mesh_and_shape_hints() {
     let s = parse_str(
         "#Inventor V1.0 ascii
 Separator {
+  ShapeHints { hints (SOLID | ORDERED | CONVEX) }
   Coordinate3 { point [ 0 0 0, 1 0 0, 0 1 0, 1 1 0, 0 2 0, 1 2 0 ] }
   IndexedTriangleMesh { coordIndex [ 0, 1, 2, 3, 4, 5, -1 ] }
 }",
@@ -254,6 +255,8 @@ Separator {
     .scene;
     let m = &s.models[0];
     assert_eq!(m.triangles.len(), 4);
+    // Inventor 1.0's ShapeHints: SOLID and ORDERED make a solid, counter-clockwise shape.
+    assert!(m.solid);
     let p = world(m);
     for t in &m.triangles {
         let n = (p[t[1] as usize] - p[t[0] as usize]).cross(p[t[2] as usize] - p[t[0] as usize]);
