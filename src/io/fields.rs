@@ -179,6 +179,21 @@ fn vrml2_fields(kind: &str) -> Option<&'static [&'static str]> {
         "Sphere" => &["radius"],
         "Cone" => &["bottomRadius", "height", "side", "bottom"],
         "Cylinder" => &["radius", "height", "side", "top", "bottom"],
+        "ElevationGrid" => &[
+            "color",
+            "normal",
+            "texCoord",
+            "height",
+            "ccw",
+            "colorPerVertex",
+            "creaseAngle",
+            "normalPerVertex",
+            "solid",
+            "xDimension",
+            "xSpacing",
+            "zDimension",
+            "zSpacing",
+        ],
         _ => return None,
     })
 }

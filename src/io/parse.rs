@@ -248,6 +248,10 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Cone", "side" | "bottom") => Bool,
             ("Cylinder", "radius" | "height") => Floats,
             ("Cylinder", "side" | "top" | "bottom") => Bool,
+            ("ElevationGrid", "color" | "normal" | "texCoord") => Node,
+            ("ElevationGrid", "height" | "xSpacing" | "zSpacing" | "creaseAngle") => Floats,
+            ("ElevationGrid", "xDimension" | "zDimension") => Ints,
+            ("ElevationGrid", "ccw" | "solid" | "colorPerVertex" | "normalPerVertex") => Bool,
             _ => return None,
         }),
     }
@@ -338,6 +342,7 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "Sphere"
                 | "Cone"
                 | "Cylinder"
+                | "ElevationGrid"
         ),
     }
 }

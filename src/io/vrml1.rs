@@ -1,13 +1,17 @@
 //! VRML 1.0 and Open Inventor ASCII semantics: a traversal state machine over the parsed
 //! node tree.
 //!
-//! Properties (coordinates, normals, materials, bindings, shape hints, the transform)
-//! accumulate in a state that `Separator` saves and restores; `Group` and `Switch` let it leak
-//! as the specification says, `TransformSeparator` saves the transform only. Every shape node
-//! (IndexedFaceSet, IndexedTriangleStripSet, FaceSet, TriangleStripSet, QuadMesh, Cube)
-//! becomes one `Model` with the state's world transform. Inventor 2.1 `vertexProperty` fields
-//! override the state for their shape. `MatrixTransform` follows the row-vector convention:
-//! the matrix is written row by row with the translation in the last row.
+//! Properties (coordinates, normals, materials, bindings, shape hints, complexity, the
+//! transform) accumulate in a state that `Separator` saves and restores; `Group`, `File` and
+//! `Switch` let it leak as the specification says (a Switch's choice of -2 inherits the
+//! enclosing one's), `TransformSeparator` saves the transform only; `Array` and
+//! `MultipleCopy` repeat their children, node kits walk their parts in catalog order. Every
+//! shape node (IndexedFaceSet, IndexedTriangleStripSet, IndexedTriangleMesh, FaceSet,
+//! TriangleStripSet, QuadMesh, Cube, Sphere, Cone, Cylinder) becomes one `Model` with the
+//! state's world transform. Inventor 2.1 `vertexProperty` fields override the state for their
+//! shape. `MatrixTransform` follows the row-vector convention: the matrix is written row by
+//! row with the translation in the last row. An error inside a `USE`d node names the USE's
+//! line and the DEF's.
 
 use std::borrow::Cow;
 use std::rc::Rc;
@@ -803,12 +807,15 @@ fn size(node: &Node, field: &str, default: f32) -> f32 {
     node.float(field).map_or(default, f32::abs)
 }
 
-/// Says that a primitive of zero size, or with no parts, was skipped.
+/// Says that a primitive (or VRML 2.0 ElevationGrid) that makes no triangles (a zero size,
+/// no parts, fewer than 2 x 2 points) was skipped.
 pub fn skip_empty(node: &Node, ctx: &mut Ctx<'_>) {
-    ctx.warnings.push(format!(
-        "line {}: '{}' of zero size or with no parts skipped",
-        node.line, node.kind
-    ));
+    let why = match node.kind.as_str() {
+        "ElevationGrid" => "with fewer than 2 x 2 points",
+        _ => "of zero size or with no parts",
+    };
+    ctx.warnings
+        .push(format!("line {}: '{}' {why} skipped", node.line, node.kind));
 }
 
 /// `Sphere`, `Cone` or `Cylinder`, tessellated at the state's complexity.

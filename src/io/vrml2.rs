@@ -1,9 +1,11 @@
 //! VRML 2.0 semantics: a walk over the tree of `Transform { children }`, `Group`, `Switch`,
 //! `LOD` and `Shape` nodes.
 //!
-//! Each `Shape` whose geometry is an `IndexedFaceSet` (or a `Box`) becomes one `Model` with the
-//! accumulated world transform, the material's diffuse colour, and the face set's colours
-//! and normals (`colorPerVertex` / `normalPerVertex`, with or without index lists).
+//! Each `Shape` whose geometry is an `IndexedFaceSet`, an `ElevationGrid`, a `Box` or a
+//! `Sphere`, `Cone` or `Cylinder` (see `primitives`) becomes one `Model` with the accumulated
+//! world transform, the material's diffuse colour, and the geometry's colours and normals
+//! (`colorPerVertex` / `normalPerVertex`, with or without index lists). An error inside a
+//! `USE`d node names the USE's line and the DEF's.
 
 use std::rc::Rc;
 
@@ -12,7 +14,7 @@ use glam::{Mat4, Vec3};
 use super::build::{
     build, explicit, resolve, split_polygons, texcoords_per_vertex, Bind, Binding, Geo, ShapeSpec,
 };
-use super::lexer::PResult;
+use super::lexer::{PResult, ParseError};
 use super::parse::{Node, USE_KIND};
 use super::primitives::{self, Parts, Tessellation};
 use super::vrml1::{box_corners, compose, rotation, skip_empty, vec3};
@@ -111,6 +113,7 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
         ["repeatS", "repeatT"].map(|field| image.and_then(|t| t.boolean(field)).unwrap_or(true));
     let boxed;
     let tess;
+    let grid;
     let spec = match geometry.kind.as_str() {
         "IndexedFaceSet" => indexed_face_set(geometry, name, transform, diffuse)?,
         "Box" => {
@@ -134,6 +137,15 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
                 line: geometry.line,
                 index_field: "Box",
             }
+        }
+        "ElevationGrid" => {
+            let (points, geo) = elevation_grid(geometry)?;
+            if geo.ends.is_empty() {
+                skip_empty(geometry, ctx);
+                return Ok(());
+            }
+            grid = points;
+            grid_spec(geometry, name, transform, diffuse, &grid, geo)
         }
         "Sphere" | "Cone" | "Cylinder" => {
             tess = primitive(geometry);
@@ -263,4 +275,90 @@ fn indexed_face_set(
         line,
         index_field: "coordIndex",
     })
+}
+
+/// An ElevationGrid's points (`xDimension` by `zDimension`, `xSpacing` and `zSpacing`
+/// apart, at `height`) and its quads, counter-clockwise seen from +y; each quad is a face.
+fn elevation_grid(g: &Node) -> PResult<(Vec<f32>, Geo)> {
+    let nx = g.int("xDimension").unwrap_or(0).max(0) as u64;
+    let nz = g.int("zDimension").unwrap_or(0).max(0) as u64;
+    let heights = g.floats("height").unwrap_or(&[]);
+    if nx * nz > heights.len() as u64 {
+        return Err(ParseError::new(
+            g.line_of("height"),
+            format!(
+                "ElevationGrid of {nx} x {nz} points needs {} heights, found {}",
+                nx * nz,
+                heights.len()
+            ),
+        ));
+    }
+    let (nx, nz) = (nx as u32, nz as u32);
+    let dx = g.float("xSpacing").unwrap_or(1.0);
+    let dz = g.float("zSpacing").unwrap_or(1.0);
+    let mut points = Vec::with_capacity(heights.len() * 3);
+    for j in 0..nz {
+        for i in 0..nx {
+            let h = heights[(j * nx + i) as usize];
+            points.extend([i as f32 * dx, h, j as f32 * dz]);
+        }
+    }
+    let at = |i: u32, j: u32| j * nx + i;
+    let mut corners = Vec::new();
+    for j in 0..nz.saturating_sub(1) {
+        for i in 0..nx.saturating_sub(1) {
+            corners.extend([at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)]);
+        }
+    }
+    let n = (corners.len() / 4) as u32;
+    let ends = (1..=n).map(|k| k * 4).collect();
+    let pos = (0..corners.len()).collect();
+    Ok((points, Geo::faces(corners, ends, pos)))
+}
+
+/// The shape of an ElevationGrid over `points`: colours and normals per point or per quad
+/// (`colorPerVertex`, `normalPerVertex`), texture coordinates per point.
+fn grid_spec<'a>(
+    g: &'a Node,
+    name: String,
+    transform: Mat4,
+    diffuse: [f32; 3],
+    points: &'a [f32],
+    geo: Geo,
+) -> ShapeSpec<'a> {
+    let values =
+        |node: &str, field: &str| g.node(node).and_then(|n| n.floats(field)).unwrap_or(&[]);
+    let binding = |field: &str| match g.boolean(field).unwrap_or(true) {
+        true => Binding::PerVertexIndexed,
+        false => Binding::PerFace,
+    };
+    let colors = resolve(
+        binding("colorPerVertex"),
+        values("color", "color"),
+        None,
+        &geo,
+    );
+    let normals = resolve(
+        binding("normalPerVertex"),
+        values("normal", "vector"),
+        None,
+        &geo,
+    );
+    let texcoords = texcoords_per_vertex(values("texCoord", "point"), None, &geo, true);
+    ShapeSpec {
+        name,
+        transform,
+        coords: points,
+        corners: geo.corners,
+        ends: geo.ends,
+        colors,
+        normals,
+        texcoords,
+        ccw: g.boolean("ccw").unwrap_or(true),
+        solid: g.boolean("solid").unwrap_or(true),
+        crease_angle: g.float("creaseAngle"),
+        diffuse,
+        line: g.line_of("height"),
+        index_field: "height",
+    }
 }

@@ -156,6 +156,8 @@ DEF Root Transform {
     Shape { geometry Sphere { radius 0.5 } }
     Shape { geometry Cone { side FALSE } }
     Shape { geometry Cylinder { top FALSE height 3 } }
+    Shape { geometry ElevationGrid { xDimension 3 zDimension 2 height [ 0 1 2 0 1 2 ]
+      colorPerVertex FALSE color Color { color [ 1 0 0, 0 1 0 ] } } }
   ]
 }
 Transform { children USE Root }

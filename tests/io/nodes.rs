@@ -241,6 +241,60 @@ Shape { geometry Cone { } }",
 }
 
 #[test]
+fn vrml2_elevation_grid_faces_up_with_colours_per_quad() {
+    let s = parse_str(
+        "#VRML V2.0 utf8
+Shape { geometry ElevationGrid {
+  xDimension 3 zDimension 2 xSpacing 2 zSpacing 5
+  height [ 0 1 2, 0 1 2 ]
+  colorPerVertex FALSE color Color { color [ 1 0 0, 0 0 1 ] }
+} }
+Shape { geometry ElevationGrid { xDimension 1 zDimension 4 height [ 0 0 0 0 ] } }",
+        "t.wrl",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.scene.models.len(), 1);
+    assert_eq!(
+        s.warnings,
+        ["line 7: 'ElevationGrid' with fewer than 2 x 2 points skipped"]
+    );
+    let m = &s.scene.models[0];
+    assert_eq!((m.positions.len(), m.triangles.len()), (6, 4));
+    let (lo, hi) = bounds(m);
+    assert!(near(lo, Vec3::ZERO) && near(hi, Vec3::new(4.0, 2.0, 5.0)));
+    let p = world(m);
+    let mut area = 0.0;
+    for t in &m.triangles {
+        let n = (p[t[1] as usize] - p[t[0] as usize]).cross(p[t[2] as usize] - p[t[0] as usize]);
+        assert!(n.y > 0.0, "every quad faces +y");
+        area += n.length() / 2.0;
+    }
+    // Two slopes of 2 x 5 rising by 1: each sqrt(4 + 1) x 5.
+    assert!((area - 2.0 * 5.0 * 5f32.sqrt()).abs() < 1e-4, "{area}");
+    let colours = match &m.colors {
+        Some(decimate::mesh::Attribute::PerFace(c)) => c.clone(),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(
+        colours,
+        [
+            [1.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, 1.0]
+        ]
+    );
+    let e = fail(
+        "#VRML V2.0 utf8\nShape { geometry ElevationGrid {\n xDimension 3 zDimension 3\n height [ 0 0 0 ] } }",
+        "g.wrl",
+    );
+    assert!(
+        e.starts_with("g.wrl:4: ElevationGrid of 3 x 3 points needs 9 heights, found 3"),
+        "{e}"
+    );
+}
+
+#[test]
 fn inventor_1_indexed_triangle_mesh_and_shape_hints() {
     let s = parse_str(
         "#Inventor V1.0 ascii
