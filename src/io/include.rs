@@ -43,6 +43,13 @@ impl Parser<'_> {
                 path.display()
             ));
         }
+        // Only a regular file: a device or a pipe (/dev/zero) could be endless.
+        if !canonical.is_file() {
+            return fail(format!(
+                "included file {} is not a regular file",
+                path.display()
+            ));
+        }
         let bytes = match std::fs::read(&canonical) {
             Ok(b) => b,
             Err(e) => return fail(format!("cannot read included file {}: {e}", path.display())),

@@ -356,6 +356,19 @@ fn file_nodes_include_other_files_relative_to_the_including_one() {
         "{e}"
     );
     assert!(e.contains("includes itself"), "{e}");
+    // Only regular files are read: a device could be endless.
+    std::fs::write(
+        dir.path().join("dev.iv"),
+        "#Inventor V2.1 ascii\nFile { name \"/dev/zero\" }",
+    )
+    .unwrap();
+    let e = read_scene(&dir.path().join("dev.iv"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains(":2: included file /dev/zero is not a regular file"),
+        "{e}"
+    );
     // A missing file is named.
     std::fs::remove_file(dir.path().join("parts/wheel.iv")).unwrap();
     let e = read_scene(&main).unwrap_err().to_string();
