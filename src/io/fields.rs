@@ -179,6 +179,18 @@ fn vrml2_fields(kind: &str) -> Option<&'static [&'static str]> {
         "Sphere" => &["radius"],
         "Cone" => &["bottomRadius", "height", "side", "bottom"],
         "Cylinder" => &["radius", "height", "side", "top", "bottom"],
+        "Extrusion" => &[
+            "beginCap",
+            "ccw",
+            "convex",
+            "creaseAngle",
+            "crossSection",
+            "endCap",
+            "orientation",
+            "scale",
+            "solid",
+            "spine",
+        ],
         "ElevationGrid" => &[
             "color",
             "normal",

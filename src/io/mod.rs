@@ -16,6 +16,7 @@
 //! format cannot hold, said before writing).
 
 mod build;
+mod extrusion;
 mod fields;
 mod include;
 mod lexer;

@@ -248,6 +248,9 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Cone", "side" | "bottom") => Bool,
             ("Cylinder", "radius" | "height") => Floats,
             ("Cylinder", "side" | "top" | "bottom") => Bool,
+            ("Extrusion", "crossSection" | "orientation" | "scale" | "spine") => Floats,
+            ("Extrusion", "creaseAngle") => Floats,
+            ("Extrusion", "beginCap" | "endCap" | "ccw" | "convex" | "solid") => Bool,
             ("ElevationGrid", "color" | "normal" | "texCoord") => Node,
             ("ElevationGrid", "height" | "xSpacing" | "zSpacing" | "creaseAngle") => Floats,
             ("ElevationGrid", "xDimension" | "zDimension") => Ints,
@@ -343,6 +346,7 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "Cone"
                 | "Cylinder"
                 | "ElevationGrid"
+                | "Extrusion"
         ),
     }
 }

@@ -812,6 +812,7 @@ fn size(node: &Node, field: &str, default: f32) -> f32 {
 pub fn skip_empty(node: &Node, ctx: &mut Ctx<'_>) {
     let why = match node.kind.as_str() {
         "ElevationGrid" => "with fewer than 2 x 2 points",
+        "Extrusion" => "with fewer than 2 spine or cross-section points",
         _ => "of zero size or with no parts",
     };
     ctx.warnings

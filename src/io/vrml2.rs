@@ -14,6 +14,7 @@ use glam::{Mat4, Vec3};
 use super::build::{
     build, explicit, resolve, split_polygons, texcoords_per_vertex, Bind, Binding, Geo, ShapeSpec,
 };
+use super::extrusion;
 use super::lexer::{PResult, ParseError};
 use super::parse::{Node, USE_KIND};
 use super::primitives::{self, Parts, Tessellation};
@@ -146,6 +147,30 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
             }
             grid = points;
             grid_spec(geometry, name, transform, diffuse, &grid, geo)
+        }
+        "Extrusion" => {
+            let swept = extrusion::extrude(geometry)?;
+            if swept.ends.is_empty() {
+                skip_empty(geometry, ctx);
+                return Ok(());
+            }
+            grid = swept.points;
+            ShapeSpec {
+                name,
+                transform,
+                coords: &grid,
+                corners: swept.corners,
+                ends: swept.ends,
+                colors: Bind::None,
+                normals: Bind::None,
+                texcoords: None,
+                ccw: geometry.boolean("ccw").unwrap_or(true),
+                solid: geometry.boolean("solid").unwrap_or(true),
+                crease_angle: geometry.float("creaseAngle"),
+                diffuse,
+                line: geometry.line,
+                index_field: "spine",
+            }
         }
         "Sphere" | "Cone" | "Cylinder" => {
             tess = primitive(geometry);

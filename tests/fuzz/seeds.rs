@@ -158,6 +158,8 @@ DEF Root Transform {
     Shape { geometry Cylinder { top FALSE height 3 } }
     Shape { geometry ElevationGrid { xDimension 3 zDimension 2 height [ 0 1 2 0 1 2 ]
       colorPerVertex FALSE color Color { color [ 1 0 0, 0 1 0 ] } } }
+    Shape { geometry Extrusion { spine [ 0 0 0, 0 2 0, 2 2 0 ] scale [ 0.25 0.25, 0.5 0.5 ]
+      orientation [ 0 1 0 0.3 ] crossSection [ 1 0, 0 -1, -1 0, 0 1, 1 0 ] } }
   ]
 }
 Transform { children USE Root }

@@ -295,6 +295,36 @@ Shape { geometry ElevationGrid { xDimension 1 zDimension 4 height [ 0 0 0 0 ] } 
 }
 
 #[test]
+fn vrml2_extrusions_are_closed_outward_sweeps() {
+    let s = parse_str(
+        "#VRML V2.0 utf8
+Shape { geometry Extrusion { } }
+Shape { geometry Extrusion { spine [ 0 0 0, 0 2 0, 2 2 0 ] scale 0.25 0.25 } }
+Shape { geometry Extrusion {
+  spine [ 0 0 0, 4 0 0, 4 0 4, 0 0 4, 0 0 0 ] scale 0.5 0.5 } }
+Shape { geometry Extrusion { beginCap FALSE endCap FALSE } }",
+        "t.wrl",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let m = &s.scene.models;
+    assert_eq!(m.len(), 4);
+    // The default: the square swept one unit up, a closed box of 2 x 1 x 2.
+    assert_eq!((m[0].positions.len(), m[0].triangles.len()), (8, 12));
+    let (lo, hi) = bounds(&m[0]);
+    assert!(near(lo, Vec3::new(-1.0, 0.0, -1.0)) && near(hi, Vec3::new(1.0, 1.0, 1.0)));
+    assert!(closed(&m[0]) && (signed_volume(&m[0]) - 4.0).abs() < 1e-4);
+    // A bent spine: two square tubes of 0.5 x 0.5 meeting at the corner, closed by caps.
+    assert_eq!((m[1].positions.len(), m[1].triangles.len()), (12, 16 + 4));
+    assert!(closed(&m[1]) && no_degenerate(&m[1]) && signed_volume(&m[1]) > 0.0);
+    // A closed spine: a square ring with no caps, closed all the same.
+    assert_eq!((m[2].positions.len(), m[2].triangles.len()), (16, 32));
+    assert!(closed(&m[2]) && no_degenerate(&m[2]) && signed_volume(&m[2]) > 0.0);
+    // No caps: an open tube.
+    assert_eq!(m[3].triangles.len(), 8);
+    assert!(!closed(&m[3]));
+}
+
+#[test]
 fn inventor_1_indexed_triangle_mesh_and_shape_hints() {
     let s = parse_str(
         "#Inventor V1.0 ascii
