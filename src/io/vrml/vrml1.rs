@@ -18,14 +18,14 @@ use std::rc::Rc;
 
 use glam::{Mat4, Quat, Vec3};
 
-use super::build::{
-    build, explicit, resolve, split_polygons, strips_to_triangles, texcoords_per_vertex, Bind,
-    Binding, Geo, ShapeSpec, TexCoords,
+use super::bindings::{
+    explicit, resolve, split_polygons, strips_to_triangles, texcoords_per_vertex, Binding, Geo,
 };
 use super::lexer::{PResult, ParseError};
-use super::parse::{is_kit, Node, Value, USE_KIND};
+use super::parse::{is_kit, used_at, Node, Value, USE_KIND};
 use super::primitives::{self, Parts};
 use super::Ctx;
+use crate::io::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
 use crate::mesh::Model;
 
 const DEFAULT_DIFFUSE: [f32; 3] = [0.8, 0.8, 0.8];
@@ -125,7 +125,7 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
     if node.kind == USE_KIND {
         let target = node.target();
         let name = node.def.as_deref().unwrap_or_default();
-        return traverse(target, state, ctx).map_err(|e| e.used_at(node.line, name, target.line));
+        return traverse(target, state, ctx).map_err(|e| used_at(e, node.line, name, target.line));
     }
     match node.kind.as_str() {
         "Separator" | "Selection" | "Annotation" | "WWWAnchor" => {
@@ -864,7 +864,7 @@ fn primitive(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
         _ => Bind::None,
     };
     let d = diffuse_values(state.material.as_ref());
-    let mut spec = ShapeSpec::primitive(
+    let mut spec = primitives::shape_spec(
         shape_name(node, ctx),
         state.transform,
         &t.coords,

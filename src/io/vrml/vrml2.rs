@@ -11,15 +11,14 @@ use std::rc::Rc;
 
 use glam::{Mat4, Vec3};
 
-use super::build::{
-    build, explicit, resolve, split_polygons, texcoords_per_vertex, Bind, Binding, Geo, ShapeSpec,
-};
+use super::bindings::{explicit, resolve, split_polygons, texcoords_per_vertex, Binding, Geo};
 use super::extrusion;
 use super::lexer::{PResult, ParseError};
-use super::parse::{Node, USE_KIND};
+use super::parse::{used_at, Node, USE_KIND};
 use super::primitives::{self, Parts, Tessellation};
 use super::vrml1::{box_corners, compose, rotation, skip_empty, vec3};
 use super::Ctx;
+use crate::io::shape_to_model::{build, Bind, ShapeSpec};
 use crate::mesh::Model;
 
 /// Walks the top-level nodes into models.
@@ -80,7 +79,7 @@ fn traverse(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> 
 fn through_use(used: &Rc<Node>, walk: impl FnOnce(&Rc<Node>) -> PResult<()>) -> PResult<()> {
     let target = used.target();
     let name = used.def.as_deref().unwrap_or_default();
-    walk(target).map_err(|e| e.used_at(used.line, name, target.line))
+    walk(target).map_err(|e| used_at(e, used.line, name, target.line))
 }
 
 fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
@@ -178,7 +177,7 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
                 skip_empty(geometry, ctx);
                 return Ok(());
             }
-            let mut spec = ShapeSpec::primitive(
+            let mut spec = primitives::shape_spec(
                 name,
                 transform,
                 &tess.coords,

@@ -9,6 +9,11 @@
 
 use std::f32::consts::{PI, TAU};
 
+use glam::Mat4;
+
+use super::bindings::Geo;
+use crate::io::shape_to_model::{Bind, ShapeSpec};
+
 /// Which parts of a cone or cylinder to make (a cone has no top).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Parts {
@@ -109,6 +114,35 @@ impl Tessellation {
 /// Crease angle of primitives' generated normals (radians): facets of the default
 /// tessellations are smoothed, the rims of caps stay sharp; see docs/design.md#primitives.
 pub const CREASE_ANGLE: f32 = 1.0;
+/// The shape of a tessellated primitive over `coords` (its `Geo::triangles`): counter-clockwise,
+/// creased at [`CREASE_ANGLE`]; the caller says whether it is solid (closed).
+pub fn shape_spec<'a>(
+    name: String,
+    transform: Mat4,
+    coords: &'a [f32],
+    geo: Geo,
+    colors: Bind<'a>,
+    diffuse: [f32; 3],
+    line: usize,
+) -> ShapeSpec<'a> {
+    ShapeSpec {
+        name,
+        transform,
+        coords,
+        corners: geo.corners,
+        ends: geo.ends,
+        colors,
+        normals: Bind::None,
+        texcoords: None,
+        ccw: true,
+        solid: false,
+        crease_angle: Some(CREASE_ANGLE),
+        diffuse,
+        line,
+        index_field: "its parts",
+    }
+}
+
 /// Coin's default complexity, used where no `Complexity` node says otherwise (VRML 2.0 has
 /// none); see docs/design.md#primitives.
 pub const DEFAULT_COMPLEXITY: f32 = 0.5;

@@ -22,6 +22,18 @@ pub const MAX_DEPTH: usize = 256;
 /// ([`Node::target`]) and name both lines in errors met inside ([`ParseError::used_at`]).
 pub const USE_KIND: &str = "USE";
 
+/// `e`, met inside the node `DEF name` (line `def_line`) where `USE name` at `use_line`
+/// placed it: reported at the USE, naming the DEF and the line inside.
+pub fn used_at(e: ParseError, use_line: usize, name: &str, def_line: usize) -> ParseError {
+    ParseError::new(
+        use_line,
+        format!(
+            "in 'USE {name}' (DEF {name} at line {def_line}): line {}: {}",
+            e.line, e.message
+        ),
+    )
+}
+
 /// Which grammar the file follows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Dialect {
