@@ -127,6 +127,9 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
         let name = node.def.as_deref().unwrap_or_default();
         return traverse(target, state, ctx).map_err(|e| used_at(e, node.line, name, target.line));
     }
+    if apply_transform(node, state)? || apply_property(node, state)? {
+        return Ok(());
+    }
     match node.kind.as_str() {
         "Separator" | "Selection" | "Annotation" | "WWWAnchor" => {
             let mut inner = state.clone();
@@ -192,6 +195,24 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
                 traverse(c, state, ctx)?;
             }
         }
+        "IndexedFaceSet"
+        | "IndexedTriangleStripSet"
+        | "IndexedTriangleMesh"
+        | "FaceSet"
+        | "TriangleStripSet"
+        | "QuadMesh"
+        | "Cube" => shape(node, state, ctx)?,
+        "Sphere" | "Cone" | "Cylinder" => primitive(node, state, ctx)?,
+        k if is_kit(k) => kit(node, state, ctx)?,
+        _ => {}
+    }
+    Ok(())
+}
+
+/// Applies a transformation node (Transform, Translation, Rotation, Scale, RotationXYZ,
+/// MatrixTransform, ResetTransform) to the state; false when `node` is none of them.
+fn apply_transform(node: &Node, state: &mut State) -> PResult<bool> {
+    match node.kind.as_str() {
         "Transform" => {
             let m = compose(
                 vec3(node.floats("translation"), Vec3::ZERO),
@@ -241,6 +262,15 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
                 state.transform = Mat4::IDENTITY;
             }
         }
+        _ => return Ok(false),
+    }
+    Ok(true)
+}
+
+/// Sets the property a property node (coordinates, normals, texture, material, bindings,
+/// shape hints, complexity) gives the shapes after it; false when `node` is none of them.
+fn apply_property(node: &Rc<Node>, state: &mut State) -> PResult<bool> {
+    match node.kind.as_str() {
         "Coordinate3" => state.coords = Some(node.clone()),
         "Normal" => state.normals = Some(node.clone()),
         "TextureCoordinate2" => state.texcoords = Some(node.clone()),
@@ -272,18 +302,9 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
             }
         }
         "Complexity" => state.complexity = complexity(node)?,
-        "IndexedFaceSet"
-        | "IndexedTriangleStripSet"
-        | "IndexedTriangleMesh"
-        | "FaceSet"
-        | "TriangleStripSet"
-        | "QuadMesh"
-        | "Cube" => shape(node, state, ctx)?,
-        "Sphere" | "Cone" | "Cylinder" => primitive(node, state, ctx)?,
-        k if is_kit(k) => kit(node, state, ctx)?,
-        _ => {}
+        _ => return Ok(false),
     }
-    Ok(())
+    Ok(true)
 }
 
 /// The property parts of Inventor's node kits, in the order their catalogs traverse them
