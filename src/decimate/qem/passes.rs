@@ -573,6 +573,11 @@ fn collapse_and_flag(d: &mut Part<'_>, plan: &Plan) {
         }
     }
     d.collapse(plan);
+    // A complex vertex made manifold collapses freely from now on: its edges are re-planned.
+    for j in 0..d.scratch.settled.len() {
+        let i = d.at(d.scratch.settled[j]);
+        d.flags[i] |= REPLAN;
+    }
 }
 
 /// The lists of the vertices [`end_of_pass`] looks at again, kept from pass to pass: all of
