@@ -9,7 +9,7 @@
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-use super::collapser::Kind;
+use super::collapse_plan::Kind;
 use super::quadric::Quadric;
 use crate::mesh::topology::{corner_of, Adjacency, Connectivity, Ring, RingShape, MAX_VALENCE};
 

@@ -1,0 +1,325 @@
+//! Turning one parsed shape (polygons over a coordinate array, with bound colours and
+//! normals) into a [`Model`]: index validation, compaction of the coordinate array to the
+//! vertices the shape uses, triangulation, orientation and attribute alignment.
+//!
+//! Attribute bindings are normalised by the readers into [`Bind`]: per face (one value index
+//! per polygon) or per corner (one value index per polygon corner). Per-corner values cannot be
+//! stored exactly per vertex when a vertex has different values in different faces; the value
+//! at the vertex's first use in the file wins (documented behaviour, never an error).
+//! A polygon's per-face value goes to every triangle cut from it.
+
+use std::collections::HashMap;
+
+use glam::{Mat4, Vec3};
+
+use super::text::{PResult, ParseError};
+use super::triangulate::{triangulate, EarBuffers};
+use crate::mesh::{Attribute, Model};
+
+/// How an attribute's values (flat, three floats each) are bound to a shape's polygons.
+#[derive(Debug, Clone)]
+pub enum Bind<'a> {
+    None,
+    /// `index[f]` is the value of polygon `f`.
+    PerFace {
+        values: &'a [f32],
+        index: Vec<u32>,
+    },
+    /// `index[k]` is the value of the `k`-th polygon corner (over all polygons in order).
+    PerCorner {
+        values: &'a [f32],
+        index: Vec<u32>,
+    },
+}
+
+/// Texture coordinates of a shape: `values` flat (u v), `index[k]` the pair of the `k`-th
+/// polygon corner (a per-vertex binding repeats the coordinate indices).
+#[derive(Debug, Clone)]
+pub struct TexCoords<'a> {
+    pub values: &'a [f32],
+    pub index: Vec<u32>,
+}
+
+/// One shape to build: polygons as corner lists over `coords` (flat x y z).
+pub struct ShapeSpec<'a> {
+    pub name: String,
+    pub transform: Mat4,
+    pub coords: &'a [f32],
+    /// Corner coordinate indices of all polygons, concatenated.
+    pub corners: Vec<u32>,
+    /// End (exclusive) of each polygon in `corners`.
+    pub ends: Vec<u32>,
+    pub colors: Bind<'a>,
+    pub normals: Bind<'a>,
+    /// Texture coordinates: a corner whose vertex already has other coordinates gets a vertex
+    /// of its own, so seams are kept.
+    pub texcoords: Option<TexCoords<'a>>,
+    pub ccw: bool,
+    pub solid: bool,
+    pub crease_angle: Option<f32>,
+    pub diffuse: [f32; 3],
+    /// Line of the index field, for errors.
+    pub line: usize,
+    /// Which field held the indices, for errors ("coordIndex", "numVertices"...).
+    pub index_field: &'static str,
+}
+
+fn value3(values: &[f32], i: u32) -> Option<[f32; 3]> {
+    let i = i as usize * 3;
+    values.get(i..i + 3).map(|s| [s[0], s[1], s[2]])
+}
+
+/// Checks that every index of a binding is in range; a short array drops the attribute with a
+/// warning rather than failing the file.
+fn check_bind<'a>(
+    bind: Bind<'a>,
+    what: &str,
+    spec_name: &str,
+    warnings: &mut Vec<String>,
+) -> Bind<'a> {
+    let (values, index) = match &bind {
+        Bind::None => return bind,
+        Bind::PerFace { values, index } | Bind::PerCorner { values, index } => (values, index),
+    };
+    let count = (values.len() / 3) as u32;
+    if let Some(bad) = index.iter().find(|&&i| i >= count) {
+        warnings.push(format!(
+            "{spec_name}: {what} index {bad} is out of range ({count} values); {what} ignored"
+        ));
+        return Bind::None;
+    }
+    bind
+}
+
+/// Vertex index map old → new, dense for shapes that use much of the array, hashed for small
+/// shapes over a big shared array (so many small shapes stay linear overall).
+enum Remap {
+    Dense(Vec<u32>),
+    Sparse(HashMap<u64, u32>),
+}
+
+impl Remap {
+    /// `old`: a point index, or a point index and a texture coordinate index (sparse only).
+    fn get_or_insert(&mut self, old: u64, next: u32) -> (u32, bool) {
+        match self {
+            Self::Dense(v) => {
+                let slot = &mut v[old as usize];
+                if *slot == u32::MAX {
+                    *slot = next;
+                    (next, true)
+                } else {
+                    (*slot, false)
+                }
+            }
+            Self::Sparse(m) => {
+                let mut inserted = false;
+                let v = *m.entry(old).or_insert_with(|| {
+                    inserted = true;
+                    next
+                });
+                (v, inserted)
+            }
+        }
+    }
+}
+
+/// Builds the model; out-of-range coordinate indices and non-finite used coordinates are errors.
+pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> {
+    let ShapeSpec {
+        name,
+        transform,
+        coords,
+        corners,
+        ends,
+        colors,
+        normals,
+        texcoords,
+        ccw,
+        solid,
+        crease_angle,
+        diffuse,
+        line,
+        index_field,
+    } = spec;
+    let npoints = coords.len() / 3;
+    if let Some(&bad) = corners.iter().find(|&&c| c as usize >= npoints) {
+        return Err(ParseError::new(
+            line,
+            format!(
+                "index {bad} in '{index_field}' is out of range: the coordinates have {npoints} points"
+            ),
+        ));
+    }
+    let colors = check_bind(colors, "colour", &name, warnings);
+    let normals = check_bind(normals, "normal", &name, warnings);
+    let texcoords = texcoords.filter(|t| texcoords_fit(t, corners.len(), &name, warnings));
+
+    let mut remap = if texcoords.is_some() || corners.len() * 4 < npoints {
+        Remap::Sparse(HashMap::with_capacity(corners.len()))
+    } else {
+        Remap::Dense(vec![u32::MAX; npoints])
+    };
+    let mut positions: Vec<Vec3> = Vec::new();
+    let mut local: Vec<u32> = Vec::with_capacity(corners.len());
+    let mut vcolors: Vec<[f32; 3]> = Vec::new();
+    let mut vnormals: Vec<Vec3> = Vec::new();
+    let mut vtexcoords: Vec<[f32; 2]> = Vec::new();
+    for (k, &c) in corners.iter().enumerate() {
+        // With texture coordinates a vertex is a (point, coordinate pair) pair.
+        let key = match &texcoords {
+            Some(t) => u64::from(c) | u64::from(t.index[k]) << 32,
+            None => u64::from(c),
+        };
+        let (v, fresh) = remap.get_or_insert(key, positions.len() as u32);
+        if fresh {
+            let i = c as usize * 3;
+            let p = Vec3::new(coords[i], coords[i + 1], coords[i + 2]);
+            if !p.is_finite() {
+                return Err(ParseError::new(
+                    line,
+                    format!("coordinate {c} used by '{index_field}' is not a finite number"),
+                ));
+            }
+            positions.push(p);
+            if let Bind::PerCorner { values, index } = &colors {
+                vcolors.push(
+                    index
+                        .get(k)
+                        .and_then(|&i| value3(values, i))
+                        .unwrap_or(diffuse),
+                );
+            }
+            if let Bind::PerCorner { values, index } = &normals {
+                let n = index
+                    .get(k)
+                    .and_then(|&i| value3(values, i))
+                    .unwrap_or([0.0; 3]);
+                vnormals.push(Vec3::from(n));
+            }
+            if let Some(t) = &texcoords {
+                let i = t.index[k] as usize * 2;
+                vtexcoords.push([t.values[i], t.values[i + 1]]);
+            }
+        }
+        local.push(v);
+    }
+
+    let mut triangles: Vec<[u32; 3]> =
+        Vec::with_capacity(corners.len().saturating_sub(ends.len() * 2));
+    let mut fcolors: Vec<[f32; 3]> = Vec::new();
+    let mut fnormals: Vec<Vec3> = Vec::new();
+    let mut scratch = EarBuffers::default();
+    let mut pts: Vec<Vec3> = Vec::new();
+    let mut cut: Vec<[u32; 3]> = Vec::new();
+    let mut degenerate = 0usize;
+    let mut start = 0usize;
+    for (f, &end) in ends.iter().enumerate() {
+        let end = end as usize;
+        let face = &local[start..end];
+        let before = triangles.len();
+        match face.len() {
+            0..=2 => degenerate += 1,
+            3 => triangles.push([face[0], face[1], face[2]]),
+            _ => {
+                pts.clear();
+                pts.extend(face.iter().map(|&v| positions[v as usize]));
+                cut.clear();
+                triangulate(&pts, &mut cut, &mut scratch);
+                triangles.extend(cut.iter().map(|t| {
+                    [
+                        face[t[0] as usize],
+                        face[t[1] as usize],
+                        face[t[2] as usize],
+                    ]
+                }));
+            }
+        }
+        let made = triangles.len() - before;
+        if let Bind::PerFace { values, index } = &colors {
+            let c = index
+                .get(f)
+                .and_then(|&i| value3(values, i))
+                .unwrap_or(diffuse);
+            fcolors.extend(std::iter::repeat_n(c, made));
+        }
+        if let Bind::PerFace { values, index } = &normals {
+            let n = index
+                .get(f)
+                .and_then(|&i| value3(values, i))
+                .unwrap_or([0.0; 3]);
+            fnormals.extend(std::iter::repeat_n(Vec3::from(n), made));
+        }
+        start = end;
+    }
+    if degenerate > 0 {
+        warnings.push(format!(
+            "{name}: {degenerate} face(s) with fewer than 3 corners skipped"
+        ));
+    }
+    if !ccw {
+        for t in &mut triangles {
+            t.swap(1, 2);
+        }
+    }
+    let colors = match colors {
+        Bind::None => None,
+        Bind::PerFace { .. } => Some(Attribute::PerFace(fcolors)),
+        Bind::PerCorner { .. } => Some(Attribute::PerVertex(vcolors)),
+    };
+    let normals = match normals {
+        Bind::None => None,
+        Bind::PerFace { .. } => Some(Attribute::PerFace(fnormals)),
+        Bind::PerCorner { .. } => Some(Attribute::PerVertex(vnormals)),
+    };
+    Ok(Model {
+        name,
+        transform,
+        positions,
+        triangles,
+        colors,
+        normals,
+        texcoords: texcoords.map(|_| vtexcoords),
+        texture: None,
+        texture_repeat: [true; 2],
+        material: None,
+        diffuse,
+        crease_angle,
+        solid,
+    })
+}
+
+/// True when every corner has a texture coordinate pair in range and every used pair is
+/// finite; otherwise the shape's texture coordinates are dropped with a warning (the shape
+/// itself is still read).
+fn texcoords_fit(
+    t: &TexCoords<'_>,
+    corners: usize,
+    name: &str,
+    warnings: &mut Vec<String>,
+) -> bool {
+    let count = t.values.len() / 2;
+    let problem = if t.index.len() < corners {
+        Some(format!(
+            "{} texture coordinate indices for {corners} polygon corners",
+            t.index.len()
+        ))
+    } else if let Some(bad) = t.index[..corners].iter().find(|&&i| i as usize >= count) {
+        Some(format!(
+            "texture coordinate index {bad} is out of range ({count} pairs)"
+        ))
+    } else {
+        t.index[..corners]
+            .iter()
+            .find(|&&i| {
+                !(t.values[i as usize * 2].is_finite() && t.values[i as usize * 2 + 1].is_finite())
+            })
+            .map(|bad| format!("texture coordinate {bad} is not a finite pair"))
+    };
+    match problem {
+        Some(p) => {
+            warnings.push(format!("{name}: {p}; texture coordinates ignored"));
+            false
+        }
+        None => true,
+    }
+}
