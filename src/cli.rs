@@ -69,11 +69,13 @@ pub struct Args {
     /// `--progressive`: also write the collapses as vertex splits to this file (nogui; the
     /// algorithm is then quadric edge collapse).
     pub progressive: Option<PathBuf>,
-    /// No summary or progress on stderr.
+    /// No summary or progress on stderr (warnings that mean lost data are still printed).
     pub quiet: bool,
     /// `--crease-angle`: degrees between faces above which smooth shading keeps an edge
     /// sharp, for every model (the viewer and shot; 180 is fully smooth).
     pub crease_angle: Option<f32>,
+    /// `--lenient`: an unknown field of a known node is a warning, not an error.
+    pub lenient: bool,
     pub shot: ShotOptions,
 }
 
@@ -124,7 +126,11 @@ action-options for nogui (one target is MANDATORY):
                         with FILE.pm as the input, nogui rebuilds the level the target
                         asks for (never below the base) instead of decimating
   --overwrite           allow -o or --progressive to name an input file
-  -q, --quiet           no summary or progress on stderr
+  -q, --quiet           no summary, progress or warnings on stderr, except warnings
+                        that say part of the input is not read or of the result not
+                        written
+  --lenient             read a VRML / Inventor node's unknown fields as a warning (the
+                        value skipped) rather than an error
 
 action-options for shot (offscreen render to PNG, no window; --mode and --crease-angle
 also set what the viewer draws):
@@ -165,6 +171,7 @@ where
     let mut overwrite = false;
     let mut quiet = false;
     let mut crease_angle: Option<f32> = None;
+    let mut lenient = false;
     let mut shot = ShotOptions::default();
 
     while let Some(arg) = it.next() {
@@ -234,6 +241,7 @@ where
             "--keep-border" => params.keep_border = true,
             "--overwrite" => overwrite = true,
             "-q" | "--quiet" => quiet = true,
+            "--lenient" => lenient = true,
             "--size" => {
                 let (w, h) = size(&value(&arg)?)?;
                 shot.width = w;
@@ -305,6 +313,12 @@ where
     if let Some(pm) = &progressive {
         check_progressive(pm, action, &output)?;
     }
+    if action == Action::NoGui && crate::io::Format::from_path(&output).is_none() {
+        return Err(CliError(format!(
+            "-o {}: no writer knows this extension (expected .wrl, .vrml, .ply, .obj, .stl or .off)",
+            output.display()
+        )));
+    }
     shot.texture_dir = crate::io::texture_path::folder_of(&input).to_path_buf();
     shot_targets(&mut shot, targets, viewports, action)?;
     if crease_angle.is_some() && action == Action::NoGui {
@@ -323,6 +337,7 @@ where
         progressive,
         quiet,
         crease_angle,
+        lenient,
         shot,
     })))
 }
