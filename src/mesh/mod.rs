@@ -5,6 +5,7 @@
 pub mod build;
 pub mod classify;
 pub mod measure;
+pub mod repair;
 pub mod scene;
 pub mod seams;
 pub mod shapes;
