@@ -3,6 +3,7 @@
 //! every model of a scene and returns a [`Report`].
 
 mod candidates;
+pub mod closed;
 pub mod layout;
 pub mod levels;
 mod lists;

@@ -11,6 +11,7 @@ use super::planes::{self, Constraints};
 use super::quadric::Quadric;
 use super::ranking::EdgeCosts;
 use super::texture::{texture_quadrics, TextureQuadrics};
+use crate::decimate::closed::{ClosedView, ClosedVolumes};
 use crate::decimate::layout::{compact, Compacted};
 use crate::decimate::progressive::Recorder;
 use crate::mesh::topology::{split_mut, Connectivity};
@@ -96,6 +97,8 @@ pub(super) struct Collapser {
     /// seam junction, one per side; `u32::MAX`: none); empty when none share a position.
     /// Never changes: pinned vertices never move.
     copies: Vec<u32>,
+    /// Closed components' volumes: no collapse turns one inside out or flattens it.
+    closed: ClosedVolumes,
 }
 
 impl Collapser {
@@ -109,6 +112,7 @@ impl Collapser {
         constraints: Constraints<'_>,
     ) -> Self {
         let n = positions.len();
+        let closed = ClosedVolumes::new(&positions, &triangles);
         let conn = Connectivity::from_triangles(n, triangles);
         let (kinds, quadrics) = planes::kinds_and_quadrics(&conn, &positions, constraints);
         let costs = EdgeCosts::new(conn.triangles());
@@ -129,6 +133,7 @@ impl Collapser {
             recorder: None,
             twins: Vec::new(),
             copies: Vec::new(),
+            closed,
         }
     }
 
@@ -210,6 +215,7 @@ impl Collapser {
             recorder: self.recorder.as_mut(),
             twins: &self.twins,
             copies: &self.copies,
+            closed: ClosedView::Whole(&mut self.closed),
             scratch: Scratch::default(),
         }
     }
@@ -235,6 +241,7 @@ impl Collapser {
         let costs = &self.costs;
         let twins = &self.twins;
         let copies = &self.copies;
+        let closed = &self.closed;
         let conns = self.conn.split(vertex_starts, slot_starts);
         conns
             .into_iter()
@@ -260,10 +267,16 @@ impl Collapser {
                     recorder: None,
                     twins,
                     copies,
+                    closed: ClosedView::Part(closed, Default::default()),
                     scratch: Scratch::default(),
                 })
             })
             .collect()
+    }
+
+    /// Adds the volume changes a part made on its own (see `ClosedView`).
+    pub fn absorb_volume_changes(&mut self, changes: std::collections::HashMap<u32, f64>) {
+        self.closed.absorb(changes);
     }
 
     /// Writes live vertices (at their new positions) and triangles back into `model`.

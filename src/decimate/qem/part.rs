@@ -12,6 +12,7 @@ use glam::{DVec2, DVec3, Vec3};
 use super::collapser::{others, Kind, Plan};
 use super::quadric::{Quadric, TextureQuadric};
 use super::ranking::EdgeCosts;
+use crate::decimate::closed::ClosedView;
 use crate::decimate::progressive::{CollapseRecord, Recorder};
 use crate::mesh::topology::{ConnectivityPart, FanTriangle};
 
@@ -100,6 +101,8 @@ pub(super) struct Part<'a> {
     /// Anchored vertices' next copy at their position (the whole mesh's, read only; see
     /// `Collapser::pin`).
     pub copies: &'a [u32],
+    /// Closed components' volumes (see `decimate::closed`).
+    pub closed: ClosedView<'a>,
     pub scratch: Scratch,
 }
 
