@@ -5,9 +5,8 @@
 //! counter-clockwise face gives counter-clockwise triangles, and a polygon of n corners gives
 //! n − 2 triangles. Convex polygons take a fan fast path, polygons monotone along x or y a
 //! linear stack walk. Otherwise the reflex corners (the only ones that can lie inside an
-//! ear) are sorted along a Z-order curve, so an ear test scans only those near the ear
-//! instead of the whole ring, and the walk clips every other corner per turn, so ears stay
-//! small. Degenerate or self-intersecting polygons still
+//! ear) are kept in a 2-d tree, so an ear test visits only those near the ear instead of
+//! the whole ring, and the walk clips every other corner per turn, so ears stay small. Degenerate or self-intersecting polygons still
 //! terminate in near-linear time: when a full turn finds no ear, convex corners are clipped
 //! without the containment test until half the ring is gone.
 
@@ -33,8 +32,8 @@ pub struct Scratch {
     prev: Vec<usize>,
     next: Vec<usize>,
     removed: Vec<bool>,
-    /// Reflex corners as (Z-order code, corner), sorted.
-    reflex: Vec<(u32, u32)>,
+    /// The reflex corners, for the ear test.
+    reflex: ReflexTree,
     /// A monotone polygon's corners in sweep order.
     order: Vec<u32>,
 }
@@ -50,39 +49,61 @@ fn inside(p: DVec2, a: DVec2, b: DVec2, c: DVec2) -> bool {
     cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0
 }
 
-/// Spreads the low 16 bits of `x` so that there is a zero bit between each.
-fn spread(x: u32) -> u32 {
-    let mut x = x & 0xffff;
-    x = (x | x << 8) & 0x00ff_00ff;
-    x = (x | x << 4) & 0x0f0f_0f0f;
-    x = (x | x << 2) & 0x3333_3333;
-    (x | x << 1) & 0x5555_5555
+/// Corners per leaf of [`ReflexTree`].
+const LEAF: usize = 8;
+
+/// The reflex corners in a static 2-d tree: `corners` reordered so that every node's are
+/// one range, halved at the middle along its box's longer side; `boxes` holds each node's
+/// box, children of node i at 2i + 1 and 2i + 2. An ear test descends only into the nodes
+/// whose box meets the ear itself, not just its bounding box: a long thin ear (a star's
+/// spike) then visits a few nodes, where a grid or a Z-order range would scan its whole box.
+#[derive(Default)]
+struct ReflexTree {
+    corners: Vec<u32>,
+    boxes: Vec<(DVec2, DVec2)>,
 }
 
-/// Z-order codes over the polygon's bounding box, 16 bits per axis; monotone in x and in y,
-/// so every point of a box has a code between those of its low and high corners.
-struct ZOrder {
-    lo: DVec2,
-    scale: DVec2,
-}
+impl ReflexTree {
+    fn build(&mut self, flat: &[DVec2], corners: impl Iterator<Item = u32>) {
+        self.corners.clear();
+        self.corners.extend(corners);
+        self.boxes.clear();
+        self.build_node(flat, 0, 0, self.corners.len());
+    }
 
-impl ZOrder {
-    fn new(flat: &[DVec2]) -> Self {
-        let (lo, hi) = flat.iter().fold(
+    fn build_node(&mut self, flat: &[DVec2], node: usize, lo: usize, hi: usize) {
+        let (min, max) = self.corners[lo..hi].iter().fold(
             (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+            |(min, max), &j| (min.min(flat[j as usize]), max.max(flat[j as usize])),
         );
-        // One scale for both axes: square cells, so that a long thin polygon's ears span
-        // few codes.
-        let size = (hi - lo).max_element();
-        let scale = DVec2::splat(if size > 0.0 { 65535.0 / size } else { 0.0 });
-        Self { lo, scale }
+        if node >= self.boxes.len() {
+            self.boxes.resize(node + 1, (DVec2::ZERO, DVec2::ZERO));
+        }
+        self.boxes[node] = (min, max);
+        if hi - lo <= LEAF {
+            return;
+        }
+        let mid = (lo + hi) / 2;
+        let axis = usize::from(max.y - min.y > max.x - min.x);
+        self.corners[lo..hi].select_nth_unstable_by(mid - lo, |&a, &b| {
+            flat[a as usize][axis].total_cmp(&flat[b as usize][axis])
+        });
+        self.build_node(flat, 2 * node + 1, lo, mid);
+        self.build_node(flat, 2 * node + 2, mid, hi);
     }
+}
 
-    fn code(&self, p: DVec2) -> u32 {
-        let q = ((p - self.lo) * self.scale).clamp(DVec2::ZERO, DVec2::splat(65535.0));
-        spread(q.x as u32) | spread(q.y as u32) << 1
+/// Whether box `min`..`max` meets triangle (a, b, c), wound positively: the boxes overlap
+/// and no edge of the triangle has the whole box strictly outside it.
+fn box_meets_triangle(min: DVec2, max: DVec2, [a, b, c]: [DVec2; 3]) -> bool {
+    let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+    if max.x < lo.x || min.x > hi.x || max.y < lo.y || min.y > hi.y {
+        return false;
     }
+    let corners = [min, DVec2::new(max.x, min.y), max, DVec2::new(min.x, max.y)];
+    [(a, b), (b, c), (c, a)]
+        .iter()
+        .all(|&(p, q)| corners.iter().any(|&k| cross(p, q, k) >= 0.0))
 }
 
 /// Appends the fan (0, i, i + 1) of an `n`-gon: exact for convex polygons, and as good as
@@ -251,14 +272,13 @@ fn clip_ears(scratch: &mut Scratch, out: &mut Vec<[u32; 3]>) {
     prev.extend((0..n).map(|i| (i + n - 1) % n));
     next.extend((0..n).map(|i| (i + 1) % n));
     removed.resize(n, false);
-    let z = ZOrder::new(flat);
-    reflex.clear();
-    reflex.extend(
-        (0..n)
-            .filter(|&i| cross(flat[prev[i]], flat[i], flat[next[i]]) <= 0.0)
-            .map(|i| (z.code(flat[i]), i as u32)),
+    let is_reflex = |prev: &[usize], next: &[usize], j: usize| {
+        cross(flat[prev[j]], flat[j], flat[next[j]]) <= 0.0
+    };
+    reflex.build(
+        flat,
+        (0..n as u32).filter(|&j| is_reflex(prev, next, j as usize)),
     );
-    reflex.sort_unstable();
 
     let mut count = n;
     let mut cur = 0;
@@ -272,7 +292,7 @@ fn clip_ears(scratch: &mut Scratch, out: &mut Vec<[u32; 3]>) {
         let (a, b, c) = (flat[p], flat[cur], flat[q]);
         let strict = count <= relaxed_down_to;
         let is_ear = cross(a, b, c) > 0.0
-            && !(strict && blocked([p, cur, q], flat, prev, next, removed, reflex, &z));
+            && !(strict && blocked([p, cur, q], flat, prev, next, removed, reflex));
         if !is_ear {
             misses += 1;
             if misses < count {
@@ -299,10 +319,11 @@ fn clip_ears(scratch: &mut Scratch, out: &mut Vec<[u32; 3]>) {
         cur = next[q];
         if count <= compacted_at / 2 {
             compacted_at = count;
-            reflex.retain(|&(_, j)| {
-                let j = j as usize;
-                !removed[j] && cross(flat[prev[j]], flat[j], flat[next[j]]) <= 0.0
-            });
+            let live = reflex.corners.clone();
+            let live = live
+                .into_iter()
+                .filter(|&j| !removed[j as usize] && is_reflex(prev, next, j as usize));
+            reflex.build(flat, live);
         }
     }
     out.push([prev[cur] as u32, cur as u32, next[cur] as u32]);
@@ -310,34 +331,47 @@ fn clip_ears(scratch: &mut Scratch, out: &mut Vec<[u32; 3]>) {
 
 /// True when a reflex corner other than the ear's own lies inside ear `corners` (corners at
 /// the same place as the ear's, as at the bridges between an outline and a hole, do not
-/// block it). Scans only the reflex corners whose Z-order codes lie in the ear's box's range.
+/// block it). Visits only the tree's nodes whose boxes meet the ear.
 fn blocked(
     corners: [usize; 3],
     flat: &[DVec2],
     prev: &[usize],
     next: &[usize],
     removed: &[bool],
-    reflex: &[(u32, u32)],
-    z: &ZOrder,
+    reflex: &ReflexTree,
 ) -> bool {
-    let [a, b, c] = corners.map(|i| flat[i]);
-    let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
-    let (zlo, zhi) = (z.code(lo), z.code(hi));
-    let start = reflex.partition_point(|e| e.0 < zlo);
-    for &(code, j) in &reflex[start..] {
-        if code > zhi {
-            break;
-        }
-        let j = j as usize;
-        let s = flat[j];
-        if s.x < lo.x || s.x > hi.x || s.y < lo.y || s.y > hi.y {
+    let ear = corners.map(|i| flat[i]);
+    let [a, b, c] = ear;
+    if reflex.corners.is_empty() {
+        return false;
+    }
+    // Depth-first; a tree over u32 corners is under 32 levels deep, so this never fills.
+    let mut stack = [(0u32, 0u32, 0u32); 64];
+    stack[0] = (0, 0, reflex.corners.len() as u32);
+    let mut top = 1;
+    while top > 0 {
+        top -= 1;
+        let (node, lo, hi) = stack[top];
+        let (min, max) = reflex.boxes[node as usize];
+        if !box_meets_triangle(min, max, ear) {
             continue;
         }
-        if removed[j] || corners.contains(&j) || s == a || s == b || s == c {
+        if (hi - lo) as usize > LEAF {
+            let mid = (lo + hi) / 2;
+            stack[top] = (2 * node + 1, lo, mid);
+            stack[top + 1] = (2 * node + 2, mid, hi);
+            top += 2;
             continue;
         }
-        if cross(flat[prev[j]], s, flat[next[j]]) <= 0.0 && inside(s, a, b, c) {
-            return true;
+        for &j in &reflex.corners[lo as usize..hi as usize] {
+            let j = j as usize;
+            let s = flat[j];
+            if removed[j] || corners.contains(&j) || s == a || s == b || s == c {
+                continue;
+            }
+            if cross(flat[prev[j]], s, flat[next[j]]) <= 0.0 && inside(s, a, b, c) {
+                return true;
+            }
         }
     }
     false
