@@ -25,9 +25,9 @@ pub fn newell_normal(pts: &[Vec3]) -> Vec3 {
     n
 }
 
-/// Scratch buffers reused across polygons to avoid allocating per face.
+/// Buffers reused across polygons to avoid allocating per face.
 #[derive(Default)]
-pub struct Scratch {
+pub struct EarBuffers {
     flat: Vec<DVec2>,
     prev: Vec<usize>,
     next: Vec<usize>,
@@ -114,7 +114,7 @@ fn fan(n: usize, out: &mut Vec<[u32; 3]>) {
 
 /// Triangulates polygon `pts` (in order), appending n − 2 index triples into `pts` to `out`.
 /// Polygons with fewer than three corners give nothing.
-pub fn triangulate(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut Scratch) {
+pub fn triangulate(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut EarBuffers) {
     let n = pts.len();
     if n < 3 {
         return;
@@ -255,8 +255,8 @@ fn monotone_along(
 }
 
 /// Ear clipping of `scratch.flat` (wound positively) over a doubly linked ring of corners.
-fn clip_ears(scratch: &mut Scratch, out: &mut Vec<[u32; 3]>) {
-    let Scratch {
+fn clip_ears(scratch: &mut EarBuffers, out: &mut Vec<[u32; 3]>) {
+    let EarBuffers {
         flat,
         prev,
         next,
@@ -394,7 +394,7 @@ mod tests {
     /// none clockwise and with areas summing to the polygon's: so none overlap.
     fn assert_exact_cover(pts: &[Vec3]) {
         let mut out = Vec::new();
-        triangulate(pts, &mut out, &mut Scratch::default());
+        triangulate(pts, &mut out, &mut EarBuffers::default());
         assert_eq!(out.len(), pts.len() - 2);
         let p = |i: u32| DVec2::new(f64::from(pts[i as usize].x), f64::from(pts[i as usize].y));
         let mut sum = 0.0;
@@ -418,7 +418,7 @@ mod tests {
             .map(|&(x, y)| Vec3::new(x, y, 0.0))
             .collect();
         let mut out = Vec::new();
-        triangulate(&pts, &mut out, &mut Scratch::default());
+        triangulate(&pts, &mut out, &mut EarBuffers::default());
         assert_eq!(out.len(), 4);
         for t in &out {
             let (a, b, c) = (pts[t[0] as usize], pts[t[1] as usize], pts[t[2] as usize]);
@@ -440,7 +440,7 @@ mod tests {
         let n = newell_normal(&pts).normalize();
         assert!(n.x < -0.99);
         let mut out = Vec::new();
-        triangulate(&pts, &mut out, &mut Scratch::default());
+        triangulate(&pts, &mut out, &mut EarBuffers::default());
         assert_eq!(out.len(), 4);
         assert!((area(&pts, &out, n) - 3.0).abs() < 1e-6);
         for t in &out {
@@ -453,7 +453,7 @@ mod tests {
     fn degenerate_polygons_terminate() {
         let line: Vec<Vec3> = (0..5).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect();
         let mut out = Vec::new();
-        triangulate(&line, &mut out, &mut Scratch::default());
+        triangulate(&line, &mut out, &mut EarBuffers::default());
         assert_eq!(out.len(), 3);
         // A bow-tie (self-intersecting).
         let bow = [
@@ -464,7 +464,7 @@ mod tests {
             Vec3::new(0.5, 2., 0.),
         ];
         out.clear();
-        triangulate(&bow, &mut out, &mut Scratch::default());
+        triangulate(&bow, &mut out, &mut EarBuffers::default());
         assert_eq!(out.len(), 3);
     }
 

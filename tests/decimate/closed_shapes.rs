@@ -7,7 +7,7 @@ mod demo_scenes {
     use std::path::{Path, PathBuf};
     use std::process::Command;
 
-    use decimate::decimate::{decimate_scene, Algorithm, Params, Target};
+    use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
     use decimate::io::read_scene;
     use decimate::mesh::build::build_scene;
     use decimate::mesh::{Model, Scene};
@@ -155,7 +155,7 @@ mod demo_scenes {
             algorithm,
             ..Params::default()
         };
-        let report = decimate_scene(&mut out, &params, &mut |_| {});
+        let report = simplify_scene(&mut out, &params, &mut |_| {});
         let mut faults = Vec::new();
         let mut checked = 0;
         for (m, r) in out
@@ -221,7 +221,7 @@ mod demo_scenes {
 }
 
 mod small_shapes {
-    use decimate::decimate::{decimate_scene, Algorithm, Params, Target};
+    use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
     use decimate::mesh::{Model, Scene};
     use glam::Vec3;
 
@@ -302,7 +302,7 @@ mod small_shapes {
             feature_angle_deg: feature,
             ..Params::default()
         };
-        decimate_scene(&mut scene, &params, &mut |_| {});
+        simplify_scene(&mut scene, &params, &mut |_| {});
         let out = &scene.models[0];
         let volumes = closed_components(out).iter().map(|c| c.volume6).collect();
         (out.positions.len(), out.triangles.len(), volumes)

@@ -6,7 +6,7 @@
 
 use glam::DVec2;
 
-use super::collapser::Plan;
+use super::collapse_plan::Plan;
 use super::part::Part;
 use crate::decimate::closed::tet6;
 use crate::mesh::topology::FanTriangle;

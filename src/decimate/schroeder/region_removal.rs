@@ -22,10 +22,11 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::plan::{Planning, SeamSides, Surface};
-use super::{volume_change, waits, Decimator, Outcome, HELD};
+use super::{volume_change, waits, Decimator, HELD};
 use crate::decimate::candidates::Candidate;
 use crate::decimate::closed::ClosedView;
 use crate::decimate::regions::Regions;
+use crate::decimate::Outcome;
 use crate::mesh::topology::{split_mut, ConnectivityPart};
 
 /// Candidates whose data is asked for ahead of their turn, per stage of
