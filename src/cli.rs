@@ -8,6 +8,7 @@
 use std::path::PathBuf;
 
 use crate::decimate::{Algorithm, ErrorBound, Params, Target};
+use crate::mesh::repair::Tolerance;
 use crate::render::draw::DrawOptions;
 
 /// What the program does after reading the scene.
@@ -64,6 +65,8 @@ pub struct Args {
     pub target_given: bool,
     /// Merge coincident vertices before decimating (`--no-weld` turns it off).
     pub weld: bool,
+    /// `--weld-tolerance`: also merge vertices this close before decimating.
+    pub weld_tolerance: Option<Tolerance>,
     /// Allow `-o` (and `--progressive`) to name the input file.
     pub overwrite: bool,
     /// `--progressive`: also write the collapses as vertex splits to this file (nogui; the
@@ -121,6 +124,8 @@ action-options for nogui (one target is MANDATORY):
   --keep-border         never move or remove a vertex on the open border (edges of one
                         triangle): pieces of one mesh decimated apart still fit together
   --no-weld             do not merge coincident vertices before decimating
+  --weld-tolerance E[%] also merge vertices closer than E model units (or E percent of
+                        the model's bounding-box diagonal) before decimating (DEFAULT: off)
   --progressive FILE    also write the collapses as vertex splits (FILE.pm), to rebuild
                         any level between the result and the input (implies -a qem);
                         with FILE.pm as the input, nogui rebuilds the level the target
@@ -168,6 +173,7 @@ where
     let mut targets: Vec<Target> = Vec::new();
     let mut viewports: Option<u32> = None;
     let mut weld = true;
+    let mut weld_tolerance = None;
     let mut overwrite = false;
     let mut quiet = false;
     let mut crease_angle: Option<f32> = None;
@@ -237,6 +243,7 @@ where
             }
             "--progressive" => progressive = Some(PathBuf::from(value(&arg)?)),
             "--no-weld" => weld = false,
+            "--weld-tolerance" => weld_tolerance = Some(tolerance(&value(&arg)?)?),
             "--keep-features" => params.keep_features = true,
             "--keep-border" => params.keep_border = true,
             "--overwrite" => overwrite = true,
@@ -333,6 +340,7 @@ where
         params,
         target_given,
         weld,
+        weld_tolerance,
         overwrite,
         progressive,
         quiet,
@@ -453,6 +461,24 @@ fn error_bound(s: &str) -> Result<ErrorBound, CliError> {
         ErrorBound::DiagonalFraction(e / 100.0)
     } else {
         ErrorBound::Absolute(e)
+    })
+}
+
+fn tolerance(s: &str) -> Result<Tolerance, CliError> {
+    let (digits, percent) = match s.strip_suffix('%') {
+        Some(d) => (d, true),
+        None => (s, false),
+    };
+    let e: f64 = number("--weld-tolerance", digits)?;
+    if !e.is_finite() || e < 0.0 {
+        return Err(CliError(format!(
+            "--weld-tolerance: expected a non-negative number, got '{s}'"
+        )));
+    }
+    Ok(if percent {
+        Tolerance::DiagonalFraction(e / 100.0)
+    } else {
+        Tolerance::Absolute(e)
     })
 }
 
@@ -679,6 +705,13 @@ mod tests {
         assert_eq!(a.shot.labels, None);
         let a = run(&["m.wrl", "shot", "--no-labels"]);
         assert_eq!(a.shot.labels, Some(false));
+        let a = run(&["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "0.1%"]);
+        assert_eq!(a.weld_tolerance, Some(Tolerance::DiagonalFraction(0.001)));
+        let a = run(&["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "0.25"]);
+        assert_eq!(a.weld_tolerance, Some(Tolerance::Absolute(0.25)));
+        assert_eq!(run(&["m.wrl", "nogui", "-p", "50"]).weld_tolerance, None);
+        assert!(parse(["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "-1"]).is_err());
+        assert!(parse(["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "x%"]).is_err());
         assert!(parse(["m.wrl", "shot", "--size", "0x10"]).is_err());
     }
 

@@ -60,7 +60,16 @@ fn main() -> ExitCode {
     }
 
     // (3) Build the models: weld duplicated vertices, fill in what the file lacks.
-    let scene = mesh::build::build_scene(outcome.scene, args.weld);
+    let options = mesh::build::BuildOptions {
+        weld: args.weld,
+        weld_tolerance: args.weld_tolerance,
+    };
+    let (scene, repairs) = mesh::build::build_scene_with(outcome.scene, &options);
+    if !args.quiet {
+        if let Some(line) = repairs.summary() {
+            eprint!("{line}");
+        }
+    }
 
     match args.action {
         Action::NoGui => batch::run(
