@@ -26,6 +26,7 @@ pub mod ply;
 pub mod progressive;
 pub mod replace;
 pub mod stl;
+pub mod stream;
 pub mod texture_path;
 pub mod triangulate;
 mod vrml1;
