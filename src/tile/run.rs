@@ -1,12 +1,13 @@
-//! `decimate tile run` and `decimate tile status`: one tile decimated to its share with
-//! every border vertex locked (`Params::keep_border`), quadric edge collapse, written
+//! `decimate tile run` and `decimate tile status`: one tile decimated to its share by
+//! quadric edge collapse with every border vertex and its neighbours locked, written
 //! through a temporary file and a rename — a job killed half-way leaves no output, and a
 //! re-run replaces the old one. Which tile: the argument, else the scheduler's index.
 
 use std::path::Path;
 
 use super::{Manifest, TileError};
-use crate::decimate::{decimate_scene, Algorithm, Params, Target};
+use crate::decimate::{qem, schroeder::Limits};
+use crate::mesh::{stitches, Model};
 
 /// Environment variables that carry a job's array index: Slurm job arrays, then Kubernetes
 /// Indexed Jobs.
@@ -53,18 +54,47 @@ pub fn run_tile(dir: &Path, index: usize) -> Result<TileRun, TileError> {
     // Tiles were welded by exact position when planned: nothing left to weld.
     let mut scene = crate::mesh::build::build_scene(outcome.scene, false);
     let before = scene.triangle_count();
-    let params = Params {
-        target: Target::KeepTriangles(tile.target),
-        keep_border: true,
-        algorithm: Algorithm::Qem,
-        ..Params::default()
-    };
-    decimate_scene(&mut scene, &params, &mut |_| {});
+    for model in &mut scene.models {
+        let pins = border_and_ring(model);
+        // The locked band cannot shrink: the interior alone takes the share, or a small
+        // tile with a long border would be crushed inside to pay for its band.
+        let band = model
+            .triangles
+            .iter()
+            .filter(|t| t.iter().any(|&v| pins[v as usize]))
+            .count();
+        let limits = Limits {
+            remove: usize::MAX,
+            keep_triangles: tile.target + band,
+            max_error: f64::INFINITY,
+            feature_angle_deg: crate::decimate::Params::default().feature_angle_deg,
+            relax_features: true,
+        };
+        // No texture seams in a tile (positions only): no twins.
+        qem::decimate_model(model, &limits, &pins, &[], &mut |_| {});
+    }
     crate::io::write_ply(&scene, &Manifest::tile_output(dir, index))?;
     Ok(TileRun {
         before,
         after: scene.triangle_count(),
     })
+}
+
+/// The open border's vertices and their neighbours. Locking the border alone is not enough:
+/// two tiles could each join the same two border vertices by a new chord through their
+/// interior, an edge of four triangles once welded. With the neighbours locked too, no
+/// collapse can join two border vertices, so the welded tiles stay manifold.
+fn border_and_ring(model: &Model) -> Vec<bool> {
+    let border = stitches::open_border_vertices(model);
+    let mut pins = border.clone();
+    for t in &model.triangles {
+        if t.iter().any(|&v| border[v as usize]) {
+            for &v in t {
+                pins[v as usize] = true;
+            }
+        }
+    }
+    pins
 }
 
 /// Per tile of work folder `dir`: whether its output exists.
