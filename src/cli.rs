@@ -755,6 +755,46 @@ mod tests {
     }
 
     #[test]
+    fn tile_steps_parse_and_a_file_named_tile_still_opens() {
+        assert_eq!(
+            parse(["tile", "run", "w"]),
+            Ok(Command::Tile(TileCommand::Run {
+                dir: PathBuf::from("w"),
+                index: None
+            }))
+        );
+        assert_eq!(
+            parse([
+                "tile",
+                "plan",
+                "in.ply",
+                "--work",
+                "w",
+                "--tile-triangles",
+                "5",
+                "-p",
+                "90"
+            ]),
+            Ok(Command::Tile(TileCommand::Plan {
+                input: PathBuf::from("in.ply"),
+                dir: PathBuf::from("w"),
+                count: TileCount::TrianglesEach(5),
+                target: Target::RemovePercent(90.0),
+            }))
+        );
+        assert_eq!(run(&["tile"]).input, PathBuf::from("tile"));
+        assert_eq!(run(&["tile", "nogui", "-p", "9"]).action, Action::NoGui);
+        let a = run(&[
+            "m.ply", "nogui", "-p", "9", "--tiles", "auto", "--memory", "1.5G",
+        ]);
+        assert_eq!((a.tiles, a.memory), (Some(Tiles::Auto), Some(3 << 29)));
+        assert_eq!(
+            run(&["m.ply", "nogui", "-p", "9", "--tiles", "7"]).tiles,
+            Some(Tiles::Count(7))
+        );
+    }
+
+    #[test]
     fn help_and_version() {
         assert_eq!(parse(["-h"]), Ok(Command::Help));
         assert_eq!(parse(["x.wrl", "--help"]), Ok(Command::Help));
