@@ -8,8 +8,6 @@
 use std::path::PathBuf;
 
 use crate::decimate::{Algorithm, ErrorBound, Params, Target};
-use crate::tile::local::Tiles;
-use crate::tile::plan::TileCount;
 
 /// What the program does after reading the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -101,6 +99,28 @@ pub struct Args {
     /// `--memory SIZE`: the budget `--tiles auto` sizes tiles for, in bytes.
     pub memory: Option<u64>,
 }
+
+/// `--tiles` of nogui: how many tiles the command line asked for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tiles {
+    /// Sized from the memory budget (`tile::local::count_for`).
+    Auto,
+    Count(usize),
+}
+
+/// How many tiles `tile plan` cuts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TileCount {
+    /// This many (fewer when the mesh has fewer cells).
+    Tiles(usize),
+    /// As many as needed for about this many triangles each.
+    TrianglesEach(usize),
+}
+
+/// Largest tile `tile plan` and `--tiles auto` cut unless told otherwise: small tiles bound
+/// the peak at little cost, since the seams are decimated again at merge (docs/design.md,
+/// "Tiled decimation").
+pub const DEFAULT_TILE_TRIANGLES: usize = 1 << 20;
 
 /// `decimate tile ...`: one step of tiled decimation (`tile`), for a scheduler's jobs.
 #[derive(Debug, Clone, PartialEq)]
@@ -373,7 +393,7 @@ where
     })))
 }
 
-/// `--tiles` belongs to nogui with a count target it can share out (`tile::plan::target_of`).
+/// `--tiles` belongs to nogui with a count target it can share out (`tile::cut::target_of`).
 fn check_tiles(
     action: Action,
     params: &Params,
@@ -473,9 +493,7 @@ fn parse_tile(args: &[String]) -> Result<TileCommand, CliError> {
             TileCommand::Plan {
                 input: first("input file")?,
                 dir: dir.ok_or_else(|| CliError("tile plan needs --work DIR".into()))?,
-                count: count.unwrap_or(TileCount::TrianglesEach(
-                    crate::tile::local::AUTO_TILE_TRIANGLES,
-                )),
+                count: count.unwrap_or(TileCount::TrianglesEach(DEFAULT_TILE_TRIANGLES)),
                 target: target.ok_or_else(|| {
                     CliError("tile plan needs a target: -p or --keep-triangles".into())
                 })?,

@@ -1,9 +1,14 @@
-//! Mesh decimation library: scenes read from VRML 1.0 / 2.0 and Open Inventor ASCII files,
-//! decimated by Schroeder–Zarge–Lorensen vertex removal, and written back as VRML 2.0.
+//! Mesh decimation: scenes read from VRML 1.0 / 2.0, Open Inventor ASCII, PLY, OBJ (with MTL),
+//! STL and OFF files, simplified by Schroeder–Zarge–Lorensen vertex removal or
+//! Garland–Heckbert quadric edge collapse (with a progressive-mesh record), written back in any
+//! of those formats, drawn by a Vulkan viewer and measured by `metro` (Hausdorff distance).
 //!
-//! The binary `decimate` (src/main.rs) is a thin start-up over this crate: `cli` parses the
-//! original program's usage, `io` reads and writes scenes, `mesh` holds the shared data model
-//! and topology, `decimate` holds one module per algorithm.
+//! Layers, bottom to top (checked by tests/layers.rs): `mesh` (the data model: scenes,
+//! topology, progressive meshes, images); `io` (readers and writers) beside `decimate` (one
+//! module per algorithm behind [`decimate::simplify_scene`]); `metro` (surface distance);
+//! `render` (Vulkan drawing of what it is given); `cli` (the parsed command line); `app` (the
+//! viewer and `shot`) beside `batch` (`nogui`); the binaries in src/main.rs and src/bin/.
+//! `alloc` and `threads` are process plumbing under all of them.
 #![warn(
     rust_2018_idioms,
     trivial_casts,

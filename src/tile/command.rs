@@ -4,7 +4,7 @@
 use std::process::ExitCode;
 
 use super::local::{count_for, default_memory, run_local, work_dir_for};
-use super::{merge, plan, run, TileError};
+use super::{cut, merge, run, TileError};
 use crate::cli::{Args, TileCommand};
 
 fn fail(e: &TileError) -> ExitCode {
@@ -24,7 +24,7 @@ pub fn run_step(cmd: &TileCommand) -> ExitCode {
             dir,
             count,
             target,
-        } => match plan::plan(input, dir, *count, *target, &mut |s| eprintln!("{s}")) {
+        } => match cut::plan(input, dir, *count, *target, &mut |s| eprintln!("{s}")) {
             Ok(m) => {
                 println!(
                     "{} tiles planned in {} ({} triangles, target {})",

@@ -4,23 +4,13 @@
 
 use std::path::{Path, PathBuf};
 
-use super::plan::{plan, TileCount};
+use super::cut::plan;
 use super::{merge, run, TileError};
+use crate::cli::{TileCount, Tiles};
 use crate::decimate::{Report, Target};
 
 /// Bytes one triangle costs while decimated in memory (docs/design.md, "Tiled decimation").
 pub const BYTES_PER_TRIANGLE: u64 = 178;
-/// Largest tile `auto` cuts even when memory allows more: small tiles bound the peak at
-/// little cost, since the tiles' seams are decimated again at merge.
-pub const AUTO_TILE_TRIANGLES: usize = 1 << 20;
-
-/// How many tiles the command line asked for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Tiles {
-    /// Sized from the memory budget.
-    Auto,
-    Count(usize),
-}
 
 /// A quarter of the machine's RAM (`MemTotal` of /proc/meminfo), or 1 GiB where unknown.
 pub fn default_memory() -> u64 {
@@ -41,7 +31,7 @@ pub fn count_for(tiles: Tiles, memory: u64) -> TileCount {
         Tiles::Count(n) => TileCount::Tiles(n),
         Tiles::Auto => {
             let fits = (memory / BYTES_PER_TRIANGLE).max(1024) as usize;
-            TileCount::TrianglesEach(fits.min(AUTO_TILE_TRIANGLES))
+            TileCount::TrianglesEach(fits.min(crate::cli::DEFAULT_TILE_TRIANGLES))
         }
     }
 }

@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use super::{Manifest, TileError};
-use crate::decimate::{decimate_scene, Algorithm, Params, Report, Target};
+use crate::decimate::{simplify_scene, Algorithm, Params, Report, Target};
 use crate::mesh::{weld, Model, Scene};
 
 /// Reads every tile output of `dir` and returns them welded into one model; refuses, naming
@@ -55,7 +55,7 @@ pub fn merge(
 ) -> Result<Report, TileError> {
     let manifest = Manifest::read(dir)?;
     let keep = match target {
-        Some(t) => super::plan::target_of(t, manifest.triangles)?,
+        Some(t) => super::cut::target_of(t, manifest.triangles)?,
         None => manifest.target_triangles,
     };
     let mut scene = stitch(dir)?;
@@ -64,7 +64,7 @@ pub fn merge(
         algorithm: Algorithm::Qem,
         ..Params::default()
     };
-    let report = decimate_scene(&mut scene, &params, progress);
+    let report = simplify_scene(&mut scene, &params, progress);
     crate::io::write_scene(&scene, output)?;
     Ok(report)
 }

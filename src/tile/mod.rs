@@ -6,10 +6,10 @@
 //! docs/cluster.md shows the jobs under Slurm, Kubernetes and GNU parallel.
 
 pub mod command;
+pub mod cut;
 pub mod local;
 pub mod manifest;
 pub mod merge;
-pub mod plan;
 pub mod run;
 
 use std::path::PathBuf;

@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use super::{Manifest, TileError};
-use crate::decimate::{qem, schroeder::Limits};
+use crate::decimate::{qem, Limits};
 use crate::mesh::{stitches, Model};
 
 /// Environment variables that carry a job's array index: Slurm job arrays, then Kubernetes

@@ -14,6 +14,7 @@ use glam::Vec3;
 
 use super::manifest::{Manifest, Tile};
 use super::TileError;
+use crate::cli::TileCount;
 use crate::decimate::Target;
 use crate::io::stream::{for_each_triangle, Corners};
 use crate::mesh::{Model, Scene};
@@ -28,15 +29,6 @@ pub const SEAM_SLACK: f64 = 2.0;
 
 /// Bytes a raw triangle takes in a bucket file: three positions of three `f32`.
 const RAW: usize = 36;
-
-/// How many tiles to cut.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum TileCount {
-    /// This many (fewer when the mesh has fewer cells).
-    Tiles(usize),
-    /// As many as needed for about this many triangles each.
-    TrianglesEach(usize),
-}
 
 /// Cuts `input` into tiles in work folder `dir` (created if missing; a previous plan's
 /// tiles in it are removed) and writes the manifest. `progress` hears each step.
@@ -105,7 +97,10 @@ pub fn plan(
         let i = cell_tile[grid.cell(&t)] as usize;
         counts[i] += 1;
         if failed.is_none() {
-            let bytes: Vec<u8> = t.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
+            let mut bytes = [0u8; RAW];
+            for (chunk, x) in bytes.chunks_exact_mut(4).zip(t.iter().flatten()) {
+                chunk.copy_from_slice(&x.to_le_bytes());
+            }
             if let Err(e) = writers[i].write_all(&bytes) {
                 failed = Some((i, e));
             }
