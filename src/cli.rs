@@ -411,7 +411,7 @@ fn check_tiles(
             "--tiles cannot record --progressive vertex splits".into(),
         ));
     }
-    if params.algorithm == Algorithm::Schroeder && params.max_error.is_some() {
+    if params.max_error.is_some() {
         return Err(CliError("--tiles takes no --max-error".into()));
     }
     match params.target {
