@@ -8,6 +8,7 @@
 use std::path::PathBuf;
 
 use crate::decimate::{Algorithm, ErrorBound, Params, Target};
+use crate::render::draw::DrawOptions;
 
 /// What the program does after reading the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -20,35 +21,6 @@ pub enum Action {
     Shot,
 }
 
-/// Draw modes a `shot` can ask for (`--mode edges,points,...`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ShotModes {
-    pub triangles: bool,
-    pub edges: bool,
-    pub points: bool,
-    pub face_normals: bool,
-    pub vertex_normals: bool,
-    pub flat: bool,
-    pub unlit: bool,
-    /// Textured models in their material colour instead (`--mode untextured`).
-    pub untextured: bool,
-}
-
-impl Default for ShotModes {
-    fn default() -> Self {
-        Self {
-            triangles: true,
-            edges: false,
-            points: false,
-            face_normals: false,
-            vertex_normals: false,
-            flat: false,
-            unlit: false,
-            untextured: false,
-        }
-    }
-}
-
 /// Options of the `shot` action.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ShotOptions {
@@ -56,7 +28,12 @@ pub struct ShotOptions {
     pub height: u32,
     /// 1–4 viewports: the first shows the original, the others the decimated scene.
     pub viewports: u32,
-    pub modes: ShotModes,
+    /// What each viewport draws (`--mode`).
+    pub modes: DrawOptions,
+    /// Captions on the viewports (`--labels` / `--no-labels`); by default with more than one.
+    pub labels: Option<bool>,
+    /// One target per decimated viewport (`-p 60,80,90`); empty when one target was given.
+    pub targets: Vec<Target>,
     /// Where relative texture names are read from: the input file's folder.
     pub texture_dir: PathBuf,
 }
@@ -67,7 +44,9 @@ impl Default for ShotOptions {
             width: 800,
             height: 600,
             viewports: 1,
-            modes: ShotModes::default(),
+            modes: DrawOptions::default(),
+            labels: None,
+            targets: Vec::new(),
             texture_dir: PathBuf::from("."),
         }
     }
@@ -90,8 +69,13 @@ pub struct Args {
     /// `--progressive`: also write the collapses as vertex splits to this file (nogui; the
     /// algorithm is then quadric edge collapse).
     pub progressive: Option<PathBuf>,
-    /// No summary or progress on stderr.
+    /// No summary or progress on stderr (warnings that mean lost data are still printed).
     pub quiet: bool,
+    /// `--crease-angle`: degrees between faces above which smooth shading keeps an edge
+    /// sharp, for every model (the viewer and shot; 180 is fully smooth).
+    pub crease_angle: Option<f32>,
+    /// `--lenient`: an unknown field of a known node is a warning, not an error.
+    pub lenient: bool,
     pub shot: ShotOptions,
     /// `--tiles auto|N` (nogui): decimate in tiles (`tile::local`), never the whole input
     /// in memory.
@@ -193,15 +177,25 @@ action-options for nogui (one target is MANDATORY):
                         with FILE.pm as the input, nogui rebuilds the level the target
                         asks for (never below the base) instead of decimating
   --overwrite           allow -o or --progressive to name an input file
-  -q, --quiet           no summary or progress on stderr
+  -q, --quiet           no summary, progress or warnings on stderr, except warnings
+                        that say part of the input is not read or of the result not
+                        written
+  --lenient             read a VRML / Inventor node's unknown fields as a warning (the
+                        value skipped) rather than an error
 
-action-options for shot (offscreen render to PNG, no window):
+action-options for shot (offscreen render to PNG, no window; --mode and --crease-angle
+also set what the viewer draws):
   -o filename           the PNG to write (DEFAULT: shot.png)
   --size WxH            image size (DEFAULT: 800x600)
   --viewports N         1-4 viewports: the original, then the decimated scene
   --mode LIST           comma-separated: triangles,edges,points,normals,vertex-normals,
                         flat,unlit,untextured (DEFAULT: triangles)
-  -p / -v / ...         decimation target, as for nogui
+  --crease-angle DEG     smooth shading keeps edges whose faces meet at more than DEG
+                        sharp (DEFAULT: the file's creaseAngle, else 45; 180: smooth)
+  --labels, --no-labels a caption on each viewport: what it shows, its counts
+                        (DEFAULT: on with more than one viewport)
+  -p / -v / ...         decimation target, as for nogui; a list such as -p 60,80,90
+                        gives each decimated viewport its own (and --viewports 4)
 
   --tiles auto|N        decimate in N spatial tiles (auto: as many as --memory needs),
                         borders locked, then weld them and decimate the seams again;
@@ -242,9 +236,14 @@ where
     let mut algorithm: Option<Algorithm> = None;
     let mut progressive: Option<PathBuf> = None;
     let mut target: Option<Target> = None;
+    // Every target of a list (`-p 60,80,90`): one per decimated viewport of a shot.
+    let mut targets: Vec<Target> = Vec::new();
+    let mut viewports: Option<u32> = None;
     let mut weld = true;
     let mut overwrite = false;
     let mut quiet = false;
+    let mut crease_angle: Option<f32> = None;
+    let mut lenient = false;
     let mut shot = ShotOptions::default();
 
     while let Some(arg) = it.next() {
@@ -257,25 +256,35 @@ where
             "--version" | "-V" => return Ok(Command::Version),
             "-o" | "--output" => output = Some(PathBuf::from(value(&arg)?)),
             "-p" | "--percent" => {
-                let p: f64 = number(&arg, &value(&arg)?)?;
-                if !(0.0..=100.0).contains(&p) {
+                let list: Vec<f64> = numbers(&arg, &value(&arg)?)?;
+                if let Some(p) = list.iter().find(|p| !(0.0..=100.0).contains(*p)) {
                     return Err(CliError(format!(
                         "{arg}: the percentage must be between 0 and 100, got {p}"
                     )));
                 }
-                set_target(&mut target, Target::RemovePercent(p))?;
+                targets = list.into_iter().map(Target::RemovePercent).collect();
+                set_target(&mut target, targets[0])?;
             }
             "-v" | "--vertices" => {
-                let n = number(&arg, &value(&arg)?)?;
-                set_target(&mut target, Target::RemoveVertices(n))?;
+                targets = numbers(&arg, &value(&arg)?)?
+                    .into_iter()
+                    .map(Target::RemoveVertices)
+                    .collect();
+                set_target(&mut target, targets[0])?;
             }
             "--keep-vertices" => {
-                let n = number(&arg, &value(&arg)?)?;
-                set_target(&mut target, Target::KeepVertices(n))?;
+                targets = numbers(&arg, &value(&arg)?)?
+                    .into_iter()
+                    .map(Target::KeepVertices)
+                    .collect();
+                set_target(&mut target, targets[0])?;
             }
             "--keep-triangles" => {
-                let n = number(&arg, &value(&arg)?)?;
-                set_target(&mut target, Target::KeepTriangles(n))?;
+                targets = numbers(&arg, &value(&arg)?)?
+                    .into_iter()
+                    .map(Target::KeepTriangles)
+                    .collect();
+                set_target(&mut target, targets[0])?;
             }
             "--max-error" => params.max_error = Some(error_bound(&value(&arg)?)?),
             "--feature-angle" => {
@@ -304,6 +313,7 @@ where
             "--keep-border" => params.keep_border = true,
             "--overwrite" => overwrite = true,
             "-q" | "--quiet" => quiet = true,
+            "--lenient" => lenient = true,
             "--size" => {
                 let (w, h) = size(&value(&arg)?)?;
                 shot.width = w;
@@ -314,9 +324,8 @@ where
                 if !(1..=4).contains(&n) {
                     return Err(CliError(format!("--viewports: expected 1 to 4, got {n}")));
                 }
-                shot.viewports = n;
+                viewports = Some(n);
             }
-            "--mode" => shot.modes = modes(&value(&arg)?)?,
             "--tiles" => {
                 let v = value(&arg)?;
                 tiles = Some(if v == "auto" {
@@ -326,6 +335,18 @@ where
                 });
             }
             "--memory" => memory = Some(bytes(&arg, &value(&arg)?)?),
+            "--crease-angle" => {
+                let a: f32 = number(&arg, &value(&arg)?)?;
+                if !(0.0..=180.0).contains(&a) {
+                    return Err(CliError(format!(
+                        "--crease-angle: expected degrees between 0 and 180, got {a}"
+                    )));
+                }
+                crease_angle = Some(a);
+            }
+            "--labels" => shot.labels = Some(true),
+            "--no-labels" => shot.labels = Some(false),
+            "--mode" => shot.modes = draw_modes(&value(&arg)?)?,
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(CliError(format!("unknown option '{s}'")))
             }
@@ -376,7 +397,19 @@ where
     if tiles.is_some() || memory.is_some() {
         check_tiles(action, &params, progressive.is_some(), tiles.is_some())?;
     }
+    if action == Action::NoGui && crate::io::Format::from_path(&output).is_none() {
+        return Err(CliError(format!(
+            "-o {}: no writer knows this extension (expected .wrl, .vrml, .ply, .obj, .stl or .off)",
+            output.display()
+        )));
+    }
     shot.texture_dir = crate::io::texture_path::folder_of(&input).to_path_buf();
+    shot_targets(&mut shot, targets, viewports, action)?;
+    if crease_angle.is_some() && action == Action::NoGui {
+        return Err(CliError(
+            "--crease-angle is an option of the viewer and shot (shading only)".into(),
+        ));
+    }
     Ok(Command::Run(Box::new(Args {
         input,
         action,
@@ -387,6 +420,8 @@ where
         overwrite,
         progressive,
         quiet,
+        crease_angle,
+        lenient,
         shot,
         tiles,
         memory,
@@ -595,6 +630,49 @@ fn check_progressive(
     Ok(())
 }
 
+/// A list of targets is one per decimated viewport of a shot: it sets the viewport count
+/// when `--viewports` is not given, and must fit the count when it is.
+fn shot_targets(
+    shot: &mut ShotOptions,
+    targets: Vec<Target>,
+    viewports: Option<u32>,
+    action: Action,
+) -> Result<(), CliError> {
+    if targets.len() > 1 && action != Action::Shot {
+        return Err(CliError(format!(
+            "a list of {} targets gives each decimated viewport of a shot its own; {} takes one",
+            targets.len(),
+            if action == Action::NoGui {
+                "nogui"
+            } else {
+                "the viewer"
+            }
+        )));
+    }
+    let decimated = targets.len() as u32;
+    if decimated > 3 {
+        return Err(CliError(format!(
+            "{decimated} targets: at most 3, for the viewports beside the original"
+        )));
+    }
+    shot.viewports = match viewports {
+        Some(n) if targets.len() > 1 && decimated > n.saturating_sub(1) => {
+            return Err(CliError(format!(
+                "--viewports {n}: {decimated} targets need {} viewports (the first shows the \
+                 original)",
+                decimated + 1
+            )))
+        }
+        Some(n) => n,
+        None if targets.len() > 1 => (decimated + 1).min(4),
+        None => 1,
+    };
+    if targets.len() > 1 {
+        shot.targets = targets;
+    }
+    Ok(())
+}
+
 fn set_target(slot: &mut Option<Target>, t: Target) -> Result<(), CliError> {
     if slot.is_some() {
         return Err(CliError(
@@ -609,6 +687,11 @@ fn number<T: std::str::FromStr>(name: &str, s: &str) -> Result<T, CliError> {
     s.trim()
         .parse()
         .map_err(|_| CliError(format!("{name}: expected a number, got '{s}'")))
+}
+
+/// A comma-separated list of numbers (`60,80,90`), at least one.
+fn numbers<T: std::str::FromStr>(name: &str, s: &str) -> Result<Vec<T>, CliError> {
+    s.split(',').map(|item| number(name, item)).collect()
 }
 
 fn error_bound(s: &str) -> Result<ErrorBound, CliError> {
@@ -642,10 +725,11 @@ fn size(s: &str) -> Result<(u32, u32), CliError> {
     Ok((w, h))
 }
 
-fn modes(s: &str) -> Result<ShotModes, CliError> {
-    let mut m = ShotModes {
+/// The draw toggles of a `--mode` list (the viewer's toggles, shading words meaning "off").
+pub fn draw_modes(s: &str) -> Result<DrawOptions, CliError> {
+    let mut m = DrawOptions {
         triangles: false,
-        ..ShotModes::default()
+        ..DrawOptions::default()
     };
     for word in s.split(',').map(str::trim).filter(|w| !w.is_empty()) {
         match word {
@@ -654,9 +738,9 @@ fn modes(s: &str) -> Result<ShotModes, CliError> {
             "points" => m.points = true,
             "normals" => m.face_normals = true,
             "vertex-normals" => m.vertex_normals = true,
-            "flat" => m.flat = true,
-            "unlit" => m.unlit = true,
-            "untextured" => m.untextured = true,
+            "flat" => m.smooth = false,
+            "unlit" => m.lighting = false,
+            "untextured" => m.textures = false,
             other => {
                 return Err(CliError(format!(
                     "--mode: unknown mode '{other}' (expected triangles, edges, points, \
@@ -883,9 +967,97 @@ mod tests {
             (a.shot.width, a.shot.height, a.shot.viewports),
             (640, 480, 4)
         );
-        assert!(a.shot.modes.edges && a.shot.modes.flat && !a.shot.modes.triangles);
+        assert!(a.shot.modes.edges && !a.shot.modes.smooth && !a.shot.modes.triangles);
+        assert!(a.shot.modes.lighting && a.shot.modes.textures);
+        assert_eq!(run(&["m.wrl", "shot"]).shot.modes, DrawOptions::default());
         assert_eq!(a.output, PathBuf::from("shot.png"));
         assert!(parse(["m.wrl", "shot", "--viewports", "5"]).is_err());
+        assert_eq!(a.shot.labels, None);
+        let a = run(&["m.wrl", "shot", "--no-labels"]);
+        assert_eq!(a.shot.labels, Some(false));
         assert!(parse(["m.wrl", "shot", "--size", "0x10"]).is_err());
+    }
+
+    #[test]
+    fn the_crease_angle_is_for_the_viewer_and_shot() {
+        assert_eq!(
+            run(&["m.wrl", "--crease-angle", "180"]).crease_angle,
+            Some(180.0)
+        );
+        assert_eq!(
+            run(&["m.wrl", "shot", "--crease-angle", "60"]).crease_angle,
+            Some(60.0)
+        );
+        assert_eq!(run(&["m.wrl"]).crease_angle, None);
+        for (args, says) in [
+            (
+                &["m.wrl", "--crease-angle", "200"][..],
+                "between 0 and 180, got 200",
+            ),
+            (
+                &["m.wrl", "shot", "--crease-angle", "x"],
+                "--crease-angle: expected a number",
+            ),
+            (
+                &["m.wrl", "nogui", "-p", "5", "--crease-angle", "60"],
+                "viewer and shot",
+            ),
+        ] {
+            let e = parse(args.iter().copied()).unwrap_err();
+            assert!(e.0.contains(says), "{args:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_list_of_targets_gives_each_decimated_viewport_its_own() {
+        let a = run(&[
+            "m.wrl",
+            "shot",
+            "-p",
+            "60,80,90",
+            "--mode",
+            "triangles,edges",
+        ]);
+        assert_eq!(a.shot.viewports, 4);
+        assert_eq!(
+            a.shot.targets,
+            [60.0, 80.0, 90.0].map(Target::RemovePercent).to_vec()
+        );
+        assert_eq!(a.params.target, Target::RemovePercent(60.0));
+        let a = run(&[
+            "m.wrl",
+            "shot",
+            "--keep-triangles",
+            "500,100",
+            "--viewports",
+            "4",
+        ]);
+        assert_eq!(a.shot.viewports, 4);
+        assert_eq!(
+            a.shot.targets,
+            [500, 100].map(Target::KeepTriangles).to_vec()
+        );
+        let a = run(&["m.wrl", "shot", "-p", "60"]);
+        assert_eq!((a.shot.viewports, a.shot.targets.len()), (1, 0));
+        for (args, says) in [
+            (
+                &["m.wrl", "shot", "-p", "60,80,90", "--viewports", "3"][..],
+                "need 4 viewports",
+            ),
+            (&["m.wrl", "shot", "-p", "10,20,30,40"], "at most 3"),
+            (
+                &["m.wrl", "shot", "-p", "60,180"],
+                "between 0 and 100, got 180",
+            ),
+            (
+                &["m.wrl", "shot", "-p", "60,,90"],
+                "-p: expected a number, got ''",
+            ),
+            (&["m.wrl", "nogui", "-p", "60,80"], "nogui takes one"),
+            (&["m.wrl", "-v", "6,8"], "the viewer takes one"),
+        ] {
+            let e = parse(args.iter().copied()).unwrap_err();
+            assert!(e.0.contains(says), "{args:?}: {e}");
+        }
     }
 }

@@ -36,17 +36,33 @@ fn main() -> ExitCode {
     }
 
     // (2) Parse the VRML / Open Inventor file.
-    let outcome = match io::read_scene(&args.input) {
+    let options = io::ReadOptions {
+        lenient: args.lenient,
+    };
+    let outcome = match io::read_scene_with(&args.input, options) {
         Ok(outcome) => outcome,
         Err(e) => {
             eprintln!("decimate: {e}");
             return ExitCode::FAILURE;
         }
     };
-    if !args.quiet {
-        for w in &outcome.warnings {
+    // `-q` keeps the warnings that say data was lost.
+    for w in &outcome.warnings {
+        if !args.quiet || io::means_lost_data(w) {
             eprintln!("decimate: warning: {w}");
         }
+    }
+    if outcome.scene.triangle_count() == 0 {
+        eprintln!(
+            "decimate: {}: no triangles: the file has no shape this program reads{}",
+            args.input.display(),
+            if outcome.warnings.is_empty() {
+                ""
+            } else {
+                " (see the warnings above)"
+            }
+        );
+        return ExitCode::FAILURE;
     }
 
     // (3) Build the models: weld duplicated vertices, fill in what the file lacks.

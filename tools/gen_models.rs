@@ -1,8 +1,8 @@
-//! `gen-models`: writes the report's test models (test001–test006) and large synthetic meshes
+//! `gen-models`: writes the report's test models (test001–test008) and large synthetic meshes
 //! for benchmarks, from `decimate::mesh::shapes`.
 //!
 //! ```text
-//! gen-models assets DIR                      test001.wrl … test006.wrl into DIR
+//! gen-models assets DIR                      test001.wrl … test008.wrl into DIR
 //! gen-models sphere RINGS SEGMENTS FILE      a bumpy sphere (.ply or .wrl by extension)
 //! ```
 

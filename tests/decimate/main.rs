@@ -1,11 +1,12 @@
 //! Decimation by both algorithms: exact counts on the report's models, the invariants every
 //! output keeps (on random meshes too), creases, models stitched along shared borders,
-//! texture coordinates and seams, and progressive meshes.
+//! texture coordinates and seams, progressive meshes, and non-manifold shapes.
 
 #[path = "../support/mod.rs"]
 mod support;
 
 mod creases;
+mod nonmanifold;
 mod progressive;
 mod qem;
 mod random;

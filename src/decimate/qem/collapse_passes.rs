@@ -25,7 +25,7 @@
 
 use rayon::prelude::*;
 
-use super::collapse_plan::{Kind, Plan};
+use super::collapse_plan::{others, Kind, Plan};
 use super::collapser::Collapser;
 use super::part::Part;
 use super::ranking::stored;
@@ -401,6 +401,12 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
                 d.flags[i] |= RERANK;
             }
         }
+        // Otherwise the cost changed with no collapse at either end (a complex end made
+        // manifold, see `Part::settle_complex`): `v` re-plans, or the next pass is this one.
+        let (iv, iw) = (d.at(v), d.at(w));
+        if (d.flags[iv] | d.flags[iw]) & REPLAN == 0 {
+            d.flags[iv] |= REPLAN;
+        }
         return Attempt::Skipped;
     }
     // No plan (the edge's shape changed since it was planned) counts as illegal, so that
@@ -566,14 +572,29 @@ fn collapse_and_flag(d: &mut Part<'_>, plan: &Plan) {
     let k = d.at(plan.keep);
     d.flags[k] |= REPLAN;
     let (fan_r, fan_k) = d.scratch.fans(plan);
-    for (fan, other) in [(fan_r, plan.keep), (fan_k, plan.remove)] {
-        for f in fan.iter().filter(|f| !f.touches(other)) {
+    // The edge's apexes too: a doubled flap's apex is in no other triangle of either fan.
+    for fan in [fan_r, fan_k] {
+        for f in fan {
             for x in [f.next, f.prev] {
                 d.flags[(x - d.v0) as usize] |= RELEASE;
             }
         }
     }
     d.collapse(plan);
+    // A complex vertex made manifold collapses freely from now on: its edges are re-planned,
+    // and its neighbours whose cheapest edge it is look again (that edge's cost changed).
+    for j in 0..d.scratch.settled.len() {
+        let x = d.scratch.settled[j];
+        let i = d.at(x);
+        d.flags[i] |= REPLAN;
+        for k in 0..d.conn.incident(x).len() {
+            for w in others(d.conn.triangle(d.conn.incident(x)[k]), x) {
+                if let Some(i) = d.local(w) {
+                    d.flags[i] |= RELEASE;
+                }
+            }
+        }
+    }
 }
 
 /// The lists of the vertices [`end_of_pass`] looks at again, kept from pass to pass: all of

@@ -25,7 +25,10 @@ impl Part<'_> {
     }
 
     /// Link condition (Dey et al.): the ends share no neighbour but the apexes of the
-    /// triangles on the edge — otherwise the result would be non-manifold. A boundary edge
+    /// triangles on the edge — otherwise the result would be non-manifold (or, on
+    /// non-manifold input, have more non-manifold edges: an edge merged into another has
+    /// the two's triangles less those on the collapsed edge, so it has three or more only
+    /// when one of the two had). A boundary edge
     /// also must not be the last edge of a triangle whose other two edges are on the boundary.
     /// Leaves the common neighbours in `scratch.common`. Neighbourhoods are small, so the
     /// lists are searched linearly (no per-vertex marks to keep, nothing shared to write),
@@ -38,12 +41,16 @@ impl Part<'_> {
         common.clear();
         let (fan_r, fan_k) = self.fans(plan);
         let mut on_edge = 0;
+        let mut apexes = 0;
         let mut apex = u32::MAX;
         let mut mask = 0u64;
-        for f in fan_r {
+        for (i, f) in fan_r.iter().enumerate() {
             if f.touches(k) {
                 on_edge += 1;
                 apex = if f.next == k { f.prev } else { f.next };
+                // Counted once: a triangle and its reversed copy on the edge share an apex.
+                let seen = fan_r[..i].iter().any(|g| g.touches(k) && g.touches(apex));
+                apexes += usize::from(!seen);
             }
             // With repeats: each neighbour once per triangle it is in.
             for w in [f.next, f.prev] {
@@ -62,7 +69,9 @@ impl Part<'_> {
                 }
             }
         }
-        let shares_only_apexes = common.len() == on_edge && (1..=2).contains(&on_edge);
+        // Three or more apexes on a non-manifold edge; fewer than triangles where the input
+        // doubled some (a triangle and its reversed copy), which go together.
+        let shares_only_apexes = common.len() == apexes && apexes >= 1;
         // The one triangle on a boundary edge must keep an edge off the boundary.
         let edge_count = |fan: &[FanTriangle], w: u32| fan.iter().filter(|f| f.touches(w)).count();
         let legal = shares_only_apexes
