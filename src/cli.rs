@@ -8,6 +8,7 @@
 use std::path::PathBuf;
 
 use crate::decimate::{Algorithm, ErrorBound, Params, Target};
+use crate::mesh::repair::Tolerance;
 use crate::render::draw::DrawOptions;
 
 /// What the program does after reading the scene.
@@ -64,6 +65,8 @@ pub struct Args {
     pub target_given: bool,
     /// Merge coincident vertices before decimating (`--no-weld` turns it off).
     pub weld: bool,
+    /// `--weld-tolerance`: also merge vertices this close before decimating.
+    pub weld_tolerance: Option<Tolerance>,
     /// Allow `-o` (and `--progressive`) to name the input file.
     pub overwrite: bool,
     /// `--progressive`: also write the collapses as vertex splits to this file (nogui; the
@@ -77,12 +80,63 @@ pub struct Args {
     /// `--lenient`: an unknown field of a known node is a warning, not an error.
     pub lenient: bool,
     pub shot: ShotOptions,
+    /// `--tiles auto|N` (nogui): decimate in tiles (`tile::local`), never the whole input
+    /// in memory.
+    pub tiles: Option<Tiles>,
+    /// `--memory SIZE`: the budget `--tiles auto` sizes tiles for, in bytes.
+    pub memory: Option<u64>,
+}
+
+/// `--tiles` of nogui: how many tiles the command line asked for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tiles {
+    /// Sized from the memory budget (`tile::local::count_for`).
+    Auto,
+    Count(usize),
+}
+
+/// How many tiles `tile plan` cuts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TileCount {
+    /// This many (fewer when the mesh has fewer cells).
+    Tiles(usize),
+    /// As many as needed for about this many triangles each.
+    TrianglesEach(usize),
+}
+
+/// Largest tile `tile plan` and `--tiles auto` cut unless told otherwise: small tiles bound
+/// the peak at little cost, since the seams are decimated again at merge (docs/design.md,
+/// "Tiled decimation").
+pub const DEFAULT_TILE_TRIANGLES: usize = 1 << 20;
+
+/// `decimate tile ...`: one step of tiled decimation (`tile`), for a scheduler's jobs.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TileCommand {
+    Plan {
+        input: PathBuf,
+        dir: PathBuf,
+        count: TileCount,
+        target: Target,
+    },
+    Run {
+        dir: PathBuf,
+        index: Option<usize>,
+    },
+    Status {
+        dir: PathBuf,
+    },
+    Merge {
+        dir: PathBuf,
+        output: PathBuf,
+        target: Option<Target>,
+    },
 }
 
 /// What the command line asks for.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Command {
     Run(Box<Args>),
+    Tile(TileCommand),
     Help,
     Version,
 }
@@ -121,6 +175,8 @@ action-options for nogui (one target is MANDATORY):
   --keep-border         never move or remove a vertex on the open border (edges of one
                         triangle): pieces of one mesh decimated apart still fit together
   --no-weld             do not merge coincident vertices before decimating
+  --weld-tolerance E[%] also merge vertices closer than E model units (or E percent of
+                        the model's bounding-box diagonal) before decimating (DEFAULT: off)
   --progressive FILE    also write the collapses as vertex splits (FILE.pm), to rebuild
                         any level between the result and the input (implies -a qem);
                         with FILE.pm as the input, nogui rebuilds the level the target
@@ -146,8 +202,22 @@ also set what the viewer draws):
   -p / -v / ...         decimation target, as for nogui; a list such as -p 60,80,90
                         gives each decimated viewport its own (and --viewports 4)
 
+  --tiles auto|N        decimate in N spatial tiles (auto: as many as --memory needs),
+                        borders locked, then weld them and decimate the seams again;
+                        PLY, STL or OBJ input, -p or --keep-triangles, -a qem implied
+  --memory SIZE         what --tiles auto may use, e.g. 2G or 512M (DEFAULT: a
+                        quarter of the machine's RAM)
+
 typical usage:           decimate model.wrl
 typical usage for nogui: decimate model.wrl nogui -p 100 -o output.wrl
+
+tiled decimation as separate jobs (see docs/cluster.md):
+  decimate tile plan IN --work DIR (-p P | --keep-triangles T)
+                        [--tiles N | --tile-triangles M]
+  decimate tile run DIR [INDEX]   (INDEX DEFAULT: $SLURM_ARRAY_TASK_ID or
+                                   $JOB_COMPLETION_INDEX)
+  decimate tile status DIR
+  decimate tile merge DIR [-o OUT] [-p P | --keep-triangles T]
 ";
 
 /// Parses the arguments after the program name.
@@ -156,7 +226,14 @@ where
     I: IntoIterator<Item = S>,
     S: Into<String>,
 {
-    let mut it = args.into_iter().map(Into::into);
+    let args: Vec<String> = args.into_iter().map(Into::into).collect();
+    let steps = ["plan", "run", "status", "merge"];
+    if args.len() >= 2 && args[0] == "tile" && steps.contains(&args[1].as_str()) {
+        return parse_tile(&args[1..]).map(Command::Tile);
+    }
+    let mut it = args.into_iter();
+    let mut tiles: Option<Tiles> = None;
+    let mut memory: Option<u64> = None;
     let mut input: Option<PathBuf> = None;
     let mut action: Option<Action> = None;
     let mut output: Option<PathBuf> = None;
@@ -168,6 +245,7 @@ where
     let mut targets: Vec<Target> = Vec::new();
     let mut viewports: Option<u32> = None;
     let mut weld = true;
+    let mut weld_tolerance = None;
     let mut overwrite = false;
     let mut quiet = false;
     let mut crease_angle: Option<f32> = None;
@@ -237,6 +315,7 @@ where
             }
             "--progressive" => progressive = Some(PathBuf::from(value(&arg)?)),
             "--no-weld" => weld = false,
+            "--weld-tolerance" => weld_tolerance = Some(tolerance(&value(&arg)?)?),
             "--keep-features" => params.keep_features = true,
             "--keep-border" => params.keep_border = true,
             "--overwrite" => overwrite = true,
@@ -254,6 +333,15 @@ where
                 }
                 viewports = Some(n);
             }
+            "--tiles" => {
+                let v = value(&arg)?;
+                tiles = Some(if v == "auto" {
+                    Tiles::Auto
+                } else {
+                    Tiles::Count(positive(&arg, &v)?)
+                });
+            }
+            "--memory" => memory = Some(bytes(&arg, &value(&arg)?)?),
             "--crease-angle" => {
                 let a: f32 = number(&arg, &value(&arg)?)?;
                 if !(0.0..=180.0).contains(&a) {
@@ -313,6 +401,9 @@ where
     if let Some(pm) = &progressive {
         check_progressive(pm, action, &output)?;
     }
+    if tiles.is_some() || memory.is_some() {
+        check_tiles(action, &params, progressive.is_some(), tiles.is_some())?;
+    }
     if action == Action::NoGui && crate::io::Format::from_path(&output).is_none() {
         return Err(CliError(format!(
             "-o {}: no writer knows this extension (expected .wrl, .vrml, .ply, .obj, .stl or .off)",
@@ -333,13 +424,186 @@ where
         params,
         target_given,
         weld,
+        weld_tolerance,
         overwrite,
         progressive,
         quiet,
         crease_angle,
         lenient,
         shot,
+        tiles,
+        memory,
     })))
+}
+
+/// `--tiles` belongs to nogui with a count target it can share out (`tile::cut::target_of`).
+fn check_tiles(
+    action: Action,
+    params: &Params,
+    progressive: bool,
+    tiles: bool,
+) -> Result<(), CliError> {
+    if !tiles {
+        return Err(CliError("--memory is an option of --tiles".into()));
+    }
+    if action != Action::NoGui {
+        return Err(CliError("--tiles is an option of nogui".into()));
+    }
+    if progressive {
+        return Err(CliError(
+            "--tiles cannot record --progressive vertex splits".into(),
+        ));
+    }
+    if params.max_error.is_some() {
+        return Err(CliError("--tiles takes no --max-error".into()));
+    }
+    match params.target {
+        Target::RemovePercent(_) | Target::KeepTriangles(_) => Ok(()),
+        _ => Err(CliError(
+            "--tiles needs -p or --keep-triangles as its target".into(),
+        )),
+    }
+}
+
+/// Parses the words after `decimate tile`.
+fn parse_tile(args: &[String]) -> Result<TileCommand, CliError> {
+    let step = args[0].as_str();
+    let mut it = args[1..].iter();
+    let mut positional: Vec<&String> = Vec::new();
+    let mut dir: Option<PathBuf> = None;
+    let mut output: Option<PathBuf> = None;
+    let mut target: Option<Target> = None;
+    let mut count: Option<TileCount> = None;
+    while let Some(arg) = it.next() {
+        let mut value = |name: &str| {
+            it.next()
+                .ok_or_else(|| CliError(format!("{name} needs a value")))
+        };
+        match (step, arg.as_str()) {
+            ("plan", "--work") => dir = Some(PathBuf::from(value(arg)?)),
+            ("plan", "--tiles" | "--tile-triangles") => {
+                if count.is_some() {
+                    return Err(CliError(
+                        "give only one of --tiles, --tile-triangles".into(),
+                    ));
+                }
+                let n = positive(arg, value(arg)?)?;
+                count = Some(if arg == "--tiles" {
+                    TileCount::Tiles(n)
+                } else {
+                    TileCount::TrianglesEach(n)
+                });
+            }
+            ("merge", "-o" | "--output") => output = Some(PathBuf::from(value(arg)?)),
+            ("plan" | "merge", "-p" | "--percent") => {
+                let p: f64 = number(arg, value(arg)?)?;
+                if !(0.0..=100.0).contains(&p) {
+                    return Err(CliError(format!(
+                        "{arg}: the percentage must be between 0 and 100, got {p}"
+                    )));
+                }
+                set_target(&mut target, Target::RemovePercent(p))?;
+            }
+            ("plan" | "merge", "--keep-triangles") => {
+                let n = number(arg, value(arg)?)?;
+                set_target(&mut target, Target::KeepTriangles(n))?;
+            }
+            (_, s) if s.starts_with('-') && s.len() > 1 => {
+                return Err(CliError(format!("tile {step}: unknown option '{s}'")))
+            }
+            _ => positional.push(arg),
+        }
+    }
+    let at_most = |n: usize, what: &str| {
+        if positional.len() > n {
+            Err(CliError(format!(
+                "tile {step}: unexpected argument '{}' (usage: decimate tile {step} {what})",
+                positional[n]
+            )))
+        } else {
+            Ok(())
+        }
+    };
+    let first = |what: &str| {
+        positional
+            .first()
+            .map(|s| PathBuf::from(s.as_str()))
+            .ok_or_else(|| CliError(format!("tile {step}: no {what} given")))
+    };
+    Ok(match step {
+        "plan" => {
+            at_most(1, "IN --work DIR")?;
+            TileCommand::Plan {
+                input: first("input file")?,
+                dir: dir.ok_or_else(|| CliError("tile plan needs --work DIR".into()))?,
+                count: count.unwrap_or(TileCount::TrianglesEach(DEFAULT_TILE_TRIANGLES)),
+                target: target.ok_or_else(|| {
+                    CliError("tile plan needs a target: -p or --keep-triangles".into())
+                })?,
+            }
+        }
+        "run" => {
+            at_most(2, "DIR [INDEX]")?;
+            let index = match positional.get(1) {
+                Some(s) => Some(number("INDEX", s)?),
+                None => None,
+            };
+            TileCommand::Run {
+                dir: first("work folder")?,
+                index,
+            }
+        }
+        "status" => {
+            at_most(1, "DIR")?;
+            TileCommand::Status {
+                dir: first("work folder")?,
+            }
+        }
+        _ => {
+            at_most(1, "DIR -o OUT")?;
+            TileCommand::Merge {
+                dir: first("work folder")?,
+                output: output.unwrap_or_else(|| PathBuf::from("out.wrl")),
+                target,
+            }
+        }
+    })
+}
+
+/// A count of at least one.
+fn positive(name: &str, s: &str) -> Result<usize, CliError> {
+    match number::<usize>(name, s)? {
+        0 => Err(CliError(format!("{name}: expected at least 1, got 0"))),
+        n => Ok(n),
+    }
+}
+
+/// A size in bytes, with an optional K, M, G or T suffix (powers of 1024).
+fn bytes(name: &str, s: &str) -> Result<u64, CliError> {
+    let t = s.trim();
+    let (digits, unit) = match t.char_indices().last() {
+        Some((i, c)) if c.is_ascii_alphabetic() => (&t[..i], c.to_ascii_uppercase()),
+        _ => (t, 'B'),
+    };
+    let shift = match unit {
+        'B' => 0,
+        'K' => 10,
+        'M' => 20,
+        'G' => 30,
+        'T' => 40,
+        _ => {
+            return Err(CliError(format!(
+                "{name}: expected a size such as 2G, got '{s}'"
+            )))
+        }
+    };
+    let v: f64 = number(name, digits)?;
+    if !(v.is_finite() && v > 0.0) {
+        return Err(CliError(format!(
+            "{name}: expected a positive size, got '{s}'"
+        )));
+    }
+    Ok((v * f64::from(1u32 << 10).powi(shift / 10)) as u64)
 }
 
 /// The algorithm `-a` asked for, or the one `--progressive` implies: only quadric edge
@@ -453,6 +717,24 @@ fn error_bound(s: &str) -> Result<ErrorBound, CliError> {
         ErrorBound::DiagonalFraction(e / 100.0)
     } else {
         ErrorBound::Absolute(e)
+    })
+}
+
+fn tolerance(s: &str) -> Result<Tolerance, CliError> {
+    let (digits, percent) = match s.strip_suffix('%') {
+        Some(d) => (d, true),
+        None => (s, false),
+    };
+    let e: f64 = number("--weld-tolerance", digits)?;
+    if !e.is_finite() || e < 0.0 {
+        return Err(CliError(format!(
+            "--weld-tolerance: expected a non-negative number, got '{s}'"
+        )));
+    }
+    Ok(if percent {
+        Tolerance::DiagonalFraction(e / 100.0)
+    } else {
+        Tolerance::Absolute(e)
     })
 }
 
@@ -601,6 +883,46 @@ mod tests {
     }
 
     #[test]
+    fn tile_steps_parse_and_a_file_named_tile_still_opens() {
+        assert_eq!(
+            parse(["tile", "run", "w"]),
+            Ok(Command::Tile(TileCommand::Run {
+                dir: PathBuf::from("w"),
+                index: None
+            }))
+        );
+        assert_eq!(
+            parse([
+                "tile",
+                "plan",
+                "in.ply",
+                "--work",
+                "w",
+                "--tile-triangles",
+                "5",
+                "-p",
+                "90"
+            ]),
+            Ok(Command::Tile(TileCommand::Plan {
+                input: PathBuf::from("in.ply"),
+                dir: PathBuf::from("w"),
+                count: TileCount::TrianglesEach(5),
+                target: Target::RemovePercent(90.0),
+            }))
+        );
+        assert_eq!(run(&["tile"]).input, PathBuf::from("tile"));
+        assert_eq!(run(&["tile", "nogui", "-p", "9"]).action, Action::NoGui);
+        let a = run(&[
+            "m.ply", "nogui", "-p", "9", "--tiles", "auto", "--memory", "1.5G",
+        ]);
+        assert_eq!((a.tiles, a.memory), (Some(Tiles::Auto), Some(3 << 29)));
+        assert_eq!(
+            run(&["m.ply", "nogui", "-p", "9", "--tiles", "7"]).tiles,
+            Some(Tiles::Count(7))
+        );
+    }
+
+    #[test]
     fn help_and_version() {
         assert_eq!(parse(["-h"]), Ok(Command::Help));
         assert_eq!(parse(["x.wrl", "--help"]), Ok(Command::Help));
@@ -679,6 +1001,13 @@ mod tests {
         assert_eq!(a.shot.labels, None);
         let a = run(&["m.wrl", "shot", "--no-labels"]);
         assert_eq!(a.shot.labels, Some(false));
+        let a = run(&["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "0.1%"]);
+        assert_eq!(a.weld_tolerance, Some(Tolerance::DiagonalFraction(0.001)));
+        let a = run(&["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "0.25"]);
+        assert_eq!(a.weld_tolerance, Some(Tolerance::Absolute(0.25)));
+        assert_eq!(run(&["m.wrl", "nogui", "-p", "50"]).weld_tolerance, None);
+        assert!(parse(["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "-1"]).is_err());
+        assert!(parse(["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "x%"]).is_err());
         assert!(parse(["m.wrl", "shot", "--size", "0x10"]).is_err());
     }
 

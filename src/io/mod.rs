@@ -25,6 +25,7 @@ pub mod progressive_file;
 pub mod replace;
 mod shape_to_model;
 pub mod stl;
+pub mod stream;
 mod text;
 pub mod texture_image;
 pub mod texture_path;

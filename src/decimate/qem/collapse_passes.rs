@@ -252,17 +252,18 @@ fn collapse_in_regions(
 ) -> Vec<Candidate> {
     let per_region = regions.distribute(candidates);
     let parts = d.split(&regions.vertex_starts, &regions.slot_starts);
-    let results: Vec<(Tally, Vec<u32>)> = parts
+    let results: Vec<_> = parts
         .into_par_iter()
         .zip(per_region)
         .map(|(mut part, mine)| {
             let mut tally = Tally::default();
             collapse_in_order(&mut part, &mine, bounds, None, &mut tally);
-            (tally, part.conn.finish())
+            (tally, part.conn.finish(), part.closed.into_changes())
         })
         .collect();
     let mut border = Vec::new();
-    for (region, freed) in results {
+    for (region, freed, volumes) in results {
+        d.absorb_volume_changes(volumes);
         tally.removed += region.removed;
         tally.max_error2 = tally.max_error2.max(region.max_error2);
         tally.over_bound |= region.over_bound;
@@ -560,6 +561,10 @@ fn collapse_and_flag(d: &mut Part<'_>, plan: &Plan) {
                 d.flags[(x - d.v0) as usize] |= RELEASE;
             }
         }
+    }
+    if let Some(c) = d.closed.component(plan.remove) {
+        let change = d.volume_change(plan);
+        d.closed.apply(c, change);
     }
     d.collapse(plan);
     // A complex vertex made manifold collapses freely from now on: its edges are re-planned,

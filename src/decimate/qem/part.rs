@@ -12,6 +12,7 @@ use glam::{DVec2, DVec3, Vec3};
 use super::collapse_plan::{others, Kind, Plan};
 use super::edge_costs::EdgeCosts;
 use super::quadric::{Quadric, TextureQuadric};
+use crate::decimate::closed::ClosedView;
 use crate::mesh::progressive::{CollapseRecord, Recorder};
 use crate::mesh::topology::{Adjacency, ConnectivityPart, FanTriangle, Ring, RingShape};
 
@@ -93,6 +94,8 @@ pub(super) struct Part<'a> {
     /// Anchored vertices' next copy at their position (the whole mesh's, read only; see
     /// `Collapser::pin`).
     pub copies: &'a [u32],
+    /// Closed components' volumes (see `decimate::closed`).
+    pub closed: ClosedView<'a>,
     pub scratch: CollapseLists,
 }
 
