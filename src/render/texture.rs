@@ -24,6 +24,7 @@ use super::context::Context;
 use super::error::Result;
 use super::image::Image;
 use super::offscreen::RgbaImage;
+use crate::io::data_uri::shown;
 use crate::io::texture_path::has_url_scheme;
 
 /// Largest side uploaded: `maxImageDimension2D` is at least 4096 on every Vulkan device.
@@ -147,13 +148,17 @@ impl Textures {
                     }
                     Ok(_) => {
                         eprintln!(
-                            "decimate: warning: texture {name:?} not drawn: more than \
-                             {MAX_TEXTURES} textures"
+                            "decimate: warning: texture {:?} not drawn: more than \
+                             {MAX_TEXTURES} textures",
+                            shown(name)
                         );
                         None
                     }
                     Err(why) => {
-                        eprintln!("decimate: warning: texture {name:?} not drawn: {why}");
+                        eprintln!(
+                            "decimate: warning: texture {:?} not drawn: {why}",
+                            shown(name)
+                        );
                         None
                     }
                 };
@@ -253,8 +258,12 @@ pub fn resolve(name: &str, folder: &Path) -> std::result::Result<PathBuf, String
     Ok(folder.join(name.replace('\\', "/")))
 }
 
-/// Reads and decodes the image `name` names (relative to `folder`).
+/// Reads and decodes the image `name` names (relative to `folder`), or holds itself (a
+/// `data:` URI: an image embedded in a glTF file).
 pub fn read(name: &str, folder: &Path) -> std::result::Result<RgbaImage, String> {
+    if let Some(embedded) = crate::io::data_uri::parse(name) {
+        return decode(&embedded?.bytes);
+    }
     let path = resolve(name, folder)?;
     let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))
