@@ -330,6 +330,7 @@ impl Reader<'_> {
         if let Some(a) = p.get(&Semantic::Normals) {
             let normals = read_floats::<3>(&a, self.buffers)?;
             same_count("NORMAL", normals.len())?;
+            all_finite("NORMAL", &normals)?;
             model.normals = Some(Attribute::PerVertex(
                 normals.into_iter().map(glam::Vec3::from).collect(),
             ));
@@ -337,14 +338,20 @@ impl Reader<'_> {
         if let Some(a) = p.get(&Semantic::TexCoords(0)) {
             let uv = read_floats::<2>(&a, self.buffers)?;
             same_count("TEXCOORD_0", uv.len())?;
+            all_finite("TEXCOORD_0", &uv)?;
             model.texcoords = Some(uv.into_iter().map(|[u, v]| [u, 1.0 - v]).collect());
         }
         if let Some(a) = p.get(&Semantic::Colors(0)) {
             let c = read_floats_prefix::<3>(&a, self.buffers)?;
             same_count("COLOR_0", c.len())?;
+            all_finite("COLOR_0", &c)?;
+            let c = c.into_iter().map(|c| c.map(|x| x.clamp(0.0, 1.0))).collect();
             model.colors = Some(Attribute::PerVertex(c));
         }
         self.material(&p.material(), &mut model);
+        if !model.diffuse.iter().all(|c| c.is_finite()) {
+            return Err("the material's baseColorFactor is not finite".into());
+        }
         Ok(Some(model))
     }
 
@@ -395,6 +402,14 @@ impl Reader<'_> {
                 }
             }
         };
+    }
+}
+
+/// An error naming the first value of `what` that is not a finite number, if any.
+fn all_finite<const N: usize>(what: &str, values: &[[f32; N]]) -> Result<(), String> {
+    match values.iter().position(|v| !v.iter().all(|x| x.is_finite())) {
+        Some(k) => Err(format!("{what} {k} is not a finite number")),
+        None => Ok(()),
     }
 }
 
