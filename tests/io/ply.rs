@@ -7,8 +7,7 @@ use decimate::mesh::{Attribute, Model, Scene};
 use glam::Vec3;
 use std::path::Path;
 
-mod texture_support;
-use texture_support::textured_corners;
+use crate::support::texture::textured_corners;
 
 #[test]
 fn ascii_ply_with_a_quad_and_colours() {
@@ -76,7 +75,7 @@ fn ply_index_out_of_range_is_an_error() {
     assert!(e.to_string().contains("out of range"), "{e}");
 }
 
-/// Found by `tests/fuzz_inputs.rs`: an infinite colour read, then made a progressive mesh
+/// Found by `tests/fuzz/`: an infinite colour read, then made a progressive mesh
 /// that did not read back. A vertex's colour and normal must be finite, as its position is
 /// (texture coordinates that are not are skipped with a warning, see below).
 #[test]

@@ -1,12 +1,10 @@
 //! The `shot` action end to end, through the built binary on lavapipe: a scene file written by
 //! the test, decimated with `-p`, pictured before (viewport 1) and after (the others).
 
-mod shot_support;
-
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use shot_support::*;
+use crate::support::shot::*;
 
 const LAVAPIPE: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
 

@@ -3,8 +3,6 @@
 //! device's anisotropy turned off) blurs them into their average colour. What a user sees
 //! on a textured scan viewed side-on: detail that holds instead of a smear.
 
-mod shot_support;
-
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -20,7 +18,8 @@ use decimate::render::pipeline::Pipelines;
 use decimate::render::texture::Textures;
 use decimate::render::tiles::Rect;
 use glam::{Mat4, Quat, Vec3};
-use shot_support::{background, close, modes, pixel, write_rgb_png, HEIGHT, WIDTH};
+
+use crate::support::shot::{background, close, modes, pixel, write_rgb_png, HEIGHT, WIDTH};
 
 /// Texels across the image, and texels per rail (red, then blue).
 const TEXELS: u32 = 256;

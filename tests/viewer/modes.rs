@@ -4,9 +4,7 @@
 //! and flat shading of a cube, which must look the same (its edges are creases), while on a
 //! sphere they must not.
 
-mod shot_support;
-
-use shot_support::*;
+use crate::support::shot::*;
 
 const MODES: [&str; 8] = [
     "triangles",

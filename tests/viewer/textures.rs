@@ -4,13 +4,12 @@
 //! material colour with a warning naming the texture; a fine texture seen from afar shows
 //! its average colour (mip levels), not a moiré.
 
-mod shot_support;
-
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use decimate::render::offscreen::RgbaImage;
-use shot_support::{background, close, pixel, write_rgb_png};
+
+use crate::support::shot::{background, close, pixel, write_rgb_png};
 
 const LAVAPIPE: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
 

@@ -1,5 +1,6 @@
 //! Read-speed check, ignored by default (it needs big files and a release build):
-//! `DECIMATE_SPEED_FILES=a.wrl:b.ply cargo test --release --test io_speed -- --ignored --nocapture`
+//! `DECIMATE_SPEED_FILES=a.wrl:b.ply cargo test --release --test io speed:: -- --ignored
+//! --nocapture`
 //! prints the time to read each file. Without the variable it builds a 1M-triangle VRML 2.0
 //! grid in memory and requires it to parse within a generous bound.
 

@@ -36,7 +36,7 @@ fn lossless() -> Params {
     }
 }
 
-/// The same invariants as tests/decimate_report_models.rs, except that vertices move.
+/// The same invariants as tests/decimate/report_models.rs, except that vertices move.
 fn assert_invariants(before: &Model, after: &Model) {
     let name = &before.name;
     let broken = measure::invariant_violations(before, after);

@@ -697,7 +697,7 @@ fn the_cli_decimates_a_glb_to_a_valid_glb_and_gltf() {
     }
 }
 
-mod shot_support;
+use crate::support::shot as shot_support;
 
 const LAVAPIPE: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
 

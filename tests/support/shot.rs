@@ -1,10 +1,9 @@
-//! Shared by the `shot_*` tests: scenes built in code (so the tests do not wait for the file
-//! readers), golden-image comparison with a tolerance, and the checks a user would notice
-//! (model coverage, background at the corners).
+//! Shared by the screenshot tests (`tests/viewer/`): scenes built in code (so the tests do
+//! not wait for the file readers), golden-image comparison with a tolerance, and the checks
+//! a user would notice (model coverage, background at the corners).
 //!
-//! Goldens live in `tests/golden/`; `UPDATE_GOLDEN=1 cargo test --test shot_modes` rewrites
+//! Goldens live in `tests/golden/`; `UPDATE_GOLDEN=1 cargo test --test viewer` rewrites
 //! them. On a mismatch the actual picture and a diff image go to `target/shot-diffs/`.
-#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 

@@ -10,8 +10,7 @@ use decimate::decimate::{decimate_scene, Algorithm, Params, Target};
 use decimate::mesh::{measure, shapes, Model, Scene};
 use glam::Vec3;
 
-mod rng_support;
-use rng_support::Rng;
+use crate::support::rng::Rng;
 
 /// Both algorithms, each case alternately.
 const ALGORITHMS: [Algorithm; 2] = [Algorithm::Schroeder, Algorithm::Qem];

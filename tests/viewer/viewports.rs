@@ -1,10 +1,9 @@
 //! Golden screenshots of tiled viewports: one, two side by side, four in a 2×2 grid, each
 //! framing the whole model; and the world transform of a model is honoured when framing.
 
-mod shot_support;
-
 use glam::{Mat4, Vec3};
-use shot_support::*;
+
+use crate::support::shot::*;
 
 #[test]
 fn four_viewports_tile_the_picture_and_each_shows_the_model() {

@@ -1,7 +1,5 @@
 //! The tests' random numbers: xorshift64*, small and deterministic by seed, so that a
 //! failing case is found again by its number.
-// Each test crate that includes this module uses some of it.
-#![allow(dead_code)]
 
 pub struct Rng(pub u64);
 

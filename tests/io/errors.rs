@@ -152,7 +152,7 @@ fn empty_and_foreign_files() {
         msg.contains("not a VRML") && msg.contains("hello world"),
         "{msg}"
     );
-    // STL is read now (tests/io_formats.rs): a cut-off ASCII solid names its last line.
+    // STL is read now (tests/io/formats.rs): a cut-off ASCII solid names its last line.
     let (line, msg) = fail("solid cube\n facet normal 0 0 1\n");
     assert_eq!(line, Some(2), "{msg}");
     assert!(msg.contains("expected 'outer'"), "{msg}");

@@ -5,8 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-mod texture_support;
-use texture_support::textured_corners;
+use crate::support::texture::textured_corners;
 
 use decimate::io::{parse_bytes, read_scene, write_scene, ReadError, ReadOutcome};
 use decimate::mesh::build::build_scene;

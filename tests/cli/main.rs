@@ -1,0 +1,4 @@
+//! The `decimate` command line as a user runs it, and the bundled models it is shown with.
+
+mod assets;
+mod usage;

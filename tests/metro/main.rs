@@ -1,0 +1,5 @@
+//! The `metro` error tool: distances against answers known in closed form, and its command
+//! line.
+
+mod cli;
+mod exact;

@@ -1,0 +1,11 @@
+//! The renderer's pictures on lavapipe, without a window: golden screenshots of each draw
+//! mode and of tiled viewports, textures and their filtering, and the `shot` action.
+
+#[path = "../support/mod.rs"]
+mod support;
+
+mod anisotropy;
+mod modes;
+mod shot_command;
+mod textures;
+mod viewports;
