@@ -82,7 +82,10 @@ pub fn simplify(
             indices.len()
         )));
     }
-    if let Some(k) = positions.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
+    if let Some(k) = positions
+        .iter()
+        .position(|p| !p.iter().all(|c| c.is_finite()))
+    {
         return Err(Error::InvalidMesh(format!(
             "position {k} is not a finite number"
         )));
@@ -96,7 +99,10 @@ pub fn simplify(
     let model = Model {
         name: "mesh".into(),
         positions: positions.iter().map(|&p| Vec3::from(p)).collect(),
-        triangles: indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+        triangles: indices
+            .chunks_exact(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect(),
         ..Model::default()
     };
     let mut scene = Scene {

@@ -40,7 +40,7 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         },
         e => fail(describe(&e)),
     })?;
-    validate(&gltf.document).map_err(|e| fail(describe(&e)))?;
+    validate(&gltf.document).map_err(fail)?;
     let folder = texture_path::folder_of(path);
     let buffers = load_buffers(&gltf, folder).map_err(fail)?;
     let mut reader = Reader {
@@ -91,15 +91,26 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
 /// makes that the reader does not need: POSITION's `min` and `max` (exporters often leave
 /// them out; the reader computes bounds itself) and `KHR_mesh_quantization` (its integer
 /// attributes are decoded by `accessor`).
-fn validate(document: &gltf::Document) -> Result<(), gltf::Error> {
+fn validate(document: &gltf::Document) -> Result<(), String> {
     use gltf::json::validation::{Error, Validate};
     let root = document.as_json();
+    // gltf-json 1.4 looks up POSITION's accessor unchecked: check the indices first.
+    let n = root.accessors.len();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            if let Some(i) = primitive.attributes.values().find(|i| i.value() >= n) {
+                return Err(format!(
+                    "mesh {m} primitive {p} names accessor {}, but there are {n}",
+                    i.value()
+                ));
+            }
+        }
+    }
     let mut errors = Vec::new();
     root.validate(root, gltf::json::Path::new, &mut |path, error| {
         let path = path();
         let shown = path.to_string();
-        let bounds =
-            matches!(error, Error::Missing) && (shown.ends_with(".min") || shown.ends_with(".max"));
+        let bounds = shown.ends_with(".min") || shown.ends_with(".max");
         let quantization =
             matches!(error, Error::Unsupported) && shown.contains("\"KHR_mesh_quantization\"");
         if !bounds && !quantization {
@@ -108,7 +119,7 @@ fn validate(document: &gltf::Document) -> Result<(), gltf::Error> {
     });
     match errors.is_empty() {
         true => Ok(()),
-        false => Err(gltf::Error::Validation(errors)),
+        false => Err(describe(&gltf::Error::Validation(errors))),
     }
 }
 
@@ -345,7 +356,10 @@ impl Reader<'_> {
             let c = read_floats_prefix::<3>(&a, self.buffers)?;
             same_count("COLOR_0", c.len())?;
             all_finite("COLOR_0", &c)?;
-            let c = c.into_iter().map(|c| c.map(|x| x.clamp(0.0, 1.0))).collect();
+            let c = c
+                .into_iter()
+                .map(|c| c.map(|x| x.clamp(0.0, 1.0)))
+                .collect();
             model.colors = Some(Attribute::PerVertex(c));
         }
         self.material(&p.material(), &mut model);
