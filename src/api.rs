@@ -76,7 +76,7 @@ pub fn simplify(
     indices: &[u32],
     params: &Params,
 ) -> Result<(Mesh, Report), Error> {
-    if indices.len() % 3 != 0 {
+    if !indices.len().is_multiple_of(3) {
         return Err(Error::InvalidMesh(format!(
             "{} indices: not a whole number of triangles",
             indices.len()
