@@ -57,7 +57,11 @@ fn arrays(params: &Params) -> ExitCode {
         let theta = std::f32::consts::PI * r as f32 / rings as f32;
         for s in 0..segments {
             let phi = std::f32::consts::TAU * s as f32 / segments as f32;
-            positions.push([theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()]);
+            positions.push([
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            ]);
         }
     }
     // Quads between rings (the poles' rings collapse to points: their triangles are skipped).

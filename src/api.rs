@@ -120,9 +120,9 @@ pub fn simplify(
     Ok((mesh, report))
 }
 
-/// Decimates every model of `scene` in place (see [`crate::decimate::decimate_scene`]).
+/// Decimates every model of `scene` in place (see [`crate::decimate::simplify_scene`]).
 pub fn simplify_scene(scene: &mut Scene, params: &Params) -> Report {
-    crate::decimate::decimate_scene(scene, params, &mut |_| {})
+    crate::decimate::simplify_scene(scene, params, &mut |_| {})
 }
 
 /// Reads `input`, decimates it as `params` says and writes it to `output`, in the format

@@ -2,7 +2,7 @@
 //! (and a progress bar on long runs) on stderr, and write the result in the format the
 //! output's extension names (VRML 2.0 by default; `io::write_scene`) — never over the input
 //! unless `--overwrite` says so. With `--progressive FILE` the collapses are recorded too
-//! (`decimate_scene_progressive`) and written to FILE as vertex splits (`io::progressive`).
+//! (`simplify_scene_progressive`) and written to FILE as vertex splits (`io::progressive`).
 //! When the input is such a file, nothing is decimated: each model's level that meets the
 //! target is rebuilt from the base by its vertex splits (`decimate::levels`), exactly as the
 //! recorded decimation left it at that count. Texture names are rebased from the input's
@@ -15,9 +15,10 @@ use std::time::{Duration, Instant};
 
 use crate::cli::Args;
 use crate::decimate::levels::levels_for;
-use crate::decimate::progressive::{Lod, ProgressiveScene};
-use crate::decimate::{decimate_scene, decimate_scene_progressive, Report};
+use crate::decimate::summary::counts_column;
+use crate::decimate::{simplify_scene, simplify_scene_progressive, Report};
 use crate::io;
+use crate::mesh::progressive::{Lod, ProgressiveScene};
 use crate::mesh::Scene;
 
 /// Runs the nogui job on `scene`, or on `recorded` when the input is a progressive mesh; the
@@ -54,13 +55,13 @@ pub fn run(
     }
     let (report, progressive) = decimate(&mut scene, args);
     if !args.quiet {
-        eprint!("{}", summary(&report));
+        eprint!("{}", report.summary());
     }
     if !write(&mut scene, args) {
         return ExitCode::FAILURE;
     }
     if let (Some(path), Some(pm)) = (&args.progressive, &progressive) {
-        if let Err(e) = io::progressive::write_progressive(pm, path) {
+        if let Err(e) = io::progressive_file::write_progressive(pm, path) {
             eprintln!("decimate: cannot write {e}");
             return ExitCode::FAILURE;
         }
@@ -154,10 +155,10 @@ fn decimate(scene: &mut Scene, args: &Args) -> (Report, Option<ProgressiveScene>
     let mut bar = Progress::new(!args.quiet && std::io::stderr().is_terminal());
     let mut update = |f| bar.update(f);
     let result = if args.progressive.is_some() {
-        let (report, pm) = decimate_scene_progressive(scene, &args.params, &mut update);
+        let (report, pm) = simplify_scene_progressive(scene, &args.params, &mut update);
         (report, Some(pm))
     } else {
-        (decimate_scene(scene, &args.params, &mut update), None)
+        (simplify_scene(scene, &args.params, &mut update), None)
     };
     bar.finish();
     result
@@ -176,66 +177,6 @@ fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
         (Ok(a), Ok(b)) => a == b,
         _ => false,
     }
-}
-
-/// A model's line of a summary up to its counts, (before, after) each; decimation and
-/// level rebuilding print the same columns.
-fn counts_column(name: &str, vertices: (usize, usize), triangles: (usize, usize)) -> String {
-    format!(
-        "{name:<24} vertices {:>9} -> {:<9} triangles {:>9} -> {:<9}",
-        vertices.0, vertices.1, triangles.0, triangles.1
-    )
-}
-
-/// The per-model table printed after a run.
-pub fn summary(report: &Report) -> String {
-    let mut s = String::new();
-    let (mut vb, mut tb, mut va, mut ta) = (0, 0, 0, 0);
-    for m in &report.models {
-        let mut state = if m.dropped {
-            "  dropped (fewer than 4 vertices left)".to_string()
-        } else if m.fully_decimated && m.pinned > 0 {
-            format!(
-                "  fully decimated ({} vertices are pinned on texture seams or borders)",
-                m.pinned
-            )
-        } else if m.fully_decimated {
-            "  fully decimated".to_string()
-        } else {
-            String::new()
-        };
-        if m.feature_angle_deg > report.feature_angle_deg {
-            state += &format!(
-                "  (feature angle relaxed to {:.0} deg to reach the target)",
-                m.feature_angle_deg
-            );
-        }
-        s += &counts_column(
-            &m.name,
-            (m.vertices_before, m.vertices_after),
-            (m.triangles_before, m.triangles_after),
-        );
-        s += &format!(" max error {:.4e}{state}\n", m.max_error);
-        vb += m.vertices_before;
-        tb += m.triangles_before;
-        va += m.vertices_after;
-        ta += m.triangles_after;
-    }
-    let removed = report.vertices_removed();
-    let rate = if report.seconds > 0.0 {
-        removed as f64 / report.seconds
-    } else {
-        0.0
-    };
-    s += &format!(
-        "total: vertices {vb} -> {va}, triangles {tb} -> {ta}; removed {removed} vertices in \
-         {:.3} s ({:.0} vertices/s)\n",
-        report.seconds, rate
-    );
-    if !report.models.is_empty() && report.fully_decimated() {
-        s += "the model is fully decimated: no further vertex can be removed\n";
-    }
-    s
 }
 
 /// A one-line progress bar on stderr, shown only once a run has lasted a second.

@@ -14,8 +14,8 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 
-use crate::decimate::progressive::{Lod, ProgressiveModel};
-use crate::decimate::{decimate_scene_progressive, Algorithm, Params, Target};
+use crate::decimate::{simplify_scene_progressive, Algorithm, Params, Target};
+use crate::mesh::progressive::{Lod, ProgressiveModel};
 use crate::mesh::Scene;
 
 /// How long a geomorph takes.
@@ -58,7 +58,7 @@ impl LodView {
             max_error: None,
             ..*params
         };
-        let (report, pm) = decimate_scene_progressive(&mut coarse, &params, &mut |_| {});
+        let (report, pm) = simplify_scene_progressive(&mut coarse, &params, &mut |_| {});
         let mut lods: Vec<_> = pm
             .models
             .into_iter()

@@ -58,7 +58,7 @@ fn run_shot(scene: &Scene, args: &Args) -> ExitCode {
         }
     };
     if let (Some(report), false) = (report, args.quiet) {
-        eprint!("{}", crate::batch::summary(&report));
+        eprint!("{}", report.summary());
     }
     if let Err(e) = shot::write_png(&image, &args.output) {
         eprintln!("decimate: cannot write {e}");

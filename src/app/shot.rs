@@ -5,7 +5,8 @@
 use std::path::Path;
 
 use crate::cli::{ShotModes, ShotOptions};
-use crate::decimate::{decimate_scene, Params, Report};
+use crate::decimate::{simplify_scene, Params, Report};
+use crate::io::texture_image;
 use crate::mesh::Scene;
 use crate::render::camera::Camera;
 use crate::render::commands::Commands;
@@ -68,12 +69,16 @@ pub fn render(
     let target = OffscreenTarget::new(&context, options.width, options.height)?;
 
     let draw = draw_options(&options.modes);
-    let mut textures = Textures::new(&context, pipelines.texture_layout, &options.texture_dir)?;
+    let mut textures = Textures::new(
+        &context,
+        pipelines.texture_layout,
+        texture_image::reader(&options.texture_dir),
+    )?;
     let original = GpuScene::upload(&context, &commands, &mut textures, scene, draw.layers())?;
     let (decimated, report) = match params {
         Some(params) => {
             let mut copy = scene.clone();
-            let report = decimate_scene(&mut copy, params, &mut |_| {});
+            let report = simplify_scene(&mut copy, params, &mut |_| {});
             (
                 Some(GpuScene::upload(
                     &context,

@@ -10,6 +10,7 @@ use ash::vk;
 use glam::Vec2;
 use winit::window::Window;
 
+use crate::io::texture_image;
 use crate::render::camera::Navigation;
 use crate::render::commands::Commands;
 use crate::render::context::{Context, DevicePreference};
@@ -317,7 +318,7 @@ impl Callbacks for Viewer {
         let textures = Textures::new(
             &context,
             pipelines.texture_layout,
-            &self.controller.input_dir,
+            texture_image::reader(&self.controller.input_dir),
         )
         .map_err(|e| e.to_string())?;
         let ui = UiLayer::new(&context, window, swapchain.format)?;

@@ -6,7 +6,7 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use crate::decimate::{decimate_scene, Algorithm, Params, Report, Target};
+use crate::decimate::{simplify_scene, Algorithm, Params, Report, Target};
 use crate::mesh::Scene;
 use crate::render::camera::{Camera, Navigation};
 use crate::render::draw::DrawOptions;
@@ -121,7 +121,7 @@ impl Viewport {
             ..self.params
         };
         let mut scene = (*self.original).clone();
-        let report = decimate_scene(&mut scene, &params, &mut |_| {});
+        let report = simplify_scene(&mut scene, &params, &mut |_| {});
         self.scene = scene;
         self.lod = None;
         self.generation += 1;

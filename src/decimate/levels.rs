@@ -1,13 +1,13 @@
 //! Which level of each model of a progressive scene (`FILE.pm`) meets a count target: the
 //! splits are the recorded decimation's collapses in reverse, so a level is that decimation
 //! as it stood once it had removed that many vertices (or come down to that many
-//! triangles). Counts are shared among the models as [`super::decimate_scene`] shares them,
+//! triangles). Counts are shared among the models as [`super::simplify_scene`] shares them,
 //! in proportion to the full meshes' sizes (`Shares`). A level never goes below the base mesh, the
 //! coarsest the file holds, and never splits one side of a texture seam without the other
 //! (it keeps one vertex fewer instead).
 
-use super::progressive::ProgressiveScene;
 use super::{Shares, Target};
+use crate::mesh::progressive::ProgressiveScene;
 
 /// The level (splits applied to the base) of each model of `pm` for `target`; `None` for a
 /// target that is no count (an error bound alone: the file records no errors).
@@ -43,7 +43,7 @@ pub fn levels_for(pm: &ProgressiveScene, target: Target) -> Option<Vec<usize>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::decimate::{decimate_scene_progressive, Params};
+    use crate::decimate::{simplify_scene_progressive, Params};
     use crate::mesh::{shapes, Scene};
 
     /// A scene of two spheres of different sizes, decimated to 10 % with a record.
@@ -56,7 +56,7 @@ mod tests {
             ..Params::default()
         };
         let original = scene.clone();
-        let (_, pm) = decimate_scene_progressive(&mut scene, &params, &mut |_| {});
+        let (_, pm) = simplify_scene_progressive(&mut scene, &params, &mut |_| {});
         (original, pm)
     }
 

@@ -1,20 +1,25 @@
-//! Decimation algorithms, one module per algorithm, over `mesh` arrays, behind one entry
-//! point: [`decimate_scene`] applies a [`Params`] (target, error bound, feature angle) to
-//! every model of a scene and returns a [`Report`].
+//! Decimation algorithms, one module per algorithm (`schroeder` vertex removal, `qem` quadric
+//! edge collapse), over `mesh` arrays, behind one entry point: [`simplify_scene`] applies a
+//! [`Params`] (target, error bound, feature angle) to every model of a scene and returns a
+//! [`Report`].
 
 mod candidates;
 pub mod layout;
 pub mod levels;
+mod limits;
 mod lists;
-pub mod loop_split;
-pub mod progressive;
 pub mod qem;
 mod regions;
 pub mod schroeder;
+pub mod summary;
 
 use std::time::Instant;
 
 use crate::mesh::{seams, stitches, Scene};
+
+pub use limits::{Limits, Outcome};
+
+use crate::mesh::progressive::{ProgressiveModel, ProgressiveScene};
 
 /// How far to decimate. Counts are over the whole scene and shared among its models in
 /// proportion to their vertex counts.
@@ -58,7 +63,7 @@ pub struct Params {
     pub max_error: Option<ErrorBound>,
     /// Dihedral angle in degrees above which an edge is a feature edge.
     pub feature_angle_deg: f64,
-    /// Never relax the feature angle to reach a count target (see [`decimate_scene`]).
+    /// Never relax the feature angle to reach a count target (see [`simplify_scene`]).
     pub keep_features: bool,
     /// Never move or remove a vertex on a model's open border
     /// (`mesh::stitches::open_border_vertices`): pieces of one mesh decimated apart still fit.
@@ -133,33 +138,33 @@ impl Report {
 /// left first, the feature angle is relaxed step by step. "As far as possible" (`-p 100`),
 /// an error bound alone, or `keep_features` never relax it, so features such as a cube's
 /// corners survive them. Quadric edge collapse never needs to relax it.
-pub fn decimate_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
+pub fn simplify_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
     run(scene, params, progress, None)
 }
 
-/// As [`decimate_scene`] with quadric edge collapse (whatever `params.algorithm` says: vertex
+/// As [`simplify_scene`] with quadric edge collapse (whatever `params.algorithm` says: vertex
 /// removal has no vertex splits to record), and records every collapse: model `i` of the
 /// returned progressive scene has the decimated model `i` as its base and refines back to
 /// the input's model `i`. Models the four-vertex rule drops are dropped from both.
-pub fn decimate_scene_progressive(
+pub fn simplify_scene_progressive(
     scene: &mut Scene,
     params: &Params,
     progress: &mut dyn FnMut(f32),
-) -> (Report, progressive::ProgressiveScene) {
+) -> (Report, ProgressiveScene) {
     let params = Params {
         algorithm: Algorithm::Qem,
         ..*params
     };
     let mut models = Vec::new();
     let report = run(scene, &params, progress, Some(&mut models));
-    (report, progressive::ProgressiveScene { models })
+    (report, ProgressiveScene { models })
 }
 
 fn run(
     scene: &mut Scene,
     params: &Params,
     progress: &mut dyn FnMut(f32),
-    mut record: Option<&mut Vec<progressive::ProgressiveModel>>,
+    mut record: Option<&mut Vec<ProgressiveModel>>,
 ) -> Report {
     let start = Instant::now();
     let vertices: Vec<usize> = scene.models.iter().map(|m| m.used_vertex_count()).collect();
@@ -222,7 +227,7 @@ fn run(
                     .map_or(0.0, |(lo, hi)| (hi - lo).length() as f64)
             }
         };
-        let limits = schroeder::Limits {
+        let limits = Limits {
             remove: removals[i],
             keep_triangles: keep_triangles[i],
             max_error,

@@ -4,8 +4,8 @@
 //! owns runs there, and operations in different regions touch disjoint data, so they
 //! commute: the result depends neither on the threads' timing nor on how many there are.
 //! The rest (candidates on borders) is left to a second cut, shifted, and then to the
-//! whole mesh. Quadric edge collapse (`qem::passes`) and vertex removal
-//! (`schroeder::regions`) both run their passes this way.
+//! whole mesh. Quadric edge collapse (`qem::collapse_passes`) and vertex removal
+//! (`schroeder::region_removal`) both run their passes this way.
 
 use super::candidates::Candidate;
 

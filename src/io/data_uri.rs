@@ -61,16 +61,6 @@ pub fn encode(media_type: &str, bytes: &[u8]) -> String {
     )
 }
 
-/// `name` as a message shows it: a `data:` URI cut to its media type and size.
-pub fn shown(name: &str) -> std::borrow::Cow<'_, str> {
-    match name.split_once(',') {
-        Some((head, data)) if is_data_uri(name) => {
-            format!("{head},… ({} characters)", data.len()).into()
-        }
-        _ => name.into(),
-    }
-}
-
 /// `%XX` escapes decoded into bytes; a `%` not followed by two hex digits is kept as it is.
 pub fn percent_decode(s: &str) -> Vec<u8> {
     let b = s.as_bytes();

@@ -4,10 +4,11 @@
 //! content; gzip handled here; a progressive mesh gives its full meshes and the record),
 //! [`write_scene`] (format from the output's extension) and [`write_vrml2`] (all writers go
 //! through [`replace::replace_file`]: a temporary file, then a rename); [`parse_bytes`] /
-//! [`parse_str`] read from memory. Submodules: `lexer` (shared tokens), `parse` (node trees
-//! for both VRML families), `vrml1` (VRML 1.0 / Inventor state machine), `vrml2` (VRML 2.0
-//! tree walk), `build` (shape to model), `triangulate` (ear clipping), `ply`, `obj`, `stl`,
-//! `off` (those formats' readers and writers), `writer` (VRML 2.0 output), `progressive`
+//! [`parse_str`] read from memory. Submodules: `vrml` (VRML 1.0, Open Inventor and VRML 2.0:
+//! lexer, node trees, both families' semantics, the VRML 2.0 writer), `text` (the line-named
+//! error and number parsing every text reader shares), `shape_to_model` (shape to model),
+//! `triangulate` (ear clipping), `ply`, `obj`, `stl`, `off` (those formats' readers and
+//! writers), `texture_image` (PNG/JPEG texture files decoded to RGBA), `progressive_file`
 //! (the binary `.pm` file of a progressive mesh, `--progressive`: its own reader and writer),
 //! `replace` (how every output replaces its file), `mtl` (an OBJ's material libraries: read
 //! by [`read_scene`], which knows the OBJ's folder, and written beside an OBJ output) and
@@ -16,39 +17,36 @@
 //! format cannot hold, said before writing), `gltf` (glTF 2.0 `.gltf`/`.glb`, read and
 //! written) and `data_uri` (the `data:` URIs glTF embeds buffers and images in).
 
-mod build;
 pub mod data_uri;
 pub mod gltf;
-mod lexer;
 pub mod losses;
 pub mod mtl;
 pub mod obj;
 pub mod off;
-mod parse;
 pub mod ply;
-pub mod progressive;
+pub mod progressive_file;
 pub mod replace;
+mod shape_to_model;
 pub mod stl;
+mod text;
+pub mod texture_image;
 pub mod texture_path;
 pub mod triangulate;
-mod vrml1;
-mod vrml2;
-mod writer;
+mod vrml;
 
-use std::collections::HashSet;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
-use crate::decimate::progressive::ProgressiveScene;
+use crate::mesh::progressive::ProgressiveScene;
 use crate::mesh::Scene;
-use lexer::{PResult, ParseError};
+use text::ParseError;
 
 pub use obj::write_obj;
 pub use off::write_off;
 pub use ply::write_ply;
 pub use stl::write_stl;
 pub use texture_path::{rebase_textures, rebased};
-pub use writer::write_vrml2_to;
+pub use vrml::write_vrml2_to;
 
 /// What went wrong reading a scene: always names the file, and the line where there is one.
 #[derive(Debug, thiserror::Error)]
@@ -108,54 +106,6 @@ pub struct ReadOutcome {
 pub const MAX_MODELS: usize = 1_000_000;
 /// Most triangles one file may expand to.
 pub const MAX_TRIANGLES: usize = 200_000_000;
-
-/// Limits on what a file may expand to, and once-per-key warnings.
-#[derive(Default)]
-pub(crate) struct Budget {
-    models: usize,
-    triangles: usize,
-    warned: HashSet<String>,
-}
-
-impl Budget {
-    pub(crate) fn spend(&mut self, triangles: usize, line: usize) -> PResult<()> {
-        self.models += 1;
-        self.triangles += triangles;
-        if self.models > MAX_MODELS || self.triangles > MAX_TRIANGLES {
-            return Err(ParseError::new(
-                line,
-                format!(
-                    "the scene expands to more than {MAX_MODELS} shapes or {MAX_TRIANGLES} triangles (DEF/USE instancing?)"
-                ),
-            ));
-        }
-        Ok(())
-    }
-
-    pub(crate) fn warn_once(&mut self, warnings: &mut Vec<String>, key: &str, message: String) {
-        if self.warned.insert(key.to_string()) {
-            warnings.push(message);
-        }
-    }
-}
-
-/// What a scene-graph reader (VRML 1.0/Inventor or VRML 2.0) carries while it walks: the
-/// models made so far, the warnings, and the expansion budget.
-pub(crate) struct Ctx<'w> {
-    pub(crate) models: Vec<crate::mesh::Model>,
-    pub(crate) warnings: &'w mut Vec<String>,
-    pub(crate) budget: Budget,
-}
-
-impl<'w> Ctx<'w> {
-    pub(crate) fn new(warnings: &'w mut Vec<String>) -> Self {
-        Self {
-            models: Vec::new(),
-            warnings,
-            budget: Budget::default(),
-        }
-    }
-}
 
 /// A file format, as far as the file name's extension tells.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -236,8 +186,8 @@ fn parse_bytes_with(
             })?;
         bytes = out;
     }
-    if bytes.starts_with(&progressive::MAGIC) {
-        let pm = progressive::parse_progressive(&bytes, path)?;
+    if bytes.starts_with(&progressive_file::MAGIC) {
+        let pm = progressive_file::parse_progressive(&bytes, path)?;
         let models = pm.models.iter().map(|m| m.original()).collect();
         return Ok(ReadOutcome {
             scene: Scene { models },
@@ -311,16 +261,16 @@ fn parse_bytes_with(
         }
     }
     let dialect = if header.starts_with("#VRML V1.0 ascii") {
-        parse::Dialect::Vrml1
+        vrml::Dialect::Vrml1
     } else if header.starts_with("#VRML V2.0 utf8") {
-        parse::Dialect::Vrml2
+        vrml::Dialect::Vrml2
     } else if header.starts_with("#Inventor") && header.contains("binary") {
         return Err(ReadError::Unsupported {
             file,
             message: "binary Inventor is not supported (convert it with ivcat)".into(),
         });
     } else if header.starts_with("#Inventor V2.") || header.starts_with("#Inventor V1.0 ascii") {
-        parse::Dialect::Vrml1
+        vrml::Dialect::Vrml1
     } else if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(syntax(ParseError::new(
             1,
@@ -335,46 +285,7 @@ fn parse_bytes_with(
             ),
         )));
     };
-    parse_on_big_stack(&bytes, dialect).map_err(syntax)
-}
-
-/// Stack for parsing: the node nesting limit (`parse::MAX_DEPTH`) times the deepest
-/// recursion per level, with a wide margin, whatever thread the caller runs on.
-const PARSE_STACK: usize = 256 << 20;
-
-/// Parses and walks the node tree on a thread with a known, large stack (the recursion is
-/// bounded by `parse::MAX_DEPTH`, but callers' threads may have small stacks).
-fn parse_on_big_stack(bytes: &[u8], dialect: parse::Dialect) -> PResult<ReadOutcome> {
-    std::thread::scope(|s| {
-        match std::thread::Builder::new()
-            .name("scene-parser".into())
-            .stack_size(PARSE_STACK)
-            .spawn_scoped(s, || parse_tree(bytes, dialect))
-        {
-            Ok(handle) => handle
-                .join()
-                .unwrap_or_else(|_| Err(ParseError::new(1, "internal error: the parser panicked"))),
-            Err(_) => parse_tree(bytes, dialect),
-        }
-    })
-}
-
-fn parse_tree(bytes: &[u8], dialect: parse::Dialect) -> PResult<ReadOutcome> {
-    let mut parser = parse::Parser::new(bytes, dialect);
-    let roots = parser.parse_file()?;
-    let mut warnings = std::mem::take(&mut parser.warnings);
-    let models = match dialect {
-        parse::Dialect::Vrml1 => vrml1::read(&roots, &mut warnings),
-        parse::Dialect::Vrml2 => vrml2::read(&roots, &mut warnings),
-    }?;
-    // The tree (at most MAX_DEPTH deep) is dropped here, on the big stack.
-    drop(roots);
-    Ok(ReadOutcome {
-        scene: Scene { models },
-        warnings,
-        progressive: None,
-        material_libraries: Vec::new(),
-    })
+    vrml::read_tree(&bytes, dialect).map_err(syntax)
 }
 
 /// Writes `scene` to `path` in the format its extension names: `.ply`, `.obj`, `.stl`, `.off`,

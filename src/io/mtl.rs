@@ -29,7 +29,7 @@ use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use super::obj::Lines;
+use super::text::Lines;
 use super::texture_path::{folder_of, rebase};
 use super::ReadOutcome;
 use crate::mesh::{Model, Scene};

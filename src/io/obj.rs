@@ -24,7 +24,6 @@
 //! diffuse colour other than the default, `FILE.mtl` is written beside `FILE.obj` (`mtl`),
 //! named by `mtllib`, and each model's `o` is followed by its `usemtl`.
 
-use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -33,121 +32,10 @@ use glam::Mat4;
 
 use super::mtl::MtlPlan;
 
-use super::build::{build, Bind, ShapeSpec, TexCoords};
-use super::lexer::{parse_f32, parse_int, PResult, ParseError};
+use super::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
+use super::text::{number, parse_int, shown, words, Lines, PResult, ParseError};
 use super::{ReadOutcome, WriteError};
 use crate::mesh::{Attribute, Model, Scene};
-
-/// Logical lines of a text file: `(line number of its first physical line, text)`, with
-/// `#` comments cut off and, when `continuation` is set, lines ending in `\` joined to the
-/// next. Borrowed unless joined.
-pub(crate) struct Lines<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-    line: usize,
-    continuation: bool,
-}
-
-impl<'a> Lines<'a> {
-    pub(crate) fn new(bytes: &'a [u8], continuation: bool) -> Self {
-        Self {
-            bytes,
-            pos: 0,
-            line: 0,
-            continuation,
-        }
-    }
-
-    /// The line number of the last line read (for end-of-file messages).
-    pub(crate) fn last_line(&self) -> usize {
-        self.line.max(1)
-    }
-
-    pub(crate) fn physical(&mut self) -> Option<&'a [u8]> {
-        if self.pos >= self.bytes.len() {
-            return None;
-        }
-        let rest = &self.bytes[self.pos..];
-        let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
-        self.pos += end + 1;
-        self.line += 1;
-        let mut text = &rest[..end];
-        if let Some(hash) = text.iter().position(|&b| b == b'#') {
-            text = &text[..hash];
-        }
-        Some(text)
-    }
-}
-
-fn trim_end(mut s: &[u8]) -> &[u8] {
-    while let [rest @ .., last] = s {
-        if last.is_ascii_whitespace() {
-            s = rest;
-        } else {
-            break;
-        }
-    }
-    s
-}
-
-impl<'a> Iterator for Lines<'a> {
-    type Item = (usize, Cow<'a, [u8]>);
-
-    fn next(&mut self) -> Option<Self::Item> {
-        let first = self.physical()?;
-        let start = self.line;
-        if !self.continuation || trim_end(first).last() != Some(&b'\\') {
-            return Some((start, Cow::Borrowed(first)));
-        }
-        let mut joined = Vec::new();
-        let mut cur = first;
-        loop {
-            let t = trim_end(cur);
-            match t.split_last() {
-                Some((b'\\', body)) => {
-                    joined.extend_from_slice(body);
-                    joined.push(b' ');
-                    match self.physical() {
-                        Some(next) => cur = next,
-                        None => break,
-                    }
-                }
-                _ => {
-                    joined.extend_from_slice(cur);
-                    break;
-                }
-            }
-        }
-        Some((start, Cow::Owned(joined)))
-    }
-}
-
-/// The whitespace-separated words of a line.
-pub(crate) fn words(s: &[u8]) -> impl Iterator<Item = &[u8]> {
-    s.split(|b| b.is_ascii_whitespace())
-        .filter(|w| !w.is_empty())
-}
-
-/// A word for messages (at most 40 characters).
-pub(crate) fn shown(w: &[u8]) -> String {
-    String::from_utf8_lossy(w).chars().take(40).collect()
-}
-
-/// Parses a finite number or fails naming what it was for.
-pub(crate) fn number(w: Option<&[u8]>, line: usize, what: &str) -> PResult<f32> {
-    let w = w.ok_or_else(|| ParseError::new(line, format!("missing {what}")))?;
-    match parse_f32(w) {
-        Some(v) if v.is_finite() => Ok(v),
-        Some(_) => Err(ParseError::new(
-            line,
-            format!("{what} is not a finite number ('{}')", shown(w)),
-        )),
-        None => Err(ParseError::new(
-            line,
-            format!("expected a number for {what}, found '{}'", shown(w)),
-        )),
-    }
-}
 
 /// True when the first statement of the file (after comments) is an OBJ one.
 pub(crate) fn looks_like_obj(bytes: &[u8]) -> bool {
@@ -163,7 +51,7 @@ pub(crate) fn looks_like_obj(bytes: &[u8]) -> bool {
 }
 
 /// The faces of one `o` / `g` group that use one material.
-struct Part {
+struct MaterialPart {
     /// The `usemtl` name in force for these faces, if any.
     material: Option<String>,
     corners: Vec<u32>,
@@ -176,9 +64,10 @@ struct Part {
 
 /// One `o` / `g` group: its faces, one part per material in the order the materials are
 /// first used in it.
+#[derive(Default)]
 struct Group {
     name: String,
-    parts: Vec<Part>,
+    parts: Vec<MaterialPart>,
     /// Each material's part (a file may switch materials very often).
     by_material: HashMap<Option<String>, usize>,
 }
@@ -196,7 +85,7 @@ impl Group {
     fn part(&mut self, material: &Option<String>, line: usize) -> usize {
         let parts = &mut self.parts;
         *self.by_material.entry(material.clone()).or_insert_with(|| {
-            parts.push(Part {
+            parts.push(MaterialPart {
                 material: material.clone(),
                 corners: Vec::new(),
                 texcoords: Vec::new(),
@@ -210,7 +99,7 @@ impl Group {
     /// The group's models-to-be with their names: the group's own name when all its faces
     /// share one material, else `group (material)` for each part (`(no material)` for faces
     /// before the first `usemtl`).
-    fn into_named_parts(self) -> impl Iterator<Item = (String, Part)> {
+    fn into_named_parts(self) -> impl Iterator<Item = (String, MaterialPart)> {
         let split = self.parts.len() > 1;
         let name = self.name;
         self.parts.into_iter().map(move |p| {
@@ -275,210 +164,245 @@ fn resolve(w: &[u8], count: usize, line: usize, what: &str) -> PResult<u32> {
 /// Reads an OBJ file into one model per non-empty `o` / `g` group and material; the
 /// `mtllib` names come back in `material_libraries` (the caller knows where to look).
 pub fn read_obj(bytes: &[u8]) -> PResult<ReadOutcome> {
-    let mut warnings = Vec::new();
-    let mut warned: HashSet<Vec<u8>> = HashSet::new();
-    let mut coords: Vec<f32> = Vec::new();
-    let mut rgb: Vec<f32> = Vec::new();
-    let mut colored = false;
-    let mut normal_count = 0usize;
-    let mut uv: Vec<f32> = Vec::new();
-    let mut groups: Vec<Group> = Vec::new();
-    let mut cur = Group::new(String::new());
-    let mut libraries: Vec<String> = Vec::new();
-    // The `usemtl` in force (it carries over `o` / `g`), and its part of `cur` once a face
-    // has used it.
-    let mut material: Option<String> = None;
-    let mut part: Option<usize> = None;
+    let mut r = ObjReader::default();
     for (line, text) in Lines::new(bytes, true) {
         let mut w = words(&text);
         let Some(key) = w.next() else { continue };
         match key {
-            b"v" => {
-                let x = number(w.next(), line, "a vertex's x")?;
-                let y = number(w.next(), line, "a vertex's y")?;
-                let z = number(w.next(), line, "a vertex's z")?;
-                let rest: [Option<&[u8]>; 5] = std::array::from_fn(|_| w.next());
-                let color = match rest {
-                    [None, ..] | [Some(_), None, ..] => None,
-                    [Some(r), Some(g), Some(b), None | Some(_), None] => Some([
-                        number(Some(r), line, "a vertex's red")?,
-                        number(Some(g), line, "a vertex's green")?,
-                        number(Some(b), line, "a vertex's blue")?,
-                    ]),
-                    _ => return Err(ParseError::new(
-                        line,
-                        "a vertex has too many values (expected 'v x y z [w]' or 'v x y z r g b')",
-                    )),
-                };
-                if let [Some(wv), None, ..] = rest {
-                    number(Some(wv), line, "a vertex's w")?;
-                }
-                coords.extend([x, y, z]);
-                match color {
-                    Some(c) => {
-                        if !colored {
-                            colored = true;
-                            rgb.resize(coords.len() - 3, 0.8);
-                        }
-                        rgb.extend(c);
-                    }
-                    None if colored => rgb.extend([0.8; 3]),
-                    None => {}
-                }
-            }
+            b"v" => r.vertex(w, line)?,
             b"vn" => {
                 for what in ["a normal's x", "a normal's y", "a normal's z"] {
                     number(w.next(), line, what)?;
                 }
-                normal_count += 1;
+                r.normal_count += 1;
             }
             b"vt" => {
-                uv.push(number(w.next(), line, "a texture coordinate's u")?);
-                uv.push(match w.next() {
+                r.uv.push(number(w.next(), line, "a texture coordinate's u")?);
+                r.uv.push(match w.next() {
                     Some(v) => number(Some(v), line, "a texture coordinate's v")?,
                     None => 0.0,
                 });
             }
-            b"f" => {
-                let i = *part.get_or_insert_with(|| cur.part(&material, line));
-                let cur = &mut cur.parts[i];
-                let nverts = coords.len() / 3;
-                for corner in w {
-                    let mut parts = corner.split(|&b| b == b'/');
-                    let v = parts.next().unwrap_or(corner);
-                    cur.corners.push(resolve(v, nverts, line, "vertex")?);
-                    cur.texcoords
-                        .push(match parts.next().filter(|t| !t.is_empty()) {
-                            Some(t) => resolve(t, uv.len() / 2, line, "texture coordinate")?,
-                            None => u32::MAX,
-                        });
-                    if let Some(n) = parts.next().filter(|n| !n.is_empty()) {
-                        resolve(n, normal_count, line, "normal")?;
-                    }
-                    if parts.next().is_some() {
-                        return Err(ParseError::new(
-                            line,
-                            format!(
-                                "bad face corner '{}' (expected v, v/vt, v//vn or v/vt/vn)",
-                                shown(corner)
-                            ),
-                        ));
-                    }
-                }
-                cur.ends.push(cur.corners.len() as u32);
-            }
-            b"o" | b"g" => {
-                let name = words(&text)
-                    .skip(1)
-                    .map(|n| String::from_utf8_lossy(n).into_owned())
-                    .collect::<Vec<_>>()
-                    .join(" ");
-                let name = if name.is_empty() {
-                    "default".to_string()
-                } else {
-                    name
-                };
-                let done = std::mem::replace(&mut cur, Group::new(name));
-                part = None;
-                if !done.parts.is_empty() {
-                    groups.push(done);
-                }
-            }
-            b"usemtl" => {
-                let name = rest_of_line(&text);
-                if name.is_none() && warned.insert(b"usemtl without a name".to_vec()) {
-                    warnings.push(format!(
-                        "OBJ 'usemtl' without a material name on line {line}: the faces after \
-                         it have no material"
-                    ));
-                }
-                if name != material {
-                    material = name;
-                    part = None;
-                }
-            }
+            b"f" => r.face(w, line)?,
+            b"o" | b"g" => r.group(&text),
+            b"usemtl" => r.use_material(&text, line),
             b"mtllib" => match rest_of_line(&text) {
-                Some(lib) => libraries.push(lib),
-                None => warnings.push(format!(
+                Some(lib) => r.libraries.push(lib),
+                None => r.warnings.push(format!(
                     "OBJ 'mtllib' without a file name on line {line} skipped"
                 )),
             },
-            _ => {
-                if warned.insert(key.to_vec()) {
-                    let k = shown(key);
-                    warnings.push(match key {
-                        b"s" => "OBJ 's' (smoothing group) statements skipped".to_string(),
-                        b"l" | b"p" => {
-                            format!("OBJ '{k}' statements skipped (only faces are read)")
-                        }
-                        _ => format!("unknown OBJ statement '{k}' skipped (first on line {line})"),
-                    });
-                }
-            }
+            _ => r.skip(key, line),
         }
     }
-    if !cur.parts.is_empty() {
-        groups.push(cur);
-    }
-    if groups.is_empty() {
-        return Err(ParseError::new(
-            1,
-            "the OBJ file has no faces ('f' lines): nothing to read",
-        ));
-    }
-    let mut models = Vec::with_capacity(groups.len());
-    for (name, mut g) in groups.into_iter().flat_map(Group::into_named_parts) {
-        let texcoords = if g.texcoords.iter().all(|&t| t == u32::MAX) {
-            None
-        } else if g.texcoords.contains(&u32::MAX) {
-            warnings.push(format!(
-                "{}: some face corners have texture coordinates ('v/vt') and some do not; \
-                 texture coordinates ignored",
-                name
-            ));
-            None
-        } else {
-            Some(TexCoords {
-                values: &uv,
-                index: std::mem::take(&mut g.texcoords),
-            })
-        };
-        let colors = if colored {
-            Bind::PerCorner {
-                values: &rgb,
-                index: g.corners.clone(),
+    r.finish()
+}
+
+/// An OBJ file's statements read so far.
+#[derive(Default)]
+struct ObjReader {
+    warnings: Vec<String>,
+    /// Statement keys (and other things) already warned about, to warn once.
+    warned: HashSet<Vec<u8>>,
+    coords: Vec<f32>,
+    /// Per-vertex colours (MeshLab's `v x y z r g b`), grey before the first coloured vertex.
+    rgb: Vec<f32>,
+    colored: bool,
+    normal_count: usize,
+    uv: Vec<f32>,
+    groups: Vec<Group>,
+    cur: Group,
+    libraries: Vec<String>,
+    /// The `usemtl` in force (it carries over `o` / `g`), and its part of `cur` once a face
+    /// has used it.
+    material: Option<String>,
+    part: Option<usize>,
+}
+
+impl ObjReader {
+    /// `v x y z [w]` or `v x y z r g b`.
+    fn vertex<'a>(&mut self, mut w: impl Iterator<Item = &'a [u8]>, line: usize) -> PResult<()> {
+        let x = number(w.next(), line, "a vertex's x")?;
+        let y = number(w.next(), line, "a vertex's y")?;
+        let z = number(w.next(), line, "a vertex's z")?;
+        let rest: [Option<&[u8]>; 5] = std::array::from_fn(|_| w.next());
+        let color = match rest {
+            [None, ..] | [Some(_), None, ..] => None,
+            [Some(r), Some(g), Some(b), None | Some(_), None] => Some([
+                number(Some(r), line, "a vertex's red")?,
+                number(Some(g), line, "a vertex's green")?,
+                number(Some(b), line, "a vertex's blue")?,
+            ]),
+            _ => {
+                return Err(ParseError::new(
+                    line,
+                    "a vertex has too many values (expected 'v x y z [w]' or 'v x y z r g b')",
+                ))
             }
-        } else {
-            Bind::None
         };
-        let mut model = build(
-            ShapeSpec {
-                name,
-                transform: Mat4::IDENTITY,
-                coords: &coords,
-                corners: g.corners,
-                ends: g.ends,
-                colors,
-                normals: Bind::None,
-                texcoords,
-                ccw: true,
-                solid: false,
-                crease_angle: None,
-                diffuse: Model::DEFAULT_DIFFUSE,
-                line: g.line,
-                index_field: "f",
-            },
-            &mut warnings,
-        )?;
-        model.material = g.material;
-        models.push(model);
+        if let [Some(wv), None, ..] = rest {
+            number(Some(wv), line, "a vertex's w")?;
+        }
+        self.coords.extend([x, y, z]);
+        match color {
+            Some(c) => {
+                if !self.colored {
+                    self.colored = true;
+                    self.rgb.resize(self.coords.len() - 3, 0.8);
+                }
+                self.rgb.extend(c);
+            }
+            None if self.colored => self.rgb.extend([0.8; 3]),
+            None => {}
+        }
+        Ok(())
     }
-    Ok(ReadOutcome {
-        scene: Scene { models },
-        warnings,
-        progressive: None,
-        material_libraries: libraries,
-    })
+
+    /// `f v/vt/vn …`: a polygon in the current group's part for the material in force.
+    fn face<'a>(&mut self, w: impl Iterator<Item = &'a [u8]>, line: usize) -> PResult<()> {
+        let (material, group) = (&self.material, &mut self.cur);
+        let i = *self.part.get_or_insert_with(|| group.part(material, line));
+        let cur = &mut group.parts[i];
+        let nverts = self.coords.len() / 3;
+        for corner in w {
+            let mut parts = corner.split(|&b| b == b'/');
+            let v = parts.next().unwrap_or(corner);
+            cur.corners.push(resolve(v, nverts, line, "vertex")?);
+            cur.texcoords
+                .push(match parts.next().filter(|t| !t.is_empty()) {
+                    Some(t) => resolve(t, self.uv.len() / 2, line, "texture coordinate")?,
+                    None => u32::MAX,
+                });
+            if let Some(n) = parts.next().filter(|n| !n.is_empty()) {
+                resolve(n, self.normal_count, line, "normal")?;
+            }
+            if parts.next().is_some() {
+                return Err(ParseError::new(
+                    line,
+                    format!(
+                        "bad face corner '{}' (expected v, v/vt, v//vn or v/vt/vn)",
+                        shown(corner)
+                    ),
+                ));
+            }
+        }
+        cur.ends.push(cur.corners.len() as u32);
+        Ok(())
+    }
+
+    /// `o NAME` / `g NAME`: a new group (`default` when unnamed); the last one is kept if it
+    /// has faces.
+    fn group(&mut self, text: &[u8]) {
+        let name = words(text)
+            .skip(1)
+            .map(|n| String::from_utf8_lossy(n).into_owned())
+            .collect::<Vec<_>>()
+            .join(" ");
+        let name = if name.is_empty() {
+            "default".to_string()
+        } else {
+            name
+        };
+        let done = std::mem::replace(&mut self.cur, Group::new(name));
+        self.part = None;
+        if !done.parts.is_empty() {
+            self.groups.push(done);
+        }
+    }
+
+    /// `usemtl NAME`: the material of the faces that follow.
+    fn use_material(&mut self, text: &[u8], line: usize) {
+        let name = rest_of_line(text);
+        if name.is_none() && self.warned.insert(b"usemtl without a name".to_vec()) {
+            self.warnings.push(format!(
+                "OBJ 'usemtl' without a material name on line {line}: the faces after \
+                 it have no material"
+            ));
+        }
+        if name != self.material {
+            self.material = name;
+            self.part = None;
+        }
+    }
+
+    /// A statement the reader does not use: warned about once per key.
+    fn skip(&mut self, key: &[u8], line: usize) {
+        if self.warned.insert(key.to_vec()) {
+            let k = shown(key);
+            self.warnings.push(match key {
+                b"s" => "OBJ 's' (smoothing group) statements skipped".to_string(),
+                b"l" | b"p" => format!("OBJ '{k}' statements skipped (only faces are read)"),
+                _ => format!("unknown OBJ statement '{k}' skipped (first on line {line})"),
+            });
+        }
+    }
+
+    /// One model per group and material, built from the faces read.
+    fn finish(mut self) -> PResult<ReadOutcome> {
+        if !self.cur.parts.is_empty() {
+            self.groups.push(std::mem::take(&mut self.cur));
+        }
+        if self.groups.is_empty() {
+            return Err(ParseError::new(
+                1,
+                "the OBJ file has no faces ('f' lines): nothing to read",
+            ));
+        }
+        let mut warnings = self.warnings;
+        let mut models = Vec::with_capacity(self.groups.len());
+        for (name, mut g) in self.groups.into_iter().flat_map(Group::into_named_parts) {
+            let texcoords = if g.texcoords.iter().all(|&t| t == u32::MAX) {
+                None
+            } else if g.texcoords.contains(&u32::MAX) {
+                warnings.push(format!(
+                    "{}: some face corners have texture coordinates ('v/vt') and some do not; \
+                     texture coordinates ignored",
+                    name
+                ));
+                None
+            } else {
+                Some(TexCoords {
+                    values: &self.uv,
+                    index: std::mem::take(&mut g.texcoords),
+                })
+            };
+            let colors = if self.colored {
+                Bind::PerCorner {
+                    values: &self.rgb,
+                    index: g.corners.clone(),
+                }
+            } else {
+                Bind::None
+            };
+            let mut model = build(
+                ShapeSpec {
+                    name,
+                    transform: Mat4::IDENTITY,
+                    coords: &self.coords,
+                    corners: g.corners,
+                    ends: g.ends,
+                    colors,
+                    normals: Bind::None,
+                    texcoords,
+                    ccw: true,
+                    solid: false,
+                    crease_angle: None,
+                    diffuse: Model::DEFAULT_DIFFUSE,
+                    line: g.line,
+                    index_field: "f",
+                },
+                &mut warnings,
+            )?;
+            model.material = g.material;
+            models.push(model);
+        }
+        Ok(ReadOutcome {
+            scene: Scene { models },
+            warnings,
+            progressive: None,
+            material_libraries: self.libraries,
+        })
+    }
 }
 
 /// A model name as one OBJ word list (no line breaks or comment signs).

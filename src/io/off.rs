@@ -18,9 +18,9 @@ use std::path::Path;
 
 use glam::Mat4;
 
-use super::build::{build, Bind, ShapeSpec, TexCoords};
-use super::lexer::{parse_int, PResult, ParseError};
-use super::obj::{number, shown, words, Lines};
+use super::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
+use super::text::{number, shown, words, Lines};
+use super::text::{parse_int, PResult, ParseError};
 use super::WriteError;
 use crate::mesh::{Attribute, Scene};
 
@@ -117,12 +117,59 @@ fn count(w: Option<&[u8]>, line: usize, what: &str, file_len: usize) -> PResult<
     Ok(n as usize)
 }
 
-/// Reads an OFF file into a scene of one model.
+/// What an OFF header says: the kind of vertex lines (its keyword, for messages) and the
+/// counts, with the line they are on.
+struct Header<'a> {
+    kind: Kind,
+    keyword: &'a [u8],
+    counts_line: usize,
+    vertices: usize,
+    faces: usize,
+}
+
+/// What the vertex lines hold; colours are per vertex, filled with grey before the first
+/// coloured one.
+#[derive(Default)]
+struct Vertices {
+    coords: Vec<f32>,
+    rgb: Vec<f32>,
+    st: Vec<f32>,
+}
+
+/// What the face lines hold; colours are per face, filled with grey before the first
+/// coloured one.
+#[derive(Default)]
+struct Faces {
+    corners: Vec<u32>,
+    ends: Vec<u32>,
+    rgb: Vec<f32>,
+    /// Line of the first face, for errors about its indices.
+    first_line: usize,
+}
+
+/// Reads an OFF file into a scene of one model: header, vertex lines, face lines, then the
+/// model built from them.
 pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
     let mut warnings = Vec::new();
     let mut lines = Lines::new(bytes, false);
+    let header = read_header(&mut lines, bytes.len())?;
+    let mut last = header.counts_line;
+    let vertices = read_vertices(&mut lines, &header, &mut last)?;
+    let faces = read_faces(&mut lines, &header, &mut last)?;
+    if next_record(&mut lines).is_some() {
+        warnings.push(format!(
+            "the OFF file has more lines after its {} faces; they were ignored",
+            header.faces
+        ));
+    }
+    finish(&header, vertices, faces, warnings)
+}
+
+/// Reads the header: the `[ST][C][N]OFF` keyword and the vertex and face counts (on its line
+/// or the next).
+fn read_header<'a>(lines: &mut Lines<'a>, file_len: usize) -> PResult<Header<'a>> {
     let (hline, htext) =
-        next_record(&mut lines).ok_or_else(|| ParseError::new(1, "the OFF file is empty"))?;
+        next_record(lines).ok_or_else(|| ParseError::new(1, "the OFF file is empty"))?;
     let mut hw = words(htext);
     let first = hw.next().unwrap_or_default();
     let kind = header_kind(first).ok_or_else(|| {
@@ -145,170 +192,234 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
         return Err(ParseError::new(hline, "binary OFF is not supported"));
     }
     let (counts_line, counts): (usize, Vec<&[u8]>) = if rest.is_empty() {
-        let (l, t) = next_record(&mut lines).ok_or_else(|| {
+        let (l, t) = next_record(lines).ok_or_else(|| {
             ParseError::new(hline, "unexpected end of file: expected the counts line")
         })?;
         (l, words(t).collect())
     } else {
         (hline, rest)
     };
-    let nv = count(counts.first().copied(), counts_line, "vertex", bytes.len())?;
-    let nf = count(counts.get(1).copied(), counts_line, "face", bytes.len())?;
+    let nv = count(counts.first().copied(), counts_line, "vertex", file_len)?;
+    let nf = count(counts.get(1).copied(), counts_line, "face", file_len)?;
     if nv == 0 || nf == 0 {
         return Err(ParseError::new(
             counts_line,
             format!("the file declares {nv} vertices and {nf} faces: nothing to read"),
         ));
     }
+    Ok(Header {
+        kind,
+        keyword: first,
+        counts_line,
+        vertices: nv,
+        faces: nf,
+    })
+}
 
-    let mut coords: Vec<f32> = Vec::with_capacity(nv * 3);
-    let mut rgb: Vec<f32> = Vec::new();
-    let mut st: Vec<f32> = Vec::new();
+/// Reads the header's count of vertex lines; `last` follows the line read last.
+fn read_vertices(
+    lines: &mut Lines<'_>,
+    header: &Header<'_>,
+    last: &mut usize,
+) -> PResult<Vertices> {
+    let nv = header.vertices;
+    let mut out = Vertices {
+        coords: Vec::with_capacity(nv * 3),
+        ..Vertices::default()
+    };
     let mut ws: Vec<&[u8]> = Vec::new();
-    let mut last = counts_line;
     for i in 0..nv {
-        let (line, text) = next_record(&mut lines).ok_or_else(|| {
+        let (line, text) = next_record(lines).ok_or_else(|| {
             ParseError::new(
-                last,
+                *last,
                 format!("unexpected end of file after {i} of {nv} vertices"),
             )
         })?;
-        last = line;
+        *last = line;
         ws.clear();
         ws.extend(words(text));
-        let mut it = ws.iter().copied();
-        coords.push(number(it.next(), line, "a vertex's x")?);
-        coords.push(number(it.next(), line, "a vertex's y")?);
-        coords.push(number(it.next(), line, "a vertex's z")?);
-        let mut extra = &ws[3..];
-        if kind.normal {
-            for what in ["a normal's x", "a normal's y", "a normal's z"] {
-                number(extra.first().copied(), line, what)?;
-                extra = &extra[1..];
-            }
+        vertex_line(&ws, line, i, header, &mut out)?;
+    }
+    Ok(out)
+}
+
+/// One vertex line `x y z [nx ny nz] [r g b [a]] [s t]`, as the header's kind says.
+fn vertex_line(
+    ws: &[&[u8]],
+    line: usize,
+    i: usize,
+    header: &Header<'_>,
+    out: &mut Vertices,
+) -> PResult<()> {
+    let kind = header.kind;
+    let mut it = ws.iter().copied();
+    out.coords.push(number(it.next(), line, "a vertex's x")?);
+    out.coords.push(number(it.next(), line, "a vertex's y")?);
+    out.coords.push(number(it.next(), line, "a vertex's z")?);
+    let mut extra = &ws[3..];
+    if kind.normal {
+        for what in ["a normal's x", "a normal's y", "a normal's z"] {
+            number(extra.first().copied(), line, what)?;
+            extra = &extra[1..];
         }
-        let texture = if kind.texture { 2 } else { 0 };
-        if extra.len() < texture {
+    }
+    let texture = if kind.texture { 2 } else { 0 };
+    if extra.len() < texture {
+        return Err(ParseError::new(
+            line,
+            format!(
+                "expected texture coordinates 's t' at the end of an {} vertex line, \
+                 found {} values",
+                shown(header.keyword),
+                ws.len()
+            ),
+        ));
+    }
+    let ncolor = extra.len() - texture;
+    let has_color = if kind.color {
+        if !(3..=4).contains(&ncolor) {
             return Err(ParseError::new(
                 line,
                 format!(
-                    "expected texture coordinates 's t' at the end of an {} vertex line, \
-                     found {} values",
-                    shown(first),
+                    "expected 'x y z r g b [a]' on a COFF vertex line, found {} values",
                     ws.len()
                 ),
             ));
         }
-        let ncolor = extra.len() - texture;
-        let has_color = if kind.color {
-            if !(3..=4).contains(&ncolor) {
+        true
+    } else {
+        match ncolor {
+            0 => false,
+            3 | 4 if !kind.normal => true,
+            _ => {
                 return Err(ParseError::new(
                     line,
                     format!(
-                        "expected 'x y z r g b [a]' on a COFF vertex line, found {} values",
+                        "unexpected values after vertex {i}: {} values on the line",
                         ws.len()
-                    ),
-                ));
-            }
-            true
-        } else {
-            match ncolor {
-                0 => false,
-                3 | 4 if !kind.normal => true,
-                _ => {
-                    return Err(ParseError::new(
-                        line,
-                        format!(
-                            "unexpected values after vertex {i}: {} values on the line",
-                            ws.len()
-                        ),
-                    ))
-                }
-            }
-        };
-        if has_color {
-            if rgb.len() < i * 3 {
-                rgb.resize(i * 3, 0.8);
-            }
-            rgb.extend(color(&extra[..ncolor], line)?);
-        } else if !rgb.is_empty() {
-            rgb.extend([0.8; 3]);
-        }
-        for w in &extra[ncolor..] {
-            st.push(number(Some(w), line, "a texture coordinate")?);
-        }
-    }
-
-    let mut corners: Vec<u32> = Vec::with_capacity(nf * 3);
-    let mut ends: Vec<u32> = Vec::with_capacity(nf);
-    let mut face_rgb: Vec<f32> = Vec::new();
-    let mut face_line = last;
-    for f in 0..nf {
-        let (line, text) = next_record(&mut lines).ok_or_else(|| {
-            ParseError::new(
-                last,
-                format!("unexpected end of file after {f} of {nf} faces"),
-            )
-        })?;
-        if f == 0 {
-            face_line = line;
-        }
-        last = line;
-        ws.clear();
-        ws.extend(words(text));
-        let n = ws
-            .first()
-            .and_then(|w| parse_int(w))
-            .filter(|&n| n >= 0 && (n as u64) < ws.len() as u64)
-            .ok_or_else(|| {
-                ParseError::new(
-                    line,
-                    format!("expected 'n i1 … in' for face {f}, found '{}'", shown(text)),
-                )
-            })? as usize;
-        for w in &ws[1..=n] {
-            let i = parse_int(w)
-                .filter(|&i| i >= 0 && (i as u64) < nv as u64)
-                .ok_or_else(|| {
-                    ParseError::new(
-                        line,
-                        format!("face {f}: vertex index '{}' is not in 0..{nv}", shown(w)),
-                    )
-                })?;
-            corners.push(i as u32);
-        }
-        ends.push(corners.len() as u32);
-        let extra = &ws[n + 1..];
-        match extra.len() {
-            0 | 1 => {
-                if let Some(w) = extra.first() {
-                    number(Some(w), line, "a colour-map index")?;
-                }
-                if !face_rgb.is_empty() {
-                    face_rgb.extend([0.8; 3]);
-                }
-            }
-            3 | 4 => {
-                if face_rgb.len() < f * 3 {
-                    face_rgb.resize(f * 3, 0.8);
-                }
-                face_rgb.extend(color(extra, line)?);
-            }
-            k => {
-                return Err(ParseError::new(
-                    line,
-                    format!(
-                        "face {f}: {k} values after its {n} indices (expected a colour of 3 or 4)"
                     ),
                 ))
             }
         }
+    };
+    if has_color {
+        if out.rgb.len() < i * 3 {
+            out.rgb.resize(i * 3, 0.8);
+        }
+        out.rgb.extend(color(&extra[..ncolor], line)?);
+    } else if !out.rgb.is_empty() {
+        out.rgb.extend([0.8; 3]);
     }
-    if next_record(&mut lines).is_some() {
-        warnings.push(format!(
-            "the OFF file has more lines after its {nf} faces; they were ignored"
-        ));
+    for w in &extra[ncolor..] {
+        out.st.push(number(Some(w), line, "a texture coordinate")?);
     }
+    Ok(())
+}
+
+/// Reads the header's count of face lines; `last` follows the line read last.
+fn read_faces(lines: &mut Lines<'_>, header: &Header<'_>, last: &mut usize) -> PResult<Faces> {
+    let nf = header.faces;
+    let mut out = Faces {
+        corners: Vec::with_capacity(nf * 3),
+        ends: Vec::with_capacity(nf),
+        first_line: *last,
+        ..Faces::default()
+    };
+    let mut ws: Vec<&[u8]> = Vec::new();
+    for f in 0..nf {
+        let (line, text) = next_record(lines).ok_or_else(|| {
+            ParseError::new(
+                *last,
+                format!("unexpected end of file after {f} of {nf} faces"),
+            )
+        })?;
+        if f == 0 {
+            out.first_line = line;
+        }
+        *last = line;
+        ws.clear();
+        ws.extend(words(text));
+        face_line(&ws, text, line, f, header.vertices, &mut out)?;
+    }
+    Ok(out)
+}
+
+/// One face line `n i1 … in [r g b [a] | colour-map index]`.
+fn face_line(
+    ws: &[&[u8]],
+    text: &[u8],
+    line: usize,
+    f: usize,
+    nv: usize,
+    out: &mut Faces,
+) -> PResult<()> {
+    let n = ws
+        .first()
+        .and_then(|w| parse_int(w))
+        .filter(|&n| n >= 0 && (n as u64) < ws.len() as u64)
+        .ok_or_else(|| {
+            ParseError::new(
+                line,
+                format!("expected 'n i1 … in' for face {f}, found '{}'", shown(text)),
+            )
+        })? as usize;
+    for w in &ws[1..=n] {
+        let i = parse_int(w)
+            .filter(|&i| i >= 0 && (i as u64) < nv as u64)
+            .ok_or_else(|| {
+                ParseError::new(
+                    line,
+                    format!("face {f}: vertex index '{}' is not in 0..{nv}", shown(w)),
+                )
+            })?;
+        out.corners.push(i as u32);
+    }
+    out.ends.push(out.corners.len() as u32);
+    let extra = &ws[n + 1..];
+    match extra.len() {
+        0 | 1 => {
+            if let Some(w) = extra.first() {
+                number(Some(w), line, "a colour-map index")?;
+            }
+            if !out.rgb.is_empty() {
+                out.rgb.extend([0.8; 3]);
+            }
+        }
+        3 | 4 => {
+            if out.rgb.len() < f * 3 {
+                out.rgb.resize(f * 3, 0.8);
+            }
+            out.rgb.extend(color(extra, line)?);
+        }
+        k => {
+            return Err(ParseError::new(
+                line,
+                format!("face {f}: {k} values after its {n} indices (expected a colour of 3 or 4)"),
+            ))
+        }
+    }
+    Ok(())
+}
+
+/// The model built from the vertex and face lines: per-vertex colours win over per-face ones.
+fn finish(
+    header: &Header<'_>,
+    vertices: Vertices,
+    faces: Faces,
+    mut warnings: Vec<String>,
+) -> PResult<(Scene, Vec<String>)> {
+    let (nv, nf) = (header.vertices, header.faces);
+    let Vertices {
+        coords,
+        mut rgb,
+        st,
+    } = vertices;
+    let Faces {
+        corners,
+        ends,
+        rgb: mut face_rgb,
+        first_line,
+    } = faces;
     let colors = if !rgb.is_empty() {
         rgb.resize(nv * 3, 0.8);
         Bind::PerCorner {
@@ -324,7 +435,7 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
     } else {
         Bind::None
     };
-    let texcoords = kind.texture.then(|| TexCoords {
+    let texcoords = header.kind.texture.then(|| TexCoords {
         values: &st,
         index: corners.clone(),
     });
@@ -342,7 +453,7 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
             solid: false,
             crease_angle: None,
             diffuse: [0.8; 3],
-            line: face_line,
+            line: first_line,
             index_field: "faces",
         },
         &mut warnings,

@@ -21,8 +21,8 @@ use std::path::Path;
 
 use glam::{Mat4, Vec3};
 
-use super::build::{build, Bind, ShapeSpec, TexCoords};
-use super::lexer::{PResult, ParseError};
+use super::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
+use super::text::{PResult, ParseError};
 use super::WriteError;
 use crate::mesh::{Attribute, Scene};
 
@@ -220,6 +220,41 @@ struct Header {
     texture: Option<String>,
 }
 
+/// The body's encoding a `format` line names.
+fn parse_format(name: &str, line: usize) -> PResult<Format> {
+    Ok(match name {
+        "ascii" => Format::Ascii,
+        "binary_little_endian" => Format::Little,
+        "binary_big_endian" => Format::Big,
+        other => {
+            return Err(ParseError::new(
+                line,
+                format!("unknown PLY format '{other}'"),
+            ))
+        }
+    })
+}
+
+/// Adds a `property` line's property to the last element declared.
+fn add_property(
+    elements: &mut [Element],
+    name: &str,
+    ty: Ty,
+    list: Option<Ty>,
+    line: usize,
+) -> PResult<()> {
+    let el = elements
+        .last_mut()
+        .ok_or_else(|| ParseError::new(line, "'property' before any 'element'"))?;
+    el.props.push(Property {
+        name: name.to_string(),
+        ty,
+        list,
+    });
+    Ok(())
+}
+
+/// Reads the header, line by line up to `end_header`.
 fn parse_header(bytes: &[u8]) -> PResult<Header> {
     let mut pos = 0;
     let mut line = 0;
@@ -244,19 +279,7 @@ fn parse_header(bytes: &[u8]) -> PResult<Header> {
         match words.as_slice() {
             ["ply"] if line == 1 => {}
             _ if line == 1 => return Err(ParseError::new(1, "expected 'ply' on the first line")),
-            ["format", f, _] => {
-                format = Some(match *f {
-                    "ascii" => Format::Ascii,
-                    "binary_little_endian" => Format::Little,
-                    "binary_big_endian" => Format::Big,
-                    other => {
-                        return Err(ParseError::new(
-                            line,
-                            format!("unknown PLY format '{other}'"),
-                        ))
-                    }
-                })
-            }
+            ["format", f, _] => format = Some(parse_format(f, line)?),
             ["comment", "TextureFile", _, ..] if texture.is_none() => {
                 // The name is the rest of the line: it may hold spaces.
                 let rest = text.trim_start()["comment".len()..].trim_start();
@@ -278,26 +301,12 @@ fn parse_header(bytes: &[u8]) -> PResult<Header> {
                         format!("unknown PLY type in '{text}'"),
                     ));
                 };
-                let el = elements
-                    .last_mut()
-                    .ok_or_else(|| ParseError::new(line, "'property' before any 'element'"))?;
-                el.props.push(Property {
-                    name: name.to_string(),
-                    ty: it,
-                    list: Some(ct),
-                });
+                add_property(&mut elements, name, it, Some(ct), line)?;
             }
             ["property", ty, name] => {
                 let ty = Ty::parse(ty)
                     .ok_or_else(|| ParseError::new(line, format!("unknown PLY type '{ty}'")))?;
-                let el = elements
-                    .last_mut()
-                    .ok_or_else(|| ParseError::new(line, "'property' before any 'element'"))?;
-                el.props.push(Property {
-                    name: name.to_string(),
-                    ty,
-                    list: None,
-                });
+                add_property(&mut elements, name, ty, None, line)?;
             }
             ["end_header"] => break,
             _ => {
@@ -319,7 +328,24 @@ fn parse_header(bytes: &[u8]) -> PResult<Header> {
     })
 }
 
-/// Reads a PLY file into a scene of one model.
+/// What a PLY body holds, gathered element by element before the model is built.
+#[derive(Default)]
+struct Gathered {
+    coords: Vec<f32>,
+    rgb: Vec<f32>,
+    nxyz: Vec<f32>,
+    uv: Vec<f32>,
+    /// MeshLab's per-corner `texcoord` lists, flat (u v); `None` once a face's list does not
+    /// match its corners.
+    corner_uv: Option<Vec<f32>>,
+    corners: Vec<u32>,
+    ends: Vec<u32>,
+    /// The face element's header line, for errors about its indices.
+    face_line: usize,
+}
+
+/// Reads a PLY file into a scene of one model: header, then each element (vertices, faces,
+/// others skipped), then the model built from what they held.
 pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
     let Header {
         format,
@@ -335,181 +361,270 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
         line: header_lines + 1,
     };
     let mut warnings = Vec::new();
-    let mut coords: Vec<f32> = Vec::new();
-    let mut rgb: Vec<f32> = Vec::new();
-    let mut nxyz: Vec<f32> = Vec::new();
-    let mut uv: Vec<f32> = Vec::new();
-    // MeshLab's per-corner `texcoord` lists, flat (u v); `None` once a face's list does not
-    // match its corners.
-    let mut corner_uv: Option<Vec<f32>> = None;
-    let mut corners: Vec<u32> = Vec::new();
-    let mut ends: Vec<u32> = Vec::new();
-    let mut face_line = header_lines;
+    let mut data = Gathered {
+        face_line: header_lines,
+        ..Gathered::default()
+    };
     for el in &elements {
-        let slot = |n: &str| {
-            el.props
-                .iter()
-                .position(|p| p.name == n && p.list.is_none())
-        };
         match el.name.as_str() {
-            "vertex" => {
-                let (Some(x), Some(y), Some(z)) = (slot("x"), slot("y"), slot("z")) else {
-                    return Err(ParseError::new(
-                        el.line,
-                        "the vertex element has no x, y, z properties",
-                    ));
-                };
-                let color = match (slot("red"), slot("green"), slot("blue")) {
-                    (Some(r), Some(g), Some(b)) => Some([r, g, b]),
-                    _ => None,
-                };
-                let normal = match (slot("nx"), slot("ny"), slot("nz")) {
-                    (Some(a), Some(b), Some(c)) => Some([a, b, c]),
-                    _ => None,
-                };
-                let texture = UV_NAMES
-                    .iter()
-                    .find_map(|[u, v]| Some([slot(u)?, slot(v)?]));
-                if texture.is_none() {
-                    for [u, v] in UV_NAMES {
-                        if let (Some(_), None) | (None, Some(_)) = (slot(u), slot(v)) {
-                            let (has, lacks) = if slot(u).is_some() { (u, v) } else { (v, u) };
-                            warnings.push(format!(
-                                "the vertex element has '{has}' but no '{lacks}'; \
-                                 texture coordinates skipped"
-                            ));
-                        }
-                    }
-                }
-                if el.count > bytes.len() {
-                    return Err(body.eof("all the vertices the header announces"));
-                }
-                coords.reserve(el.count * 3);
-                let mut vals = vec![0f64; el.props.len()];
-                for _ in 0..el.count {
-                    for (k, p) in el.props.iter().enumerate() {
-                        if let Some(ct) = p.list {
-                            let n = body.index(ct, "a vertex list count")?;
-                            for _ in 0..n {
-                                body.skip(p.ty, "a vertex list value")?;
-                            }
-                        } else {
-                            vals[k] = body.value(p.ty, "a vertex")?;
-                        }
-                    }
-                    let (px, py, pz) = (vals[x] as f32, vals[y] as f32, vals[z] as f32);
-                    if !(px.is_finite() && py.is_finite() && pz.is_finite()) {
-                        return Err(ParseError::new(
-                            body.line,
-                            format!("vertex {} is not finite ({px} {py} {pz})", coords.len() / 3),
-                        ));
-                    }
-                    coords.extend([px, py, pz]);
-                    // Colours and normals are numbers too: an infinite one would reach
-                    // the renderer and every writer (texture coordinates that are not
-                    // finite are skipped below, with a warning).
-                    let mut used = color.iter().flatten().chain(normal.iter().flatten());
-                    if let Some(&k) = used.find(|&&k| !(vals[k] as f32).is_finite()) {
-                        return Err(ParseError::new(
-                            body.line,
-                            format!(
-                                "vertex {}'s {} is not a finite number ({})",
-                                coords.len() / 3 - 1,
-                                el.props[k].name,
-                                vals[k] as f32
-                            ),
-                        ));
-                    }
-                    if let Some(c) = color {
-                        let scale = if el.props[c[0]].ty == Ty::U8 {
-                            1.0 / 255.0
-                        } else {
-                            1.0
-                        };
-                        rgb.extend(c.map(|i| vals[i] as f32 * scale));
-                    }
-                    if let Some(n) = normal {
-                        nxyz.extend(n.map(|i| vals[i] as f32));
-                    }
-                    if let Some(t) = texture {
-                        uv.extend(t.map(|i| vals[i] as f32));
-                    }
-                }
-            }
-            "face" => {
-                face_line = el.line;
-                let list = el.props.iter().position(|p| {
-                    p.list.is_some() && matches!(p.name.as_str(), "vertex_indices" | "vertex_index")
-                });
-                let Some(list) = list else {
-                    return Err(ParseError::new(
-                        el.line,
-                        "the face element has no vertex_indices list",
-                    ));
-                };
-                let texture = el
-                    .props
-                    .iter()
-                    .position(|p| p.list.is_some() && p.name == "texcoord");
-                if texture.is_some() {
-                    corner_uv = Some(Vec::new());
-                }
-                if el.count > bytes.len() {
-                    return Err(body.eof("all the faces the header announces"));
-                }
-                corners.reserve(el.count * 3);
-                ends.reserve(el.count);
-                for f in 0..el.count {
-                    let first = corners.len();
-                    let mut values = 0;
-                    for (k, p) in el.props.iter().enumerate() {
-                        match p.list {
-                            Some(ct) => {
-                                let n = body.index(ct, "a face's corner count")?;
-                                for _ in 0..n {
-                                    if k == list {
-                                        corners.push(body.index(p.ty, "a face's vertex index")?);
-                                    } else if Some(k) == texture {
-                                        let v = body.value(p.ty, "a face's texture coordinate")?;
-                                        if let Some(c) = &mut corner_uv {
-                                            c.push(v as f32);
-                                        }
-                                        values += 1;
-                                    } else {
-                                        body.skip(p.ty, "a face list value")?;
-                                    }
-                                }
-                            }
-                            None => body.skip(p.ty, "a face property")?,
-                        }
-                    }
-                    if corner_uv.is_some() && values != 2 * (corners.len() - first) {
-                        warnings.push(format!(
-                            "face {f} has {values} 'texcoord' values for {} corners \
-                             (expected u v per corner); texture coordinates skipped",
-                            corners.len() - first
-                        ));
-                        corner_uv = None;
-                    }
-                    ends.push(corners.len() as u32);
-                }
-            }
-            _ => {
-                for _ in 0..el.count {
-                    for p in &el.props {
-                        if let Some(ct) = p.list {
-                            let n = body.index(ct, "a list count")?;
-                            for _ in 0..n {
-                                body.skip(p.ty, "a list value")?;
-                            }
-                        } else {
-                            body.skip(p.ty, "a value")?;
-                        }
-                    }
-                }
+            "vertex" => read_vertices(el, &mut body, bytes.len(), &mut data, &mut warnings)?,
+            "face" => read_faces(el, &mut body, bytes.len(), &mut data, &mut warnings)?,
+            _ => skip_element(el, &mut body)?,
+        }
+    }
+    finish(data, texture, warnings)
+}
+
+/// Where the vertex element's properties are: position, and colour, normal and texture
+/// coordinates when it has them all.
+struct VertexSlots {
+    position: [usize; 3],
+    color: Option<[usize; 3]>,
+    normal: Option<[usize; 3]>,
+    texture: Option<[usize; 2]>,
+}
+
+/// The vertex element's layout; a texture coordinate without its partner is warned about.
+fn vertex_slots(el: &Element, warnings: &mut Vec<String>) -> PResult<VertexSlots> {
+    let slot = |n: &str| {
+        el.props
+            .iter()
+            .position(|p| p.name == n && p.list.is_none())
+    };
+    let (Some(x), Some(y), Some(z)) = (slot("x"), slot("y"), slot("z")) else {
+        return Err(ParseError::new(
+            el.line,
+            "the vertex element has no x, y, z properties",
+        ));
+    };
+    let color = match (slot("red"), slot("green"), slot("blue")) {
+        (Some(r), Some(g), Some(b)) => Some([r, g, b]),
+        _ => None,
+    };
+    let normal = match (slot("nx"), slot("ny"), slot("nz")) {
+        (Some(a), Some(b), Some(c)) => Some([a, b, c]),
+        _ => None,
+    };
+    let texture = UV_NAMES
+        .iter()
+        .find_map(|[u, v]| Some([slot(u)?, slot(v)?]));
+    if texture.is_none() {
+        for [u, v] in UV_NAMES {
+            if let (Some(_), None) | (None, Some(_)) = (slot(u), slot(v)) {
+                let (has, lacks) = if slot(u).is_some() { (u, v) } else { (v, u) };
+                warnings.push(format!(
+                    "the vertex element has '{has}' but no '{lacks}'; \
+                     texture coordinates skipped"
+                ));
             }
         }
     }
+    Ok(VertexSlots {
+        position: [x, y, z],
+        color,
+        normal,
+        texture,
+    })
+}
+
+/// Reads the vertex element: finite positions, and the colours, normals and texture
+/// coordinates its layout has. `file_len` bounds the count the header announces.
+fn read_vertices(
+    el: &Element,
+    body: &mut Body<'_>,
+    file_len: usize,
+    data: &mut Gathered,
+    warnings: &mut Vec<String>,
+) -> PResult<()> {
+    let VertexSlots {
+        position: [x, y, z],
+        color,
+        normal,
+        texture,
+    } = vertex_slots(el, warnings)?;
+    if el.count > file_len {
+        return Err(body.eof("all the vertices the header announces"));
+    }
+    data.coords.reserve(el.count * 3);
+    let mut vals = vec![0f64; el.props.len()];
+    for _ in 0..el.count {
+        for (k, p) in el.props.iter().enumerate() {
+            if let Some(ct) = p.list {
+                let n = body.index(ct, "a vertex list count")?;
+                for _ in 0..n {
+                    body.skip(p.ty, "a vertex list value")?;
+                }
+            } else {
+                vals[k] = body.value(p.ty, "a vertex")?;
+            }
+        }
+        let (px, py, pz) = (vals[x] as f32, vals[y] as f32, vals[z] as f32);
+        if !(px.is_finite() && py.is_finite() && pz.is_finite()) {
+            return Err(ParseError::new(
+                body.line,
+                format!(
+                    "vertex {} is not finite ({px} {py} {pz})",
+                    data.coords.len() / 3
+                ),
+            ));
+        }
+        data.coords.extend([px, py, pz]);
+        // Colours and normals are numbers too: an infinite one would reach the renderer and
+        // every writer (texture coordinates that are not finite are skipped later, with a warning).
+        let mut used = color.iter().flatten().chain(normal.iter().flatten());
+        if let Some(&k) = used.find(|&&k| !(vals[k] as f32).is_finite()) {
+            return Err(ParseError::new(
+                body.line,
+                format!(
+                    "vertex {}'s {} is not a finite number ({})",
+                    data.coords.len() / 3 - 1,
+                    el.props[k].name,
+                    vals[k] as f32
+                ),
+            ));
+        }
+        if let Some(c) = color {
+            let scale = if el.props[c[0]].ty == Ty::U8 {
+                1.0 / 255.0
+            } else {
+                1.0
+            };
+            data.rgb.extend(c.map(|i| vals[i] as f32 * scale));
+        }
+        if let Some(n) = normal {
+            data.nxyz.extend(n.map(|i| vals[i] as f32));
+        }
+        if let Some(t) = texture {
+            data.uv.extend(t.map(|i| vals[i] as f32));
+        }
+    }
+    Ok(())
+}
+
+/// Reads the face element: each face's corners, and its `texcoord` list when it has one
+/// (dropped, with a warning, at the first face whose list does not match its corners).
+fn read_faces(
+    el: &Element,
+    body: &mut Body<'_>,
+    file_len: usize,
+    data: &mut Gathered,
+    warnings: &mut Vec<String>,
+) -> PResult<()> {
+    data.face_line = el.line;
+    let list = el.props.iter().position(|p| {
+        p.list.is_some() && matches!(p.name.as_str(), "vertex_indices" | "vertex_index")
+    });
+    let Some(list) = list else {
+        return Err(ParseError::new(
+            el.line,
+            "the face element has no vertex_indices list",
+        ));
+    };
+    let texture = el
+        .props
+        .iter()
+        .position(|p| p.list.is_some() && p.name == "texcoord");
+    if texture.is_some() {
+        data.corner_uv = Some(Vec::new());
+    }
+    if el.count > file_len {
+        return Err(body.eof("all the faces the header announces"));
+    }
+    let Gathered {
+        corners,
+        ends,
+        corner_uv,
+        ..
+    } = data;
+    corners.reserve(el.count * 3);
+    ends.reserve(el.count);
+    for f in 0..el.count {
+        let first = corners.len();
+        let mut values = 0;
+        for (k, p) in el.props.iter().enumerate() {
+            match p.list {
+                Some(ct) => {
+                    let n = body.index(ct, "a face's corner count")?;
+                    for _ in 0..n {
+                        if k == list {
+                            corners.push(body.index(p.ty, "a face's vertex index")?);
+                        } else if Some(k) == texture {
+                            let v = body.value(p.ty, "a face's texture coordinate")?;
+                            if let Some(c) = corner_uv {
+                                c.push(v as f32);
+                            }
+                            values += 1;
+                        } else {
+                            body.skip(p.ty, "a face list value")?;
+                        }
+                    }
+                }
+                None => body.skip(p.ty, "a face property")?,
+            }
+        }
+        if corner_uv.is_some() && values != 2 * (corners.len() - first) {
+            warnings.push(format!(
+                "face {f} has {values} 'texcoord' values for {} corners \
+                 (expected u v per corner); texture coordinates skipped",
+                corners.len() - first
+            ));
+            *corner_uv = None;
+        }
+        ends.push(corners.len() as u32);
+    }
+    Ok(())
+}
+
+/// Skips an element the reader does not use, value by value.
+fn skip_element(el: &Element, body: &mut Body<'_>) -> PResult<()> {
+    for _ in 0..el.count {
+        for p in &el.props {
+            if let Some(ct) = p.list {
+                let n = body.index(ct, "a list count")?;
+                for _ in 0..n {
+                    body.skip(p.ty, "a list value")?;
+                }
+            } else {
+                body.skip(p.ty, "a value")?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Equal per-corner (u, v) pairs given one index, so that corners of a point that agree on
+/// their coordinates stay one vertex: the distinct pairs go to `pairs`, the indices back.
+fn shared_corner_pairs(per_corner: &[f32], pairs: &mut Vec<f32>) -> Vec<u32> {
+    let mut seen: HashMap<[u32; 2], u32> = HashMap::new();
+    let mut index = Vec::with_capacity(per_corner.len() / 2);
+    for p in per_corner.chunks_exact(2) {
+        let next = seen.len() as u32;
+        let i = *seen.entry([p[0].to_bits(), p[1].to_bits()]).or_insert(next);
+        if i == next {
+            pairs.extend(p);
+        }
+        index.push(i);
+    }
+    index
+}
+
+/// The model built from what the elements held; a file without faces is a point cloud and
+/// gives an empty scene, with a warning.
+fn finish(
+    data: Gathered,
+    texture: Option<String>,
+    mut warnings: Vec<String>,
+) -> PResult<(Scene, Vec<String>)> {
+    let Gathered {
+        coords,
+        rgb,
+        nxyz,
+        uv,
+        corner_uv,
+        corners,
+        ends,
+        face_line,
+    } = data;
     if ends.is_empty() {
         warnings.push("the PLY file has no faces (a point cloud); nothing to decimate".into());
         return Ok((Scene::default(), warnings));
@@ -530,21 +645,11 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
             index: corners.clone(),
         }
     };
-    // Per-corner pairs win over per-vertex ones; equal pairs share an index, so corners of a
-    // point that agree on their coordinates stay one vertex.
+    // Per-corner pairs win over per-vertex ones.
     let mut pairs: Vec<f32> = Vec::new();
     let texcoords = match corner_uv {
         Some(c) if !c.is_empty() => {
-            let mut seen: HashMap<[u32; 2], u32> = HashMap::new();
-            let mut index = Vec::with_capacity(c.len() / 2);
-            for p in c.chunks_exact(2) {
-                let next = seen.len() as u32;
-                let i = *seen.entry([p[0].to_bits(), p[1].to_bits()]).or_insert(next);
-                if i == next {
-                    pairs.extend(p);
-                }
-                index.push(i);
-            }
+            let index = shared_corner_pairs(&c, &mut pairs);
             Some(TexCoords {
                 values: &pairs,
                 index,

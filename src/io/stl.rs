@@ -14,9 +14,9 @@ use std::path::Path;
 
 use glam::{Mat4, Vec3};
 
-use super::build::{build, Bind, ShapeSpec};
-use super::lexer::ParseError;
-use super::obj::shown;
+use super::shape_to_model::{build, Bind, ShapeSpec};
+use super::text::shown;
+use super::text::ParseError;
 use super::WriteError;
 use crate::mesh::{Model, Scene};
 
@@ -214,7 +214,7 @@ impl<'a> Words<'a> {
 
     fn number(&mut self, what: &str) -> Result<f32, ParseError> {
         let w = self.next();
-        super::obj::number(w, self.line, what)
+        super::text::number(w, self.line, what)
     }
 }
 

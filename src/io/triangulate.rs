@@ -21,9 +21,9 @@ pub fn newell_normal(pts: &[Vec3]) -> Vec3 {
     n
 }
 
-/// Scratch buffers reused across polygons to avoid allocating per face.
+/// EarBuffers buffers reused across polygons to avoid allocating per face.
 #[derive(Default)]
-pub struct Scratch {
+pub struct EarBuffers {
     flat: Vec<Vec2>,
     prev: Vec<usize>,
     next: Vec<usize>,
@@ -39,7 +39,7 @@ fn inside(p: Vec2, a: Vec2, b: Vec2, c: Vec2) -> bool {
 
 /// Triangulates polygon `pts` (in order), appending index triples into `pts` to `out`.
 /// Polygons with fewer than three corners give nothing.
-pub fn triangulate(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut Scratch) {
+pub fn triangulate(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut EarBuffers) {
     let n = pts.len();
     if n < 3 {
         return;
@@ -169,7 +169,7 @@ mod tests {
             .map(|&(x, y)| Vec3::new(x, y, 0.0))
             .collect();
         let mut out = Vec::new();
-        triangulate(&pts, &mut out, &mut Scratch::default());
+        triangulate(&pts, &mut out, &mut EarBuffers::default());
         assert_eq!(out.len(), 4);
         for t in &out {
             let (a, b, c) = (pts[t[0] as usize], pts[t[1] as usize], pts[t[2] as usize]);
@@ -191,7 +191,7 @@ mod tests {
         let n = newell_normal(&pts).normalize();
         assert!(n.x < -0.99);
         let mut out = Vec::new();
-        triangulate(&pts, &mut out, &mut Scratch::default());
+        triangulate(&pts, &mut out, &mut EarBuffers::default());
         assert_eq!(out.len(), 4);
         assert!((area(&pts, &out, n) - 3.0).abs() < 1e-6);
         for t in &out {
@@ -204,7 +204,7 @@ mod tests {
     fn degenerate_polygons_terminate() {
         let line: Vec<Vec3> = (0..5).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect();
         let mut out = Vec::new();
-        triangulate(&line, &mut out, &mut Scratch::default());
+        triangulate(&line, &mut out, &mut EarBuffers::default());
         assert_eq!(out.len(), 3);
         // A bow-tie (self-intersecting).
         let bow = [
@@ -215,7 +215,7 @@ mod tests {
             Vec3::new(0.5, 2., 0.),
         ];
         out.clear();
-        triangulate(&bow, &mut out, &mut Scratch::default());
+        triangulate(&bow, &mut out, &mut EarBuffers::default());
         assert_eq!(out.len(), 3);
     }
 }

@@ -5,6 +5,8 @@
 pub mod build;
 pub mod classify;
 pub mod measure;
+pub mod progressive;
+pub mod rgba_image;
 pub mod scene;
 pub mod seams;
 pub mod shapes;

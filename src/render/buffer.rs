@@ -170,7 +170,7 @@ impl<'a> Uploader<'a> {
         &mut self,
         name: &str,
         format: vk::Format,
-        levels: &[super::offscreen::RgbaImage],
+        levels: &[crate::mesh::rgba_image::RgbaImage],
     ) -> Result<super::image::Image> {
         use super::image::{transition, Image, COPIED_TO_SAMPLED, TO_COPY_DESTINATION};
         let Some(base) = levels.first() else {

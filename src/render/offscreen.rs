@@ -14,17 +14,10 @@ use super::draw::{self, ViewportDraw, BACKGROUND};
 use super::error::{RenderError, Result};
 use super::image::{self, Image, Transition, DEPTH_FORMAT};
 use super::pipeline::Pipelines;
+pub use crate::mesh::rgba_image::RgbaImage;
 
 /// Colour format of offscreen images (8-bit RGBA, written to PNG as is).
 pub const OFFSCREEN_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
-
-/// A rendered picture: `width * height` RGBA8 pixels, rows top to bottom.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct RgbaImage {
-    pub width: u32,
-    pub height: u32,
-    pub pixels: Vec<u8>,
-}
 
 /// An offscreen colour and depth target with its readback buffer.
 pub struct OffscreenTarget {

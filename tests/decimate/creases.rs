@@ -5,7 +5,7 @@
 //! every crease vertex was kept: a 5000-segment cone lost no vertex, and with the feature
 //! angle relaxed lost its apex and nine tenths of its volume.)
 
-use decimate::decimate::{decimate_scene, Algorithm, Params, Report, Target};
+use decimate::decimate::{simplify_scene, Algorithm, Params, Report, Target};
 use decimate::mesh::{measure, Model, Scene};
 use glam::Vec3;
 
@@ -81,7 +81,7 @@ fn decimate(model: &Model, target: Target) -> (Model, Report) {
         algorithm: Algorithm::Schroeder,
         ..Params::default()
     };
-    let report = decimate_scene(&mut scene, &params, &mut |_| {});
+    let report = simplify_scene(&mut scene, &params, &mut |_| {});
     (scene.models.pop().unwrap_or_default(), report)
 }
 

@@ -3,7 +3,7 @@
 //! manifold, Euler characteristic and boundary loops unchanged), flat shapes kept exactly,
 //! an error bound respected, and a lower mean error than Schroeder's at the same size.
 
-use decimate::decimate::{decimate_scene, Algorithm, ErrorBound, Params, Report, Target};
+use decimate::decimate::{simplify_scene, Algorithm, ErrorBound, Params, Report, Target};
 use decimate::mesh::{measure, shapes, Attribute, Model, Scene};
 use decimate::metro::{compare, Options, Surface};
 
@@ -11,7 +11,7 @@ fn run(model: Model, params: Params) -> (Model, Report) {
     let mut scene = Scene {
         models: vec![model],
     };
-    let report = decimate_scene(&mut scene, &params, &mut |_| {});
+    let report = simplify_scene(&mut scene, &params, &mut |_| {});
     let name = &report.models[0].name;
     let model = scene
         .models

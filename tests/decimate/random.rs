@@ -6,7 +6,7 @@
 //! one triangle may become a two-triangle edge of one direction: one defect traded for
 //! another); spheres cut into random texture charts stay closed and manifold once welded.
 
-use decimate::decimate::{decimate_scene, Algorithm, Params, Target};
+use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
 use decimate::mesh::{measure, shapes, Model, Scene};
 use glam::Vec3;
 
@@ -25,7 +25,7 @@ fn run(model: Model, target: Target, feature_angle_deg: f64, algorithm: Algorith
         algorithm,
         ..Params::default()
     };
-    decimate_scene(&mut scene, &params, &mut |_| {});
+    simplify_scene(&mut scene, &params, &mut |_| {});
     scene.models.pop().unwrap_or_default()
 }
 

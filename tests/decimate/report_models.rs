@@ -3,7 +3,7 @@
 //! user notices — no degenerate or flipped triangle, manifold in → manifold out, Euler
 //! characteristic and boundary loops unchanged, area/volume kept on flat-faced shapes.
 
-use decimate::decimate::{decimate_scene, Params, Report, Target};
+use decimate::decimate::{simplify_scene, Params, Report, Target};
 use decimate::mesh::{measure, shapes, Model, Scene};
 
 fn decimate(model: Model, target: Target) -> (Model, Report) {
@@ -14,7 +14,7 @@ fn decimate(model: Model, target: Target) -> (Model, Report) {
         target,
         ..Params::default()
     };
-    let report = decimate_scene(&mut scene, &params, &mut |_| {});
+    let report = simplify_scene(&mut scene, &params, &mut |_| {});
     let model = scene.models.pop().expect("model kept");
     (model, report)
 }
@@ -180,7 +180,7 @@ fn count_targets_relax_the_feature_angle_but_full_decimation_does_not() {
         keep_features: true,
         ..Params::default()
     };
-    let report = decimate_scene(&mut scene, &params, &mut |_| {});
+    let report = simplify_scene(&mut scene, &params, &mut |_| {});
     assert_eq!(scene.models[0].positions.len(), floor);
     assert!(report.fully_decimated());
     // A cube's corners survive "as far as possible" whatever the relaxation does elsewhere.

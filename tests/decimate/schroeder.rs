@@ -5,7 +5,7 @@
 //! a user would notice if that went wrong: a broken mesh (non-manifold, flipped or
 //! degenerate triangles), a count off the target, a different result on another machine.
 
-use decimate::decimate::{decimate_scene, Params, Target};
+use decimate::decimate::{simplify_scene, Params, Target};
 use decimate::mesh::{measure, shapes, Model, Scene};
 use glam::Vec3;
 
@@ -13,7 +13,7 @@ fn run(model: Model, params: &Params) -> Model {
     let mut scene = Scene {
         models: vec![model],
     };
-    decimate_scene(&mut scene, params, &mut |_| {});
+    simplify_scene(&mut scene, params, &mut |_| {});
     scene.models.pop().unwrap_or_default()
 }
 
@@ -68,7 +68,7 @@ fn an_error_bound_stops_the_passes_without_a_count() {
     let mut scene = Scene {
         models: vec![before.clone()],
     };
-    let report = decimate_scene(&mut scene, &params, &mut |_| {});
+    let report = simplify_scene(&mut scene, &params, &mut |_| {});
     let after = &scene.models[0];
     let removed = before.positions.len() - after.positions.len();
     assert!(

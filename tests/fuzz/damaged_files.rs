@@ -16,7 +16,7 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use decimate::decimate::{
-    decimate_scene, decimate_scene_progressive, Algorithm, ErrorBound, Params, Target,
+    simplify_scene, simplify_scene_progressive, Algorithm, ErrorBound, Params, Target,
 };
 use decimate::io::{self, parse_bytes};
 use decimate::mesh::{Attribute, Scene};
@@ -206,7 +206,7 @@ fn exercise(scene: &Scene) {
                 algorithm,
                 ..Params::default()
             };
-            let report = decimate_scene(&mut copy, &params, &mut |_| {});
+            let report = simplify_scene(&mut copy, &params, &mut |_| {});
             assert_eq!(report.models.len(), copy.models.len() + dropped(&report));
             write_everything(&copy);
         }
@@ -216,11 +216,11 @@ fn exercise(scene: &Scene) {
         algorithm: Algorithm::Qem,
         ..Params::default()
     };
-    let (_, pm) = decimate_scene_progressive(&mut copy, &params, &mut |_| {});
+    let (_, pm) = simplify_scene_progressive(&mut copy, &params, &mut |_| {});
     let mut bytes = Vec::new();
-    io::progressive::write_progressive_to(&mut bytes, &pm).expect("writes to memory");
+    io::progressive_file::write_progressive_to(&mut bytes, &pm).expect("writes to memory");
     // What was written reads back.
-    if let Err(e) = io::progressive::parse_progressive(&bytes, Path::new("again.pm")) {
+    if let Err(e) = io::progressive_file::parse_progressive(&bytes, Path::new("again.pm")) {
         panic!("a written progressive mesh does not read back: {e}");
     }
 }

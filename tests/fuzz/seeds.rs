@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use decimate::decimate::{decimate_scene_progressive, Params};
+use decimate::decimate::{simplify_scene_progressive, Params};
 use decimate::io;
 use decimate::mesh::{shapes, Attribute, Scene};
 
@@ -36,9 +36,9 @@ pub fn seeds() -> Vec<(&'static str, Vec<u8>)> {
     let mut pm_scene = Scene {
         models: vec![shapes::bumpy_sphere(4, 6)],
     };
-    let (_, pm) = decimate_scene_progressive(&mut pm_scene, &Params::default(), &mut |_| {});
+    let (_, pm) = simplify_scene_progressive(&mut pm_scene, &Params::default(), &mut |_| {});
     let mut pm_bytes = Vec::new();
-    io::progressive::write_progressive_to(&mut pm_bytes, &pm).expect("writes to memory");
+    io::progressive_file::write_progressive_to(&mut pm_bytes, &pm).expect("writes to memory");
     vec![
         ("seed.wrl", written(io::write_vrml2_to)),
         ("seed.ply", written(io::ply::write_ply_to)),

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use decimate::app::shot::draw_options;
+use decimate::io::texture_image;
 use decimate::mesh::{Model, Scene};
 use decimate::render::camera::{Bounds, Camera};
 use decimate::render::commands::Commands;
@@ -122,8 +123,12 @@ fn render(scene: &Scene, dir: &Path, anisotropic: bool) -> RgbaImage {
     let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT).unwrap_or_else(|e| fail(&e));
     let target = OffscreenTarget::new(&context, WIDTH, HEIGHT).unwrap_or_else(|e| fail(&e));
     let draw = draw_options(&modes("triangles,unlit"));
-    let mut textures =
-        Textures::new(&context, pipelines.texture_layout, dir).unwrap_or_else(|e| fail(&e));
+    let mut textures = Textures::new(
+        &context,
+        pipelines.texture_layout,
+        texture_image::reader(dir),
+    )
+    .unwrap_or_else(|e| fail(&e));
     let gpu = GpuScene::upload(&context, &commands, &mut textures, scene, draw.layers())
         .unwrap_or_else(|e| fail(&e));
     let camera = Camera::framing(gpu.bounds);

@@ -16,6 +16,7 @@ use std::time::Instant;
 
 use decimate::app::lod::LodView;
 use decimate::decimate::Params;
+use decimate::io::texture_image;
 use decimate::mesh::Scene;
 use decimate::render::camera::Camera;
 use decimate::render::commands::Commands;
@@ -85,7 +86,11 @@ fn run(
     let commands = Commands::new(&context)?;
     let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
     let target = OffscreenTarget::new(&context, width, height)?;
-    let mut textures = Textures::new(&context, pipelines.texture_layout, &folder)?;
+    let mut textures = Textures::new(
+        &context,
+        pipelines.texture_layout,
+        texture_image::reader(&folder),
+    )?;
     // What a viewport drawing filled triangles uploads, then everything (the table's modes).
     let started = Instant::now();
     drop(GpuScene::upload(

@@ -2,65 +2,20 @@
 //! lent out as one whole [`Part`] or as disjoint parts (one range of vertices and of
 //! triangle slots each, for collapsing on several cores), and writing the result back.
 //! The operations live on `Part`: planning and collapsing in `part`, the checks in
-//! `legality`, the cost cache in `ranking`; the loop is in `passes`.
+//! `legality`, the cost cache in `ranking`; the loop is in `collapse_passes`.
 
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 
-use super::part::{Part, Scratch};
+use super::collapse_plan::Kind;
+use super::edge_costs::EdgeCosts;
+use super::part::{CollapseLists, Part};
 use super::planes::{self, Constraints};
 use super::quadric::Quadric;
-use super::ranking::EdgeCosts;
-use super::texture::{texture_quadrics, TextureQuadrics};
+use super::texture_quadrics::{texture_quadrics, TextureQuadrics};
 use crate::decimate::layout::{compact, Compacted};
-use crate::decimate::progressive::Recorder;
+use crate::mesh::progressive::Recorder;
 use crate::mesh::topology::{split_mut, Connectivity};
 use crate::mesh::{Attribute, Model};
-
-/// What a vertex's one-ring says about where it may go.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Kind {
-    Interior,
-    Boundary,
-    /// Pinned (a texture seam's junction of three or more sides, a border shared with
-    /// another model): never moves and never goes, but takes in a neighbour where it
-    /// stands — an interior one, or one along a boundary edge (on a seam, with the other
-    /// side's, into its copy there).
-    Anchored,
-    /// Non-manifold, inconsistently oriented, too high a valence, or unused: never moved.
-    Fixed,
-}
-
-/// A planned collapse: `remove` goes, `keep` moves to `position`.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Plan {
-    pub remove: u32,
-    pub keep: u32,
-    pub position: DVec3,
-    /// Squared geometric error of the placement.
-    pub error2: f64,
-    /// Cost that orders the collapses: the quadric plus the colour term.
-    pub cost: f64,
-    /// On a texture seam, the other side's edge (its removed end, its kept end): it
-    /// collapses in the same step, to the same position (see `Part::plan`).
-    pub twin: Option<[u32; 2]>,
-    /// The kept vertex's texture coordinates, when the texture's quadric gives them (an
-    /// interior collapse of a textured model); otherwise they are interpolated along the
-    /// edge.
-    pub texcoords: Option<[f32; 2]>,
-}
-
-impl Plan {
-    /// The other side's collapse of a seam plan: its own ends, the same position and cost.
-    pub fn other_side(&self) -> Option<Self> {
-        self.twin.map(|[remove, keep]| Self {
-            remove,
-            keep,
-            twin: None,
-            texcoords: None,
-            ..*self
-        })
-    }
-}
 
 /// The working state of one model's decimation.
 pub(super) struct Collapser {
@@ -84,7 +39,7 @@ pub(super) struct Collapser {
     pub best_cost: Vec<f32>,
     /// Vertices with a blocked edge.
     has_blocked: Vec<bool>,
-    /// What each vertex needs at the end of a pass (`passes`).
+    /// What each vertex needs at the end of a pass (`collapse_passes`).
     flags: Vec<u8>,
     /// Set when the collapses are recorded for a progressive mesh.
     pub recorder: Option<Recorder>,
@@ -210,7 +165,7 @@ impl Collapser {
             recorder: self.recorder.as_mut(),
             twins: &self.twins,
             copies: &self.copies,
-            scratch: Scratch::default(),
+            scratch: CollapseLists::default(),
         }
     }
 
@@ -260,7 +215,7 @@ impl Collapser {
                     recorder: None,
                     twins,
                     copies,
-                    scratch: Scratch::default(),
+                    scratch: CollapseLists::default(),
                 })
             })
             .collect()
@@ -324,15 +279,10 @@ fn split_attribute<'a, T>(
     }
 }
 
-/// The two corners of `tri` other than `v`, in the triangle's cyclic order after `v`.
-pub(super) fn others(tri: [u32; 3], v: u32) -> [u32; 2] {
-    let (_, next, prev) = crate::mesh::topology::corner_of(tri, v);
-    [next, prev]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
 
     /// A 2 × 2 grid of unit squares in z = 0, each cut along its diagonal from its first
     /// corner: point `(x, y)` is vertex `3y + x`; 4 is the only interior one.

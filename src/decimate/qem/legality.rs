@@ -5,7 +5,7 @@
 
 use glam::DVec2;
 
-use super::collapser::Plan;
+use super::collapse_plan::Plan;
 use super::part::Part;
 use crate::mesh::topology::FanTriangle;
 

@@ -10,7 +10,7 @@
 //!    rounded to f32 before it is checked, so every check sees what is written;
 //! 2. connect: vertex → triangle incidence (`mesh::topology`);
 //! 3. kinds and quadrics (`planes`, one pass over the vertices' ordered rings, on all
-//!    cores; `texture` for a textured model's): each vertex's kind (interior, boundary,
+//!    cores; `texture_quadrics` for a textured model's): each vertex's kind (interior, boundary,
 //!    complex) from its ring's shape; every triangle adds its plane weighted by its area;
 //!    every boundary edge adds a plane through the edge perpendicular to its triangle,
 //!    weighted `CONSTRAINT_WEIGHT` × length² (`SEAM_WEIGHT` on a texture seam, whose sides
@@ -20,7 +20,7 @@
 //! 4. rank (`ranking`): every edge's collapse is planned once (which end goes, where the
 //!    other one moves) and its cost cached per half-edge slot; every vertex notes its
 //!    cheapest edge — on all cores;
-//! 5. collapse (`passes`): in passes, each over the cheapest share of the vertices' best
+//! 5. collapse (`collapse_passes`): in passes, each over the cheapest share of the vertices' best
 //!    edges in cost order: re-plan, check it is legal (`legality`: a chain of small named
 //!    checks; an illegal edge is blocked until its neighbourhood changes), perform it, add
 //!    the quadrics, interpolate attributes (`part`); a pass that cannot reach the target
@@ -46,7 +46,7 @@
 //! surviving faces.
 //!
 //! Texture coordinates take the 1998 paper's route, in the form of Hoppe's 1999 quadric
-//! (`quadric::TextureQuadric`, built in `texture`): every triangle's coordinates are an
+//! (`quadric::TextureQuadric`, built in `texture_quadrics`): every triangle's coordinates are an
 //! affine map over its plane, and a vertex is priced by how far the image slides over the
 //! surface from the maps of the triangles it stands for. A moved vertex is placed to keep
 //! the geometric error and the slide (weighted by `TEXTURE_WEIGHT` in `part`) low together;
@@ -64,23 +64,25 @@
 //! stand — an interior one, or one along the outline; on a seam both sides' edges go
 //! together into the junction's copies there. A collapse into a vertex with copies (a
 //! twin, a junction's) must leave the surface manifold once the seams are welded
-//! (`passes::seam_stays_manifold`).
+//! (`collapse_passes::seam_stays_manifold`).
 
+mod collapse_passes;
+mod collapse_plan;
 mod collapser;
+mod edge_costs;
 mod legality;
 mod part;
-mod passes;
 mod planes;
 mod quadric;
 mod ranking;
-mod texture;
+mod texture_quadrics;
 
 use glam::Vec3;
 use rayon::prelude::*;
 
 use super::layout;
-use super::progressive::{ProgressiveModel, Recorder};
-use super::schroeder::{Limits, Outcome};
+use super::{Limits, Outcome};
+use crate::mesh::progressive::{ProgressiveModel, Recorder};
 use crate::mesh::{Attribute, Model};
 use collapser::Collapser;
 
@@ -182,7 +184,7 @@ fn run(
     d.whole().rank_all();
 
     // 5. collapse
-    let mut outcome = passes::collapse_in_passes(&mut d, limits, progress);
+    let mut outcome = collapse_passes::collapse_in_passes(&mut d, limits, progress);
     outcome.pinned = (0..n).filter(|&v| pinned(v)).count();
 
     // 6. compact

@@ -9,10 +9,10 @@
 
 use glam::{DVec2, DVec3, Vec3};
 
-use super::collapser::{others, Kind, Plan};
+use super::collapse_plan::{others, Kind, Plan};
+use super::edge_costs::EdgeCosts;
 use super::quadric::{Quadric, TextureQuadric};
-use super::ranking::EdgeCosts;
-use crate::decimate::progressive::{CollapseRecord, Recorder};
+use crate::mesh::progressive::{CollapseRecord, Recorder};
 use crate::mesh::topology::{ConnectivityPart, FanTriangle};
 
 /// A placement may leave the edge's bounding box by at most this many edge lengths.
@@ -40,7 +40,7 @@ const TEXTURE_WEIGHT: f64 = 0.1;
 
 /// Lists a collapse and its checks fill, kept from one collapse to the next.
 #[derive(Debug, Default)]
-pub(super) struct Scratch {
+pub(super) struct CollapseLists {
     /// The candidate edge's ends and their fans, read once by [`Part::gather`] for every
     /// check and for the collapse.
     ends: [u32; 2],
@@ -58,7 +58,7 @@ pub(super) struct Scratch {
     twin_fans: [Vec<FanTriangle>; 2],
 }
 
-impl Scratch {
+impl CollapseLists {
     /// The fans [`Part::gather`] read, as `plan`'s (removed end's, kept end's).
     pub fn fans(&self, plan: &Plan) -> (&[FanTriangle], &[FanTriangle]) {
         let [a, b] = &self.fans;
@@ -100,7 +100,7 @@ pub(super) struct Part<'a> {
     /// Anchored vertices' next copy at their position (the whole mesh's, read only; see
     /// `Collapser::pin`).
     pub copies: &'a [u32],
-    pub scratch: Scratch,
+    pub scratch: CollapseLists,
 }
 
 impl Part<'_> {
@@ -166,7 +166,7 @@ impl Part<'_> {
         if !(whole || (owns(v) && owns(w))) {
             return false;
         }
-        let Scratch { ends, fans, .. } = &mut self.scratch;
+        let CollapseLists { ends, fans, .. } = &mut self.scratch;
         *ends = [v, w];
         let c = &self.conn;
         for (&x, fan) in ends.iter().zip(fans.iter_mut()) {
@@ -586,7 +586,7 @@ impl Part<'_> {
         }
         // Topology: the edge's triangles go, the removed end's others are renamed in place,
         // so per-face attributes stay with their faces and no slot is ever reused.
-        let Scratch {
+        let CollapseLists {
             ends,
             fans,
             renamed,

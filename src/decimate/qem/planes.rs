@@ -9,7 +9,7 @@
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-use super::collapser::Kind;
+use super::collapse_plan::Kind;
 use super::quadric::Quadric;
 use crate::mesh::topology::{Adjacency, Connectivity, Ring, RingShape};
 

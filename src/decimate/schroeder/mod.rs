@@ -18,13 +18,13 @@
 //!    fill's new edge between seam vertices must not meet an edge between other copies of
 //!    its ends (twins, a junction's copies, `mesh::seams::copies`), so that the welded
 //!    surface stays manifold;
-//! 4. remove (`passes`): in passes over the cheapest share of the candidates, in key order:
+//! 4. remove (`removal_passes`): in passes over the cheapest share of the candidates, in key order:
 //!    remove each, filling its hole by recursive loop splitting (`loop_split`, planned in
 //!    `plan`), keeping creases (an interior-edge vertex's loop is first split along its
 //!    feature edge) and rejecting fills that flip or degenerate a triangle or create an edge
 //!    that already exists (non-manifold) — such a vertex is kept until a neighbour goes; a
 //!    vertex whose ring a removal changed waits for the next pass, re-ranked at the end of
-//!    this one; removals run in regions on all cores (`regions`) while a round of them
+//!    this one; removals run in regions on all cores (`region_removal`) while a round of them
 //!    cannot reach the target, the rest (and those on region borders) planned on all cores
 //!    a batch at a time and made one by one;
 //! 5. compact: live vertices and triangles (and their colours, normals and texture
@@ -34,35 +34,21 @@
 //! loop's splitting more, bounded by the valence cap of `mesh::topology`), a pass O(n) to
 //! select its candidates (a dozen passes take the dragon to 10 %).
 
-mod passes;
+pub mod loop_split;
 mod plan;
-mod regions;
+mod region_removal;
+mod removal_passes;
 
 use glam::Vec3;
 use rayon::prelude::*;
 
 use super::layout::{self, compact, Compacted};
+use super::{Limits, Outcome};
 use crate::mesh::classify::VertexClass;
 use crate::mesh::seams::position_key;
 use crate::mesh::topology::{Adjacency, Connectivity};
 use crate::mesh::{Attribute, Model};
 use plan::{is_ring_end, Planning, SeamSides, Surface};
-
-/// How far one model may be decimated.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Limits {
-    /// Most vertices to remove.
-    pub remove: usize,
-    /// Stop once this many triangles or fewer are left.
-    pub keep_triangles: usize,
-    /// Never make a removal whose error exceeds this (model units).
-    pub max_error: f64,
-    /// Dihedral angle in degrees above which an edge is a feature edge.
-    pub feature_angle_deg: f64,
-    /// When no candidate is left before `remove`/`keep_triangles` is reached, raise the
-    /// feature angle in `RELAX_STEP_DEG` steps (up to 180°) and go on.
-    pub relax_features: bool,
-}
 
 /// How much the feature angle grows each time a count target could not otherwise be met.
 pub const RELAX_STEP_DEG: f64 = 15.0;
@@ -75,21 +61,6 @@ const HELD: u32 = 1 << 31;
 /// changed in that pass, or it was held back.
 fn waits(mark: u32, pass: u32) -> bool {
     mark & !HELD == pass
-}
-
-/// What decimating one model did.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Outcome {
-    pub removed: usize,
-    /// Largest key of a removal made (accumulated distance, model units).
-    pub max_error: f64,
-    /// True when no candidate was left: nothing more can be removed.
-    pub exhausted: bool,
-    /// The feature angle in force at the end (larger than asked when relaxed).
-    pub feature_angle_deg: f64,
-    /// Vertices never removed because they were pinned (texture seams, `mesh::seams`, and
-    /// borders shared with another model, `mesh::stitches`).
-    pub pinned: usize,
 }
 
 /// Decimates `model` in place within `limits`, never removing a vertex flagged in `pins`
@@ -134,7 +105,7 @@ pub fn decimate_model(
         feature_angle_deg: limits.feature_angle_deg,
         pinned: pinned_count,
     };
-    passes::remove_in_passes(&mut d, limits, &mut outcome, progress);
+    removal_passes::remove_in_passes(&mut d, limits, &mut outcome, progress);
     progress(outcome.removed);
 
     // 5. compact
@@ -146,7 +117,7 @@ pub fn decimate_model(
 
 /// `model` as the decimation works on it: renumbered along a Morton curve, triangles
 /// sorted by their smallest vertex (memory locality for everything after, and the order
-/// `regions` cut by). Returns the renumbering, the positions and the triangles.
+/// `region_removal` cut by). Returns the renumbering, the positions and the triangles.
 fn load(model: &Model) -> (layout::Loaded, Vec<Vec3>, Vec<[u32; 3]>) {
     let mut loaded = layout::load(model);
     let positions: Vec<Vec3> = loaded

@@ -1,11 +1,11 @@
 //! Planning one vertex removal, reading the mesh only: classify the vertex, measure its
 //! decimation criterion, fill its hole by loop splitting and check the fill. Nothing here
-//! writes the mesh, so many removals are planned at once on all cores (`passes`), each
+//! writes the mesh, so many removals are planned at once on all cores (`removal_passes`), each
 //! into its own [`Planning`].
 
 use glam::{DVec2, DVec3, Vec3};
 
-use crate::decimate::loop_split;
+use super::loop_split;
 use crate::mesh::classify::{classify, RingGeometry, VertexClass};
 use crate::mesh::topology::{Adjacency, Ring};
 
@@ -27,7 +27,7 @@ pub(super) struct Planning {
     /// ring, one per side of a crease.
     regions: Vec<FillRegion>,
     loop_buf: Vec<u32>,
-    triangulation: loop_split::Scratch,
+    triangulation: loop_split::SplitBuffers,
 }
 
 /// The fill triangles from the previous region's `end` up to this `end` replace the ring
@@ -40,7 +40,7 @@ struct FillRegion {
 }
 
 /// The mesh as planning reads it: the whole, or a region's part (which must own the
-/// vertex planned, its ring and their triangles: see `regions`).
+/// vertex planned, its ring and their triangles: see `region_removal`).
 pub(super) struct Surface<'a, C> {
     pub conn: &'a C,
     pub positions: &'a [Vec3],

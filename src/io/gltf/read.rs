@@ -10,7 +10,7 @@
 //! flag. Points and lines, skins and morph targets cannot be held by a `Scene`: one warning
 //! names what was left out (skinned and morphed meshes are read in their rest pose).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
 use glam::Mat4;
@@ -18,12 +18,12 @@ use gltf::mesh::Mode;
 use gltf::Semantic;
 
 use super::accessor::{read_floats, read_floats_prefix, read_indices, Buffers};
-use crate::io::{data_uri, texture_path, Budget, ReadError, ReadOutcome};
+use crate::io::{data_uri, texture_path, ReadError, ReadOutcome, MAX_MODELS, MAX_TRIANGLES};
 use crate::mesh::{Attribute, Model, Scene};
 
 /// Most node visits one file may take (a node listed as the child of several parents is
 /// visited once per path; a file could otherwise multiply its nodes exponentially).
-const MAX_NODE_VISITS: usize = crate::io::MAX_MODELS;
+const MAX_NODE_VISITS: usize = MAX_MODELS;
 
 /// Reads a glTF 2.0 file (JSON or binary) held in `bytes`; `path` names it in messages and
 /// is the folder external buffers and images are read from.
@@ -48,7 +48,8 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         primitives: HashMap::new(),
         models: Vec::new(),
         warnings: Vec::new(),
-        budget: Budget::default(),
+        warned: HashSet::new(),
+        triangles: 0,
         visits: 0,
         node_count: gltf.document.nodes().count(),
     };
@@ -180,15 +181,19 @@ struct Reader<'b> {
     primitives: HashMap<(usize, usize), Option<Model>>,
     models: Vec<Model>,
     warnings: Vec<String>,
-    budget: Budget,
+    /// The kinds of warning given (one each), and the triangles placed so far.
+    warned: HashSet<&'static str>,
+    triangles: usize,
     /// Nodes visited so far, and the file's node count (a sound hierarchy's deepest path).
     visits: usize,
     node_count: usize,
 }
 
 impl Reader<'_> {
-    fn warn_once(&mut self, key: &str, message: String) {
-        self.budget.warn_once(&mut self.warnings, key, message);
+    fn warn_once(&mut self, key: &'static str, message: String) {
+        if self.warned.insert(key) {
+            self.warnings.push(message);
+        }
     }
 
     fn node(&mut self, node: &gltf::Node<'_>, parent: Mat4, depth: usize) -> Result<(), String> {
@@ -244,9 +249,12 @@ impl Reader<'_> {
             let Some(Some(local)) = self.primitives.get(&key) else {
                 continue;
             };
-            self.budget
-                .spend(local.triangles.len(), 1)
-                .map_err(|e| e.message)?;
+            self.triangles += local.triangles.len();
+            if self.models.len() >= MAX_MODELS || self.triangles > MAX_TRIANGLES {
+                return Err(format!(
+                    "the scene expands to more than {MAX_MODELS} models or {MAX_TRIANGLES} triangles (meshes used by many nodes?)"
+                ));
+            }
             let base = node_name
                 .or(mesh.name())
                 .filter(|n| !n.trim().is_empty())

@@ -8,11 +8,11 @@
 //! orientation). Ring triangle `i` is `(v, verts[i], verts[i + 1])` (indices modulo the length
 //! for closed rings).
 
-mod part;
+mod connectivity_part;
 
 use rayon::prelude::*;
 
-pub use part::{split_mut, ConnectivityPart, FanTriangle};
+pub use connectivity_part::{split_mut, ConnectivityPart, FanTriangle};
 
 /// The corner of `tri` at `v` (the first one, in a degenerate triangle), and the corners
 /// after and before it: without branches, as a fan walk meets `v` at a random corner in

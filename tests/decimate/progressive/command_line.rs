@@ -1,7 +1,7 @@
 //! `--progressive` on the command line: the usage errors that write nothing, an unwritable
 //! file, and a `.pm` file as input rebuilding the level a count asks for.
 
-use decimate::io::progressive::read_progressive;
+use decimate::io::progressive_file::read_progressive;
 use decimate::io::read_scene;
 use decimate::mesh::{measure, shapes, Model};
 

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use decimate::io::progressive::{read_progressive, MAGIC};
+use decimate::io::progressive_file::{read_progressive, MAGIC};
 use decimate::mesh::shapes;
 
 use super::{decimate, refused, stderr, write_input};

@@ -7,9 +7,9 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use decimate::decimate::progressive::{Lod, ProgressiveScene};
-use decimate::io::progressive::{parse_progressive, read_progressive};
+use decimate::io::progressive_file::{parse_progressive, read_progressive};
 use decimate::io::{read_scene, write_scene, ReadError};
+use decimate::mesh::progressive::{Lod, ProgressiveScene};
 use decimate::mesh::{build::build_scene, measure, shapes, Attribute, Model, Scene};
 
 mod command_line;
@@ -224,8 +224,8 @@ fn refused(dir: &Path, name: &str, bytes: &[u8]) -> String {
 #[test]
 #[ignore]
 fn timing_of_a_million_triangle_sphere() {
-    use decimate::decimate::{decimate_scene_progressive, Algorithm, Params, Target};
-    use decimate::io::progressive::write_progressive;
+    use decimate::decimate::{simplify_scene_progressive, Algorithm, Params, Target};
+    use decimate::io::progressive_file::write_progressive;
     use std::time::Instant;
 
     let mut scene = Scene {
@@ -238,7 +238,7 @@ fn timing_of_a_million_triangle_sphere() {
         ..Params::default()
     };
     let start = Instant::now();
-    let (_, pm) = decimate_scene_progressive(&mut scene, &params, &mut |_| {});
+    let (_, pm) = simplify_scene_progressive(&mut scene, &params, &mut |_| {});
     let decimated = start.elapsed();
     let dir = tempfile::tempdir().unwrap_or_else(|e| panic!("temporary directory: {e}"));
     let path = dir.path().join("sphere.pm");

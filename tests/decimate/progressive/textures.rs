@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use decimate::decimate::progressive::VertexSplit;
+use decimate::mesh::progressive::VertexSplit;
 use decimate::mesh::Model;
 
 use super::{assert_round_trip, decimate, refused, run_progressive_as, stderr};

@@ -8,7 +8,7 @@
 //! at the pass's end, on all cores.
 //!
 //! A pass runs in rounds of its cheapest candidates on all cores, in regions
-//! (`schroeder::regions`: each plans and makes the removals whose whole neighbourhood it
+//! (`schroeder::region_removal`: each plans and makes the removals whose whole neighbourhood it
 //! owns), while a round cannot reach the target. The rest, and each round's candidates on
 //! region borders, run on the whole mesh: planned a batch at a time on all cores (planning
 //! only reads the mesh) and made one by one, in order. A plan is made again when a removal
@@ -19,10 +19,11 @@
 use rayon::prelude::*;
 
 use super::plan::Planning;
-use super::{Decimator, Limits, Outcome, Removal, RELAX_STEP_DEG};
+use super::{Decimator, Removal, RELAX_STEP_DEG};
 use crate::decimate::candidates::{cheapest, Candidate};
 use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
+use crate::decimate::{Limits, Outcome};
 
 /// One pass takes the cheapest `1 / PASS_SHARE` of the candidates. Metro's mean error
 /// (300k samples) at 50 % / 90 % removed, against the greedy queue this replaced: dragon
@@ -172,7 +173,7 @@ fn reached(d: &Decimator, limits: &Limits, outcome: &Outcome) -> bool {
 }
 
 /// Removes the pass's `candidates` (in key order); true when a count limit stopped it.
-/// Rounds of the cheapest candidates run in `regions` while a round cannot reach a limit
+/// Rounds of the cheapest candidates run in `region_removal` while a round cannot reach a limit
 /// (see [`allowed`]), each round's border candidates on the whole mesh after it; the rest
 /// runs on the whole mesh. A seam's two sides go together on the whole mesh only: regions
 /// leave them to it, as they leave border candidates.

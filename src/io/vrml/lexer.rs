@@ -6,6 +6,8 @@
 //! Every token carries the 1-based line it starts on. Tokens are spans into the source; numbers
 //! are parsed from their bytes without allocating.
 
+pub use crate::io::text::{parse_f32, parse_int, PResult, ParseError};
+
 /// What a token is; its text is the source span `start..end`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Tok {
@@ -30,24 +32,6 @@ pub struct Token {
     pub end: usize,
     pub line: usize,
 }
-
-/// A lexical or syntax error at a line (the file name is added by the caller).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ParseError {
-    pub line: usize,
-    pub message: String,
-}
-
-impl ParseError {
-    pub fn new(line: usize, message: impl Into<String>) -> Self {
-        Self {
-            line,
-            message: message.into(),
-        }
-    }
-}
-
-pub type PResult<T> = Result<T, ParseError>;
 
 /// A lexer over the whole file, with one token of look-ahead.
 pub struct Lexer<'a> {
@@ -228,44 +212,6 @@ impl<'a> Lexer<'a> {
         self.pos = p;
         Ok(tok(Tok::Word, p))
     }
-}
-
-/// Parses a float token's bytes; `None` when malformed.
-pub fn parse_f32(bytes: &[u8]) -> Option<f32> {
-    // std parses f32 correctly rounded; the span is ASCII, so the UTF-8 check is cheap.
-    let s = std::str::from_utf8(bytes).ok()?;
-    if bytes.len() > 2 && bytes[0] == b'0' && matches!(bytes[1], b'x' | b'X') {
-        return parse_int(bytes).map(|v| v as f32);
-    }
-    s.parse::<f32>().ok()
-}
-
-/// Parses an integer token's bytes (decimal with sign, or `0x` hexadecimal); `None` when
-/// malformed or beyond 64 bits.
-pub fn parse_int(bytes: &[u8]) -> Option<i64> {
-    let (neg, digits) = match bytes.first()? {
-        b'-' => (true, &bytes[1..]),
-        b'+' => (false, &bytes[1..]),
-        _ => (false, bytes),
-    };
-    if digits.is_empty() {
-        return None;
-    }
-    let mut v: i64 = 0;
-    if digits.len() > 2 && digits[0] == b'0' && matches!(digits[1], b'x' | b'X') {
-        for &d in &digits[2..] {
-            let x = (d as char).to_digit(16)? as i64;
-            v = v.checked_mul(16)?.checked_add(x)?;
-        }
-    } else {
-        for &d in digits {
-            if !d.is_ascii_digit() {
-                return None;
-            }
-            v = v.checked_mul(10)?.checked_add((d - b'0') as i64)?;
-        }
-    }
-    Some(if neg { -v } else { v })
 }
 
 #[cfg(test)]

@@ -15,7 +15,7 @@ const MIN_ASPECT: f64 = 1e-7;
 
 /// Buffers a triangulation works in, kept from one to the next: no allocation per hole.
 #[derive(Debug, Clone, Default)]
-pub struct Scratch {
+pub struct SplitBuffers {
     /// The sub-loops, each a range of `buf`.
     buf: Vec<u32>,
     pending: Vec<(usize, usize)>,
@@ -31,10 +31,10 @@ pub fn triangulate(
     loop_verts: &[u32],
     normal: DVec3,
     out: &mut Vec<[u32; 3]>,
-    scratch: &mut Scratch,
+    scratch: &mut SplitBuffers,
 ) -> bool {
     // Sub-loops pending a split, as ranges of one buffer: no allocation per sub-loop.
-    let Scratch {
+    let SplitBuffers {
         buf,
         pending,
         points,
@@ -136,7 +136,7 @@ mod tests {
     /// The triangles filling loop `lp` over the xy plane, `None` when it cannot be split.
     fn fill(p: &[Vec3], lp: &[u32]) -> Option<Vec<[u32; 3]>> {
         let mut out = Vec::new();
-        triangulate(p, lp, DVec3::Z, &mut out, &mut Scratch::default()).then_some(out)
+        triangulate(p, lp, DVec3::Z, &mut out, &mut SplitBuffers::default()).then_some(out)
     }
 
     fn area_z(p: &[Vec3], tris: &[[u32; 3]]) -> f64 {

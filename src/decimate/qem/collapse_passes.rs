@@ -25,13 +25,14 @@
 
 use rayon::prelude::*;
 
-use super::collapser::{Collapser, Kind, Plan};
+use super::collapse_plan::{Kind, Plan};
+use super::collapser::Collapser;
 use super::part::Part;
 use super::ranking::stored;
 use crate::decimate::candidates::{cheapest, Candidate};
 use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
-use crate::decimate::schroeder::{Limits, Outcome};
+use crate::decimate::{Limits, Outcome};
 
 /// One pass takes the cheapest `1 / PASS_SHARE` of the candidate vertices. On the dragon
 /// kept at 10 % (metro mean / max, time of the whole decimation on 2 cores): the greedy

@@ -9,13 +9,12 @@ use std::rc::Rc;
 
 use glam::{Mat4, Vec3};
 
-use super::build::{
-    build, explicit, resolve, split_polygons, texcoords_per_vertex, Bind, Binding, Geo, ShapeSpec,
-};
+use super::bindings::{explicit, resolve, split_polygons, texcoords_per_vertex, Binding, Geo};
 use super::lexer::PResult;
 use super::parse::Node;
 use super::vrml1::{box_corners, compose, rotation, vec3};
 use super::Ctx;
+use crate::io::shape_to_model::{build, Bind, ShapeSpec};
 use crate::mesh::Model;
 
 /// Walks the top-level nodes into models.

@@ -69,7 +69,7 @@ use std::path::Path;
 use glam::{Mat4, Vec3};
 
 use super::{write_atomically, ReadError, WriteError};
-use crate::decimate::progressive::{ProgressiveModel, ProgressiveScene, VertexSplit};
+use crate::mesh::progressive::{ProgressiveModel, ProgressiveScene, VertexSplit};
 use crate::mesh::{Attribute, Model};
 
 /// The first eight bytes of every progressive-mesh file.
@@ -712,7 +712,7 @@ fn split(c: &mut Cursor<'_>, a: Attributes, new: usize, faces: usize) -> Parse<V
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::decimate::{decimate_scene_progressive, Algorithm, Params, Target};
+    use crate::decimate::{simplify_scene_progressive, Algorithm, Params, Target};
     use crate::mesh::{shapes, Scene};
 
     fn progressive(models: Vec<Model>) -> ProgressiveScene {
@@ -722,7 +722,7 @@ mod tests {
             algorithm: Algorithm::Qem,
             ..Params::default()
         };
-        decimate_scene_progressive(&mut scene, &params, &mut |_| {}).1
+        simplify_scene_progressive(&mut scene, &params, &mut |_| {}).1
     }
 
     fn bytes(pm: &ProgressiveScene) -> Vec<u8> {

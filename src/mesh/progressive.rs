@@ -574,7 +574,7 @@ impl Recorder {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::decimate::{decimate_scene_progressive, Algorithm, Params, Target};
+    use crate::decimate::{simplify_scene_progressive, Algorithm, Params, Target};
     use crate::mesh::{measure, shapes, Scene};
 
     fn progressive(model: Model, percent: f64) -> (Model, ProgressiveModel) {
@@ -586,7 +586,7 @@ mod tests {
             algorithm: Algorithm::Qem,
             ..Params::default()
         };
-        let (_, pm) = decimate_scene_progressive(&mut scene, &params, &mut |_| {});
+        let (_, pm) = simplify_scene_progressive(&mut scene, &params, &mut |_| {});
         (
             scene.models.remove(0),
             pm.models

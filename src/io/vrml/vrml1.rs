@@ -13,13 +13,13 @@ use std::rc::Rc;
 
 use glam::{Mat4, Quat, Vec3};
 
-use super::build::{
-    build, explicit, resolve, split_polygons, strips_to_triangles, texcoords_per_vertex, Bind,
-    Binding, Geo, ShapeSpec,
+use super::bindings::{
+    explicit, resolve, split_polygons, strips_to_triangles, texcoords_per_vertex, Binding, Geo,
 };
 use super::lexer::{PResult, ParseError};
 use super::parse::Node;
 use super::Ctx;
+use crate::io::shape_to_model::{build, Bind, ShapeSpec};
 use crate::mesh::Model;
 
 const DEFAULT_DIFFUSE: [f32; 3] = [0.8, 0.8, 0.8];

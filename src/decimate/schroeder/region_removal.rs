@@ -20,9 +20,10 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::plan::{Planning, SeamSides, Surface};
-use super::{waits, Decimator, Outcome, HELD};
+use super::{waits, Decimator, HELD};
 use crate::decimate::candidates::Candidate;
 use crate::decimate::regions::Regions;
+use crate::decimate::Outcome;
 use crate::mesh::topology::{split_mut, ConnectivityPart};
 
 /// Candidates whose data is asked for ahead of their turn, per stage of

@@ -9,7 +9,7 @@
 use glam::{DVec2, Vec3};
 use rayon::prelude::*;
 
-use super::collapser::Kind;
+use super::collapse_plan::Kind;
 use super::quadric::TextureQuadric;
 use crate::mesh::topology::Connectivity;
 

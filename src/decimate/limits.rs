@@ -1,0 +1,34 @@
+//! What both algorithms take and give for one model: the [`Limits`] a model is decimated
+//! within (its share of the scene's target, the error bound, the feature angle) and the
+//! [`Outcome`] of doing so.
+
+/// How far one model may be decimated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// Most vertices to remove.
+    pub remove: usize,
+    /// Stop once this many triangles or fewer are left.
+    pub keep_triangles: usize,
+    /// Never make a removal whose error exceeds this (model units).
+    pub max_error: f64,
+    /// Dihedral angle in degrees above which an edge is a feature edge.
+    pub feature_angle_deg: f64,
+    /// When no candidate is left before `remove`/`keep_triangles` is reached, raise the
+    /// feature angle in `schroeder::RELAX_STEP_DEG` steps (up to 180°) and go on.
+    pub relax_features: bool,
+}
+
+/// What decimating one model did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Outcome {
+    pub removed: usize,
+    /// Largest key of a removal made (accumulated distance, model units).
+    pub max_error: f64,
+    /// True when no candidate was left: nothing more can be removed.
+    pub exhausted: bool,
+    /// The feature angle in force at the end (larger than asked when relaxed).
+    pub feature_angle_deg: f64,
+    /// Vertices never removed because they were pinned (texture seams, `mesh::seams`, and
+    /// borders shared with another model, `mesh::stitches`).
+    pub pinned: usize,
+}

@@ -1,0 +1,67 @@
+//! What a decimation run prints: the per-model table of counts and errors, and the column of
+//! counts that level rebuilding (`batch`) prints in the same layout.
+
+use super::Report;
+
+/// A model's line of a summary up to its counts, (before, after) each; decimation and
+/// level rebuilding print the same columns.
+pub fn counts_column(name: &str, vertices: (usize, usize), triangles: (usize, usize)) -> String {
+    format!(
+        "{name:<24} vertices {:>9} -> {:<9} triangles {:>9} -> {:<9}",
+        vertices.0, vertices.1, triangles.0, triangles.1
+    )
+}
+
+impl Report {
+    /// The per-model table printed after a run.
+    pub fn summary(&self) -> String {
+        let report = self;
+        let mut s = String::new();
+        let (mut vb, mut tb, mut va, mut ta) = (0, 0, 0, 0);
+        for m in &report.models {
+            let mut state = if m.dropped {
+                "  dropped (fewer than 4 vertices left)".to_string()
+            } else if m.fully_decimated && m.pinned > 0 {
+                format!(
+                    "  fully decimated ({} vertices are pinned on texture seams or borders)",
+                    m.pinned
+                )
+            } else if m.fully_decimated {
+                "  fully decimated".to_string()
+            } else {
+                String::new()
+            };
+            if m.feature_angle_deg > report.feature_angle_deg {
+                state += &format!(
+                    "  (feature angle relaxed to {:.0} deg to reach the target)",
+                    m.feature_angle_deg
+                );
+            }
+            s += &counts_column(
+                &m.name,
+                (m.vertices_before, m.vertices_after),
+                (m.triangles_before, m.triangles_after),
+            );
+            s += &format!(" max error {:.4e}{state}\n", m.max_error);
+            vb += m.vertices_before;
+            tb += m.triangles_before;
+            va += m.vertices_after;
+            ta += m.triangles_after;
+        }
+        let removed = report.vertices_removed();
+        let rate = if report.seconds > 0.0 {
+            removed as f64 / report.seconds
+        } else {
+            0.0
+        };
+        s += &format!(
+            "total: vertices {vb} -> {va}, triangles {tb} -> {ta}; removed {removed} vertices in \
+             {:.3} s ({:.0} vertices/s)\n",
+            report.seconds, rate
+        );
+        if !report.models.is_empty() && report.fully_decimated() {
+            s += "the model is fully decimated: no further vertex can be removed\n";
+        }
+        s
+    }
+}

@@ -1,0 +1,172 @@
+//! What every text reader (VRML, Inventor, PLY, OBJ, MTL, OFF, STL) shares: the error that
+//! names a line, number parsing straight from a token's bytes, and the logical lines and
+//! words of the line-oriented formats.
+
+use std::borrow::Cow;
+
+/// A lexical or syntax error at a line (the file name is added by the caller).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParseError {
+    pub line: usize,
+    pub message: String,
+}
+
+impl ParseError {
+    pub fn new(line: usize, message: impl Into<String>) -> Self {
+        Self {
+            line,
+            message: message.into(),
+        }
+    }
+}
+
+pub type PResult<T> = Result<T, ParseError>;
+
+/// Parses a float token's bytes; `None` when malformed.
+pub fn parse_f32(bytes: &[u8]) -> Option<f32> {
+    // std parses f32 correctly rounded; the span is ASCII, so the UTF-8 check is cheap.
+    let s = std::str::from_utf8(bytes).ok()?;
+    if bytes.len() > 2 && bytes[0] == b'0' && matches!(bytes[1], b'x' | b'X') {
+        return parse_int(bytes).map(|v| v as f32);
+    }
+    s.parse::<f32>().ok()
+}
+
+/// Parses an integer token's bytes (decimal with sign, or `0x` hexadecimal); `None` when
+/// malformed or beyond 64 bits.
+pub fn parse_int(bytes: &[u8]) -> Option<i64> {
+    let (neg, digits) = match bytes.first()? {
+        b'-' => (true, &bytes[1..]),
+        b'+' => (false, &bytes[1..]),
+        _ => (false, bytes),
+    };
+    if digits.is_empty() {
+        return None;
+    }
+    let mut v: i64 = 0;
+    if digits.len() > 2 && digits[0] == b'0' && matches!(digits[1], b'x' | b'X') {
+        for &d in &digits[2..] {
+            let x = (d as char).to_digit(16)? as i64;
+            v = v.checked_mul(16)?.checked_add(x)?;
+        }
+    } else {
+        for &d in digits {
+            if !d.is_ascii_digit() {
+                return None;
+            }
+            v = v.checked_mul(10)?.checked_add((d - b'0') as i64)?;
+        }
+    }
+    Some(if neg { -v } else { v })
+}
+
+/// Logical lines of a text file: `(line number of its first physical line, text)`, with
+/// `#` comments cut off and, when `continuation` is set, lines ending in `\` joined to the
+/// next. Borrowed unless joined.
+pub(crate) struct Lines<'a> {
+    bytes: &'a [u8],
+    pos: usize,
+    line: usize,
+    continuation: bool,
+}
+
+impl<'a> Lines<'a> {
+    pub(crate) fn new(bytes: &'a [u8], continuation: bool) -> Self {
+        Self {
+            bytes,
+            pos: 0,
+            line: 0,
+            continuation,
+        }
+    }
+
+    /// The line number of the last line read (for end-of-file messages).
+    pub(crate) fn last_line(&self) -> usize {
+        self.line.max(1)
+    }
+
+    pub(crate) fn physical(&mut self) -> Option<&'a [u8]> {
+        if self.pos >= self.bytes.len() {
+            return None;
+        }
+        let rest = &self.bytes[self.pos..];
+        let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+        self.pos += end + 1;
+        self.line += 1;
+        let mut text = &rest[..end];
+        if let Some(hash) = text.iter().position(|&b| b == b'#') {
+            text = &text[..hash];
+        }
+        Some(text)
+    }
+}
+
+fn trim_end(mut s: &[u8]) -> &[u8] {
+    while let [rest @ .., last] = s {
+        if last.is_ascii_whitespace() {
+            s = rest;
+        } else {
+            break;
+        }
+    }
+    s
+}
+
+impl<'a> Iterator for Lines<'a> {
+    type Item = (usize, Cow<'a, [u8]>);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let first = self.physical()?;
+        let start = self.line;
+        if !self.continuation || trim_end(first).last() != Some(&b'\\') {
+            return Some((start, Cow::Borrowed(first)));
+        }
+        let mut joined = Vec::new();
+        let mut cur = first;
+        loop {
+            let t = trim_end(cur);
+            match t.split_last() {
+                Some((b'\\', body)) => {
+                    joined.extend_from_slice(body);
+                    joined.push(b' ');
+                    match self.physical() {
+                        Some(next) => cur = next,
+                        None => break,
+                    }
+                }
+                _ => {
+                    joined.extend_from_slice(cur);
+                    break;
+                }
+            }
+        }
+        Some((start, Cow::Owned(joined)))
+    }
+}
+
+/// The whitespace-separated words of a line.
+pub(crate) fn words(s: &[u8]) -> impl Iterator<Item = &[u8]> {
+    s.split(|b| b.is_ascii_whitespace())
+        .filter(|w| !w.is_empty())
+}
+
+/// A word for messages (at most 40 characters).
+pub(crate) fn shown(w: &[u8]) -> String {
+    String::from_utf8_lossy(w).chars().take(40).collect()
+}
+
+/// Parses a finite number or fails naming what it was for.
+pub(crate) fn number(w: Option<&[u8]>, line: usize, what: &str) -> PResult<f32> {
+    let w = w.ok_or_else(|| ParseError::new(line, format!("missing {what}")))?;
+    match parse_f32(w) {
+        Some(v) if v.is_finite() => Ok(v),
+        Some(_) => Err(ParseError::new(
+            line,
+            format!("{what} is not a finite number ('{}')", shown(w)),
+        )),
+        None => Err(ParseError::new(
+            line,
+            format!("expected a number for {what}, found '{}'", shown(w)),
+        )),
+    }
+}

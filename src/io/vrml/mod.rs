@@ -1,0 +1,107 @@
+//! VRML 1.0, Open Inventor ASCII and VRML 2.0: the byte `lexer`, the node-tree `parse`r
+//! shared by both families, `vrml1` (the VRML 1.0 / Inventor state machine), `vrml2` (the
+//! VRML 2.0 tree walk), `bindings` (their index lists and bindings as `Bind`s) and
+//! `vrml2_writer` (VRML 2.0 output). [`read_tree`] runs a parse on a thread with a big stack.
+
+mod bindings;
+mod lexer;
+mod parse;
+mod vrml1;
+mod vrml2;
+mod vrml2_writer;
+
+use std::collections::HashSet;
+
+pub(crate) use parse::Dialect;
+pub use vrml2_writer::write_vrml2_to;
+
+use super::{ReadOutcome, MAX_MODELS, MAX_TRIANGLES};
+use crate::io::text::{PResult, ParseError};
+use crate::mesh::Scene;
+
+/// Limits on what a file may expand to, and once-per-key warnings.
+#[derive(Default)]
+pub(crate) struct Budget {
+    models: usize,
+    triangles: usize,
+    warned: HashSet<String>,
+}
+
+impl Budget {
+    pub(crate) fn spend(&mut self, triangles: usize, line: usize) -> PResult<()> {
+        self.models += 1;
+        self.triangles += triangles;
+        if self.models > MAX_MODELS || self.triangles > MAX_TRIANGLES {
+            return Err(ParseError::new(
+                line,
+                format!(
+                    "the scene expands to more than {MAX_MODELS} shapes or {MAX_TRIANGLES} triangles (DEF/USE instancing?)"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    pub(crate) fn warn_once(&mut self, warnings: &mut Vec<String>, key: &str, message: String) {
+        if self.warned.insert(key.to_string()) {
+            warnings.push(message);
+        }
+    }
+}
+
+/// What a scene-graph reader (VRML 1.0/Inventor or VRML 2.0) carries while it walks: the
+/// models made so far, the warnings, and the expansion budget.
+pub(crate) struct Ctx<'w> {
+    pub(crate) models: Vec<crate::mesh::Model>,
+    pub(crate) warnings: &'w mut Vec<String>,
+    pub(crate) budget: Budget,
+}
+
+impl<'w> Ctx<'w> {
+    pub(crate) fn new(warnings: &'w mut Vec<String>) -> Self {
+        Self {
+            models: Vec::new(),
+            warnings,
+            budget: Budget::default(),
+        }
+    }
+}
+
+/// Stack for parsing: the node nesting limit (`parse::MAX_DEPTH`) times the deepest
+/// recursion per level, with a wide margin, whatever thread the caller runs on.
+const PARSE_STACK: usize = 256 << 20;
+
+/// Parses and walks the node tree on a thread with a known, large stack (the recursion is
+/// bounded by `parse::MAX_DEPTH`, but callers' threads may have small stacks).
+pub(crate) fn read_tree(bytes: &[u8], dialect: Dialect) -> PResult<ReadOutcome> {
+    std::thread::scope(|s| {
+        match std::thread::Builder::new()
+            .name("scene-parser".into())
+            .stack_size(PARSE_STACK)
+            .spawn_scoped(s, || parse_tree(bytes, dialect))
+        {
+            Ok(handle) => handle
+                .join()
+                .unwrap_or_else(|_| Err(ParseError::new(1, "internal error: the parser panicked"))),
+            Err(_) => parse_tree(bytes, dialect),
+        }
+    })
+}
+
+fn parse_tree(bytes: &[u8], dialect: Dialect) -> PResult<ReadOutcome> {
+    let mut parser = parse::Parser::new(bytes, dialect);
+    let roots = parser.parse_file()?;
+    let mut warnings = std::mem::take(&mut parser.warnings);
+    let models = match dialect {
+        Dialect::Vrml1 => vrml1::read(&roots, &mut warnings),
+        Dialect::Vrml2 => vrml2::read(&roots, &mut warnings),
+    }?;
+    // The tree (at most MAX_DEPTH deep) is dropped here, on the big stack.
+    drop(roots);
+    Ok(ReadOutcome {
+        scene: Scene { models },
+        warnings,
+        progressive: None,
+        material_libraries: Vec::new(),
+    })
+}

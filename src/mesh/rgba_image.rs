@@ -1,0 +1,10 @@
+//! An 8-bit RGBA picture: what texture files decode to (`io::texture_image`), what the
+//! renderer uploads and what an offscreen render reads back (`render::offscreen`).
+
+/// A picture: `width * height` RGBA8 pixels, rows top to bottom.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RgbaImage {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<u8>,
+}
