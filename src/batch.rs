@@ -134,10 +134,9 @@ fn rebuild_levels(pm: &ProgressiveScene, args: &Args) -> ExitCode {
 /// file could not be written.
 fn write(scene: &mut Scene, args: &Args) -> bool {
     rebase_textures(scene, args);
-    if !args.quiet {
-        for loss in io::losses::losses(scene, io::Format::from_path(&args.output)) {
-            eprintln!("decimate: warning: {}: {loss}", args.output.display());
-        }
+    // What the output cannot hold is lost data: said even under `-q`.
+    for loss in io::losses::losses(scene, io::Format::from_path(&args.output)) {
+        eprintln!("decimate: warning: {}: {loss}", args.output.display());
     }
     if let Err(e) = io::write_scene(scene, &args.output) {
         eprintln!("decimate: cannot write {e}");

@@ -8,6 +8,8 @@
 use std::path::PathBuf;
 
 use crate::decimate::{Algorithm, ErrorBound, Params, Target};
+use crate::mesh::repair::Tolerance;
+use crate::render::draw::DrawOptions;
 
 /// What the program does after reading the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -20,35 +22,6 @@ pub enum Action {
     Shot,
 }
 
-/// Draw modes a `shot` can ask for (`--mode edges,points,...`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ShotModes {
-    pub triangles: bool,
-    pub edges: bool,
-    pub points: bool,
-    pub face_normals: bool,
-    pub vertex_normals: bool,
-    pub flat: bool,
-    pub unlit: bool,
-    /// Textured models in their material colour instead (`--mode untextured`).
-    pub untextured: bool,
-}
-
-impl Default for ShotModes {
-    fn default() -> Self {
-        Self {
-            triangles: true,
-            edges: false,
-            points: false,
-            face_normals: false,
-            vertex_normals: false,
-            flat: false,
-            unlit: false,
-            untextured: false,
-        }
-    }
-}
-
 /// Options of the `shot` action.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ShotOptions {
@@ -56,7 +29,12 @@ pub struct ShotOptions {
     pub height: u32,
     /// 1–4 viewports: the first shows the original, the others the decimated scene.
     pub viewports: u32,
-    pub modes: ShotModes,
+    /// What each viewport draws (`--mode`).
+    pub modes: DrawOptions,
+    /// Captions on the viewports (`--labels` / `--no-labels`); by default with more than one.
+    pub labels: Option<bool>,
+    /// One target per decimated viewport (`-p 60,80,90`); empty when one target was given.
+    pub targets: Vec<Target>,
     /// Where relative texture names are read from: the input file's folder.
     pub texture_dir: PathBuf,
 }
@@ -67,7 +45,9 @@ impl Default for ShotOptions {
             width: 800,
             height: 600,
             viewports: 1,
-            modes: ShotModes::default(),
+            modes: DrawOptions::default(),
+            labels: None,
+            targets: Vec::new(),
             texture_dir: PathBuf::from("."),
         }
     }
@@ -85,20 +65,78 @@ pub struct Args {
     pub target_given: bool,
     /// Merge coincident vertices before decimating (`--no-weld` turns it off).
     pub weld: bool,
+    /// `--weld-tolerance`: also merge vertices this close before decimating.
+    pub weld_tolerance: Option<Tolerance>,
     /// Allow `-o` (and `--progressive`) to name the input file.
     pub overwrite: bool,
     /// `--progressive`: also write the collapses as vertex splits to this file (nogui; the
     /// algorithm is then quadric edge collapse).
     pub progressive: Option<PathBuf>,
-    /// No summary or progress on stderr.
+    /// No summary or progress on stderr (warnings that mean lost data are still printed).
     pub quiet: bool,
+    /// `--crease-angle`: degrees between faces above which smooth shading keeps an edge
+    /// sharp, for every model (the viewer and shot; 180 is fully smooth).
+    pub crease_angle: Option<f32>,
+    /// `--lenient`: an unknown field of a known node is a warning, not an error.
+    pub lenient: bool,
     pub shot: ShotOptions,
+    /// `--tiles auto|N` (nogui): decimate in tiles (`tile::local`), never the whole input
+    /// in memory.
+    pub tiles: Option<Tiles>,
+    /// `--memory SIZE`: the budget `--tiles auto` sizes tiles for, in bytes.
+    pub memory: Option<u64>,
+}
+
+/// `--tiles` of nogui: how many tiles the command line asked for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tiles {
+    /// Sized from the memory budget (`tile::local::count_for`).
+    Auto,
+    Count(usize),
+}
+
+/// How many tiles `tile plan` cuts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TileCount {
+    /// This many (fewer when the mesh has fewer cells).
+    Tiles(usize),
+    /// As many as needed for about this many triangles each.
+    TrianglesEach(usize),
+}
+
+/// Largest tile `tile plan` and `--tiles auto` cut unless told otherwise: small tiles bound
+/// the peak at little cost, since the seams are decimated again at merge (docs/design.md,
+/// "Tiled decimation").
+pub const DEFAULT_TILE_TRIANGLES: usize = 1 << 20;
+
+/// `decimate tile ...`: one step of tiled decimation (`tile`), for a scheduler's jobs.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TileCommand {
+    Plan {
+        input: PathBuf,
+        dir: PathBuf,
+        count: TileCount,
+        target: Target,
+    },
+    Run {
+        dir: PathBuf,
+        index: Option<usize>,
+    },
+    Status {
+        dir: PathBuf,
+    },
+    Merge {
+        dir: PathBuf,
+        output: PathBuf,
+        target: Option<Target>,
+    },
 }
 
 /// What the command line asks for.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Command {
     Run(Box<Args>),
+    Tile(TileCommand),
     Help,
     Version,
 }
@@ -138,23 +176,49 @@ action-options for nogui (one target is MANDATORY):
   --keep-border         never move or remove a vertex on the open border (edges of one
                         triangle): pieces of one mesh decimated apart still fit together
   --no-weld             do not merge coincident vertices before decimating
+  --weld-tolerance E[%] also merge vertices closer than E model units (or E percent of
+                        the model's bounding-box diagonal) before decimating (DEFAULT: off)
   --progressive FILE    also write the collapses as vertex splits (FILE.pm), to rebuild
                         any level between the result and the input (implies -a qem);
                         with FILE.pm as the input, nogui rebuilds the level the target
                         asks for (never below the base) instead of decimating
   --overwrite           allow -o or --progressive to name an input file
-  -q, --quiet           no summary or progress on stderr
+  -q, --quiet           no summary, progress or warnings on stderr, except warnings
+                        that say part of the input is not read or of the result not
+                        written
+  --lenient             read a VRML / Inventor node's unknown fields as a warning (the
+                        value skipped) rather than an error
 
-action-options for shot (offscreen render to PNG, no window):
+action-options for shot (offscreen render to PNG, no window; --mode and --crease-angle
+also set what the viewer draws):
   -o filename           the PNG to write (DEFAULT: shot.png)
   --size WxH            image size (DEFAULT: 800x600)
   --viewports N         1-4 viewports: the original, then the decimated scene
   --mode LIST           comma-separated: triangles,edges,points,normals,vertex-normals,
                         flat,unlit,untextured (DEFAULT: triangles)
-  -p / -v / ...         decimation target, as for nogui
+  --crease-angle DEG     smooth shading keeps edges whose faces meet at more than DEG
+                        sharp (DEFAULT: the file's creaseAngle, else 45; 180: smooth)
+  --labels, --no-labels a caption on each viewport: what it shows, its counts
+                        (DEFAULT: on with more than one viewport)
+  -p / -v / ...         decimation target, as for nogui; a list such as -p 60,80,90
+                        gives each decimated viewport its own (and --viewports 4)
+
+  --tiles auto|N        decimate in N spatial tiles (auto: as many as --memory needs),
+                        borders locked, then weld them and decimate the seams again;
+                        PLY, STL or OBJ input, -p or --keep-triangles, -a qem implied
+  --memory SIZE         what --tiles auto may use, e.g. 2G or 512M (DEFAULT: a
+                        quarter of the machine's RAM)
 
 typical usage:           decimate model.wrl
 typical usage for nogui: decimate model.wrl nogui -p 100 -o output.wrl
+
+tiled decimation as separate jobs (see docs/cluster.md):
+  decimate tile plan IN --work DIR (-p P | --keep-triangles T)
+                        [--tiles N | --tile-triangles M]
+  decimate tile run DIR [INDEX]   (INDEX DEFAULT: $SLURM_ARRAY_TASK_ID or
+                                   $JOB_COMPLETION_INDEX)
+  decimate tile status DIR
+  decimate tile merge DIR [-o OUT] [-p P | --keep-triangles T]
 ";
 
 /// Parses the arguments after the program name.
@@ -163,7 +227,14 @@ where
     I: IntoIterator<Item = S>,
     S: Into<String>,
 {
-    let mut it = args.into_iter().map(Into::into);
+    let args: Vec<String> = args.into_iter().map(Into::into).collect();
+    let steps = ["plan", "run", "status", "merge"];
+    if args.len() >= 2 && args[0] == "tile" && steps.contains(&args[1].as_str()) {
+        return parse_tile(&args[1..]).map(Command::Tile);
+    }
+    let mut it = args.into_iter();
+    let mut tiles: Option<Tiles> = None;
+    let mut memory: Option<u64> = None;
     let mut input: Option<PathBuf> = None;
     let mut action: Option<Action> = None;
     let mut output: Option<PathBuf> = None;
@@ -171,9 +242,15 @@ where
     let mut algorithm: Option<Algorithm> = None;
     let mut progressive: Option<PathBuf> = None;
     let mut target: Option<Target> = None;
+    // Every target of a list (`-p 60,80,90`): one per decimated viewport of a shot.
+    let mut targets: Vec<Target> = Vec::new();
+    let mut viewports: Option<u32> = None;
     let mut weld = true;
+    let mut weld_tolerance = None;
     let mut overwrite = false;
     let mut quiet = false;
+    let mut crease_angle: Option<f32> = None;
+    let mut lenient = false;
     let mut shot = ShotOptions::default();
 
     while let Some(arg) = it.next() {
@@ -186,25 +263,35 @@ where
             "--version" | "-V" => return Ok(Command::Version),
             "-o" | "--output" => output = Some(PathBuf::from(value(&arg)?)),
             "-p" | "--percent" => {
-                let p: f64 = number(&arg, &value(&arg)?)?;
-                if !(0.0..=100.0).contains(&p) {
+                let list: Vec<f64> = numbers(&arg, &value(&arg)?)?;
+                if let Some(p) = list.iter().find(|p| !(0.0..=100.0).contains(*p)) {
                     return Err(CliError(format!(
                         "{arg}: the percentage must be between 0 and 100, got {p}"
                     )));
                 }
-                set_target(&mut target, Target::RemovePercent(p))?;
+                targets = list.into_iter().map(Target::RemovePercent).collect();
+                set_target(&mut target, targets[0])?;
             }
             "-v" | "--vertices" => {
-                let n = number(&arg, &value(&arg)?)?;
-                set_target(&mut target, Target::RemoveVertices(n))?;
+                targets = numbers(&arg, &value(&arg)?)?
+                    .into_iter()
+                    .map(Target::RemoveVertices)
+                    .collect();
+                set_target(&mut target, targets[0])?;
             }
             "--keep-vertices" => {
-                let n = number(&arg, &value(&arg)?)?;
-                set_target(&mut target, Target::KeepVertices(n))?;
+                targets = numbers(&arg, &value(&arg)?)?
+                    .into_iter()
+                    .map(Target::KeepVertices)
+                    .collect();
+                set_target(&mut target, targets[0])?;
             }
             "--keep-triangles" => {
-                let n = number(&arg, &value(&arg)?)?;
-                set_target(&mut target, Target::KeepTriangles(n))?;
+                targets = numbers(&arg, &value(&arg)?)?
+                    .into_iter()
+                    .map(Target::KeepTriangles)
+                    .collect();
+                set_target(&mut target, targets[0])?;
             }
             "--max-error" => params.max_error = Some(error_bound(&value(&arg)?)?),
             "--feature-angle" => {
@@ -229,10 +316,12 @@ where
             }
             "--progressive" => progressive = Some(PathBuf::from(value(&arg)?)),
             "--no-weld" => weld = false,
+            "--weld-tolerance" => weld_tolerance = Some(tolerance(&value(&arg)?)?),
             "--keep-features" => params.keep_features = true,
             "--keep-border" => params.keep_border = true,
             "--overwrite" => overwrite = true,
             "-q" | "--quiet" => quiet = true,
+            "--lenient" => lenient = true,
             "--size" => {
                 let (w, h) = size(&value(&arg)?)?;
                 shot.width = w;
@@ -243,9 +332,29 @@ where
                 if !(1..=4).contains(&n) {
                     return Err(CliError(format!("--viewports: expected 1 to 4, got {n}")));
                 }
-                shot.viewports = n;
+                viewports = Some(n);
             }
-            "--mode" => shot.modes = modes(&value(&arg)?)?,
+            "--tiles" => {
+                let v = value(&arg)?;
+                tiles = Some(if v == "auto" {
+                    Tiles::Auto
+                } else {
+                    Tiles::Count(positive(&arg, &v)?)
+                });
+            }
+            "--memory" => memory = Some(bytes(&arg, &value(&arg)?)?),
+            "--crease-angle" => {
+                let a: f32 = number(&arg, &value(&arg)?)?;
+                if !(0.0..=180.0).contains(&a) {
+                    return Err(CliError(format!(
+                        "--crease-angle: expected degrees between 0 and 180, got {a}"
+                    )));
+                }
+                crease_angle = Some(a);
+            }
+            "--labels" => shot.labels = Some(true),
+            "--no-labels" => shot.labels = Some(false),
+            "--mode" => shot.modes = draw_modes(&value(&arg)?)?,
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(CliError(format!("unknown option '{s}'")))
             }
@@ -293,7 +402,22 @@ where
     if let Some(pm) = &progressive {
         check_progressive(pm, action, &output)?;
     }
+    if tiles.is_some() || memory.is_some() {
+        check_tiles(action, &params, progressive.is_some(), tiles.is_some())?;
+    }
+    if action == Action::NoGui && crate::io::Format::from_path(&output).is_none() {
+        return Err(CliError(format!(
+            "-o {}: no writer knows this extension (expected .wrl, .vrml, .ply, .obj, .stl or .off)",
+            output.display()
+        )));
+    }
     shot.texture_dir = crate::io::texture_path::folder_of(&input).to_path_buf();
+    shot_targets(&mut shot, targets, viewports, action)?;
+    if crease_angle.is_some() && action == Action::NoGui {
+        return Err(CliError(
+            "--crease-angle is an option of the viewer and shot (shading only)".into(),
+        ));
+    }
     Ok(Command::Run(Box::new(Args {
         input,
         action,
@@ -301,11 +425,186 @@ where
         params,
         target_given,
         weld,
+        weld_tolerance,
         overwrite,
         progressive,
         quiet,
+        crease_angle,
+        lenient,
         shot,
+        tiles,
+        memory,
     })))
+}
+
+/// `--tiles` belongs to nogui with a count target it can share out (`tile::cut::target_of`).
+fn check_tiles(
+    action: Action,
+    params: &Params,
+    progressive: bool,
+    tiles: bool,
+) -> Result<(), CliError> {
+    if !tiles {
+        return Err(CliError("--memory is an option of --tiles".into()));
+    }
+    if action != Action::NoGui {
+        return Err(CliError("--tiles is an option of nogui".into()));
+    }
+    if progressive {
+        return Err(CliError(
+            "--tiles cannot record --progressive vertex splits".into(),
+        ));
+    }
+    if params.max_error.is_some() {
+        return Err(CliError("--tiles takes no --max-error".into()));
+    }
+    match params.target {
+        Target::RemovePercent(_) | Target::KeepTriangles(_) => Ok(()),
+        _ => Err(CliError(
+            "--tiles needs -p or --keep-triangles as its target".into(),
+        )),
+    }
+}
+
+/// Parses the words after `decimate tile`.
+fn parse_tile(args: &[String]) -> Result<TileCommand, CliError> {
+    let step = args[0].as_str();
+    let mut it = args[1..].iter();
+    let mut positional: Vec<&String> = Vec::new();
+    let mut dir: Option<PathBuf> = None;
+    let mut output: Option<PathBuf> = None;
+    let mut target: Option<Target> = None;
+    let mut count: Option<TileCount> = None;
+    while let Some(arg) = it.next() {
+        let mut value = |name: &str| {
+            it.next()
+                .ok_or_else(|| CliError(format!("{name} needs a value")))
+        };
+        match (step, arg.as_str()) {
+            ("plan", "--work") => dir = Some(PathBuf::from(value(arg)?)),
+            ("plan", "--tiles" | "--tile-triangles") => {
+                if count.is_some() {
+                    return Err(CliError(
+                        "give only one of --tiles, --tile-triangles".into(),
+                    ));
+                }
+                let n = positive(arg, value(arg)?)?;
+                count = Some(if arg == "--tiles" {
+                    TileCount::Tiles(n)
+                } else {
+                    TileCount::TrianglesEach(n)
+                });
+            }
+            ("merge", "-o" | "--output") => output = Some(PathBuf::from(value(arg)?)),
+            ("plan" | "merge", "-p" | "--percent") => {
+                let p: f64 = number(arg, value(arg)?)?;
+                if !(0.0..=100.0).contains(&p) {
+                    return Err(CliError(format!(
+                        "{arg}: the percentage must be between 0 and 100, got {p}"
+                    )));
+                }
+                set_target(&mut target, Target::RemovePercent(p))?;
+            }
+            ("plan" | "merge", "--keep-triangles") => {
+                let n = number(arg, value(arg)?)?;
+                set_target(&mut target, Target::KeepTriangles(n))?;
+            }
+            (_, s) if s.starts_with('-') && s.len() > 1 => {
+                return Err(CliError(format!("tile {step}: unknown option '{s}'")))
+            }
+            _ => positional.push(arg),
+        }
+    }
+    let at_most = |n: usize, what: &str| {
+        if positional.len() > n {
+            Err(CliError(format!(
+                "tile {step}: unexpected argument '{}' (usage: decimate tile {step} {what})",
+                positional[n]
+            )))
+        } else {
+            Ok(())
+        }
+    };
+    let first = |what: &str| {
+        positional
+            .first()
+            .map(|s| PathBuf::from(s.as_str()))
+            .ok_or_else(|| CliError(format!("tile {step}: no {what} given")))
+    };
+    Ok(match step {
+        "plan" => {
+            at_most(1, "IN --work DIR")?;
+            TileCommand::Plan {
+                input: first("input file")?,
+                dir: dir.ok_or_else(|| CliError("tile plan needs --work DIR".into()))?,
+                count: count.unwrap_or(TileCount::TrianglesEach(DEFAULT_TILE_TRIANGLES)),
+                target: target.ok_or_else(|| {
+                    CliError("tile plan needs a target: -p or --keep-triangles".into())
+                })?,
+            }
+        }
+        "run" => {
+            at_most(2, "DIR [INDEX]")?;
+            let index = match positional.get(1) {
+                Some(s) => Some(number("INDEX", s)?),
+                None => None,
+            };
+            TileCommand::Run {
+                dir: first("work folder")?,
+                index,
+            }
+        }
+        "status" => {
+            at_most(1, "DIR")?;
+            TileCommand::Status {
+                dir: first("work folder")?,
+            }
+        }
+        _ => {
+            at_most(1, "DIR -o OUT")?;
+            TileCommand::Merge {
+                dir: first("work folder")?,
+                output: output.unwrap_or_else(|| PathBuf::from("out.wrl")),
+                target,
+            }
+        }
+    })
+}
+
+/// A count of at least one.
+fn positive(name: &str, s: &str) -> Result<usize, CliError> {
+    match number::<usize>(name, s)? {
+        0 => Err(CliError(format!("{name}: expected at least 1, got 0"))),
+        n => Ok(n),
+    }
+}
+
+/// A size in bytes, with an optional K, M, G or T suffix (powers of 1024).
+fn bytes(name: &str, s: &str) -> Result<u64, CliError> {
+    let t = s.trim();
+    let (digits, unit) = match t.char_indices().last() {
+        Some((i, c)) if c.is_ascii_alphabetic() => (&t[..i], c.to_ascii_uppercase()),
+        _ => (t, 'B'),
+    };
+    let shift = match unit {
+        'B' => 0,
+        'K' => 10,
+        'M' => 20,
+        'G' => 30,
+        'T' => 40,
+        _ => {
+            return Err(CliError(format!(
+                "{name}: expected a size such as 2G, got '{s}'"
+            )))
+        }
+    };
+    let v: f64 = number(name, digits)?;
+    if !(v.is_finite() && v > 0.0) {
+        return Err(CliError(format!(
+            "{name}: expected a positive size, got '{s}'"
+        )));
+    }
+    Ok((v * f64::from(1u32 << 10).powi(shift / 10)) as u64)
 }
 
 /// The algorithm `-a` asked for, or the one `--progressive` implies: only quadric edge
@@ -340,6 +639,49 @@ fn check_progressive(
     Ok(())
 }
 
+/// A list of targets is one per decimated viewport of a shot: it sets the viewport count
+/// when `--viewports` is not given, and must fit the count when it is.
+fn shot_targets(
+    shot: &mut ShotOptions,
+    targets: Vec<Target>,
+    viewports: Option<u32>,
+    action: Action,
+) -> Result<(), CliError> {
+    if targets.len() > 1 && action != Action::Shot {
+        return Err(CliError(format!(
+            "a list of {} targets gives each decimated viewport of a shot its own; {} takes one",
+            targets.len(),
+            if action == Action::NoGui {
+                "nogui"
+            } else {
+                "the viewer"
+            }
+        )));
+    }
+    let decimated = targets.len() as u32;
+    if decimated > 3 {
+        return Err(CliError(format!(
+            "{decimated} targets: at most 3, for the viewports beside the original"
+        )));
+    }
+    shot.viewports = match viewports {
+        Some(n) if targets.len() > 1 && decimated > n.saturating_sub(1) => {
+            return Err(CliError(format!(
+                "--viewports {n}: {decimated} targets need {} viewports (the first shows the \
+                 original)",
+                decimated + 1
+            )))
+        }
+        Some(n) => n,
+        None if targets.len() > 1 => (decimated + 1).min(4),
+        None => 1,
+    };
+    if targets.len() > 1 {
+        shot.targets = targets;
+    }
+    Ok(())
+}
+
 fn set_target(slot: &mut Option<Target>, t: Target) -> Result<(), CliError> {
     if slot.is_some() {
         return Err(CliError(
@@ -354,6 +696,11 @@ fn number<T: std::str::FromStr>(name: &str, s: &str) -> Result<T, CliError> {
     s.trim()
         .parse()
         .map_err(|_| CliError(format!("{name}: expected a number, got '{s}'")))
+}
+
+/// A comma-separated list of numbers (`60,80,90`), at least one.
+fn numbers<T: std::str::FromStr>(name: &str, s: &str) -> Result<Vec<T>, CliError> {
+    s.split(',').map(|item| number(name, item)).collect()
 }
 
 fn error_bound(s: &str) -> Result<ErrorBound, CliError> {
@@ -374,6 +721,24 @@ fn error_bound(s: &str) -> Result<ErrorBound, CliError> {
     })
 }
 
+fn tolerance(s: &str) -> Result<Tolerance, CliError> {
+    let (digits, percent) = match s.strip_suffix('%') {
+        Some(d) => (d, true),
+        None => (s, false),
+    };
+    let e: f64 = number("--weld-tolerance", digits)?;
+    if !e.is_finite() || e < 0.0 {
+        return Err(CliError(format!(
+            "--weld-tolerance: expected a non-negative number, got '{s}'"
+        )));
+    }
+    Ok(if percent {
+        Tolerance::DiagonalFraction(e / 100.0)
+    } else {
+        Tolerance::Absolute(e)
+    })
+}
+
 fn size(s: &str) -> Result<(u32, u32), CliError> {
     let bad = || CliError(format!("--size: expected WxH such as 800x600, got '{s}'"));
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
@@ -387,10 +752,11 @@ fn size(s: &str) -> Result<(u32, u32), CliError> {
     Ok((w, h))
 }
 
-fn modes(s: &str) -> Result<ShotModes, CliError> {
-    let mut m = ShotModes {
+/// The draw toggles of a `--mode` list (the viewer's toggles, shading words meaning "off").
+pub fn draw_modes(s: &str) -> Result<DrawOptions, CliError> {
+    let mut m = DrawOptions {
         triangles: false,
-        ..ShotModes::default()
+        ..DrawOptions::default()
     };
     for word in s.split(',').map(str::trim).filter(|w| !w.is_empty()) {
         match word {
@@ -399,9 +765,9 @@ fn modes(s: &str) -> Result<ShotModes, CliError> {
             "points" => m.points = true,
             "normals" => m.face_normals = true,
             "vertex-normals" => m.vertex_normals = true,
-            "flat" => m.flat = true,
-            "unlit" => m.unlit = true,
-            "untextured" => m.untextured = true,
+            "flat" => m.smooth = false,
+            "unlit" => m.lighting = false,
+            "untextured" => m.textures = false,
             other => {
                 return Err(CliError(format!(
                     "--mode: unknown mode '{other}' (expected triangles, edges, points, \
@@ -518,6 +884,46 @@ mod tests {
     }
 
     #[test]
+    fn tile_steps_parse_and_a_file_named_tile_still_opens() {
+        assert_eq!(
+            parse(["tile", "run", "w"]),
+            Ok(Command::Tile(TileCommand::Run {
+                dir: PathBuf::from("w"),
+                index: None
+            }))
+        );
+        assert_eq!(
+            parse([
+                "tile",
+                "plan",
+                "in.ply",
+                "--work",
+                "w",
+                "--tile-triangles",
+                "5",
+                "-p",
+                "90"
+            ]),
+            Ok(Command::Tile(TileCommand::Plan {
+                input: PathBuf::from("in.ply"),
+                dir: PathBuf::from("w"),
+                count: TileCount::TrianglesEach(5),
+                target: Target::RemovePercent(90.0),
+            }))
+        );
+        assert_eq!(run(&["tile"]).input, PathBuf::from("tile"));
+        assert_eq!(run(&["tile", "nogui", "-p", "9"]).action, Action::NoGui);
+        let a = run(&[
+            "m.ply", "nogui", "-p", "9", "--tiles", "auto", "--memory", "1.5G",
+        ]);
+        assert_eq!((a.tiles, a.memory), (Some(Tiles::Auto), Some(3 << 29)));
+        assert_eq!(
+            run(&["m.ply", "nogui", "-p", "9", "--tiles", "7"]).tiles,
+            Some(Tiles::Count(7))
+        );
+    }
+
+    #[test]
     fn help_and_version() {
         assert_eq!(parse(["-h"]), Ok(Command::Help));
         assert_eq!(parse(["x.wrl", "--help"]), Ok(Command::Help));
@@ -588,9 +994,104 @@ mod tests {
             (a.shot.width, a.shot.height, a.shot.viewports),
             (640, 480, 4)
         );
-        assert!(a.shot.modes.edges && a.shot.modes.flat && !a.shot.modes.triangles);
+        assert!(a.shot.modes.edges && !a.shot.modes.smooth && !a.shot.modes.triangles);
+        assert!(a.shot.modes.lighting && a.shot.modes.textures);
+        assert_eq!(run(&["m.wrl", "shot"]).shot.modes, DrawOptions::default());
         assert_eq!(a.output, PathBuf::from("shot.png"));
         assert!(parse(["m.wrl", "shot", "--viewports", "5"]).is_err());
+        assert_eq!(a.shot.labels, None);
+        let a = run(&["m.wrl", "shot", "--no-labels"]);
+        assert_eq!(a.shot.labels, Some(false));
+        let a = run(&["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "0.1%"]);
+        assert_eq!(a.weld_tolerance, Some(Tolerance::DiagonalFraction(0.001)));
+        let a = run(&["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "0.25"]);
+        assert_eq!(a.weld_tolerance, Some(Tolerance::Absolute(0.25)));
+        assert_eq!(run(&["m.wrl", "nogui", "-p", "50"]).weld_tolerance, None);
+        assert!(parse(["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "-1"]).is_err());
+        assert!(parse(["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "x%"]).is_err());
         assert!(parse(["m.wrl", "shot", "--size", "0x10"]).is_err());
+    }
+
+    #[test]
+    fn the_crease_angle_is_for_the_viewer_and_shot() {
+        assert_eq!(
+            run(&["m.wrl", "--crease-angle", "180"]).crease_angle,
+            Some(180.0)
+        );
+        assert_eq!(
+            run(&["m.wrl", "shot", "--crease-angle", "60"]).crease_angle,
+            Some(60.0)
+        );
+        assert_eq!(run(&["m.wrl"]).crease_angle, None);
+        for (args, says) in [
+            (
+                &["m.wrl", "--crease-angle", "200"][..],
+                "between 0 and 180, got 200",
+            ),
+            (
+                &["m.wrl", "shot", "--crease-angle", "x"],
+                "--crease-angle: expected a number",
+            ),
+            (
+                &["m.wrl", "nogui", "-p", "5", "--crease-angle", "60"],
+                "viewer and shot",
+            ),
+        ] {
+            let e = parse(args.iter().copied()).unwrap_err();
+            assert!(e.0.contains(says), "{args:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_list_of_targets_gives_each_decimated_viewport_its_own() {
+        let a = run(&[
+            "m.wrl",
+            "shot",
+            "-p",
+            "60,80,90",
+            "--mode",
+            "triangles,edges",
+        ]);
+        assert_eq!(a.shot.viewports, 4);
+        assert_eq!(
+            a.shot.targets,
+            [60.0, 80.0, 90.0].map(Target::RemovePercent).to_vec()
+        );
+        assert_eq!(a.params.target, Target::RemovePercent(60.0));
+        let a = run(&[
+            "m.wrl",
+            "shot",
+            "--keep-triangles",
+            "500,100",
+            "--viewports",
+            "4",
+        ]);
+        assert_eq!(a.shot.viewports, 4);
+        assert_eq!(
+            a.shot.targets,
+            [500, 100].map(Target::KeepTriangles).to_vec()
+        );
+        let a = run(&["m.wrl", "shot", "-p", "60"]);
+        assert_eq!((a.shot.viewports, a.shot.targets.len()), (1, 0));
+        for (args, says) in [
+            (
+                &["m.wrl", "shot", "-p", "60,80,90", "--viewports", "3"][..],
+                "need 4 viewports",
+            ),
+            (&["m.wrl", "shot", "-p", "10,20,30,40"], "at most 3"),
+            (
+                &["m.wrl", "shot", "-p", "60,180"],
+                "between 0 and 100, got 180",
+            ),
+            (
+                &["m.wrl", "shot", "-p", "60,,90"],
+                "-p: expected a number, got ''",
+            ),
+            (&["m.wrl", "nogui", "-p", "60,80"], "nogui takes one"),
+            (&["m.wrl", "-v", "6,8"], "the viewer takes one"),
+        ] {
+            let e = parse(args.iter().copied()).unwrap_err();
+            assert!(e.0.contains(says), "{args:?}: {e}");
+        }
     }
 }

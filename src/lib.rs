@@ -31,3 +31,4 @@ pub mod mesh;
 pub mod metro;
 pub mod render;
 pub mod threads;
+pub mod tile;

@@ -5,7 +5,7 @@
 use std::process::ExitCode;
 
 use decimate::cli::{self, Action, Command};
-use decimate::{batch, io, mesh};
+use decimate::{batch, io, mesh, tile};
 
 /// The mesh arrays on huge pages (see `decimate::alloc`).
 #[global_allocator]
@@ -15,6 +15,7 @@ fn main() -> ExitCode {
     // (1) Parameter check.
     let args = match cli::parse(std::env::args().skip(1)) {
         Ok(Command::Run(args)) => args,
+        Ok(Command::Tile(step)) => return tile::command::run_step(&step),
         Ok(Command::Help) => {
             print!("{}", cli::USAGE);
             return ExitCode::SUCCESS;
@@ -29,22 +30,52 @@ fn main() -> ExitCode {
         }
     };
 
+    // Tiled: the input is streamed, never read whole.
+    if args.tiles.is_some() {
+        return tile::command::nogui_tiled(&args);
+    }
+
     // (2) Parse the VRML / Open Inventor file.
-    let outcome = match io::read_scene(&args.input) {
+    let options = io::ReadOptions {
+        lenient: args.lenient,
+    };
+    let outcome = match io::read_scene_with(&args.input, options) {
         Ok(outcome) => outcome,
         Err(e) => {
             eprintln!("decimate: {e}");
             return ExitCode::FAILURE;
         }
     };
-    if !args.quiet {
-        for w in &outcome.warnings {
+    // `-q` keeps the warnings that say data was lost.
+    for w in &outcome.warnings {
+        if !args.quiet || io::means_lost_data(w) {
             eprintln!("decimate: warning: {w}");
         }
     }
+    if outcome.scene.triangle_count() == 0 {
+        eprintln!(
+            "decimate: {}: no triangles: the file has no shape this program reads{}",
+            args.input.display(),
+            if outcome.warnings.is_empty() {
+                ""
+            } else {
+                " (see the warnings above)"
+            }
+        );
+        return ExitCode::FAILURE;
+    }
 
     // (3) Build the models: weld duplicated vertices, fill in what the file lacks.
-    let scene = mesh::build::build_scene(outcome.scene, args.weld);
+    let options = mesh::build::BuildOptions {
+        weld: args.weld,
+        weld_tolerance: args.weld_tolerance,
+    };
+    let (scene, repairs) = mesh::build::build_scene_with(outcome.scene, &options);
+    if !args.quiet {
+        if let Some(line) = repairs.summary() {
+            eprint!("{line}");
+        }
+    }
 
     match args.action {
         Action::NoGui => batch::run(

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """One peer decimation for tools/bench-peers: bench-peers-run.py TOOL IN.ply OUT.ply TRIANGLES
 
-TOOL is meshlab (pymeshlab's quadric edge collapse), vtk (vtkQuadricDecimation) or
-meshoptimizer (meshopt_simplify through the `meshoptimizer` Python binding). Keeps about
+TOOL is meshlab (pymeshlab's quadric edge collapse), vtk (vtkQuadricDecimation), vtkpro
+(vtkDecimatePro, Schroeder's vertex removal, with its defaults) or meshoptimizer (meshopt_simplify through the `meshoptimizer` Python binding). Keeps about
 TRIANGLES triangles, writes OUT.ply and prints the seconds the decimation call alone took.
 """
 import sys
@@ -21,14 +21,14 @@ def meshlab(src, dst, triangles):
     return seconds
 
 
-def vtk(src, dst, triangles):
+def vtk(src, dst, triangles, pro=False):
     import vtk as v
 
     reader = v.vtkPLYReader()
     reader.SetFileName(src)
     reader.Update()
     mesh = reader.GetOutput()
-    q = v.vtkQuadricDecimation()
+    q = v.vtkDecimatePro() if pro else v.vtkQuadricDecimation()
     q.SetInputData(mesh)
     q.SetTargetReduction(1.0 - triangles / mesh.GetNumberOfPolys())
     start = time.perf_counter()
@@ -39,6 +39,10 @@ def vtk(src, dst, triangles):
     writer.SetInputData(q.GetOutput())
     writer.Write()
     return seconds
+
+
+def vtkpro(src, dst, triangles):
+    return vtk(src, dst, triangles, pro=True)
 
 
 def meshoptimizer(src, dst, triangles):

@@ -1,10 +1,18 @@
-//! `gen-models`: writes the report's test models (test001–test006) and large synthetic meshes
+//! `gen-models`: writes the report's test models (test001–test008) and large synthetic meshes
 //! for benchmarks, from `decimate::mesh::shapes`.
 //!
 //! ```text
-//! gen-models assets DIR                      test001.wrl … test006.wrl into DIR
+//! gen-models assets DIR                      test001.wrl … test008.wrl into DIR
 //! gen-models sphere RINGS SEGMENTS FILE      a bumpy sphere (.ply or .wrl by extension)
+//! gen-models ribbon N FILE                   a strip of N vertices, every one on the border
+//! gen-models fan N FILE                      a cone whose apex has N neighbours
+//! gen-models polygon N FILE                  one convex N-gon in an IndexedFaceSet (.wrl)
+//! gen-models star N FILE                     one star-shaped N-gon in an IndexedFaceSet (.wrl)
+//! gen-models nesting N FILE                  a triangle under N nested Separators (.wrl)
 //! ```
+//!
+//! The last five are `tools/bench-scaling`'s inputs: each stresses one path that must stay
+//! near-linear (long borders, huge fans, one giant polygon, deep scene graphs).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -29,8 +37,95 @@ fn write(model: Model, path: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// A strip of `n` vertices in two rows along x, gently waved in z so that removals have
+/// errors to rank: every vertex is on the border.
+fn ribbon(n: u32) -> Model {
+    let m = (n / 2).max(2);
+    let mut model = Model {
+        name: "ribbon".into(),
+        ..Model::default()
+    };
+    for row in 0..2 {
+        for i in 0..m {
+            let x = i as f32 * 0.1;
+            let z = 0.05 * (i as f32 * 0.37).sin() + 0.02 * (i as f32 * 1.7 + row as f32).sin();
+            model.positions.push(glam::Vec3::new(x, row as f32, z));
+        }
+    }
+    for i in 0..m - 1 {
+        let (a, b, c, d) = (i, i + 1, m + i, m + i + 1);
+        model.triangles.extend([[a, b, d], [a, d, c]]);
+    }
+    model
+}
+
+/// A low cone whose apex is joined to `n` rim vertices (a rim slightly waved in z).
+fn fan(n: u32) -> Model {
+    let n = n.max(3);
+    let mut model = Model {
+        name: "fan".into(),
+        ..Model::default()
+    };
+    model.positions.push(glam::Vec3::new(0.0, 0.0, 0.2));
+    for i in 0..n {
+        let t = std::f32::consts::TAU * i as f32 / n as f32;
+        let z = 0.01 * (i as f32 * 0.7).sin();
+        model.positions.push(glam::Vec3::new(t.cos(), t.sin(), z));
+    }
+    for i in 0..n {
+        model.triangles.push([0, 1 + i, 1 + (i + 1) % n]);
+    }
+    model
+}
+
+/// VRML 2.0 text of one IndexedFaceSet face over `n` corners on a circle (every other one
+/// pulled in to `inner` of the radius: 1 gives a convex polygon).
+fn polygon_vrml(n: u32, inner: f64) -> String {
+    let mut s = String::from(
+        "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet {\n coord Coordinate { point [\n",
+    );
+    for i in 0..n {
+        let t = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+        let r = if i % 2 == 1 { inner } else { 1.0 };
+        s += &format!("{} {} 0,\n", r * t.cos(), r * t.sin());
+    }
+    s += "] }\n coordIndex [\n";
+    for i in 0..n {
+        s += &format!("{i} ");
+        if i % 16 == 15 {
+            s.push('\n');
+        }
+    }
+    s += "-1 ]\n} }\n";
+    s
+}
+
+/// Inventor text of one triangle under `n` nested Separators.
+fn nesting_iv(n: u32) -> String {
+    let mut s = String::from("#Inventor V2.1 ascii\n");
+    for _ in 0..n {
+        s += "Separator {\n";
+    }
+    s += "Coordinate3 { point [ 0 0 0, 1 0 0, 0 1 0 ] }\nIndexedFaceSet { coordIndex [ 0, 1, 2, -1 ] }\n";
+    for _ in 0..n {
+        s += "}\n";
+    }
+    s
+}
+
+fn write_text(text: &str, path: &Path) -> Result<(), String> {
+    std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
 fn run(args: &[String]) -> Result<(), String> {
-    let usage = "usage: gen-models assets DIR | gen-models sphere RINGS SEGMENTS FILE";
+    let usage = "usage: gen-models assets DIR | gen-models sphere RINGS SEGMENTS FILE | \
+                 gen-models ribbon|fan|polygon|star|nesting N FILE";
+    let count = |s: &str| {
+        s.parse::<u32>()
+            .map_err(|_| format!("not a count: '{s}'\n{usage}"))
+    };
     match args {
         [cmd, dir] if cmd == "assets" => {
             let dir = PathBuf::from(dir);
@@ -41,15 +136,20 @@ fn run(args: &[String]) -> Result<(), String> {
             }
             Ok(())
         }
-        [cmd, rings, segments, file] if cmd == "sphere" => {
-            let parse = |s: &str| {
-                s.parse::<u32>()
-                    .map_err(|_| format!("not a count: '{s}'\n{usage}"))
-            };
-            write(
-                shapes::bumpy_sphere(parse(rings)?, parse(segments)?),
-                Path::new(file),
-            )
+        [cmd, rings, segments, file] if cmd == "sphere" => write(
+            shapes::bumpy_sphere(count(rings)?, count(segments)?),
+            Path::new(file),
+        ),
+        [cmd, n, file] => {
+            let (n, path) = (count(n)?, Path::new(file));
+            match cmd.as_str() {
+                "ribbon" => write(ribbon(n), path),
+                "fan" => write(fan(n), path),
+                "polygon" => write_text(&polygon_vrml(n, 1.0), path),
+                "star" => write_text(&polygon_vrml(n, 0.6), path),
+                "nesting" => write_text(&nesting_iv(n), path),
+                _ => Err(usage.to_string()),
+            }
         }
         _ => Err(usage.to_string()),
     }

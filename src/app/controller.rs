@@ -10,9 +10,11 @@ use glam::Vec2;
 use crate::decimate::{Algorithm, Params};
 use crate::mesh::Scene;
 use crate::render::camera::Navigation;
+use crate::render::draw::DrawOptions;
 use crate::render::tiles::{tiles, Rect};
 
 use super::menu::{Action, DecimateEvent, DecimateKind};
+use super::save::{save_path, SavePath};
 use super::viewport::Viewport;
 
 /// At most this many viewports, as in the original.
@@ -24,6 +26,8 @@ pub enum Effect {
     None,
     /// Open the vertex-count text field.
     AskVertexCount,
+    /// Save a picture of the viewports (the window draws it).
+    SavePicture,
     Quit,
 }
 
@@ -37,8 +41,14 @@ pub struct ViewportController {
     width: u32,
     height: u32,
     pub help: bool,
-    /// Where F3 saves (`out.wrl` in the working directory).
+    /// Every viewport shows the current one's camera (`c`).
+    pub linked: bool,
+    /// What a new viewport draws (the command line's `--mode`).
+    draw_options: DrawOptions,
+    /// Where F3 saves (`out.wrl` in the working directory), unless that is an input.
     pub save_path: PathBuf,
+    /// The files the scene was read from: no save ever writes over one of them.
+    pub inputs: Vec<PathBuf>,
     /// The folder the scene was read from: its relative texture names are relative to it,
     /// and F3 re-expresses them for `save_path`'s folder.
     pub input_dir: PathBuf,
@@ -58,10 +68,42 @@ impl ViewportController {
             width,
             height,
             help: false,
+            linked: false,
+            draw_options: DrawOptions::default(),
             save_path: PathBuf::from("out.wrl"),
+            inputs: Vec::new(),
             input_dir: PathBuf::from("."),
             message: String::new(),
         }
+    }
+
+    /// Every viewport, and each one added later, draws with `options` (`--mode`).
+    pub fn set_draw_options(&mut self, options: DrawOptions) {
+        self.draw_options = options;
+        for vp in &mut self.viewports {
+            vp.options = options;
+        }
+    }
+
+    /// Shows `scene`, read from `path`, instead: one viewport of it, the cameras framed on it;
+    /// the algorithm, border and link settings stay.
+    pub fn open(&mut self, scene: Scene, path: &std::path::Path) {
+        let original = Arc::new(scene);
+        let mut first = Viewport::new(self.next_id, original.clone(), self.params);
+        first.options = self.draw_options;
+        self.viewports = vec![first];
+        self.next_id += 1;
+        self.original = original;
+        self.current = 0;
+        self.inputs = vec![path.to_path_buf()];
+        self.input_dir = crate::io::texture_path::folder_of(path).to_path_buf();
+        let vp = self.current_viewport();
+        self.message = format!(
+            "opened {}: {} vertices, {} triangles",
+            path.display(),
+            vp.vertex_count(),
+            vp.triangle_count()
+        );
     }
 
     pub fn viewports(&self) -> &[Viewport] {
@@ -110,23 +152,21 @@ impl ViewportController {
         self.message = format!("viewport {}: {done}", i + 1);
     }
 
-    /// Decimates the current viewport; says what was done.
+    /// Decimates the current viewport; says what was asked and what is shown now (the same
+    /// counts as the status line).
     fn decimate_current(&mut self, event: DecimateEvent) -> String {
         let report = self.current_mut().decimate(event);
-        let what = match event.kind {
-            DecimateKind::Percentage => format!("{:.0} %", event.amount),
-            DecimateKind::Number => format!("{:.0} vertices", event.amount),
+        let (seconds, fully) = (report.seconds, report.fully_decimated());
+        let asked = match event.kind {
+            DecimateKind::Percentage => format!("removed {:.0} %", event.amount),
+            DecimateKind::Number => format!("asked to remove {:.0} vertices", event.amount),
         };
+        let vp = self.current_viewport();
         format!(
-            "removed {} ({} vertices) in {:.3} s{}",
-            what,
-            report.vertices_removed(),
-            report.seconds,
-            if report.fully_decimated() {
-                " — fully decimated"
-            } else {
-                ""
-            }
+            "{asked}: {} vertices, {} triangles left in {seconds:.3} s{}",
+            vp.vertex_count(),
+            vp.triangle_count(),
+            if fully { " — fully decimated" } else { "" }
         )
     }
 
@@ -147,19 +187,40 @@ impl ViewportController {
         }
     }
 
-    /// "Decimate to N vertices": a NUMBER event for the difference from the original.
-    pub fn decimate_to(&mut self, vertices: usize) {
-        let original: usize = self
-            .original
-            .models
-            .iter()
+    /// Vertices of the original scene (used by some triangle).
+    pub fn original_vertices(&self) -> usize {
+        (self.original.models.iter())
             .map(crate::mesh::Model::used_vertex_count)
-            .sum();
-        let remove = original.saturating_sub(vertices);
-        self.decimate(DecimateEvent {
-            amount: remove as f64,
-            kind: DecimateKind::Number,
-        });
+            .sum()
+    }
+
+    /// "Decimate to N vertices": 0 is key `0` (remove 100 %: as far as possible, features
+    /// kept), any other count a NUMBER event for the difference from the original.
+    pub fn decimate_to(&mut self, vertices: usize) {
+        let original = self.original_vertices();
+        let event = if vertices == 0 {
+            DecimateEvent {
+                amount: 100.0,
+                kind: DecimateKind::Percentage,
+            }
+        } else if let Some(remove) = original.checked_sub(vertices) {
+            DecimateEvent {
+                amount: remove as f64,
+                kind: DecimateKind::Number,
+            }
+        } else {
+            self.message = format!("{vertices} vertices is more than the original's {original}");
+            return;
+        };
+        self.decimate(event);
+    }
+
+    /// The vertex-count field was submitted with `text`: decimates to that count, or says
+    /// why the text is no count of this scene (the field stays open with the message).
+    pub fn submit_vertex_count(&mut self, text: &str) -> Result<(), String> {
+        let n = parse_vertex_count(text, self.original_vertices())?;
+        self.decimate_to(n);
+        Ok(())
     }
 
     /// The level-of-detail slider of the current viewport moved to `vertices`.
@@ -179,6 +240,7 @@ impl ViewportController {
     /// Left-drag by `delta` pixels in the current viewport.
     pub fn drag(&mut self, delta: Vec2) {
         self.current_mut().camera.drag(delta);
+        self.follow_current_camera();
     }
 
     /// Middle-drag (or Shift + left-drag) by `delta` pixels in the current viewport: pans.
@@ -188,16 +250,29 @@ impl ViewportController {
         };
         let (height, aspect) = (rect.height as f32, rect.aspect());
         self.current_mut().camera.pan(delta, height, aspect);
+        self.follow_current_camera();
     }
 
     /// Wheel steps in the current viewport.
     pub fn wheel(&mut self, steps: f32) {
         self.current_mut().camera.wheel(steps);
+        self.follow_current_camera();
     }
 
     /// Arrow / W S keys: walk in eye control.
     pub fn walk(&mut self, forward: f32, right: f32) {
         self.current_mut().camera.walk(forward, right);
+        self.follow_current_camera();
+    }
+
+    /// With linked cameras, every viewport takes the current one's camera.
+    fn follow_current_camera(&mut self) {
+        if self.linked {
+            let camera = self.current_viewport().camera.clone();
+            for vp in &mut self.viewports {
+                vp.camera = camera.clone();
+            }
+        }
     }
 
     /// Runs `action`; returns what the window must do about it.
@@ -242,6 +317,15 @@ impl ViewportController {
             Action::ToggleLighting => options.lighting ^= true,
             Action::ToggleSmooth => options.smooth ^= true,
             Action::ToggleTexture => options.textures ^= true,
+            Action::CreaseAngle(delta) => {
+                let n = self.current + 1;
+                self.message = match self.current_mut().change_crease(f32::from(delta)) {
+                    Some(d) => format!("viewport {n}: crease angle {d:.0}° (180: fully smooth)"),
+                    None => format!(
+                        "viewport {n}: the level-of-detail slider keeps the original's crease angle"
+                    ),
+                };
+            }
             Action::ToggleNavigation => {
                 let camera = &mut self.current_mut().camera;
                 let next = match camera.navigation {
@@ -249,15 +333,33 @@ impl ViewportController {
                     Navigation::Eye => Navigation::Model,
                 };
                 camera.set_navigation(next);
+                self.follow_current_camera();
             }
-            Action::ResetView => self.current_mut().camera.reset(),
+            Action::ResetView => {
+                self.current_mut().camera.reset();
+                self.follow_current_camera();
+            }
+            Action::ToggleLinkedCameras => {
+                self.linked ^= true;
+                self.follow_current_camera();
+                self.message = if self.linked {
+                    format!("cameras linked to viewport {}'s", self.current + 1)
+                } else {
+                    "each viewport has its own camera".into()
+                };
+            }
             Action::AddViewport => {
                 if self.viewports.len() < MAX_VIEWPORTS {
                     let id = self.next_id;
                     self.next_id += 1;
-                    self.viewports
-                        .push(Viewport::new(id, self.original.clone(), self.params));
+                    let mut vp = Viewport::new(id, self.original.clone(), self.params);
+                    vp.options = self.draw_options;
+                    self.viewports.push(vp);
                     self.current = self.viewports.len() - 1;
+                    if self.linked {
+                        // A new viewport joins the others' shared camera.
+                        self.viewports[self.current].camera = self.viewports[0].camera.clone();
+                    }
                 } else {
                     self.message = format!("at most {MAX_VIEWPORTS} viewports");
                 }
@@ -273,24 +375,88 @@ impl ViewportController {
             Action::NextViewport => self.current = (self.current + 1) % self.viewports.len(),
             Action::ToggleHelp => self.help ^= true,
             Action::Save => self.save(),
+            Action::SavePicture => return Effect::SavePicture,
             Action::Quit => return Effect::Quit,
         }
         Effect::None
     }
 
+    /// Whether the toggle `action` is on for the current viewport (the popup's check marks);
+    /// `None` when `action` is no toggle.
+    pub fn checked(&self, action: Action) -> Option<bool> {
+        let vp = self.current_viewport();
+        let o = &vp.options;
+        Some(match action {
+            Action::ToggleTriangles => o.triangles,
+            Action::ToggleEdges => o.edges,
+            Action::TogglePoints => o.points,
+            Action::ToggleFaceNormals => o.face_normals,
+            Action::ToggleVertexNormals => o.vertex_normals,
+            Action::ToggleLighting => o.lighting,
+            Action::ToggleSmooth => o.smooth,
+            Action::ToggleTexture => o.textures,
+            Action::ToggleLod => vp.lod().is_some(),
+            Action::ToggleKeepBorder => vp.params.keep_border,
+            Action::ToggleLinkedCameras => self.linked,
+            Action::ToggleHelp => self.help,
+            _ => return None,
+        })
+    }
+
     /// F3: the current viewport's scene as VRML 2.0, its texture names rebased for the
-    /// folder it is saved in.
+    /// folder it is saved in; written through a temporary file and a rename, and never over
+    /// an input file (then to `out-1.wrl`…, said in the message).
     fn save(&mut self) {
         self.current_mut().settle();
-        let path = self.save_path.clone();
-        let to_dir = crate::io::texture_path::folder_of(&path);
+        let n = self.current + 1;
+        let Some(target) = save_path(&self.save_path, &self.inputs) else {
+            self.message = format!(
+                "cannot save: {} and its numbered alternatives are all input files",
+                self.save_path.display()
+            );
+            eprintln!("decimate: {}", self.message);
+            return;
+        };
+        let path = target.path();
+        let to_dir = crate::io::texture_path::folder_of(path);
         let scene = crate::io::rebased(self.current_viewport().scene(), &self.input_dir, to_dir);
-        self.message = match crate::io::write_vrml2(&scene, &path) {
-            Ok(()) => format!("saved viewport {} as {}", self.current + 1, path.display()),
-            Err(e) => format!("cannot save: {e}"),
+        self.message = match (crate::io::write_vrml2(&scene, path), &target) {
+            (Ok(()), SavePath::AsAsked(_)) => format!("saved viewport {n} as {}", path.display()),
+            (Ok(()), SavePath::Instead(_)) => format!(
+                "{} is the input file, not written over: saved viewport {n} as {}",
+                self.save_path.display(),
+                path.display()
+            ),
+            (Err(e), _) => format!("cannot save: {e}"),
         };
         eprintln!("decimate: {}", self.message);
     }
+}
+
+/// A vertex count typed into the field: a whole number from 0 to `original` (digit groups may
+/// be separated by `,` or `_`).
+pub fn parse_vertex_count(text: &str, original: usize) -> Result<usize, String> {
+    let range = format!("type a whole number from 0 to {original} (0: as far as possible)");
+    let digits: String = text
+        .trim()
+        .chars()
+        .filter(|c| !matches!(c, ',' | '_'))
+        .collect();
+    if digits.is_empty() {
+        return Err(format!("no number: {range}"));
+    }
+    let n: usize = match digits.parse() {
+        Ok(n) => n,
+        Err(_) if digits.bytes().all(|b| b.is_ascii_digit()) => usize::MAX,
+        Err(_) => return Err(format!("'{}' is not a vertex count: {range}", text.trim())),
+    };
+    if n > original {
+        return Err(format!(
+            "{} is more than the original's {original} vertices: {range}",
+            text.trim()
+        ));
+    }
+    Ok(n)
 }
 
 #[cfg(test)]
@@ -332,7 +498,7 @@ mod tests {
         let mut c = controller();
         key(&mut c, Key::Char('a'));
         assert_eq!(c.current(), 1);
-        type Get = fn(&crate::render::draw::DrawOptions) -> bool;
+        type Get = fn(&DrawOptions) -> bool;
         let toggles: [(char, Get); 7] = [
             ('t', |o| o.triangles),
             ('e', |o| o.edges),
@@ -363,6 +529,122 @@ mod tests {
         assert_eq!(c.viewports()[0].camera, framed, "the left one stays");
         key(&mut c, Key::Char('r'));
         assert_eq!(c.viewports()[1].camera, framed);
+    }
+
+    #[test]
+    fn linked_cameras_follow_the_current_viewport() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        c.pointer_at(600.0, 300.0);
+        c.drag(Vec2::new(30.0, 10.0));
+        assert_ne!(c.viewports()[0].camera, c.viewports()[1].camera);
+        // c: the others take the current one's camera, and follow it from then on.
+        key(&mut c, Key::Char('c'));
+        assert_eq!(c.viewports()[0].camera, c.viewports()[1].camera);
+        c.pointer_at(100.0, 300.0);
+        assert_eq!(c.current(), 0);
+        c.drag(Vec2::new(-50.0, 20.0));
+        c.wheel(2.0);
+        c.pan(Vec2::new(15.0, 5.0));
+        assert_eq!(c.viewports()[0].camera, c.viewports()[1].camera);
+        key(&mut c, Key::Char('a'));
+        assert_eq!(c.viewports()[2].camera, c.viewports()[0].camera);
+        // c again: each its own.
+        key(&mut c, Key::Char('c'));
+        c.drag(Vec2::new(40.0, 0.0));
+        assert_ne!(c.viewports()[2].camera, c.viewports()[0].camera);
+        assert_eq!(c.viewports()[0].camera, c.viewports()[1].camera);
+    }
+
+    #[test]
+    fn brackets_change_the_crease_angle_of_the_current_viewport() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        key(&mut c, Key::Char(']'));
+        assert!(c.message.contains("crease angle 60°"), "{}", c.message);
+        assert_eq!(c.current_viewport().generation, 1, "uploaded again");
+        for _ in 0..10 {
+            key(&mut c, Key::Char(']'));
+        }
+        assert!(c.message.contains("crease angle 180°"), "{}", c.message);
+        let crease =
+            |c: &ViewportController, i: usize| c.viewports()[i].scene().models[0].crease_angle;
+        assert_eq!(crease(&c, 1), Some(std::f32::consts::PI));
+        assert_eq!(crease(&c, 0), None, "the other viewport keeps its own");
+        // A decimation keeps it; [ goes back down.
+        key(&mut c, Key::Char('5'));
+        assert_eq!(crease(&c, 1), Some(std::f32::consts::PI));
+        key(&mut c, Key::Char('['));
+        assert!(c.message.contains("crease angle 165°"), "{}", c.message);
+    }
+
+    #[test]
+    fn the_menu_checks_the_toggles_that_are_on() {
+        let mut c = controller();
+        assert_eq!(c.checked(Action::ToggleTriangles), Some(true));
+        assert_eq!(c.checked(Action::ToggleEdges), Some(false));
+        key(&mut c, Key::Char('e'));
+        key(&mut c, Key::Char('c'));
+        assert_eq!(c.checked(Action::ToggleEdges), Some(true));
+        assert_eq!(c.checked(Action::ToggleLinkedCameras), Some(true));
+        assert_eq!(c.checked(Action::ResetView), None, "no toggle");
+        // Every toggle of the menu has a state to show.
+        for a in crate::app::menu::actions(&crate::app::menu::menu()) {
+            let name = format!("{a:?}");
+            assert_eq!(
+                c.checked(a).is_some(),
+                name.starts_with("Toggle")
+                    && name != "ToggleAlgorithm"
+                    && name != "ToggleNavigation",
+                "{name}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_dropped_file_replaces_the_viewports_and_becomes_the_input() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        key(&mut c, Key::Char('5'));
+        let cube = Scene {
+            models: vec![crate::mesh::shapes::test004()],
+        };
+        let dir = std::env::temp_dir().join(format!("decimate-drop-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        let path = dir.join("out.wrl");
+        crate::io::write_vrml2(&cube, &path).unwrap_or_else(|e| panic!("{e}"));
+        let before = std::fs::read(&path).unwrap_or_else(|e| panic!("{e}"));
+        c.open(cube, &path);
+        assert_eq!(c.viewports().len(), 1);
+        assert_eq!(c.current_viewport().vertex_count(), 602);
+        assert!(
+            c.message.contains("602 vertices, 1200 triangles"),
+            "{}",
+            c.message
+        );
+        assert_eq!(c.original_vertices(), 602);
+        // F3 now keeps the dropped file too.
+        c.save_path = path.clone();
+        key(&mut c, Key::F3);
+        assert_eq!(
+            std::fs::read(&path).unwrap_or_else(|e| panic!("{e}")),
+            before
+        );
+        assert!(dir.join("out-1.wrl").exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn the_command_lines_modes_reach_every_viewport() {
+        let mut c = controller();
+        let modes = crate::cli::draw_modes("edges,flat").unwrap_or_else(|e| panic!("{e}"));
+        c.set_draw_options(modes);
+        key(&mut c, Key::Char('a'));
+        for vp in c.viewports() {
+            assert_eq!(vp.options, modes);
+        }
+        assert!(!modes.triangles && modes.edges && !modes.smooth);
     }
 
     #[test]
@@ -523,11 +805,61 @@ mod tests {
     }
 
     #[test]
-    fn decimate_to_n_vertices_is_a_number_event() {
+    fn decimate_to_n_vertices_reaches_n_and_says_the_counts_shown() {
         let mut c = controller();
-        c.decimate_to(60);
-        assert!(c.message.contains("61 vertices"), "{}", c.message);
+        assert_eq!(c.submit_vertex_count(" 60\n"), Ok(()));
+        assert_eq!(c.current_viewport().vertex_count(), 60);
+        let triangles = c.current_viewport().triangle_count();
+        assert!(
+            c.message
+                .contains(&format!(": 60 vertices, {triangles} triangles left")),
+            "{}",
+            c.message
+        );
         assert_eq!(c.current_viewport().generation, 1);
+        // All of them: nothing removed, the original shown.
+        assert_eq!(c.submit_vertex_count("121"), Ok(()));
+        assert_eq!(c.current_viewport().vertex_count(), 121);
+    }
+
+    #[test]
+    fn the_vertex_field_refuses_what_is_no_count_of_the_scene() {
+        let mut c = controller();
+        for (text, says) in [
+            ("abc", "'abc' is not a vertex count"),
+            ("-5", "'-5' is not a vertex count"),
+            ("12.5", "'12.5' is not a vertex count"),
+            ("", "no number"),
+            ("99999", "99999 is more than the original's 121 vertices"),
+            ("99999999999999999999999", "is more than the original's 121"),
+        ] {
+            let e = c.submit_vertex_count(text).unwrap_err();
+            assert!(e.contains(says), "{text:?}: {e}");
+            assert!(e.contains("from 0 to 121"), "{text:?}: {e}");
+        }
+        assert_eq!(c.current_viewport().generation, 0, "nothing was decimated");
+        assert_eq!(parse_vertex_count("1,000", 5000), Ok(1000));
+    }
+
+    #[test]
+    fn zero_vertices_is_key_zero() {
+        let cube = Scene {
+            models: vec![crate::mesh::shapes::test004()],
+        };
+        let mut by_key = ViewportController::new(cube.clone(), Params::default(), 800, 600);
+        key(&mut by_key, Key::Char('0'));
+        let mut by_field = ViewportController::new(cube, Params::default(), 800, 600);
+        assert_eq!(by_field.submit_vertex_count("0"), Ok(()));
+        for c in [&by_key, &by_field] {
+            let vp = c.current_viewport();
+            // The cube's eight corners are features: "as far as possible" keeps them.
+            assert_eq!((vp.vertex_count(), vp.triangle_count()), (8, 12));
+            assert!(
+                c.message.contains("8 vertices, 12 triangles left"),
+                "{}",
+                c.message
+            );
+        }
     }
 
     #[test]
@@ -591,6 +923,35 @@ mod tests {
             saved.scene.models[0].used_vertex_count(),
             c.current_viewport().vertex_count()
         );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn f3_never_writes_over_the_input_file() {
+        let dir = std::env::temp_dir().join(format!("decimate-f3-in-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        let input = dir.join("out.wrl");
+        crate::io::write_vrml2(&plane(), &input).unwrap_or_else(|e| panic!("{e}"));
+        let before = std::fs::read(&input).unwrap_or_else(|e| panic!("{e}"));
+        let mut c = controller();
+        c.save_path = input.clone();
+        c.inputs = vec![input.clone()];
+        key(&mut c, Key::Char('5'));
+        key(&mut c, Key::F3);
+        assert_eq!(
+            std::fs::read(&input).unwrap_or_else(|e| panic!("{e}")),
+            before,
+            "the input changed"
+        );
+        let instead = dir.join("out-1.wrl");
+        assert!(c.message.contains("out-1.wrl"), "{}", c.message);
+        assert!(c.message.contains("input"), "{}", c.message);
+        let saved = crate::io::read_scene(&instead).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(saved.scene.models[0].used_vertex_count(), 60);
+        // No temporary file is left beside them.
+        let names = std::fs::read_dir(&dir).map_or(0, |d| d.count());
+        assert_eq!(names, 2);
         let _ = std::fs::remove_dir_all(&dir);
     }
 

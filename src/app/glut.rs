@@ -7,11 +7,12 @@ use std::sync::Arc;
 
 use winit::application::ApplicationHandler;
 use winit::dpi::{LogicalSize, PhysicalPosition};
-use winit::event::{ElementState, MouseScrollDelta, WindowEvent};
-use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::event::{ElementState, MouseScrollDelta, StartCause, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::keyboard::{Key as WinitKey, NamedKey};
 use winit::window::{Window, WindowId};
 
+use super::app_error::AppError;
 use super::menu::Key;
 
 /// Mouse buttons, as GLUT names them.
@@ -41,9 +42,9 @@ pub enum Flow {
 /// The viewer's callbacks. Positions are physical pixels from the window's top-left corner.
 pub trait Callbacks {
     /// The window exists: create what draws into it. An error ends the loop.
-    fn create(&mut self, window: &Arc<Window>) -> Result<(), String>;
-    /// Draw a frame.
-    fn display(&mut self, window: &Window) -> Flow;
+    fn create(&mut self, window: &Arc<Window>) -> Result<(), AppError>;
+    /// Draw a frame. An error ends the loop, and `main_loop` returns it.
+    fn display(&mut self, window: &Window) -> Result<Flow, AppError>;
     /// The window was resized.
     fn reshape(&mut self, width: u32, height: u32);
     /// A bound or printable key was pressed.
@@ -58,6 +59,12 @@ pub trait Callbacks {
     fn wheel(&mut self, steps: f32);
     /// Every raw event goes here first (for the UI layer); `true` means it was consumed.
     fn filter(&mut self, window: &Window, event: &WindowEvent) -> bool;
+    /// A file was dropped onto the window.
+    fn dropped(&mut self, _window: &Window, _path: std::path::PathBuf) {}
+    /// When the window must be drawn again without any event (a status message expiring).
+    fn wake_at(&self) -> Option<std::time::Instant> {
+        None
+    }
     /// The loop is ending: free GPU objects while the window still exists.
     fn destroy(&mut self);
 }
@@ -71,19 +78,22 @@ struct Glut<'a, C: Callbacks> {
     shift: bool,
     /// The left button went down with Shift: it is reported as the middle one until it is up.
     left_is_middle: bool,
-    error: Option<String>,
+    error: Option<AppError>,
 }
 
 /// Opens a window titled `title` and runs the event loop with `callbacks` until one of them
 /// returns [`Flow::Quit`] or the window is closed.
-pub fn main_loop<C: Callbacks>(title: &str, callbacks: &mut C) -> Result<(), String> {
+pub fn main_loop<C: Callbacks>(title: &str, callbacks: &mut C) -> Result<(), AppError> {
     use winit::platform::x11::EventLoopBuilderExtX11;
     let event_loop = EventLoop::builder().with_x11().build().map_err(|e| {
         let display = match std::env::var("DISPLAY") {
             Ok(d) => format!("DISPLAY={d}"),
             Err(_) => "DISPLAY is not set".to_string(),
         };
-        format!("cannot open the X11 display ({display}): {e}")
+        AppError::Display {
+            display,
+            message: e.to_string(),
+        }
     })?;
     let mut glut = Glut {
         title: title.to_string(),
@@ -96,7 +106,7 @@ pub fn main_loop<C: Callbacks>(title: &str, callbacks: &mut C) -> Result<(), Str
     };
     event_loop
         .run_app(&mut glut)
-        .map_err(|e| format!("event loop: {e}"))?;
+        .map_err(|e| AppError::EventLoop(e.to_string()))?;
     match glut.error {
         Some(e) => Err(e),
         None => Ok(()),
@@ -111,6 +121,19 @@ impl<C: Callbacks> Glut<'_, C> {
 }
 
 impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
+    fn new_events(&mut self, _event_loop: &ActiveEventLoop, cause: StartCause) {
+        if let (StartCause::ResumeTimeReached { .. }, Some(window)) = (cause, &self.window) {
+            window.request_redraw();
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        event_loop.set_control_flow(match self.callbacks.wake_at() {
+            Some(at) => ControlFlow::WaitUntil(at),
+            None => ControlFlow::Wait,
+        });
+    }
+
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.window.is_some() {
             return;
@@ -121,7 +144,7 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
         let window = match event_loop.create_window(attributes) {
             Ok(w) => Arc::new(w),
             Err(e) => {
-                self.error = Some(format!("cannot create the window: {e}"));
+                self.error = Some(AppError::Window(e.to_string()));
                 event_loop.exit();
                 return;
             }
@@ -148,17 +171,24 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
         let mut flow = Flow::Continue;
         match event {
             WindowEvent::CloseRequested => flow = Flow::Quit,
+            WindowEvent::DroppedFile(path) => self.callbacks.dropped(&window, path),
             WindowEvent::Resized(size) => self.callbacks.reshape(size.width, size.height),
             WindowEvent::RedrawRequested => {
                 // Drawn on demand only: no redraw is requested from here, so an idle viewer
                 // leaves the (shared, often software) GPU alone.
-                if self.callbacks.display(&window) == Flow::Quit {
-                    self.quit(event_loop);
+                match self.callbacks.display(&window) {
+                    Ok(Flow::Continue) => {}
+                    Ok(Flow::Quit) => self.quit(event_loop),
+                    Err(e) => {
+                        self.error = Some(e);
+                        self.quit(event_loop);
+                    }
                 }
                 return;
             }
             WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
                 let key = match &event.logical_key {
+                    WinitKey::Named(NamedKey::F2) => Some(Key::F2),
                     WinitKey::Named(NamedKey::F3) => Some(Key::F3),
                     WinitKey::Named(NamedKey::Tab) => Some(Key::Tab),
                     WinitKey::Named(NamedKey::Escape) => Some(Key::Escape),

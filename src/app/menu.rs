@@ -41,8 +41,12 @@ pub enum Action {
     ToggleSmooth,
     /// Textured models textured or in their material colour.
     ToggleTexture,
+    /// The current viewport's crease angle up or down by this many degrees (0 to 180).
+    CreaseAngle(i16),
     /// Model control (trackball) ↔ eye control (first person).
     ToggleNavigation,
+    /// Every viewport follows the current one's camera (on) or keeps its own (off).
+    ToggleLinkedCameras,
     AddViewport,
     RemoveViewport,
     NextViewport,
@@ -50,6 +54,8 @@ pub enum Action {
     ToggleHelp,
     /// Save the current viewport's scene as `out.wrl`.
     Save,
+    /// Save a picture of the window's viewports as `window.png`.
+    SavePicture,
     Quit,
 }
 
@@ -57,6 +63,7 @@ pub enum Action {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Key {
     Char(char),
+    F2,
     F3,
     Tab,
     Escape,
@@ -160,6 +167,16 @@ pub fn menu() -> Vec<MenuEntry> {
                 entry("Lighting", Some("l"), Action::ToggleLighting),
                 entry("Smooth / flat shading", Some("s"), Action::ToggleSmooth),
                 entry("Texture", Some("T"), Action::ToggleTexture),
+                entry(
+                    "Crease angle −15° (sharper)",
+                    Some("["),
+                    Action::CreaseAngle(-15),
+                ),
+                entry(
+                    "Crease angle +15° (smoother)",
+                    Some("]"),
+                    Action::CreaseAngle(15),
+                ),
             ],
         ),
         submenu(
@@ -167,12 +184,18 @@ pub fn menu() -> Vec<MenuEntry> {
             vec![
                 entry("Model / eye control", Some("m"), Action::ToggleNavigation),
                 entry("Reset view", Some("r"), Action::ResetView),
+                entry("Linked cameras", Some("c"), Action::ToggleLinkedCameras),
                 entry("Add viewport (original)", Some("a"), Action::AddViewport),
                 entry("Remove viewport", Some("x"), Action::RemoveViewport),
                 entry("Next viewport", Some("Tab"), Action::NextViewport),
             ],
         ),
         entry("Save as out.wrl", Some("F3"), Action::Save),
+        entry(
+            "Save a picture as window.png",
+            Some("F2"),
+            Action::SavePicture,
+        ),
         entry("Help", Some("h"), Action::ToggleHelp),
         entry("Quit", Some("q"), Action::Quit),
     ]
@@ -181,6 +204,7 @@ pub fn menu() -> Vec<MenuEntry> {
 /// The action bound to `key`, if any.
 pub fn action_for_key(key: Key) -> Option<Action> {
     Some(match key {
+        Key::F2 => Action::SavePicture,
         Key::F3 => Action::Save,
         Key::Tab => Action::NextViewport,
         Key::Escape => Action::Quit,
@@ -201,6 +225,9 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'a' => Action::AddViewport,
                 'x' => Action::RemoveViewport,
                 'r' => Action::ResetView,
+                'c' => Action::ToggleLinkedCameras,
+                '[' => Action::CreaseAngle(-15),
+                ']' => Action::CreaseAngle(15),
                 'h' => Action::ToggleHelp,
                 'v' => Action::AskVertexCount,
                 'L' => Action::ToggleLod,
@@ -256,6 +283,7 @@ mod tests {
 
     fn key_of(label_key: &str) -> Key {
         match label_key {
+            "F2" => Key::F2,
             "F3" => Key::F3,
             "Tab" => Key::Tab,
             k => Key::Char(k.chars().next().unwrap_or(' ')),
@@ -327,8 +355,12 @@ mod tests {
             Action::RemoveViewport,
             Action::NextViewport,
             Action::ResetView,
+            Action::ToggleLinkedCameras,
+            Action::CreaseAngle(15),
+            Action::CreaseAngle(-15),
             Action::ToggleHelp,
             Action::Save,
+            Action::SavePicture,
             Action::Quit,
         ] {
             assert!(all.contains(&a), "{a:?} is missing from the menu");

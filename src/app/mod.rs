@@ -1,10 +1,13 @@
 //! The viewer side of the program: the `shot` action (offscreen picture) and the interactive
 //! viewer, both over `render`. `run` is what `main` calls for the `gui` and `shot` actions.
 
+pub mod app_error;
 pub mod controller;
 pub mod glut;
+pub mod labels;
 pub mod lod;
 pub mod menu;
+pub mod save;
 pub mod shot;
 pub mod ui;
 pub mod viewer;
@@ -16,8 +19,13 @@ use crate::cli::{Action, Args};
 use crate::mesh::Scene;
 
 /// Runs the `gui` or `shot` action on an already built scene.
-pub fn run(scene: Scene, args: &Args) -> ExitCode {
+pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
     crate::threads::join_pool();
+    if let Some(degrees) = args.crease_angle {
+        for m in &mut scene.models {
+            m.crease_angle = Some(degrees.to_radians());
+        }
+    }
     match args.action {
         Action::Shot => run_shot(&scene, args),
         Action::Gui | Action::NoGui => run_gui(scene, args),
@@ -36,6 +44,8 @@ fn run_gui(scene: Scene, args: &Args) -> ExitCode {
     // motion events for the viewports the controller owns.
     let mut controller = controller::ViewportController::new(scene, args.params, 1024, 720);
     controller.input_dir = crate::io::texture_path::folder_of(&args.input).to_path_buf();
+    controller.inputs = vec![args.input.clone()];
+    controller.set_draw_options(args.shot.modes);
     let mut viewer = viewer::Viewer::new(controller, entries);
     // (6) Hand control to the main loop.
     let title = format!("decimate — {}", args.input.display());
@@ -57,8 +67,10 @@ fn run_shot(scene: &Scene, args: &Args) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    if let (Some(report), false) = (report, args.quiet) {
-        eprint!("{}", report.summary());
+    if !args.quiet {
+        for report in &report {
+            eprint!("{}", report.summary());
+        }
     }
     if let Err(e) = shot::write_png(&image, &args.output) {
         eprintln!("decimate: cannot write {e}");

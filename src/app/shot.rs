@@ -1,23 +1,26 @@
 //! The `shot` action: render the scene offscreen — no window, no display — with exactly the
 //! viewer's renderer, viewports tiled as in the viewer (the first shows the original scene,
-//! the others the decimated one), and write a PNG through a temporary file and a rename.
+//! the others the decimated one, each with its own target when `-p 60,80,90` lists several),
+//! captioned, and write a PNG through a temporary file and a rename.
 
 use std::path::Path;
 
-use crate::cli::{ShotModes, ShotOptions};
-use crate::decimate::{simplify_scene, Params, Report};
+use crate::cli::ShotOptions;
+use crate::decimate::{simplify_scene, Params, Report, Target};
 use crate::io::texture_image;
 use crate::mesh::Scene;
 use crate::render::camera::Camera;
 use crate::render::commands::Commands;
 use crate::render::context::{Context, DevicePreference};
-use crate::render::draw::{DrawOptions, ViewportDraw};
+use crate::render::draw::ViewportDraw;
 use crate::render::gpu_mesh::GpuScene;
 use crate::render::offscreen::{OffscreenTarget, RgbaImage, OFFSCREEN_FORMAT};
 use crate::render::pipeline::Pipelines;
 use crate::render::texture::Textures;
 use crate::render::tiles::tiles;
 use crate::render::RenderError;
+
+use super::labels::{self, HeadlessCaptions};
 
 /// What can go wrong taking a shot.
 #[derive(Debug, thiserror::Error)]
@@ -38,83 +41,112 @@ pub enum ShotError {
     },
 }
 
-/// The draw toggles a `--mode` list asks for.
-pub fn draw_options(modes: &ShotModes) -> DrawOptions {
-    DrawOptions {
-        triangles: modes.triangles,
-        edges: modes.edges,
-        points: modes.points,
-        face_normals: modes.face_normals,
-        vertex_normals: modes.vertex_normals,
-        lighting: !modes.unlit,
-        smooth: !modes.flat,
-        textures: !modes.untextured,
-    }
+/// What viewport `i` of `count` shows: `None` for the original, else the parameters of its
+/// decimation. Viewport 1 shows the original and the others the decimated scene, each with
+/// its own target from `targets` (the last one repeated) or `params`' own; a single viewport
+/// with a target shows the decimated scene (otherwise the target would be ignored).
+pub fn viewport_params(
+    count: usize,
+    params: Option<&Params>,
+    targets: &[Target],
+) -> Vec<Option<Params>> {
+    (0..count)
+        .map(|i| {
+            let params = params?;
+            if count > 1 && i == 0 {
+                return None;
+            }
+            let target = targets.get(i.saturating_sub(1)).or(targets.last());
+            Some(Params {
+                target: target.copied().unwrap_or(params.target),
+                ..*params
+            })
+        })
+        .collect()
 }
 
-/// A picture of `scene` and, when `params` is given, of its decimated copy.
-///
-/// Viewport 1 shows the original and viewports 2–4 the decimated scene; with a single
-/// viewport and a target, that viewport shows the decimated scene (otherwise the target would
-/// be ignored). Every viewport uses the same camera, framed on the original.
+/// A decimated copy of the scene on the GPU, with its report and caption.
+struct Decimated {
+    params: Params,
+    gpu: GpuScene,
+    report: Report,
+    caption: String,
+}
+
+/// A picture of `scene` and, when `params` is given, of its decimated copies (see
+/// [`viewport_params`]); their reports in viewport order. Every viewport uses the same camera,
+/// framed on the original. Captions (`labels`, by default with more than one viewport) say
+/// what each viewport shows.
 pub fn render(
     scene: &Scene,
     options: &ShotOptions,
     params: Option<&Params>,
     device: DevicePreference,
-) -> Result<(RgbaImage, Option<Report>), RenderError> {
+) -> Result<(RgbaImage, Vec<Report>), RenderError> {
     let context = Context::new(&[], false, device)?;
     let commands = Commands::new(&context)?;
     let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
     let target = OffscreenTarget::new(&context, options.width, options.height)?;
 
-    let draw = draw_options(&options.modes);
+    let draw = options.modes;
     let mut textures = Textures::new(
         &context,
         pipelines.texture_layout,
         texture_image::reader(&options.texture_dir),
     )?;
     let original = GpuScene::upload(&context, &commands, &mut textures, scene, draw.layers())?;
-    let (decimated, report) = match params {
-        Some(params) => {
-            let mut copy = scene.clone();
-            let report = simplify_scene(&mut copy, params, &mut |_| {});
-            (
-                Some(GpuScene::upload(
-                    &context,
-                    &commands,
-                    &mut textures,
-                    &copy,
-                    draw.layers(),
-                )?),
-                Some(report),
-            )
-        }
-        None => (None, None),
-    };
-    let camera = Camera::framing(original.bounds);
     let rects = tiles(options.viewports as usize, options.width, options.height);
-    let views: Vec<_> = rects
-        .iter()
-        .enumerate()
-        .map(|(i, &rect)| {
-            let shows_decimated = i > 0 || rects.len() == 1;
-            let scene = match (&decimated, shows_decimated) {
-                (Some(d), true) => d,
-                _ => &original,
-            };
-            ViewportDraw {
-                rect,
-                scene,
-                camera: &camera,
-                options: draw,
-                morph: 1.0,
-            }
-        })
-        .collect();
-    let image = target.render(&commands, &pipelines, &views, true)?;
+    let shown = viewport_params(rects.len(), params, &options.targets);
+    let mut decimated: Vec<Decimated> = Vec::new();
+    for p in shown.iter().flatten() {
+        if decimated.iter().any(|d| d.params == *p) {
+            continue;
+        }
+        let mut copy = scene.clone();
+        let report = simplify_scene(&mut copy, p, &mut |_| {});
+        let what = format!(
+            "{} ({})",
+            labels::target_words(p.target, p.max_error),
+            labels::algorithm_name(p.algorithm)
+        );
+        decimated.push(Decimated {
+            params: *p,
+            gpu: GpuScene::upload(&context, &commands, &mut textures, &copy, draw.layers())?,
+            report,
+            caption: labels::caption(&what, vertices(&copy), copy.triangle_count()),
+        });
+    }
+    let original_caption = labels::caption("original", vertices(scene), scene.triangle_count());
+    let camera = Camera::framing(original.bounds);
+    let mut views = Vec::with_capacity(rects.len());
+    let mut captions = Vec::with_capacity(rects.len());
+    for (&rect, p) in rects.iter().zip(&shown) {
+        let d = p.and_then(|p| decimated.iter().find(|d| d.params == p));
+        views.push(ViewportDraw {
+            rect,
+            scene: d.map_or(&original, |d| &d.gpu),
+            camera: &camera,
+            options: draw,
+            morph: 1.0,
+        });
+        captions.push((rect, d.map_or(&original_caption, |d| &d.caption).clone()));
+    }
+    let image = if options.labels.unwrap_or(rects.len() > 1) {
+        let mut overlay = HeadlessCaptions::new(&context, &commands, target.extent, &captions)?;
+        let mut record = |cmd| overlay.record(cmd);
+        target.render_with_overlay(&commands, &pipelines, &views, true, Some(&mut record))?
+    } else {
+        target.render(&commands, &pipelines, &views, true)?
+    };
     let image = image.ok_or_else(|| RenderError::TooLarge("no picture was read back".into()))?;
-    Ok((image, report))
+    Ok((image, decimated.into_iter().map(|d| d.report).collect()))
+}
+
+/// Vertices of `scene` used by some triangle.
+fn vertices(scene: &Scene) -> usize {
+    (scene.models.iter())
+        .map(crate::mesh::Model::used_vertex_count)
+        .sum()
 }
 
 /// Writes `image` as an RGBA PNG through [`crate::io::replace::replace_file`]: a temporary

@@ -12,6 +12,10 @@ use winit::window::Window;
 use crate::render::commands::Commands;
 use crate::render::context::Context;
 
+use crate::render::tiles::Rect;
+
+use super::app_error::AppError;
+use super::labels;
 use super::menu::{Action, MenuEntry, MenuItem};
 
 /// What the user did in the UI this frame.
@@ -19,8 +23,8 @@ use super::menu::{Action, MenuEntry, MenuItem};
 pub struct UiResult {
     /// A menu entry was chosen.
     pub action: Option<Action>,
-    /// The vertex-count field was confirmed with this number.
-    pub decimate_to: Option<usize>,
+    /// The vertex-count field was submitted (Enter or the button) with this text.
+    pub vertex_count: Option<String>,
     /// The popup or the field was dismissed.
     pub close_popup: bool,
     pub close_field: bool,
@@ -30,20 +34,34 @@ pub struct UiResult {
     pub lod_vertices: Option<usize>,
 }
 
+/// The "decimate to N vertices" field while it is open.
+#[derive(Debug, Clone, Default)]
+pub struct VertexField {
+    pub text: String,
+    /// Why the last submitted text was refused, shown under the field.
+    pub error: Option<String>,
+    /// The counts the field accepts, shown as its hint.
+    pub hint: String,
+}
+
 /// What the UI shows this frame.
 pub struct UiState<'a> {
     pub menu: &'a [MenuEntry],
+    /// Whether a toggle of the menu is on (`None`: not a toggle).
+    pub checked: &'a dyn Fn(Action) -> Option<bool>,
     /// Where the popup is open (logical points), if it is.
     pub popup_at: Option<egui::Pos2>,
     /// The popup opened with this frame's click, which must not count as "clicked elsewhere".
     pub popup_just_opened: bool,
-    /// The vertex-count field's text, if it is open.
-    pub field: Option<&'a mut String>,
+    /// The vertex-count field, if it is open.
+    pub field: Option<&'a mut VertexField>,
     pub status: &'a str,
     pub help: Option<&'a str>,
     /// The current viewport's level-of-detail slider, if it is on: least and most vertices,
     /// and the count it is at.
     pub lod: Option<(usize, usize, usize)>,
+    /// Each viewport's rectangle (physical pixels) and caption.
+    pub captions: &'a [(Rect, String)],
 }
 
 /// egui context, winit glue and Vulkan renderer.
@@ -62,7 +80,7 @@ impl UiLayer {
         context: &Arc<Context>,
         window: &Window,
         color_format: vk::Format,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, AppError> {
         let ctx = egui::Context::default();
         let state = egui_winit::State::new(
             ctx.clone(),
@@ -85,7 +103,7 @@ impl UiLayer {
                 ..Options::default()
             },
         )
-        .map_err(|e| format!("egui renderer: {e}"))?;
+        .map_err(|e| AppError::ui("egui renderer", e))?;
         Ok(Self {
             renderer,
             state,
@@ -114,24 +132,30 @@ impl UiLayer {
         context: &Arc<Context>,
         commands: &Commands,
         ui_state: UiState<'_>,
-    ) -> Result<UiResult, String> {
+    ) -> Result<UiResult, AppError> {
         let input = self.state.take_egui_input(window);
         let mut result = UiResult::default();
         let UiState {
             menu,
+            checked,
             popup_at,
             popup_just_opened,
             mut field,
             status,
             help,
             lod,
+            captions,
         } = ui_state;
+        let scale = window.scale_factor() as f32;
         let output = self.ctx.run_ui(input, |ui| {
             let ctx = ui.ctx().clone();
+            labels::paint(&ctx, captions, scale);
             egui::Area::new(egui::Id::new("status"))
                 .anchor(egui::Align2::LEFT_BOTTOM, egui::vec2(6.0, -6.0))
                 .show(&ctx, |ui| {
-                    egui::Frame::popup(ui.style()).show(ui, |ui| ui.label(status));
+                    egui::Frame::popup(ui.style()).show(ui, |ui| {
+                        ui.add(egui::Label::new(status).wrap_mode(egui::TextWrapMode::Extend))
+                    });
                 });
             if let Some((lo, hi, at)) = lod {
                 egui::Area::new(egui::Id::new("level of detail"))
@@ -164,7 +188,7 @@ impl UiLayer {
                     .show(&ctx, |ui| {
                         egui::Frame::menu(ui.style()).show(ui, |ui| {
                             ui.set_min_width(180.0);
-                            menu_entries(ui, menu, &mut result.action);
+                            menu_entries(ui, menu, checked, &mut result.action);
                         });
                     });
                 if !popup_just_opened
@@ -174,33 +198,8 @@ impl UiLayer {
                     result.close_popup = true;
                 }
             }
-            if let Some(text) = field.as_deref_mut() {
-                egui::Window::new("Decimate to N vertices")
-                    .collapsible(false)
-                    .resizable(false)
-                    .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
-                    .show(&ctx, |ui| {
-                        let edit = ui.add(egui::TextEdit::singleline(text).hint_text("vertices"));
-                        edit.request_focus();
-                        let entered =
-                            edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                        ui.horizontal(|ui| {
-                            if ui.button("Decimate").clicked() || entered {
-                                match text.trim().parse::<usize>() {
-                                    Ok(n) => {
-                                        result.decimate_to = Some(n);
-                                        result.close_field = true;
-                                    }
-                                    Err(_) => text.clear(),
-                                }
-                            }
-                            if ui.button("Cancel").clicked()
-                                || ui.input(|i| i.key_pressed(egui::Key::Escape))
-                            {
-                                result.close_field = true;
-                            }
-                        });
-                    });
+            if let Some(field) = field.as_deref_mut() {
+                vertex_field(&ctx, field, &mut result);
             }
         });
         result.repaint = output
@@ -216,7 +215,7 @@ impl UiLayer {
             for d in &deltas {
                 self.renderer
                     .set_texture(context.queue, commands.pool(), id, d)
-                    .map_err(|e| format!("egui textures: {e}"))?;
+                    .map_err(|e| AppError::ui("egui textures", e))?;
             }
         }
         self.textures_to_free = std::mem::take(&mut delta.free).into_iter().collect();
@@ -224,25 +223,65 @@ impl UiLayer {
     }
 
     /// Records the UI into `cmd`, inside a colour-only rendering pass of `extent`.
-    pub fn draw(&mut self, cmd: vk::CommandBuffer, extent: vk::Extent2D) -> Result<(), String> {
+    pub fn draw(&mut self, cmd: vk::CommandBuffer, extent: vk::Extent2D) -> Result<(), AppError> {
         self.renderer
             .cmd_draw(cmd, extent, self.pixels_per_point, &self.primitives)
-            .map_err(|e| format!("egui draw: {e}"))
+            .map_err(|e| AppError::ui("egui draw", e))
     }
 
     /// After the frame has finished on the GPU: textures egui no longer needs.
-    pub fn end_frame(&mut self) -> Result<(), String> {
+    pub fn end_frame(&mut self) -> Result<(), AppError> {
         for id in std::mem::take(&mut self.textures_to_free) {
             self.renderer
                 .free_texture(id)
-                .map_err(|e| format!("egui textures: {e}"))?;
+                .map_err(|e| AppError::ui("egui textures", e))?;
         }
         Ok(())
     }
 }
 
+/// The "decimate to N vertices" window: Enter or the button submits the text (the viewer
+/// checks it and either closes the field or shows why not), Escape or Cancel closes it.
+fn vertex_field(ctx: &egui::Context, field: &mut VertexField, result: &mut UiResult) {
+    egui::Window::new("Decimate to N vertices")
+        .collapsible(false)
+        .resizable(false)
+        .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
+        .show(ctx, |ui| {
+            // Read before the text edit, which gives up its focus on Enter.
+            let (entered, escaped) = ui.input(|i| {
+                (
+                    i.key_pressed(egui::Key::Enter),
+                    i.key_pressed(egui::Key::Escape),
+                )
+            });
+            let edit = egui::TextEdit::singleline(&mut field.text).hint_text(&field.hint);
+            let edit = ui.add(edit);
+            if !entered && !escaped {
+                // Typing goes to the field, never to the viewer's keys.
+                edit.request_focus();
+            }
+            if let Some(error) = &field.error {
+                ui.colored_label(egui::Color32::from_rgb(255, 140, 110), error);
+            }
+            ui.horizontal(|ui| {
+                if ui.button("Decimate").clicked() || entered {
+                    result.vertex_count = Some(field.text.clone());
+                }
+                if ui.button("Cancel").clicked() || escaped {
+                    result.close_field = true;
+                }
+            });
+        });
+}
+
 /// The menu entries as buttons; submenus as nested menu buttons.
-fn menu_entries(ui: &mut egui::Ui, entries: &[MenuEntry], chosen: &mut Option<Action>) {
+fn menu_entries(
+    ui: &mut egui::Ui,
+    entries: &[MenuEntry],
+    checked: &dyn Fn(Action) -> Option<bool>,
+    chosen: &mut Option<Action>,
+) {
     for e in entries {
         match &e.item {
             MenuItem::Action(a) => {
@@ -250,14 +289,19 @@ fn menu_entries(ui: &mut egui::Ui, entries: &[MenuEntry], chosen: &mut Option<Ac
                     Some(k) => format!("{}    [{k}]", e.label),
                     None => e.label.clone(),
                 };
-                if ui.button(label).clicked() {
+                // A toggle shows whether it is on with a check mark.
+                let clicked = match checked(*a) {
+                    Some(mut on) => ui.checkbox(&mut on, label).clicked(),
+                    None => ui.button(label).clicked(),
+                };
+                if clicked {
                     *chosen = Some(*a);
                     ui.close();
                 }
             }
             MenuItem::Submenu(sub) => {
                 ui.menu_button(format!("{}  >", e.label), |ui| {
-                    menu_entries(ui, sub, chosen)
+                    menu_entries(ui, sub, checked, chosen)
                 });
             }
         }

@@ -3,8 +3,9 @@
 //! uploaded again only when that viewport's scene changes), and turns window events into
 //! `Action`s through the same menu data as the popup.
 
+use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use ash::vk;
 use glam::Vec2;
@@ -17,14 +18,20 @@ use crate::render::context::{Context, DevicePreference};
 use crate::render::draw::{self, ViewportDraw, BACKGROUND};
 use crate::render::gpu_mesh::GpuScene;
 use crate::render::image::{self, Transition, DEPTH_FORMAT};
+use crate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
 use crate::render::pipeline::Pipelines;
-use crate::render::swapchain::Swapchain;
+use crate::render::swapchain::{Frame, Swapchain};
 use crate::render::texture::Textures;
+use crate::render::RenderError;
 
+use super::app_error::AppError;
 use super::controller::{Effect, ViewportController};
 use super::glut::{Button, Callbacks, Flow, Special};
+use super::labels::HeadlessCaptions;
 use super::menu::{action_for_key, key_help, Key, MenuEntry};
-use super::ui::{UiLayer, UiState};
+use super::save::{save_path, SavePath};
+use super::shot::write_png;
+use super::ui::{UiLayer, UiResult, UiState, VertexField};
 
 /// GPU objects of the window; field order is drop order (UI and meshes before the context).
 struct Gpu {
@@ -53,9 +60,17 @@ pub struct Viewer {
     panning: bool,
     popup_at: Option<egui::Pos2>,
     popup_just_opened: bool,
-    field: Option<String>,
+    field: Option<VertexField>,
     help_text: String,
+    /// The last message of the status line and when it expires.
+    message: Option<(String, Instant)>,
 }
+
+/// Where F2 saves the window's picture.
+const PICTURE: &str = "window.png";
+
+/// How long a message stays in the status line.
+const MESSAGE_LIFETIME: Duration = Duration::from_secs(6);
 
 impl Viewer {
     /// (4) The menus are built by the caller and handed in; nothing touches the GPU until the
@@ -74,6 +89,7 @@ impl Viewer {
             popup_just_opened: false,
             field: None,
             help_text: key_help(),
+            message: None,
         }
     }
 
@@ -81,32 +97,110 @@ impl Viewer {
         match effect {
             Effect::None => Flow::Continue,
             Effect::AskVertexCount => {
-                self.field = Some(String::new());
+                self.field = Some(VertexField {
+                    hint: format!(
+                        "0 to {} vertices (0: as far as possible)",
+                        self.controller.original_vertices()
+                    ),
+                    ..VertexField::default()
+                });
+                Flow::Continue
+            }
+            Effect::SavePicture => {
+                let message = match self.save_picture() {
+                    Ok(message) => message,
+                    Err(e) => format!("cannot save the picture: {e}"),
+                };
+                eprintln!("decimate: {message}");
+                self.controller.message = message;
                 Flow::Continue
             }
             Effect::Quit => Flow::Quit,
         }
     }
 
-    fn status(&self) -> String {
+    /// A new scene was opened: its textures are read from its own folder, and nothing of
+    /// the old one stays on the GPU.
+    fn reload_textures(&mut self) -> Result<(), AppError> {
+        let Some(gpu) = self.gpu.as_mut() else {
+            return Ok(());
+        };
+        gpu.context.wait_idle()?;
+        gpu.scenes.clear();
+        gpu.textures = Textures::new(
+            &gpu.context,
+            gpu.pipelines.texture_layout,
+            texture_image::reader(&self.controller.input_dir),
+        )?;
+        Ok(())
+    }
+
+    /// F2: the viewports and their captions as drawn now, rendered again offscreen and
+    /// written to `window.png` (never over an input; through a temporary file).
+    fn save_picture(&mut self) -> Result<String, AppError> {
+        let Some(gpu) = self.gpu.as_mut() else {
+            return Ok("no window to picture yet".into());
+        };
+        let wanted = PathBuf::from(PICTURE);
+        let Some(target) = save_path(&wanted, &self.controller.inputs) else {
+            return Ok(format!(
+                "cannot save: {PICTURE} and its alternatives are inputs"
+            ));
+        };
+        let extent = gpu.swapchain.extent;
+        gpu.context.wait_idle()?;
+        // The window's pipelines draw in the swapchain's format; the picture is RGBA.
+        let pipelines = Pipelines::new(&gpu.context, OFFSCREEN_FORMAT)?;
+        let offscreen = OffscreenTarget::new(&gpu.context, extent.width, extent.height)?;
+        let views = viewport_draws(&gpu.scenes, &self.controller, extent, Instant::now());
+        let captions: Vec<_> = (self.controller.rects_for(extent.width, extent.height))
+            .into_iter()
+            .zip(self.controller.viewports().iter().map(|vp| vp.caption()))
+            .collect();
+        let commands = &gpu.upload_commands;
+        let mut overlay = HeadlessCaptions::new(&gpu.context, commands, extent, &captions)?;
+        let mut record = |cmd| overlay.record(cmd);
+        let image = offscreen
+            .render_with_overlay(commands, &pipelines, &views, true, Some(&mut record))?
+            .ok_or_else(|| RenderError::TooLarge("no picture was read back".into()))?;
+        let path = target.path();
+        Ok(match write_png(&image, path) {
+            Ok(()) if matches!(target, SavePath::Instead(_)) => format!(
+                "{PICTURE} is an input file, not written over: saved the window as {}",
+                path.display()
+            ),
+            Ok(()) => format!("saved the window as {}", path.display()),
+            Err(e) => format!("cannot save the picture: {e}"),
+        })
+    }
+
+    /// The status line, one line: the last message while it is fresh, else the current
+    /// viewport's state.
+    fn status(&mut self) -> String {
+        let now = Instant::now();
+        let message = std::mem::take(&mut self.controller.message);
+        if !message.is_empty() {
+            self.message = Some((message, now + MESSAGE_LIFETIME));
+        }
+        if let Some((message, until)) = &self.message {
+            if now < *until {
+                return message.clone();
+            }
+            self.message = None;
+        }
         let vp = self.controller.current_viewport();
-        let mut s = format!(
+        format!(
             "viewport {}/{}: {}",
             self.controller.current() + 1,
             self.controller.viewports().len(),
             vp.status()
-        );
-        if !self.controller.message.is_empty() {
-            s.push('\n');
-            s.push_str(&self.controller.message);
-        }
-        s
+        )
     }
 
     /// Uploads the scenes whose generation changed, or whose draw modes now need a list that
     /// was left out (then with the lists it had too, so toggling a mode back and forth
     /// uploads once), and forgets removed viewports.
-    fn sync_scenes(gpu: &mut Gpu, controller: &ViewportController) -> Result<(), String> {
+    fn sync_scenes(gpu: &mut Gpu, controller: &ViewportController) -> Result<(), AppError> {
         let viewports = controller.viewports();
         gpu.scenes
             .retain(|(id, _, _)| viewports.iter().any(|v| v.id == *id));
@@ -118,7 +212,7 @@ impl Viewer {
                 .find(|(id, generation, _)| *id == vp.id && *generation == vp.generation)
                 .map(|(_, _, scene)| scene.layers);
             if uploaded.is_none_or(|layers| !layers.contains(needed)) {
-                gpu.context.wait_idle().map_err(|e| e.to_string())?;
+                gpu.context.wait_idle()?;
                 let morph_from = vp.lod().and_then(|l| l.morph_from());
                 let scene = GpuScene::upload_morphing(
                     &gpu.context,
@@ -127,8 +221,7 @@ impl Viewer {
                     vp.scene(),
                     morph_from,
                     uploaded.map_or(needed, |layers| layers.union(needed)),
-                )
-                .map_err(|e| format!("cannot upload the scene: {e}"))?;
+                )?;
                 gpu.scenes.retain(|(id, _, _)| *id != vp.id);
                 gpu.scenes.push((vp.id, vp.generation, scene));
             }
@@ -136,91 +229,80 @@ impl Viewer {
         Ok(())
     }
 
-    fn draw_frame(&mut self, window: &Window) -> Result<(), String> {
+    /// One frame: advance geomorphs, bring the GPU copies up to date, lay out the UI, draw
+    /// and present, then act on what the UI reported. `Flow::Quit` when a menu entry quits.
+    fn draw_frame(&mut self, window: &Window) -> Result<Flow, AppError> {
         // Geomorphs advance with the clock; while one runs, frames keep coming.
         let now = Instant::now();
         let morphing = self.controller.tick(now);
+        let Some(gpu) = self.gpu.as_mut() else {
+            return Ok(Flow::Continue);
+        };
+        if self.resized {
+            gpu.swapchain.recreate(self.size.0, self.size.1)?;
+            self.resized = false;
+        }
+        Self::sync_scenes(gpu, &self.controller)?;
+        let ui_result = self.run_ui(window)?;
+        if !self.present(now)? {
+            // The swapchain no longer fits the window: made again next frame.
+            self.resized = true;
+            window.request_redraw();
+        }
+        self.popup_just_opened = false;
+        if ui_result.repaint || morphing {
+            window.request_redraw();
+        }
+        Ok(self.apply_ui(ui_result, window))
+    }
+
+    /// Lays out this frame's UI: status line, level-of-detail slider, help, popup, field.
+    fn run_ui(&mut self, window: &Window) -> Result<UiResult, AppError> {
         let status = self.status();
         let lod = self.controller.current_viewport().lod().map(|l| {
             let (lo, hi) = l.range();
             (lo, hi, l.target())
         });
         let help = self.controller.help.then_some(self.help_text.as_str());
+        let captions: Vec<_> = (self.controller.rects().into_iter())
+            .zip(self.controller.viewports().iter().map(|vp| vp.caption()))
+            .collect();
         let Some(gpu) = self.gpu.as_mut() else {
-            return Ok(());
+            return Ok(UiResult::default());
         };
-        if self.resized {
-            gpu.swapchain
-                .recreate(self.size.0, self.size.1)
-                .map_err(|e| e.to_string())?;
-            self.resized = false;
-        }
-        Self::sync_scenes(gpu, &self.controller)?;
         let scale = window.scale_factor() as f32;
-        let ui_result = gpu.ui.run(
+        gpu.ui.run(
             window,
             &gpu.context,
             &gpu.upload_commands,
             UiState {
                 menu: &self.menu,
+                checked: &|a| self.controller.checked(a),
                 popup_at: self.popup_at.map(|p| egui::pos2(p.x / scale, p.y / scale)),
                 popup_just_opened: self.popup_just_opened,
                 field: self.field.as_mut(),
                 status: &status,
                 help,
                 lod,
+                captions: &captions,
             },
-        )?;
+        )
+    }
 
-        let Some(frame) = gpu.swapchain.acquire().map_err(|e| e.to_string())? else {
-            self.resized = true;
-            window.request_redraw();
-            return Ok(());
+    /// Draws the viewports and the UI into the next swapchain image and presents it; false
+    /// when the swapchain is out of date (nothing was drawn or not shown).
+    fn present(&mut self, now: Instant) -> Result<bool, AppError> {
+        let Some(gpu) = self.gpu.as_mut() else {
+            return Ok(true);
+        };
+        let Some(frame) = gpu.swapchain.acquire()? else {
+            return Ok(false);
         };
         let extent = gpu.swapchain.extent;
-        let views: Vec<_> = self
-            .controller
-            .rects_for(extent.width, extent.height)
-            .into_iter()
-            .zip(self.controller.viewports())
-            .filter_map(|(rect, vp)| {
-                let (_, _, scene) = gpu.scenes.iter().find(|(id, _, _)| *id == vp.id)?;
-                Some(ViewportDraw {
-                    rect,
-                    scene,
-                    camera: &vp.camera,
-                    options: vp.options,
-                    morph: vp.lod().map_or(1.0, |l| l.morph_factor(now)),
-                })
-            })
-            .collect();
-        let rects: Vec<_> = views.iter().map(|v| v.rect).collect();
-        let highlight = (rects.len() > 1).then_some(self.controller.current());
-        let device = &gpu.context.device;
-        let format = gpu.swapchain.format;
-        let depth = gpu
-            .swapchain
-            .depth
-            .as_ref()
-            .ok_or("the swapchain has no depth buffer")?;
-        let cmd = gpu.frame_commands.begin().map_err(|e| e.to_string())?;
-        // SAFETY: `cmd` is recording; the swapchain image, depth buffer, pipelines and scenes
-        // stay alive until the frame's fence is waited for (next `acquire` or device idle).
-        unsafe {
-            image::transition(device, cmd, frame.image, format, image::TO_COLOR_ATTACHMENT);
-            image::transition(
-                device,
-                cmd,
-                depth.handle,
-                DEPTH_FORMAT,
-                image::TO_DEPTH_ATTACHMENT,
-            );
-            draw::begin_rendering(device, cmd, frame.view, depth.view, extent, BACKGROUND);
-            draw::clear_tiles(device, cmd, extent, &rects, highlight);
-            draw::record(device, cmd, &gpu.pipelines, &views);
-            device.cmd_end_rendering(cmd);
-            begin_overlay(device, cmd, frame.view, extent);
-        }
+        let views = viewport_draws(&gpu.scenes, &self.controller, extent, now);
+        let highlight = (views.len() > 1).then_some(self.controller.current());
+        let cmd = gpu.frame_commands.begin()?;
+        record_viewports(gpu, cmd, &frame, &views, highlight)?;
         gpu.ui.draw(cmd, extent)?;
         let to_present = Transition {
             old: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
@@ -230,97 +312,135 @@ impl Viewer {
             dst_stage: vk::PipelineStageFlags2::BOTTOM_OF_PIPE,
             dst_access: vk::AccessFlags2::NONE,
         };
-        // SAFETY: as above; the overlay pass is still open and ends here.
+        let device = &gpu.context.device;
+        // SAFETY: `cmd` is recording inside the overlay pass `record_viewports` opened; the
+        // swapchain image stays alive until the frame's fence is waited for.
         unsafe {
             device.cmd_end_rendering(cmd);
-            image::transition(device, cmd, frame.image, format, to_present);
+            image::transition(device, cmd, frame.image, gpu.swapchain.format, to_present);
         }
-        gpu.frame_commands.end().map_err(|e| e.to_string())?;
-        let presented = gpu
-            .swapchain
-            .submit_and_present(cmd, &frame)
-            .map_err(|e| e.to_string())?;
-        if !presented {
-            self.resized = true;
-            window.request_redraw();
-        }
+        gpu.frame_commands.end()?;
+        let presented = gpu.swapchain.submit_and_present(cmd, &frame)?;
         gpu.ui.end_frame()?;
-        self.popup_just_opened = false;
-        if ui_result.repaint || morphing {
-            window.request_redraw();
-        }
+        Ok(presented)
+    }
+
+    /// Acts on what the user did in the UI this frame: slider, popup, field, menu entry.
+    fn apply_ui(&mut self, ui_result: UiResult, window: &Window) -> Flow {
+        let mut flow = Flow::Continue;
+        let acted = ui_result.lod_vertices.is_some()
+            || ui_result.close_popup
+            || ui_result.close_field
+            || ui_result.vertex_count.is_some()
+            || ui_result.action.is_some();
         if let Some(n) = ui_result.lod_vertices {
             self.controller.set_lod_vertices(n, Instant::now());
-            window.request_redraw();
         }
-
         if ui_result.close_popup || ui_result.action.is_some() {
             self.popup_at = None;
-            window.request_redraw();
         }
         if ui_result.close_field {
             self.field = None;
-            window.request_redraw();
         }
-        if let Some(n) = ui_result.decimate_to {
-            self.controller.decimate_to(n);
-            window.request_redraw();
+        if let Some(text) = ui_result.vertex_count {
+            match self.controller.submit_vertex_count(&text) {
+                Ok(()) => self.field = None,
+                Err(e) => {
+                    if let Some(field) = &mut self.field {
+                        field.error = Some(e);
+                    }
+                }
+            }
         }
         if let Some(action) = ui_result.action {
             let effect = self.controller.dispatch(action);
-            if self.run_effect(effect) == Flow::Quit {
-                return Err(String::new());
-            }
+            flow = self.run_effect(effect);
+        }
+        if acted {
             window.request_redraw();
         }
-        Ok(())
+        flow
     }
 }
 
-/// Begins a colour-only pass that keeps what was drawn (for the UI).
-///
-/// # Safety
-/// `cmd` must be recording outside rendering, `view` in the colour-attachment layout.
-unsafe fn begin_overlay(
-    device: &ash::Device,
-    cmd: vk::CommandBuffer,
-    view: vk::ImageView,
+/// What each viewport draws this frame, for the viewports whose scene is on the GPU.
+fn viewport_draws<'a>(
+    scenes: &'a [(u64, u64, GpuScene)],
+    controller: &'a ViewportController,
     extent: vk::Extent2D,
-) {
-    let color = [vk::RenderingAttachmentInfo::default()
-        .image_view(view)
-        .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
-        .load_op(vk::AttachmentLoadOp::LOAD)
-        .store_op(vk::AttachmentStoreOp::STORE)];
-    let info = vk::RenderingInfo::default()
-        .render_area(vk::Rect2D {
-            offset: vk::Offset2D::default(),
-            extent,
+    now: Instant,
+) -> Vec<ViewportDraw<'a>> {
+    controller
+        .rects_for(extent.width, extent.height)
+        .into_iter()
+        .zip(controller.viewports())
+        .filter_map(|(rect, vp)| {
+            let (_, _, scene) = scenes.iter().find(|(id, _, _)| *id == vp.id)?;
+            Some(ViewportDraw {
+                rect,
+                scene,
+                camera: &vp.camera,
+                options: vp.options,
+                morph: vp.lod().map_or(1.0, |l| l.morph_factor(now)),
+            })
         })
-        .layer_count(1)
-        .color_attachments(&color);
-    // SAFETY: guaranteed by the caller.
-    unsafe { device.cmd_begin_rendering(cmd, &info) };
+        .collect()
+}
+
+/// Records the viewports' pass into `cmd` (tiles, highlight of the current one, models), then
+/// opens the colour-only overlay pass the UI is drawn in; the caller ends it.
+fn record_viewports(
+    gpu: &Gpu,
+    cmd: vk::CommandBuffer,
+    frame: &Frame,
+    views: &[ViewportDraw<'_>],
+    highlight: Option<usize>,
+) -> Result<(), AppError> {
+    let device = &gpu.context.device;
+    let (format, extent) = (gpu.swapchain.format, gpu.swapchain.extent);
+    let depth = gpu
+        .swapchain
+        .depth
+        .as_ref()
+        .ok_or_else(|| RenderError::Window("the swapchain has no depth buffer".into()))?;
+    let rects: Vec<_> = views.iter().map(|v| v.rect).collect();
+    // SAFETY: `cmd` is recording; the swapchain image, depth buffer, pipelines and scenes
+    // stay alive until the frame's fence is waited for (next `acquire` or device idle).
+    unsafe {
+        image::transition(device, cmd, frame.image, format, image::TO_COLOR_ATTACHMENT);
+        image::transition(
+            device,
+            cmd,
+            depth.handle,
+            DEPTH_FORMAT,
+            image::TO_DEPTH_ATTACHMENT,
+        );
+        draw::begin_rendering(device, cmd, frame.view, depth.view, extent, BACKGROUND);
+        draw::clear_tiles(device, cmd, extent, &rects, highlight);
+        draw::record(device, cmd, &gpu.pipelines, views);
+        device.cmd_end_rendering(cmd);
+        draw::begin_overlay(device, cmd, frame.view, extent);
+    }
+    Ok(())
 }
 
 impl Callbacks for Viewer {
-    fn create(&mut self, window: &Arc<Window>) -> Result<(), String> {
+    fn create(&mut self, window: &Arc<Window>) -> Result<(), AppError> {
         use raw_window_handle::HasDisplayHandle;
-        let display = window.display_handle().map_err(|e| e.to_string())?;
+        let display = window
+            .display_handle()
+            .map_err(|e| AppError::Window(e.to_string()))?;
         let extensions = ash_window::enumerate_required_extensions(display.as_raw())
-            .map_err(|e| format!("no Vulkan surface support for this display: {e}"))?;
-        let context =
-            Context::new(extensions, true, DevicePreference::Fastest).map_err(|e| e.to_string())?;
+            .map_err(|e| AppError::Window(format!("no Vulkan surface support: {e}")))?;
+        let context = Context::new(extensions, true, DevicePreference::Fastest)?;
         let size = window.inner_size();
-        let swapchain = Swapchain::new(&context, window.as_ref(), size.width, size.height)
-            .map_err(|e| e.to_string())?;
-        let pipelines = Pipelines::new(&context, swapchain.format).map_err(|e| e.to_string())?;
+        let swapchain = Swapchain::new(&context, window.as_ref(), size.width, size.height)?;
+        let pipelines = Pipelines::new(&context, swapchain.format)?;
         let textures = Textures::new(
             &context,
             pipelines.texture_layout,
             texture_image::reader(&self.controller.input_dir),
-        )
-        .map_err(|e| e.to_string())?;
+        )?;
         let ui = UiLayer::new(&context, window, swapchain.format)?;
         eprintln!("decimate: drawing with {}", context.device_name);
         self.gpu = Some(Gpu {
@@ -328,23 +448,16 @@ impl Callbacks for Viewer {
             scenes: Vec::new(),
             textures,
             pipelines,
-            frame_commands: Commands::new(&context).map_err(|e| e.to_string())?,
-            upload_commands: Commands::new(&context).map_err(|e| e.to_string())?,
+            frame_commands: Commands::new(&context)?,
+            upload_commands: Commands::new(&context)?,
             swapchain,
             context,
         });
         Ok(())
     }
 
-    fn display(&mut self, window: &Window) -> Flow {
-        match self.draw_frame(window) {
-            Ok(()) => Flow::Continue,
-            Err(e) if e.is_empty() => Flow::Quit,
-            Err(e) => {
-                eprintln!("decimate: {e}");
-                Flow::Quit
-            }
-        }
+    fn display(&mut self, window: &Window) -> Result<Flow, AppError> {
+        self.draw_frame(window)
     }
 
     fn reshape(&mut self, width: u32, height: u32) {
@@ -438,6 +551,27 @@ impl Callbacks for Viewer {
         // While the popup or the field is open, egui owns the pointer and keyboard it uses.
         let ui_open = self.popup_at.is_some() || self.field.is_some();
         consumed && (ui_open || gpu.ui.wants_pointer())
+    }
+
+    fn dropped(&mut self, window: &Window, path: PathBuf) {
+        match crate::io::read_scene(&path) {
+            Ok(outcome) => {
+                let scene = crate::mesh::build::build_scene(outcome.scene, true);
+                self.controller.open(scene, &path);
+                self.field = None;
+                self.popup_at = None;
+                window.set_title(&format!("decimate — {}", path.display()));
+                if let Err(e) = self.reload_textures() {
+                    self.controller.message = format!("{}: textures: {e}", path.display());
+                }
+            }
+            Err(e) => self.controller.message = format!("cannot open {e}"),
+        }
+        eprintln!("decimate: {}", self.controller.message);
+    }
+
+    fn wake_at(&self) -> Option<Instant> {
+        self.message.as_ref().map(|(_, until)| *until)
     }
 
     fn destroy(&mut self) {

@@ -11,7 +11,9 @@ use crate::mesh::Scene;
 use crate::render::camera::{Camera, Navigation};
 use crate::render::draw::DrawOptions;
 use crate::render::gpu_mesh::scene_bounds;
+use crate::render::mesh_data::DEFAULT_CREASE_DEG;
 
+use super::labels;
 use super::lod::LodView;
 use super::menu::{DecimateEvent, DecimateKind};
 
@@ -33,6 +35,8 @@ pub struct Viewport {
     pub params: Params,
     /// The level-of-detail slider, when it is on.
     lod: Option<LodView>,
+    /// The crease angle set with `[` / `]`, in degrees; `None`: each model's own.
+    crease_deg: Option<f32>,
 }
 
 impl Viewport {
@@ -49,6 +53,7 @@ impl Viewport {
             last: None,
             params,
             lod: None,
+            crease_deg: None,
         }
     }
 
@@ -111,21 +116,43 @@ impl Viewport {
     /// Decimates from the original (never from the already decimated scene), so "90 %" always
     /// means 90 % of the original's vertices.
     pub fn decimate(&mut self, event: DecimateEvent) -> &Report {
-        let target = match event.kind {
-            DecimateKind::Percentage => Target::RemovePercent(event.amount.clamp(0.0, 100.0)),
-            // The request is capped at what can be removed by the decimator itself.
-            DecimateKind::Number => Target::RemoveVertices(event.amount.max(0.0) as usize),
-        };
         let params = Params {
-            target,
+            target: target_of(event),
             ..self.params
         };
         let mut scene = (*self.original).clone();
         let report = simplify_scene(&mut scene, &params, &mut |_| {});
         self.scene = scene;
+        self.apply_crease();
         self.lod = None;
         self.generation += 1;
         &self.last.insert((event, report)).1
+    }
+
+    /// Changes the crease angle by `delta` degrees (from the first model's own, else
+    /// `DEFAULT_CREASE_DEG`), kept within 0 to 180; returns it. Not while the
+    /// level-of-detail slider is on (`None`): its levels keep the original's.
+    pub fn change_crease(&mut self, delta: f32) -> Option<f32> {
+        if self.lod.is_some() {
+            return None;
+        }
+        let own = (self.scene.models.first())
+            .and_then(|m| m.crease_angle)
+            .map_or(DEFAULT_CREASE_DEG, f32::to_degrees);
+        let degrees = (self.crease_deg.unwrap_or(own).round() + delta).clamp(0.0, 180.0);
+        self.crease_deg = Some(degrees);
+        self.apply_crease();
+        self.generation += 1;
+        Some(degrees)
+    }
+
+    /// Gives every model of the scene shown the crease angle set with `[` / `]`, if any.
+    fn apply_crease(&mut self) {
+        if let Some(degrees) = self.crease_deg {
+            for m in &mut self.scene.models {
+                m.crease_angle = Some(degrees.to_radians());
+            }
+        }
     }
 
     /// The last decimate event, while the scene shown is its result (the level-of-detail
@@ -164,6 +191,23 @@ impl Viewport {
         self.scene().triangle_count()
     }
 
+    /// The caption over the viewport: what it shows ("original", its target and algorithm,
+    /// or the level-of-detail slider) and its counts.
+    pub fn caption(&self) -> String {
+        let what = if self.lod.is_some() {
+            "level of detail (qem)".to_string()
+        } else if let Some((event, _)) = &self.last {
+            format!(
+                "{} ({})",
+                labels::target_words(target_of(*event), self.params.max_error),
+                labels::algorithm_name(self.params.algorithm)
+            )
+        } else {
+            "original".to_string()
+        };
+        labels::caption(&what, self.vertex_count(), self.triangle_count())
+    }
+
     /// The status line: counts, last decimation time, "fully decimated".
     pub fn status(&self) -> String {
         let mut s = format!(
@@ -191,5 +235,14 @@ impl Viewport {
             Navigation::Eye => " [eye control]",
         });
         s
+    }
+}
+
+/// The decimation target of a decimate event.
+fn target_of(event: DecimateEvent) -> Target {
+    match event.kind {
+        DecimateKind::Percentage => Target::RemovePercent(event.amount.clamp(0.0, 100.0)),
+        // The request is capped at what can be removed by the decimator itself.
+        DecimateKind::Number => Target::RemoveVertices(event.amount.max(0.0) as usize),
     }
 }

@@ -4,6 +4,7 @@
 //! [`Report`].
 
 mod candidates;
+pub mod closed;
 pub mod layout;
 pub mod levels;
 mod limits;

@@ -28,6 +28,7 @@ pub mod progressive_file;
 pub mod replace;
 mod shape_to_model;
 pub mod stl;
+pub mod stream;
 mod text;
 pub mod texture_image;
 pub mod texture_path;
@@ -102,6 +103,13 @@ pub struct ReadOutcome {
     pub material_libraries: Vec<String>,
 }
 
+/// True when a reader's warning means part of the file was not read (a skipped node,
+/// shape, face or attribute): `-q` still prints those. Readers word such warnings with
+/// "skipped" or "ignored".
+pub fn means_lost_data(warning: &str) -> bool {
+    warning.contains("skipped") || warning.contains("ignored")
+}
+
 /// Most models one file may expand to (DEF/USE instancing can multiply them).
 pub const MAX_MODELS: usize = 1_000_000;
 /// Most triangles one file may expand to.
@@ -145,15 +153,28 @@ impl Format {
     }
 }
 
+/// How strictly a scene file is read.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    /// An unknown field of a known VRML / Inventor node is a warning (its value skipped)
+    /// instead of an error (`--lenient`).
+    pub lenient: bool,
+}
+
 /// Reads a VRML 1.0, VRML 2.0, Open Inventor ASCII, PLY, OBJ, STL, OFF or glTF file (optionally
 /// gzipped); an OBJ's material libraries are read from its folder and applied (see `mtl`).
 pub fn read_scene(path: &Path) -> Result<ReadOutcome, ReadError> {
+    read_scene_with(path, ReadOptions::default())
+}
+
+/// [`read_scene`] with `options`.
+pub fn read_scene_with(path: &Path, options: ReadOptions) -> Result<ReadOutcome, ReadError> {
     let io_err = |source| ReadError::Io {
         file: path.to_path_buf(),
         source,
     };
     let bytes = std::fs::read(path).map_err(io_err)?;
-    let mut outcome = parse_bytes(bytes, path)?;
+    let mut outcome = parse_bytes_with(bytes, path, Format::from_path(path), options)?;
     mtl::apply_materials(&mut outcome, path);
     Ok(outcome)
 }
@@ -161,7 +182,12 @@ pub fn read_scene(path: &Path) -> Result<ReadOutcome, ReadError> {
 /// Reads a scene from memory; `file_name` is used in messages, and its extension says the
 /// format when the content does not.
 pub fn parse_bytes(bytes: Vec<u8>, file_name: &Path) -> Result<ReadOutcome, ReadError> {
-    parse_bytes_with(bytes, file_name, Format::from_path(file_name))
+    parse_bytes_with(
+        bytes,
+        file_name,
+        Format::from_path(file_name),
+        ReadOptions::default(),
+    )
 }
 
 /// Reads a scene from text (tests, tools); `file_name` is used in messages.
@@ -173,6 +199,7 @@ fn parse_bytes_with(
     mut bytes: Vec<u8>,
     path: &Path,
     by_name: Option<Format>,
+    options: ReadOptions,
 ) -> Result<ReadOutcome, ReadError> {
     let file = path.to_path_buf();
     if bytes.starts_with(&[0x1f, 0x8b]) {
@@ -217,7 +244,7 @@ fn parse_bytes_with(
     }
     let first_line_end = bytes
         .iter()
-        .position(|&b| b == b'\n')
+        .position(|&b| matches!(b, b'\n' | b'\r'))
         .unwrap_or(bytes.len());
     let header = String::from_utf8_lossy(&bytes[..first_line_end]);
     let header = header.trim_end();
@@ -285,7 +312,7 @@ fn parse_bytes_with(
             ),
         )));
     };
-    vrml::read_tree(&bytes, dialect).map_err(syntax)
+    vrml::read_tree(&bytes, path, dialect, options).map_err(syntax)
 }
 
 /// Writes `scene` to `path` in the format its extension names: `.ply`, `.obj`, `.stl`, `.off`,

@@ -170,7 +170,10 @@ mod tests {
             (602, 1200),
             (528, 1056),
             (2402, 4800),
+            (9648, 19296),
+            (546, 1088),
         ];
+        assert_eq!(shapes::all().len(), expected.len());
         for (m, (v, t)) in shapes::all().iter().zip(expected) {
             assert_eq!((m.positions.len(), m.triangles.len()), (v, t), "{}", m.name);
             let e = edge_counts(m);
@@ -214,5 +217,12 @@ mod tests {
         assert!(volume(&tube) > 0.0);
         assert!(volume(&shapes::test001()) > 0.0);
         assert!(volume(&shapes::test006()) > 0.0);
+        // The washer: π (2² − 1²) × 0.4 before the noise and waves, which keep it closely.
+        let washer = volume(&shapes::test007());
+        assert!(
+            (washer - 1.2 * std::f64::consts::PI).abs() < 0.05,
+            "{washer}"
+        );
+        assert!((volume(&shapes::test008()) - 8.0).abs() < 1e-5);
     }
 }

@@ -6,6 +6,7 @@ pub mod build;
 pub mod classify;
 pub mod measure;
 pub mod progressive;
+pub mod repair;
 pub mod rgba_image;
 pub mod scene;
 pub mod seams;

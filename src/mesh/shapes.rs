@@ -1,4 +1,4 @@
-//! The report's test models (test001–test006) built in code, so tests can use them directly
+//! The report's test models (test001–test008) built in code, so tests can use them directly
 //! and `tools/gen_models.rs` can write them to `assets/`. Each is welded, counter-clockwise
 //! seen from outside, with the vertex and triangle counts the report gives, and stands along
 //! +y (VRML's up), so any viewer shows it upright.
@@ -171,6 +171,108 @@ pub fn test006() -> Model {
     named("test006", z_up_to_y_up(positions), triangles)
 }
 
+/// test007: a washer (inner radius 1, outer 2, thickness 0.4, around +y) distorted by waves
+/// around it and by a little deterministic noise: 134 segments × a 72-point rectangular
+/// cross-section (9,648 / 19,296), closed, genus 1.
+pub fn test007() -> Model {
+    let (segments, across) = (134u32, 72u32);
+    let (inner, outer, half) = (1.0f32, 2.0f32, 0.2f32);
+    // The cross-section, counter-clockwise in (r, y): top inwards-out, outer wall down,
+    // bottom outwards-in, inner wall up; each corner once.
+    let section: Vec<(f32, f32)> = (0..across)
+        .map(|k| {
+            let (side, t) = match k {
+                0..24 => (0, k as f32 / 24.0),
+                24..36 => (1, (k - 24) as f32 / 12.0),
+                36..60 => (2, (k - 36) as f32 / 24.0),
+                _ => (3, (k - 60) as f32 / 12.0),
+            };
+            match side {
+                0 => (outer + (inner - outer) * t, half),
+                1 => (inner, half - 2.0 * half * t),
+                2 => (inner + (outer - inner) * t, -half),
+                _ => (outer, -half + 2.0 * half * t),
+            }
+        })
+        .collect();
+    let mut positions = Vec::with_capacity((segments * across) as usize);
+    for s in 0..segments {
+        let theta = std::f32::consts::TAU * s as f32 / segments as f32;
+        for (k, &(r, y)) in section.iter().enumerate() {
+            let noise = |salt: u32| 0.006 * hash_unit(s * across + k as u32, salt);
+            let wave = 0.15 * (3.0 * theta).sin() + 0.04 * (7.0 * theta + 2.0 * r).sin();
+            let r = r + noise(1);
+            positions.push(Vec3::new(
+                r * theta.cos(),
+                y + wave + noise(2),
+                r * theta.sin(),
+            ));
+        }
+    }
+    let id = |s: u32, k: u32| (s % segments) * across + k % across;
+    let mut triangles = Vec::with_capacity((2 * segments * across) as usize);
+    for s in 0..segments {
+        for k in 0..across {
+            let (a, b, c, d) = (id(s, k), id(s, k + 1), id(s + 1, k + 1), id(s + 1, k));
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    named("test007", positions, triangles)
+}
+
+/// test008: a stretched box, 1 × 8 × 1 along +y, each face a grid of quads 0.25 on a side
+/// (546 / 1088).
+pub fn test008() -> Model {
+    let n = [4i32, 32, 4];
+    let size = Vec3::new(1.0, 8.0, 1.0);
+    let mut index: HashMap<[i32; 3], u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    // As `named_cube`: a fixed axis at ±n, two running axes with (u × v) pointing outwards.
+    let faces: [(usize, i32, usize, usize); 6] = [
+        (0, 1, 1, 2),
+        (0, -1, 2, 1),
+        (1, 1, 2, 0),
+        (1, -1, 0, 2),
+        (2, 1, 0, 1),
+        (2, -1, 1, 0),
+    ];
+    for (axis, sign, u, v) in faces {
+        let mut id = |i: i32, j: i32| {
+            let mut c = [0i32; 3];
+            c[axis] = sign * n[axis];
+            c[u] = 2 * i - n[u];
+            c[v] = 2 * j - n[v];
+            *index.entry(c).or_insert_with(|| {
+                let unit = |a: usize| c[a] as f32 / (2 * n[a]) as f32;
+                positions.push(Vec3::new(unit(0), unit(1), unit(2)) * size);
+                (positions.len() - 1) as u32
+            })
+        };
+        for j in 0..n[v] {
+            for i in 0..n[u] {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                triangles.push([a, b, c]);
+                triangles.push([a, c, d]);
+            }
+        }
+    }
+    named("test008", positions, triangles)
+}
+
+/// A value in [-1, 1] from `index` and `salt`, the same on every machine (the generated
+/// files must not change from run to run).
+fn hash_unit(index: u32, salt: u32) -> f32 {
+    let mut x = index.wrapping_mul(0x9E37_79B1) ^ salt.wrapping_mul(0x85EB_CA77);
+    x ^= x >> 15;
+    x = x.wrapping_mul(0x2C1B_3C6D);
+    x ^= x >> 12;
+    x = x.wrapping_mul(0x297A_2D39);
+    x ^= x >> 15;
+    (x as f32 / u32::MAX as f32) * 2.0 - 1.0
+}
+
 /// Every report model, in order.
 pub fn all() -> Vec<Model> {
     vec![
@@ -180,6 +282,8 @@ pub fn all() -> Vec<Model> {
         test004(),
         test005(),
         test006(),
+        test007(),
+        test008(),
     ]
 }
 

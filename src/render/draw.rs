@@ -319,3 +319,29 @@ pub unsafe fn begin_rendering(
     // SAFETY: guaranteed by the caller.
     unsafe { device.cmd_begin_rendering(cmd, &info) };
 }
+
+/// Begins a colour-only pass that keeps what was drawn (for the UI).
+///
+/// # Safety
+/// `cmd` must be recording outside rendering, `view` in the colour-attachment layout.
+pub unsafe fn begin_overlay(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    view: vk::ImageView,
+    extent: vk::Extent2D,
+) {
+    let color = [vk::RenderingAttachmentInfo::default()
+        .image_view(view)
+        .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
+        .load_op(vk::AttachmentLoadOp::LOAD)
+        .store_op(vk::AttachmentStoreOp::STORE)];
+    let info = vk::RenderingInfo::default()
+        .render_area(vk::Rect2D {
+            offset: vk::Offset2D::default(),
+            extent,
+        })
+        .layer_count(1)
+        .color_attachments(&color);
+    // SAFETY: guaranteed by the caller.
+    unsafe { device.cmd_begin_rendering(cmd, &info) };
+}

@@ -30,6 +30,9 @@ pub enum RenderError {
     /// A thread panicked while holding the memory allocator.
     #[error("the GPU memory allocator is unusable after a panic")]
     AllocatorPoisoned,
+    /// The text overlay (egui's renderer) failed to upload or draw.
+    #[error("text overlay: {0}")]
+    Overlay(String),
     /// A window-system call (surface creation) failed.
     #[error("window system: {0}")]
     Window(String),

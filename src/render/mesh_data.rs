@@ -111,6 +111,16 @@ impl MeshData {
     ) -> Self {
         let morph_from = morph_from.filter(|m| m.len() == model.positions.len());
         let incident = VertexFaces::new(model, model.positions.len());
+        // Normals and creases are taken on the welded surface: the copies of a vertex split
+        // at a texture seam share their faces, so a seam is no crease.
+        let weld = welded_ids(model);
+        let welded_incident = weld
+            .as_ref()
+            .map(|w| VertexFaces::welded(model, w, model.positions.len()));
+        let welded = Welded {
+            incident: welded_incident.as_ref().unwrap_or(&incident),
+            id: weld.as_deref(),
+        };
         let file_normals = match &model.normals {
             Some(Attribute::PerVertex(n)) if n.len() == model.positions.len() => Some(n),
             _ => None,
@@ -124,9 +134,9 @@ impl MeshData {
         };
         let normals = match file_normals {
             Some(n) => n.par_iter().map(|v| v.normalize_or_zero()).collect(),
-            None => gathered_normals(&face, &incident),
+            None => welded.spread(gathered_normals(&face, welded.incident)),
         };
-        let creases = Creases::new(model, &incident, &face);
+        let creases = Creases::new(model, &welded, &face);
         let face_colors = match &model.colors {
             Some(Attribute::PerFace(c)) if c.len() == model.triangles.len() => Some(c),
             _ => None,
@@ -234,7 +244,7 @@ fn when<T>(on: bool, build: impl FnOnce() -> Vec<T>) -> Vec<T> {
 struct Creases<'a> {
     /// Face normals (twice the area, out of the counter-clockwise side).
     face: &'a [Vec3],
-    incident: &'a VertexFaces,
+    welded: &'a Welded<'a>,
     creased: Vec<bool>,
     cos_crease: f32,
 }
@@ -242,13 +252,13 @@ struct Creases<'a> {
 impl<'a> Creases<'a> {
     /// `face`: the model's face normals (twice the area), empty when the file gave
     /// per-vertex normals (then nothing is creased).
-    fn new(model: &Model, incident: &'a VertexFaces, face: &'a [Vec3]) -> Self {
+    fn new(model: &Model, welded: &'a Welded<'a>, face: &'a [Vec3]) -> Self {
         let crease = model
             .crease_angle
             .unwrap_or(DEFAULT_CREASE_DEG.to_radians());
         let mut c = Self {
             face,
-            incident,
+            welded,
             creased: Vec::new(),
             cos_crease: crease.cos(),
         };
@@ -272,7 +282,7 @@ impl<'a> Creases<'a> {
     }
 
     fn around(&self, v: usize) -> &[u32] {
-        self.incident.around(v)
+        self.welded.around(v)
     }
 
     /// True when faces `f` and `g` meet at no more than the crease angle.
@@ -359,6 +369,45 @@ fn vertex_normal_segments(
     out
 }
 
+/// The model's vertices welded by position: `id[v]` is the first vertex at `v`'s position
+/// (`None` when no two share one), and `incident` lists the faces around each such first
+/// vertex.
+struct Welded<'a> {
+    incident: &'a VertexFaces,
+    id: Option<&'a [u32]>,
+}
+
+impl Welded<'_> {
+    /// The faces around `v` and every other copy of its position.
+    fn around(&self, v: usize) -> &[u32] {
+        self.incident.around(self.id.map_or(v, |id| id[v] as usize))
+    }
+
+    /// Per-vertex values computed for the first copies, given to every copy.
+    fn spread(&self, first: Vec<Vec3>) -> Vec<Vec3> {
+        match self.id {
+            Some(id) => id.iter().map(|&w| first[w as usize]).collect(),
+            None => first,
+        }
+    }
+}
+
+/// For each vertex the first vertex at the same position, or `None` when all positions
+/// differ (no copies to weld). Only a textured model has copies: the scene builder welds
+/// every other coincident vertex.
+fn welded_ids(model: &Model) -> Option<Vec<u32>> {
+    model.texcoords.as_ref()?;
+    let mut first = std::collections::HashMap::with_capacity(model.positions.len());
+    let id: Vec<u32> = (model.positions.iter().enumerate())
+        .map(|(v, p)| {
+            *first
+                .entry(p.to_array().map(f32::to_bits))
+                .or_insert(v as u32)
+        })
+        .collect();
+    (first.len() < model.positions.len()).then_some(id)
+}
+
 /// Vertex → incident faces, ascending (a face with a repeated corner is listed once per
 /// corner): shared by the crease test and the edge list.
 struct VertexFaces {
@@ -388,6 +437,17 @@ impl VertexFaces {
             }
         }
         Self { offsets, faces }
+    }
+
+    /// As [`Self::new`] with every corner counted at its welded vertex `weld[v]`.
+    fn welded(model: &Model, weld: &[u32], vertex_count: usize) -> Self {
+        let welded = Model {
+            triangles: (model.triangles.iter())
+                .map(|t| t.map(|v| weld[v as usize]))
+                .collect(),
+            ..Model::default()
+        };
+        Self::new(&welded, vertex_count)
     }
 
     fn around(&self, v: usize) -> &[u32] {
@@ -449,6 +509,53 @@ fn gathered_normals(face: &[Vec3], incident: &VertexFaces) -> Vec<Vec3> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_texture_seam_is_no_crease() {
+        // A sphere whose vertices on one meridian are split in two, as a texture seam splits
+        // them: each copy shades as the unsplit vertex does, not from its side's faces only.
+        let whole = crate::mesh::shapes::uv_sphere(12, 24);
+        let mut split = whole.clone();
+        let bottom = whole.positions.len() as u32 - 1;
+        // Texture coordinates are what splits vertices at a seam; their values do not matter.
+        split.texcoords = Some(vec![[0.0; 2]; whole.positions.len()]);
+        let meridian = |v: u32, s: u32| v != 0 && v != bottom && (v - 1) % 24 == s;
+        let mut copy = std::collections::HashMap::new();
+        for v in (0..bottom).filter(|&v| meridian(v, 0)) {
+            copy.insert(v, split.positions.len() as u32);
+            split.positions.push(whole.positions[v as usize]);
+            if let Some(t) = &mut split.texcoords {
+                t.push([1.0, 0.0]);
+            }
+        }
+        for t in &mut split.triangles {
+            if t.iter().any(|&v| meridian(v, 23)) {
+                for v in t.iter_mut() {
+                    *v = copy.get(v).copied().unwrap_or(*v);
+                }
+            }
+        }
+        let expected: std::collections::HashMap<_, _> = MeshData::from_model(&whole, 0.1)
+            .vertices
+            .iter()
+            .map(|v| (v.position.map(f32::to_bits), Vec3::from(v.normal)))
+            .collect();
+        let d = MeshData::from_model(&split, 0.1);
+        assert_eq!(
+            d.vertices.len(),
+            split.positions.len(),
+            "no corner of its own"
+        );
+        for v in &d.vertices {
+            let want = expected[&v.position.map(f32::to_bits)];
+            assert!(
+                Vec3::from(v.normal).angle_between(want) < 1e-3,
+                "at {:?}: {:?}, unsplit {want:?}",
+                v.position,
+                v.normal
+            );
+        }
+    }
 
     #[test]
     fn smooth_shading_keeps_a_cubes_edges_sharp_and_a_spheres_round() {

@@ -76,6 +76,19 @@ impl OffscreenTarget {
         views: &[ViewportDraw<'_>],
         read_back: bool,
     ) -> Result<Option<RgbaImage>> {
+        self.render_with_overlay(commands, pipelines, views, read_back, None)
+    }
+
+    /// As [`Self::render`], then `overlay` records into a colour-only pass over the picture
+    /// (of [`OFFSCREEN_FORMAT`], no depth): captions drawn over the viewports.
+    pub fn render_with_overlay(
+        &self,
+        commands: &Commands,
+        pipelines: &Pipelines,
+        views: &[ViewportDraw<'_>],
+        read_back: bool,
+        overlay: Option<&mut dyn FnMut(vk::CommandBuffer) -> Result<()>>,
+    ) -> Result<Option<RgbaImage>> {
         let device = &self.context.device;
         let cmd = commands.begin()?;
         let rects: Vec<_> = views.iter().map(|v| v.rect).collect();
@@ -107,9 +120,19 @@ impl OffscreenTarget {
             draw::clear_tiles(device, cmd, self.extent, &rects, None);
             draw::record(device, cmd, pipelines, views);
             device.cmd_end_rendering(cmd);
-            if read_back {
-                self.record_readback(cmd);
-            }
+        }
+        if let Some(overlay) = overlay {
+            // SAFETY: `cmd` is recording outside rendering, the colour image in the
+            // colour-attachment layout; the pass opened here is closed right after.
+            unsafe { draw::begin_overlay(device, cmd, self.color.view, self.extent) };
+            let recorded = overlay(cmd);
+            // SAFETY: as above; the pass must end even when the overlay failed.
+            unsafe { device.cmd_end_rendering(cmd) };
+            recorded?;
+        }
+        if read_back {
+            // SAFETY: `cmd` is recording outside rendering, after the colour image was drawn.
+            unsafe { self.record_readback(cmd) };
         }
         commands.submit_and_wait()?;
         if !read_back {

@@ -117,6 +117,10 @@ impl PushConstants {
     }
 }
 
+/// Filled triangles' depth bias: (constant in depth-buffer units, times the depth slope), the
+/// usual polygon offset of a wireframe over its surface.
+const FILL_DEPTH_BIAS: (f32, f32) = (1.0, 1.5);
+
 /// Point size asked for; clamped to the device's range (1 px without `largePoints`).
 pub const POINT_SIZE: f32 = 5.0;
 
@@ -263,10 +267,16 @@ impl Pipelines {
             .viewport_count(1)
             .scissor_count(1);
         // Two-sided: open meshes show their back faces, lit by the flipped normal.
+        // Filled triangles are pushed back by their depth slope (polygon offset), so edges
+        // and points drawn over a surface seen at a grazing angle are not dashed by it.
+        let filled = mode.topology() == vk::PrimitiveTopology::TRIANGLE_LIST;
         let rasterization = vk::PipelineRasterizationStateCreateInfo::default()
             .polygon_mode(vk::PolygonMode::FILL)
             .cull_mode(vk::CullModeFlags::NONE)
             .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
+            .depth_bias_enable(filled)
+            .depth_bias_constant_factor(FILL_DEPTH_BIAS.0)
+            .depth_bias_slope_factor(FILL_DEPTH_BIAS.1)
             .line_width(1.0);
         let multisample = vk::PipelineMultisampleStateCreateInfo::default()
             .rasterization_samples(vk::SampleCountFlags::TYPE_1);

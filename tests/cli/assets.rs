@@ -14,7 +14,10 @@ fn assets_match_the_generator_and_the_report() {
         (602, 1200),
         (528, 1056),
         (2402, 4800),
+        (9648, 19296),
+        (546, 1088),
     ];
+    assert_eq!(shapes::all().len(), reported.len());
     for (shape, (v, t)) in shapes::all().into_iter().zip(reported) {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("assets")

@@ -1,4 +1,5 @@
 //! The `decimate` command line as a user runs it, and the bundled models it is shown with.
 
 mod assets;
+mod repair;
 mod usage;

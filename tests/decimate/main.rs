@@ -1,11 +1,14 @@
 //! Decimation by both algorithms: exact counts on the report's models, the invariants every
 //! output keeps (on random meshes too), creases, models stitched along shared borders,
-//! texture coordinates and seams, and progressive meshes.
+//! texture coordinates and seams, progressive meshes, non-manifold shapes, and closed shapes
+//! never turned inside out or flat.
 
 #[path = "../support/mod.rs"]
 mod support;
 
+mod closed_shapes;
 mod creases;
+mod nonmanifold;
 mod progressive;
 mod qem;
 mod random;

@@ -127,7 +127,8 @@ Separator {
 }
 ";
 
-/// Inventor's other shapes and bindings: strips, quads, per-vertex materials, arrays.
+/// Inventor's other shapes and bindings: strips, quads, per-vertex materials, arrays,
+/// primitives, node kits.
 const INVENTOR_NODES: &str = "#Inventor V2.1 ascii
 Separator {
   ShapeHints { vertexOrdering CLOCKWISE shapeType SOLID faceType UNKNOWN_FACE_TYPE creaseAngle 1 }
@@ -154,6 +155,17 @@ Separator {
     TriangleStripSet { numVertices [ 4 ] }
   }
   LevelOfDetail { screenArea [ 100 ] Cube { } Sphere { } }
+  Complexity { value 0.2 }
+  Cylinder { parts (SIDES | TOP) radius 0.5 height 2 }
+  Cone { parts ALL bottomRadius 1 height 1 }
+  MultipleCopy { matrix [ 1 0 0 0 0 1 0 0 0 0 1 0 4 0 0 1 ] Sphere { radius 0.5 } }
+  Switch { whichChild 1 Cube { } Switch { whichChild -2 Cube { } Cylinder { } } }
+  ShapeKit {
+    transform Transform { translation 0 3 0 }
+    localTransform Transform { scaleFactor 2 1 1 }
+    shape Cone { }
+  }
+  IndexedTriangleMesh { coordIndex [ 0 1 3 2 -1 ] }
 }
 ";
 
@@ -184,6 +196,13 @@ DEF Root Transform {
     Switch { whichChoice 0 choice [ Shape { geometry Box { size 1 2 3 } } ] }
     LOD { range [ 10 ] level [ Billboard { children USE Piece } Group { } ] }
     Anchor { children Collision { children [ USE Piece ] } }
+    Shape { geometry Sphere { radius 0.5 } }
+    Shape { geometry Cone { side FALSE } }
+    Shape { geometry Cylinder { top FALSE height 3 } }
+    Shape { geometry ElevationGrid { xDimension 3 zDimension 2 height [ 0 1 2 0 1 2 ]
+      colorPerVertex FALSE color Color { color [ 1 0 0, 0 1 0 ] } } }
+    Shape { geometry Extrusion { spine [ 0 0 0, 0 2 0, 2 2 0 ] scale [ 0.25 0.25, 0.5 0.5 ]
+      orientation [ 0 1 0 0.3 ] crossSection [ 1 0, 0 -1, -1 0, 0 1, 1 0 ] } }
   ]
 }
 Transform { children USE Root }

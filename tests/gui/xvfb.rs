@@ -1,6 +1,7 @@
 //! The interactive viewer end to end in a real X window (Xvfb), driven the way a user drives
 //! it: key `9` decimates the current viewport by 90 %, F3 saves it as `out.wrl` in the working
-//! directory, the right mouse button opens the popup menu. Run under
+//! directory — or, the input being `out.wrl` there, as `out-1.wrl` — the vertex-count field
+//! takes a number and Enter, the right mouse button opens the popup menu. Run under
 //! `xvfb-run -a -s "-screen 0 1024x768x24 -noreset" cargo test`. Without `DISPLAY` the test is skipped
 //! with a notice, except when `CI` is set: there it fails.
 
@@ -301,12 +302,12 @@ fn drag_with(wid: &str, press: &[&str], release: &[&str], from: (i32, i32), to: 
     std::thread::sleep(Duration::from_millis(800));
 }
 
-/// Starts the viewer on `cube.wrl` in `dir`, its stderr going to `log`.
-fn spawn_viewer(dir: &Path, log: &Path) -> Viewer {
+/// Starts the viewer on `input` in `dir`, its stderr going to `log`.
+fn spawn_viewer(dir: &Path, input: &str, log: &Path) -> Viewer {
     let file = std::fs::File::create(log)
         .unwrap_or_else(|e| panic!("cannot create {}: {e}", log.display()));
     let child = Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .arg("cube.wrl")
+        .arg(input)
         .current_dir(dir)
         .env("VK_ICD_FILENAMES", LAVAPIPE)
         .env("VK_DRIVER_FILES", LAVAPIPE)
@@ -326,14 +327,17 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     }
     let _held = hold_x_connection(Duration::from_secs(20));
     let dir = scratch();
-    write_cube(&dir.join("cube.wrl"));
+    // The input is named as F3's output: F3 must write beside it, never over it.
+    let input = dir.join("out.wrl");
+    write_cube(&input);
+    let input_bytes = std::fs::read(&input).unwrap_or_else(|e| panic!("{e}"));
     // A viewer whose window never shows is reported with its log and the X window tree; it
     // is started a second time first, so that one slow start on a loaded machine is told
     // apart from a viewer that cannot open its window.
     let mut attempts = Vec::new();
     let (mut viewer, wid, log_path) = loop {
         let log_path = dir.join(format!("viewer-{}.log", attempts.len() + 1));
-        let mut viewer = spawn_viewer(&dir, &log_path);
+        let mut viewer = spawn_viewer(&dir, "out.wrl", &log_path);
         if let Some(wid) = window_of(&mut viewer, &log_path, Duration::from_secs(45)) {
             break (viewer, wid, log_path);
         }
@@ -359,19 +363,90 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
         .args(["windowfocus", "--sync", &wid])
         .status();
 
-    // 9: remove 90 % of the vertices; F3: save the current viewport as out.wrl.
+    // 9: remove 90 % of the vertices; F3: save the current viewport, as out-1.wrl since
+    // out.wrl is the input.
     run("xdotool", &["key", "--window", &wid, "9"]);
     std::thread::sleep(Duration::from_secs(1));
     run("xdotool", &["key", "--window", &wid, "F3"]);
-    let out = dir.join("out.wrl");
-    wait_for("out.wrl", Duration::from_secs(30), &log_path, || {
+    let out = dir.join("out-1.wrl");
+    wait_for("out-1.wrl", Duration::from_secs(30), &log_path, || {
         out.exists()
     });
     let vertices = saved_vertices(&out);
     assert!(
         (30..=90).contains(&vertices),
-        "out.wrl has {vertices} vertices; about 10 % of 602 expected"
+        "out-1.wrl has {vertices} vertices; about 10 % of 602 expected"
     );
+    assert_eq!(
+        std::fs::read(&input).unwrap_or_else(|e| panic!("{e}")),
+        input_bytes,
+        "F3 wrote over the input"
+    );
+    assert!(
+        read_log(&log_path).contains("out.wrl is the input file"),
+        "the viewer did not say why it saved as out-1.wrl:\n{}",
+        read_log(&log_path)
+    );
+
+    // F2: a picture of the window as window.png: the window's size, the model on it.
+    run("xdotool", &["key", "--window", &wid, "F2"]);
+    let picture = dir.join("window.png");
+    wait_for("window.png", Duration::from_secs(30), &log_path, || {
+        picture.exists()
+    });
+    std::thread::sleep(Duration::from_millis(300));
+    let file = std::fs::File::open(&picture).unwrap_or_else(|e| panic!("{e}"));
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .unwrap_or_else(|e| panic!("window.png: {e}"));
+    let mut pixels = vec![0; reader.output_buffer_size().unwrap_or(0)];
+    let info = reader
+        .next_frame(&mut pixels)
+        .unwrap_or_else(|e| panic!("window.png: {e}"));
+    assert!(
+        info.width >= 800 && info.height >= 600,
+        "window.png is {}x{}",
+        info.width,
+        info.height
+    );
+    let corner = &pixels[..4];
+    let drawn = pixels
+        .chunks(4)
+        .filter(|p| p.iter().zip(corner).any(|(a, b)| a.abs_diff(*b) > 16))
+        .count();
+    assert!(
+        drawn * 20 > (info.width * info.height) as usize,
+        "window.png shows little but background: {drawn} pixels"
+    );
+
+    // v opens "Decimate to N vertices": a word is refused and the field stays open (else the
+    // digits typed next would be decimate keys), Enter submits 100, F3 saves exactly that.
+    run("xdotool", &["key", "--window", &wid, "v"]);
+    std::thread::sleep(Duration::from_millis(800));
+    run(
+        "xdotool",
+        &["type", "--window", &wid, "--delay", "80", "abc"],
+    );
+    run("xdotool", &["key", "--window", &wid, "Return"]);
+    std::thread::sleep(Duration::from_millis(500));
+    for _ in 0..3 {
+        run("xdotool", &["key", "--window", &wid, "BackSpace"]);
+    }
+    run(
+        "xdotool",
+        &["type", "--window", &wid, "--delay", "80", "100"],
+    );
+    run("xdotool", &["key", "--window", &wid, "Return"]);
+    std::thread::sleep(Duration::from_secs(1));
+    let _ = std::fs::remove_file(&out);
+    run("xdotool", &["key", "--window", &wid, "F3"]);
+    wait_for(
+        "out-1.wrl after the field",
+        Duration::from_secs(30),
+        &log_path,
+        || out.exists(),
+    );
+    assert_eq!(saved_vertices(&out), 100, "Decimate to 100 vertices");
 
     // Right click: the popup menu appears around the pointer.
     let before = screenshot(&dir.join("before.rgb"));
@@ -417,7 +492,7 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     let _ = std::fs::remove_file(&out);
     run("xdotool", &["key", "--window", &wid, "F3"]);
     wait_for(
-        "out.wrl after the slider",
+        "out-1.wrl after the slider",
         Duration::from_secs(30),
         &log_path,
         || out.exists(),
@@ -425,7 +500,7 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     let vertices = saved_vertices(&out);
     assert!(
         (8..300).contains(&vertices),
-        "out.wrl has {vertices} vertices after dragging the slider to the left"
+        "out-1.wrl has {vertices} vertices after dragging the slider to the left"
     );
 
     // t hides the triangles, e shows the edges: a list the viewer had not uploaded (it
@@ -492,4 +567,9 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
         );
         std::thread::sleep(Duration::from_millis(200));
     }
+    assert_eq!(
+        std::fs::read(&input).unwrap_or_else(|e| panic!("{e}")),
+        input_bytes,
+        "the input changed while the viewer ran"
+    );
 }

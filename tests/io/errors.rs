@@ -121,7 +121,7 @@ fn very_deep_nesting_is_an_error_not_a_stack_overflow() {
     assert!(msg.contains("nested deeper than"), "{msg}");
     // Unknown nodes are skipped without recursion: deep nesting of them is fine.
     let src = format!(
-        "#VRML V1.0 ascii\n{}{}",
+        "#VRML V1.0 ascii\nCube {{ }}\n{}{}",
         "Mystery {\n".repeat(n),
         "}\n".repeat(n)
     );

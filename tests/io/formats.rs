@@ -480,7 +480,7 @@ fn the_binary_writes_the_format_the_extension_names() {
         ("out.off", &b"OFF\n"[..]),
         ("out.ply", &b"ply\n"[..]),
         ("out.wrl", &b"#VRML V2.0 utf8"[..]),
-        ("out.vrml2", &b"#VRML V2.0 utf8"[..]),
+        ("out.vrml", &b"#VRML V2.0 utf8"[..]),
     ] {
         let path = decimate_to(dir.path(), out);
         let bytes = std::fs::read(&path).unwrap();

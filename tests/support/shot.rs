@@ -8,11 +8,11 @@
 use std::path::{Path, PathBuf};
 
 use decimate::app::shot;
-use decimate::cli::{ShotModes, ShotOptions};
-use decimate::decimate::Params;
+use decimate::cli::ShotOptions;
+use decimate::decimate::{Params, Report};
 use decimate::mesh::{Model, Scene};
 use decimate::render::context::DevicePreference;
-use decimate::render::draw::BACKGROUND;
+use decimate::render::draw::{DrawOptions, BACKGROUND};
 use decimate::render::offscreen::RgbaImage;
 use glam::{Mat4, Vec3};
 
@@ -88,36 +88,17 @@ pub fn sphere(rings: u32, segments: u32, transform: Mat4) -> Scene {
     }
 }
 
-/// The modes of a `--mode` list.
-pub fn modes(list: &str) -> ShotModes {
-    let mut m = ShotModes {
-        triangles: false,
-        ..ShotModes::default()
-    };
-    for word in list.split(',') {
-        match word {
-            "triangles" => m.triangles = true,
-            "untextured" => m.untextured = true,
-            "edges" => m.edges = true,
-            "points" => m.points = true,
-            "normals" => m.face_normals = true,
-            "vertex-normals" => m.vertex_normals = true,
-            "flat" => m.flat = true,
-            "unlit" => m.unlit = true,
-            other => panic!("unknown mode {other}"),
-        }
-    }
-    if !(m.edges || m.points) {
-        m.triangles = true;
-    }
-    m
+/// The draw toggles of a `--mode` list, parsed as the command line parses it.
+pub fn modes(list: &str) -> DrawOptions {
+    decimate::cli::draw_modes(list).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// Renders in-process on lavapipe; a missing Vulkan is a test failure with the reason.
+/// Renders in-process on lavapipe, without captions; a missing Vulkan is a test failure with
+/// the reason.
 pub fn render(
     scene: &Scene,
     viewports: u32,
-    modes: ShotModes,
+    modes: DrawOptions,
     params: Option<&Params>,
 ) -> RgbaImage {
     let options = ShotOptions {
@@ -125,10 +106,20 @@ pub fn render(
         height: HEIGHT,
         viewports,
         modes,
+        labels: Some(false),
         ..ShotOptions::default()
     };
-    match shot::render(scene, &options, params, DevicePreference::Cpu) {
-        Ok((image, _)) => image,
+    render_with(scene, &options, params).0
+}
+
+/// Renders `options` in-process on lavapipe; the picture and the decimations' reports.
+pub fn render_with(
+    scene: &Scene,
+    options: &ShotOptions,
+    params: Option<&Params>,
+) -> (RgbaImage, Vec<Report>) {
+    match shot::render(scene, options, params, DevicePreference::Cpu) {
+        Ok(r) => r,
         Err(e) => panic!(
             "Vulkan rendering is unavailable, so the shot tests cannot run: {e}\n\
              install lavapipe: apt-get install mesa-vulkan-drivers libvulkan1"

@@ -6,7 +6,6 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use decimate::app::shot::draw_options;
 use decimate::io::texture_image;
 use decimate::mesh::{Model, Scene};
 use decimate::render::camera::{Bounds, Camera};
@@ -122,7 +121,7 @@ fn render(scene: &Scene, dir: &Path, anisotropic: bool) -> RgbaImage {
     let commands = Commands::new(&context).unwrap_or_else(|e| fail(&e));
     let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT).unwrap_or_else(|e| fail(&e));
     let target = OffscreenTarget::new(&context, WIDTH, HEIGHT).unwrap_or_else(|e| fail(&e));
-    let draw = draw_options(&modes("triangles,unlit"));
+    let draw = modes("triangles,unlit");
     let mut textures = Textures::new(
         &context,
         pipelines.texture_layout,

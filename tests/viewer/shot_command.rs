@@ -65,6 +65,8 @@ fn before_and_after_decimation_side_by_side() {
             "edges",
             "-p",
             "90",
+            // Edge coverage is measured per half: no captions over them.
+            "--no-labels",
         ],
     );
     assert_success(&out);
@@ -126,4 +128,29 @@ fn without_vulkan_the_shot_fails_and_says_why() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("Vulkan"), "unclear message: {stderr}");
     assert!(!dir.join("shot.png").exists());
+}
+
+#[test]
+fn the_crease_angle_smooths_a_cube_at_180_degrees() {
+    // At the default 45° a cube's edges stay sharp (smooth shading looks flat); at 180° its
+    // faces' normals are averaged across the edges, so each face shades as a gradient.
+    let dir = scratch("crease");
+    let input = cube_file(&dir);
+    let shoot = |name: &str, extra: &[&str]| {
+        let mut args = vec![input.to_str().unwrap_or_default(), "shot", "-q", "-o", name];
+        args.extend_from_slice(&["--size", "320x240"]);
+        args.extend_from_slice(extra);
+        assert_success(&decimate_cmd(&dir, &args));
+        read_png(&dir.join(name))
+    };
+    let default = shoot("default.png", &[]);
+    let sharp = shoot("sharp.png", &["--crease-angle", "45"]);
+    let smooth = shoot("smooth.png", &["--crease-angle", "180"]);
+    assert!(different_fraction(&default, &sharp, 2) < 0.0005);
+    let changed = different_fraction(&default, &smooth, 8);
+    assert!(
+        changed > 0.05,
+        "only {:.2} % of the picture changed at 180°",
+        changed * 100.0
+    );
 }

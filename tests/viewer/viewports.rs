@@ -1,6 +1,11 @@
 //! Golden screenshots of tiled viewports: one, two side by side, four in a 2×2 grid, each
-//! framing the whole model; and the world transform of a model is honoured when framing.
+//! framing the whole model; the world transform of a model is honoured when framing; the
+//! report's four-up figure, each viewport with its own target and a caption.
 
+use decimate::cli::ShotOptions;
+use decimate::decimate::{Params, Target};
+use decimate::mesh::Scene;
+use decimate::render::offscreen::RgbaImage;
 use glam::{Mat4, Vec3};
 
 use crate::support::shot::*;
@@ -56,4 +61,69 @@ fn a_transformed_model_is_framed_where_it_is() {
         covered * 100.0
     );
     assert_matches_golden("sphere_transformed", &image);
+}
+
+/// Pixels inside `(x0, y0)..(x1, y1)` where `a` and `b` differ by more than `tolerance`.
+fn differing(a: &RgbaImage, b: &RgbaImage, (x0, y0, x1, y1): (u32, u32, u32, u32)) -> usize {
+    let mut n = 0;
+    for y in y0..y1 {
+        for x in x0..x1 {
+            if !close(pixel(a, x, y), pixel(b, x, y), 24) {
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+#[test]
+fn the_report_figure_captions_each_viewport_with_its_own_target() {
+    // decimate assets/test006.wrl shot --viewports 4 -p 60,80,90 --mode triangles,edges
+    let scene = Scene {
+        models: vec![decimate::mesh::shapes::test006()],
+    };
+    let (width, height) = (640, 480);
+    let mut options = ShotOptions {
+        width,
+        height,
+        viewports: 4,
+        modes: modes("triangles,edges"),
+        targets: [60.0, 80.0, 90.0].map(Target::RemovePercent).to_vec(),
+        ..ShotOptions::default()
+    };
+    let params = Params {
+        target: Target::RemovePercent(60.0),
+        ..Params::default()
+    };
+    let (labelled, reports) = render_with(&scene, &options, Some(&params));
+    // One decimation per target, each coarser than the one before.
+    let left: Vec<usize> = reports
+        .iter()
+        .map(|r| r.models.iter().map(|m| m.vertices_after).sum())
+        .collect();
+    let n = scene.models[0].used_vertex_count();
+    assert_eq!(left.len(), 3);
+    for (kept, p) in left.iter().zip([60.0, 80.0, 90.0]) {
+        let asked = n - (n as f64 * p / 100.0).round() as usize;
+        assert!(kept.abs_diff(asked) <= 2, "{p} %: {kept} of {n} left");
+    }
+    // Captions are on by default with four viewports; without them the picture differs only
+    // in each tile's bottom-right corner, where its caption sits.
+    options.labels = Some(false);
+    let (bare, _) = render_with(&scene, &options, Some(&params));
+    let (hw, hh) = (width / 2, height / 2);
+    for (x, y) in [(0, 0), (hw, 0), (0, hh), (hw, hh)] {
+        let corner = (x + hw - 170, y + hh - 45, x + hw, y + hh);
+        let caption = differing(&labelled, &bare, corner);
+        assert!(
+            caption > 300,
+            "tile at ({x}, {y}): {caption} caption pixels"
+        );
+        let whole = differing(&labelled, &bare, (x, y, x + hw, y + hh));
+        assert_eq!(
+            whole, caption,
+            "tile at ({x}, {y}) changed outside its caption"
+        );
+    }
+    assert_matches_golden("test006_report_figure", &labelled);
 }

@@ -25,7 +25,7 @@
 
 use rayon::prelude::*;
 
-use super::collapse_plan::{Kind, Plan};
+use super::collapse_plan::{others, Kind, Plan};
 use super::collapser::Collapser;
 use super::part::Part;
 use super::ranking::stored;
@@ -271,17 +271,18 @@ fn collapse_in_regions(
 ) -> Vec<Candidate> {
     let per_region = regions.distribute(candidates);
     let parts = d.split(&regions.vertex_starts, &regions.slot_starts);
-    let results: Vec<(Tally, Vec<u32>)> = parts
+    let results: Vec<_> = parts
         .into_par_iter()
         .zip(per_region)
         .map(|(mut part, mine)| {
             let mut tally = Tally::default();
             collapse_in_order(&mut part, &mine, bounds, None, &mut tally);
-            (tally, part.conn.finish())
+            (tally, part.conn.finish(), part.closed.into_changes())
         })
         .collect();
     let mut border = Vec::new();
-    for (region, freed) in results {
+    for (region, freed, volumes) in results {
+        d.absorb_volume_changes(volumes);
         tally.removed += region.removed;
         tally.max_error2 = tally.max_error2.max(region.max_error2);
         tally.over_bound |= region.over_bound;
@@ -400,6 +401,12 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
                 let i = d.at(x);
                 d.flags[i] |= RERANK;
             }
+        }
+        // Otherwise the cost changed with no collapse at either end (a complex end made
+        // manifold, see `Part::settle_complex`): `v` re-plans, or the next pass is this one.
+        let (iv, iw) = (d.at(v), d.at(w));
+        if (d.flags[iv] | d.flags[iw]) & REPLAN == 0 {
+            d.flags[iv] |= REPLAN;
         }
         return Attempt::Skipped;
     }
@@ -566,14 +573,33 @@ fn collapse_and_flag(d: &mut Part<'_>, plan: &Plan) {
     let k = d.at(plan.keep);
     d.flags[k] |= REPLAN;
     let (fan_r, fan_k) = d.scratch.fans(plan);
-    for (fan, other) in [(fan_r, plan.keep), (fan_k, plan.remove)] {
-        for f in fan.iter().filter(|f| !f.touches(other)) {
+    // The edge's apexes too: a doubled flap's apex is in no other triangle of either fan.
+    for fan in [fan_r, fan_k] {
+        for f in fan {
             for x in [f.next, f.prev] {
                 d.flags[(x - d.v0) as usize] |= RELEASE;
             }
         }
     }
+    if let Some(c) = d.closed.component(plan.remove) {
+        let change = d.volume_change(plan);
+        d.closed.apply(c, change);
+    }
     d.collapse(plan);
+    // A complex vertex made manifold collapses freely from now on: its edges are re-planned,
+    // and its neighbours whose cheapest edge it is look again (that edge's cost changed).
+    for j in 0..d.scratch.settled.len() {
+        let x = d.scratch.settled[j];
+        let i = d.at(x);
+        d.flags[i] |= REPLAN;
+        for k in 0..d.conn.incident(x).len() {
+            for w in others(d.conn.triangle(d.conn.incident(x)[k]), x) {
+                if let Some(i) = d.local(w) {
+                    d.flags[i] |= RELEASE;
+                }
+            }
+        }
+    }
 }
 
 /// The lists of the vertices [`end_of_pass`] looks at again, kept from pass to pass: all of

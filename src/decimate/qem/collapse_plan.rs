@@ -16,7 +16,12 @@ pub(super) enum Kind {
     /// stands — an interior one, or one along a boundary edge (on a seam, with the other
     /// side's, into its copy there).
     Anchored,
-    /// Non-manifold, inconsistently oriented, too high a valence, or unused: never moved.
+    /// Non-manifold: on an edge of three or more triangles, or where several fans meet
+    /// (a "bowtie"). Never moves; takes in a neighbour where it stands (an interior one,
+    /// or one along a boundary edge), and goes only along a non-manifold edge into a
+    /// complex vertex (see `Part::plan`), so that no collapse adds a non-manifold edge.
+    Complex,
+    /// Unused, on a degenerate triangle, or removed: never moved.
     Fixed,
 }
 

@@ -12,6 +12,7 @@ use super::part::{CollapseLists, Part};
 use super::planes::{self, Constraints};
 use super::quadric::Quadric;
 use super::texture_quadrics::{texture_quadrics, TextureQuadrics};
+use crate::decimate::closed::{ClosedView, ClosedVolumes};
 use crate::decimate::layout::{compact, Compacted};
 use crate::mesh::progressive::Recorder;
 use crate::mesh::topology::{split_mut, Connectivity};
@@ -51,6 +52,8 @@ pub(super) struct Collapser {
     /// seam junction, one per side; `u32::MAX`: none); empty when none share a position.
     /// Never changes: pinned vertices never move.
     copies: Vec<u32>,
+    /// Closed components' volumes: no collapse turns one inside out or flattens it.
+    closed: ClosedVolumes,
 }
 
 impl Collapser {
@@ -64,6 +67,7 @@ impl Collapser {
         constraints: Constraints<'_>,
     ) -> Self {
         let n = positions.len();
+        let closed = ClosedVolumes::new(&positions, &triangles);
         let conn = Connectivity::from_triangles(n, triangles);
         let (kinds, quadrics) = planes::kinds_and_quadrics(&conn, &positions, constraints);
         let costs = EdgeCosts::new(conn.triangles());
@@ -84,6 +88,7 @@ impl Collapser {
             recorder: None,
             twins: Vec::new(),
             copies: Vec::new(),
+            closed,
         }
     }
 
@@ -165,6 +170,7 @@ impl Collapser {
             recorder: self.recorder.as_mut(),
             twins: &self.twins,
             copies: &self.copies,
+            closed: ClosedView::Whole(&mut self.closed),
             scratch: CollapseLists::default(),
         }
     }
@@ -190,6 +196,7 @@ impl Collapser {
         let costs = &self.costs;
         let twins = &self.twins;
         let copies = &self.copies;
+        let closed = &self.closed;
         let conns = self.conn.split(vertex_starts, slot_starts);
         conns
             .into_iter()
@@ -215,10 +222,16 @@ impl Collapser {
                     recorder: None,
                     twins,
                     copies,
+                    closed: ClosedView::Part(closed, Default::default()),
                     scratch: CollapseLists::default(),
                 })
             })
             .collect()
+    }
+
+    /// Adds the volume changes a part made on its own (see `ClosedView`).
+    pub fn absorb_volume_changes(&mut self, changes: std::collections::HashMap<u32, f64>) {
+        self.closed.absorb(changes);
     }
 
     /// Writes live vertices (at their new positions) and triangles back into `model`.

@@ -1,12 +1,14 @@
 //! pmp's `is_collapse_legal` for a planned collapse, as a chain of small checks: the link
 //! condition (no non-manifold result), no duplicate triangle, no flipped or degenerate
-//! triangle, in space and (with texture coordinates) in the texture. Vertex kinds (boundary,
+//! triangle, in space and (with texture coordinates) in the texture, and no closed shape
+//! turned inside out or flattened (`decimate::closed`). Vertex kinds (boundary,
 //! complex) were already applied by `plan`.
 
 use glam::DVec2;
 
 use super::collapse_plan::Plan;
 use super::part::Part;
+use crate::decimate::closed::tet6;
 use crate::mesh::topology::FanTriangle;
 
 /// A triangle is degenerate when its area is this small relative to its longest edge².
@@ -22,10 +24,47 @@ impl Part<'_> {
             && self.no_duplicate_triangle(plan)
             && self.no_triangle_flips_or_degenerates(plan)
             && self.no_texture_flips(plan)
+            && self.keeps_closed_volume(plan)
+    }
+
+    /// On a closed component, the collapse keeps the component's volume on its side of
+    /// zero and above its floor: the per-triangle flip test lets each triangle turn by up to
+    /// a right angle, which on a small closed shape can carry it through itself.
+    fn keeps_closed_volume(&self, plan: &Plan) -> bool {
+        self.closed
+            .component(plan.remove)
+            .is_none_or(|c| self.closed.allows(c, self.volume_change(plan)))
+    }
+
+    /// Six times the change of signed volume the planned collapse makes: the removed end's
+    /// and the kept end's triangles as they will be, less as they are (those on the edge
+    /// go), about the kept end's old position.
+    pub fn volume_change(&self, plan: &Plan) -> f64 {
+        let o = self.position(plan.keep);
+        let (fan_r, fan_k) = self.fans(plan);
+        let mut change = 0.0;
+        for (v, fan, other) in [
+            (plan.remove, fan_r, plan.keep),
+            (plan.keep, fan_k, plan.remove),
+        ] {
+            let pv = self.position(v);
+            for f in fan {
+                let [x, y] = [f.next, f.prev].map(|w| self.position(w));
+                if !f.touches(other) {
+                    change += tet6(o, plan.position, x, y) - tet6(o, pv, x, y);
+                } else if v == plan.remove {
+                    change -= tet6(o, pv, x, y);
+                }
+            }
+        }
+        change
     }
 
     /// Link condition (Dey et al.): the ends share no neighbour but the apexes of the
-    /// triangles on the edge — otherwise the result would be non-manifold. A boundary edge
+    /// triangles on the edge — otherwise the result would be non-manifold (or, on
+    /// non-manifold input, have more non-manifold edges: an edge merged into another has
+    /// the two's triangles less those on the collapsed edge, so it has three or more only
+    /// when one of the two had). A boundary edge
     /// also must not be the last edge of a triangle whose other two edges are on the boundary.
     /// Leaves the common neighbours in `scratch.common`. Neighbourhoods are small, so the
     /// lists are searched linearly (no per-vertex marks to keep, nothing shared to write),
@@ -38,12 +77,16 @@ impl Part<'_> {
         common.clear();
         let (fan_r, fan_k) = self.fans(plan);
         let mut on_edge = 0;
+        let mut apexes = 0;
         let mut apex = u32::MAX;
         let mut mask = 0u64;
-        for f in fan_r {
+        for (i, f) in fan_r.iter().enumerate() {
             if f.touches(k) {
                 on_edge += 1;
                 apex = if f.next == k { f.prev } else { f.next };
+                // Counted once: a triangle and its reversed copy on the edge share an apex.
+                let seen = fan_r[..i].iter().any(|g| g.touches(k) && g.touches(apex));
+                apexes += usize::from(!seen);
             }
             // With repeats: each neighbour once per triangle it is in.
             for w in [f.next, f.prev] {
@@ -62,7 +105,9 @@ impl Part<'_> {
                 }
             }
         }
-        let shares_only_apexes = common.len() == on_edge && (1..=2).contains(&on_edge);
+        // Three or more apexes on a non-manifold edge; fewer than triangles where the input
+        // doubled some (a triangle and its reversed copy), which go together.
+        let shares_only_apexes = common.len() == apexes && apexes >= 1;
         // The one triangle on a boundary edge must keep an edge off the boundary.
         let edge_count = |fan: &[FanTriangle], w: u32| fan.iter().filter(|f| f.touches(w)).count();
         let legal = shares_only_apexes

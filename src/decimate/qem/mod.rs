@@ -10,8 +10,9 @@
 //!    rounded to f32 before it is checked, so every check sees what is written;
 //! 2. connect: vertex → triangle incidence (`mesh::topology`);
 //! 3. kinds and quadrics (`planes`, one pass over the vertices' ordered rings, on all
-//!    cores; `texture_quadrics` for a textured model's): each vertex's kind (interior, boundary,
-//!    complex) from its ring's shape; every triangle adds its plane weighted by its area;
+//!    cores; `texture_quadrics` for a textured model's): each vertex's kind (interior,
+//!    boundary, complex: non-manifold) from its ring's shape; every triangle adds its plane
+//!    weighted by its area;
 //!    every boundary edge adds a plane through the edge perpendicular to its triangle,
 //!    weighted `CONSTRAINT_WEIGHT` × length² (`SEAM_WEIGHT` on a texture seam, whose sides
 //!    move together), and so does every feature edge (dihedral angle above the feature
@@ -65,6 +66,14 @@
 //! together into the junction's copies there. A collapse into a vertex with copies (a
 //! twin, a junction's) must leave the surface manifold once the seams are welded
 //! (`collapse_passes::seam_stays_manifold`).
+//!
+//! Non-manifold input takes part, by rules in the manner of meshoptimizer's: a complex
+//! vertex (on an edge of three or more triangles, or where several fans meet) never moves,
+//! but takes in an interior neighbour, or a boundary one along the outline, where it stands;
+//! and it goes only along a non-manifold edge into the complex vertex at the other end, so
+//! that every sheet on that edge shortens together. Its quadric adds, through each such
+//! edge and each outline edge, a plane perpendicular to every triangle there, so that going
+//! off the edge's line costs. No collapse adds a non-manifold edge (see `Part::plan`).
 
 mod collapse_passes;
 mod collapse_plan;

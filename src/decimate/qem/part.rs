@@ -12,8 +12,9 @@ use glam::{DVec2, DVec3, Vec3};
 use super::collapse_plan::{others, Kind, Plan};
 use super::edge_costs::EdgeCosts;
 use super::quadric::{Quadric, TextureQuadric};
+use crate::decimate::closed::ClosedView;
 use crate::mesh::progressive::{CollapseRecord, Recorder};
-use crate::mesh::topology::{ConnectivityPart, FanTriangle};
+use crate::mesh::topology::{Adjacency, ConnectivityPart, FanTriangle, Ring, RingShape};
 
 /// A placement may leave the edge's bounding box by at most this many edge lengths.
 const BOX_MARGIN: f64 = 1.0;
@@ -56,6 +57,10 @@ pub(super) struct CollapseLists {
     /// `ends` and `fans` (see [`Part::swap_sides`]).
     twin_ends: [u32; 2],
     twin_fans: [Vec<FanTriangle>; 2],
+    /// The complex vertices the last collapse made manifold (see [`Part::collapse`]), and
+    /// the ring it read them with.
+    pub settled: Vec<u32>,
+    settle_ring: Ring,
 }
 
 impl CollapseLists {
@@ -100,6 +105,8 @@ pub(super) struct Part<'a> {
     /// Anchored vertices' next copy at their position (the whole mesh's, read only; see
     /// `Collapser::pin`).
     pub copies: &'a [u32],
+    /// Closed components' volumes (see `decimate::closed`).
+    pub closed: ClosedView<'a>,
     pub scratch: CollapseLists,
 }
 
@@ -286,6 +293,12 @@ impl Part<'_> {
     /// | boundary | anchored | boundary  | the boundary end into the anchored end, unmoved   |
     /// | boundary | anchored | interior  | none: it would pinch the surface                  |
     /// | anchored | anchored | any       | none: neither may go                              |
+    /// | interior | complex  | any       | the interior end into the complex end, unmoved    |
+    /// | boundary | complex  | boundary  | the boundary end into the complex end, unmoved    |
+    /// | boundary | complex  | other     | none: it would pinch the surface                  |
+    /// | complex  | complex  | non-manifold | the end whose place costs more into the other, unmoved: the sheets on the edge shorten together |
+    /// | complex  | complex  | other     | none: it could join two sheets or fans            |
+    /// | complex  | anchored | any       | none: neither may go (a complex end may not move onto a seam) |
     #[inline(always)]
     pub fn plan(&self, a: u32, b: u32) -> Option<Plan> {
         let (ka, kb) = (self.kind(a), self.kind(b));
@@ -293,13 +306,22 @@ impl Part<'_> {
             (self.edge_triangles(remove, keep) == 1).then_some((remove, keep, free, true))
         };
         let (remove, keep, free, along_boundary) = match (ka, kb) {
-            (Kind::Fixed, _) | (_, Kind::Fixed) | (Kind::Anchored, Kind::Anchored) => return None,
+            (Kind::Fixed, _)
+            | (_, Kind::Fixed)
+            | (Kind::Anchored, Kind::Anchored)
+            | (Kind::Anchored, Kind::Complex)
+            | (Kind::Complex, Kind::Anchored) => return None,
             (Kind::Interior, Kind::Interior) => (a, b, true, false),
-            (Kind::Interior, Kind::Boundary | Kind::Anchored) => (a, b, false, false),
-            (Kind::Boundary | Kind::Anchored, Kind::Interior) => (b, a, false, false),
+            (Kind::Interior, Kind::Boundary | Kind::Anchored | Kind::Complex) => {
+                (a, b, false, false)
+            }
+            (Kind::Boundary | Kind::Anchored | Kind::Complex, Kind::Interior) => {
+                (b, a, false, false)
+            }
             (Kind::Boundary, Kind::Boundary) => along_boundary((a, b, true))?,
-            (Kind::Boundary, Kind::Anchored) => along_boundary((a, b, false))?,
-            (Kind::Anchored, Kind::Boundary) => along_boundary((b, a, false))?,
+            (Kind::Boundary, Kind::Anchored | Kind::Complex) => along_boundary((a, b, false))?,
+            (Kind::Anchored | Kind::Complex, Kind::Boundary) => along_boundary((b, a, false))?,
+            (Kind::Complex, Kind::Complex) => self.along_non_manifold_edge(a, b)?,
         };
         let (remove, keep, twin) = if self.twins.is_empty() {
             (remove, keep, None)
@@ -387,6 +409,21 @@ impl Part<'_> {
             cost,
             twin,
             texcoords,
+        })
+    }
+
+    /// Which end of the edge `a`–`b` between two complex vertices goes, when three or more
+    /// triangles share it: the one whose position the ends' quadrics price higher (ties:
+    /// `a`), into the other, unmoved; `None` on any other edge.
+    fn along_non_manifold_edge(&self, a: u32, b: u32) -> Option<(u32, u32, bool, bool)> {
+        if self.edge_triangles(a, b) < 3 {
+            return None;
+        }
+        let q = self.quadrics[self.at(a)].sum(&self.quadrics[self.at(b)]);
+        Some(if q.eval(self.position(b)) <= q.eval(self.position(a)) {
+            (a, b, false, false)
+        } else {
+            (b, a, false, false)
         })
     }
 
@@ -627,6 +664,44 @@ impl Part<'_> {
             t[k].add(&q);
         }
         self.kinds[r] = Kind::Fixed;
+        self.settle_complex(plan);
+    }
+
+    /// Re-classifies the complex vertices a collapse touched, the kept end and the edge's
+    /// apexes: one whose neighbourhood became a single fan (a doubled flap collapsed away,
+    /// the third sheet of an edge gone) is interior or boundary from now on, its quadric as
+    /// it stands (its outline's planes are in already). Those are left in
+    /// `scratch.settled`. A vertex whose fan is not all this part's stays complex.
+    fn settle_complex(&mut self, plan: &Plan) {
+        let mut settled = std::mem::take(&mut self.scratch.settled);
+        let mut ring = std::mem::take(&mut self.scratch.settle_ring);
+        settled.clear();
+        let (fan_r, _) = self.scratch.fans(plan);
+        let keep = plan.keep;
+        settled.push(keep);
+        settled.extend((fan_r.iter().filter(|f| f.touches(keep))).map(|f| {
+            if f.next == keep {
+                f.prev
+            } else {
+                f.next
+            }
+        }));
+        settled.retain(|&x| {
+            let owned = self.owns(x)
+                && self.kind(x) == Kind::Complex
+                && self.conn.has_room(x, 0)
+                && (self.conn.incident(x).iter()).all(|&t| self.conn.owns_slot(t));
+            let kind = match owned.then(|| self.conn.ring(x, &mut ring)) {
+                Some(RingShape::Closed) => Kind::Interior,
+                Some(RingShape::Open) => Kind::Boundary,
+                _ => return false,
+            };
+            let i = self.at(x);
+            self.kinds[i] = kind;
+            true
+        });
+        self.scratch.settled = settled;
+        self.scratch.settle_ring = ring;
     }
 }
 

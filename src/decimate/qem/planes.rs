@@ -11,7 +11,7 @@ use rayon::prelude::*;
 
 use super::collapse_plan::Kind;
 use super::quadric::Quadric;
-use crate::mesh::topology::{Adjacency, Connectivity, Ring, RingShape};
+use crate::mesh::topology::{corner_of, Adjacency, Connectivity, Ring, RingShape, MAX_VALENCE};
 
 /// Weight of boundary and feature constraint planes relative to an area-weighted face plane.
 const CONSTRAINT_WEIGHT: f64 = 100.0;
@@ -76,19 +76,26 @@ pub(super) fn kinds_and_quadrics(
     (0..positions.len() as u32)
         .into_par_iter()
         .with_min_len(PER_TASK)
-        .map_init(Ring::default, |ring, v| {
-            let kind = match conn.ring(v, ring) {
-                RingShape::Closed => Kind::Interior,
-                RingShape::Open => Kind::Boundary,
-                RingShape::Isolated | RingShape::Complex => Kind::Fixed,
-            };
-            let quadric = if kind == Kind::Fixed {
-                Quadric::default()
-            } else {
-                ring_quadric(positions, &planes, v, ring, kind, constraints)
-            };
-            (kind, quadric)
-        })
+        .map_init(
+            || (Ring::default(), Vec::new()),
+            |(ring, scratch), v| {
+                let kind = match conn.ring(v, ring) {
+                    RingShape::Closed => Kind::Interior,
+                    RingShape::Open => Kind::Boundary,
+                    RingShape::Isolated => Kind::Fixed,
+                    RingShape::Complex => {
+                        return complex_quadric(conn, positions, &planes, v, scratch)
+                            .map_or((Kind::Fixed, Quadric::default()), |q| (Kind::Complex, q));
+                    }
+                };
+                let quadric = if kind == Kind::Fixed {
+                    Quadric::default()
+                } else {
+                    ring_quadric(positions, &planes, v, ring, kind, constraints)
+                };
+                (kind, quadric)
+            },
+        )
         .unzip()
 }
 
@@ -132,6 +139,65 @@ impl FacePlane {
             q
         })
     }
+}
+
+/// The planes a non-manifold vertex `v` stands for: its triangles' planes, and through
+/// each of its edges with one triangle (the outline) or with three or more (a non-manifold
+/// edge) a plane perpendicular to each of those triangles, weighted as a boundary's, so that
+/// collapsing along such an edge prices leaving its line. `None` when a triangle at `v` is
+/// degenerate (a corner repeated) or `v` has more than `MAX_VALENCE` triangles: such a
+/// vertex stays fixed. Edges are counted by sorting
+/// the neighbours (`scratch`), so a huge fan costs `k log k`.
+fn complex_quadric(
+    conn: &Connectivity,
+    positions: &[Vec3],
+    planes: &[FacePlane],
+    v: u32,
+    scratch: &mut Vec<u32>,
+) -> Option<Quadric> {
+    let incident = conn.incident(v);
+    if incident.len() > MAX_VALENCE {
+        return None;
+    }
+    scratch.clear();
+    for &t in incident {
+        let (_, next, prev) = corner_of(conn.triangle(t), v);
+        if next == v || prev == v || next == prev {
+            return None;
+        }
+        scratch.extend([next, prev]);
+    }
+    scratch.sort_unstable();
+    let triangles_on = |x: u32| {
+        let first = scratch.partition_point(|&y| y < x);
+        scratch[first..].iter().take_while(|&&y| y == x).count()
+    };
+    let at = |w: u32| positions[w as usize].as_dvec3();
+    let mut sum = Quadric::default();
+    for &t in incident {
+        let plane = &planes[t as usize];
+        let Some(n) = plane.normal() else {
+            continue;
+        };
+        if let Some(q) = plane.quadric() {
+            sum.add(&q);
+        }
+        let (_, next, prev) = corner_of(conn.triangle(t), v);
+        for (u, w, x) in [(v, next, next), (prev, v, prev)] {
+            if triangles_on(x) == 2 {
+                continue;
+            }
+            let (pu, pw) = (at(u), at(w));
+            let edge = pw - pu;
+            let side = edge.cross(n).normalize_or_zero();
+            sum.add(&Quadric::plane(
+                side,
+                -side.dot(pu),
+                CONSTRAINT_WEIGHT * edge.length_squared(),
+            ));
+        }
+    }
+    Some(sum)
 }
 
 /// The planes `v` stands for, from its ring and the triangles' `planes`.

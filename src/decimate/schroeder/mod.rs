@@ -21,8 +21,9 @@
 //! 4. remove (`removal_passes`): in passes over the cheapest share of the candidates, in key order:
 //!    remove each, filling its hole by recursive loop splitting (`loop_split`, planned in
 //!    `plan`), keeping creases (an interior-edge vertex's loop is first split along its
-//!    feature edge) and rejecting fills that flip or degenerate a triangle or create an edge
-//!    that already exists (non-manifold) — such a vertex is kept until a neighbour goes; a
+//!    feature edge) and rejecting fills that flip or degenerate a triangle, create an edge
+//!    that already exists (non-manifold) or turn a closed shape inside out or flat
+//!    (`decimate::closed`) — such a vertex is kept until a neighbour goes; a
 //!    vertex whose ring a removal changed waits for the next pass, re-ranked at the end of
 //!    this one; removals run in regions on all cores (`region_removal`) while a round of them
 //!    cannot reach the target, the rest (and those on region borders) planned on all cores
@@ -42,6 +43,7 @@ mod removal_passes;
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::closed::{tet6, ClosedVolumes};
 use super::layout::{self, compact, Compacted};
 use super::{Limits, Outcome};
 use crate::mesh::classify::VertexClass;
@@ -132,6 +134,20 @@ fn load(model: &Model) -> (layout::Loaded, Vec<Vec3>, Vec<[u32; 3]>) {
     (loaded, positions, triangles)
 }
 
+/// Six times the change of signed volume that replacing triangles `old` by `fill` makes
+/// (about vertex `at`, which only shortens the sums: the change is the same about any point).
+fn volume_change(
+    positions: &[Vec3],
+    at: u32,
+    old: impl Iterator<Item = [u32; 3]>,
+    fill: &[[u32; 3]],
+) -> f64 {
+    let p = |v: u32| positions[v as usize].as_dvec3();
+    let o = p(at);
+    let six = |t: [u32; 3]| tet6(o, p(t[0]), p(t[1]), p(t[2]));
+    fill.iter().map(|&t| six(t)).sum::<f64>() - old.map(six).sum::<f64>()
+}
+
 /// The working state of one model's decimation.
 struct Decimator {
     positions: Vec<Vec3>,
@@ -167,6 +183,8 @@ struct Decimator {
     /// now being made: a plan reading a vertex changed since is stale.
     touched_in: Vec<u32>,
     batch: u32,
+    /// Closed components' volumes: no removal turns one inside out or flattens it.
+    closed: ClosedVolumes,
 }
 
 /// A planned removal's ring (vertices and triangles) and fill.
@@ -181,6 +199,7 @@ impl Decimator {
     fn new(positions: Vec<Vec3>, triangles: &[[u32; 3]], feature_angle_deg: f64) -> Self {
         let n = positions.len();
         Self {
+            closed: ClosedVolumes::new(&positions, triangles),
             conn: Connectivity::new(n, triangles),
             positions,
             texcoords: None,
@@ -319,6 +338,10 @@ impl Decimator {
     /// ones in (reusing their slots, so per-face attributes of the region carry over), and
     /// `key` accumulated around the ring, whose vertices are re-ranked at the pass's end.
     fn apply(&mut self, v: u32, removal: Removal<'_>, key: f64) {
+        if let Some(c) = self.closed.component(v) {
+            let change = self.volume_change(v, removal);
+            self.closed.apply(c, change);
+        }
         for &t in removal.triangles {
             self.conn.remove_triangle(t);
         }
@@ -333,11 +356,29 @@ impl Decimator {
         }
     }
 
+    /// Whether removing `v` as planned keeps its closed component (if any) on its side of
+    /// zero and above its floor (`decimate::closed`): the fill's checks compare each new
+    /// triangle with the old ones it covers, which on a small closed shape can all pass
+    /// while the fill crosses the rest of the shape.
+    fn keeps_closed_volume(&self, v: u32, removal: Removal<'_>) -> bool {
+        self.closed
+            .component(v)
+            .is_none_or(|c| self.closed.allows(c, self.volume_change(v, removal), 1.0))
+    }
+
+    /// Six times the change of signed volume that replacing `v`'s triangles by the fill
+    /// makes.
+    fn volume_change(&self, v: u32, removal: Removal<'_>) -> f64 {
+        let old = removal.triangles.iter().map(|&t| self.conn.triangle(t));
+        volume_change(&self.positions, v, old, removal.fill)
+    }
+
     /// Plans `v`'s removal afresh and makes it; false (and nothing changed) when its hole
     /// cannot be filled.
     fn try_remove(&mut self, v: u32, key: f64) -> bool {
         let mut planning = std::mem::take(&mut self.planning);
-        let planned = self.surface().plan_removal(v, &mut planning).is_some();
+        let planned = self.surface().plan_removal(v, &mut planning).is_some()
+            && self.keeps_closed_volume(v, removal_of(&planning));
         if planned {
             self.apply(v, removal_of(&planning), key);
         }

@@ -16,12 +16,15 @@
 //! Regions are a fixed cut of the vertex ids, so the result does not depend on the number
 //! of cores.
 
+use std::collections::HashMap;
+
 use glam::Vec3;
 use rayon::prelude::*;
 
 use super::plan::{Planning, SeamSides, Surface};
-use super::{waits, Decimator, HELD};
+use super::{volume_change, waits, Decimator, HELD};
 use crate::decimate::candidates::Candidate;
+use crate::decimate::closed::ClosedView;
 use crate::decimate::regions::Regions;
 use crate::decimate::Outcome;
 use crate::mesh::topology::{split_mut, ConnectivityPart};
@@ -48,6 +51,8 @@ struct Region<'a> {
     changed_in: &'a mut [u32],
     pass: u32,
     planning: Planning,
+    /// Closed components' volumes as the round started, and this region's changes.
+    closed: ClosedView<'a>,
     /// Scratch for [`Region::hold_neighbours`].
     held: Vec<u32>,
     done: Done,
@@ -64,6 +69,8 @@ struct Done {
     changed: Vec<u32>,
     /// Slots killed.
     freed: Vec<u32>,
+    /// Changes of closed components' volumes (see `ClosedView`).
+    volumes: HashMap<u32, f64>,
 }
 
 impl Decimator {
@@ -87,6 +94,7 @@ impl Decimator {
             pinned: &self.pinned,
             copies: &self.copies,
         };
+        let closed = &self.closed;
         let parts: Vec<Region<'_>> = self
             .conn
             .split(&regions.vertex_starts, &regions.slot_starts)
@@ -105,6 +113,7 @@ impl Decimator {
                     changed_in: changed_in.next()?,
                     pass,
                     planning: Planning::default(),
+                    closed: ClosedView::Part(closed, HashMap::new()),
                     held: Vec::new(),
                     done: Done::default(),
                 })
@@ -122,6 +131,7 @@ impl Decimator {
             border.extend(region.border);
             self.changed.extend(region.changed);
             self.conn.absorb(region.freed);
+            self.closed.absorb(region.volumes);
         }
         border.sort_unstable();
         border
@@ -156,7 +166,8 @@ impl Region<'_> {
                 seams: None,
             };
             let i = self.at(v);
-            if surface.plan_removal(v, &mut self.planning).is_some() {
+            if surface.plan_removal(v, &mut self.planning).is_some() && self.keeps_closed_volume(v)
+            {
                 let key = self.keys[i];
                 self.apply(v, key);
                 self.done.removed += 1;
@@ -166,6 +177,7 @@ impl Region<'_> {
             }
         }
         self.done.freed = self.conn.finish();
+        self.done.volumes = self.closed.into_changes();
         self.done
     }
 
@@ -277,9 +289,28 @@ impl Region<'_> {
         self.held = ring;
     }
 
+    /// Whether removing `v` as planned keeps its closed component (if any) beyond its floor
+    /// (see `Decimator::keeps_closed_volume`).
+    fn keeps_closed_volume(&self, v: u32) -> bool {
+        self.closed
+            .component(v)
+            .is_none_or(|c| self.closed.allows(c, self.volume_change(v)))
+    }
+
+    /// Six times the change of signed volume that the planned removal of `v` makes.
+    fn volume_change(&self, v: u32) -> f64 {
+        let p = &self.planning;
+        let old = p.ring.triangles.iter().map(|&t| self.conn.triangle(t));
+        volume_change(self.positions, v, old, &p.fill)
+    }
+
     /// Removes `v` as planned: its triangles replaced by the fill, `key` accumulated
     /// around the ring, and `v` and its ring noted as changed.
     fn apply(&mut self, v: u32, key: f64) {
+        if let Some(c) = self.closed.component(v) {
+            let change = self.volume_change(v);
+            self.closed.apply(c, change);
+        }
         let planning = std::mem::take(&mut self.planning);
         self.conn
             .replace_triangles(&planning.ring.triangles, &planning.fill);

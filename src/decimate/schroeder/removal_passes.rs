@@ -308,7 +308,7 @@ fn remove_planned(
                 let stale = removal.ring.iter().any(|&u| d.touched_now(u));
                 if stale {
                     d.try_remove(v, key)
-                } else if fills {
+                } else if fills && d.keeps_closed_volume(v, removal) {
                     d.apply(v, removal, key);
                     true
                 } else {

@@ -45,6 +45,22 @@ fn is_space(b: u8) -> bool {
     matches!(b, b' ' | b'\t' | b'\r' | b'\n' | b',' | 0x0b | 0x0c)
 }
 
+/// A control byte that is not whitespace (NUL, escape, delete...): never part of a text
+/// file's tokens.
+fn is_control(b: u8) -> bool {
+    (b < 0x20 || b == 0x7f) && !is_space(b)
+}
+
+/// True when the byte at `i` ends a line: `\n`, or a `\r` not followed by `\n` (old Mac
+/// files end lines with `\r` alone).
+fn ends_line(src: &[u8], i: usize) -> bool {
+    match src[i] {
+        b'\n' => true,
+        b'\r' => src.get(i + 1) != Some(&b'\n'),
+        _ => false,
+    }
+}
+
 fn is_special(b: u8) -> bool {
     matches!(
         b,
@@ -123,13 +139,13 @@ impl<'a> Lexer<'a> {
         // Skip whitespace and comments.
         loop {
             while self.pos < n && is_space(src[self.pos]) {
-                if src[self.pos] == b'\n' {
+                if ends_line(src, self.pos) {
                     self.line += 1;
                 }
                 self.pos += 1;
             }
             if self.pos < n && src[self.pos] == b'#' {
-                while self.pos < n && src[self.pos] != b'\n' {
+                while self.pos < n && !matches!(src[self.pos], b'\n' | b'\r') {
                     self.pos += 1;
                 }
                 continue;
@@ -174,11 +190,12 @@ impl<'a> Lexer<'a> {
                 match src[p] {
                     b'"' => break,
                     b'\\' => p += 2,
-                    b'\n' => {
-                        self.line += 1;
+                    _ => {
+                        if ends_line(src, p) {
+                            self.line += 1;
+                        }
                         p += 1
                     }
-                    _ => p += 1,
                 }
             }
             self.pos = p + 1;
@@ -207,6 +224,15 @@ impl<'a> Lexer<'a> {
         }
         let mut p = start;
         while p < n && !is_special(src[p]) {
+            if is_control(src[p]) {
+                return Err(ParseError::new(
+                    line,
+                    format!(
+                        "control byte 0x{:02x} outside a string: the file is damaged or is not text",
+                        src[p]
+                    ),
+                ));
+            }
             p += 1;
         }
         self.pos = p;
@@ -252,6 +278,37 @@ mod tests {
         assert_eq!(k.len(), want.len());
         for (a, b) in k.iter().zip(want) {
             assert_eq!((a.0, a.1.as_str(), a.2), b);
+        }
+    }
+
+    #[test]
+    fn carriage_returns_alone_end_lines_and_comments() {
+        let k = kinds("#Inventor V2.1 ascii\rSeparator {\r\n Cube { }\r}\r");
+        let lines: Vec<_> = k.iter().map(|t| (t.1.as_str(), t.2)).collect();
+        assert_eq!(
+            lines,
+            [
+                ("Separator", 2),
+                ("{", 2),
+                ("Cube", 3),
+                ("{", 3),
+                ("}", 3),
+                ("}", 4)
+            ]
+        );
+    }
+
+    #[test]
+    fn control_bytes_outside_strings_are_errors() {
+        let mut l = Lexer::new(b"Separator {\n Cu\0be { } }");
+        l.next().unwrap();
+        l.next().unwrap();
+        let e = l.next().unwrap_err();
+        assert_eq!(e.line, 2);
+        assert!(e.message.contains("control byte 0x00"), "{}", e.message);
+        let mut l = Lexer::new(b"Info { string \"a\0b\" }");
+        for _ in 0..4 {
+            l.next().unwrap();
         }
     }
 

@@ -1,11 +1,17 @@
 //! VRML 1.0, Open Inventor ASCII and VRML 2.0: the byte `lexer`, the node-tree `parse`r
-//! shared by both families, `vrml1` (the VRML 1.0 / Inventor state machine), `vrml2` (the
-//! VRML 2.0 tree walk), `bindings` (their index lists and bindings as `Bind`s) and
+//! shared by both families (`fields`: every field name of the nodes it knows; `include`:
+//! Inventor's `File` node), `vrml1` (the VRML 1.0 / Inventor state machine), `vrml2` (the
+//! VRML 2.0 tree walk), `primitives` (Sphere, Cone, Cylinder) and `extrusion` (VRML 2.0's
+//! Extrusion) tessellated, `bindings` (their index lists and bindings as `Bind`s) and
 //! `vrml2_writer` (VRML 2.0 output). [`read_tree`] runs a parse on a thread with a big stack.
 
 mod bindings;
+mod extrusion;
+mod fields;
+mod include;
 mod lexer;
 mod parse;
+mod primitives;
 mod vrml1;
 mod vrml2;
 mod vrml2_writer;
@@ -15,7 +21,9 @@ use std::collections::HashSet;
 pub(crate) use parse::Dialect;
 pub use vrml2_writer::write_vrml2_to;
 
-use super::{ReadOutcome, MAX_MODELS, MAX_TRIANGLES};
+use std::path::Path;
+
+use super::{ReadOptions, ReadOutcome, MAX_MODELS, MAX_TRIANGLES};
 use crate::io::text::{PResult, ParseError};
 use crate::mesh::Scene;
 
@@ -24,6 +32,7 @@ use crate::mesh::Scene;
 pub(crate) struct Budget {
     models: usize,
     triangles: usize,
+    copies: usize,
     warned: HashSet<String>,
 }
 
@@ -37,6 +46,19 @@ impl Budget {
                 format!(
                     "the scene expands to more than {MAX_MODELS} shapes or {MAX_TRIANGLES} triangles (DEF/USE instancing?)"
                 ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Counts one copy made by an `Array` or `MultipleCopy` node: nested copies multiply,
+    /// and even copies of nothing take time, so their total is bounded like the models'.
+    pub(crate) fn copy(&mut self, line: usize) -> PResult<()> {
+        self.copies += 1;
+        if self.copies > MAX_MODELS {
+            return Err(ParseError::new(
+                line,
+                format!("the scene makes more than {MAX_MODELS} copies (nested Array or MultipleCopy nodes?)"),
             ));
         }
         Ok(())
@@ -71,25 +93,39 @@ impl<'w> Ctx<'w> {
 /// recursion per level, with a wide margin, whatever thread the caller runs on.
 const PARSE_STACK: usize = 256 << 20;
 
-/// Parses and walks the node tree on a thread with a known, large stack (the recursion is
-/// bounded by `parse::MAX_DEPTH`, but callers' threads may have small stacks).
-pub(crate) fn read_tree(bytes: &[u8], dialect: Dialect) -> PResult<ReadOutcome> {
+/// Parses and walks the node tree of `bytes` (read from `path`: `File` nodes are relative to
+/// its folder) on a thread with a known, large stack (the recursion is bounded by
+/// `parse::MAX_DEPTH`, but callers' threads may have small stacks).
+pub(crate) fn read_tree(
+    bytes: &[u8],
+    path: &Path,
+    dialect: Dialect,
+    options: ReadOptions,
+) -> PResult<ReadOutcome> {
     std::thread::scope(|s| {
         match std::thread::Builder::new()
             .name("scene-parser".into())
             .stack_size(PARSE_STACK)
-            .spawn_scoped(s, || parse_tree(bytes, dialect))
+            .spawn_scoped(s, || parse_tree(bytes, path, dialect, options))
         {
             Ok(handle) => handle
                 .join()
                 .unwrap_or_else(|_| Err(ParseError::new(1, "internal error: the parser panicked"))),
-            Err(_) => parse_tree(bytes, dialect),
+            Err(_) => parse_tree(bytes, path, dialect, options),
         }
     })
 }
 
-fn parse_tree(bytes: &[u8], dialect: Dialect) -> PResult<ReadOutcome> {
+fn parse_tree(
+    bytes: &[u8],
+    path: &Path,
+    dialect: Dialect,
+    options: ReadOptions,
+) -> PResult<ReadOutcome> {
     let mut parser = parse::Parser::new(bytes, dialect);
+    parser.lenient = options.lenient;
+    parser.origin = Some(path.to_path_buf());
+    parser.including = path.canonicalize().into_iter().collect();
     let roots = parser.parse_file()?;
     let mut warnings = std::mem::take(&mut parser.warnings);
     let models = match dialect {

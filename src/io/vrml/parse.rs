@@ -8,20 +8,31 @@
 //! Semantics (state, transforms, shapes) live in `vrml1.rs` and `vrml2.rs`.
 
 use std::collections::{HashMap, HashSet};
+use std::path::PathBuf;
 use std::rc::Rc;
 
+use super::fields;
+pub use super::fields::Dialect;
 use super::lexer::{parse_f32, parse_int, Lexer, PResult, ParseError, Tok, Token};
 
 /// Deepest nesting of nodes accepted; deeper files are rejected rather than overflowing.
 pub const MAX_DEPTH: usize = 256;
 
-/// Which grammar the file follows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Dialect {
-    /// VRML 1.0 and Open Inventor ASCII: children inline in group nodes.
-    Vrml1,
-    /// VRML 2.0: children in `children [ ]` fields, SFNode fields.
-    Vrml2,
+/// The kind of the node standing for a `USE name` reference: its `line` is the USE's, its
+/// `def` the name, its one child the node `DEF name` defined. Readers walk through it
+/// ([`Node::target`]) and name both lines in errors met inside ([`ParseError::used_at`]).
+pub const USE_KIND: &str = "USE";
+
+/// `e`, met inside the node `DEF name` (line `def_line`) where `USE name` at `use_line`
+/// placed it: reported at the USE, naming the DEF and the line inside.
+pub fn used_at(e: ParseError, use_line: usize, name: &str, def_line: usize) -> ParseError {
+    ParseError::new(
+        use_line,
+        format!(
+            "in 'USE {name}' (DEF {name} at line {def_line}): line {}: {}",
+            e.line, e.message
+        ),
+    )
 }
 
 /// A parsed field value.
@@ -99,11 +110,24 @@ impl Node {
             _ => &[],
         }
     }
+    /// An SFNode field's node, looking through a `USE` (see [`Node::target`]).
     pub fn node(&self, name: &str) -> Option<&Rc<Self>> {
+        self.node_or_use(name).map(|n| n.target())
+    }
+    /// An SFNode field's node as written: a `USE` reference stays one.
+    pub fn node_or_use(&self, name: &str) -> Option<&Rc<Self>> {
         match &self.field(name)?.value {
             Value::Node(n) => n.as_ref(),
             Value::Nodes(v) => v.first(),
             _ => None,
+        }
+    }
+    /// For a `USE name` reference (kind [`USE_KIND`]), the node `DEF name` defined; any
+    /// other node itself.
+    pub fn target(self: &Rc<Self>) -> &Rc<Self> {
+        match self.children.first() {
+            Some(t) if self.kind == USE_KIND => t,
+            _ => self,
         }
     }
     pub fn nodes(&self, name: &str) -> &[Rc<Self>] {
@@ -147,7 +171,7 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Material", "diffuseColor") => Floats,
             ("BaseColor", "rgb") => Floats,
             ("MaterialBinding" | "NormalBinding" | "TextureCoordinateBinding", "value") => Word,
-            ("ShapeHints", "vertexOrdering" | "shapeType" | "faceType") => Word,
+            ("ShapeHints", "vertexOrdering" | "shapeType" | "faceType" | "hints") => Word,
             ("ShapeHints", "creaseAngle") => Floats,
             (
                 "Transform",
@@ -161,7 +185,7 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("MatrixTransform", "matrix") => Floats,
             ("Switch" | "Blinker", "whichChild") => Ints,
             (
-                "IndexedFaceSet" | "IndexedTriangleStripSet",
+                "IndexedFaceSet" | "IndexedTriangleStripSet" | "IndexedTriangleMesh",
                 "coordIndex" | "materialIndex" | "normalIndex" | "textureCoordIndex",
             ) => Ints,
             ("TextureCoordinate2", "point") => Floats,
@@ -170,6 +194,7 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             (
                 "IndexedFaceSet"
                 | "IndexedTriangleStripSet"
+                | "IndexedTriangleMesh"
                 | "FaceSet"
                 | "TriangleStripSet"
                 | "QuadMesh",
@@ -179,6 +204,17 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("VertexProperty", "orderedRGBA") => Ints,
             ("VertexProperty", "materialBinding" | "normalBinding") => Word,
             ("Cube", "width" | "height" | "depth") => Floats,
+            ("Sphere", "radius") => Floats,
+            ("Cone", "bottomRadius" | "height") => Floats,
+            ("Cylinder", "radius" | "height") => Floats,
+            ("Cone" | "Cylinder", "parts") => Word,
+            ("Complexity", "value") => Floats,
+            ("Complexity", "type") => Word,
+            ("File", "name") => Strings,
+            ("Array", "numElements1" | "numElements2" | "numElements3") => Ints,
+            ("Array", "separation1" | "separation2" | "separation3") => Floats,
+            ("Array", "origin") => Word,
+            ("MultipleCopy", "matrix") => Floats,
             ("Texture2", "filename") => Strings,
             ("Texture2", "wrapS" | "wrapT") => Word,
             ("ResetTransform", "whatToReset") => Word,
@@ -211,13 +247,38 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Normal", "vector") => Floats,
             ("TextureCoordinate", "point") => Floats,
             ("Box", "size") => Floats,
+            ("Sphere", "radius") => Floats,
+            ("Cone", "bottomRadius" | "height") => Floats,
+            ("Cone", "side" | "bottom") => Bool,
+            ("Cylinder", "radius" | "height") => Floats,
+            ("Cylinder", "side" | "top" | "bottom") => Bool,
+            ("Extrusion", "crossSection" | "orientation" | "scale" | "spine") => Floats,
+            ("Extrusion", "creaseAngle") => Floats,
+            ("Extrusion", "beginCap" | "endCap" | "ccw" | "convex" | "solid") => Bool,
+            ("ElevationGrid", "color" | "normal" | "texCoord") => Node,
+            ("ElevationGrid", "height" | "xSpacing" | "zSpacing" | "creaseAngle") => Floats,
+            ("ElevationGrid", "xDimension" | "zDimension") => Ints,
+            ("ElevationGrid", "ccw" | "solid" | "colorPerVertex" | "normalPerVertex") => Bool,
             _ => return None,
         }),
     }
 }
 
+/// Inventor node kits (and the draggers and manipulators, which are kits): their parts are
+/// fields holding nodes, walked by `vrml1` in the kit's order. `NodeKitListPart` holds a
+/// kit's `childList`.
+pub fn is_kit(kind: &str) -> bool {
+    kind.ends_with("Kit")
+        || kind.ends_with("Dragger")
+        || kind.ends_with("Manip")
+        || kind == "NodeKitListPart"
+}
+
 /// Node kinds whose fields are parsed (the rest are skipped by structure).
 fn is_known(dialect: Dialect, kind: &str) -> bool {
+    if dialect == Dialect::Vrml1 && is_kit(kind) {
+        return true;
+    }
     match dialect {
         Dialect::Vrml1 => matches!(
             kind,
@@ -259,6 +320,12 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "QuadMesh"
                 | "VertexProperty"
                 | "Cube"
+                | "Sphere"
+                | "Cone"
+                | "Cylinder"
+                | "Complexity"
+                | "IndexedTriangleMesh"
+                | "File"
         ),
         Dialect::Vrml2 => matches!(
             kind,
@@ -279,6 +346,11 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "TextureCoordinate"
                 | "ImageTexture"
                 | "Box"
+                | "Sphere"
+                | "Cone"
+                | "Cylinder"
+                | "ElevationGrid"
+                | "Extrusion"
         ),
     }
 }
@@ -296,7 +368,6 @@ fn is_ignorable(dialect: Dialect, kind: &str) -> bool {
                 | "PointLight"
                 | "SpotLight"
                 | "ComplexityEnvironment"
-                | "Complexity"
                 | "Environment"
                 | "DrawStyle"
                 | "LightModel"
@@ -359,11 +430,22 @@ fn is_name(t: &Token) -> bool {
 /// The parser: lexer, dialect, DEF table, nesting depth and warnings.
 pub struct Parser<'a> {
     lex: Lexer<'a>,
-    dialect: Dialect,
+    pub(super) dialect: Dialect,
     defs: HashMap<String, Rc<Node>>,
-    depth: usize,
+    pub(super) depth: usize,
+    /// The file being parsed (its folder is where `File` nodes' names start), if any.
+    pub origin: Option<PathBuf>,
+    /// The files that include this one, outermost first, to refuse cycles (see `include`).
+    pub including: Vec<PathBuf>,
     warned: HashSet<String>,
-    pub warnings: Vec<String>,
+    pub(super) warnings: Vec<String>,
+    /// Unknown fields of known nodes are warnings, not errors (`--lenient`).
+    pub lenient: bool,
+    /// Node kinds skipped as unknown, in order of first appearance: (kind, first line, count).
+    unknown: Vec<(String, usize, usize)>,
+    unknown_at: HashMap<String, usize>,
+    /// Nodes parsed whose kind the reader knows or knowingly ignores.
+    recognised: usize,
 }
 
 impl<'a> Parser<'a> {
@@ -373,8 +455,14 @@ impl<'a> Parser<'a> {
             dialect,
             defs: HashMap::new(),
             depth: 0,
+            origin: None,
+            including: Vec::new(),
             warned: HashSet::new(),
             warnings: Vec::new(),
+            lenient: false,
+            unknown: Vec::new(),
+            unknown_at: HashMap::new(),
+            recognised: 0,
         }
     }
 
@@ -395,13 +483,58 @@ impl<'a> Parser<'a> {
         t.kind == Tok::Word && self.lex.bytes(t) == w
     }
 
+    /// Counts a node of a kind the reader does not know (skipped with its children).
+    fn count_unknown(&mut self, kind: &str, line: usize) {
+        match self.unknown_at.get(kind) {
+            Some(&i) => self.unknown[i].2 += 1,
+            None => {
+                self.unknown_at.insert(kind.to_string(), self.unknown.len());
+                self.unknown.push((kind.to_string(), line, 1));
+            }
+        }
+    }
+
+    /// One warning per unknown node kind, with how many were skipped; an error when no node
+    /// of the file was one the declared format has (a wrong header over another body).
+    fn finish_unknown(&mut self) -> PResult<()> {
+        if let (0, Some((kind, line, _))) = (self.recognised, self.unknown.first()) {
+            let format = match self.dialect {
+                Dialect::Vrml1 => "VRML 1.0 / Open Inventor",
+                Dialect::Vrml2 => "VRML 2.0",
+            };
+            return Err(ParseError::new(
+                *line,
+                format!(
+                    "no node of this file is a {format} node (the first is '{kind}'): does the header name the file's format?"
+                ),
+            ));
+        }
+        for (kind, line, count) in std::mem::take(&mut self.unknown) {
+            let (noun, why) = match kind.as_str() {
+                "Inline" | "WWWInline" => ("node(s)", ": inlined files are not read"),
+                "Text2" | "Text3" | "AsciiText" | "Text" => {
+                    ("shape(s)", ": text is not tessellated")
+                }
+                k if k.contains("Nurbs") => ("shape(s)", ": NURBS are not tessellated"),
+                _ => ("unsupported node(s)", ""),
+            };
+            self.warnings.push(format!(
+                "{count} '{kind}' {noun} skipped, the first at line {line}{why}"
+            ));
+        }
+        Ok(())
+    }
+
     /// Parses the whole file: a sequence of top-level nodes (and VRML 2.0 statements).
     pub fn parse_file(&mut self) -> PResult<Vec<Rc<Node>>> {
         let mut out = Vec::new();
         loop {
             let t = self.lex.peek()?;
             match t.kind {
-                Tok::Eof => return Ok(out),
+                Tok::Eof => {
+                    self.finish_unknown()?;
+                    return Ok(out);
+                }
                 Tok::Word => {
                     if let Some(n) = self.parse_statement()? {
                         out.push(n);
@@ -447,7 +580,14 @@ impl<'a> Parser<'a> {
                 }
                 let name = self.lex.text(&name_tok);
                 match self.defs.get(&name) {
-                    Some(n) => Ok(Some(n.clone())),
+                    Some(n) => Ok(Some(Rc::new(Node {
+                        kind: USE_KIND.into(),
+                        def: Some(name),
+                        line: name_tok.line,
+                        fields: Vec::new(),
+                        children: vec![n.clone()],
+                        skipped: n.skipped,
+                    }))),
                     None => Err(ParseError::new(
                         name_tok.line,
                         format!("USE of undefined name '{name}' (no DEF {name} before it)"),
@@ -509,18 +649,10 @@ impl<'a> Parser<'a> {
             return Err(self.unexpected(&open, &format!("'{{' after '{kind}'")));
         }
         if !is_known(self.dialect, &kind) {
-            if !is_ignorable(self.dialect, &kind) {
-                let msg = match kind.as_str() {
-                    "Inline" | "WWWInline" => format!(
-                        "line {}: {kind} nodes are not followed (the inlined file is not read)",
-                        kind_tok.line
-                    ),
-                    _ => format!(
-                        "line {}: unsupported node '{kind}' skipped (and any others like it)",
-                        kind_tok.line
-                    ),
-                };
-                self.warn_once(&kind, msg);
+            if is_ignorable(self.dialect, &kind) {
+                self.recognised += 1;
+            } else {
+                self.count_unknown(&kind, kind_tok.line);
             }
             self.skip_balanced(open)?;
             return Ok(Rc::new(Node {
@@ -532,6 +664,7 @@ impl<'a> Parser<'a> {
                 skipped: true,
             }));
         }
+        self.recognised += 1;
         self.depth += 1;
         if self.depth > MAX_DEPTH {
             return Err(ParseError::new(
@@ -599,6 +732,9 @@ impl<'a> Parser<'a> {
             }
         }
         self.depth -= 1;
+        if node.kind == "File" {
+            node.children = self.include(&node)?;
+        }
         Ok(Rc::new(node))
     }
 
@@ -606,10 +742,23 @@ impl<'a> Parser<'a> {
     fn parse_field(&mut self, node: &mut Node, name_tok: Token) -> PResult<()> {
         let name = self.lex.text(&name_tok);
         let Some(kind) = field_kind(self.dialect, &node.kind, &name) else {
+            if is_kit(&node.kind) {
+                return self.parse_kit_field(node, name);
+            }
+            if !fields::is_field_of(self.dialect, &node.kind, &name) {
+                self.unknown_field(node, &name_tok, &name)?;
+            }
             // VRML 2.0 "IS" in PROTO bodies never reaches here (bodies are skipped).
             return self.skip_value();
         };
-        let line = self.lex.peek()?.line;
+        let first = self.lex.peek()?;
+        if self.is_word(&first, b"~") {
+            // Inventor writes a field marked ignored without a value as `name ~`.
+            self.lex.next()?;
+            node.fields.retain(|f| f.name != name);
+            return Ok(());
+        }
+        let line = first.line;
         let value = match kind {
             FieldKind::Floats => {
                 Value::Floats(self.parse_numbers(&name, "a number", Self::float_of)?)
@@ -684,6 +833,54 @@ impl<'a> Parser<'a> {
             return Ok(());
         }
         node.fields.push(Field { name, line, value });
+        Ok(())
+    }
+
+    /// A field of a node kit: a part (a node, `DEF`/`USE`, or `NULL`) kept as an SFNode
+    /// value, or any other value skipped by structure.
+    fn parse_kit_field(&mut self, node: &mut Node, name: String) -> PResult<()> {
+        let t = self.lex.peek()?;
+        let line = t.line;
+        let part = if self.is_word(&t, b"DEF") || self.is_word(&t, b"USE") {
+            self.parse_statement()?
+        } else if t.kind == Tok::Word {
+            // A node type is followed by '{'; any other word is an enum value.
+            self.lex.next()?;
+            if self.lex.peek()?.kind != Tok::LBrace {
+                return Ok(());
+            }
+            Some(self.parse_node_body(t, None)?)
+        } else {
+            return self.skip_value();
+        };
+        node.fields.retain(|f| f.name != name);
+        node.fields.push(Field {
+            name,
+            line,
+            value: Value::Node(part),
+        });
+        Ok(())
+    }
+
+    /// A field name that `node`'s kind does not have: an error naming the field and the
+    /// fields there are, or (lenient) a warning, once per node kind and field name.
+    fn unknown_field(&mut self, node: &Node, t: &Token, name: &str) -> PResult<()> {
+        let known = fields::fields_of(self.dialect, &node.kind).join(", ");
+        let message = format!(
+            "'{}' has no field '{name}' (its fields: {known})",
+            node.kind
+        );
+        if !self.lenient {
+            return Err(ParseError::new(
+                t.line,
+                format!("{message}; --lenient skips it with a warning"),
+            ));
+        }
+        let key = format!("{}.{name}", node.kind);
+        self.warn_once(
+            &key,
+            format!("line {}: {message}; its value skipped", t.line),
+        );
         Ok(())
     }
 

@@ -1,14 +1,19 @@
 //! VRML 1.0 and Open Inventor ASCII semantics: a traversal state machine over the parsed
 //! node tree.
 //!
-//! Properties (coordinates, normals, materials, bindings, shape hints, the transform)
-//! accumulate in a state that `Separator` saves and restores; `Group` and `Switch` let it leak
-//! as the specification says, `TransformSeparator` saves the transform only. Every shape node
-//! (IndexedFaceSet, IndexedTriangleStripSet, FaceSet, TriangleStripSet, QuadMesh, Cube)
-//! becomes one `Model` with the state's world transform. Inventor 2.1 `vertexProperty` fields
-//! override the state for their shape. `MatrixTransform` follows the row-vector convention:
-//! the matrix is written row by row with the translation in the last row.
+//! Properties (coordinates, normals, materials, bindings, shape hints, complexity, the
+//! transform) accumulate in a state that `Separator` saves and restores; `Group`, `File` and
+//! `Switch` let it leak as the specification says (a Switch's choice of -2 inherits the
+//! enclosing one's), `TransformSeparator` saves the transform only; `Array` and
+//! `MultipleCopy` repeat their children, node kits walk their parts in catalog order. Every
+//! shape node (IndexedFaceSet, IndexedTriangleStripSet, IndexedTriangleMesh, FaceSet,
+//! TriangleStripSet, QuadMesh, Cube, Sphere, Cone, Cylinder) becomes one `Model` with the
+//! state's world transform. Inventor 2.1 `vertexProperty` fields override the state for their
+//! shape. `MatrixTransform` follows the row-vector convention: the matrix is written row by
+//! row with the translation in the last row. An error inside a `USE`d node names the USE's
+//! line and the DEF's.
 
+use std::borrow::Cow;
 use std::rc::Rc;
 
 use glam::{Mat4, Quat, Vec3};
@@ -17,9 +22,10 @@ use super::bindings::{
     explicit, resolve, split_polygons, strips_to_triangles, texcoords_per_vertex, Binding, Geo,
 };
 use super::lexer::{PResult, ParseError};
-use super::parse::Node;
+use super::parse::{is_kit, used_at, Node, Value, USE_KIND};
+use super::primitives::{self, Parts};
 use super::Ctx;
-use crate::io::shape_to_model::{build, Bind, ShapeSpec};
+use crate::io::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
 use crate::mesh::Model;
 
 const DEFAULT_DIFFUSE: [f32; 3] = [0.8, 0.8, 0.8];
@@ -41,6 +47,10 @@ struct State {
     ccw: bool,
     solid: bool,
     crease_angle: Option<f32>,
+    /// `Complexity`'s value as the primitives use it (0..=1).
+    complexity: f32,
+    /// The choice of the last Switch traversed, for a Switch below whose `whichChild` is -2.
+    switch_choice: i32,
 }
 
 impl Default for State {
@@ -59,6 +69,8 @@ impl Default for State {
             ccw: true,
             solid: false,
             crease_angle: None,
+            complexity: primitives::DEFAULT_COMPLEXITY,
+            switch_choice: -1,
         }
     }
 }
@@ -110,21 +122,39 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
     if node.skipped {
         return Ok(());
     }
+    if node.kind == USE_KIND {
+        let target = node.target();
+        let name = node.def.as_deref().unwrap_or_default();
+        return traverse(target, state, ctx).map_err(|e| used_at(e, node.line, name, target.line));
+    }
+    if apply_transform(node, state)? || apply_property(node, state)? {
+        return Ok(());
+    }
     match node.kind.as_str() {
-        "Separator" | "Selection" | "Annotation" | "WWWAnchor" | "Array" | "MultipleCopy" => {
-            if matches!(node.kind.as_str(), "Array" | "MultipleCopy") {
-                ctx.budget.warn_once(
-                    ctx.warnings,
-                    &node.kind,
-                    format!(
-                        "line {}: {} copies are not expanded; its children are read once",
-                        node.line, node.kind
-                    ),
-                );
-            }
+        "Separator" | "Selection" | "Annotation" | "WWWAnchor" => {
             let mut inner = state.clone();
             for c in &node.children {
                 traverse(c, &mut inner, ctx)?;
+            }
+        }
+        "Array" => {
+            for offset in array_offsets(node)? {
+                copy(node, state, Mat4::from_translation(offset), ctx)?;
+            }
+        }
+        "MultipleCopy" => {
+            let m = node.floats("matrix").unwrap_or(&[]);
+            if !m.len().is_multiple_of(16) {
+                return Err(ParseError::new(
+                    node.line_of("matrix"),
+                    format!(
+                        "expected 16 numbers per matrix in 'matrix', found {}",
+                        m.len()
+                    ),
+                ));
+            }
+            for one in m.chunks_exact(16) {
+                copy(node, state, Mat4::from_cols_slice(one), ctx)?;
             }
         }
         "TransformSeparator" => {
@@ -134,16 +164,21 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
             }
             state.transform = saved;
         }
-        "Group" => {
+        // A File node's children are the included file's nodes (see `include`).
+        "Group" | "File" => {
             for c in &node.children {
                 traverse(c, state, ctx)?;
             }
         }
         "Switch" | "Blinker" => {
-            // -1 none, -2 inherit (nothing to inherit from here: none), -3 all.
-            let which =
-                node.int("whichChild")
-                    .unwrap_or(if node.kind == "Blinker" { 0 } else { -1 });
+            // -1 none, -2 the enclosing switch's choice, -3 all; the choice is inherited by
+            // switches below (Inventor's switch element).
+            let default = if node.kind == "Blinker" { 0 } else { -1 };
+            let mut which = node.int("whichChild").unwrap_or(default);
+            if which == -2 {
+                which = state.switch_choice;
+            }
+            state.switch_choice = which;
             if which == -3 {
                 for c in &node.children {
                     traverse(c, state, ctx)?;
@@ -160,6 +195,24 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
                 traverse(c, state, ctx)?;
             }
         }
+        "IndexedFaceSet"
+        | "IndexedTriangleStripSet"
+        | "IndexedTriangleMesh"
+        | "FaceSet"
+        | "TriangleStripSet"
+        | "QuadMesh"
+        | "Cube" => shape(node, state, ctx)?,
+        "Sphere" | "Cone" | "Cylinder" => primitive(node, state, ctx)?,
+        k if is_kit(k) => kit(node, state, ctx)?,
+        _ => {}
+    }
+    Ok(())
+}
+
+/// Applies a transformation node (Transform, Translation, Rotation, Scale, RotationXYZ,
+/// MatrixTransform, ResetTransform) to the state; false when `node` is none of them.
+fn apply_transform(node: &Node, state: &mut State) -> PResult<bool> {
+    match node.kind.as_str() {
         "Transform" => {
             let m = compose(
                 vec3(node.floats("translation"), Vec3::ZERO),
@@ -209,6 +262,15 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
                 state.transform = Mat4::IDENTITY;
             }
         }
+        _ => return Ok(false),
+    }
+    Ok(true)
+}
+
+/// Sets the property a property node (coordinates, normals, texture, material, bindings,
+/// shape hints, complexity) gives the shapes after it; false when `node` is none of them.
+fn apply_property(node: &Rc<Node>, state: &mut State) -> PResult<bool> {
+    match node.kind.as_str() {
         "Coordinate3" => state.coords = Some(node.clone()),
         "Normal" => state.normals = Some(node.clone()),
         "TextureCoordinate2" => state.texcoords = Some(node.clone()),
@@ -229,19 +291,167 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
             let ordering = node.word("vertexOrdering").unwrap_or("UNKNOWN_ORDERING");
             state.ccw = ordering != "CLOCKWISE";
             state.solid = ordering != "UNKNOWN_ORDERING" && node.word("shapeType") == Some("SOLID");
+            // Inventor 1.0: `hints (SOLID | ORDERED | CONVEX)`, ORDERED meaning counter-clockwise.
+            if let Some(hints) = node.word("hints") {
+                let has = |h: &str| hints.split('|').any(|w| w.trim() == h);
+                state.ccw = true;
+                state.solid = has("SOLID") && has("ORDERED");
+            }
             if let Some(a) = node.float("creaseAngle") {
                 state.crease_angle = Some(a);
             }
         }
-        "IndexedFaceSet"
-        | "IndexedTriangleStripSet"
-        | "FaceSet"
-        | "TriangleStripSet"
-        | "QuadMesh"
-        | "Cube" => shape(node, state, ctx)?,
-        _ => {}
+        "Complexity" => state.complexity = complexity(node)?,
+        _ => return Ok(false),
+    }
+    Ok(true)
+}
+
+/// The property parts of Inventor's node kits, in the order their catalogs traverse them
+/// (SeparatorKit, AppearanceKit, ShapeKit); `localTransform` and `shape` follow in a scope
+/// of their own, then `childList`.
+const KIT_PROPERTY_PARTS: [&str; 25] = [
+    "callbackList",
+    "pickStyle",
+    "appearance",
+    "lightModel",
+    "environment",
+    "drawStyle",
+    "material",
+    "complexity",
+    "texture2",
+    "font",
+    "units",
+    "transform",
+    "texture2Transform",
+    "materialBinding",
+    "normalBinding",
+    "textureCoordinateBinding",
+    "shapeHints",
+    "coordinate3",
+    "coordinate4",
+    "normal",
+    "textureCoordinate2",
+    "textureCoordinateFunction",
+    "profileCoordinate2",
+    "profileCoordinate3",
+    "profileList",
+];
+
+/// A node kit: its property parts, then its shape under `localTransform`, then `childList`
+/// (a `NodeKitListPart`, whose `containerNode` holds the children), then any other part (a
+/// dragger's) in a scope of its own. Kits separate their state, except the appearance kit
+/// and the list part, whose properties are meant for what follows them.
+fn kit(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()> {
+    let separate = !matches!(node.kind.as_str(), "AppearanceKit" | "NodeKitListPart");
+    let mut own;
+    let st = if separate {
+        own = state.clone();
+        &mut own
+    } else {
+        state
+    };
+    for part in KIT_PROPERTY_PARTS {
+        if let Some(p) = node.node_or_use(part) {
+            traverse(p, st, ctx)?;
+        }
+    }
+    let mut shape_state = st.clone();
+    for part in ["localTransform", "shape"] {
+        if let Some(p) = node.node_or_use(part) {
+            traverse(p, &mut shape_state, ctx)?;
+        }
+    }
+    for part in ["childList", "containerNode"] {
+        if let Some(p) = node.node_or_use(part) {
+            traverse(p, st, ctx)?;
+        }
+    }
+    let walked = |name: &str| {
+        KIT_PROPERTY_PARTS.contains(&name)
+            || matches!(
+                name,
+                "localTransform" | "shape" | "childList" | "containerNode"
+            )
+    };
+    for f in node.fields.iter().filter(|f| !walked(&f.name)) {
+        if let Value::Node(Some(p)) = &f.value {
+            let mut inner = st.clone();
+            traverse(p, &mut inner, ctx)?;
+        }
     }
     Ok(())
+}
+
+/// One copy of an Array's or MultipleCopy's children, each copy a separator placed by `m`.
+fn copy(node: &Rc<Node>, state: &State, m: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
+    ctx.budget.copy(node.line)?;
+    let mut inner = state.clone();
+    inner.transform *= m;
+    for c in &node.children {
+        traverse(c, &mut inner, ctx)?;
+    }
+    Ok(())
+}
+
+/// The translations of an Array's copies: `numElements1..3` along `separation1..3`, from
+/// the origin (FIRST), centred on it (CENTER) or ending at it (LAST).
+fn array_offsets(node: &Node) -> PResult<Vec<Vec3>> {
+    let axes = [Vec3::X, Vec3::Y, Vec3::Z];
+    let mut counts = [1u64; 3];
+    let mut seps = [Vec3::ZERO; 3];
+    for k in 0..3 {
+        let count = node.int(&format!("numElements{}", k + 1)).unwrap_or(1);
+        counts[k] = count.max(0) as u64;
+        seps[k] = vec3(node.floats(&format!("separation{}", k + 1)), axes[k]);
+    }
+    let total = counts.iter().product::<u64>();
+    if total > super::MAX_MODELS as u64 {
+        return Err(ParseError::new(
+            node.line,
+            format!("Array of {total} copies: more than {}", super::MAX_MODELS),
+        ));
+    }
+    let shift = match node.word("origin").unwrap_or("FIRST") {
+        "FIRST" => 0.0,
+        "CENTER" => 0.5,
+        "LAST" => 1.0,
+        w => {
+            return Err(ParseError::new(
+                node.line_of("origin"),
+                format!("expected FIRST, CENTER or LAST in Array's origin, found '{w}'"),
+            ))
+        }
+    };
+    let start: Vec3 = (0..3)
+        .map(|k| -seps[k] * shift * counts[k].saturating_sub(1) as f32)
+        .sum();
+    let mut out = Vec::with_capacity(total as usize);
+    for k in 0..counts[2] {
+        for j in 0..counts[1] {
+            for i in 0..counts[0] {
+                out.push(start + seps[0] * i as f32 + seps[1] * j as f32 + seps[2] * k as f32);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The complexity the primitives use after a `Complexity` node: its value for
+/// OBJECT_SPACE and, lacking a camera and a viewport, for SCREEN_SPACE too; Coin's default
+/// for BOUNDING_BOX (see docs/design.md#primitives).
+fn complexity(node: &Node) -> PResult<f32> {
+    let value = node
+        .float("value")
+        .unwrap_or(primitives::DEFAULT_COMPLEXITY);
+    match node.word("type") {
+        None | Some("OBJECT_SPACE" | "SCREEN_SPACE") => Ok(value.clamp(0.0, 1.0)),
+        Some("BOUNDING_BOX") => Ok(primitives::DEFAULT_COMPLEXITY),
+        Some(w) => Err(ParseError::new(
+            node.line_of("type"),
+            format!("expected OBJECT_SPACE, SCREEN_SPACE or BOUNDING_BOX in Complexity's type, found '{w}'"),
+        )),
+    }
 }
 
 /// `Texture2`'s wrap `field`: true for REPEAT (also when absent), false for CLAMP.
@@ -307,61 +517,68 @@ fn property_or<'a>(
     }
 }
 
-fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
-    let kind = node.kind.as_str();
+/// A shape's vertex data: its `vertexProperty` values where it has them, else the
+/// traversal state's nodes (a Cube makes its own corners).
+struct Props<'a> {
+    coords: Cow<'a, [f32]>,
+    normals: &'a [f32],
+    materials: Cow<'a, [f32]>,
+    material_binding: Binding,
+    normal_binding: Binding,
+    texcoords: &'a [f32],
+}
+
+fn props<'a>(node: &'a Node, state: &'a State) -> Props<'a> {
     let vp = node
         .node("vertexProperty")
         .filter(|v| !v.skipped && v.kind == "VertexProperty");
-    let packed;
-    let cube;
-    let cube_half;
-    // Coordinates: the vertexProperty's, else the state's.
-    let coords: &[f32] = if kind == "Cube" {
-        cube_half = Vec3::new(
+    let coords = if node.kind == "Cube" {
+        let half = Vec3::new(
             node.float("width").unwrap_or(2.0),
             node.float("height").unwrap_or(2.0),
             node.float("depth").unwrap_or(2.0),
         ) * 0.5;
-        cube = box_corners(cube_half);
-        &cube
+        Cow::Owned(box_corners(half))
     } else {
-        property_or(vp, "vertex", &state.coords, "point")
+        Cow::Borrowed(property_or(vp, "vertex", &state.coords, "point"))
     };
-    let normal_values = property_or(vp, "normal", &state.normals, "vector");
-    let (material_values, material_binding): (&[f32], Binding) = match vp
+    let rgba = vp
         .and_then(|v| v.ints("orderedRGBA"))
-        .filter(|v| !v.is_empty())
-    {
-        Some(rgba) => {
-            packed = unpack_rgba(rgba);
-            let b = vp
-                .and_then(|v| v.word("materialBinding"))
+        .filter(|v| !v.is_empty());
+    let (materials, material_binding) = match rgba {
+        Some(rgba) => (
+            Cow::Owned(unpack_rgba(rgba)),
+            vp.and_then(|v| v.word("materialBinding"))
                 .and_then(Binding::parse)
-                .unwrap_or(Binding::Overall);
-            (&packed, b)
-        }
+                .unwrap_or(Binding::Overall),
+        ),
         None => (
-            diffuse_values(state.material.as_ref()),
+            Cow::Borrowed(diffuse_values(state.material.as_ref())),
             state.material_binding,
         ),
     };
-    let texcoord_values = property_or(vp, "texCoord", &state.texcoords, "point");
-    let normal_binding = vp
-        .and_then(|v| v.word("normalBinding"))
-        .and_then(Binding::parse)
-        .unwrap_or(state.normal_binding);
-    let diffuse = [material_values[0], material_values[1], material_values[2]];
+    Props {
+        coords,
+        normals: property_or(vp, "normal", &state.normals, "vector"),
+        materials,
+        material_binding,
+        normal_binding: vp
+            .and_then(|v| v.word("normalBinding"))
+            .and_then(Binding::parse)
+            .unwrap_or(state.normal_binding),
+        texcoords: property_or(vp, "texCoord", &state.texcoords, "point"),
+    }
+}
 
-    let line = node.line;
-    let start = node.int("startIndex").unwrap_or(0).max(0) as u32;
-    let indexed = matches!(kind, "IndexedFaceSet" | "IndexedTriangleStripSet");
-    let (geo, index_field) = match kind {
+/// The shape's polygons over `npoints` coordinates, and the field that indexed them.
+fn geometry(node: &Node, npoints: usize) -> PResult<(Geo, &'static str)> {
+    match node.kind.as_str() {
         "IndexedFaceSet" => {
             let raw = node.ints("coordIndex").unwrap_or(&[]);
             let (c, e, p) = split_polygons(raw, node.line_of("coordIndex"), "coordIndex")?;
-            (Geo::faces(c, e, p), "coordIndex")
+            Ok((Geo::faces(c, e, p), "coordIndex"))
         }
-        "IndexedTriangleStripSet" => {
+        "IndexedTriangleStripSet" | "IndexedTriangleMesh" => {
             let raw = node.ints("coordIndex").unwrap_or(&[]);
             let (c, e, p) = split_polygons(raw, node.line_of("coordIndex"), "coordIndex")?;
             let s = strips_to_triangles(&c, &e);
@@ -374,127 +591,145 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
                 face_no: (0..ntri).collect(),
                 part_no: s.part,
             };
-            (geo, "coordIndex")
+            Ok((geo, "coordIndex"))
         }
-        "FaceSet" | "TriangleStripSet" => {
-            let counts = node.ints("numVertices").unwrap_or(&[]);
-            let mut corners = Vec::new();
-            let mut ends = Vec::new();
-            let mut next = start as u64;
-            for &n in counts {
-                // Inventor's -1 means "all remaining vertices".
-                let n = if n == -1 {
-                    (coords.len() as u64 / 3).saturating_sub(next)
-                } else if n < 0 {
-                    return Err(ParseError::new(
-                        node.line_of("numVertices"),
-                        format!("negative count {n} in 'numVertices'"),
-                    ));
-                } else {
-                    n as u64
-                };
-                if next + n > coords.len() as u64 / 3 {
-                    return Err(ParseError::new(
-                        node.line_of("numVertices"),
-                        format!(
-                            "'numVertices' asks for vertices up to {} but the coordinates have {} points",
-                            next + n,
-                            coords.len() / 3
-                        ),
-                    ));
-                }
-                corners.extend(next as u32..(next + n) as u32);
-                ends.push(corners.len() as u32);
-                next += n;
-            }
-            if kind == "FaceSet" {
-                let nf = ends.len() as u32;
-                let geo = Geo {
-                    seq_no: corners.clone(),
-                    raw_pos: corners.clone(),
-                    corners,
-                    ends,
-                    face_no: (0..nf).collect(),
-                    part_no: (0..nf).collect(),
-                };
-                (geo, "numVertices")
-            } else {
-                let s = strips_to_triangles(&corners, &ends);
-                let ntri = s.ends.len() as u32;
-                let seq: Vec<u32> = s.source.iter().map(|&k| corners[k as usize]).collect();
-                let geo = Geo {
-                    raw_pos: seq.clone(),
-                    seq_no: seq,
-                    corners: s.corners,
-                    ends: s.ends,
-                    face_no: (0..ntri).collect(),
-                    part_no: s.part,
-                };
-                (geo, "numVertices")
-            }
-        }
-        "QuadMesh" => {
-            let rows = node.int("verticesPerColumn").unwrap_or(1).max(0) as u64;
-            let cols = node.int("verticesPerRow").unwrap_or(1).max(0) as u64;
-            if start as u64 + rows * cols > coords.len() as u64 / 3 {
+        "FaceSet" | "TriangleStripSet" => counted(node, npoints),
+        "QuadMesh" => quad_mesh(node, npoints),
+        _ => Ok((cube_geo(), "Cube")),
+    }
+}
+
+/// FaceSet and TriangleStripSet: runs of `numVertices` consecutive coordinates from
+/// `startIndex` (-1 meaning "all remaining").
+fn counted(node: &Node, npoints: usize) -> PResult<(Geo, &'static str)> {
+    let start = node.int("startIndex").unwrap_or(0).max(0) as u64;
+    let counts = node.ints("numVertices").unwrap_or(&[]);
+    let line = node.line_of("numVertices");
+    let mut corners = Vec::new();
+    let mut ends = Vec::new();
+    let mut next = start;
+    for &n in counts {
+        let n = match n {
+            -1 => (npoints as u64).saturating_sub(next),
+            n if n < 0 => {
                 return Err(ParseError::new(
-                    node.line_of("verticesPerColumn"),
-                    format!(
-                        "QuadMesh of {rows} x {cols} vertices from {start} needs more than the {} points given",
-                        coords.len() / 3
-                    ),
-                ));
+                    line,
+                    format!("negative count {n} in 'numVertices'"),
+                ))
             }
-            let (rows, cols) = (rows as u32, cols as u32);
-            let mut corners = Vec::new();
-            let mut ends = Vec::new();
-            let mut part = Vec::new();
-            let at = |r: u32, c: u32| start + r * cols + c;
-            for r in 0..rows.saturating_sub(1) {
-                for c in 0..cols.saturating_sub(1) {
-                    corners.extend([at(r, c), at(r + 1, c), at(r + 1, c + 1), at(r, c + 1)]);
-                    ends.push(corners.len() as u32);
-                    part.push(r);
-                }
-            }
-            let nf = ends.len() as u32;
-            let geo = Geo {
-                seq_no: corners.clone(),
-                raw_pos: corners.clone(),
-                corners,
-                ends,
-                face_no: (0..nf).collect(),
-                part_no: part,
-            };
-            (geo, "verticesPerColumn")
+            n => n as u64,
+        };
+        if next + n > npoints as u64 {
+            return Err(ParseError::new(
+                line,
+                format!(
+                    "'numVertices' asks for vertices up to {} but the coordinates have {npoints} points",
+                    next + n
+                ),
+            ));
         }
-        _ => {
-            // Cube: six quads, counter-clockwise seen from outside; PER_FACE/PER_PART is per side.
-            let faces: [[u32; 4]; 6] = [
-                [4, 5, 7, 6],
-                [0, 2, 3, 1],
-                [1, 3, 7, 5],
-                [0, 4, 6, 2],
-                [2, 6, 7, 3],
-                [0, 1, 5, 4],
-            ];
-            let corners: Vec<u32> = faces.iter().flatten().copied().collect();
-            let geo = Geo {
-                seq_no: (0..24).collect(),
-                raw_pos: (0..24).collect(),
-                ends: (1..=6).map(|i| i * 4).collect(),
-                corners,
-                face_no: (0..6).collect(),
-                part_no: (0..6).collect(),
-            };
-            (geo, "Cube")
+        corners.extend(next as u32..(next + n) as u32);
+        ends.push(corners.len() as u32);
+        next += n;
+    }
+    if node.kind == "FaceSet" {
+        let nf = ends.len() as u32;
+        let geo = Geo {
+            seq_no: corners.clone(),
+            raw_pos: corners.clone(),
+            corners,
+            ends,
+            face_no: (0..nf).collect(),
+            part_no: (0..nf).collect(),
+        };
+        return Ok((geo, "numVertices"));
+    }
+    let s = strips_to_triangles(&corners, &ends);
+    let ntri = s.ends.len() as u32;
+    let seq: Vec<u32> = s.source.iter().map(|&k| corners[k as usize]).collect();
+    let geo = Geo {
+        raw_pos: seq.clone(),
+        seq_no: seq,
+        corners: s.corners,
+        ends: s.ends,
+        face_no: (0..ntri).collect(),
+        part_no: s.part,
+    };
+    Ok((geo, "numVertices"))
+}
+
+/// A QuadMesh: `verticesPerColumn` rows of `verticesPerRow` coordinates from `startIndex`;
+/// each row of quads is a part.
+fn quad_mesh(node: &Node, npoints: usize) -> PResult<(Geo, &'static str)> {
+    let start = node.int("startIndex").unwrap_or(0).max(0) as u64;
+    let rows = node.int("verticesPerColumn").unwrap_or(1).max(0) as u64;
+    let cols = node.int("verticesPerRow").unwrap_or(1).max(0) as u64;
+    if start + rows * cols > npoints as u64 {
+        return Err(ParseError::new(
+            node.line_of("verticesPerColumn"),
+            format!(
+                "QuadMesh of {rows} x {cols} vertices from {start} needs more than the {npoints} points given"
+            ),
+        ));
+    }
+    let (start, rows, cols) = (start as u32, rows as u32, cols as u32);
+    let mut corners = Vec::new();
+    let mut ends = Vec::new();
+    let mut part = Vec::new();
+    let at = |r: u32, c: u32| start + r * cols + c;
+    for r in 0..rows.saturating_sub(1) {
+        for c in 0..cols.saturating_sub(1) {
+            corners.extend([at(r, c), at(r + 1, c), at(r + 1, c + 1), at(r, c + 1)]);
+            ends.push(corners.len() as u32);
+            part.push(r);
         }
+    }
+    let nf = ends.len() as u32;
+    let geo = Geo {
+        seq_no: corners.clone(),
+        raw_pos: corners.clone(),
+        corners,
+        ends,
+        face_no: (0..nf).collect(),
+        part_no: part,
     };
-    let (mat_index, norm_index) = if indexed {
-        (node.ints("materialIndex"), node.ints("normalIndex"))
-    } else {
-        (None, None)
-    };
+    Ok((geo, "verticesPerColumn"))
+}
+
+/// A Cube's six quads over `box_corners`, counter-clockwise seen from outside; PER_FACE and
+/// PER_PART bind one value per side.
+fn cube_geo() -> Geo {
+    let faces: [[u32; 4]; 6] = [
+        [4, 5, 7, 6],
+        [0, 2, 3, 1],
+        [1, 3, 7, 5],
+        [0, 4, 6, 2],
+        [2, 6, 7, 3],
+        [0, 1, 5, 4],
+    ];
+    let corners: Vec<u32> = faces.iter().flatten().copied().collect();
+    Geo {
+        seq_no: (0..24).collect(),
+        raw_pos: (0..24).collect(),
+        ends: (1..=6).map(|i| i * 4).collect(),
+        corners,
+        face_no: (0..6).collect(),
+        part_no: (0..6).collect(),
+    }
+}
+
+/// Colours, normals and texture coordinates of a shape bound over `geo`.
+fn attributes<'a>(
+    node: &Node,
+    state: &State,
+    props: &'a Props<'_>,
+    geo: &Geo,
+) -> (Bind<'a>, Bind<'a>, Option<TexCoords<'a>>) {
+    let indexed = matches!(
+        node.kind.as_str(),
+        "IndexedFaceSet" | "IndexedTriangleStripSet" | "IndexedTriangleMesh"
+    );
+    let index = |field: &str| if indexed { node.ints(field) } else { None };
     // Non-indexed shapes have no index lists: an *_INDEXED binding means the plain one.
     let plain = |b: Binding| match (indexed, b) {
         (false, Binding::PerPartIndexed) => Binding::PerPart,
@@ -502,68 +737,77 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
         (false, Binding::PerVertexIndexed) => Binding::PerVertex,
         _ => b,
     };
-    let colors = if kind == "Cube"
-        && !matches!(
-            material_binding,
-            Binding::PerFace | Binding::PerPart | Binding::PerFaceIndexed | Binding::PerPartIndexed
-        ) {
-        Bind::None
-    } else {
-        resolve(plain(material_binding), material_values, mat_index, &geo)
-    };
-    let normal_binding = match normal_binding {
+    if node.kind == "Cube" {
+        let colors = match plain(props.material_binding) {
+            b @ (Binding::PerFace | Binding::PerPart) => resolve(b, &props.materials, None, geo),
+            _ => Bind::None,
+        };
+        return (colors, Bind::None, None);
+    }
+    let colors = resolve(
+        plain(props.material_binding),
+        &props.materials,
+        index("materialIndex"),
+        geo,
+    );
+    let normal_binding = match props.normal_binding {
         // Indexed shapes default to per-vertex-indexed normals, others to per-vertex.
         Binding::Default if indexed => Binding::PerVertexIndexed,
         Binding::Default => Binding::PerVertex,
         b => b,
     };
-    let normals = if kind == "Cube" {
-        Bind::None
-    } else {
-        resolve(
-            plain(normal_binding),
-            normal_values,
-            norm_index.filter(|i| explicit(Some(i)).is_some()),
-            &geo,
-        )
-    };
+    let normal_index = index("normalIndex").filter(|i| explicit(Some(i)).is_some());
+    let normals = resolve(plain(normal_binding), props.normals, normal_index, geo);
     // Per vertex, the only binding there is: PER_VERTEX takes the pairs in corner order,
     // PER_VERTEX_INDEXED (the default) through textureCoordIndex or else coordIndex.
-    let texcoords = if kind == "Cube" {
-        None
+    let by_index = indexed && state.texcoord_binding != Binding::PerVertex;
+    let texcoord_index = if by_index {
+        node.ints("textureCoordIndex")
     } else {
-        let by_index = indexed && state.texcoord_binding != Binding::PerVertex;
-        let index = if by_index {
-            node.ints("textureCoordIndex")
-        } else {
-            None
-        };
-        texcoords_per_vertex(texcoord_values, index, &geo, by_index)
+        None
     };
-    let name = node
-        .def
-        .clone()
-        .unwrap_or_else(|| format!("{kind}_{}", ctx.models.len() + 1));
+    let texcoords = texcoords_per_vertex(props.texcoords, texcoord_index, geo, by_index);
+    (colors, normals, texcoords)
+}
+
+fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
+    let props = props(node, state);
+    let (geo, index_field) = geometry(node, props.coords.len() / 3)?;
+    let (colors, normals, texcoords) = attributes(node, state, &props, &geo);
+    let cube = node.kind == "Cube";
+    let m = &props.materials;
     let spec = ShapeSpec {
-        name,
+        name: shape_name(node, ctx),
         transform: state.transform,
-        coords,
+        coords: &props.coords,
         corners: geo.corners,
         ends: geo.ends,
         colors,
         normals,
         texcoords,
-        ccw: state.ccw || kind == "Cube",
-        solid: state.solid || kind == "Cube",
+        ccw: state.ccw || cube,
+        solid: state.solid || cube,
         crease_angle: state.crease_angle,
-        diffuse,
-        line: if kind == "Cube" {
-            line
+        diffuse: [m[0], m[1], m[2]],
+        line: if cube {
+            node.line
         } else {
             node.line_of(index_field)
         },
         index_field,
     };
+    finish(spec, state, node.line, ctx)
+}
+
+/// The DEF name of a shape node, or its kind and number.
+fn shape_name(node: &Node, ctx: &Ctx<'_>) -> String {
+    node.def
+        .clone()
+        .unwrap_or_else(|| format!("{}_{}", node.kind, ctx.models.len() + 1))
+}
+
+/// Builds the model, gives it the state's texture and keeps it unless it is empty.
+fn finish(spec: ShapeSpec<'_>, state: &State, line: usize, ctx: &mut Ctx<'_>) -> PResult<()> {
     let mut model = build(spec, ctx.warnings)?;
     model.texture = state.texture.clone();
     if model.texture.is_some() {
@@ -576,6 +820,82 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
     ctx.budget.spend(model.triangles.len(), line)?;
     ctx.models.push(model);
     Ok(())
+}
+
+/// A size field of a primitive: its absolute value (Coin accepts negative sizes), or the
+/// default when absent.
+fn size(node: &Node, field: &str, default: f32) -> f32 {
+    node.float(field).map_or(default, f32::abs)
+}
+
+/// Says that a primitive (or VRML 2.0 ElevationGrid) that makes no triangles (a zero size,
+/// no parts, fewer than 2 x 2 points) was skipped.
+pub fn skip_empty(node: &Node, ctx: &mut Ctx<'_>) {
+    let why = match node.kind.as_str() {
+        "ElevationGrid" => "with fewer than 2 x 2 points",
+        "Extrusion" => "with fewer than 2 spine or cross-section points",
+        _ => "of zero size or with no parts",
+    };
+    ctx.warnings
+        .push(format!("line {}: '{}' {why} skipped", node.line, node.kind));
+}
+
+/// `Sphere`, `Cone` or `Cylinder`, tessellated at the state's complexity.
+fn primitive(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
+    let parts = match node.word("parts") {
+        None => Parts::ALL,
+        Some(w) => Parts::from_mask(w).ok_or_else(|| {
+            ParseError::new(
+                node.line_of("parts"),
+                format!(
+                    "expected SIDES, TOP, BOTTOM or ALL in {}'s parts, found '{w}'",
+                    node.kind
+                ),
+            )
+        })?,
+    };
+    let c = state.complexity;
+    let t = match node.kind.as_str() {
+        "Sphere" => primitives::sphere(size(node, "radius", 1.0), c),
+        "Cylinder" => primitives::cylinder(
+            size(node, "radius", 1.0),
+            size(node, "height", 2.0),
+            c,
+            parts,
+        ),
+        _ => primitives::cone(
+            size(node, "bottomRadius", 1.0),
+            size(node, "height", 2.0),
+            c,
+            parts,
+        ),
+    };
+    if t.triangles.is_empty() {
+        skip_empty(node, ctx);
+        return Ok(());
+    }
+    let geo = t.to_geo();
+    let colors = match state.material_binding {
+        Binding::PerPart | Binding::PerPartIndexed => resolve(
+            Binding::PerPart,
+            diffuse_values(state.material.as_ref()),
+            None,
+            &geo,
+        ),
+        _ => Bind::None,
+    };
+    let d = diffuse_values(state.material.as_ref());
+    let mut spec = primitives::shape_spec(
+        shape_name(node, ctx),
+        state.transform,
+        &t.coords,
+        geo,
+        colors,
+        [d[0], d[1], d[2]],
+        node.line,
+    );
+    spec.solid = t.closed;
+    finish(spec, state, node.line, ctx)
 }
 
 /// The eight corners of a centred box, flat x y z; corner `i` has +x when bit 0 is set, +y

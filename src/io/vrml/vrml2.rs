@@ -1,18 +1,22 @@
 //! VRML 2.0 semantics: a walk over the tree of `Transform { children }`, `Group`, `Switch`,
 //! `LOD` and `Shape` nodes.
 //!
-//! Each `Shape` whose geometry is an `IndexedFaceSet` (or a `Box`) becomes one `Model` with the
-//! accumulated world transform, the material's diffuse colour, and the face set's colours
-//! and normals (`colorPerVertex` / `normalPerVertex`, with or without index lists).
+//! Each `Shape` whose geometry is an `IndexedFaceSet`, an `ElevationGrid`, a `Box` or a
+//! `Sphere`, `Cone` or `Cylinder` (see `primitives`) becomes one `Model` with the accumulated
+//! world transform, the material's diffuse colour, and the geometry's colours and normals
+//! (`colorPerVertex` / `normalPerVertex`, with or without index lists). An error inside a
+//! `USE`d node names the USE's line and the DEF's.
 
 use std::rc::Rc;
 
 use glam::{Mat4, Vec3};
 
 use super::bindings::{explicit, resolve, split_polygons, texcoords_per_vertex, Binding, Geo};
-use super::lexer::PResult;
-use super::parse::Node;
-use super::vrml1::{box_corners, compose, rotation, vec3};
+use super::extrusion;
+use super::lexer::{PResult, ParseError};
+use super::parse::{used_at, Node, USE_KIND};
+use super::primitives::{self, Parts, Tessellation};
+use super::vrml1::{box_corners, compose, rotation, skip_empty, vec3};
 use super::Ctx;
 use crate::io::shape_to_model::{build, Bind, ShapeSpec};
 use crate::mesh::Model;
@@ -29,6 +33,9 @@ pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>) -> PResult<Vec<Model
 fn traverse(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
     if node.skipped {
         return Ok(());
+    }
+    if node.kind == USE_KIND {
+        return through_use(node, |target| traverse(target, transform, ctx));
     }
     match node.kind.as_str() {
         "Transform" => {
@@ -68,7 +75,21 @@ fn traverse(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> 
     Ok(())
 }
 
+/// Runs `walk` on the node a `USE` names; an error inside names the USE and the DEF lines.
+fn through_use(used: &Rc<Node>, walk: impl FnOnce(&Rc<Node>) -> PResult<()>) -> PResult<()> {
+    let target = used.target();
+    let name = used.def.as_deref().unwrap_or_default();
+    walk(target).map_err(|e| used_at(e, used.line, name, target.line))
+}
+
 fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
+    match node.node_or_use("geometry") {
+        Some(g) if g.kind == USE_KIND => through_use(g, |_| shape_geometry(node, transform, ctx)),
+        _ => shape_geometry(node, transform, ctx),
+    }
+}
+
+fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
     let Some(geometry) = node.node("geometry").filter(|g| !g.skipped) else {
         return Ok(());
     };
@@ -91,70 +112,10 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
     let texture_repeat =
         ["repeatS", "repeatT"].map(|field| image.and_then(|t| t.boolean(field)).unwrap_or(true));
     let boxed;
+    let tess;
+    let grid;
     let spec = match geometry.kind.as_str() {
-        "IndexedFaceSet" => {
-            let coords = geometry
-                .node("coord")
-                .and_then(|c| c.floats("point"))
-                .unwrap_or(&[]);
-            let raw = geometry.ints("coordIndex").unwrap_or(&[]);
-            let line = geometry.line_of("coordIndex");
-            let (c, e, p) = split_polygons(raw, line, "coordIndex")?;
-            let geo = Geo::faces(c, e, p);
-            let per_vertex = |name: &str| geometry.boolean(name).unwrap_or(true);
-            let binding = |index: Option<&[i32]>, per_vertex: bool| match (
-                per_vertex,
-                explicit(index).is_some(),
-            ) {
-                (true, _) => Binding::PerVertexIndexed,
-                (false, true) => Binding::PerFaceIndexed,
-                (false, false) => Binding::PerFace,
-            };
-            let color_values = geometry
-                .node("color")
-                .and_then(|c| c.floats("color"))
-                .unwrap_or(&[]);
-            let normal_values = geometry
-                .node("normal")
-                .and_then(|n| n.floats("vector"))
-                .unwrap_or(&[]);
-            let ci = geometry.ints("colorIndex");
-            let ni = geometry.ints("normalIndex");
-            let colors = resolve(
-                binding(ci, per_vertex("colorPerVertex")),
-                color_values,
-                ci,
-                &geo,
-            );
-            let normals = resolve(
-                binding(ni, per_vertex("normalPerVertex")),
-                normal_values,
-                ni,
-                &geo,
-            );
-            let texcoord_values = geometry
-                .node("texCoord")
-                .and_then(|t| t.floats("point"))
-                .unwrap_or(&[]);
-            let texcoords =
-                texcoords_per_vertex(texcoord_values, geometry.ints("texCoordIndex"), &geo, true);
-            ShapeSpec {
-                name,
-                transform,
-                coords,
-                corners: geo.corners,
-                ends: geo.ends,
-                colors,
-                normals,
-                texcoords,
-                ccw: geometry.boolean("ccw").unwrap_or(true),
-                solid: geometry.boolean("solid").unwrap_or(true),
-                crease_angle: geometry.float("creaseAngle"),
-                diffuse,
-                line,
-                index_field: "coordIndex",
-            }
-        }
+        "IndexedFaceSet" => indexed_face_set(geometry, name, transform, diffuse)?,
         "Box" => {
             boxed = box_corners(vec3(geometry.floats("size"), Vec3::splat(2.0)) * 0.5);
             let faces: [u32; 24] = [
@@ -176,6 +137,57 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
                 line: geometry.line,
                 index_field: "Box",
             }
+        }
+        "ElevationGrid" => {
+            let (points, geo) = elevation_grid(geometry)?;
+            if geo.ends.is_empty() {
+                skip_empty(geometry, ctx);
+                return Ok(());
+            }
+            grid = points;
+            grid_spec(geometry, name, transform, diffuse, &grid, geo)
+        }
+        "Extrusion" => {
+            let swept = extrusion::extrude(geometry)?;
+            if swept.ends.is_empty() {
+                skip_empty(geometry, ctx);
+                return Ok(());
+            }
+            grid = swept.points;
+            ShapeSpec {
+                name,
+                transform,
+                coords: &grid,
+                corners: swept.corners,
+                ends: swept.ends,
+                colors: Bind::None,
+                normals: Bind::None,
+                texcoords: None,
+                ccw: geometry.boolean("ccw").unwrap_or(true),
+                solid: geometry.boolean("solid").unwrap_or(true),
+                crease_angle: geometry.float("creaseAngle"),
+                diffuse,
+                line: geometry.line,
+                index_field: "spine",
+            }
+        }
+        "Sphere" | "Cone" | "Cylinder" => {
+            tess = primitive(geometry);
+            if tess.triangles.is_empty() {
+                skip_empty(geometry, ctx);
+                return Ok(());
+            }
+            let mut spec = primitives::shape_spec(
+                name,
+                transform,
+                &tess.coords,
+                tess.to_geo(),
+                Bind::None,
+                diffuse,
+                geometry.line,
+            );
+            spec.solid = tess.closed;
+            spec
         }
         other => {
             ctx.budget.warn_once(
@@ -201,4 +213,176 @@ fn shape(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
     ctx.budget.spend(model.triangles.len(), node.line)?;
     ctx.models.push(model);
     Ok(())
+}
+
+/// A `Sphere`, `Cone` or `Cylinder` at Coin's default complexity, with the parts its
+/// `side`, `top` and `bottom` fields keep (negative sizes taken as positive, as Coin does).
+fn primitive(g: &Node) -> Tessellation {
+    let size = |field: &str, default: f32| g.float(field).map_or(default, f32::abs);
+    let on = |field: &str| g.boolean(field).unwrap_or(true);
+    let parts = Parts {
+        side: on("side"),
+        top: on("top"),
+        bottom: on("bottom"),
+    };
+    let c = primitives::DEFAULT_COMPLEXITY;
+    match g.kind.as_str() {
+        "Sphere" => primitives::sphere(size("radius", 1.0), c),
+        "Cylinder" => primitives::cylinder(size("radius", 1.0), size("height", 2.0), c, parts),
+        _ => primitives::cone(size("bottomRadius", 1.0), size("height", 2.0), c, parts),
+    }
+}
+
+/// An IndexedFaceSet's polygons with their colours, normals and texture coordinates
+/// (`colorPerVertex` / `normalPerVertex`, with or without index lists).
+fn indexed_face_set(
+    g: &Node,
+    name: String,
+    transform: Mat4,
+    diffuse: [f32; 3],
+) -> PResult<ShapeSpec<'_>> {
+    let coords = g
+        .node("coord")
+        .and_then(|c| c.floats("point"))
+        .unwrap_or(&[]);
+    let raw = g.ints("coordIndex").unwrap_or(&[]);
+    let line = g.line_of("coordIndex");
+    let (c, e, p) = split_polygons(raw, line, "coordIndex")?;
+    let geo = Geo::faces(c, e, p);
+    let per_vertex = |name: &str| g.boolean(name).unwrap_or(true);
+    let binding =
+        |index: Option<&[i32]>, per_vertex: bool| match (per_vertex, explicit(index).is_some()) {
+            (true, _) => Binding::PerVertexIndexed,
+            (false, true) => Binding::PerFaceIndexed,
+            (false, false) => Binding::PerFace,
+        };
+    let color_values = g
+        .node("color")
+        .and_then(|c| c.floats("color"))
+        .unwrap_or(&[]);
+    let normal_values = g
+        .node("normal")
+        .and_then(|n| n.floats("vector"))
+        .unwrap_or(&[]);
+    let ci = g.ints("colorIndex");
+    let ni = g.ints("normalIndex");
+    let colors = resolve(
+        binding(ci, per_vertex("colorPerVertex")),
+        color_values,
+        ci,
+        &geo,
+    );
+    let normals = resolve(
+        binding(ni, per_vertex("normalPerVertex")),
+        normal_values,
+        ni,
+        &geo,
+    );
+    let texcoord_values = g
+        .node("texCoord")
+        .and_then(|t| t.floats("point"))
+        .unwrap_or(&[]);
+    let texcoords = texcoords_per_vertex(texcoord_values, g.ints("texCoordIndex"), &geo, true);
+    Ok(ShapeSpec {
+        name,
+        transform,
+        coords,
+        corners: geo.corners,
+        ends: geo.ends,
+        colors,
+        normals,
+        texcoords,
+        ccw: g.boolean("ccw").unwrap_or(true),
+        solid: g.boolean("solid").unwrap_or(true),
+        crease_angle: g.float("creaseAngle"),
+        diffuse,
+        line,
+        index_field: "coordIndex",
+    })
+}
+
+/// An ElevationGrid's points (`xDimension` by `zDimension`, `xSpacing` and `zSpacing`
+/// apart, at `height`) and its quads, counter-clockwise seen from +y; each quad is a face.
+fn elevation_grid(g: &Node) -> PResult<(Vec<f32>, Geo)> {
+    let nx = g.int("xDimension").unwrap_or(0).max(0) as u64;
+    let nz = g.int("zDimension").unwrap_or(0).max(0) as u64;
+    let heights = g.floats("height").unwrap_or(&[]);
+    if nx * nz > heights.len() as u64 {
+        return Err(ParseError::new(
+            g.line_of("height"),
+            format!(
+                "ElevationGrid of {nx} x {nz} points needs {} heights, found {}",
+                nx * nz,
+                heights.len()
+            ),
+        ));
+    }
+    let (nx, nz) = (nx as u32, nz as u32);
+    let dx = g.float("xSpacing").unwrap_or(1.0);
+    let dz = g.float("zSpacing").unwrap_or(1.0);
+    let mut points = Vec::with_capacity(heights.len() * 3);
+    for j in 0..nz {
+        for i in 0..nx {
+            let h = heights[(j * nx + i) as usize];
+            points.extend([i as f32 * dx, h, j as f32 * dz]);
+        }
+    }
+    let at = |i: u32, j: u32| j * nx + i;
+    let mut corners = Vec::new();
+    for j in 0..nz.saturating_sub(1) {
+        for i in 0..nx.saturating_sub(1) {
+            corners.extend([at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)]);
+        }
+    }
+    let n = (corners.len() / 4) as u32;
+    let ends = (1..=n).map(|k| k * 4).collect();
+    let pos = (0..corners.len()).collect();
+    Ok((points, Geo::faces(corners, ends, pos)))
+}
+
+/// The shape of an ElevationGrid over `points`: colours and normals per point or per quad
+/// (`colorPerVertex`, `normalPerVertex`), texture coordinates per point.
+fn grid_spec<'a>(
+    g: &'a Node,
+    name: String,
+    transform: Mat4,
+    diffuse: [f32; 3],
+    points: &'a [f32],
+    geo: Geo,
+) -> ShapeSpec<'a> {
+    let values =
+        |node: &str, field: &str| g.node(node).and_then(|n| n.floats(field)).unwrap_or(&[]);
+    let binding = |field: &str| match g.boolean(field).unwrap_or(true) {
+        true => Binding::PerVertexIndexed,
+        false => Binding::PerFace,
+    };
+    let colors = resolve(
+        binding("colorPerVertex"),
+        values("color", "color"),
+        None,
+        &geo,
+    );
+    let normals = resolve(
+        binding("normalPerVertex"),
+        values("normal", "vector"),
+        None,
+        &geo,
+    );
+    let texcoords = texcoords_per_vertex(values("texCoord", "point"), None, &geo, true);
+    ShapeSpec {
+        name,
+        transform,
+        coords: points,
+        corners: geo.corners,
+        ends: geo.ends,
+        colors,
+        normals,
+        texcoords,
+        ccw: g.boolean("ccw").unwrap_or(true),
+        solid: g.boolean("solid").unwrap_or(true),
+        crease_angle: g.float("creaseAngle"),
+        diffuse,
+        line: g.line_of("height"),
+        index_field: "height",
+    }
 }

@@ -1,0 +1,246 @@
+//! Closed shapes' volumes, so that no decimation step turns a closed shape inside out or
+//! flattens it. A step's checks look at the triangles around it, each of which may turn by
+//! up to a right angle: on a small closed shape (a box going to a tetrahedron) a few such
+//! steps carry a vertex through the opposite side, and the shape's signed volume changes
+//! sign or drops to nothing while every local check passes. So every connected part of a
+//! model whose edges each have two triangles running them opposite ways has its signed
+//! volume tracked, and a step that would take it below a share of its starting volume (or
+//! across zero) is refused, keeping the vertex.
+
+use std::collections::HashMap;
+
+use glam::{DVec3, Vec3};
+
+/// A closed shape keeps at least this share of its starting volume: the largest
+/// tetrahedron inside a box holds a third of it, inside a sphere an eighth, so decimating
+/// down to four vertices stays possible (see docs/design.md#closed-shapes).
+const MIN_VOLUME_SHARE: f64 = 0.05;
+
+/// No closed component (`ClosedVolumes::component`).
+const NONE: u32 = u32::MAX;
+
+/// Six times the signed volume of the tetrahedron (o, a, b, c): positive when triangle
+/// (a, b, c) faces away from `o`.
+#[inline]
+pub fn tet6(o: DVec3, a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    (a - o).dot((b - o).cross(c - o))
+}
+
+/// Each closed component's signed volume (six times it), kept up to date step by step.
+#[derive(Debug, Clone, Default)]
+pub struct ClosedVolumes {
+    /// Each vertex's closed component, `NONE` when it is on no closed component.
+    component: Vec<u32>,
+    /// Six times each component's signed volume now.
+    volume6: Vec<f64>,
+    /// The volume (six times it) each component must stay beyond, with its starting sign.
+    floor6: Vec<f64>,
+}
+
+impl ClosedVolumes {
+    /// The closed components of `triangles` over `positions` (vertices `0..positions.len()`;
+    /// triangles with an index out of range are ignored, and make nothing closed).
+    pub fn new(positions: &[Vec3], triangles: &[[u32; 3]]) -> Self {
+        let n = positions.len();
+        let valid = |t: &[u32; 3]| t.iter().all(|&v| (v as usize) < n);
+        // Components of the vertices, by union-find.
+        let mut parent: Vec<u32> = (0..n as u32).collect();
+        for t in triangles.iter().filter(|t| valid(t)) {
+            let a = find(&mut parent, t[0]);
+            for &v in &t[1..] {
+                let b = find(&mut parent, v);
+                parent[b as usize] = a;
+            }
+        }
+        // A component is closed when every directed edge appears once and so does its
+        // reverse: sort the directed edges and look each one's reverse up.
+        let mut edges: Vec<u64> = triangles
+            .iter()
+            .filter(|t| valid(t))
+            .flat_map(|t| (0..3).map(move |k| key(t[k], t[(k + 1) % 3])))
+            .collect();
+        edges.sort_unstable();
+        let mut open = vec![false; n];
+        for (i, &e) in edges.iter().enumerate() {
+            let repeated = edges.get(i + 1) == Some(&e) || (i > 0 && edges[i - 1] == e);
+            let (a, b) = ((e >> 32) as u32, e as u32);
+            if repeated || edges.binary_search(&key(b, a)).is_err() {
+                let root = find(&mut parent, a);
+                open[root as usize] = true;
+            }
+        }
+        for t in triangles.iter().filter(|t| !valid(t)) {
+            for &v in t.iter().filter(|&&v| (v as usize) < n) {
+                let root = find(&mut parent, v);
+                open[root as usize] = true;
+            }
+        }
+        // Number the closed components and sum their volumes about their first vertex.
+        let mut id: HashMap<u32, u32> = HashMap::new();
+        let mut component = vec![NONE; n];
+        let mut origin = Vec::new();
+        let mut volume6 = Vec::new();
+        for t in triangles.iter().filter(|t| valid(t)) {
+            let root = find(&mut parent, t[0]);
+            if open[root as usize] {
+                continue;
+            }
+            let c = *id.entry(root).or_insert_with(|| {
+                origin.push(positions[t[0] as usize].as_dvec3());
+                volume6.push(0.0);
+                origin.len() as u32 - 1
+            });
+            let [a, b, d] = t.map(|v| positions[v as usize].as_dvec3());
+            volume6[c as usize] += tet6(origin[c as usize], a, b, d);
+            for &v in t {
+                component[v as usize] = c;
+            }
+        }
+        let floor6 = volume6.iter().map(|v| v * MIN_VOLUME_SHARE).collect();
+        Self {
+            component,
+            volume6,
+            floor6,
+        }
+    }
+
+    /// `v`'s closed component, if it is on one.
+    #[inline]
+    pub fn component(&self, v: u32) -> Option<u32> {
+        self.component
+            .get(v as usize)
+            .copied()
+            .filter(|&c| c != NONE)
+    }
+
+    /// Whether changing component `c`'s volume (six times it) by `change6` keeps it beyond
+    /// its floor, on its starting side; `margin` multiplies the floor (a part working on
+    /// one core, which cannot see the others' changes, keeps a wider one).
+    pub fn allows(&self, c: u32, change6: f64, margin: f64) -> bool {
+        let (now, floor) = (self.volume6[c as usize], self.floor6[c as usize]);
+        let after = now + change6;
+        change6 * floor >= 0.0 || after * floor.signum() > floor.abs() * margin
+    }
+
+    /// Records a step that changed component `c`'s volume by `change6`.
+    pub fn apply(&mut self, c: u32, change6: f64) {
+        self.volume6[c as usize] += change6;
+    }
+
+    /// Six times component `c`'s signed volume now.
+    pub fn volume6(&self, c: u32) -> f64 {
+        self.volume6[c as usize]
+    }
+}
+
+/// A part working on one core keeps its closed components this many times their floor
+/// away from it: it cannot see what the other parts change (see `ClosedView`).
+const PART_MARGIN: f64 = 2.0;
+
+/// The volumes as one decimation step sees them: the whole mesh's, changed in place; or,
+/// for a part working on one core, the volumes as its round started plus its own changes,
+/// handed back at the round's end ([`ClosedVolumes::absorb`]).
+#[derive(Debug)]
+pub enum ClosedView<'a> {
+    Whole(&'a mut ClosedVolumes),
+    Part(&'a ClosedVolumes, HashMap<u32, f64>),
+}
+
+impl ClosedView<'_> {
+    /// `v`'s closed component, if it is on one.
+    #[inline]
+    pub fn component(&self, v: u32) -> Option<u32> {
+        match self {
+            Self::Whole(c) => c.component(v),
+            Self::Part(c, _) => c.component(v),
+        }
+    }
+
+    /// Whether a step changing component `c`'s volume by `change6` may be made.
+    pub fn allows(&self, c: u32, change6: f64) -> bool {
+        match self {
+            Self::Whole(v) => v.allows(c, change6, 1.0),
+            Self::Part(v, own) => {
+                let own = own.get(&c).copied().unwrap_or(0.0);
+                v.allows(c, own + change6, PART_MARGIN)
+            }
+        }
+    }
+
+    /// Records a step that changed component `c`'s volume by `change6`.
+    pub fn apply(&mut self, c: u32, change6: f64) {
+        match self {
+            Self::Whole(v) => v.apply(c, change6),
+            Self::Part(_, own) => *own.entry(c).or_default() += change6,
+        }
+    }
+
+    /// A part's own changes (none for the whole, which made them in place).
+    pub fn into_changes(self) -> HashMap<u32, f64> {
+        match self {
+            Self::Whole(_) => HashMap::new(),
+            Self::Part(_, own) => own,
+        }
+    }
+}
+
+impl ClosedVolumes {
+    /// Adds a part's changes (see [`ClosedView`]).
+    pub fn absorb(&mut self, changes: HashMap<u32, f64>) {
+        for (c, change6) in changes {
+            self.apply(c, change6);
+        }
+    }
+}
+
+/// The directed edge a → b as a sort key.
+fn key(a: u32, b: u32) -> u64 {
+    u64::from(a) << 32 | u64::from(b)
+}
+
+fn find(parent: &mut [u32], mut v: u32) -> u32 {
+    while parent[v as usize] != v {
+        let p = parent[parent[v as usize] as usize];
+        parent[v as usize] = p;
+        v = p;
+    }
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn box_mesh() -> (Vec<Vec3>, Vec<[u32; 3]>) {
+        let corner =
+            |i: u32| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32);
+        let quads: [[u32; 4]; 6] = [
+            [4, 5, 7, 6],
+            [0, 2, 3, 1],
+            [1, 3, 7, 5],
+            [0, 4, 6, 2],
+            [2, 6, 7, 3],
+            [0, 1, 5, 4],
+        ];
+        let tris = quads
+            .iter()
+            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+            .collect();
+        ((0..8).map(corner).collect(), tris)
+    }
+
+    #[test]
+    fn a_box_is_one_closed_component_of_its_volume_and_an_open_box_is_none() {
+        let (p, t) = box_mesh();
+        let c = ClosedVolumes::new(&p, &t);
+        assert_eq!(c.component(0), Some(0));
+        assert!((c.volume6(0) - 6.0).abs() < 1e-12);
+        // Steps that keep at least the floor are allowed, those past it (or past 0) not.
+        assert!(c.allows(0, -5.0, 1.0));
+        assert!(!c.allows(0, -5.8, 1.0));
+        assert!(!c.allows(0, -7.0, 1.0));
+        assert!(c.allows(0, 3.0, 1.0));
+        let open = ClosedVolumes::new(&p, &t[2..]);
+        assert_eq!(open.component(0), None);
+    }
+}

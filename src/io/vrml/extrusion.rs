@@ -1,0 +1,142 @@
+//! VRML 2.0's `Extrusion`: a 2D cross-section swept along a 3D spine, scaled and rotated at
+//! each spine point, closed by caps (VRML97 section 6.18). Each spine point gets its
+//! spine-aligned cross-section plane: Y along the spine, Z normal to the spine's bend (kept
+//! from the previous point where the spine is straight, flipped to stay continuous), X = Y × Z.
+//! Rings share their vertices with the caps, and a closed cross-section or spine shares its
+//! first and last points, so a closed extrusion is a closed surface.
+
+use glam::{Mat3, Quat, Vec2, Vec3};
+
+use super::lexer::{PResult, ParseError};
+use super::parse::Node;
+use super::vrml1::rotation;
+
+/// An extrusion's points (flat x y z) and polygons (corner lists and ends).
+pub struct Swept {
+    pub points: Vec<f32>,
+    pub corners: Vec<u32>,
+    pub ends: Vec<u32>,
+}
+
+fn vec2s(v: &[f32]) -> Vec<Vec2> {
+    v.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])).collect()
+}
+
+fn vec3s(v: &[f32]) -> Vec<Vec3> {
+    v.chunks_exact(3).map(Vec3::from_slice).collect()
+}
+
+/// The spine-aligned cross-section plane of each spine point, as rotations of the x-z plane.
+fn planes(spine: &[Vec3], closed: bool) -> Vec<Mat3> {
+    let n = spine.len();
+    let y_axis = |i: usize| -> Vec3 {
+        let (a, b) = match (i, closed) {
+            (0, true) => (spine[1], spine[n - 2]),
+            (0, false) => (spine[1], spine[0]),
+            (i, true) if i == n - 1 => (spine[1], spine[n - 2]),
+            (i, false) if i == n - 1 => (spine[n - 1], spine[n - 2]),
+            (i, _) => (spine[i + 1], spine[i - 1]),
+        };
+        (a - b).normalize_or_zero()
+    };
+    let z_axis = |i: usize| -> Vec3 {
+        let (prev, here, next) = match i {
+            0 if closed => (spine[n - 2], spine[0], spine[1]),
+            i if i == n - 1 && closed => (spine[n - 2], spine[0], spine[1]),
+            0 => return Vec3::ZERO,
+            i if i == n - 1 => return Vec3::ZERO,
+            i => (spine[i - 1], spine[i], spine[i + 1]),
+        };
+        (next - here).cross(prev - here).normalize_or_zero()
+    };
+    let mut zs: Vec<Vec3> = (0..n).map(z_axis).collect();
+    // Straight stretches take the previous Z (the first bend's for the start); a spine
+    // straight throughout turns the plane from +Y onto its direction.
+    let Some(first) = zs.iter().copied().find(|z| *z != Vec3::ZERO) else {
+        let dir = (spine[n - 1] - spine[0]).normalize_or_zero();
+        let turn = if dir == Vec3::ZERO {
+            Quat::IDENTITY
+        } else {
+            Quat::from_rotation_arc(Vec3::Y, dir)
+        };
+        return vec![Mat3::from_quat(turn); n];
+    };
+    let mut last = first;
+    for z in &mut zs {
+        if *z == Vec3::ZERO {
+            *z = last;
+        } else if z.dot(last) < 0.0 {
+            *z = -*z;
+        }
+        last = *z;
+    }
+    (0..n)
+        .map(|i| {
+            let y = match y_axis(i) {
+                y if y == Vec3::ZERO => Vec3::Y,
+                y => y,
+            };
+            let z = zs[i];
+            Mat3::from_cols(y.cross(z).normalize_or_zero(), y, z)
+        })
+        .collect()
+}
+
+/// Sweeps the Extrusion node `g` into points and polygons (the caps as single polygons).
+pub fn extrude(g: &Node) -> PResult<Swept> {
+    let square = [1.0, 1.0, 1.0, -1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0];
+    let section = vec2s(g.floats("crossSection").unwrap_or(&square));
+    let spine = vec3s(g.floats("spine").unwrap_or(&[0.0, 0.0, 0.0, 0.0, 1.0, 0.0]));
+    let scales = vec2s(g.floats("scale").unwrap_or(&[1.0, 1.0]));
+    let turns: Vec<Quat> = g
+        .floats("orientation")
+        .unwrap_or(&[0.0, 0.0, 1.0, 0.0])
+        .chunks_exact(4)
+        .map(|r| rotation(Some(r)))
+        .collect();
+    if scales.is_empty() || turns.is_empty() {
+        return Err(ParseError::new(
+            g.line,
+            "Extrusion needs at least one 'scale' and one 'orientation' value",
+        ));
+    }
+    let mut out = Swept {
+        points: Vec::new(),
+        corners: Vec::new(),
+        ends: Vec::new(),
+    };
+    if section.len() < 2 || spine.len() < 2 {
+        return Ok(out);
+    }
+    let section_closed = section.len() > 2 && section[0] == section[section.len() - 1];
+    let spine_closed = spine.len() > 2 && spine[0] == spine[spine.len() - 1];
+    let m = section.len() - usize::from(section_closed);
+    let n = spine.len() - usize::from(spine_closed);
+    let frames = planes(&spine, spine_closed);
+    for i in 0..n {
+        let s = scales[i.min(scales.len() - 1)];
+        let turn = turns[i.min(turns.len() - 1)];
+        for c in &section[..m] {
+            let local = turn * Vec3::new(c.x * s.x, 0.0, c.y * s.y);
+            out.points.extend((spine[i] + frames[i] * local).to_array());
+        }
+    }
+    let at = |i: usize, j: usize| ((i % n) * m + j % m) as u32;
+    for i in 0..spine.len() - 1 {
+        for j in 0..section.len() - 1 {
+            out.corners
+                .extend([at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)]);
+            out.ends.push(out.corners.len() as u32);
+        }
+    }
+    let cap = |field: &str| g.boolean(field).unwrap_or(true) && !spine_closed && m > 2;
+    if cap("beginCap") {
+        out.corners.extend((0..m).rev().map(|j| at(0, j)));
+        out.ends.push(out.corners.len() as u32);
+    }
+    if cap("endCap") {
+        out.corners.extend((0..m).map(|j| at(n - 1, j)));
+        out.ends.push(out.corners.len() as u32);
+    }
+    Ok(out)
+}

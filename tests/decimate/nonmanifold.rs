@@ -1,0 +1,250 @@
+//! Non-manifold input decimated by quadric edge collapse (`--algorithm qem`): generated
+//! shapes whose vertices on an edge of three or more triangles, or where two fans meet, used
+//! to be frozen. Flat-faced, so lossless collapses take each one down to its corners: exact
+//! counts, every triangle still in one of the input's face planes facing the same way (no
+//! flip), area and volume kept, and never more non-manifold edges than the input had.
+
+use std::collections::HashMap;
+
+use decimate::decimate::{simplify_scene, Algorithm, ErrorBound, Params, Target};
+use decimate::mesh::{measure, shapes, Model, Scene};
+use glam::{DVec3, Vec3};
+
+fn run(model: Model, params: &Params) -> Model {
+    let mut scene = Scene {
+        models: vec![model],
+    };
+    simplify_scene(&mut scene, params, &mut |_| {});
+    scene.models.pop().expect("the model is kept")
+}
+
+/// Collapses of zero error only (up to rounding).
+fn lossless() -> Params {
+    Params {
+        target: Target::ErrorOnly,
+        max_error: Some(ErrorBound::Absolute(1e-5)),
+        algorithm: Algorithm::Qem,
+        ..Params::default()
+    }
+}
+
+/// Builds a model from flat sheets, merging the vertices at the same position.
+#[derive(Default)]
+struct Builder {
+    index: HashMap<[u32; 3], u32>,
+    model: Model,
+}
+
+impl Builder {
+    fn vertex(&mut self, p: Vec3) -> u32 {
+        let positions = &mut self.model.positions;
+        *self
+            .index
+            .entry(p.to_array().map(f32::to_bits))
+            .or_insert_with(|| {
+                positions.push(p);
+                (positions.len() - 1) as u32
+            })
+    }
+
+    /// An `n`×`n` grid over the parallelogram `o + s·u + t·v` (s, t in 0..=1), facing
+    /// `u × v`.
+    fn sheet(&mut self, o: Vec3, u: Vec3, v: Vec3, n: u32) {
+        let at = |i: u32, j: u32| o + u * (i as f32 / n as f32) + v * (j as f32 / n as f32);
+        for j in 0..n {
+            for i in 0..n {
+                let [a, b, c, d] =
+                    [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)].map(|(i, j)| at(i, j));
+                let [a, b, c, d] = [a, b, c, d].map(|p| self.vertex(p));
+                self.model.triangles.push([a, b, c]);
+                self.model.triangles.push([a, c, d]);
+            }
+        }
+    }
+
+    /// Adds `m`'s triangles moved by `offset`.
+    fn add(&mut self, m: &Model, offset: Vec3) {
+        for t in &m.triangles {
+            let t = t.map(|v| self.vertex(m.positions[v as usize] + offset));
+            self.model.triangles.push(t);
+        }
+    }
+
+    fn build(self, name: &str) -> Model {
+        Model {
+            name: name.to_string(),
+            ..self.model
+        }
+    }
+}
+
+/// Each triangle's unit normal and plane offset.
+fn planes(m: &Model) -> Vec<(DVec3, f64)> {
+    m.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| m.positions[v as usize].as_dvec3());
+            let n = (b - a).cross(c - a).normalize_or_zero();
+            (n, n.dot(a))
+        })
+        .collect()
+}
+
+/// What a user would notice after a lossless decimation of a flat-faced `before`: a
+/// degenerate triangle, one that left the input's face planes or faces the other way
+/// (flipped), more non-manifold or misoriented edges, or a changed area or volume.
+fn assert_kept(before: &Model, after: &Model) {
+    let name = &before.name;
+    assert_eq!(measure::degenerate_triangles(after, 1e-9), 0, "{name}");
+    let input = planes(before);
+    for (t, (n, d)) in planes(after).into_iter().enumerate() {
+        assert!(
+            input
+                .iter()
+                .any(|&(m, e)| n.dot(m) > 1.0 - 1e-9 && (d - e).abs() < 1e-5),
+            "{name}: triangle {t} left the input's faces or flipped"
+        );
+    }
+    let (e0, e1) = (measure::edge_counts(before), measure::edge_counts(after));
+    assert!(
+        e1.non_manifold <= e0.non_manifold,
+        "{name}: {e0:?} -> {e1:?}"
+    );
+    assert_eq!(e1.misoriented, e0.misoriented, "{name}");
+    let (a0, a1) = (measure::area(before), measure::area(after));
+    assert!((a0 - a1).abs() < 1e-5 * a0, "{name}: area {a0} -> {a1}");
+    let (v0, v1) = (measure::volume(before), measure::volume(after));
+    assert!((v0 - v1).abs() < 1e-5 * a0, "{name}: volume {v0} -> {v1}");
+}
+
+/// (used vertices, triangles, non-manifold edges) of a model.
+fn counts(m: &Model) -> (usize, usize, usize) {
+    (
+        m.used_vertex_count(),
+        m.triangles.len(),
+        measure::edge_counts(m).non_manifold,
+    )
+}
+
+//   Three 4×4 sheets on one spine, seen from its end:
+//
+//          \   /
+//           \ /
+//            +----
+//
+// The spine's four edges each have three triangles. Each sheet keeps its two outer corners
+// and the spine its two ends: 8 vertices, two triangles a sheet, one non-manifold edge.
+#[test]
+fn three_sheets_on_one_edge_become_three_quads_on_one_edge() {
+    let mut b = Builder::default();
+    for k in 0..3 {
+        let angle = k as f32 * std::f32::consts::TAU / 3.0;
+        let out = Vec3::new(angle.cos(), angle.sin(), 0.0);
+        b.sheet(Vec3::ZERO, Vec3::Z, out, 4);
+    }
+    let before = b.build("three sheets");
+    assert_eq!(counts(&before), (65, 96, 4));
+    let after = run(before.clone(), &lossless());
+    assert_eq!(counts(&after), (8, 6, 1));
+    assert_kept(&before, &after);
+}
+
+// Two 4×4×4-gridded cubes of side 2 sharing one edge (four triangles on each of its four
+// edges): each keeps its 8 corners, two shared, and its 12 triangles.
+#[test]
+fn two_cubes_sharing_an_edge_become_two_boxes_on_one_edge() {
+    let cube = shapes::cube(4, 2.0);
+    let mut b = Builder::default();
+    b.add(&cube, Vec3::ZERO);
+    b.add(&cube, Vec3::new(2.0, 2.0, 0.0));
+    let before = b.build("two cubes on an edge");
+    assert_eq!(counts(&before), (2 * 98 - 5, 2 * 192, 4));
+    let after = run(before.clone(), &lossless());
+    assert_eq!(counts(&after), (14, 24, 1));
+    assert_kept(&before, &after);
+    assert!((measure::volume(&after) - 16.0).abs() < 1e-4);
+}
+
+// Two cubes sharing one corner: that vertex has two closed fans. 15 corners, 24 triangles.
+#[test]
+fn two_cubes_sharing_a_vertex_become_two_boxes_on_one_point() {
+    let cube = shapes::cube(4, 2.0);
+    let mut b = Builder::default();
+    b.add(&cube, Vec3::ZERO);
+    b.add(&cube, Vec3::splat(2.0));
+    let before = b.build("two cubes on a vertex");
+    assert_eq!(counts(&before), (2 * 98 - 1, 2 * 192, 0));
+    let after = run(before.clone(), &lossless());
+    assert_eq!(counts(&after), (15, 24, 0));
+    assert_kept(&before, &after);
+    assert!((measure::volume(&after) - 16.0).abs() < 1e-4);
+}
+
+//   A bowtie: two flat 4×4 squares meeting at one corner (two open fans there).
+//
+//          +---+
+//          |   |
+//      +---+---+
+//      |   |
+//      +---+
+//
+// Each keeps its four corners, one shared: 7 vertices, 4 triangles.
+#[test]
+fn a_bowtie_of_two_squares_becomes_four_triangles() {
+    let mut b = Builder::default();
+    b.sheet(Vec3::ZERO, Vec3::X, Vec3::Y, 4);
+    b.sheet(Vec3::ZERO, -Vec3::X, -Vec3::Y, 4);
+    let before = b.build("bowtie");
+    assert_eq!(counts(&before), (49, 64, 0));
+    let after = run(before.clone(), &lossless());
+    assert_eq!(counts(&after), (7, 4, 0));
+    assert_kept(&before, &after);
+}
+
+// A curved shape with a fin: a bumpy sphere with a sheet standing out of one meridian,
+// from pole to pole (three triangles on each of the meridian's 24 edges). Kept at 5 % of its
+// triangles, it reaches the count, and the fin's foot is simplified with the rest, not
+// frozen: fewer non-manifold edges than before, none added, no flipped triangle.
+#[test]
+fn a_finned_sphere_reaches_its_count_and_simplifies_the_fin() {
+    let (rings, segments) = (24, 48);
+    let sphere = shapes::bumpy_sphere(rings, segments);
+    let mut b = Builder::default();
+    b.add(&sphere, Vec3::ZERO);
+    // The meridian at segment 0, pole to pole (see `shapes::uv_sphere`'s numbering).
+    let last = sphere.positions.len() - 1;
+    let meridian: Vec<Vec3> = std::iter::once(0)
+        .chain((1..rings as usize).map(|r| 1 + (r - 1) * segments as usize))
+        .chain(std::iter::once(last))
+        // As `add` placed them (adding the zero offset turns -0 into 0).
+        .map(|v| sphere.positions[v] + Vec3::ZERO)
+        .collect();
+    for pair in meridian.windows(2) {
+        let [a, c] = [pair[0], pair[1]];
+        let [a, c, d, e] = [a, c, c * 1.3, a * 1.3].map(|p| b.vertex(p));
+        b.model.triangles.push([a, c, d]);
+        b.model.triangles.push([a, d, e]);
+    }
+    let before = b.build("finned sphere");
+    let (_, triangles, non_manifold) = counts(&before);
+    assert_eq!((triangles, non_manifold), (2 * 48 * 23 + 48, 24));
+    let keep = triangles / 20;
+    let params = Params {
+        target: Target::KeepTriangles(keep),
+        algorithm: Algorithm::Qem,
+        ..Params::default()
+    };
+    let after = run(before.clone(), &params);
+    let (_, left, non_manifold) = counts(&after);
+    assert!(
+        left <= keep && left * 50 >= keep * 49,
+        "{left} triangles, {keep} asked"
+    );
+    assert!(
+        (1..24).contains(&non_manifold),
+        "{non_manifold} non-manifold edges"
+    );
+    let e = measure::edge_counts(&after);
+    assert_eq!(e.misoriented, 0);
+    assert_eq!(measure::degenerate_triangles(&after, 1e-9), 0);
+}

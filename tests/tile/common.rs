@@ -1,0 +1,54 @@
+//! The test mesh and the command runner shared by the tile tests.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use decimate::mesh::{shapes, Model, Scene};
+
+/// A closed bumpy sphere of 57 600 triangles written as binary PLY into `dir`.
+pub fn sphere_ply(dir: &Path) -> (PathBuf, Model) {
+    let model = shapes::bumpy_sphere(121, 240);
+    let path = dir.join("sphere.ply");
+    let scene = Scene {
+        models: vec![model.clone()],
+    };
+    decimate::io::write_ply(&scene, &path).expect("write the test mesh");
+    (path, model)
+}
+
+/// Runs `decimate` with `args` (and `env`), returning its output.
+pub fn decimate(args: &[&str], env: &[(&str, &str)]) -> Output {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_decimate"));
+    c.args(args)
+        .env_remove("SLURM_ARRAY_TASK_ID")
+        .env_remove("JOB_COMPLETION_INDEX");
+    for (k, v) in env {
+        c.env(k, v);
+    }
+    c.output().expect("run decimate")
+}
+
+/// As [`decimate`], asserting success.
+pub fn ok(args: &[&str], env: &[(&str, &str)]) -> Output {
+    let out = decimate(args, env);
+    assert!(
+        out.status.success(),
+        "decimate {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+/// The single model a PLY file holds, read by the in-memory reader.
+pub fn read_model(path: &Path) -> Model {
+    let outcome = decimate::io::read_scene(path).expect("read the result");
+    let mut models = outcome.scene.models;
+    assert_eq!(models.len(), 1, "{}", path.display());
+    let mut m = models.remove(0);
+    decimate::mesh::weld::weld(&mut m, 0.0);
+    m
+}
+
+pub fn s(p: &Path) -> &str {
+    p.to_str().expect("utf-8 temp path")
+}

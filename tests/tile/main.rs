@@ -1,0 +1,7 @@
+//! Tiled decimation as a user and a scheduler run it: `decimate tile plan/run/status/merge`,
+//! `nogui --tiles`, and the GNU parallel job script of tools/.
+
+mod common;
+mod errors;
+mod pipeline;
+mod scheduler;
