@@ -152,14 +152,15 @@ usage: decimate filename [action] [action-options]
   -h, --help            prints this message
   --version             prints the version
   filename              the VRML 1.0 / VRML 2.0 / Open Inventor ASCII file to open
-                        (gzipped too; PLY, OBJ, STL and OFF are also read, the
-                        extension or the first bytes pick the format)
+                        (gzipped too; PLY, OBJ, STL, OFF and glTF are also read,
+                        the extension or the first bytes pick the format)
   action                gui (DEFAULT) | nogui | shot
 
 action-options for nogui (one target is MANDATORY):
   -o filename           the file to save as; the extension picks the format: .wrl
-                        (VRML 2.0), .ply, .obj, .stl, .off (DEFAULT: out.wrl);
-                        .obj writes its materials to a .mtl of the same name
+                        (VRML 2.0), .ply, .obj, .stl, .off, .gltf, .glb (DEFAULT:
+                        out.wrl); .obj writes its materials to a .mtl of the same
+                        name, .gltf its buffer to a .bin
   -a, --algorithm A     schroeder (DEFAULT: vertex removal, vertices never move) |
                         qem (quadric edge collapse, vertices move)
   -p number             percent of the vertices to remove (100: as far as possible)

@@ -9,7 +9,8 @@
 //!
 //! Layers, bottom to top: `alloc`, `threads` (process plumbing, no imports) < `mesh` (data
 //! model) < `io` | `decimate` (siblings) < `metro` < `render` < `cli` (parsed command line,
-//! shared by both front ends) < `app` | `batch` | `tile` (siblings) < `main` (src/main.rs, src/bin/).
+//! shared by both front ends) < `app` | `batch` | `tile` | `api` (siblings; `api` is the
+//! library's entry point for programs) < `main` (src/main.rs, src/bin/).
 //! `render` and `metro` may import `mesh` only of the layers below them.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -26,7 +27,7 @@ fn layer_of(top: &str) -> Option<u32> {
         "metro" => 3,
         "render" => 4,
         "cli" => 5,
-        "app" | "batch" | "tile" => 6,
+        "app" | "batch" | "tile" | "api" => 6,
         "main" => 7,
         _ => return None,
     })

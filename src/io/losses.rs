@@ -16,7 +16,8 @@ use crate::mesh::{Attribute, Model, Scene};
 pub fn losses(scene: &Scene, format: Option<Format>) -> Vec<String> {
     let format = format.unwrap_or(Format::Vrml2);
     let name = match format {
-        Format::Vrml2 => return Vec::new(),
+        // glTF keeps per-face colours by giving each triangle corner its own vertex.
+        Format::Vrml2 | Format::Gltf | Format::Glb => return Vec::new(),
         Format::Ply => "PLY",
         Format::Obj => "OBJ",
         Format::Stl => "STL",

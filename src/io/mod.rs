@@ -14,8 +14,11 @@
 //! by [`read_scene`], which knows the OBJ's folder, and written beside an OBJ output) and
 //! `texture_path` (texture names re-expressed for the folder a scene is written to:
 //! [`rebase_textures`], which every writer's caller applies first), `losses` (what an output
-//! format cannot hold, said before writing).
+//! format cannot hold, said before writing), `gltf` (glTF 2.0 `.gltf`/`.glb`, read and
+//! written) and `data_uri` (the `data:` URIs glTF embeds buffers and images in).
 
+pub mod data_uri;
+pub mod gltf;
 pub mod losses;
 pub mod mtl;
 pub mod obj;
@@ -120,6 +123,9 @@ pub enum Format {
     Obj,
     Stl,
     Off,
+    /// glTF 2.0 as JSON (`.gltf`) or binary (`.glb`); both are read from either extension.
+    Gltf,
+    Glb,
 }
 
 impl Format {
@@ -140,6 +146,8 @@ impl Format {
             "obj" => Self::Obj,
             "stl" => Self::Stl,
             "off" => Self::Off,
+            "gltf" => Self::Gltf,
+            "glb" => Self::Glb,
             _ => return None,
         })
     }
@@ -153,7 +161,7 @@ pub struct ReadOptions {
     pub lenient: bool,
 }
 
-/// Reads a VRML 1.0, VRML 2.0, Open Inventor ASCII, PLY, OBJ, STL or OFF file (optionally
+/// Reads a VRML 1.0, VRML 2.0, Open Inventor ASCII, PLY, OBJ, STL, OFF or glTF file (optionally
 /// gzipped); an OBJ's material libraries are read from its folder and applied (see `mtl`).
 pub fn read_scene(path: &Path) -> Result<ReadOutcome, ReadError> {
     read_scene_with(path, ReadOptions::default())
@@ -220,6 +228,10 @@ fn parse_bytes_with(
         line: e.line,
         message: e.message,
     };
+    let gltf_by_name = matches!(by_name, Some(Format::Gltf | Format::Glb));
+    if gltf::is_glb(&bytes) || gltf_by_name {
+        return gltf::read_gltf(&bytes, path);
+    }
     let ply_by_name = by_name == Some(Format::Ply);
     if bytes.starts_with(b"ply") && matches!(bytes.get(3), Some(b'\n' | b'\r')) || ply_by_name {
         let (scene, warnings) = ply::read_ply(&bytes).map_err(syntax)?;
@@ -303,7 +315,8 @@ fn parse_bytes_with(
     vrml::read_tree(&bytes, path, dialect, options).map_err(syntax)
 }
 
-/// Writes `scene` to `path` in the format its extension names: `.ply`, `.obj`, `.stl`, `.off`;
+/// Writes `scene` to `path` in the format its extension names: `.ply`, `.obj`, `.stl`, `.off`,
+/// `.gltf`, `.glb`;
 /// `.wrl` and anything else give VRML 2.0. Always via a temporary file and a rename. Texture
 /// names are written as they are: a scene read from another folder is given to
 /// [`rebase_textures`] first. An OBJ may come with an MTL file beside it (see `mtl`).
@@ -313,6 +326,7 @@ pub fn write_scene(scene: &Scene, path: &Path) -> Result<(), WriteError> {
         Some(Format::Obj) => write_obj(scene, path),
         Some(Format::Stl) => write_stl(scene, path),
         Some(Format::Off) => write_off(scene, path),
+        Some(Format::Gltf | Format::Glb) => gltf::write_gltf(scene, path),
         Some(Format::Vrml2) | None => write_vrml2(scene, path),
     }
 }

@@ -11,7 +11,7 @@
 //! silently. A bad line is a warning naming the file and line, and is skipped: materials
 //! only change how a model looks, so they never stop a file from being read.
 //!
-//! [`apply_materials`] is what `io::read_scene` does for an OBJ: load each `mtllib` relative
+//! `apply_materials` is what `io::read_scene` does for an OBJ: load each `mtllib` relative
 //! to the OBJ's folder (a name with spaces is tried whole first, then as a list of files),
 //! and give each model whose `usemtl` names a material its `Kd` as `Model::diffuse` and its
 //! `map_Kd` as `Model::texture` (models with texture coordinates only), re-expressed

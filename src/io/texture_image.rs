@@ -1,6 +1,7 @@
 //! Texture images read from files: a texture name resolved beside the model's file (or as a
 //! `file:` URL), and PNG (any colour type and depth) or JPEG bytes decoded to 8-bit RGBA.
-//! Other URLs are not fetched; other formats are refused with the reason.
+//! Other URLs are not fetched (a `data:` URI is decoded: it holds the image); other formats
+//! are refused with the reason.
 
 use std::path::{Path, PathBuf};
 
@@ -29,8 +30,12 @@ pub fn reader(folder: &Path) -> impl FnMut(&str) -> Result<RgbaImage, String> + 
     move |name| read(name, &folder)
 }
 
-/// Reads and decodes the image `name` names (relative to `folder`).
+/// Reads and decodes the image `name` names (relative to `folder`), or holds itself (a
+/// `data:` URI: an image embedded in a glTF file, see `io::data_uri`).
 pub fn read(name: &str, folder: &Path) -> Result<RgbaImage, String> {
+    if let Some(embedded) = crate::io::data_uri::parse(name) {
+        return decode(&embedded?.bytes);
+    }
     let path = resolve(name, folder)?;
     let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))

@@ -145,13 +145,17 @@ impl Textures {
                     }
                     Ok(_) => {
                         eprintln!(
-                            "decimate: warning: texture {name:?} not drawn: more than \
-                             {MAX_TEXTURES} textures"
+                            "decimate: warning: texture {:?} not drawn: more than \
+                             {MAX_TEXTURES} textures",
+                            shown(name)
                         );
                         None
                     }
                     Err(why) => {
-                        eprintln!("decimate: warning: texture {name:?} not drawn: {why}");
+                        eprintln!(
+                            "decimate: warning: texture {:?} not drawn: {why}",
+                            shown(name)
+                        );
                         None
                     }
                 };
@@ -218,6 +222,18 @@ impl Textures {
         // for as long as the set is (both owned here).
         unsafe { device.update_descriptor_sets(&write, &[]) };
         Ok(Entry { _image: image, set })
+    }
+}
+
+/// Most characters of a texture name a warning shows: a `data:` URI (an image embedded in
+/// a glTF file) can run to megabytes.
+const SHOWN_NAME: usize = 80;
+
+/// `name` as a warning shows it: cut to [`SHOWN_NAME`] characters, with its length.
+fn shown(name: &str) -> std::borrow::Cow<'_, str> {
+    match name.char_indices().nth(SHOWN_NAME) {
+        Some((cut, _)) => format!("{}… ({} characters)", &name[..cut], name.len()).into(),
+        None => name.into(),
     }
 }
 

@@ -24,7 +24,7 @@ fn assets_match_the_generator_and_the_report() {
             .join(format!("{}.wrl", shape.name));
         let scene = read_scene(&path)
             .unwrap_or_else(|e| {
-                panic!("{e} (regenerate: cargo run --bin gen-models -- assets assets)")
+                panic!("{e} (regenerate: cargo run --example gen-models -- assets assets)")
             })
             .scene;
         assert_eq!(scene.models.len(), 1, "{}", shape.name);

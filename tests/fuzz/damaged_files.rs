@@ -114,6 +114,16 @@ const TOKENS: &[&str] = &[
     "Rotation { rotation 0 0 0 1 }",
     "\u{feff}",
     "é",
+    "\"bufferView\": 0",
+    "\"byteStride\": 3",
+    "\"count\": 4294967295",
+    "\"componentType\": 5120",
+    "\"type\": \"VEC2\"",
+    "\"mode\": 5",
+    "\"children\": [0]",
+    "\"matrix\": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]",
+    "\"normalized\": true",
+    "data:application/octet-stream;base64,AAAA",
 ];
 
 /// One mutation of `bytes`.

@@ -1,6 +1,8 @@
 //! The small valid files the mutants start from: one written by each of our writers, and
 //! hand-written ones for the syntax our writers do not produce.
 
+use std::path::Path;
+
 use decimate::decimate::{simplify_scene_progressive, Params};
 use decimate::io;
 use decimate::mesh::{shapes, Attribute, Scene};
@@ -52,7 +54,48 @@ pub fn seeds() -> Vec<(&'static str, Vec<u8>)> {
         ("ascii.stl", ASCII_STL.as_bytes().to_vec()),
         ("colour.off", COLOUR_OFF.as_bytes().to_vec()),
         ("faces.obj", OBJ.as_bytes().to_vec()),
+        ("seed.glb", gltf_seed()),
+        ("seed.gltf", gltf_json_seed(&gltf_seed())),
     ]
+}
+
+/// A small glTF scene as `.glb`, written by the program: a cube with per-face colours
+/// (one vertex per corner), placed by a mirroring transform, and a sphere textured by an
+/// embedded 2 × 2 PNG.
+fn gltf_seed() -> Vec<u8> {
+    let mut png_bytes = Vec::new();
+    let mut e = png::Encoder::new(&mut png_bytes, 2, 2);
+    e.set_color(png::ColorType::Rgb);
+    let mut w = e.write_header().expect("png header");
+    w.write_image_data(&[255; 12]).expect("png data");
+    drop(w);
+    let mut sphere = shapes::bumpy_sphere(3, 4);
+    sphere.texcoords = Some(sphere.positions.iter().map(|p| [p.x, p.y]).collect());
+    sphere.texture = Some(io::data_uri::encode("image/png", &png_bytes));
+    let mut cube = shapes::cube(1, 2.0);
+    let t = cube.triangles.len();
+    cube.colors = Some(Attribute::PerFace(vec![[1.0, 0.5, 0.0]; t]));
+    cube.transform = glam::Mat4::from_scale(glam::Vec3::new(-1.0, 2.0, 1.0));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("fuzz_inputs-seed");
+    std::fs::create_dir_all(&dir).expect("creates the seed folder");
+    let path = dir.join("seed.glb");
+    let scene = Scene {
+        models: vec![cube, sphere],
+    };
+    io::write_scene(&scene, &path).expect("writes the glTF seed");
+    std::fs::read(&path).expect("reads the glTF seed")
+}
+
+/// The `.glb` as `.gltf` text, its binary chunk a base64 `data:` URI.
+fn gltf_json_seed(glb: &[u8]) -> Vec<u8> {
+    let u32_at = |i: usize| u32::from_le_bytes([glb[i], glb[i + 1], glb[i + 2], glb[i + 3]]);
+    let json_len = u32_at(12) as usize;
+    let json = &glb[20..20 + json_len];
+    let bin_len = u32_at(20 + json_len) as usize;
+    let bin = &glb[28 + json_len..28 + json_len + bin_len];
+    let mut doc: serde_json::Value = serde_json::from_slice(json).expect("the seed's JSON");
+    doc["buffers"][0]["uri"] = io::data_uri::encode("application/octet-stream", bin).into();
+    serde_json::to_vec_pretty(&doc).expect("serializes")
 }
 
 const VRML1: &str = "#VRML V1.0 ascii

@@ -1,7 +1,8 @@
 //! Reading and writing files: every format's syntax and geometry node, errors with file and
 //! line, round trips through our writers, real Inventor models and their triangle counts
-//! against Coin's, VTK reading our VRML output, and materials and texture wrapping carried
-//! from input to output by the binary.
+//! against Coin's, VTK reading our VRML output, materials and texture wrapping carried
+//! from input to output by the binary, and glTF read and written (checked by the Khronos
+//! validator).
 
 #[path = "../support/mod.rs"]
 mod support;
@@ -9,6 +10,7 @@ mod support;
 mod coin_counts;
 mod errors;
 mod formats;
+mod gltf;
 mod inventor_data;
 mod nodes;
 mod obj_materials;

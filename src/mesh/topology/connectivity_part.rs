@@ -249,7 +249,7 @@ impl ConnectivityPart<'_> {
         let r = self.vertex(remove);
         if self.incidence[r].len as usize > INLINE {
             if let Some(spilled) = self.spilled.as_deref_mut() {
-                spilled.remove(&remove);
+                spilled.remove_vertex(remove);
             }
         }
         self.incidence[r].len = 0;

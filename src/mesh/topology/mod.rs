@@ -10,6 +10,8 @@
 
 mod connectivity_part;
 
+use std::collections::HashMap;
+
 use rayon::prelude::*;
 
 pub use connectivity_part::{split_mut, ConnectivityPart, FanTriangle};
@@ -40,8 +42,61 @@ struct Incidence {
     ids: [u32; INLINE],
 }
 
-/// Incident lists longer than `INLINE`, by vertex.
-type Spilled = std::collections::HashMap<u32, Vec<u32>>;
+/// Incident lists longer than `INLINE`, by vertex, with each entry's place in its list, so
+/// that unlinking a triangle from a vertex of any valence takes constant time.
+#[derive(Debug, Clone, Default)]
+struct Spilled {
+    lists: HashMap<u32, Vec<u32>>,
+    places: HashMap<(u32, u32), u32>,
+}
+
+impl Spilled {
+    fn get(&self, v: u32) -> Option<&Vec<u32>> {
+        self.lists.get(&v)
+    }
+
+    /// Appends `t` to `v`'s list, starting it from the inline ids when it spills now.
+    fn push(&mut self, v: u32, t: u32, inline: &[u32]) {
+        let list = self.lists.entry(v).or_insert_with(|| {
+            for (i, &id) in inline.iter().enumerate() {
+                self.places.entry((v, id)).or_insert(i as u32);
+            }
+            inline.to_vec()
+        });
+        self.places.entry((v, t)).or_insert(list.len() as u32);
+        list.push(t);
+    }
+
+    /// Removes one `t` from `v`'s list as `swap_remove` does; the list left, if `t` was in it.
+    fn remove(&mut self, v: u32, t: u32) -> Option<&[u32]> {
+        let list = self.lists.get_mut(&v)?;
+        let recorded = self.places.remove(&(v, t)).map(|p| p as usize);
+        // A degenerate triangle can be listed twice: fall back to a search then.
+        let pos = match recorded {
+            Some(p) if list.get(p) == Some(&t) => p,
+            _ => list.iter().position(|&x| x == t)?,
+        };
+        list.swap_remove(pos);
+        if let Some(&moved) = list.get(pos) {
+            self.places.insert((v, moved), pos as u32);
+        }
+        Some(list)
+    }
+
+    /// Forgets `v`'s list.
+    fn remove_vertex(&mut self, v: u32) {
+        if let Some(list) = self.lists.remove(&v) {
+            for t in list {
+                self.places.remove(&(v, t));
+            }
+        }
+    }
+
+    fn extend(&mut self, other: Self) {
+        self.lists.extend(other.lists);
+        self.places.extend(other.places);
+    }
+}
 
 /// Triangles with per-vertex incidence, editable in place.
 #[derive(Debug, Clone)]
@@ -104,7 +159,7 @@ impl Connectivity {
             .enumerate()
             .map(|(i, lists)| {
                 let v0 = (i * chunk) as u32;
-                let mut spilled = Spilled::new();
+                let mut spilled = Spilled::default();
                 for (t, tri) in triangles.iter().enumerate() {
                     for &v in tri {
                         if let Some(inc) = lists.get_mut(v.wrapping_sub(v0) as usize) {
@@ -120,7 +175,12 @@ impl Connectivity {
             alive_count: triangles.len(),
             triangles,
             incidence,
-            spilled: spills.into_iter().flatten().collect(),
+            spilled: spills
+                .into_iter()
+                .fold(Spilled::default(), |mut all, part| {
+                    all.extend(part);
+                    all
+                }),
             free: Vec::new(),
         }
     }
@@ -386,7 +446,7 @@ fn incident<'a>(inc: &'a Incidence, spilled: Option<&'a Spilled>, v: u32) -> &'a
     if len <= INLINE {
         &inc.ids[..len]
     } else {
-        spilled.and_then(|s| s.get(&v)).map_or(&[], Vec::as_slice)
+        spilled.and_then(|s| s.get(v)).map_or(&[], Vec::as_slice)
     }
 }
 
@@ -401,8 +461,7 @@ fn link(inc: &mut Incidence, spilled: Option<&mut Spilled>, v: u32, t: u32) {
     if len < INLINE {
         inc.ids[len] = t;
     } else if let Some(spilled) = spilled {
-        let list = spilled.entry(v).or_insert_with(|| inc.ids.to_vec());
-        list.push(t);
+        spilled.push(v, t, &inc.ids);
     } else {
         return;
     }
@@ -423,22 +482,46 @@ fn unlink(inc: &mut Incidence, spilled: Option<&mut Spilled>, v: u32, t: u32) {
     let Some(spilled) = spilled else {
         return;
     };
-    let Some(list) = spilled.get_mut(&v) else {
+    let Some(list) = spilled.remove(v, t) else {
         return;
     };
-    if let Some(pos) = list.iter().position(|&x| x == t) {
-        list.swap_remove(pos);
-        inc.len -= 1;
-    }
+    inc.len = list.len() as u32;
     if list.len() <= INLINE {
         inc.ids[..list.len()].copy_from_slice(list);
-        spilled.remove(&v);
+        spilled.remove_vertex(v);
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_hub_keeps_exactly_its_live_triangles_as_they_go_and_come() {
+        // A fan of 200 triangles around vertex 0: its list spills, shrinks back inline,
+        // and spills again, removed in an order that moves entries within the list.
+        let n = 200u32;
+        let tris: Vec<[u32; 3]> = (0..n).map(|i| [0, 1 + i, 1 + (i + 1) % n]).collect();
+        let mut c = Connectivity::new(n as usize + 1, &tris);
+        let mut live: Vec<u32> = (0..n).collect();
+        let order: Vec<u32> = (0..n).map(|i| (i * 37) % n).collect();
+        for (k, &t) in order.iter().enumerate() {
+            c.remove_triangle(t);
+            live.retain(|&x| x != t);
+            if k % 50 == 0 {
+                let mut got = c.incident(0).to_vec();
+                got.sort_unstable();
+                assert_eq!(got, live, "after removing {} triangles", k + 1);
+            }
+        }
+        assert!(c.incident(0).is_empty());
+        let added: Vec<u32> = (0..n).map(|i| c.add_triangle(tris[i as usize])).collect();
+        let mut got = c.incident(0).to_vec();
+        got.sort_unstable();
+        let mut want = added;
+        want.sort_unstable();
+        assert_eq!(got, want);
+    }
 
     #[test]
     fn corner_of_finds_the_corner_and_its_neighbours_in_cyclic_order() {

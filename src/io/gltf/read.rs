@@ -1,0 +1,482 @@
+//! Reading `.gltf` and `.glb` into a `Scene`: the default scene's nodes are walked from
+//! their roots, each node's matrix or TRS composed onto its parent's, and every triangle
+//! primitive of a node's mesh becomes one model placed by the node's world transform
+//! (decoded once per primitive, however many nodes use its mesh).
+//!
+//! Kept: POSITION, NORMAL, TEXCOORD_0 (v flipped: glTF's images start at the top, a
+//! model's texture coordinates at the bottom), COLOR_0 (RGB of RGB or RGBA), the base
+//! colour factor and texture (PNG or JPEG, beside the file or embedded: an embedded image
+//! becomes a `data:` URI, see `io::data_uri`), the sampler's wrapping and the double-sided
+//! flag. Points and lines, skins and morph targets cannot be held by a `Scene`: one warning
+//! names what was left out (skinned and morphed meshes are read in their rest pose).
+
+use std::collections::{HashMap, HashSet};
+use std::path::Path;
+
+use glam::Mat4;
+use gltf::mesh::Mode;
+use gltf::Semantic;
+
+use super::accessor::{read_floats, read_floats_prefix, read_indices, Buffers};
+use crate::io::{data_uri, texture_path, ReadError, ReadOutcome, MAX_MODELS, MAX_TRIANGLES};
+use crate::mesh::{Attribute, Model, Scene};
+
+/// Most node visits one file may take (a node listed as the child of several parents is
+/// visited once per path; a file could otherwise multiply its nodes exponentially).
+const MAX_NODE_VISITS: usize = MAX_MODELS;
+
+/// Reads a glTF 2.0 file (JSON or binary) held in `bytes`; `path` names it in messages and
+/// is the folder external buffers and images are read from.
+pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
+    let fail = |message: String| ReadError::Unsupported {
+        file: path.to_path_buf(),
+        message,
+    };
+    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| match e {
+        gltf::Error::Deserialize(j) => ReadError::Syntax {
+            file: path.to_path_buf(),
+            line: j.line().max(1),
+            message: format!("not valid glTF JSON: {j}"),
+        },
+        e => fail(describe(&e)),
+    })?;
+    validate(&gltf.document).map_err(fail)?;
+    let folder = texture_path::folder_of(path);
+    let buffers = load_buffers(&gltf, folder).map_err(fail)?;
+    let mut reader = Reader {
+        buffers: &buffers,
+        primitives: HashMap::new(),
+        models: Vec::new(),
+        warnings: Vec::new(),
+        warned: HashSet::new(),
+        triangles: 0,
+        visits: 0,
+        node_count: gltf.document.nodes().count(),
+    };
+    let document = &gltf.document;
+    match document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+    {
+        Some(scene) => {
+            for node in scene.nodes() {
+                reader.node(&node, Mat4::IDENTITY, 0).map_err(fail)?;
+            }
+        }
+        // No scene: every mesh once, where it stands.
+        None => {
+            for mesh in document.meshes() {
+                reader.mesh(&mesh, Mat4::IDENTITY, None).map_err(fail)?;
+            }
+        }
+    }
+    let Reader {
+        models,
+        mut warnings,
+        ..
+    } = reader;
+    if document.animations().count() > 0 {
+        warnings.push(
+            "glTF animations are not kept (the scene is read as it stands at rest)".to_string(),
+        );
+    }
+    Ok(ReadOutcome {
+        scene: Scene { models },
+        warnings,
+        progressive: None,
+        material_libraries: Vec::new(),
+    })
+}
+
+/// The gltf crate's checks (every index in range, required fields present), less two it
+/// makes that the reader does not need: POSITION's `min` and `max` (exporters often leave
+/// them out; the reader computes bounds itself) and `KHR_mesh_quantization` (its integer
+/// attributes are decoded by `accessor`).
+fn validate(document: &gltf::Document) -> Result<(), String> {
+    use gltf::json::validation::{Error, Validate};
+    let root = document.as_json();
+    // gltf-json 1.4 looks up POSITION's accessor unchecked: check the indices first.
+    let n = root.accessors.len();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            if let Some(i) = primitive.attributes.values().find(|i| i.value() >= n) {
+                return Err(format!(
+                    "mesh {m} primitive {p} names accessor {}, but there are {n}",
+                    i.value()
+                ));
+            }
+        }
+    }
+    let mut errors = Vec::new();
+    root.validate(root, gltf::json::Path::new, &mut |path, error| {
+        let path = path();
+        let shown = path.to_string();
+        let bounds = shown.ends_with(".min") || shown.ends_with(".max");
+        let quantization =
+            matches!(error, Error::Unsupported) && shown.contains("\"KHR_mesh_quantization\"");
+        if !bounds && !quantization {
+            errors.push((path, error));
+        }
+    });
+    match errors.is_empty() {
+        true => Ok(()),
+        false => Err(describe(&gltf::Error::Validation(errors))),
+    }
+}
+
+/// A gltf crate error said for a user: validation errors list what is wrong and where.
+fn describe(e: &gltf::Error) -> String {
+    match e {
+        gltf::Error::Validation(list) => {
+            let shown: Vec<String> = list
+                .iter()
+                .take(5)
+                .map(|(path, err)| format!("{path}: {err}"))
+                .collect();
+            let more = match list.len() {
+                n if n > 5 => format!(" (and {} more)", n - 5),
+                _ => String::new(),
+            };
+            format!("not a valid glTF 2.0 file: {}{more}", shown.join("; "))
+        }
+        gltf::Error::Binary(b) => format!("not a valid binary glTF (.glb) file: {b}"),
+        e => format!("not a valid glTF 2.0 file: {e}"),
+    }
+}
+
+/// Every buffer's bytes: the GLB's BIN chunk, a `data:` URI or a file beside `folder`.
+fn load_buffers(gltf: &gltf::Gltf, folder: &Path) -> Result<Buffers, String> {
+    let mut out = Vec::new();
+    for buffer in gltf.document.buffers() {
+        let i = buffer.index();
+        let data = match buffer.source() {
+            gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| {
+                format!("buffer {i} is the GLB's binary chunk, but there is none")
+            })?,
+            gltf::buffer::Source::Uri(uri) => match data_uri::parse(uri) {
+                Some(d) => d.map_err(|e| format!("buffer {i}: {e}"))?.bytes,
+                None => {
+                    let name = String::from_utf8_lossy(&data_uri::percent_decode(uri)).into_owned();
+                    let file = folder.join(&name);
+                    std::fs::read(&file)
+                        .map_err(|e| format!("buffer {i}: {}: {e}", file.display()))?
+                }
+            },
+        };
+        if data.len() < buffer.length() {
+            return Err(format!(
+                "buffer {i} holds {} bytes, but the file says {}",
+                data.len(),
+                buffer.length()
+            ));
+        }
+        out.push(data);
+    }
+    Ok(Buffers(out))
+}
+
+/// What the walk carries: the decoded primitives by (mesh, primitive), the models so far.
+struct Reader<'b> {
+    buffers: &'b Buffers,
+    primitives: HashMap<(usize, usize), Option<Model>>,
+    models: Vec<Model>,
+    warnings: Vec<String>,
+    /// The kinds of warning given (one each), and the triangles placed so far.
+    warned: HashSet<&'static str>,
+    triangles: usize,
+    /// Nodes visited so far, and the file's node count (a sound hierarchy's deepest path).
+    visits: usize,
+    node_count: usize,
+}
+
+impl Reader<'_> {
+    fn warn_once(&mut self, key: &'static str, message: String) {
+        if self.warned.insert(key) {
+            self.warnings.push(message);
+        }
+    }
+
+    fn node(&mut self, node: &gltf::Node<'_>, parent: Mat4, depth: usize) -> Result<(), String> {
+        self.visits += 1;
+        if self.visits > MAX_NODE_VISITS {
+            return Err(format!(
+                "the node hierarchy expands to more than {MAX_NODE_VISITS} nodes (a node with several parents?)"
+            ));
+        }
+        // A path longer than the node count repeats a node: the hierarchy has a cycle.
+        if depth > self.node_count {
+            return Err(format!("node {} is its own ancestor", node.index()));
+        }
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if !world.is_finite() {
+            return Err(format!("node {}'s transform is not finite", node.index()));
+        }
+        if let Some(mesh) = node.mesh() {
+            if node.skin().is_some() {
+                let name = mesh.name().unwrap_or("").to_string();
+                self.warn_once(
+                    "skin",
+                    format!(
+                        "skinned meshes are read in their rest pose, without joints and weights (mesh {} '{name}')",
+                        mesh.index()
+                    ),
+                );
+            }
+            self.mesh(&mesh, world, node.name())?;
+        }
+        for child in node.children() {
+            self.node(&child, world, depth + 1)?;
+        }
+        Ok(())
+    }
+
+    /// Places every triangle primitive of `mesh` at `world`, as one model each.
+    fn mesh(
+        &mut self,
+        mesh: &gltf::Mesh<'_>,
+        world: Mat4,
+        node_name: Option<&str>,
+    ) -> Result<(), String> {
+        let several = mesh.primitives().len() > 1;
+        for primitive in mesh.primitives() {
+            let key = (mesh.index(), primitive.index());
+            if !self.primitives.contains_key(&key) {
+                let decoded = self.primitive(mesh, &primitive).map_err(|e| {
+                    format!("mesh {} primitive {}: {e}", mesh.index(), primitive.index())
+                })?;
+                self.primitives.insert(key, decoded);
+            }
+            let Some(Some(local)) = self.primitives.get(&key) else {
+                continue;
+            };
+            self.triangles += local.triangles.len();
+            if self.models.len() >= MAX_MODELS || self.triangles > MAX_TRIANGLES {
+                return Err(format!(
+                    "the scene expands to more than {MAX_MODELS} models or {MAX_TRIANGLES} triangles (meshes used by many nodes?)"
+                ));
+            }
+            let base = node_name
+                .or(mesh.name())
+                .filter(|n| !n.trim().is_empty())
+                .map(str::to_string)
+                .unwrap_or_else(|| format!("mesh{}", mesh.index()));
+            let name = match several {
+                true => format!("{base}.{}", primitive.index()),
+                false => base,
+            };
+            let model = Model {
+                name,
+                transform: world,
+                ..local.clone()
+            };
+            // No winding change under a mirroring node: glTF's "clockwise when the
+            // determinant is negative" is what counter-clockwise local triangles become in
+            // the world, as a model's are (see `io::outward_triangles`).
+            self.models.push(model);
+        }
+        Ok(())
+    }
+
+    /// Decodes one primitive into a model in its own frame; `None` (with a warning) for
+    /// what a `Scene` cannot hold.
+    fn primitive(
+        &mut self,
+        mesh: &gltf::Mesh<'_>,
+        p: &gltf::Primitive<'_>,
+    ) -> Result<Option<Model>, String> {
+        let mode = p.mode();
+        if !matches!(
+            mode,
+            Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+        ) {
+            self.warn_once(
+                "lines",
+                format!(
+                    "points and lines primitives are left out: the scene holds triangles (mesh {} primitive {}, {mode:?})",
+                    mesh.index(),
+                    p.index()
+                ),
+            );
+            return Ok(None);
+        }
+        if p.morph_targets().len() > 0 {
+            self.warn_once(
+                "morph",
+                format!(
+                    "morph targets are left out: meshes are read in their base shape (mesh {} '{}')",
+                    mesh.index(),
+                    mesh.name().unwrap_or("")
+                ),
+            );
+        }
+        let Some(pos) = p.get(&Semantic::Positions) else {
+            return Err("the primitive has no POSITION attribute".into());
+        };
+        let positions: Vec<glam::Vec3> = read_floats::<3>(&pos, self.buffers)?
+            .into_iter()
+            .map(glam::Vec3::from)
+            .collect();
+        if let Some(k) = positions.iter().position(|v| !v.is_finite()) {
+            return Err(format!("POSITION {k} is not a finite number"));
+        }
+        let n = positions.len();
+        let corners = match p.indices() {
+            Some(a) => {
+                let idx = read_indices(&a, self.buffers)?;
+                if let Some((k, &i)) = idx.iter().enumerate().find(|(_, &i)| i as usize >= n) {
+                    return Err(format!(
+                        "index {k} is {i}, but there are {n} vertices (accessor {})",
+                        a.index()
+                    ));
+                }
+                idx
+            }
+            None => (0..n as u32).collect(),
+        };
+        let triangles = assemble(mode, &corners);
+        let same_count = |what: &str, len: usize| {
+            if len == n {
+                Ok(())
+            } else {
+                Err(format!("{what} has {len} values for {n} vertices"))
+            }
+        };
+        let mut model = Model {
+            positions,
+            triangles,
+            ..Model::default()
+        };
+        if let Some(a) = p.get(&Semantic::Normals) {
+            let normals = read_floats::<3>(&a, self.buffers)?;
+            same_count("NORMAL", normals.len())?;
+            all_finite("NORMAL", &normals)?;
+            model.normals = Some(Attribute::PerVertex(
+                normals.into_iter().map(glam::Vec3::from).collect(),
+            ));
+        }
+        if let Some(a) = p.get(&Semantic::TexCoords(0)) {
+            let uv = read_floats::<2>(&a, self.buffers)?;
+            same_count("TEXCOORD_0", uv.len())?;
+            all_finite("TEXCOORD_0", &uv)?;
+            model.texcoords = Some(uv.into_iter().map(|[u, v]| [u, 1.0 - v]).collect());
+        }
+        if let Some(a) = p.get(&Semantic::Colors(0)) {
+            let c = read_floats_prefix::<3>(&a, self.buffers)?;
+            same_count("COLOR_0", c.len())?;
+            all_finite("COLOR_0", &c)?;
+            let c = c
+                .into_iter()
+                .map(|c| c.map(|x| x.clamp(0.0, 1.0)))
+                .collect();
+            model.colors = Some(Attribute::PerVertex(c));
+        }
+        self.material(&p.material(), &mut model);
+        if !model.diffuse.iter().all(|c| c.is_finite()) {
+            return Err("the material's baseColorFactor is not finite".into());
+        }
+        Ok(Some(model))
+    }
+
+    /// The base colour, its texture and the double-sided flag of `m`, onto `model`.
+    fn material(&mut self, m: &gltf::Material<'_>, model: &mut Model) {
+        let pbr = m.pbr_metallic_roughness();
+        let [r, g, b, _] = pbr.base_color_factor();
+        model.diffuse = [r, g, b];
+        model.solid = !m.double_sided();
+        model.material = m.name().map(str::to_string);
+        let Some(info) = pbr.base_color_texture() else {
+            return;
+        };
+        if info.tex_coord() != 0 {
+            self.warn_once(
+                "texcoord",
+                format!(
+                    "base colour textures on TEXCOORD_{} are left out (TEXCOORD_0 is read)",
+                    info.tex_coord()
+                ),
+            );
+            return;
+        }
+        let texture = info.texture();
+        let sampler = texture.sampler();
+        let repeats =
+            |w: gltf::texture::WrappingMode| w != gltf::texture::WrappingMode::ClampToEdge;
+        model.texture_repeat = [repeats(sampler.wrap_s()), repeats(sampler.wrap_t())];
+        model.texture = match texture.source().source() {
+            gltf::image::Source::Uri { uri, .. } => Some(match data_uri::is_data_uri(uri) {
+                true => uri.to_string(),
+                false => String::from_utf8_lossy(&data_uri::percent_decode(uri)).into_owned(),
+            }),
+            gltf::image::Source::View { view, mime_type } => {
+                let bytes =
+                    self.buffers.0.get(view.buffer().index()).and_then(|b| {
+                        b.get(view.offset()..view.offset().checked_add(view.length())?)
+                    });
+                match bytes {
+                    Some(bytes) => Some(data_uri::encode(mime_type, bytes)),
+                    None => {
+                        self.warn_once(
+                            "image-view",
+                            format!("image {}'s bufferView runs past its buffer: the texture is left out", texture.source().index()),
+                        );
+                        None
+                    }
+                }
+            }
+        };
+    }
+}
+
+/// An error naming the first value of `what` that is not a finite number, if any.
+fn all_finite<const N: usize>(what: &str, values: &[[f32; N]]) -> Result<(), String> {
+    match values.iter().position(|v| !v.iter().all(|x| x.is_finite())) {
+        Some(k) => Err(format!("{what} {k} is not a finite number")),
+        None => Ok(()),
+    }
+}
+
+/// The triangles of a primitive's corners: listed in threes, as a strip or as a fan (glTF
+/// 2.0 § 3.7.2.1). Triangles that repeat a vertex (a strip's restarts) are left out of
+/// strips and fans, where they carry no surface.
+fn assemble(mode: Mode, c: &[u32]) -> Vec<[u32; 3]> {
+    let keep = |t: &[u32; 3]| t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
+    match mode {
+        Mode::TriangleStrip => (0..c.len().saturating_sub(2))
+            .map(|i| match i % 2 {
+                0 => [c[i], c[i + 1], c[i + 2]],
+                _ => [c[i], c[i + 2], c[i + 1]],
+            })
+            .filter(keep)
+            .collect(),
+        Mode::TriangleFan => (1..c.len().saturating_sub(1))
+            .map(|i| [c[i], c[i + 1], c[0]])
+            .filter(keep)
+            .collect(),
+        _ => c.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strips_alternate_their_winding_and_fans_turn_around_the_first_corner() {
+        // 0---2---4
+        //  \ / \ /
+        //   1---3
+        assert_eq!(
+            assemble(Mode::TriangleStrip, &[0, 1, 2, 3, 4]),
+            vec![[0, 1, 2], [1, 3, 2], [2, 3, 4]]
+        );
+        assert_eq!(
+            assemble(Mode::TriangleFan, &[0, 1, 2, 3]),
+            vec![[1, 2, 0], [2, 3, 0]]
+        );
+        assert_eq!(
+            assemble(Mode::TriangleStrip, &[0, 1, 1, 2]),
+            Vec::<[u32; 3]>::new()
+        );
+        assert_eq!(assemble(Mode::Triangles, &[0, 1, 2, 3]), vec![[0, 1, 2]]);
+    }
+}
