@@ -196,7 +196,7 @@ also set what the viewer draws):
   --viewports N         1-4 viewports: the original, then the decimated scene
   --mode LIST           comma-separated: triangles,edges,points,normals,vertex-normals,
                         flat,unlit,untextured (DEFAULT: triangles)
-  --crease-angle DEG     smooth shading keeps edges whose faces meet at more than DEG
+  --crease-angle DEG    smooth shading keeps edges whose faces meet at more than DEG
                         sharp (DEFAULT: the file's creaseAngle, else 45; 180: smooth)
   --labels, --no-labels a caption on each viewport: what it shows, its counts
                         (DEFAULT: on with more than one viewport)
@@ -407,7 +407,7 @@ where
     }
     if action == Action::NoGui && crate::io::Format::from_path(&output).is_none() {
         return Err(CliError(format!(
-            "-o {}: no writer knows this extension (expected .wrl, .vrml, .ply, .obj, .stl or .off)",
+            "-o {}: no writer knows this extension (expected .wrl, .vrml, .ply, .obj, .stl, .off, .gltf or .glb)",
             output.display()
         )));
     }
