@@ -33,8 +33,9 @@ enum Format {
     Big,
 }
 
+/// A PLY scalar type (also read by the streaming reader, `io::stream`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Ty {
+pub(super) enum Ty {
     I8,
     U8,
     I16,
@@ -46,7 +47,7 @@ enum Ty {
 }
 
 impl Ty {
-    fn parse(s: &str) -> Option<Self> {
+    pub(super) fn parse(s: &str) -> Option<Self> {
         Some(match s {
             "char" | "int8" => Self::I8,
             "uchar" | "uint8" => Self::U8,
@@ -59,12 +60,38 @@ impl Ty {
             _ => return None,
         })
     }
-    fn size(self) -> usize {
+
+    pub(super) fn size(self) -> usize {
         match self {
             Self::I8 | Self::U8 => 1,
             Self::I16 | Self::U16 => 2,
             Self::I32 | Self::U32 | Self::F32 => 4,
             Self::F64 => 8,
+        }
+    }
+
+    /// The value of the first `size()` bytes of `b`, in the file's byte order.
+    pub(super) fn decode(self, b: &[u8], big: bool) -> f64 {
+        macro_rules! num {
+            ($t:ty, $n:expr) => {{
+                let mut a = [0u8; $n];
+                a.copy_from_slice(&b[..$n]);
+                f64::from(if big {
+                    <$t>::from_be_bytes(a)
+                } else {
+                    <$t>::from_le_bytes(a)
+                })
+            }};
+        }
+        match self {
+            Self::I8 => f64::from(b[0] as i8),
+            Self::U8 => f64::from(b[0]),
+            Self::I16 => num!(i16, 2),
+            Self::U16 => num!(u16, 2),
+            Self::I32 => num!(i32, 4),
+            Self::U32 => num!(u32, 4),
+            Self::F32 => num!(f32, 4),
+            Self::F64 => num!(f64, 8),
         }
     }
 }

@@ -11,6 +11,7 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 
+use super::ply::Ty;
 use super::ReadError;
 
 /// One triangle: three positions, counter-clockwise seen from the front.
@@ -108,67 +109,6 @@ impl Stream {
                 io_error(&self.file, e)
             }
         })
-    }
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Ty {
-    I8,
-    U8,
-    I16,
-    U16,
-    I32,
-    U32,
-    F32,
-    F64,
-}
-
-impl Ty {
-    fn parse(s: &str) -> Option<Self> {
-        Some(match s {
-            "char" | "int8" => Self::I8,
-            "uchar" | "uint8" => Self::U8,
-            "short" | "int16" => Self::I16,
-            "ushort" | "uint16" => Self::U16,
-            "int" | "int32" => Self::I32,
-            "uint" | "uint32" => Self::U32,
-            "float" | "float32" => Self::F32,
-            "double" | "float64" => Self::F64,
-            _ => return None,
-        })
-    }
-
-    fn size(self) -> usize {
-        match self {
-            Self::I8 | Self::U8 => 1,
-            Self::I16 | Self::U16 => 2,
-            Self::I32 | Self::U32 | Self::F32 => 4,
-            Self::F64 => 8,
-        }
-    }
-
-    fn decode(self, b: &[u8], big: bool) -> f64 {
-        macro_rules! num {
-            ($t:ty, $n:expr) => {{
-                let mut a = [0u8; $n];
-                a.copy_from_slice(&b[..$n]);
-                f64::from(if big {
-                    <$t>::from_be_bytes(a)
-                } else {
-                    <$t>::from_le_bytes(a)
-                })
-            }};
-        }
-        match self {
-            Self::I8 => f64::from(b[0] as i8),
-            Self::U8 => f64::from(b[0]),
-            Self::I16 => num!(i16, 2),
-            Self::U16 => num!(u16, 2),
-            Self::I32 => num!(i32, 4),
-            Self::U32 => num!(u32, 4),
-            Self::F32 => num!(f32, 4),
-            Self::F64 => num!(f64, 8),
-        }
     }
 }
 
