@@ -105,6 +105,9 @@ pub struct ModelReport {
     /// Vertices kept because they lie on a texture seam, on a border shared with another
     /// model, or (`keep_border`) on the open border.
     pub pinned: usize,
+    /// Of a fully decimated model, the vertices left on non-manifold edges: what the input
+    /// holds back (counted only when nothing more could go).
+    pub non_manifold_kept: usize,
 }
 
 /// What a decimation run did, model by model.
@@ -271,6 +274,11 @@ fn run(
             // As the original: only a removal can drop a model, never the input itself.
             dropped: outcome.removed > 0 && vertices_after < 4,
             pinned: outcome.pinned,
+            non_manifold_kept: if outcome.exhausted {
+                crate::mesh::measure::non_manifold_vertices(model)
+            } else {
+                0
+            },
         });
     }
     // The original program's rule: a model left with fewer than four vertices is dropped.

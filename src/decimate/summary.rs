@@ -21,13 +21,25 @@ impl Report {
         for m in &report.models {
             let mut state = if m.dropped {
                 "  dropped (fewer than 4 vertices left)".to_string()
-            } else if m.fully_decimated && m.pinned > 0 {
-                format!(
-                    "  fully decimated ({} vertices are pinned on texture seams or borders)",
-                    m.pinned
-                )
             } else if m.fully_decimated {
-                "  fully decimated".to_string()
+                let mut held = Vec::new();
+                if m.pinned > 0 {
+                    held.push(format!(
+                        "{} vertices are pinned on texture seams or borders",
+                        m.pinned
+                    ));
+                }
+                if m.non_manifold_kept > 0 {
+                    held.push(format!(
+                        "{} vertices on non-manifold edges of the input hold it back",
+                        m.non_manifold_kept
+                    ));
+                }
+                if held.is_empty() {
+                    "  fully decimated".to_string()
+                } else {
+                    format!("  fully decimated ({})", held.join("; "))
+                }
             } else {
                 String::new()
             };

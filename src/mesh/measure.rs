@@ -76,6 +76,27 @@ pub fn edge_counts(m: &Model) -> EdgeCounts {
     c
 }
 
+/// Vertices on an edge of three or more triangles.
+pub fn non_manifold_vertices(m: &Model) -> usize {
+    let mut uses: HashMap<(u32, u32), u32> = HashMap::with_capacity(m.triangles.len() * 2);
+    for t in &m.triangles {
+        for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            *uses.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let mut on_one = vec![false; m.positions.len()];
+    for (&(a, b), &n) in &uses {
+        if n > 2 {
+            for v in [a, b] {
+                if let Some(flag) = on_one.get_mut(v as usize) {
+                    *flag = true;
+                }
+            }
+        }
+    }
+    on_one.iter().filter(|&&f| f).count()
+}
+
 /// Euler characteristic V − E + F over the vertices that triangles use.
 pub fn euler_characteristic(m: &Model) -> i64 {
     m.used_vertex_count() as i64 - edge_counts(m).edges as i64 + m.triangles.len() as i64

@@ -248,3 +248,36 @@ fn a_finned_sphere_reaches_its_count_and_simplifies_the_fin() {
     assert_eq!(e.misoriented, 0);
     assert_eq!(measure::degenerate_triangles(&after, 1e-9), 0);
 }
+
+// Vertex removal still keeps every vertex of a non-manifold edge: decimated as far as it
+// goes, three sheets on one edge keep its five vertices, and the summary says so.
+#[test]
+fn a_fully_decimated_model_says_its_non_manifold_edges_hold_it_back() {
+    let mut b = Builder::default();
+    for k in 0..3 {
+        let angle = k as f32 * std::f32::consts::TAU / 3.0;
+        let out = Vec3::new(angle.cos(), angle.sin(), 0.0);
+        b.sheet(Vec3::ZERO, Vec3::Z, out, 4);
+    }
+    let mut scene = Scene {
+        models: vec![b.build("three sheets")],
+    };
+    let params = Params {
+        target: Target::RemovePercent(100.0),
+        algorithm: Algorithm::Schroeder,
+        ..Params::default()
+    };
+    let report = simplify_scene(&mut scene, &params, &mut |_| {});
+    let m = &report.models[0];
+    assert!(m.fully_decimated);
+    let left = measure::non_manifold_vertices(&scene.models[0]);
+    assert_eq!(m.non_manifold_kept, left);
+    assert_eq!(left, 5, "the shared edge's five vertices");
+    assert!(
+        report
+            .summary()
+            .contains("5 vertices on non-manifold edges of the input hold it back"),
+        "{}",
+        report.summary()
+    );
+}
