@@ -52,3 +52,22 @@ pub fn read_model(path: &Path) -> Model {
 pub fn s(p: &Path) -> &str {
     p.to_str().expect("utf-8 temp path")
 }
+
+/// `decimate tile plan INPUT --work WORK --tiles TILES -p 90`, which must succeed.
+pub fn plan(input: &Path, work: &Path, tiles: u32) {
+    let tiles = tiles.to_string();
+    ok(
+        &[
+            "tile",
+            "plan",
+            s(input),
+            "--work",
+            s(work),
+            "--tiles",
+            &tiles,
+            "-p",
+            "90",
+        ],
+        &[],
+    );
+}

@@ -1,7 +1,7 @@
 //! Bad requests and broken work folders: a clear message naming the file, exit 1 for a
 //! file at fault, 2 for a request that cannot be met; never a panic.
 
-use crate::common::{decimate, ok, s, sphere_ply};
+use crate::common::{decimate, plan, s, sphere_ply};
 
 fn stderr(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
@@ -64,20 +64,7 @@ fn bad_indices_and_broken_manifests_are_refused() {
     let tmp = tempfile::tempdir().unwrap();
     let (input, _) = sphere_ply(tmp.path());
     let work = tmp.path().join("w");
-    ok(
-        &[
-            "tile",
-            "plan",
-            s(&input),
-            "--work",
-            s(&work),
-            "--tiles",
-            "2",
-            "-p",
-            "90",
-        ],
-        &[],
-    );
+    plan(&input, &work, 2);
     let o = decimate(&["tile", "run", s(&work), "2"], &[]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("tile 2 does not exist (the plan has tiles 0 to 1)"));

@@ -3,27 +3,14 @@
 
 use decimate::mesh::measure::{area, edge_counts, invariant_violations, volume};
 
-use crate::common::{decimate, ok, read_model, s, sphere_ply};
+use crate::common::{decimate, ok, plan, read_model, s, sphere_ply};
 
 #[test]
 fn tiles_cover_the_input_exactly_with_shared_border_positions() {
     let tmp = tempfile::tempdir().unwrap();
     let (input, model) = sphere_ply(tmp.path());
     let work = tmp.path().join("work");
-    ok(
-        &[
-            "tile",
-            "plan",
-            s(&input),
-            "--work",
-            s(&work),
-            "--tiles",
-            "6",
-            "-p",
-            "90",
-        ],
-        &[],
-    );
+    plan(&input, &work, 6);
     let manifest = std::fs::read_to_string(work.join("manifest.json")).unwrap();
     assert!(
         manifest.contains("\"format\": \"decimate-tiles\""),
@@ -65,20 +52,7 @@ fn separate_jobs_in_any_order_equal_the_one_command_run() {
     let tmp = tempfile::tempdir().unwrap();
     let (input, model) = sphere_ply(tmp.path());
     let work = tmp.path().join("work");
-    ok(
-        &[
-            "tile",
-            "plan",
-            s(&input),
-            "--work",
-            s(&work),
-            "--tiles",
-            "5",
-            "-p",
-            "90",
-        ],
-        &[],
-    );
+    plan(&input, &work, 5);
     let status = ok(&["tile", "status", s(&work)], &[]);
     let text = String::from_utf8_lossy(&status.stdout);
     assert!(text.contains("0 of 5 tiles done"), "{text}");
