@@ -210,23 +210,11 @@ fn find(parent: &mut [u32], mut v: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::shapes;
 
     fn box_mesh() -> (Vec<Vec3>, Vec<[u32; 3]>) {
-        let corner =
-            |i: u32| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32);
-        let quads: [[u32; 4]; 6] = [
-            [4, 5, 7, 6],
-            [0, 2, 3, 1],
-            [1, 3, 7, 5],
-            [0, 4, 6, 2],
-            [2, 6, 7, 3],
-            [0, 1, 5, 4],
-        ];
-        let tris = quads
-            .iter()
-            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-            .collect();
-        ((0..8).map(corner).collect(), tris)
+        let m = shapes::unit_box();
+        (m.positions, m.triangles)
     }
 
     #[test]

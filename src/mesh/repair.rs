@@ -285,27 +285,8 @@ fn drop_unused_vertices(model: &mut Model) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::shapes::octahedron;
     use glam::Vec3;
-
-    /// An octahedron's eight outward triangles over its six corners.
-    fn octahedron() -> Model {
-        let positions = vec![Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z];
-        let triangles = vec![
-            [0, 2, 4],
-            [2, 1, 4],
-            [1, 3, 4],
-            [3, 0, 4],
-            [2, 0, 5],
-            [1, 2, 5],
-            [3, 1, 5],
-            [0, 3, 5],
-        ];
-        Model {
-            positions,
-            triangles,
-            ..Model::default()
-        }
-    }
 
     fn volume6(m: &Model) -> f64 {
         m.triangles

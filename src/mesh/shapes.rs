@@ -287,6 +287,47 @@ pub fn all() -> Vec<Model> {
     ]
 }
 
+/// The unit box [0, 1]³: 8 corners, 12 triangles, outward.
+pub fn unit_box() -> Model {
+    let corner = |i: u32| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32);
+    let quads: [[u32; 4]; 6] = [
+        [4, 5, 7, 6],
+        [0, 2, 3, 1],
+        [1, 3, 7, 5],
+        [0, 4, 6, 2],
+        [2, 6, 7, 3],
+        [0, 1, 5, 4],
+    ];
+    Model {
+        name: "box".into(),
+        positions: (0..8).map(corner).collect(),
+        triangles: quads
+            .iter()
+            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+            .collect(),
+        ..Model::default()
+    }
+}
+
+/// The octahedron with corners ±x, ±y, ±z: 6 corners, 8 triangles, outward.
+pub fn octahedron() -> Model {
+    Model {
+        name: "octahedron".into(),
+        positions: vec![Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z],
+        triangles: vec![
+            [0, 2, 4],
+            [2, 1, 4],
+            [1, 3, 4],
+            [3, 0, 4],
+            [2, 0, 5],
+            [1, 2, 5],
+            [3, 1, 5],
+            [0, 3, 5],
+        ],
+        ..Model::default()
+    }
+}
+
 /// An axis-aligned cube of side `size` centred at the origin, each face an `n`×`n` grid of
 /// quads split into two triangles; shared edge and corner vertices are merged.
 pub fn cube(n: u32, size: f32) -> Model {

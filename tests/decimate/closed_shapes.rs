@@ -222,7 +222,7 @@ mod demo_scenes {
 
 mod small_shapes {
     use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
-    use decimate::mesh::{Model, Scene};
+    use decimate::mesh::{shapes, Model, Scene};
     use glam::Vec3;
 
     use super::demo_scenes::closed_components;
@@ -234,24 +234,6 @@ mod small_shapes {
             triangles,
             ..Model::default()
         }
-    }
-
-    fn unit_box() -> Model {
-        let corner =
-            |i: u32| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32);
-        let quads: [[u32; 4]; 6] = [
-            [4, 5, 7, 6],
-            [0, 2, 3, 1],
-            [1, 3, 7, 5],
-            [0, 4, 6, 2],
-            [2, 6, 7, 3],
-            [0, 1, 5, 4],
-        ];
-        let tris = quads
-            .iter()
-            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-            .collect();
-        model((0..8).map(corner).collect(), tris)
     }
 
     /// A tetrahedron whose bottom face is split at a fifth vertex raised a little inside.
@@ -271,21 +253,6 @@ mod small_shapes {
             [0, 2, 4],
             [2, 1, 4],
             [1, 0, 4],
-        ];
-        model(positions, triangles)
-    }
-
-    fn octahedron() -> Model {
-        let positions = vec![Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z];
-        let triangles = vec![
-            [0, 2, 4],
-            [2, 1, 4],
-            [1, 3, 4],
-            [3, 0, 4],
-            [2, 0, 5],
-            [1, 2, 5],
-            [3, 1, 5],
-            [0, 3, 5],
         ];
         model(positions, triangles)
     }
@@ -317,8 +284,8 @@ mod small_shapes {
     #[test]
     fn vertex_removal_stops_small_closed_shapes_short_of_turning_inside_out() {
         let cases = [
-            ("box", unit_box(), 30.0, (8, 12, 6.0)),
-            ("box", unit_box(), 179.0, (4, 4, 1.0)),
+            ("box", shapes::unit_box(), 30.0, (8, 12, 6.0)),
+            ("box", shapes::unit_box(), 179.0, (4, 4, 1.0)),
             (
                 "tetrahedron+1",
                 tetrahedron_with_a_raised_face_centre(),
@@ -331,8 +298,8 @@ mod small_shapes {
                 179.0,
                 (4, 4, 27.0),
             ),
-            ("octahedron", octahedron(), 30.0, (6, 8, 8.0)),
-            ("octahedron", octahedron(), 179.0, (4, 4, 2.0)),
+            ("octahedron", shapes::octahedron(), 30.0, (6, 8, 8.0)),
+            ("octahedron", shapes::octahedron(), 179.0, (4, 4, 2.0)),
         ];
         for (name, m, feature, (v, t, volume6)) in cases {
             let r = fully_decimated(&m, Algorithm::Schroeder, feature);
@@ -347,9 +314,9 @@ mod small_shapes {
     fn edge_collapse_stops_small_closed_shapes_short_of_turning_inside_out() {
         for feature in [30.0, 179.0] {
             for (name, m) in [
-                ("box", unit_box()),
+                ("box", shapes::unit_box()),
                 ("tetrahedron+1", tetrahedron_with_a_raised_face_centre()),
-                ("octahedron", octahedron()),
+                ("octahedron", shapes::octahedron()),
             ] {
                 let before = closed_components(&m)[0].volume6;
                 let (v, t, volumes) = fully_decimated(&m, Algorithm::Qem, feature);
