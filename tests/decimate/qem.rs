@@ -7,6 +7,8 @@ use decimate::decimate::{simplify_scene, Algorithm, ErrorBound, Params, Report, 
 use decimate::mesh::{measure, shapes, Attribute, Model, Scene};
 use decimate::metro::{compare, Options, Surface};
 
+use crate::progressive::red_above_blue_below;
+
 fn run(model: Model, params: Params) -> (Model, Report) {
     let mut scene = Scene {
         models: vec![model],
@@ -320,19 +322,7 @@ fn an_open_sheet_keeps_its_outline_in_regions_on_any_number_of_cores() {
 #[test]
 fn colours_follow_the_vertices_and_faces() {
     // Per-vertex: red above the equator, blue below; interpolation keeps values in range.
-    let mut before = shapes::uv_sphere(16, 32);
-    let colours = before
-        .positions
-        .iter()
-        .map(|p| {
-            if p.y > 0.0 {
-                [1.0, 0.0, 0.0]
-            } else {
-                [0.0, 0.0, 1.0]
-            }
-        })
-        .collect();
-    before.colors = Some(Attribute::PerVertex(colours));
+    let before = red_above_blue_below(shapes::uv_sphere(16, 32));
     let (after, _) = run(before.clone(), qem(Target::RemovePercent(80.0)));
     let Some(Attribute::PerVertex(c)) = &after.colors else {
         panic!("per-vertex colours lost");

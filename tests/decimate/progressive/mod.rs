@@ -113,7 +113,8 @@ fn assert_round_trip(input: &Scene, out: &Scene, pm: &ProgressiveScene) {
     }
 }
 
-fn red_above_blue_below(mut m: Model) -> Model {
+/// `m` with per-vertex colours: red above y = 0, blue below.
+pub fn red_above_blue_below(mut m: Model) -> Model {
     let colours = m
         .positions
         .iter()
