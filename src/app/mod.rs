@@ -3,8 +3,11 @@
 
 pub mod app_error;
 pub mod controller;
+pub mod counts;
 pub mod glut;
+pub mod jobs;
 pub mod labels;
+pub mod level_error;
 pub mod lod;
 pub mod menu;
 pub mod save;
@@ -12,6 +15,7 @@ pub mod shot;
 pub mod ui;
 pub mod viewer;
 pub mod viewport;
+pub mod worker;
 
 use std::process::ExitCode;
 

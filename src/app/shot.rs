@@ -1,7 +1,8 @@
 //! The `shot` action: render the scene offscreen — no window, no display — with exactly the
 //! viewer's renderer, viewports tiled as in the viewer (the first shows the original scene,
 //! the others the decimated one, each with its own target when `-p 60,80,90` lists several),
-//! captioned, and write a PNG through a temporary file and a rename.
+//! captioned (with `--measure`, each decimated viewport's metro error too), and write a PNG
+//! through a temporary file and a rename.
 
 use std::path::Path;
 
@@ -20,7 +21,9 @@ use crate::render::texture::Textures;
 use crate::render::tiles::tiles;
 use crate::render::RenderError;
 
+use super::counts::Counts;
 use super::labels::{self, HeadlessCaptions};
+use super::level_error::LevelError;
 
 /// What can go wrong taking a shot.
 #[derive(Debug, thiserror::Error)]
@@ -109,14 +112,24 @@ pub fn render(
             labels::target_words(p.target, p.max_error),
             labels::algorithm_name(p.algorithm)
         );
+        let counts = Counts::of(&copy);
+        let mut caption = labels::caption(&what, counts.vertices, counts.triangles);
+        if options.measure {
+            caption.push('\n');
+            caption.push_str(&match LevelError::measure(scene, &copy) {
+                Ok(error) => error.words(),
+                Err(e) => format!("cannot measure: {e}"),
+            });
+        }
         decimated.push(Decimated {
             params: *p,
             gpu: GpuScene::upload(&context, &commands, &mut textures, &copy, draw.layers())?,
             report,
-            caption: labels::caption(&what, vertices(&copy), copy.triangle_count()),
+            caption,
         });
     }
-    let original_caption = labels::caption("original", vertices(scene), scene.triangle_count());
+    let counts = Counts::of(scene);
+    let original_caption = labels::caption("original", counts.vertices, counts.triangles);
     let camera = Camera::framing(original.bounds);
     let mut views = Vec::with_capacity(rects.len());
     let mut captions = Vec::with_capacity(rects.len());
@@ -131,7 +144,7 @@ pub fn render(
         });
         captions.push((rect, d.map_or(&original_caption, |d| &d.caption).clone()));
     }
-    let image = if options.labels.unwrap_or(rects.len() > 1) {
+    let image = if options.labels.unwrap_or(rects.len() > 1 || options.measure) {
         let mut overlay = HeadlessCaptions::new(&context, &commands, target.extent, &captions)?;
         let mut record = |cmd| overlay.record(cmd);
         target.render_with_overlay(&commands, &pipelines, &views, true, Some(&mut record))?
@@ -140,13 +153,6 @@ pub fn render(
     };
     let image = image.ok_or_else(|| RenderError::TooLarge("no picture was read back".into()))?;
     Ok((image, decimated.into_iter().map(|d| d.report).collect()))
-}
-
-/// Vertices of `scene` used by some triangle.
-fn vertices(scene: &Scene) -> usize {
-    (scene.models.iter())
-        .map(crate::mesh::Model::used_vertex_count)
-        .sum()
 }
 
 /// Writes `image` as an RGBA PNG through [`crate::io::replace::replace_file`]: a temporary
