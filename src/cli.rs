@@ -204,9 +204,8 @@ also set what the viewer draws):
                         sharp (DEFAULT: the file's creaseAngle, else 45; 180: smooth)
   --labels, --no-labels a caption on each viewport: what it shows, its counts
                         (DEFAULT: on with more than one viewport)
-  --measure             each decimated viewport's caption adds metro's error against
-                        the original: mean and max, in model units and % of the
-                        bounding-box diagonal (turns the captions on)
+  --measure             add metro's error against the original (mean, max, % of the
+                        diagonal) to each decimated viewport's caption
   -p / -v / ...         decimation target, as for nogui; a list such as -p 60,80,90
                         gives each decimated viewport its own (and --viewports 4)
 

@@ -257,9 +257,6 @@ impl Viewer {
             eprintln!("decimate: {}", self.controller.message);
         }
         let morphing = self.controller.tick(now);
-        if let Some(job) = self.controller.job_status() {
-            trace(format_args!("frame, {job}"));
-        }
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(Flow::Continue);
         };
@@ -275,6 +272,12 @@ impl Viewer {
             window.request_redraw();
         }
         self.popup_just_opened = false;
+        let job = self.controller.job_status();
+        let job = job.as_deref().unwrap_or("no job");
+        trace(format_args!(
+            "frame in {} ms, {job}",
+            now.elapsed().as_millis()
+        ));
         if ui_result.repaint || morphing {
             window.request_redraw();
         }
