@@ -107,20 +107,7 @@ pub fn render(
         }
         let mut copy = scene.clone();
         let report = simplify_scene(&mut copy, p, &mut |_| {});
-        let what = format!(
-            "{} ({})",
-            labels::target_words(p.target, p.max_error),
-            labels::algorithm_name(p.algorithm)
-        );
-        let counts = Counts::of(&copy);
-        let mut caption = labels::caption(&what, counts.vertices, counts.triangles);
-        if options.measure {
-            caption.push('\n');
-            caption.push_str(&match LevelError::measure(scene, &copy) {
-                Ok(error) => error.words(),
-                Err(e) => format!("cannot measure: {e}"),
-            });
-        }
+        let caption = decimated_caption(scene, &copy, p, options.measure);
         decimated.push(Decimated {
             params: *p,
             gpu: GpuScene::upload(&context, &commands, &mut textures, &copy, draw.layers())?,
@@ -155,6 +142,31 @@ pub fn render(
     Ok((image, decimated.into_iter().map(|d| d.report).collect()))
 }
 
+/// The caption of `level`, `original` decimated with `params`: its target and algorithm,
+/// its counts, and with `measure` its metro error against `original`.
+pub fn decimated_caption(
+    original: &Scene,
+    level: &Scene,
+    params: &Params,
+    measure: bool,
+) -> String {
+    let what = format!(
+        "{} ({})",
+        labels::target_words(params.target, params.max_error),
+        labels::algorithm_name(params.algorithm)
+    );
+    let counts = Counts::of(level);
+    let mut caption = labels::caption(&what, counts.vertices, counts.triangles);
+    if measure {
+        caption.push('\n');
+        caption.push_str(&match LevelError::measure(original, level) {
+            Ok(error) => error.words(),
+            Err(e) => format!("cannot measure: {e}"),
+        });
+    }
+    caption
+}
+
 /// Writes `image` as an RGBA PNG through [`crate::io::replace::replace_file`]: a temporary
 /// file renamed over `path`, so a crash never leaves half a file under the real name.
 pub fn write_png(image: &RgbaImage, path: &Path) -> Result<(), ShotError> {
@@ -184,5 +196,38 @@ pub fn write_png(image: &RgbaImage, path: &Path) -> Result<(), ShotError> {
             file: path.to_path_buf(),
             source,
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes;
+
+    #[test]
+    fn a_measured_caption_says_the_levels_metro_error() {
+        let original = Scene {
+            models: vec![shapes::test006()],
+        };
+        let params = Params {
+            target: Target::RemovePercent(90.0),
+            ..Params::default()
+        };
+        let mut level = original.clone();
+        simplify_scene(&mut level, &params, &mut |_| {});
+        let caption = decimated_caption(&original, &level, &params, true);
+        let lines: Vec<&str> = caption.lines().collect();
+        let kept = level.models[0].used_vertex_count();
+        assert_eq!(lines[0], "90 % removed (schroeder)");
+        assert_eq!(
+            lines[1],
+            format!("{kept} vertices, {} triangles", level.triangle_count())
+        );
+        let error = LevelError::measure(&original, &level).unwrap_or_else(|e| panic!("{e}"));
+        assert!(error.max > 0.0, "{error:?}");
+        assert_eq!(lines[2], error.words());
+        assert_eq!(lines.len(), 3);
+        let unmeasured = decimated_caption(&original, &level, &params, false);
+        assert_eq!(unmeasured, lines[..2].join("\n"));
     }
 }
