@@ -530,7 +530,11 @@ impl ViewportController {
             }
             Action::RemoveViewport => {
                 if self.viewports.len() > 1 {
-                    self.viewports.remove(self.current);
+                    let gone = self.viewports.remove(self.current);
+                    // Its job, if it has one, works for nobody now.
+                    if self.job.as_ref().is_some_and(|r| r.viewport == gone.id) {
+                        self.drop_job();
+                    }
                     self.current = self.current.min(self.viewports.len() - 1);
                 } else {
                     self.message = "the last viewport stays".into();
@@ -863,6 +867,18 @@ mod tests {
         assert_eq!(c.current_viewport().vertex_count(), n);
         assert_eq!(c.current_viewport().generation, 0);
         assert!(!c.cancel_job(), "nothing left to cancel: Esc quits");
+    }
+
+    #[test]
+    fn removing_a_viewport_stops_its_job() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        c.dispatch(action_for_key(Key::Char('9')).unwrap_or(Action::Quit));
+        assert!(c.busy());
+        key(&mut c, Key::Char('x'));
+        assert!(!c.busy(), "a job for a viewport that is gone still runs");
+        assert_eq!(c.viewports().len(), 1);
+        assert_eq!(c.current_viewport().vertex_count(), 121);
     }
 
     #[test]

@@ -73,8 +73,7 @@ const PICTURE: &str = "window.png";
 const MESSAGE_LIFETIME: Duration = Duration::from_secs(6);
 
 /// While a job runs, a frame this often at least: the progress bar moves and the job's end
-/// is seen, yet the window leaves most of a (software) GPU's time to the job. Under the
-/// 100 ms a frame may wait for a job (issue 41).
+/// is seen; see docs/design.md#viewer-jobs.
 const JOB_FRAME_INTERVAL: Duration = Duration::from_millis(100);
 
 /// With `DECIMATE_TRACE` set, the viewer prints each key it handles and each frame drawn
