@@ -186,8 +186,8 @@ fn run(
     let start = Instant::now();
     let vertices: Vec<usize> = scene.models.iter().map(|m| m.used_vertex_count()).collect();
     let triangles: Vec<usize> = scene.models.iter().map(|m| m.triangles.len()).collect();
-    // A mesh several nodes place is decimated once, at its first instance (a progressive
-    // record needs each model's own collapses); copied meshes are left as read.
+    // A mesh several nodes place is decimated once, at its first instance, and copied
+    // meshes are left as read, except in a progressive record (every model has its own).
     let source = match record {
         None => first_instances(scene),
         Some(_) => vec![None; scene.models.len()],
@@ -195,7 +195,7 @@ fn run(
     let copied: Vec<bool> = scene
         .models
         .iter()
-        .map(|m| m.instance.as_ref().is_some_and(|i| i.copied))
+        .map(|m| record.is_none() && m.instance.as_ref().is_some_and(|i| i.copied))
         .collect();
     let decimated = |i: usize| source[i].is_none() && !copied[i];
     let weight = |counts: &[usize]| -> Vec<usize> {

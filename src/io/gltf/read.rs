@@ -497,12 +497,20 @@ fn node_tree(
             mesh: n.mesh().map(|m| m.index()),
         })
         .collect();
-    let root = serde_json::to_value(document.as_json()).map_err(|e| e.to_string())?;
-    let meshes: BTreeSet<usize> = copied.keys().copied().collect();
+    let carried =
+        !copied.is_empty() || document.skins().len() > 0 || document.animations().len() > 0;
+    let copied = match carried {
+        true => {
+            let root = serde_json::to_value(document.as_json()).map_err(|e| e.to_string())?;
+            let meshes: BTreeSet<usize> = copied.keys().copied().collect();
+            super::copy_through::gather(&root, buffers, &meshes)?
+        }
+        false => None,
+    };
     Ok(NodeTree {
         nodes,
         roots: scene.nodes().map(|n| n.index()).collect(),
-        copied: super::copy_through::gather(&root, buffers, &meshes)?,
+        copied,
     })
 }
 

@@ -154,7 +154,8 @@ struct Builder<'s> {
     /// Meshes written, by a hash of geometry, material and winding: equal models share one.
     mesh_of: HashMap<u64, Vec<(usize, &'s Model)>>,
     /// Meshes written for a source mesh: the mesh and the models and materials it holds.
-    source_mesh_of: HashMap<usize, Vec<(usize, Parts<'s>)>>,
+    /// Keyed by the source mesh and a hash of the parts (`geometry_hash`).
+    source_mesh_of: HashMap<(usize, u64), Vec<(usize, Parts<'s>)>>,
 }
 
 /// A written mesh's models, one per primitive, each with its material's index.
@@ -400,7 +401,12 @@ impl<'s> Builder<'s> {
                     .zip(b)
                     .all(|((x, i), (y, j))| i == j && same_geometry(x, y))
         };
-        if let Some(list) = self.source_mesh_of.get(&source) {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        for &(m, material) in &with_materials {
+            geometry_hash(m, material).hash(&mut h);
+        }
+        let key = (source, h.finish());
+        if let Some(list) = self.source_mesh_of.get(&key) {
             if let Some((mesh, _)) = list.iter().find(|(_, held)| same(held, &with_materials)) {
                 return Some(*mesh);
             }
@@ -436,7 +442,7 @@ impl<'s> Builder<'s> {
         self.meshes.push(mesh);
         let index = self.meshes.len() - 1;
         self.source_mesh_of
-            .entry(source)
+            .entry(key)
             .or_default()
             .push((index, with_materials));
         Some(index)
