@@ -365,18 +365,23 @@ fn run(
 }
 
 /// For each model, the earlier model that instances the same mesh primitive of the same
-/// node tree (`mesh::Instance::mesh_key`), if any.
+/// node tree (`mesh::Instance::mesh_key`) and holds the same triangles, if any.
 fn first_instances(scene: &Scene) -> Vec<Option<usize>> {
     let mut first = std::collections::HashMap::new();
-    scene
-        .models
+    let models = &scene.models;
+    models
         .iter()
         .enumerate()
         .map(|(i, m)| {
             let key = m.instance.as_ref()?.mesh_key();
             key.1?;
             match first.entry(key) {
-                std::collections::hash_map::Entry::Occupied(e) => Some(*e.get()),
+                std::collections::hash_map::Entry::Occupied(e) => {
+                    let j: usize = *e.get();
+                    let same =
+                        models[j].positions == m.positions && models[j].triangles == m.triangles;
+                    same.then_some(j)
+                }
                 std::collections::hash_map::Entry::Vacant(e) => {
                     e.insert(i);
                     None

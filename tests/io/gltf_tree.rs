@@ -121,7 +121,8 @@ fn the_node_tree_comes_back_with_its_names_local_transforms_and_children() {
     let arm =
         Mat4::from_rotation_translation(Quat::from_rotation_z(0.25), Vec3::new(0.0, 4.0, 0.0));
     d.json["nodes"] = json!([
-        { "name": "root", "translation": [1, 2, 3], "rotation": turn.to_array(), "scale": [2, 2, 2], "children": [1, 3] },
+        { "name": "root", "translation": [1, 2, 3], "rotation": turn.to_array(),
+          "scale": [2, 2, 2], "children": [1, 3] },
         { "name": "arm", "matrix": arm.to_cols_array(), "children": [2] },
         { "name": "hand", "mesh": grid, "translation": [0.5, 0, 0] },
         { "name": "leaf" },
@@ -230,7 +231,10 @@ fn a_mesh_three_nodes_place_is_decimated_once_and_written_once() {
         .find(|l| l.starts_with("total"))
         .expect("a total line");
     assert!(
-        total.starts_with("total (each mesh once: 2 more instances not counted): vertices 121 -> 60, triangles 200 -> "),
+        total.starts_with(
+            "total (each mesh once: 2 more instances not counted): vertices 121 -> 60, \
+             triangles 200 -> "
+        ),
         "{total}"
     );
     let path = dir.join("out.glb");
@@ -279,7 +283,8 @@ fn skinned_and_morphed() -> Doc {
     let blob = d.push(
         "meshes",
         json!({ "name": "blob", "weights": [0.5],
-                "primitives": [{ "attributes": { "POSITION": base }, "targets": [{ "POSITION": delta }] }] }),
+                "primitives": [{ "attributes": { "POSITION": base },
+                                 "targets": [{ "POSITION": delta }] }] }),
     );
     let plain = grid_mesh(&mut d, 10, "plain");
     let ibm = d.floats(&Mat4::IDENTITY.to_cols_array(), "MAT4", 16);
@@ -299,13 +304,19 @@ fn skinned_and_morphed() -> Doc {
     d.json["skins"] = json!([{ "joints": [2], "inverseBindMatrices": ibm, "skeleton": 0 }]);
     d.json["animations"] = json!([{
         "name": "wave",
-        "samplers": [{ "input": times, "output": moves }, { "input": times, "output": weights_over_time }],
+        "samplers": [
+            { "input": times, "output": moves },
+            { "input": times, "output": weights_over_time },
+        ],
         "channels": [
             { "sampler": 0, "target": { "node": 2, "path": "translation" } },
             { "sampler": 1, "target": { "node": 3, "path": "weights" } },
         ],
     }]);
-    d.json["materials"] = json!([{ "name": "skin-paint", "pbrMetallicRoughness": { "baseColorFactor": [1, 0.5, 0.5, 1] } }]);
+    d.json["materials"] = json!([{
+        "name": "skin-paint",
+        "pbrMetallicRoughness": { "baseColorFactor": [1, 0.5, 0.5, 1] },
+    }]);
     d.json["meshes"][body]["primitives"][0]["material"] = json!(0);
     d
 }

@@ -10,10 +10,10 @@
 //! flag. The node tree is kept (`mesh::NodeTree`, every model's `Instance`) for the glTF
 //! writer. Skinned meshes and meshes with morph targets are read in their rest pose, marked
 //! to be left undecimated, and carried with their skins and the animations to a glTF output
-//! (`copy_through`); one warning names each. Points and lines cannot be held by a `Scene`: one
-//! warning names what was left out.
+//! (`copy_through`); one warning names each. Points and lines cannot be held by a `Scene`:
+//! one warning names what was left out.
 
-use std::collections::{BTreeSet, HashMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -88,9 +88,11 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         mut warnings,
         ..
     } = reader;
-    for (m, why) in &copied {
-        let mesh = document.meshes().nth(*m);
-        let name = mesh.as_ref().and_then(|m| m.name()).unwrap_or("");
+    for mesh in document.meshes() {
+        let (m, name) = (mesh.index(), mesh.name().unwrap_or(""));
+        let Some(why) = copied.get(&m) else {
+            continue;
+        };
         warnings.push(format!(
             "mesh {m} '{name}' {why}: copied through unchanged to a glTF output, not decimated (shown {})",
             match *why {
@@ -205,7 +207,7 @@ struct Reader<'b> {
     /// The file's node tree, shared by every model a node places.
     tree: Option<Arc<NodeTree>>,
     /// The meshes copied through (skinned or morphed), by index.
-    copied: &'b std::collections::BTreeMap<usize, &'static str>,
+    copied: &'b BTreeMap<usize, &'static str>,
     primitives: HashMap<(usize, usize), Option<Model>>,
     models: Vec<Model>,
     warnings: Vec<String>,
@@ -452,8 +454,8 @@ const MORPHED: &str = "has morph targets";
 
 /// The meshes that cannot be decimated faithfully, by index: those a skinned node places and
 /// those with morph targets.
-fn copied_meshes(document: &gltf::Document) -> std::collections::BTreeMap<usize, &'static str> {
-    let mut out = std::collections::BTreeMap::new();
+fn copied_meshes(document: &gltf::Document) -> BTreeMap<usize, &'static str> {
+    let mut out = BTreeMap::new();
     for mesh in document.meshes() {
         if mesh.primitives().any(|p| p.morph_targets().len() > 0) {
             out.insert(mesh.index(), MORPHED);
@@ -473,7 +475,7 @@ fn node_tree(
     document: &gltf::Document,
     scene: &gltf::Scene<'_>,
     buffers: &Buffers,
-    copied: &std::collections::BTreeMap<usize, &'static str>,
+    copied: &BTreeMap<usize, &'static str>,
 ) -> Result<NodeTree, String> {
     let nodes = document
         .nodes()

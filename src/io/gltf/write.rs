@@ -5,15 +5,16 @@
 //! at its index, with its name, local transform (matrix or TRS, as read) and children, and
 //! one mesh per source mesh, its primitives the node's models, shared by every node that
 //! places the same (decimated once, see `decimate::simplify_scene`). Skinned and morphed
-//! meshes, skins and animations are copied through from the source (`copy_through`). Other models
-//! get one root node each, placed by the model's transform; models with the same geometry
-//! and material share one glTF mesh. Each model is one triangle primitive: POSITION, NORMAL (per-vertex normals,
-//! unit length; per-face normals are left out, which glTF draws flat anyway), TEXCOORD_0
-//! (v flipped back to glTF's top-down images) and COLOR_0; a model with per-face colours is
-//! written with one vertex per triangle corner. Materials carry the diffuse colour as the
-//! base colour factor (not metallic, fully rough), the texture as the base colour texture
-//! (PNG or JPEG images only; another image's texture is left out) and `doubleSided` for a
-//! shape that is not `solid`. Every file goes through `replace_file` (a temporary file,
+//! meshes, skins and animations are copied through from the source (`copy_through`). Other
+//! models get one root node each, placed by the model's transform; models with the same
+//! geometry and material share one glTF mesh. Each model is one triangle primitive:
+//! POSITION, NORMAL (per-vertex normals, unit length; per-face normals are left out, which
+//! glTF draws flat anyway), TEXCOORD_0 (v flipped back to glTF's top-down images) and
+//! COLOR_0; a model with per-face colours is written with one vertex per triangle corner.
+//! Materials carry the diffuse colour as the base colour factor (not metallic, fully
+//! rough), the texture as the base colour texture (PNG or JPEG images only; another
+//! image's texture is left out, named by `image_losses`) and `doubleSided` for a shape that
+//! is not `solid`. Every file goes through `replace_file` (a temporary file,
 //! then a rename).
 
 use std::borrow::Cow;
@@ -179,11 +180,19 @@ fn placement(scene: &Scene) -> (Option<&NodeTree>, Placed<'_>, Vec<&Model>) {
             (Some(i), Some(tree))
                 if std::sync::Arc::ptr_eq(&i.tree, tree) && i.node < tree.nodes.len() =>
             {
-                placed
-                    .entry(i.node)
-                    .or_default()
-                    .entry(i.primitive)
-                    .or_insert(m);
+                // A node reached by two paths places the same geometry twice: written once.
+                // Another geometry in the same place (a model split after reading) goes flat.
+                let slot = placed.entry(i.node).or_default().entry(i.primitive);
+                match slot {
+                    std::collections::btree_map::Entry::Vacant(e) => {
+                        e.insert(m);
+                    }
+                    std::collections::btree_map::Entry::Occupied(e) => {
+                        if !same_geometry(e.get(), m) {
+                            flat.push(m);
+                        }
+                    }
+                }
             }
             _ => flat.push(m),
         }
