@@ -11,7 +11,7 @@ use decimate::io::read_scene;
 use glam::{Mat4, Quat, Vec3};
 use serde_json::{json, Value};
 
-use super::gltf::{assert_valid, scratch, Doc, UBYTE, UINT};
+use super::gltf::{assert_valid, scratch, Doc, FLOAT, UBYTE, UINT};
 
 /// A flat `n × n` grid of unit squares in the xy plane, as a new mesh of `d` (POSITION
 /// with its bounds, indexed by unsigned ints), named `name`; its index.
@@ -106,6 +106,13 @@ fn accessor_bytes(json: &Value, bin: &[u8], a: &Value) -> Vec<u8> {
     let at = |v: &Value| v.as_u64().unwrap_or(0) as usize;
     let start = at(&view["byteOffset"]) + at(&a["byteOffset"]);
     bin[start..start + at(&a["count"]) * size * width].to_vec()
+}
+
+/// The bytes of buffer view `v` of a document.
+fn view_bytes(json: &Value, bin: &[u8], v: &Value) -> Vec<u8> {
+    let view = &json["bufferViews"][v.as_u64().expect("a view index") as usize];
+    let at = |key: &str| view[key].as_u64().unwrap_or(0) as usize;
+    bin[at("byteOffset")..at("byteOffset") + at("byteLength")].to_vec()
 }
 
 fn close(a: Vec3, b: Vec3) -> bool {
@@ -280,11 +287,20 @@ fn skinned_and_morphed() -> Doc {
     let body = d.push("meshes", json!({ "name": "body", "primitives": [skinned] }));
     let base = positions(&mut d, &[0., 0., 0., 1., 0., 0., 0., 1., 0.]);
     let delta = positions(&mut d, &[0., 0., 1., 0., 0., 0.5, 0., 0., 0.]);
+    // A sparse target: zeros but for vertex 2, lifted by 0.75.
+    let (si, sv) = (d.view(&[2]), d.view(&0.75f32.to_le_bytes().repeat(3)));
+    let sparse = d.push(
+        "accessors",
+        json!({ "componentType": FLOAT, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [0.75, 0.75, 0.75],
+                "sparse": { "count": 1, "indices": { "bufferView": si, "componentType": UBYTE },
+                            "values": { "bufferView": sv } } }),
+    );
     let blob = d.push(
         "meshes",
-        json!({ "name": "blob", "weights": [0.5],
+        json!({ "name": "blob", "weights": [0.5, 0.0],
                 "primitives": [{ "attributes": { "POSITION": base },
-                                 "targets": [{ "POSITION": delta }] }] }),
+                                 "targets": [{ "POSITION": delta }, { "POSITION": sparse }] }] }),
     );
     let plain = grid_mesh(&mut d, 10, "plain");
     let ibm = d.floats(&Mat4::IDENTITY.to_cols_array(), "MAT4", 16);
@@ -292,12 +308,12 @@ fn skinned_and_morphed() -> Doc {
     d.json["accessors"][times]["min"] = json!([0.0]);
     d.json["accessors"][times]["max"] = json!([1.0]);
     let moves = d.floats(&[0., 0., 0., 0., 0., 2.], "VEC3", 3);
-    let weights_over_time = d.floats(&[0.0, 1.0], "SCALAR", 1);
+    let weights_over_time = d.floats(&[0.0, 0.0, 1.0, 0.5], "SCALAR", 1);
     d.json["nodes"] = json!([
         { "name": "armature", "children": [1, 2] },
         { "name": "body", "mesh": body, "skin": 0 },
         { "name": "bone" },
-        { "name": "blob", "mesh": blob, "weights": [0.25], "translation": [5, 0, 0] },
+        { "name": "blob", "mesh": blob, "weights": [0.25, 0.0], "translation": [5, 0, 0] },
         { "name": "plain", "mesh": plain, "translation": [0, 10, 0] },
     ]);
     d.json["scenes"][0]["nodes"] = json!([0, 3, 4]);
@@ -361,7 +377,7 @@ fn skinned_and_morphed_meshes_come_back_unchanged_with_their_skin_targets_and_an
     };
     // The nodes keep their indices: the skin's joint and the animation's targets still hold.
     assert_eq!(out["nodes"][1]["skin"], json!(0));
-    assert_eq!(out["nodes"][3]["weights"], json!([0.25]));
+    assert_eq!(out["nodes"][3]["weights"], json!([0.25, 0.0]));
     let body = &out["meshes"][out["nodes"][1]["mesh"].as_u64().expect("body's mesh") as usize];
     let (p, q) = (&body["primitives"][0], &src["meshes"][0]["primitives"][0]);
     for key in ["POSITION", "JOINTS_0", "WEIGHTS_0"] {
@@ -382,7 +398,7 @@ fn skinned_and_morphed_meshes_come_back_unchanged_with_their_skin_targets_and_an
         "inverse bind matrices",
     );
     let blob = &out["meshes"][out["nodes"][3]["mesh"].as_u64().expect("blob's mesh") as usize];
-    assert_eq!(blob["weights"], json!([0.5]));
+    assert_eq!(blob["weights"], json!([0.5, 0.0]));
     let (p, q) = (&blob["primitives"][0], &src["meshes"][1]["primitives"][0]);
     same(
         &p["attributes"]["POSITION"],
@@ -393,6 +409,23 @@ fn skinned_and_morphed_meshes_come_back_unchanged_with_their_skin_targets_and_an
         &p["targets"][0]["POSITION"],
         &q["targets"][0]["POSITION"],
         "the morph target",
+    );
+    let sparse = |json: &Value, bin: &[u8], p: &Value| {
+        let a =
+            &json["accessors"][p["targets"][1]["POSITION"].as_u64().expect("an index") as usize];
+        assert!(a.get("bufferView").is_none(), "still sparse: {a}");
+        let s = &a["sparse"];
+        let idx = view_bytes(json, bin, &s["indices"]["bufferView"]);
+        (
+            s["count"].clone(),
+            idx,
+            view_bytes(json, bin, &s["values"]["bufferView"]),
+        )
+    };
+    assert_eq!(
+        sparse(&out, &bin, p),
+        sparse(src, src_bin, q),
+        "the sparse target"
     );
     let (anim, src_anim) = (&out["animations"][0], &src["animations"][0]);
     assert_eq!(anim["channels"], src_anim["channels"]);
