@@ -447,7 +447,100 @@ fn share(total: usize, weights: &[usize]) -> Vec<usize> {
 
 #[cfg(test)]
 mod tests {
-    use super::share;
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::mesh::{shapes, Instance, LocalTransform, Node, NodeTree};
+
+    /// Three nodes placing one sphere, a fourth placing a cube, as a glTF file reads.
+    fn instanced() -> Scene {
+        let node = |mesh| Node {
+            name: None,
+            local: LocalTransform::Matrix(glam::Mat4::IDENTITY),
+            children: Vec::new(),
+            mesh: Some(mesh),
+        };
+        let tree = Arc::new(NodeTree {
+            nodes: vec![node(0), node(0), node(0), node(1)],
+            roots: vec![0, 1, 2, 3],
+            copied: None,
+        });
+        let placed = |model: Model, node| Model {
+            name: format!("n{node}"),
+            transform: glam::Mat4::from_translation(glam::Vec3::X * 3.0 * node as f32),
+            instance: Some(Instance {
+                tree: tree.clone(),
+                node,
+                primitive: 0,
+                copied: false,
+            }),
+            ..model
+        };
+        let sphere = shapes::bumpy_sphere(12, 16);
+        let cube = shapes::cube(8, 1.0);
+        Scene {
+            models: vec![
+                placed(sphere.clone(), 0),
+                placed(sphere.clone(), 1),
+                placed(sphere, 2),
+                placed(cube, 3),
+            ],
+        }
+    }
+
+    #[test]
+    fn a_mesh_several_nodes_place_is_decimated_once_and_counted_once() {
+        let mut scene = instanced();
+        let before: Vec<usize> = scene.models.iter().map(|m| m.triangles.len()).collect();
+        let distinct = before[0] + before[3];
+        let params = Params {
+            target: Target::KeepTriangles(distinct / 2),
+            algorithm: Algorithm::Qem,
+            ..Params::default()
+        };
+        let report = simplify_scene(&mut scene, &params, &mut |_| {});
+        let m = &scene.models;
+        // The count target is met over distinct meshes: the sphere once, and the cube.
+        let kept = m[0].triangles.len() + m[3].triangles.len();
+        assert!(kept.abs_diff(distinct / 2) <= 2, "{kept} of {distinct}");
+        for i in [1, 2] {
+            assert_eq!(m[i].positions, m[0].positions);
+            assert_eq!(m[i].triangles, m[0].triangles);
+            assert_eq!(m[i].name, format!("n{i}"));
+            assert_eq!(m[i].transform.w_axis.x, 3.0 * i as f32, "placed as before");
+            assert_eq!(report.models[i].instance_of, Some(0));
+        }
+        let r = &report.models;
+        let removed = |k: usize| r[k].vertices_before - r[k].vertices_after;
+        assert_eq!(report.vertices_removed(), removed(0) + removed(3));
+        let summary = report.summary();
+        assert_eq!(summary.matches("instance of n0").count(), 2, "{summary}");
+        assert!(
+            summary.contains(&format!(
+                "total (each mesh once: 2 more instances not counted): vertices {} -> {}",
+                report.models[0].vertices_before + report.models[3].vertices_before,
+                report.models[0].vertices_after + report.models[3].vertices_after,
+            )),
+            "{summary}"
+        );
+    }
+
+    #[test]
+    fn a_copied_mesh_is_left_as_read() {
+        let mut scene = instanced();
+        for m in &mut scene.models {
+            if let Some(i) = m.instance.as_mut() {
+                i.copied = i.node < 3;
+            }
+        }
+        let sphere = scene.models[0].clone();
+        let report = simplify_scene(&mut scene, &Params::default(), &mut |_| {});
+        for i in 0..3 {
+            assert_eq!(scene.models[i].triangles, sphere.triangles);
+            assert!(report.models[i].copied);
+        }
+        assert!(scene.models[3].triangles.len() < instanced().models[3].triangles.len());
+    }
 
     #[test]
     fn shares_add_up_exactly() {
