@@ -174,7 +174,9 @@ impl Gatherer<'_> {
             .get(buffer)
             .and_then(|b| b.get(offset..offset.checked_add(length)?))
             .ok_or_else(|| format!("bufferView {v} runs past the end of buffer {buffer}"))?;
-        while !self.data.len().is_multiple_of(4) {
+        // The view keeps its offset modulo 4: an accessor's own offset within it may rely
+        // on it for its components' alignment (glTF 2.0 § 3.6.2.4).
+        while self.data.len() % 4 != offset % 4 {
             self.data.push(0);
         }
         let mut copy = json!({ "buffer": 0, "byteOffset": self.data.len(), "byteLength": length });
