@@ -446,6 +446,23 @@ fn skinned_and_morphed_meshes_come_back_unchanged_with_their_skin_targets_and_an
         count.as_u64().is_some_and(|c| c < 600 / 2 + 60),
         "plain has {count} corners"
     );
+    // As .gltf the same travels in its .bin; another format keeps the rest pose, and says so.
+    decimate(
+        &dir,
+        &["in.glb", "nogui", "-a", "qem", "-p", "50", "-o", "out.gltf"],
+    );
+    assert_valid(&[&dir.join("out.gltf")]);
+    let text = std::fs::read(dir.join("out.gltf")).expect("reads");
+    let text: Value = serde_json::from_slice(&text).expect("the .gltf parses");
+    assert_eq!(
+        (&text["skins"], &text["animations"]),
+        (&out["skins"], &out["animations"])
+    );
+    let stderr = decimate(&dir, &["in.glb", "nogui", "-p", "50", "-o", "out.ply"]);
+    assert!(
+        stderr.contains("warning: out.ply: the source's skins, morph targets and animations"),
+        "{stderr}"
+    );
 }
 
 #[test]
