@@ -35,7 +35,7 @@ pub enum Poll<T> {
 
 /// Starts `work` on a new thread, which gets a rayon pool of its own (the thread one of its
 /// workers): the parallel steps of a decimation never queue behind the window's, nor the
-/// window's behind them. `work` gets a progress callback (0..=1) and the cancel flag, and
+/// window's behind them; the pool's threads run [`JOB_NICE`] nicer than the window. `work` gets a progress callback (0..=1) and the cancel flag, and
 /// returns `None` when it stopped on that flag.
 pub fn spawn<T, F>(what: String, work: F) -> Job<T>
 where
@@ -47,9 +47,14 @@ where
     let (send, result) = mpsc::channel();
     let (shared, flag) = (progress.clone(), cancel.clone());
     let body = move || {
+        lower_priority();
         let mut report = |fraction: f32| shared.store(fraction.to_bits(), Ordering::Relaxed);
         let run = || work(&mut report, &flag);
-        let out = match rayon::ThreadPoolBuilder::new().use_current_thread().build() {
+        let out = match rayon::ThreadPoolBuilder::new()
+            .use_current_thread()
+            .start_handler(|_| lower_priority())
+            .build()
+        {
             Ok(pool) => pool.install(run),
             // No pool of its own: the job runs on the global one.
             Err(_) => run(),
@@ -72,6 +77,26 @@ where
         eprintln!("decimate: cannot start a worker thread: {e}");
     }
     job
+}
+
+/// How much nicer than the window a job's threads are (Linux nice values, 0 to 19): when
+/// the cores are busy, a frame or a key goes first; see docs/design.md#viewer-jobs.
+const JOB_NICE: i32 = 10;
+
+/// Makes the calling thread [`JOB_NICE`] nicer (Linux keeps a nice value per thread);
+/// nothing where that fails or on other systems.
+fn lower_priority() {
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: gettid, getpriority and setpriority only read their integer arguments;
+        // raising one's own thread's nice value needs no privilege, and a failure changes
+        // nothing.
+        unsafe {
+            let tid = libc::gettid() as libc::id_t;
+            let now = libc::getpriority(libc::PRIO_PROCESS, tid);
+            libc::setpriority(libc::PRIO_PROCESS, tid, (now + JOB_NICE).min(19));
+        }
+    }
 }
 
 impl<T> Job<T> {
@@ -185,6 +210,27 @@ mod tests {
             panic!("on purpose")
         });
         assert!(matches!(job.wait(), Poll::Failed(_)));
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn a_jobs_threads_are_nicer_than_the_window() {
+        use rayon::prelude::*;
+        // SAFETY: as in `lower_priority`: integer arguments only.
+        let nice =
+            || unsafe { libc::getpriority(libc::PRIO_PROCESS, libc::gettid() as libc::id_t) };
+        let window = nice();
+        let job = spawn("nice".into(), move |_, _| {
+            let workers: Vec<i32> = (0..64).into_par_iter().map(|_| nice()).collect();
+            Some((nice(), workers))
+        });
+        let Poll::Done((own, workers)) = job.wait() else {
+            panic!("the job did not end");
+        };
+        let expected = (window + JOB_NICE).min(19);
+        assert_eq!(own, expected);
+        assert!(workers.iter().all(|&n| n == expected), "{workers:?}");
+        assert_eq!(nice(), window, "the calling thread keeps its own");
     }
 
     #[test]
