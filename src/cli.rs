@@ -37,6 +37,8 @@ pub struct ShotOptions {
     pub targets: Vec<Target>,
     /// Where relative texture names are read from: the input file's folder.
     pub texture_dir: PathBuf,
+    /// Samples per pixel for anti-aliasing (`--msaa`; 1: off), as many as the device offers.
+    pub msaa: u32,
 }
 
 impl Default for ShotOptions {
@@ -49,6 +51,7 @@ impl Default for ShotOptions {
             labels: None,
             targets: Vec::new(),
             texture_dir: PathBuf::from("."),
+            msaa: crate::render::pipeline::DEFAULT_MSAA,
         }
     }
 }
@@ -195,7 +198,8 @@ also set what the viewer draws):
   --size WxH            image size (DEFAULT: 800x600)
   --viewports N         1-4 viewports: the original, then the decimated scene
   --mode LIST           comma-separated: triangles,edges,points,normals,vertex-normals,
-                        flat,unlit,untextured (DEFAULT: triangles)
+                        flat,unlit,untextured,error (DEFAULT: triangles)
+  --msaa N              anti-aliasing: 1 (off), 2, 4 or 8 samples per pixel (DEFAULT: 4)
   --crease-angle DEG    smooth shading keeps edges whose faces meet at more than DEG
                         sharp (DEFAULT: the file's creaseAngle, else 45; 180: smooth)
   --labels, --no-labels a caption on each viewport: what it shows, its counts
@@ -355,6 +359,15 @@ where
             "--labels" => shot.labels = Some(true),
             "--no-labels" => shot.labels = Some(false),
             "--mode" => shot.modes = draw_modes(&value(&arg)?)?,
+            "--msaa" => {
+                let n: u32 = number(&arg, &value(&arg)?)?;
+                if ![1, 2, 4, 8].contains(&n) {
+                    return Err(CliError(format!(
+                        "--msaa: expected 1 (off), 2, 4 or 8 samples per pixel, got {n}"
+                    )));
+                }
+                shot.msaa = n;
+            }
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(CliError(format!("unknown option '{s}'")))
             }
@@ -768,10 +781,11 @@ pub fn draw_modes(s: &str) -> Result<DrawOptions, CliError> {
             "flat" => m.smooth = false,
             "unlit" => m.lighting = false,
             "untextured" => m.textures = false,
+            "error" => m.error_map = true,
             other => {
                 return Err(CliError(format!(
                     "--mode: unknown mode '{other}' (expected triangles, edges, points, \
-                     normals, vertex-normals, flat, unlit, untextured)"
+                     normals, vertex-normals, flat, unlit, untextured, error)"
                 )))
             }
         }

@@ -85,8 +85,9 @@ pub fn render(
 ) -> Result<(RgbaImage, Vec<Report>), RenderError> {
     let context = Context::new(&[], false, device)?;
     let commands = Commands::new(&context)?;
-    let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
-    let target = OffscreenTarget::new(&context, options.width, options.height)?;
+    let pipelines = Pipelines::with_samples(&context, OFFSCREEN_FORMAT, options.msaa)?;
+    let target =
+        OffscreenTarget::with_samples(&context, options.width, options.height, pipelines.samples)?;
 
     let draw = options.modes;
     let mut textures = Textures::new(

@@ -17,7 +17,7 @@ use crate::render::commands::Commands;
 use crate::render::context::{Context, DevicePreference};
 use crate::render::draw::{self, ViewportDraw, BACKGROUND};
 use crate::render::gpu_mesh::GpuScene;
-use crate::render::image::{self, Transition, DEPTH_FORMAT};
+use crate::render::image::{self, Transition};
 use crate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
 use crate::render::pipeline::Pipelines;
 use crate::render::swapchain::{Frame, Swapchain};
@@ -150,8 +150,14 @@ impl Viewer {
         let extent = gpu.swapchain.extent;
         gpu.context.wait_idle()?;
         // The window's pipelines draw in the swapchain's format; the picture is RGBA.
-        let pipelines = Pipelines::new(&gpu.context, OFFSCREEN_FORMAT)?;
-        let offscreen = OffscreenTarget::new(&gpu.context, extent.width, extent.height)?;
+        let msaa = gpu.pipelines.samples.as_raw();
+        let pipelines = Pipelines::with_samples(&gpu.context, OFFSCREEN_FORMAT, msaa)?;
+        let offscreen = OffscreenTarget::with_samples(
+            &gpu.context,
+            extent.width,
+            extent.height,
+            pipelines.samples,
+        )?;
         let views = viewport_draws(&gpu.scenes, &self.controller, extent, Instant::now());
         let captions: Vec<_> = (self.controller.rects_for(extent.width, extent.height))
             .into_iter()
@@ -241,6 +247,11 @@ impl Viewer {
         if self.resized {
             gpu.swapchain.recreate(self.size.0, self.size.1)?;
             self.resized = false;
+        }
+        if gpu.context.capabilities.samples(self.controller.msaa) != gpu.pipelines.samples {
+            gpu.context.wait_idle()?;
+            gpu.pipelines.set_samples(self.controller.msaa)?;
+            gpu.swapchain.set_samples(gpu.pipelines.samples)?;
         }
         Self::sync_scenes(gpu, &self.controller)?;
         let ui_result = self.run_ui(window)?;
@@ -398,9 +409,9 @@ fn record_viewports(
 ) -> Result<(), AppError> {
     let device = &gpu.context.device;
     let (format, extent) = (gpu.swapchain.format, gpu.swapchain.extent);
-    let depth = gpu
+    let images = gpu
         .swapchain
-        .depth
+        .draw_images
         .as_ref()
         .ok_or_else(|| RenderError::Window("the swapchain has no depth buffer".into()))?;
     let rects: Vec<_> = views.iter().map(|v| v.rect).collect();
@@ -408,14 +419,9 @@ fn record_viewports(
     // stay alive until the frame's fence is waited for (next `acquire` or device idle).
     unsafe {
         image::transition(device, cmd, frame.image, format, image::TO_COLOR_ATTACHMENT);
-        image::transition(
-            device,
-            cmd,
-            depth.handle,
-            DEPTH_FORMAT,
-            image::TO_DEPTH_ATTACHMENT,
-        );
-        draw::begin_rendering(device, cmd, frame.view, depth.view, extent, BACKGROUND);
+        images.to_attachments(device, cmd);
+        let attachments = images.attachments(frame.view);
+        draw::begin_rendering(device, cmd, attachments, extent, BACKGROUND);
         draw::clear_tiles(device, cmd, extent, &rects, highlight);
         draw::record(device, cmd, &gpu.pipelines, views);
         device.cmd_end_rendering(cmd);
@@ -434,8 +440,14 @@ impl Callbacks for Viewer {
             .map_err(|e| AppError::Window(format!("no Vulkan surface support: {e}")))?;
         let context = Context::new(extensions, true, DevicePreference::Fastest)?;
         let size = window.inner_size();
-        let swapchain = Swapchain::new(&context, window.as_ref(), size.width, size.height)?;
-        let pipelines = Pipelines::new(&context, swapchain.format)?;
+        let samples = context.capabilities.samples(self.controller.msaa);
+        let swapchain = Swapchain::new(
+            &context,
+            window.as_ref(),
+            (size.width, size.height),
+            samples,
+        )?;
+        let pipelines = Pipelines::with_samples(&context, swapchain.format, samples.as_raw())?;
         let textures = Textures::new(
             &context,
             pipelines.texture_layout,

@@ -6,6 +6,7 @@ mod support;
 
 mod anisotropy;
 mod modes;
+mod msaa;
 mod shot_command;
 mod textures;
 mod viewports;
