@@ -3,6 +3,7 @@
 
 pub mod app_error;
 pub mod controller;
+pub mod error_map;
 pub mod glut;
 pub mod labels;
 pub mod lod;

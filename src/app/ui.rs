@@ -15,6 +15,7 @@ use crate::render::context::Context;
 use crate::render::tiles::Rect;
 
 use super::app_error::AppError;
+use super::error_map::{self, Legend};
 use super::labels;
 use super::menu::{Action, MenuEntry, MenuItem};
 
@@ -62,6 +63,8 @@ pub struct UiState<'a> {
     pub lod: Option<(usize, usize, usize)>,
     /// Each viewport's rectangle (physical pixels) and caption.
     pub captions: &'a [(Rect, String)],
+    /// The error heat-map's legend, while a viewport shows it.
+    pub legend: Option<Legend>,
 }
 
 /// egui context, winit glue and Vulkan renderer.
@@ -145,11 +148,15 @@ impl UiLayer {
             help,
             lod,
             captions,
+            legend,
         } = ui_state;
         let scale = window.scale_factor() as f32;
         let output = self.ctx.run_ui(input, |ui| {
             let ctx = ui.ctx().clone();
             labels::paint(&ctx, captions, scale);
+            if let Some(legend) = &legend {
+                error_map::paint_legend(&ctx, legend, ctx.content_rect());
+            }
             egui::Area::new(egui::Id::new("status"))
                 .anchor(egui::Align2::LEFT_BOTTOM, egui::vec2(6.0, -6.0))
                 .show(&ctx, |ui| {

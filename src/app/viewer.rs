@@ -26,6 +26,7 @@ use crate::render::RenderError;
 
 use super::app_error::AppError;
 use super::controller::{Effect, ViewportController};
+use super::error_map::{self, FieldCache, Legend, Look};
 use super::glut::{Button, Callbacks, Flow, Special};
 use super::labels::HeadlessCaptions;
 use super::menu::{action_for_key, key_help, Key, MenuEntry};
@@ -36,7 +37,8 @@ use super::ui::{UiLayer, UiResult, UiState, VertexField};
 /// GPU objects of the window; field order is drop order (UI and meshes before the context).
 struct Gpu {
     ui: UiLayer,
-    scenes: Vec<(u64, u64, GpuScene)>,
+    /// Each viewport's scene: its id, generation and look (own colours or heat-mapped).
+    scenes: Vec<(u64, (u64, Look), GpuScene)>,
     /// Uploaded once per name, shared by every viewport's scenes; dropped before the
     /// pipelines, whose set layout its sets were made with.
     textures: Textures,
@@ -64,6 +66,9 @@ pub struct Viewer {
     help_text: String,
     /// The last message of the status line and when it expires.
     message: Option<(String, Instant)>,
+    /// The heat-mapped viewports' error fields and the legend they share.
+    fields: FieldCache,
+    legend: Option<Legend>,
 }
 
 /// Where F2 saves the window's picture.
@@ -90,6 +95,8 @@ impl Viewer {
             field: None,
             help_text: key_help(),
             message: None,
+            fields: FieldCache::default(),
+            legend: None,
         }
     }
 
@@ -164,7 +171,18 @@ impl Viewer {
             .zip(self.controller.viewports().iter().map(|vp| vp.caption()))
             .collect();
         let commands = &gpu.upload_commands;
-        let mut overlay = HeadlessCaptions::new(&gpu.context, commands, extent, &captions)?;
+        let screen = egui::Rect::from_min_size(
+            egui::Pos2::ZERO,
+            egui::vec2(extent.width as f32, extent.height as f32),
+        );
+        let legend = self.legend;
+        let paint = |ctx: &egui::Context| {
+            super::labels::paint(ctx, &captions, 1.0);
+            if let Some(legend) = &legend {
+                error_map::paint_legend(ctx, legend, screen);
+            }
+        };
+        let mut overlay = HeadlessCaptions::with_painter(&gpu.context, commands, extent, &paint)?;
         let mut record = |cmd| overlay.record(cmd);
         let image = offscreen
             .render_with_overlay(commands, &pipelines, &views, true, Some(&mut record))?
@@ -206,16 +224,22 @@ impl Viewer {
     /// Uploads the scenes whose generation changed, or whose draw modes now need a list that
     /// was left out (then with the lists it had too, so toggling a mode back and forth
     /// uploads once), and forgets removed viewports.
-    fn sync_scenes(gpu: &mut Gpu, controller: &ViewportController) -> Result<(), AppError> {
+    fn sync_scenes(
+        gpu: &mut Gpu,
+        controller: &ViewportController,
+        fields: &FieldCache,
+        legend: Option<&Legend>,
+    ) -> Result<(), AppError> {
         let viewports = controller.viewports();
         gpu.scenes
             .retain(|(id, _, _)| viewports.iter().any(|v| v.id == *id));
         for vp in viewports {
             let needed = vp.options.layers();
+            let key = (vp.generation, fields.look(vp, legend));
             let uploaded = gpu
                 .scenes
                 .iter()
-                .find(|(id, generation, _)| *id == vp.id && *generation == vp.generation)
+                .find(|(id, k, _)| *id == vp.id && *k == key)
                 .map(|(_, _, scene)| scene.layers);
             if uploaded.is_none_or(|layers| !layers.contains(needed)) {
                 gpu.context.wait_idle()?;
@@ -224,12 +248,12 @@ impl Viewer {
                     &gpu.context,
                     &gpu.upload_commands,
                     &mut gpu.textures,
-                    vp.scene(),
+                    &fields.scene(vp, key.1),
                     morph_from,
                     uploaded.map_or(needed, |layers| layers.union(needed)),
                 )?;
                 gpu.scenes.retain(|(id, _, _)| *id != vp.id);
-                gpu.scenes.push((vp.id, vp.generation, scene));
+                gpu.scenes.push((vp.id, key, scene));
             }
         }
         Ok(())
@@ -253,7 +277,9 @@ impl Viewer {
             gpu.pipelines.set_samples(self.controller.msaa)?;
             gpu.swapchain.set_samples(gpu.pipelines.samples)?;
         }
-        Self::sync_scenes(gpu, &self.controller)?;
+        // The heat-map's error fields are measured here, once per decimation shown.
+        self.legend = self.fields.update(self.controller.viewports());
+        Self::sync_scenes(gpu, &self.controller, &self.fields, self.legend.as_ref())?;
         let ui_result = self.run_ui(window)?;
         if !self.present(now)? {
             // The swapchain no longer fits the window: made again next frame.
@@ -296,6 +322,7 @@ impl Viewer {
                 help,
                 lod,
                 captions: &captions,
+                legend: self.legend,
             },
         )
     }
@@ -376,7 +403,7 @@ impl Viewer {
 
 /// What each viewport draws this frame, for the viewports whose scene is on the GPU.
 fn viewport_draws<'a>(
-    scenes: &'a [(u64, u64, GpuScene)],
+    scenes: &'a [(u64, (u64, Look), GpuScene)],
     controller: &'a ViewportController,
     extent: vk::Extent2D,
     now: Instant,

@@ -5,6 +5,7 @@
 mod support;
 
 mod anisotropy;
+mod error_map;
 mod modes;
 mod msaa;
 mod shot_command;
