@@ -37,7 +37,7 @@ pub fn ramp(t: f32) -> [f32; 3] {
     let i = (x.floor() as usize).min(RAMP.len() - 2);
     let f = x - i as f32;
     let (a, b) = (RAMP[i], RAMP[i + 1]);
-    [0, 1, 2].map(|c| a[c] + (b[c] - a[c]) * f)
+    [0, 1, 2].map(|c| a[c] * (1.0 - f) + b[c] * f)
 }
 
 /// What the ramp spans: 0 to `max` model units, `max` being `diagonal` × a percentage.

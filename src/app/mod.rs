@@ -8,6 +8,8 @@ pub mod glut;
 pub mod labels;
 pub mod lod;
 pub mod menu;
+pub mod menu_layout;
+pub mod popup;
 pub mod save;
 pub mod shot;
 pub mod ui;
