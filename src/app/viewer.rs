@@ -15,7 +15,7 @@ use crate::io::texture_image;
 use crate::render::camera::Navigation;
 use crate::render::commands::Commands;
 use crate::render::context::{Context, DevicePreference};
-use crate::render::draw::{self, ViewportDraw, BACKGROUND};
+use crate::render::draw::{self, ViewportDraw};
 use crate::render::gpu_mesh::GpuScene;
 use crate::render::image::{self, Transition};
 use crate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
@@ -448,8 +448,7 @@ fn record_viewports(
         image::transition(device, cmd, frame.image, format, image::TO_COLOR_ATTACHMENT);
         images.to_attachments(device, cmd);
         let attachments = images.attachments(frame.view);
-        draw::begin_rendering(device, cmd, attachments, extent, BACKGROUND);
-        draw::clear_tiles(device, cmd, extent, &rects, highlight);
+        draw::begin_tiles(device, cmd, attachments, extent, &rects, highlight);
         draw::record(device, cmd, &gpu.pipelines, views);
         device.cmd_end_rendering(cmd);
         draw::begin_overlay(device, cmd, frame.view, extent);

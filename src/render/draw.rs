@@ -223,16 +223,48 @@ unsafe fn draw_mesh(device: &ash::Device, cmd: vk::CommandBuffer, mesh: &GpuMesh
     }
 }
 
-/// Clears the whole attachment to the separator colour, then each viewport to the background
-/// (and the `highlighted` one's border to the highlight colour).
+/// Begins dynamic rendering into `target` for the viewports `rects`: the pass's own clear
+/// gives the separator colour between them (or the background, when one viewport fills the
+/// picture), then each viewport is cleared to the background and the `highlighted` one's
+/// border to the highlight colour. Every full-size clear costs a pass over every sample, so
+/// none is made twice.
+///
+/// # Safety
+/// `cmd` must be recording outside rendering; the views must be in attachment layouts.
+pub unsafe fn begin_tiles(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    target: Attachments,
+    extent: vk::Extent2D,
+    rects: &[Rect],
+    highlighted: Option<usize>,
+) {
+    let whole = Rect {
+        x: 0,
+        y: 0,
+        width: extent.width,
+        height: extent.height,
+    };
+    let one_full_tile = rects == [whole] && highlighted.is_none();
+    let load = if one_full_tile { BACKGROUND } else { SEPARATOR };
+    // SAFETY: guaranteed by the caller; the pass begun here is the one the tiles clear.
+    unsafe {
+        begin_rendering(device, cmd, target, extent, load);
+        if !one_full_tile {
+            clear_tiles(device, cmd, rects, highlighted);
+        }
+    }
+}
+
+/// Clears each viewport to the background (and the `highlighted` one's border to the
+/// highlight colour).
 ///
 /// # Safety
 /// `cmd` must be recording inside `vkCmdBeginRendering` with colour attachment 0 covering
-/// `extent`.
-pub unsafe fn clear_tiles(
+/// every rectangle.
+unsafe fn clear_tiles(
     device: &ash::Device,
     cmd: vk::CommandBuffer,
-    extent: vk::Extent2D,
     rects: &[Rect],
     highlighted: Option<usize>,
 ) {
@@ -265,13 +297,6 @@ pub unsafe fn clear_tiles(
             height: r.height.saturating_sub(2 * inset),
         },
     };
-    clear(
-        vk::Rect2D {
-            offset: vk::Offset2D::default(),
-            extent,
-        },
-        SEPARATOR,
-    );
     for (i, &r) in rects.iter().enumerate() {
         if highlighted == Some(i) {
             clear(to_vk(r, 0), HIGHLIGHT);

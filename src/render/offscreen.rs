@@ -12,7 +12,7 @@ use super::attachments::DrawImages;
 use super::buffer::Buffer;
 use super::commands::Commands;
 use super::context::Context;
-use super::draw::{self, ViewportDraw, BACKGROUND};
+use super::draw::{self, ViewportDraw};
 use super::error::{RenderError, Result};
 use super::image::{self, Image, Transition};
 use super::pipeline::Pipelines;
@@ -119,14 +119,8 @@ impl OffscreenTarget {
                 image::TO_COLOR_ATTACHMENT,
             );
             self.images.to_attachments(device, cmd);
-            draw::begin_rendering(
-                device,
-                cmd,
-                self.images.attachments(self.color.view),
-                self.extent,
-                BACKGROUND,
-            );
-            draw::clear_tiles(device, cmd, self.extent, &rects, None);
+            let target = self.images.attachments(self.color.view);
+            draw::begin_tiles(device, cmd, target, self.extent, &rects, None);
             draw::record(device, cmd, pipelines, views);
             device.cmd_end_rendering(cmd);
         }
