@@ -1027,6 +1027,21 @@ mod tests {
     }
 
     #[test]
+    fn msaa_and_the_error_map_are_options_of_the_viewer_and_shot() {
+        assert_eq!(run(&["m.wrl", "shot"]).shot.msaa, 4);
+        assert_eq!(run(&["m.wrl", "shot", "--msaa", "1"]).shot.msaa, 1);
+        assert_eq!(run(&["m.wrl", "--msaa", "8"]).shot.msaa, 8);
+        match parse(["m.wrl", "shot", "--msaa", "3"]) {
+            Err(e) => assert!(e.0.contains("--msaa") && e.0.contains('3'), "{}", e.0),
+            Ok(_) => panic!("--msaa 3 was accepted"),
+        }
+        assert!(parse(["m.wrl", "shot", "--msaa", "x"]).is_err());
+        let a = run(&["m.wrl", "shot", "--mode", "error"]);
+        assert!(a.shot.modes.error_map && a.shot.modes.triangles);
+        assert!(!run(&["m.wrl", "shot"]).shot.modes.error_map);
+    }
+
+    #[test]
     fn the_crease_angle_is_for_the_viewer_and_shot() {
         assert_eq!(
             run(&["m.wrl", "--crease-angle", "180"]).crease_angle,
