@@ -40,31 +40,50 @@ pub fn ramp(t: f32) -> [f32; 3] {
     [0, 1, 2].map(|c| a[c] * (1.0 - f) + b[c] * f)
 }
 
-/// What the ramp spans: 0 to `max` model units, `max` being `diagonal` × a percentage.
+/// Share of the distances below the ramp's hot end: the largest distances are usually a few
+/// vertices (a spike, a border), and a ramp ending at them would paint everything else in one
+/// cold colour (docs/design.md#error-map).
+pub const RAMP_PERCENTILE: f64 = 0.99;
+
+/// What the ramp spans: 0 to `top` model units (the hot end: that far or farther), `max`
+/// being the largest distance, and `diagonal` the original's bounding-box diagonal.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Legend {
+    pub top: f64,
     pub max: f64,
     pub diagonal: f64,
 }
 
 impl Legend {
-    /// The legend for `fields` drawn together (one scale for every viewport).
+    /// The legend for `fields` drawn together (one scale for every viewport): the ramp ends
+    /// at the [`RAMP_PERCENTILE`] of their distances (at the largest, if that is 0).
     pub fn spanning<'a>(fields: impl IntoIterator<Item = &'a ErrorField>) -> Self {
         let mut legend = Self {
+            top: 0.0,
             max: 0.0,
             diagonal: 0.0,
         };
+        let mut all: Vec<f32> = Vec::new();
         for f in fields {
             legend.max = legend.max.max(f.max);
             legend.diagonal = legend.diagonal.max(f.diagonal);
+            all.extend(f.distances.iter().flatten().copied());
+        }
+        if !all.is_empty() {
+            let k = ((all.len() - 1) as f64 * RAMP_PERCENTILE).round() as usize;
+            let (_, &mut nth, _) = all.select_nth_unstable_by(k, f32::total_cmp);
+            legend.top = f64::from(nth);
+        }
+        if legend.top <= 0.0 {
+            legend.top = legend.max;
         }
         legend
     }
 
     /// Where `distance` falls on the ramp (0: none; a scene without error is all cold).
     pub fn position(&self, distance: f64) -> f32 {
-        if self.max > 0.0 {
-            (distance / self.max) as f32
+        if self.top > 0.0 {
+            (distance / self.top) as f32
         } else {
             0.0
         }
@@ -116,7 +135,7 @@ pub fn neutral_scene(scene: &Scene) -> Scene {
 }
 
 /// How the window draws a viewport's scene: in its own colours, in the heat-map mode's grey
-/// (it shows the original), or heat-mapped on a legend of this maximum (its `f64` bits).
+/// (it shows the original), or heat-mapped on a ramp ending at this distance (its `f64` bits).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Look {
     Own,
@@ -157,25 +176,26 @@ impl FieldCache {
     /// How `vp` is drawn, with `legend` from [`Self::update`].
     pub fn look(&self, vp: &Viewport, legend: Option<&Legend>) -> Look {
         match (vp.options.error_map, legend) {
-            (true, Some(legend)) if decimated(vp) => Look::Heat(legend.max.to_bits()),
+            (true, Some(legend)) if decimated(vp) => Look::Heat(legend.top.to_bits()),
             (true, _) => Look::Neutral,
             (false, _) => Look::Own,
         }
     }
 
-    /// The scene to upload for `vp` drawn with `look`.
-    pub fn scene<'a>(&self, vp: &'a Viewport, look: Look) -> Cow<'a, Scene> {
+    /// The scene to upload for `vp` drawn with `look` on `legend`.
+    pub fn scene<'a>(
+        &self,
+        vp: &'a Viewport,
+        look: Look,
+        legend: Option<&Legend>,
+    ) -> Cow<'a, Scene> {
         let field = self.fields.iter().find(|(id, _, _)| *id == vp.id);
-        match (look, field) {
-            (Look::Heat(bits), Some((_, _, field))) => {
-                let legend = Legend {
-                    max: f64::from_bits(bits),
-                    diagonal: field.diagonal,
-                };
-                Cow::Owned(heat_scene(vp.scene(), field, &legend))
+        match (look, field, legend) {
+            (Look::Heat(_), Some((_, _, field)), Some(legend)) => {
+                Cow::Owned(heat_scene(vp.scene(), field, legend))
             }
-            (Look::Neutral, _) | (Look::Heat(_), None) => Cow::Owned(neutral_scene(vp.scene())),
-            (Look::Own, _) => Cow::Borrowed(vp.scene()),
+            (Look::Neutral | Look::Heat(_), _, _) => Cow::Owned(neutral_scene(vp.scene())),
+            (Look::Own, _, _) => Cow::Borrowed(vp.scene()),
         }
     }
 }
@@ -187,9 +207,15 @@ pub fn paint_legend(ctx: &egui::Context, legend: &Legend, screen: egui::Rect) {
     let painter = ctx.layer_painter(layer);
     let font = egui::FontId::proportional(11.0);
     let text = egui::Color32::from_gray(235);
-    let title = painter.layout_no_wrap("distance to the original".into(), font.clone(), text);
+    let title = format!("distance to the original, max {}", legend.words(legend.max));
+    let title = painter.layout_no_wrap(title, font.clone(), text);
     let zero = painter.layout_no_wrap("0".into(), font.clone(), text);
-    let top = painter.layout_no_wrap(legend.words(legend.max), font.clone(), text);
+    let end = if legend.top < legend.max {
+        format!("≥ {}", legend.words(legend.top))
+    } else {
+        legend.words(legend.top)
+    };
+    let top = painter.layout_no_wrap(end, font.clone(), text);
     let line = title.size().y;
     let width = BAR
         .0
@@ -246,12 +272,32 @@ mod tests {
     #[test]
     fn legend_words_give_units_and_percent() {
         let legend = Legend {
-            max: 0.0123,
+            top: 0.0123,
+            max: 0.02,
             diagonal: 2.0,
         };
         assert_eq!(legend.words(0.0123), "0.0123 (0.61 %)");
         assert_eq!(significant(12.345), "12.3");
         assert_eq!(significant(0.0), "0");
         assert_eq!(legend.position(0.0123), 1.0);
+    }
+
+    #[test]
+    fn the_ramp_ends_at_the_99th_percentile_unless_that_is_zero() {
+        let field = |distances: Vec<f32>| ErrorField {
+            max: distances.iter().copied().fold(0.0, f32::max).into(),
+            distances: vec![distances],
+            diagonal: 1.0,
+        };
+        // 1000 distances 0.001 … 1.0: the hot end at the 990th.
+        let spread = field((1..=1000).map(|i| i as f32 / 1000.0).collect());
+        let legend = Legend::spanning([&spread]);
+        assert!((legend.top - 0.990).abs() < 1e-6, "{}", legend.top);
+        assert!((legend.max - 1.0).abs() < 1e-6);
+        // One vertex moved among 100 unmoved: the ramp ends at it.
+        let mut one = vec![0.0; 100];
+        one[7] = 0.5;
+        let legend = Legend::spanning([&field(one)]);
+        assert_eq!(legend.top, 0.5);
     }
 }

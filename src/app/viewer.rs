@@ -248,7 +248,7 @@ impl Viewer {
                     &gpu.context,
                     &gpu.upload_commands,
                     &mut gpu.textures,
-                    &fields.scene(vp, key.1),
+                    &fields.scene(vp, key.1, legend),
                     morph_from,
                     uploaded.map_or(needed, |layers| layers.union(needed)),
                 )?;

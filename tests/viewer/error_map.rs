@@ -95,7 +95,7 @@ fn decimated_viewports_are_heat_mapped_with_a_legend_and_the_original_stays_grey
         right.len()
     );
     // The legend at the top right shows both ends of the ramp.
-    let legend = pixels_in(&image, image.width - 170, 0, image.width, 50);
+    let legend = pixels_in(&image, half + 1, 0, image.width, 50);
     let [hot, cold] = [ramp(1.0), ramp(0.0)].map(|c| c.map(|x| (x * 255.0).round() as u8));
     for (name, end) in [("hot", hot), ("cold", cold)] {
         let rgba = [end[0], end[1], end[2], 255];
