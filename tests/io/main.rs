@@ -16,6 +16,7 @@ mod nodes;
 mod obj_materials;
 mod parse;
 mod ply;
+mod primitive_texcoords;
 mod roundtrip;
 mod speed;
 mod texture_wrap;

@@ -12,6 +12,7 @@ mod include;
 mod lexer;
 mod parse;
 mod primitives;
+mod texture_transform;
 mod vrml1;
 mod vrml2;
 mod vrml2_writer;

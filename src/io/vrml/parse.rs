@@ -217,6 +217,7 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("MultipleCopy", "matrix") => Floats,
             ("Texture2", "filename") => Strings,
             ("Texture2", "wrapS" | "wrapT") => Word,
+            ("Texture2Transform", "translation" | "rotation" | "scaleFactor" | "center") => Floats,
             ("ResetTransform", "whatToReset") => Word,
             _ => return None,
         }),
@@ -229,7 +230,8 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Switch", "whichChoice") => Ints,
             ("LOD", "level") => Nodes,
             ("Shape", "appearance" | "geometry") => Node,
-            ("Appearance", "material" | "texture") => Node,
+            ("Appearance", "material" | "texture" | "textureTransform") => Node,
+            ("TextureTransform", "center" | "rotation" | "scale" | "translation") => Floats,
             ("ImageTexture", "url") => Strings,
             ("ImageTexture", "repeatS" | "repeatT") => Bool,
             ("Material", "diffuseColor") => Floats,
@@ -307,6 +309,7 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "Normal"
                 | "TextureCoordinate2"
                 | "Texture2"
+                | "Texture2Transform"
                 | "Material"
                 | "BaseColor"
                 | "MaterialBinding"
@@ -345,6 +348,7 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "Normal"
                 | "TextureCoordinate"
                 | "ImageTexture"
+                | "TextureTransform"
                 | "Box"
                 | "Sphere"
                 | "Cone"
@@ -371,7 +375,6 @@ fn is_ignorable(dialect: Dialect, kind: &str) -> bool {
                 | "Environment"
                 | "DrawStyle"
                 | "LightModel"
-                | "Texture2Transform"
                 | "TextureCoordinatePlane"
                 | "TextureCoordinateDefault"
                 | "FontStyle"
@@ -416,7 +419,6 @@ fn is_ignorable(dialect: Dialect, kind: &str) -> bool {
                 | "PointSet"
                 | "PixelTexture"
                 | "MovieTexture"
-                | "TextureTransform"
                 | "FontStyle"
         ),
     }
