@@ -4,7 +4,7 @@
 //! not, the coordinates at known points, seams whose copies weld back into the untextured
 //! closed surface, a textured sphere and cylinder decimated by both algorithms without a
 //! crack and with their coordinates in 0..1, texture transforms, and the coordinates
-//! carried into VRML 2.0 and OBJ outputs.
+//! carried into VRML 2.0 and OBJ outputs; textures the reader cannot use named in a warning.
 
 use std::collections::{HashMap, HashSet};
 use std::f32::consts::TAU;
@@ -541,5 +541,34 @@ fn a_textured_sphere_written_to_vrml2_and_obj_reads_back_with_its_coordinates() 
                 .collect()
         };
         assert_eq!(values(&back), values(&scene), "{name}");
+    }
+}
+
+#[test]
+fn textures_the_reader_cannot_use_are_named_in_a_warning() {
+    // An Inventor image given inline, a VRML 2.0 PixelTexture: the shapes are read
+    // untextured, and the warning (kept under -q: it names what is lost) says why.
+    for (text, name, expected) in [
+        (
+            "#Inventor V2.1 ascii\nSeparator { Texture2 { image 2 1 3 0xff0000 0x0000ff }\nCube {} }\n",
+            "t.iv",
+            "line 2: Texture2's inline 'image' ignored",
+        ),
+        (
+            "#VRML V2.0 utf8\nShape { appearance Appearance {\ntexture PixelTexture { image 1 1 1 0xff } }\n\
+             geometry Sphere {} }\n",
+            "t.wrl",
+            "'PixelTexture' unsupported node(s) skipped, the first at line 3",
+        ),
+    ] {
+        let out = parse_str(text, name).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(out.scene.models.len(), 1, "{name}");
+        assert!(out.scene.models[0].texcoords.is_none(), "{name}");
+        assert!(
+            out.warnings.iter().any(|w| w.contains(expected)),
+            "{name}: {:?}",
+            out.warnings
+        );
+        assert!(out.warnings.iter().any(|w| decimate::io::means_lost_data(w)));
     }
 }

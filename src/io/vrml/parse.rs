@@ -417,8 +417,6 @@ fn is_ignorable(dialect: Dialect, kind: &str) -> bool {
                 | "AudioClip"
                 | "IndexedLineSet"
                 | "PointSet"
-                | "PixelTexture"
-                | "MovieTexture"
                 | "FontStyle"
         ),
     }
@@ -757,6 +755,16 @@ impl<'a> Parser<'a> {
             }
             if !fields::is_field_of(self.dialect, &node.kind, &name) {
                 self.unknown_field(node, &name_tok, &name)?;
+            }
+            if node.kind == "Texture2" && name == "image" {
+                // Only images in files are read: say so rather than lose the texture silently.
+                self.warn_once(
+                    "Texture2 image",
+                    format!(
+                        "line {}: Texture2's inline 'image' ignored (only image files are read); its shapes are untextured",
+                        name_tok.line
+                    ),
+                );
             }
             // VRML 2.0 "IS" in PROTO bodies never reaches here (bodies are skipped).
             return self.skip_value();
