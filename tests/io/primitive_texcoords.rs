@@ -4,7 +4,8 @@
 //! not, the coordinates at known points, seams whose copies weld back into the untextured
 //! closed surface, a textured sphere and cylinder decimated by both algorithms without a
 //! crack and with their coordinates in 0..1, texture transforms, and the coordinates
-//! carried into VRML 2.0 and OBJ outputs; textures the reader cannot use named in a warning.
+//! carried into VRML 2.0 and OBJ outputs; the default mapping of face sets and elevation
+//! grids that give no coordinates; textures the reader cannot use named in a warning.
 
 use std::collections::{HashMap, HashSet};
 use std::f32::consts::TAU;
@@ -571,4 +572,85 @@ fn textures_the_reader_cannot_use_are_named_in_a_warning() {
         );
         assert!(out.warnings.iter().any(|w| decimate::io::means_lost_data(w)));
     }
+}
+
+/// Each vertex's (position, texture coordinates), sorted, for comparing whatever the order.
+fn mapped(m: &Model) -> Vec<([f32; 3], [f32; 2])> {
+    let c = m.texcoords.as_ref().expect("texture coordinates");
+    let mut v: Vec<_> = m
+        .positions
+        .iter()
+        .map(|p| p.to_array())
+        .zip(c.iter().copied())
+        .collect();
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    v
+}
+
+#[test]
+fn face_sets_and_grids_without_coordinates_get_the_default_mapping_under_a_texture() {
+    // A quad 4 long in x, 1 in y, 2 in z: s along x (the longest side) from 0 to 1, t along
+    // z (the next) from 0 to 2 / 4.
+    let quad = "coord Coordinate { point [ 0 0 0, 4 0 0, 4 1 2, 0 1 2 ] } coordIndex [ 0 1 2 3 ]";
+    let expected = vec![
+        ([0.0, 0.0, 0.0], [0.0, 0.0]),
+        ([0.0, 1.0, 2.0], [0.0, 0.5]),
+        ([4.0, 0.0, 0.0], [1.0, 0.0]),
+        ([4.0, 1.0, 2.0], [1.0, 0.5]),
+    ];
+    let m = vrml2(&format!("IndexedFaceSet {{ {quad} }}"), true);
+    assert_eq!(mapped(&m), expected);
+    assert!(vrml2(&format!("IndexedFaceSet {{ {quad} }}"), false)
+        .texcoords
+        .is_none());
+    let inventor_quad = "Coordinate3 { point [ 0 0 0, 4 0 0, 4 1 2, 0 1 2 ] } \
+                         IndexedFaceSet { coordIndex [ 0, 1, 2, 3, -1 ] }";
+    assert_eq!(mapped(&inventor(inventor_quad, true)), expected);
+    // Equal sides: x before y before z. A square in x and y, 1 deep in z.
+    let m = inventor(
+        "Coordinate3 { point [ 0 0 0, 2 0 1, 2 2 1, 0 2 0 ] } FaceSet { numVertices 4 }",
+        true,
+    );
+    assert_eq!(
+        mapped(&m),
+        vec![
+            ([0.0, 0.0, 0.0], [0.0, 0.0]),
+            ([0.0, 2.0, 0.0], [0.0, 1.0]),
+            ([2.0, 0.0, 1.0], [1.0, 0.0]),
+            ([2.0, 2.0, 1.0], [1.0, 1.0]),
+        ]
+    );
+    // Coordinates the file gives win over the default.
+    let m = inventor(
+        &format!("TextureCoordinate2 {{ point [ 0 0, 0.5 0, 0.5 0.5, 0 0.5 ] }} {inventor_quad}"),
+        true,
+    );
+    assert_eq!(m.texcoords.unwrap()[2], [0.5, 0.5]);
+    // An ElevationGrid spans its grid: s along x, t along z, each from 0 to 1.
+    let m = vrml2(
+        "ElevationGrid { xDimension 3 zDimension 2 xSpacing 2 zSpacing 5 \
+         height [ 0 1 0, 3 0 2 ] }",
+        true,
+    );
+    for (p, uv) in mapped(&m) {
+        assert_eq!(uv, [p[0] / 4.0, p[2] / 5.0], "at {p:?}");
+    }
+    assert_eq!(mapped(&m).last().unwrap(), &([4.0, 2.0, 5.0], [1.0, 1.0]));
+    // An Extrusion makes none here: its texture is said to be ignored.
+    let out = parse_str(
+        &vrml2_text(
+            "Extrusion { spine [ 0 0 0, 0 1 0 ] crossSection [ 1 1, 1 -1, -1 -1, -1 1, 1 1 ] }",
+            true,
+        ),
+        "t.wrl",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert!(out.scene.models[0].texcoords.is_none());
+    assert!(
+        out.warnings.iter().any(|w| w
+            .contains("'Extrusion' makes no texture coordinates here; its texture ignored")
+            && decimate::io::means_lost_data(w)),
+        "{:?}",
+        out.warnings
+    );
 }

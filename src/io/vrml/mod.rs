@@ -6,6 +6,7 @@
 //! `vrml2_writer` (VRML 2.0 output). [`read_tree`] runs a parse on a thread with a big stack.
 
 mod bindings;
+mod default_texcoords;
 mod extrusion;
 mod fields;
 mod include;

@@ -10,8 +10,8 @@
 //! TriangleStripSet, QuadMesh, Cube, Sphere, Cone, Cylinder) becomes one `Model` with the
 //! state's world transform. Inventor 2.1 `vertexProperty` fields override the state for their
 //! shape. Under a `Texture2`, Cube, Sphere, Cone and Cylinder make their own texture
-//! coordinates (see `primitives`); `Texture2Transform`s accumulate and transform every
-//! shape's. `MatrixTransform` follows the row-vector convention: the matrix is written row by
+//! coordinates (see `primitives`), other shapes without coordinates get the default mapping
+//! (see `default_texcoords`); `Texture2Transform`s accumulate and transform every shape's. `MatrixTransform` follows the row-vector convention: the matrix is written row by
 //! row with the translation in the last row. An error inside a `USE`d node names the USE's
 //! line and the DEF's.
 
@@ -23,6 +23,7 @@ use glam::{Affine2, Mat4, Quat, Vec3};
 use super::bindings::{
     explicit, resolve, split_polygons, strips_to_triangles, texcoords_per_vertex, Binding, Geo,
 };
+use super::default_texcoords;
 use super::lexer::{PResult, ParseError};
 use super::parse::{is_kit, used_at, Node, Value, USE_KIND};
 use super::primitives::{self, Parts};
@@ -820,9 +821,13 @@ fn shape_name(node: &Node, ctx: &Ctx<'_>) -> String {
         .unwrap_or_else(|| format!("{}_{}", node.kind, ctx.models.len() + 1))
 }
 
-/// Builds the model, gives it the state's texture and keeps it unless it is empty.
+/// Builds the model, gives it the state's texture (with the default coordinates where the
+/// shape has none) and keeps it unless it is empty.
 fn finish(spec: ShapeSpec<'_>, state: &State, line: usize, ctx: &mut Ctx<'_>) -> PResult<()> {
     let mut model = build(spec, ctx.warnings)?;
+    if state.texture.is_some() && model.texcoords.is_none() {
+        default_texcoords::bounding_box(&mut model);
+    }
     texture_transform::apply(&mut model, state.texture_transform);
     model.texture = state.texture.clone();
     if model.texture.is_some() {

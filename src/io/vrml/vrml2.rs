@@ -6,14 +6,16 @@
 //! world transform, the material's diffuse colour, and the geometry's colours and normals
 //! (`colorPerVertex` / `normalPerVertex`, with or without index lists). Under an
 //! `ImageTexture`, `Box` and the round primitives make the texture coordinates the
-//! specification defines; an `Appearance`'s `TextureTransform` transforms any shape's. An
-//! error inside a `USE`d node names the USE's line and the DEF's.
+//! specification defines, an IndexedFaceSet or ElevationGrid without `texCoord` its default
+//! mapping (see `default_texcoords`); an `Appearance`'s `TextureTransform` transforms any
+//! shape's. An error inside a `USE`d node names the USE's line and the DEF's.
 
 use std::rc::Rc;
 
 use glam::{Mat4, Vec3};
 
 use super::bindings::{explicit, resolve, split_polygons, texcoords_per_vertex, Binding, Geo};
+use super::default_texcoords;
 use super::extrusion;
 use super::lexer::{PResult, ParseError};
 use super::parse::{used_at, Node, USE_KIND};
@@ -214,6 +216,20 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
         }
     };
     let mut model = build(spec, ctx.warnings)?;
+    if textured && model.texcoords.is_none() {
+        match geometry.kind.as_str() {
+            "IndexedFaceSet" => default_texcoords::bounding_box(&mut model),
+            "ElevationGrid" => default_texcoords::elevation_grid(&mut model),
+            other => ctx.budget.warn_once(
+                ctx.warnings,
+                &format!("{other} texture"),
+                format!(
+                    "line {}: '{other}' makes no texture coordinates here; its texture ignored",
+                    geometry.line
+                ),
+            ),
+        }
+    }
     if let Some(t) = node
         .node("appearance")
         .and_then(|a| a.node("textureTransform"))
