@@ -4,8 +4,9 @@
 //! not, the coordinates at known points, seams whose copies weld back into the untextured
 //! closed surface, a textured sphere and cylinder decimated by both algorithms without a
 //! crack and with their coordinates in 0..1, texture transforms, and the coordinates
-//! carried into VRML 2.0 and OBJ outputs; the default mapping of face sets and elevation
-//! grids that give no coordinates; textures the reader cannot use named in a warning.
+//! carried into VRML 2.0 and OBJ outputs; the default mappings of extrusions, and of face
+//! sets and elevation grids that give no coordinates; textures the reader cannot use named
+//! in a warning.
 
 use std::collections::{HashMap, HashSet};
 use std::f32::consts::TAU;
@@ -636,21 +637,40 @@ fn face_sets_and_grids_without_coordinates_get_the_default_mapping_under_a_textu
         assert_eq!(uv, [p[0] / 4.0, p[2] / 5.0], "at {p:?}");
     }
     assert_eq!(mapped(&m).last().unwrap(), &([4.0, 2.0, 5.0], [1.0, 1.0]));
-    // An Extrusion makes none here: its texture is said to be ignored.
-    let out = parse_str(
-        &vrml2_text(
-            "Extrusion { spine [ 0 0 0, 0 1 0 ] crossSection [ 1 1, 1 -1, -1 -1, -1 1, 1 1 ] }",
-            true,
-        ),
-        "t.wrl",
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
-    assert!(out.scene.models[0].texcoords.is_none());
-    assert!(
-        out.warnings.iter().any(|w| w
-            .contains("'Extrusion' makes no texture coordinates here; its texture ignored")
-            && decimate::io::means_lost_data(w)),
-        "{:?}",
-        out.warnings
-    );
+}
+
+#[test]
+fn an_extrusion_maps_u_along_its_cross_section_and_v_along_its_spine() {
+    // A square cross-section (closed, sides 2 long) along a straight spine 1 then 2 long.
+    let geometry = "Extrusion { spine [ 0 0 0, 0 1 0, 0 3 0 ] \
+                    crossSection [ 1 1, 1 -1, -1 -1, -1 1, 1 1 ] }";
+    let plain = vrml2(geometry, false);
+    let m = vrml2(geometry, true);
+    // 12 points; textured, the sides' 3 × 5 pairs (the square's end meets its start at
+    // u = 1) and each cap's 4.
+    assert_eq!((plain.positions.len(), plain.triangles.len()), (12, 20));
+    assert_eq!((m.positions.len(), m.triangles.len()), (15 + 4 + 4, 20));
+    assert_eq!(welded_triangles(&m), welded_triangles(&plain));
+    let (mut side, mut cap) = (HashMap::new(), HashMap::new());
+    for &t in &m.triangles {
+        let on_cap = normal(&m, t).y.abs() > 0.99;
+        for v in t {
+            let key = m.positions[v as usize].to_array().map(f32::to_bits);
+            let map = if on_cap { &mut cap } else { &mut side };
+            map.entry(key).or_insert_with(Vec::new).push(uv(&m, v));
+        }
+    }
+    let at = |map: &HashMap<[u32; 3], Vec<[f32; 2]>>, p: [f32; 3]| {
+        let mut v = map[&p.map(f32::to_bits)].clone();
+        v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        v.dedup();
+        v
+    };
+    // The cross-section's second point (1, -1) a quarter along it, the spine's middle point
+    // a third along it; the first point is both ends of the square (u = 0 and 1).
+    assert_eq!(at(&side, [1.0, 1.0, -1.0]), [[0.25, 1.0 / 3.0]]);
+    assert_eq!(at(&side, [1.0, 3.0, 1.0]), [[0.0, 1.0], [1.0, 1.0]]);
+    // Caps: the square spans the texture, u along x, v along z.
+    assert_eq!(at(&cap, [1.0, 0.0, -1.0]), [[1.0, 0.0]]);
+    assert_eq!(at(&cap, [-1.0, 3.0, 1.0]), [[0.0, 1.0]]);
 }

@@ -6,8 +6,8 @@
 //! world transform, the material's diffuse colour, and the geometry's colours and normals
 //! (`colorPerVertex` / `normalPerVertex`, with or without index lists). Under an
 //! `ImageTexture`, `Box` and the round primitives make the texture coordinates the
-//! specification defines, an IndexedFaceSet or ElevationGrid without `texCoord` its default
-//! mapping (see `default_texcoords`); an `Appearance`'s `TextureTransform` transforms any
+//! specification defines, as does an `Extrusion`, and an IndexedFaceSet or ElevationGrid
+//! without `texCoord` gets its default mapping (see `default_texcoords`); an `Appearance`'s `TextureTransform` transforms any
 //! shape's. An error inside a `USE`d node names the USE's line and the DEF's.
 
 use std::rc::Rc;
@@ -120,7 +120,8 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
     let texture_repeat =
         ["repeatS", "repeatT"].map(|field| image.and_then(|t| t.boolean(field)).unwrap_or(true));
     let boxed;
-    let box_uv;
+    // Texture coordinates a Box or an Extrusion makes.
+    let made_uv;
     let tess;
     let grid;
     let spec = match geometry.kind.as_str() {
@@ -128,7 +129,7 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
         "Box" => {
             let half = vec3(geometry.floats("size"), Vec3::splat(2.0)) * 0.5;
             boxed = primitives::box_coords(half, textured);
-            box_uv = if textured {
+            made_uv = if textured {
                 primitives::box_texcoords()
             } else {
                 Vec::new()
@@ -139,7 +140,7 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
                 transform,
                 coords: &boxed,
                 texcoords: textured.then(|| TexCoords {
-                    values: &box_uv,
+                    values: &made_uv,
                     index: corners.clone(),
                 }),
                 corners,
@@ -164,12 +165,13 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
             grid_spec(geometry, name, transform, diffuse, &grid, geo)
         }
         "Extrusion" => {
-            let swept = extrusion::extrude(geometry)?;
+            let swept = extrusion::extrude(geometry, textured)?;
             if swept.ends.is_empty() {
                 skip_empty(geometry, ctx);
                 return Ok(());
             }
             grid = swept.points;
+            made_uv = swept.texcoords;
             ShapeSpec {
                 name,
                 transform,
@@ -178,7 +180,10 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
                 ends: swept.ends,
                 colors: Bind::None,
                 normals: Bind::None,
-                texcoords: None,
+                texcoords: textured.then(|| TexCoords {
+                    values: &made_uv,
+                    index: swept.texcoord_index,
+                }),
                 ccw: geometry.boolean("ccw").unwrap_or(true),
                 solid: geometry.boolean("solid").unwrap_or(true),
                 crease_angle: geometry.float("creaseAngle"),
@@ -220,14 +225,8 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
         match geometry.kind.as_str() {
             "IndexedFaceSet" => default_texcoords::bounding_box(&mut model),
             "ElevationGrid" => default_texcoords::elevation_grid(&mut model),
-            other => ctx.budget.warn_once(
-                ctx.warnings,
-                &format!("{other} texture"),
-                format!(
-                    "line {}: '{other}' makes no texture coordinates here; its texture ignored",
-                    geometry.line
-                ),
-            ),
+            // Every other geometry makes its own.
+            _ => {}
         }
     }
     if let Some(t) = node
