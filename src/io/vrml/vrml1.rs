@@ -11,9 +11,10 @@
 //! state's world transform. Inventor 2.1 `vertexProperty` fields override the state for their
 //! shape. Under a `Texture2`, Cube, Sphere, Cone and Cylinder make their own texture
 //! coordinates (see `primitives`), other shapes without coordinates get the default mapping
-//! (see `default_texcoords`); `Texture2Transform`s accumulate and transform every shape's. `MatrixTransform` follows the row-vector convention: the matrix is written row by
-//! row with the translation in the last row. An error inside a `USE`d node names the USE's
-//! line and the DEF's.
+//! (see `default_texcoords`); `Texture2Transform`s accumulate and transform every shape's.
+//! `MatrixTransform` follows the row-vector convention: the matrix is written row by row
+//! with the translation in the last row. An error inside a `USE`d node names the USE's line
+//! and the DEF's.
 
 use std::borrow::Cow;
 use std::rc::Rc;

@@ -5,10 +5,10 @@
 //! `Sphere`, `Cone` or `Cylinder` (see `primitives`) becomes one `Model` with the accumulated
 //! world transform, the material's diffuse colour, and the geometry's colours and normals
 //! (`colorPerVertex` / `normalPerVertex`, with or without index lists). Under an
-//! `ImageTexture`, `Box` and the round primitives make the texture coordinates the
-//! specification defines, as does an `Extrusion`, and an IndexedFaceSet or ElevationGrid
-//! without `texCoord` gets its default mapping (see `default_texcoords`); an `Appearance`'s `TextureTransform` transforms any
-//! shape's. An error inside a `USE`d node names the USE's line and the DEF's.
+//! `ImageTexture`, `Box`, the round primitives and `Extrusion` make the texture coordinates
+//! the specification defines, and an IndexedFaceSet or ElevationGrid without `texCoord` gets
+//! its default mapping (see `default_texcoords`); an `Appearance`'s `TextureTransform`
+//! transforms any shape's. An error inside a `USE`d node names the USE's line and the DEF's.
 
 use std::rc::Rc;
 
