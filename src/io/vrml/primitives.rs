@@ -117,6 +117,10 @@ impl Tessellation {
 
     /// The texture coordinates bound to the corners of [`Self::to_geo`], when made textured.
     pub fn texcoords_of(&self, geo: &Geo) -> Option<TexCoords<'_>> {
+        // Made textured, every vertex has its pair.
+        debug_assert!(
+            self.texcoords.is_empty() || self.texcoords.len() / 2 == self.coords.len() / 3
+        );
         (!self.texcoords.is_empty()).then(|| TexCoords {
             values: &self.texcoords,
             index: geo.corners.clone(),
