@@ -40,6 +40,8 @@ pub struct ShotOptions {
     pub targets: Vec<Target>,
     /// Where relative texture names are read from: the input file's folder.
     pub texture_dir: PathBuf,
+    /// Samples per pixel for anti-aliasing (`--msaa`; 1: off), as many as the device offers.
+    pub msaa: u32,
 }
 
 impl Default for ShotOptions {
@@ -53,6 +55,7 @@ impl Default for ShotOptions {
             measure: false,
             targets: Vec::new(),
             texture_dir: PathBuf::from("."),
+            msaa: crate::render::pipeline::DEFAULT_MSAA,
         }
     }
 }
@@ -199,7 +202,8 @@ also set what the viewer draws):
   --size WxH            image size (DEFAULT: 800x600)
   --viewports N         1-4 viewports: the original, then the decimated scene
   --mode LIST           comma-separated: triangles,edges,points,normals,vertex-normals,
-                        flat,unlit,untextured (DEFAULT: triangles)
+                        flat,unlit,untextured,error (DEFAULT: triangles)
+  --msaa N              anti-aliasing: 1 (off), 2, 4 or 8 samples per pixel (DEFAULT: 4)
   --crease-angle DEG    smooth shading keeps edges whose faces meet at more than DEG
                         sharp (DEFAULT: the file's creaseAngle, else 45; 180: smooth)
   --labels, --no-labels a caption on each viewport: what it shows, its counts
@@ -362,6 +366,15 @@ where
             "--no-labels" => shot.labels = Some(false),
             "--measure" => shot.measure = true,
             "--mode" => shot.modes = draw_modes(&value(&arg)?)?,
+            "--msaa" => {
+                let n: u32 = number(&arg, &value(&arg)?)?;
+                if ![1, 2, 4, 8].contains(&n) {
+                    return Err(CliError(format!(
+                        "--msaa: expected 1 (off), 2, 4 or 8 samples per pixel, got {n}"
+                    )));
+                }
+                shot.msaa = n;
+            }
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(CliError(format!("unknown option '{s}'")))
             }
@@ -453,7 +466,7 @@ fn check_measure(shot: &ShotOptions, action: Action, target_given: bool) -> Resu
     }
     if action != Action::Shot {
         return Err(CliError(
-            "--measure is an option of shot (in the viewer, key M measures)".into(),
+            "--measure is an option of shot (in the viewer, key d measures)".into(),
         ));
     }
     if !target_given {
@@ -800,10 +813,11 @@ pub fn draw_modes(s: &str) -> Result<DrawOptions, CliError> {
             "flat" => m.smooth = false,
             "unlit" => m.lighting = false,
             "untextured" => m.textures = false,
+            "error" => m.error_map = true,
             other => {
                 return Err(CliError(format!(
                     "--mode: unknown mode '{other}' (expected triangles, edges, points, \
-                     normals, vertex-normals, flat, unlit, untextured)"
+                     normals, vertex-normals, flat, unlit, untextured, error)"
                 )))
             }
         }
@@ -1062,6 +1076,21 @@ mod tests {
         assert!(parse(["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "-1"]).is_err());
         assert!(parse(["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "x%"]).is_err());
         assert!(parse(["m.wrl", "shot", "--size", "0x10"]).is_err());
+    }
+
+    #[test]
+    fn msaa_and_the_error_map_are_options_of_the_viewer_and_shot() {
+        assert_eq!(run(&["m.wrl", "shot"]).shot.msaa, 4);
+        assert_eq!(run(&["m.wrl", "shot", "--msaa", "1"]).shot.msaa, 1);
+        assert_eq!(run(&["m.wrl", "--msaa", "8"]).shot.msaa, 8);
+        match parse(["m.wrl", "shot", "--msaa", "3"]) {
+            Err(e) => assert!(e.0.contains("--msaa") && e.0.contains('3'), "{}", e.0),
+            Ok(_) => panic!("--msaa 3 was accepted"),
+        }
+        assert!(parse(["m.wrl", "shot", "--msaa", "x"]).is_err());
+        let a = run(&["m.wrl", "shot", "--mode", "error"]);
+        assert!(a.shot.modes.error_map && a.shot.modes.triangles);
+        assert!(!run(&["m.wrl", "shot"]).shot.modes.error_map);
     }
 
     #[test]

@@ -63,6 +63,8 @@ pub struct ViewportController {
     pub message: String,
     /// The decimation, progressive mesh or measurement running, if any.
     job: Option<Running>,
+    /// Samples per pixel asked for (`--msaa`, `M`): 1 is no anti-aliasing.
+    pub msaa: u32,
 }
 
 impl ViewportController {
@@ -86,6 +88,7 @@ impl ViewportController {
             input_dir: PathBuf::from("."),
             message: String::new(),
             job: None,
+            msaa: crate::render::pipeline::DEFAULT_MSAA,
         }
     }
 
@@ -345,7 +348,7 @@ impl ViewportController {
                 if vp.set_error(generation, error) {
                     error.words()
                 } else {
-                    "the scene changed while it was measured: measure again (M)".into()
+                    "the scene changed while it was measured: measure again (d)".into()
                 }
             }
             (Task::Measure { .. }, Done::Measured(Err(e))) => format!("cannot measure: {e}"),
@@ -480,6 +483,22 @@ impl ViewportController {
             Action::ToggleLighting => options.lighting ^= true,
             Action::ToggleSmooth => options.smooth ^= true,
             Action::ToggleTexture => options.textures ^= true,
+            Action::ToggleErrorMap => options.error_map ^= true,
+            Action::ToggleMsaa => {
+                self.msaa = if self.msaa > 1 {
+                    1
+                } else {
+                    crate::render::pipeline::DEFAULT_MSAA
+                };
+                self.message = if self.msaa > 1 {
+                    format!(
+                        "anti-aliasing on ({}× MSAA where the device has it)",
+                        self.msaa
+                    )
+                } else {
+                    "anti-aliasing off".into()
+                };
+            }
             Action::CreaseAngle(delta) => {
                 let n = self.current + 1;
                 self.message = match self.current_mut().change_crease(f32::from(delta)) {
@@ -563,6 +582,8 @@ impl ViewportController {
             Action::ToggleLighting => o.lighting,
             Action::ToggleSmooth => o.smooth,
             Action::ToggleTexture => o.textures,
+            Action::ToggleErrorMap => o.error_map,
+            Action::ToggleMsaa => self.msaa > 1,
             Action::ToggleLod => vp.lod().is_some(),
             Action::ToggleKeepBorder => vp.params.keep_border,
             Action::ToggleLinkedCameras => self.linked,
@@ -900,12 +921,12 @@ mod tests {
     }
 
     #[test]
-    fn m_measures_the_level_shown_and_its_caption_says_it() {
+    fn d_measures_the_level_shown_and_its_caption_says_it() {
         let scene = Scene {
             models: vec![crate::mesh::shapes::bumpy_sphere(12, 24)],
         };
         let mut c = ViewportController::new(scene, Params::default(), 800, 600);
-        key(&mut c, Key::Char('M'));
+        key(&mut c, Key::Char('d'));
         let caption = c.current_viewport().caption();
         assert!(
             caption.ends_with("error: mean 0 = 0.00 %, max 0 = 0.00 % of the diagonal"),
@@ -916,7 +937,7 @@ mod tests {
             !c.current_viewport().caption().contains("error"),
             "a new level, not measured"
         );
-        key(&mut c, Key::Char('M'));
+        key(&mut c, Key::Char('d'));
         let error = c.current_viewport().error().copied();
         let error = error.unwrap_or_else(|| panic!("not measured: {}", c.message));
         assert!(

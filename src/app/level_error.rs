@@ -1,6 +1,6 @@
 //! The error of a decimated level against its original, as a caption says it: metro's
 //! symmetric mean and maximum (Hausdorff) distance, in model units and in percent of the
-//! original's bounding-box diagonal. Measured on request (`M` in the viewer, `--measure` in
+//! original's bounding-box diagonal. Measured on request (`d` in the viewer, `--measure` in
 //! `shot`): it samples both surfaces, which takes about as long as decimating them.
 
 use crate::mesh::Scene;

@@ -43,6 +43,10 @@ pub enum Action {
     ToggleSmooth,
     /// Textured models textured or in their material colour.
     ToggleTexture,
+    /// Decimated viewports coloured by their distance to the original (the error heat-map).
+    ToggleErrorMap,
+    /// Multisample anti-aliasing (4×) on or off, for the whole window.
+    ToggleMsaa,
     /// The current viewport's crease angle up or down by this many degrees (0 to 180).
     CreaseAngle(i16),
     /// Model control (trackball) ↔ eye control (first person).
@@ -157,8 +161,8 @@ pub fn menu() -> Vec<MenuEntry> {
         Action::ToggleLod,
     ));
     decimate.push(entry(
-        "Measure the error (metro)",
-        Some("M"),
+        "Measure the distance to the original (metro)",
+        Some("d"),
         Action::MeasureError,
     ));
     vec![
@@ -174,6 +178,12 @@ pub fn menu() -> Vec<MenuEntry> {
                 entry("Lighting", Some("l"), Action::ToggleLighting),
                 entry("Smooth / flat shading", Some("s"), Action::ToggleSmooth),
                 entry("Texture", Some("T"), Action::ToggleTexture),
+                entry(
+                    "Error heat-map (distance to the original)",
+                    Some("E"),
+                    Action::ToggleErrorMap,
+                ),
+                entry("Anti-aliasing (4× MSAA)", Some("M"), Action::ToggleMsaa),
                 entry(
                     "Crease angle −15° (sharper)",
                     Some("["),
@@ -228,6 +238,8 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'l' => Action::ToggleLighting,
                 's' => Action::ToggleSmooth,
                 'T' => Action::ToggleTexture,
+                'E' => Action::ToggleErrorMap,
+                'M' => Action::ToggleMsaa,
                 'm' => Action::ToggleNavigation,
                 'a' => Action::AddViewport,
                 'x' => Action::RemoveViewport,
@@ -238,7 +250,7 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'h' => Action::ToggleHelp,
                 'v' => Action::AskVertexCount,
                 'L' => Action::ToggleLod,
-                'M' => Action::MeasureError,
+                'd' => Action::MeasureError,
                 'A' => Action::ToggleAlgorithm,
                 'b' => Action::ToggleKeepBorder,
                 'q' => Action::Quit,
@@ -358,6 +370,8 @@ mod tests {
             Action::ToggleVertexNormals,
             Action::ToggleLighting,
             Action::ToggleSmooth,
+            Action::ToggleErrorMap,
+            Action::ToggleMsaa,
             Action::ToggleNavigation,
             Action::AddViewport,
             Action::RemoveViewport,

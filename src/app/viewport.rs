@@ -43,7 +43,7 @@ pub struct Viewport {
     lod: Option<LodView>,
     /// The crease angle set with `[` / `]`, in degrees; `None`: each model's own.
     crease_deg: Option<f32>,
-    /// The metro error of the scene shown at this generation, once measured (`M`).
+    /// The metro error of the scene shown at this generation, once measured (`d`).
     error: Option<(u64, LevelError)>,
 }
 
