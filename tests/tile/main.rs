@@ -5,3 +5,4 @@ mod common;
 mod errors;
 mod pipeline;
 mod scheduler;
+mod slurm;
