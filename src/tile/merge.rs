@@ -130,11 +130,12 @@ pub fn refuse_unless_fits(keep: usize, memory: u64) -> Result<(), TileError> {
     if fits(keep, memory) {
         return Ok(());
     }
-    let need = (keep as u64 * BYTES_PER_TRIANGLE).div_ceil(1 << 20);
+    let mib = |bytes: u64| bytes as f64 / f64::from(1 << 20);
     Err(TileError::Request(format!(
-        "keeping {keep} triangles needs about {need} MiB for the last pass, more than the \
-         memory budget of {} MiB: raise --memory or keep fewer triangles",
-        memory >> 20
+        "keeping {keep} triangles needs about {:.1} MiB for the last pass, more than the \
+         memory budget of {:.1} MiB: raise --memory or keep fewer triangles",
+        mib(keep as u64 * BYTES_PER_TRIANGLE),
+        mib(memory)
     )))
 }
 

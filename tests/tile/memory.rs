@@ -41,7 +41,7 @@ fn tiled_on(
 fn tiles_run_as_many_at_once_as_the_budget_allows() {
     let tmp = tempfile::tempdir().unwrap();
     let (input, _) = sphere_ply(tmp.path());
-    // Six tiles of about 9,600 triangles, 1.7 MB each in memory (178 bytes a triangle):
+    // Six tiles of about 9,600 triangles, 1.9 MiB each in memory (200 bytes a triangle):
     // two fit in 4M, not in 3M; one thread runs one at a time whatever the budget.
     let (one, two) = (tmp.path().join("one.ply"), tmp.path().join("two.ply"));
     let said = tiled_on(&input, &one, "6", "4M", "1");
@@ -63,7 +63,7 @@ fn tiles_run_as_many_at_once_as_the_budget_allows() {
 fn welded_tiles_over_the_budget_are_cut_again_and_stay_one_closed_mesh() {
     let tmp = tempfile::tempdir().unwrap();
     let (input, model) = sphere_ply(tmp.path());
-    // 1.5 MB holds 8,836 triangles: the 5,760 kept, not the ~12,000 the tiles weld into.
+    // 1.5M holds 7,864 triangles: the 5,760 kept, not the ~18,000 the tiles weld into.
     let small = tmp.path().join("small.ply");
     let said = tiled(&input, &small, "auto", "1.5M");
     assert!(
@@ -149,7 +149,7 @@ fn a_target_too_big_for_the_budget_is_refused_before_the_tiles_run() {
     assert_eq!(o.status.code(), Some(2));
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(
-        e.contains("keeping 5760 triangles needs about 1 MiB") && e.contains("raise --memory"),
+        e.contains("keeping 5760 triangles needs about 1.1 MiB") && e.contains("raise --memory"),
         "{e}"
     );
     assert!(!e.contains("tile 1 of 4"), "{e}");
