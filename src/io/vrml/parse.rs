@@ -446,9 +446,16 @@ pub struct Parser<'a> {
     unknown_at: HashMap<String, usize>,
     /// Nodes parsed whose kind the reader knows or knowingly ignores.
     recognised: usize,
+    /// Nodes parsed from the files that `File` nodes include.
+    pub(super) included_nodes: usize,
 }
 
 impl<'a> Parser<'a> {
+    /// Nodes parsed so far, known or skipped as unknown, included files' too.
+    pub fn nodes_parsed(&self) -> usize {
+        self.recognised + self.included_nodes + self.unknown.iter().map(|u| u.2).sum::<usize>()
+    }
+
     pub fn new(src: &'a [u8], dialect: Dialect) -> Self {
         Self {
             lex: Lexer::new(src),
@@ -463,6 +470,7 @@ impl<'a> Parser<'a> {
             unknown: Vec::new(),
             unknown_at: HashMap::new(),
             recognised: 0,
+            included_nodes: 0,
         }
     }
 

@@ -109,8 +109,8 @@ pub fn compose(t: Vec3, r: Quat, s: Vec3, so: Quat, c: Vec3) -> Mat4 {
 }
 
 /// Traverses the top-level nodes (an implicit root Separator) into models.
-pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>) -> PResult<Vec<Model>> {
-    let mut ctx = Ctx::new(warnings);
+pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>, nodes: usize) -> PResult<Vec<Model>> {
+    let mut ctx = Ctx::new(warnings, nodes);
     let mut state = State::default();
     for n in roots {
         traverse(n, &mut state, &mut ctx)?;
@@ -122,6 +122,7 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
     if node.skipped {
         return Ok(());
     }
+    ctx.budget.visit(node.line)?;
     if node.kind == USE_KIND {
         let target = node.target();
         let name = node.def.as_deref().unwrap_or_default();

@@ -22,8 +22,8 @@ use crate::io::shape_to_model::{build, Bind, ShapeSpec};
 use crate::mesh::Model;
 
 /// Walks the top-level nodes into models.
-pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>) -> PResult<Vec<Model>> {
-    let mut ctx = Ctx::new(warnings);
+pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>, nodes: usize) -> PResult<Vec<Model>> {
+    let mut ctx = Ctx::new(warnings, nodes);
     for n in roots {
         traverse(n, Mat4::IDENTITY, &mut ctx)?;
     }
@@ -34,6 +34,7 @@ fn traverse(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> 
     if node.skipped {
         return Ok(());
     }
+    ctx.budget.visit(node.line)?;
     if node.kind == USE_KIND {
         return through_use(node, |target| traverse(target, transform, ctx));
     }
