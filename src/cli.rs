@@ -208,8 +208,7 @@ also set what the viewer draws):
 
   --tiles auto|N        decimate in N spatial tiles (auto: sized by --memory), as many
                         at once as --memory allows, borders locked, then weld them and
-                        decimate the seams again (cut again when too big to weld);
-                        PLY, STL or OBJ input, -p or --keep-triangles, -a qem implied
+                        decimate the seams again; PLY, STL or OBJ, -p or --keep-triangles
   --memory SIZE         what a tiled run may use, e.g. 2G or 512M (DEFAULT: a
                         quarter of the machine's RAM)
 
