@@ -6,12 +6,14 @@
 //! `vrml2_writer` (VRML 2.0 output). [`read_tree`] runs a parse on a thread with a big stack.
 
 mod bindings;
+mod default_texcoords;
 mod extrusion;
 mod fields;
 mod include;
 mod lexer;
 mod parse;
 mod primitives;
+mod texture_transform;
 mod vrml1;
 mod vrml2;
 mod vrml2_writer;

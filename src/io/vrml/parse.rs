@@ -217,6 +217,7 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("MultipleCopy", "matrix") => Floats,
             ("Texture2", "filename") => Strings,
             ("Texture2", "wrapS" | "wrapT") => Word,
+            ("Texture2Transform", "translation" | "rotation" | "scaleFactor" | "center") => Floats,
             ("ResetTransform", "whatToReset") => Word,
             _ => return None,
         }),
@@ -229,7 +230,8 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Switch", "whichChoice") => Ints,
             ("LOD", "level") => Nodes,
             ("Shape", "appearance" | "geometry") => Node,
-            ("Appearance", "material" | "texture") => Node,
+            ("Appearance", "material" | "texture" | "textureTransform") => Node,
+            ("TextureTransform", "center" | "rotation" | "scale" | "translation") => Floats,
             ("ImageTexture", "url") => Strings,
             ("ImageTexture", "repeatS" | "repeatT") => Bool,
             ("Material", "diffuseColor") => Floats,
@@ -307,6 +309,7 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "Normal"
                 | "TextureCoordinate2"
                 | "Texture2"
+                | "Texture2Transform"
                 | "Material"
                 | "BaseColor"
                 | "MaterialBinding"
@@ -345,6 +348,7 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "Normal"
                 | "TextureCoordinate"
                 | "ImageTexture"
+                | "TextureTransform"
                 | "Box"
                 | "Sphere"
                 | "Cone"
@@ -371,7 +375,6 @@ fn is_ignorable(dialect: Dialect, kind: &str) -> bool {
                 | "Environment"
                 | "DrawStyle"
                 | "LightModel"
-                | "Texture2Transform"
                 | "TextureCoordinatePlane"
                 | "TextureCoordinateDefault"
                 | "FontStyle"
@@ -414,9 +417,6 @@ fn is_ignorable(dialect: Dialect, kind: &str) -> bool {
                 | "AudioClip"
                 | "IndexedLineSet"
                 | "PointSet"
-                | "PixelTexture"
-                | "MovieTexture"
-                | "TextureTransform"
                 | "FontStyle"
         ),
     }
@@ -755,6 +755,16 @@ impl<'a> Parser<'a> {
             }
             if !fields::is_field_of(self.dialect, &node.kind, &name) {
                 self.unknown_field(node, &name_tok, &name)?;
+            }
+            if node.kind == "Texture2" && name == "image" {
+                // Only images in files are read: say so rather than lose the texture silently.
+                self.warn_once(
+                    "Texture2 image",
+                    format!(
+                        "line {}: Texture2's inline 'image' ignored (only image files are read); its shapes are untextured",
+                        name_tok.line
+                    ),
+                );
             }
             // VRML 2.0 "IS" in PROTO bodies never reaches here (bodies are skipped).
             return self.skip_value();
