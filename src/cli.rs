@@ -90,14 +90,15 @@ pub struct Args {
     /// `--tiles auto|N` (nogui): decimate in tiles (`tile::local`), never the whole input
     /// in memory.
     pub tiles: Option<Tiles>,
-    /// `--memory SIZE`: the budget `--tiles auto` sizes tiles for, in bytes.
+    /// `--memory SIZE`: the budget of a tiled run, in bytes: how big `auto` tiles are, how
+    /// many run at once, whether the merge re-tiles (`tile::schedule`).
     pub memory: Option<u64>,
 }
 
 /// `--tiles` of nogui: how many tiles the command line asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Tiles {
-    /// Sized from the memory budget (`tile::local::count_for`).
+    /// Sized from the memory budget (`tile::schedule::count_for`).
     Auto,
     Count(usize),
 }
@@ -136,6 +137,8 @@ pub enum TileCommand {
         dir: PathBuf,
         output: PathBuf,
         target: Option<Target>,
+        /// `--memory SIZE`: the budget that decides whether the merge re-tiles.
+        memory: Option<u64>,
     },
 }
 
@@ -213,10 +216,10 @@ also set what the viewer draws):
   -p / -v / ...         decimation target, as for nogui; a list such as -p 60,80,90
                         gives each decimated viewport its own (and --viewports 4)
 
-  --tiles auto|N        decimate in N spatial tiles (auto: as many as --memory needs),
-                        borders locked, then weld them and decimate the seams again;
-                        PLY, STL or OBJ input, -p or --keep-triangles, -a qem implied
-  --memory SIZE         what --tiles auto may use, e.g. 2G or 512M (DEFAULT: a
+  --tiles auto|N        decimate in N spatial tiles (auto: sized by --memory), as many
+                        at once as --memory allows, borders locked, then weld them and
+                        decimate the seams again; PLY, STL or OBJ, -p or --keep-triangles
+  --memory SIZE         what a tiled run may use, e.g. 2G or 512M (DEFAULT: a
                         quarter of the machine's RAM)
 
 typical usage:           decimate model.wrl
@@ -228,7 +231,7 @@ tiled decimation as separate jobs (see docs/cluster.md):
   decimate tile run DIR [INDEX]   (INDEX DEFAULT: $SLURM_ARRAY_TASK_ID or
                                    $JOB_COMPLETION_INDEX)
   decimate tile status DIR
-  decimate tile merge DIR [-o OUT] [-p P | --keep-triangles T]
+  decimate tile merge DIR [-o OUT] [-p P | --keep-triangles T] [--memory SIZE]
 ";
 
 /// Parses the arguments after the program name.
@@ -520,6 +523,7 @@ fn parse_tile(args: &[String]) -> Result<TileCommand, CliError> {
     let mut output: Option<PathBuf> = None;
     let mut target: Option<Target> = None;
     let mut count: Option<TileCount> = None;
+    let mut memory: Option<u64> = None;
     while let Some(arg) = it.next() {
         let mut value = |name: &str| {
             it.next()
@@ -541,6 +545,7 @@ fn parse_tile(args: &[String]) -> Result<TileCommand, CliError> {
                 });
             }
             ("merge", "-o" | "--output") => output = Some(PathBuf::from(value(arg)?)),
+            ("merge", "--memory") => memory = Some(bytes(arg, value(arg)?)?),
             ("plan" | "merge", "-p" | "--percent") => {
                 let p: f64 = number(arg, value(arg)?)?;
                 if !(0.0..=100.0).contains(&p) {
@@ -611,6 +616,7 @@ fn parse_tile(args: &[String]) -> Result<TileCommand, CliError> {
                 dir: first("work folder")?,
                 output: output.unwrap_or_else(|| PathBuf::from("out.wrl")),
                 target,
+                memory,
             }
         }
     })
@@ -955,6 +961,15 @@ mod tests {
                 dir: PathBuf::from("w"),
                 count: TileCount::TrianglesEach(5),
                 target: Target::RemovePercent(90.0),
+            }))
+        );
+        assert_eq!(
+            parse(["tile", "merge", "w", "-o", "o.ply", "--memory", "512M"]),
+            Ok(Command::Tile(TileCommand::Merge {
+                dir: PathBuf::from("w"),
+                output: PathBuf::from("o.ply"),
+                target: None,
+                memory: Some(512 << 20),
             }))
         );
         assert_eq!(run(&["tile"]).input, PathBuf::from("tile"));
