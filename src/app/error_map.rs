@@ -6,9 +6,11 @@
 use std::borrow::Cow;
 
 use crate::mesh::{Attribute, Scene};
-use crate::metro::field::{error_field, ErrorField};
+use crate::metro::field::ErrorField;
 
+use super::jobs;
 use super::viewport::Viewport;
+use super::worker::{Job, Poll};
 
 /// The colour ramp, cold to hot: blue, cyan, green, yellow, red (equal steps), the order
 /// MeshLab's quality mapping and most heat-maps use.
@@ -143,11 +145,17 @@ pub enum Look {
     Heat(u64),
 }
 
-/// The window's error fields, one per heat-mapped viewport, computed once per scene it shows
-/// (viewport id and generation).
-#[derive(Debug, Default)]
+/// The window's error fields, one per heat-mapped viewport, measured once per scene it shows
+/// (viewport id and generation) by a worker job, one at a time: a frame never waits for
+/// one, and a viewport is drawn in the neutral grey until its field arrives.
+#[derive(Default)]
 pub struct FieldCache {
     fields: Vec<(u64, u64, ErrorField)>,
+    /// The field being measured: viewport id, generation, job.
+    pending: Option<(u64, u64, Job<ErrorField>)>,
+    /// The scene whose measurement was cancelled or failed: not measured again until it
+    /// changes (or `E` is pressed again).
+    stopped: Option<(u64, u64)>,
 }
 
 /// True when `vp` shows a decimation of its original (not the original itself).
@@ -155,28 +163,92 @@ fn decimated(vp: &Viewport) -> bool {
     vp.last.is_some() || vp.lod().is_some()
 }
 
+/// True when `vp` is heat-mapped and shows a decimation: it needs a field.
+fn mapped(vp: &&Viewport) -> bool {
+    vp.options.error_map && decimated(vp)
+}
+
 impl FieldCache {
-    /// Measures the heat-mapped viewports whose scene changed and forgets the others; the
-    /// legend they share, if any viewport is heat-mapped.
-    pub fn update(&mut self, viewports: &[Viewport]) -> Option<Legend> {
-        let mapped = |vp: &&Viewport| vp.options.error_map && decimated(vp);
-        self.fields.retain(|(id, generation, _)| {
-            (viewports.iter().filter(mapped)).any(|v| v.id == *id && v.generation == *generation)
-        });
-        for vp in viewports.iter().filter(mapped) {
-            if !self.fields.iter().any(|(id, _, _)| *id == vp.id) {
-                let field = error_field(vp.original(), vp.scene());
-                self.fields.push((vp.id, vp.generation, field));
+    /// Forgets the fields no viewport shows any more, takes the field measured if its job
+    /// ended, and — when the view is `resting` (no geomorph playing, no camera move) —
+    /// starts measuring the next heat-mapped viewport that lacks one. Never waits. The
+    /// legend the fields share, once one has arrived.
+    pub fn update(&mut self, viewports: &[Viewport], resting: bool) -> Option<Legend> {
+        let wanted = |id: u64, generation: u64| {
+            (viewports.iter().filter(mapped)).any(|v| v.id == id && v.generation == generation)
+        };
+        self.fields
+            .retain(|(id, generation, _)| wanted(*id, *generation));
+        if self
+            .stopped
+            .is_some_and(|(id, generation)| !wanted(id, generation))
+        {
+            self.stopped = None;
+        }
+        if let Some((id, generation, job)) = &self.pending {
+            let (id, generation) = (*id, *generation);
+            if !wanted(id, generation) {
+                // The scene it measures is gone (a new level, E off): its result is of no use.
+                job.cancel();
+                self.pending = None;
+            } else {
+                match job.poll() {
+                    Poll::Running => {}
+                    Poll::Done(field) => {
+                        self.fields.push((id, generation, field));
+                        self.pending = None;
+                    }
+                    Poll::Failed(e) => {
+                        eprintln!("decimate: {e}");
+                        self.stopped = Some((id, generation));
+                        self.pending = None;
+                    }
+                    Poll::Cancelled => self.pending = None,
+                }
+            }
+        }
+        if self.pending.is_none() && resting {
+            let next = viewports.iter().enumerate().find(|(_, vp)| {
+                mapped(vp)
+                    && !self.fields.iter().any(|(id, _, _)| *id == vp.id)
+                    && self.stopped != Some((vp.id, vp.generation))
+            });
+            if let Some((n, vp)) = next {
+                let what = format!("viewport {}: measuring the heat-map", n + 1);
+                let job = jobs::field(what, vp.original().clone(), vp.scene().clone());
+                self.pending = Some((vp.id, vp.generation, job));
             }
         }
         let any = viewports.iter().any(|vp| vp.options.error_map);
-        any.then(|| Legend::spanning(self.fields.iter().map(|(_, _, f)| f)))
+        (any && !self.fields.is_empty())
+            .then(|| Legend::spanning(self.fields.iter().map(|(_, _, f)| f)))
     }
 
-    /// How `vp` is drawn, with `legend` from [`Self::update`].
+    /// The status line's words while a field is measured.
+    pub fn status(&self) -> Option<String> {
+        self.pending.as_ref().map(|(_, _, job)| job.status())
+    }
+
+    /// Whether a field is being measured.
+    pub fn busy(&self) -> bool {
+        self.pending.is_some()
+    }
+
+    /// `Esc` while a field is measured: stops it (its viewport stays grey until its scene
+    /// changes or `E` is pressed again); the status line's words, `None` when none ran.
+    pub fn cancel(&mut self) -> Option<String> {
+        let (id, generation, job) = self.pending.take()?;
+        job.cancel();
+        self.stopped = Some((id, generation));
+        Some(format!("cancelled: {}", job.what))
+    }
+
+    /// How `vp` is drawn, with `legend` from [`Self::update`]: heat-mapped once its field
+    /// has arrived, grey until then.
     pub fn look(&self, vp: &Viewport, legend: Option<&Legend>) -> Look {
+        let has_field = self.fields.iter().any(|(id, _, _)| *id == vp.id);
         match (vp.options.error_map, legend) {
-            (true, Some(legend)) if decimated(vp) => Look::Heat(legend.top.to_bits()),
+            (true, Some(legend)) if decimated(vp) && has_field => Look::Heat(legend.top.to_bits()),
             (true, _) => Look::Neutral,
             (false, _) => Look::Own,
         }
@@ -299,5 +371,116 @@ mod tests {
         one[7] = 0.5;
         let legend = Legend::spanning([&field(one)]);
         assert_eq!(legend.top, 0.5);
+    }
+
+    /// A wavy 21×21 grid (441 vertices), so that a decimation moves the surface.
+    fn waves() -> Scene {
+        use crate::mesh::Model;
+        use glam::Vec3;
+        let mut m = Model::default();
+        for j in 0..=20 {
+            for i in 0..=20 {
+                let z = (i as f32 * 0.7).sin() * (j as f32 * 0.5).cos();
+                m.positions.push(Vec3::new(i as f32, j as f32, z));
+            }
+        }
+        for j in 0..20u32 {
+            for i in 0..20u32 {
+                let v = j * 21 + i;
+                m.triangles.push([v, v + 1, v + 22]);
+                m.triangles.push([v, v + 22, v + 21]);
+            }
+        }
+        Scene { models: vec![m] }
+    }
+
+    /// A controller with viewport 1 decimated by key `9` and then heat-mapped by `E`.
+    fn heat_mapped() -> super::super::controller::ViewportController {
+        use super::super::controller::ViewportController;
+        use super::super::menu::{action_for_key, Key};
+        use crate::decimate::Params;
+        let mut c = ViewportController::new(waves(), Params::default(), 800, 600);
+        for k in ['9', 'E'] {
+            let action = action_for_key(Key::Char(k)).unwrap_or_else(|| panic!("{k} unbound"));
+            c.dispatch(action);
+            c.wait();
+        }
+        assert!(decimated(c.current_viewport()) && c.current_viewport().options.error_map);
+        c
+    }
+
+    /// Frames (updates at rest) until the legend shows, at most 30 s.
+    fn frames_until_legend(fields: &mut FieldCache, viewports: &[Viewport]) -> Legend {
+        let start = std::time::Instant::now();
+        loop {
+            if let Some(legend) = fields.update(viewports, true) {
+                return legend;
+            }
+            assert!(
+                start.elapsed() < std::time::Duration::from_secs(30),
+                "the field never arrived"
+            );
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+    }
+
+    #[test]
+    fn pressing_e_starts_a_job_and_the_field_arrives_with_the_legend() {
+        let c = heat_mapped();
+        let vp = c.current_viewport();
+        let mut fields = FieldCache::default();
+        // The frame E is pressed in: it starts the measurement and draws grey, no legend.
+        assert_eq!(fields.update(c.viewports(), true), None);
+        assert!(fields.busy(), "the field is measured by a job");
+        let status = fields.status().unwrap_or_default();
+        assert!(
+            status.starts_with("viewport 1: measuring the heat-map [")
+                && status.ends_with("Esc cancels"),
+            "{status}"
+        );
+        assert_eq!(fields.look(vp, None), Look::Neutral);
+        let legend = frames_until_legend(&mut fields, c.viewports());
+        assert!(!fields.busy() && fields.status().is_none());
+        assert!(legend.max > 0.0 && legend.top > 0.0, "{legend:?}");
+        assert_eq!(
+            fields.look(vp, Some(&legend)),
+            Look::Heat(legend.top.to_bits())
+        );
+        // The original beside it stays grey; nothing is measured again for the same level.
+        assert_eq!(fields.update(c.viewports(), true), Some(legend));
+        assert!(!fields.busy());
+        let heat = fields.scene(vp, fields.look(vp, Some(&legend)), Some(&legend));
+        assert!(matches!(
+            heat.models[0].colors,
+            Some(Attribute::PerVertex(ref c)) if c.len() == vp.scene().models[0].positions.len()
+        ));
+    }
+
+    #[test]
+    fn no_field_is_measured_while_the_view_moves_and_esc_stops_one() {
+        let c = heat_mapped();
+        let mut fields = FieldCache::default();
+        assert_eq!(fields.update(c.viewports(), false), None);
+        assert!(!fields.busy(), "a geomorph or a drag plays: no job yet");
+        fields.update(c.viewports(), true);
+        assert!(fields.busy());
+        let said = fields.cancel().unwrap_or_default();
+        assert_eq!(said, "cancelled: viewport 1: measuring the heat-map");
+        assert!(
+            fields.cancel().is_none(),
+            "nothing left to cancel: Esc quits"
+        );
+        assert_eq!(fields.update(c.viewports(), true), None);
+        assert!(
+            !fields.busy(),
+            "a cancelled level is not measured again by itself"
+        );
+        // E off and on again asks for it.
+        let mut off = c.viewports().to_vec();
+        off[0].options.error_map = false;
+        assert_eq!(fields.update(&off, true), None);
+        fields.update(c.viewports(), true);
+        assert!(fields.busy());
+        frames_until_legend(&mut fields, c.viewports());
     }
 }

@@ -1,12 +1,13 @@
 //! The viewer's long tasks as worker jobs (`worker::Job`): decimating a viewport from the
 //! original, building the level-of-detail slider's progressive mesh, measuring the metro
-//! error of the level shown. Each takes what it reads by value (the original behind an
+//! error of the level shown, and the heat-map's error field of a viewport. Each takes what it reads by value (the original behind an
 //! `Arc`), so the window keeps its scenes and draws them while the job runs.
 
 use std::sync::Arc;
 
 use crate::decimate::{simplify_scene_cancellable, Params, Report};
 use crate::mesh::Scene;
+use crate::metro::field::{error_field, ErrorField};
 
 use super::counts::Counts;
 use super::level_error::LevelError;
@@ -76,4 +77,10 @@ pub fn measure(what: String, original: Arc<Scene>, shown: Scene) -> Job<Done> {
     spawn(what, move |_, _| {
         Some(Done::Measured(LevelError::measure(&original, &shown)))
     })
+}
+
+/// Measures the heat-map's error field of `shown` against `original` (like [`measure`], it
+/// runs to its end; a cancelled one is dropped).
+pub fn field(what: String, original: Arc<Scene>, shown: Scene) -> Job<ErrorField> {
+    spawn(what, move |_, _| Some(error_field(&original, &shown)))
 }

@@ -14,6 +14,7 @@ pub mod menu;
 pub mod menu_layout;
 pub mod popup;
 pub mod save;
+pub mod settle;
 pub mod shot;
 pub mod ui;
 pub mod viewer;

@@ -31,6 +31,7 @@ use super::glut::{Button, Callbacks, Flow, Special};
 use super::labels::HeadlessCaptions;
 use super::menu::{action_for_key, key_help, Key, MenuEntry};
 use super::save::{save_path, SavePath};
+use super::settle::Settle;
 use super::shot::write_png;
 use super::ui::{UiLayer, UiResult, UiState, VertexField};
 
@@ -43,6 +44,9 @@ struct Gpu {
     /// pipelines, whose set layout its sets were made with.
     textures: Textures,
     pipelines: Pipelines,
+    /// With multisampling, single-sampled pipelines too, for the frames drawn while the view
+    /// moves (docs/design.md#msaa); kept so that switching costs nothing.
+    moving_pipelines: Option<Pipelines>,
     frame_commands: Commands,
     upload_commands: Commands,
     swapchain: Swapchain,
@@ -69,6 +73,11 @@ pub struct Viewer {
     /// The heat-mapped viewports' error fields and the legend they share.
     fields: FieldCache,
     legend: Option<Legend>,
+    /// Whether the view moves: the frames then are single-sampled.
+    settle: Settle,
+    /// The last frame was drawn single-sampled though multisampling is on: a sharp one is
+    /// due when the view rests.
+    drawn_moving: bool,
 }
 
 /// Where F2 saves the window's picture.
@@ -112,6 +121,8 @@ impl Viewer {
             message: None,
             fields: FieldCache::default(),
             legend: None,
+            settle: Settle::default(),
+            drawn_moving: false,
         }
     }
 
@@ -216,7 +227,11 @@ impl Viewer {
     /// The status line, one line: the last message while it is fresh, else the current
     /// viewport's state.
     fn status(&mut self) -> String {
-        if let Some(job) = self.controller.job_status() {
+        if let Some(job) = self
+            .controller
+            .job_status()
+            .or_else(|| self.fields.status())
+        {
             return job;
         }
         let now = Instant::now();
@@ -286,6 +301,7 @@ impl Viewer {
             eprintln!("decimate: {}", self.controller.message);
         }
         let morphing = self.controller.tick(now);
+        let moving = (self.settle).moving(self.dragging || self.panning || morphing, now);
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(Flow::Continue);
         };
@@ -297,18 +313,23 @@ impl Viewer {
             gpu.context.wait_idle()?;
             gpu.pipelines.set_samples(self.controller.msaa)?;
             gpu.swapchain.set_samples(gpu.pipelines.samples)?;
+            gpu.moving_pipelines =
+                single_sampled(&gpu.context, &gpu.pipelines, gpu.swapchain.format)?;
         }
-        // The heat-map's error fields are measured here, once per decimation shown.
-        self.legend = self.fields.update(self.controller.viewports());
+        // The heat-map's error fields: a job measures them for the level at rest.
+        self.legend = self.fields.update(self.controller.viewports(), !moving);
         Self::sync_scenes(gpu, &self.controller, &self.fields, self.legend.as_ref())?;
         let ui_result = self.run_ui(window)?;
-        if !self.present(now)? {
+        if !self.present(now, moving)? {
             // The swapchain no longer fits the window: made again next frame.
             self.resized = true;
             window.request_redraw();
         }
         self.popup_just_opened = false;
-        let job = self.controller.job_status();
+        let job = self
+            .controller
+            .job_status()
+            .or_else(|| self.fields.status());
         let job = job.as_deref().unwrap_or("no job");
         trace(format_args!(
             "frame in {} ms, {job}",
@@ -356,10 +377,14 @@ impl Viewer {
 
     /// Draws the viewports and the UI into the next swapchain image and presents it; false
     /// when the swapchain is out of date (nothing was drawn or not shown).
-    fn present(&mut self, now: Instant) -> Result<bool, AppError> {
+    fn present(&mut self, now: Instant, moving: bool) -> Result<bool, AppError> {
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(true);
         };
+        // Single-sampled while the view moves, when multisampling is on.
+        let single =
+            moving && gpu.moving_pipelines.is_some() && gpu.swapchain.moving_images.is_some();
+        self.drawn_moving = single;
         let Some(frame) = gpu.swapchain.acquire()? else {
             return Ok(false);
         };
@@ -367,7 +392,7 @@ impl Viewer {
         let views = viewport_draws(&gpu.scenes, &self.controller, extent, now);
         let highlight = (views.len() > 1).then_some(self.controller.current());
         let cmd = gpu.frame_commands.begin()?;
-        record_viewports(gpu, cmd, &frame, &views, highlight)?;
+        record_viewports(gpu, cmd, &frame, &views, highlight, single)?;
         gpu.ui.draw(cmd, extent)?;
         let to_present = Transition {
             old: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
@@ -399,6 +424,7 @@ impl Viewer {
             || ui_result.vertex_count.is_some()
             || ui_result.action.is_some();
         if let Some(n) = ui_result.lod_vertices {
+            self.settle.moved(Instant::now());
             self.controller.set_lod_vertices(n, Instant::now());
         }
         if ui_result.close_popup || ui_result.action.is_some() {
@@ -452,21 +478,26 @@ fn viewport_draws<'a>(
         .collect()
 }
 
-/// Records the viewports' pass into `cmd` (tiles, highlight of the current one, models), then
-/// opens the colour-only overlay pass the UI is drawn in; the caller ends it.
+/// Records the viewports' pass into `cmd` (tiles, highlight of the current one, models),
+/// single-sampled when `single`, then opens the colour-only overlay pass the UI is drawn in;
+/// the caller ends it.
 fn record_viewports(
     gpu: &Gpu,
     cmd: vk::CommandBuffer,
     frame: &Frame,
     views: &[ViewportDraw<'_>],
     highlight: Option<usize>,
+    single: bool,
 ) -> Result<(), AppError> {
     let device = &gpu.context.device;
     let (format, extent) = (gpu.swapchain.format, gpu.swapchain.extent);
+    let pipelines = match (&gpu.moving_pipelines, single) {
+        (Some(pipelines), true) => pipelines,
+        _ => &gpu.pipelines,
+    };
     let images = gpu
         .swapchain
-        .draw_images
-        .as_ref()
+        .images(single)
         .ok_or_else(|| RenderError::Window("the swapchain has no depth buffer".into()))?;
     let rects: Vec<_> = views.iter().map(|v| v.rect).collect();
     // SAFETY: `cmd` is recording; the swapchain image, depth buffer, pipelines and scenes
@@ -476,7 +507,7 @@ fn record_viewports(
         images.to_attachments(device, cmd);
         let attachments = images.attachments(frame.view);
         draw::begin_tiles(device, cmd, attachments, extent, &rects, highlight);
-        draw::record(device, cmd, &gpu.pipelines, views);
+        draw::record(device, cmd, pipelines, views);
         device.cmd_end_rendering(cmd);
         draw::begin_overlay(device, cmd, frame.view, extent);
     }
@@ -506,6 +537,7 @@ impl Callbacks for Viewer {
             pipelines.texture_layout,
             texture_image::reader(&self.controller.input_dir),
         )?;
+        let moving_pipelines = single_sampled(&context, &pipelines, swapchain.format)?;
         let ui = UiLayer::new(&context, window, swapchain.format)?;
         eprintln!("decimate: drawing with {}", context.device_name);
         self.gpu = Some(Gpu {
@@ -513,6 +545,7 @@ impl Callbacks for Viewer {
             scenes: Vec::new(),
             textures,
             pipelines,
+            moving_pipelines,
             frame_commands: Commands::new(&context)?,
             upload_commands: Commands::new(&context)?,
             swapchain,
@@ -542,14 +575,23 @@ impl Callbacks for Viewer {
             eprintln!("decimate: {}", self.controller.message);
             return Flow::Continue;
         }
+        if key == Key::Escape {
+            if let Some(message) = self.fields.cancel() {
+                eprintln!("decimate: {message}");
+                self.controller.message = message;
+                return Flow::Continue;
+            }
+        }
         // W / S walk in eye control; elsewhere they keep their menu meaning.
         let eye = self.controller.current_viewport().camera.navigation == Navigation::Eye;
         match key {
             Key::Char('w') if eye => {
+                self.settle.moved(Instant::now());
                 self.controller.walk(0.1, 0.0);
                 return Flow::Continue;
             }
             Key::Char('S') if eye => {
+                self.settle.moved(Instant::now());
                 self.controller.walk(-0.1, 0.0);
                 return Flow::Continue;
             }
@@ -571,6 +613,7 @@ impl Callbacks for Viewer {
             Special::Left => (0.0, -0.1),
             Special::Right => (0.0, 0.1),
         };
+        self.settle.moved(Instant::now());
         self.controller.walk(forward, right);
     }
 
@@ -602,8 +645,10 @@ impl Callbacks for Viewer {
         let delta = Vec2::new((x - self.pointer.0) as f32, (y - self.pointer.1) as f32);
         self.pointer = (x, y);
         if self.dragging {
+            self.settle.moved(Instant::now());
             self.controller.drag(delta);
         } else if self.panning {
+            self.settle.moved(Instant::now());
             self.controller.pan(delta);
         } else if self.popup_at.is_none() {
             self.controller.pointer_at(x, y);
@@ -611,6 +656,7 @@ impl Callbacks for Viewer {
     }
 
     fn wheel(&mut self, steps: f32) {
+        self.settle.moved(Instant::now());
         self.controller.wheel(steps);
     }
 
@@ -643,11 +689,11 @@ impl Callbacks for Viewer {
 
     fn wake_at(&self) -> Option<Instant> {
         let message = self.message.as_ref().map(|(_, until)| *until);
-        let job = self
-            .controller
-            .busy()
+        let job = (self.controller.busy() || self.fields.busy())
             .then(|| Instant::now() + JOB_FRAME_INTERVAL);
-        message.into_iter().chain(job).min()
+        // The sharp frame once the view rests, after single-sampled ones.
+        let rest = self.settle.rests_at().filter(|_| self.drawn_moving);
+        message.into_iter().chain(job).chain(rest).min()
     }
 
     fn destroy(&mut self) {
@@ -656,4 +702,17 @@ impl Callbacks for Viewer {
         }
         self.gpu = None;
     }
+}
+
+/// Single-sampled pipelines beside `pipelines` when those multisample (for the frames drawn
+/// while the view moves); none when they draw single-sampled already.
+fn single_sampled(
+    context: &Arc<Context>,
+    pipelines: &Pipelines,
+    format: vk::Format,
+) -> Result<Option<Pipelines>, AppError> {
+    if pipelines.samples == vk::SampleCountFlags::TYPE_1 {
+        return Ok(None);
+    }
+    Ok(Some(Pipelines::with_samples(context, format, 1)?))
 }

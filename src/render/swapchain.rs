@@ -1,5 +1,7 @@
 //! `Swapchain`: the window's surface, its swapchain images and views, a depth buffer of the
-//! same size (and a multisampled colour image when anti-aliased), and the semaphores and fence of the one frame in flight. Recreated on resize;
+//! same size (and a multisampled colour image when anti-aliased, beside single-sampled
+//! images for the frames drawn while the view moves), and the semaphores and fence of the
+//! one frame in flight. Recreated on resize;
 //! everything freed in `Drop` (views and swapchain before the surface).
 
 use std::sync::Arc;
@@ -22,6 +24,9 @@ pub struct Swapchain {
     views: Vec<vk::ImageView>,
     /// Depth and multisampled colour, made again with the swapchain.
     pub draw_images: Option<DrawImages>,
+    /// With multisampling, a single-sampled depth buffer too: the frames drawn while the
+    /// view moves (docs/design.md#msaa), kept so that switching costs nothing.
+    pub moving_images: Option<DrawImages>,
     /// Samples per pixel the viewports are drawn with.
     pub samples: vk::SampleCountFlags,
     pub format: vk::Format,
@@ -76,6 +81,7 @@ impl Swapchain {
             images: Vec::new(),
             views: Vec::new(),
             draw_images: None,
+            moving_images: None,
             samples,
             format: vk::Format::B8G8R8A8_UNORM,
             extent: vk::Extent2D { width, height },
@@ -193,7 +199,34 @@ impl Swapchain {
             extent,
             self.samples,
         )?);
+        self.moving_images = self.single_images()?;
         Ok(())
+    }
+
+    /// The single-sampled images drawn with while the view moves; none when the window
+    /// draws single-sampled anyway.
+    fn single_images(&self) -> Result<Option<DrawImages>> {
+        if self.samples == vk::SampleCountFlags::TYPE_1 {
+            return Ok(None);
+        }
+        let one = vk::SampleCountFlags::TYPE_1;
+        DrawImages::new(
+            &self.context,
+            "window (moving)",
+            self.format,
+            self.extent,
+            one,
+        )
+        .map(Some)
+    }
+
+    /// The images to draw this frame with: the single-sampled ones when `moving` (if there
+    /// are any), else those of [`Self::samples`].
+    pub fn images(&self, moving: bool) -> Option<&DrawImages> {
+        match (&self.moving_images, moving) {
+            (Some(images), true) => Some(images),
+            _ => self.draw_images.as_ref(),
+        }
     }
 
     /// Draws with `samples` samples per pixel from now on (the depth and multisampled images
@@ -204,6 +237,7 @@ impl Swapchain {
         }
         self.context.wait_idle()?;
         self.draw_images = None;
+        self.moving_images = None;
         self.samples = samples;
         self.draw_images = Some(DrawImages::new(
             &self.context,
@@ -212,6 +246,7 @@ impl Swapchain {
             self.extent,
             samples,
         )?);
+        self.moving_images = self.single_images()?;
         Ok(())
     }
 
@@ -291,6 +326,7 @@ impl Swapchain {
             }
         }
         self.draw_images = None;
+        self.moving_images = None;
     }
 }
 

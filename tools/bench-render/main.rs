@@ -2,7 +2,8 @@
 //! (about one million triangles by default) or any file `decimate` reads, such as the
 //! Stanford dragon — once per draw mode, and prints a table of frame times without and with
 //! 4× multisample anti-aliasing (the two alternate frame by frame). No readback is timed: a
-//! frame is record + submit + wait, as in the viewer. Then it moves the
+//! frame is record + submit + wait, as in the viewer. Then it turns the camera as a drag does
+//! and prints the viewer's moving (1×) and at-rest (4×) frames. Then it moves the
 //! level-of-detail slider as the viewer does and prints what each move costs: the new level,
 //! its upload (filled triangles), one frame, and for a coarsening move the second upload
 //! when the geomorph ends.
@@ -208,8 +209,84 @@ fn run(
             msaa_median / median
         );
     }
+    let single = (&pipelines, &target);
+    let multi = (&msaa_pipelines, &msaa_target);
+    turning(&commands, single, multi, &gpu, &camera, frames)?;
     let gpu = (&context, &commands, &pipelines, &target);
     slider_moves(gpu, &mut textures, &scene, &camera)
+}
+
+/// Frames drawn while the camera turns, for each frame at rest (the viewer's settle time
+/// is longer than this many moving frames at the frame rates measured).
+const MOVES_PER_REST: usize = 10;
+
+/// What the viewer draws while the user turns the model: single-sampled frames with the
+/// camera moving each frame, then the one multisampled frame once the view rests
+/// (docs/design.md#msaa); beside them, multisampled frames while moving, as the viewer drew
+/// before. The three alternate round by round, so that the machine's load touches each alike.
+fn turning(
+    commands: &Commands,
+    single: (&Pipelines, &OffscreenTarget),
+    multi: (&Pipelines, &OffscreenTarget),
+    gpu: &GpuScene,
+    camera: &Camera,
+    rounds: usize,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let (width, height) = (single.1.extent.width, single.1.extent.height);
+    let msaa = multi.0.samples.as_raw();
+    let mut camera = camera.clone();
+    let frame = |(pipelines, target): (&Pipelines, &OffscreenTarget),
+                 camera: &Camera|
+     -> Result<f64, Box<dyn std::error::Error>> {
+        let views: Vec<_> = tiles(1, width, height)
+            .into_iter()
+            .map(|rect| ViewportDraw {
+                rect,
+                scene: gpu,
+                camera,
+                options: DrawOptions::default(),
+                morph: 1.0,
+            })
+            .collect();
+        let t = Instant::now();
+        target.render(commands, pipelines, &views, false)?;
+        Ok(t.elapsed().as_secs_f64() * 1e3)
+    };
+    let (mut moving, mut moving_msaa, mut rest) = (Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..rounds.max(1) {
+        for _ in 0..MOVES_PER_REST {
+            camera.drag(glam::Vec2::new(8.0, 0.0));
+            moving.push(frame(single, &camera)?);
+        }
+        rest.push(frame(multi, &camera)?);
+        for _ in 0..MOVES_PER_REST {
+            camera.drag(glam::Vec2::new(8.0, 0.0));
+            moving_msaa.push(frame(multi, &camera)?);
+        }
+    }
+    println!(
+        "\nviewer, turning the model (8 px of drag per frame; {MOVES_PER_REST} moving frames per rest, {} rounds, alternating)",
+        rounds.max(1)
+    );
+    println!(
+        "{:<36} {:>10} {:>10} {:>10} {:>8}",
+        "frames", "median ms", "max ms", "fps", "count"
+    );
+    for (name, mut times) in [
+        ("moving, 1x (what the viewer draws)".to_string(), moving),
+        (format!("at rest, {msaa}x (one frame)"), rest),
+        (format!("moving, {msaa}x (without settling)"), moving_msaa),
+    ] {
+        times.sort_by(f64::total_cmp);
+        let median = times[times.len() / 2];
+        println!(
+            "{name:<36} {median:>10.1} {:>10.1} {:>10.1} {:>8}",
+            times[times.len() - 1],
+            1e3 / median,
+            times.len()
+        );
+    }
+    Ok(())
 }
 
 /// The slider's moves, timed: down to three quarters, half, a quarter and the base of the
