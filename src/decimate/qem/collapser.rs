@@ -234,6 +234,12 @@ impl Collapser {
         self.closed.absorb(changes);
     }
 
+    /// Gives `model` back the positions and triangles `layout::release` freed, from this
+    /// state before any collapse.
+    pub fn restore(&self, model: &mut Model, order: &[u32], faces: &[u32]) {
+        crate::decimate::layout::restore(model, &self.positions, &self.conn, order, faces);
+    }
+
     /// Writes live vertices (at their new positions) and triangles back into `model`.
     /// `order` maps internal vertex ids to the model's, `faces` internal triangle slots to the
     /// model's faces. Kept vertices keep their relative order from the input.

@@ -77,24 +77,30 @@ pub fn decimate_model(
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
     // 1. load
-    let (loaded, positions, triangles) = load(model);
+    let (mut loaded, positions, triangles) = load(model);
     let pinned: Vec<bool> = loaded
         .order
         .iter()
         .map(|&v| pins.get(v as usize).copied().unwrap_or(false))
         .collect();
-
-    // 2. connect
-    let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
-    let pinned_count = pinned.iter().filter(|&&p| p).count();
-    d.copies = crate::mesh::seams::copy_cycles(&d.positions, &pinned);
-    d.pinned = pinned;
-    d.twins = loaded.pairs(twins);
-    d.texcoords = model
+    let twins = loaded.pairs(twins);
+    let texcoords = model
         .texcoords
         .as_ref()
         .filter(|t| t.len() == model.positions.len())
         .map(|t| loaded.order.iter().map(|&v| t[v as usize]).collect());
+    // Only loading maps the model's ids to the internal ones; the decimation works on its
+    // own copies, so the model's are freed meanwhile.
+    loaded.internal = Vec::new();
+    let released = layout::release(model, &loaded);
+
+    // 2. connect
+    let mut d = Decimator::new(positions, triangles, limits.feature_angle_deg);
+    let pinned_count = pinned.iter().filter(|&&p| p).count();
+    d.copies = crate::mesh::seams::copy_cycles(&d.positions, &pinned);
+    d.pinned = pinned;
+    d.twins = twins;
+    d.texcoords = texcoords;
 
     // 3. classify and rank
     d.rank_all();
@@ -113,6 +119,8 @@ pub fn decimate_model(
     // 5. compact
     if outcome.removed > 0 {
         d.write_back(model, &loaded.order, &loaded.faces);
+    } else if released {
+        layout::restore(model, &d.positions, &d.conn, &loaded.order, &loaded.faces);
     }
     outcome
 }
@@ -196,11 +204,11 @@ struct Removal<'a> {
 }
 
 impl Decimator {
-    fn new(positions: Vec<Vec3>, triangles: &[[u32; 3]], feature_angle_deg: f64) -> Self {
+    fn new(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>, feature_angle_deg: f64) -> Self {
         let n = positions.len();
         Self {
-            closed: ClosedVolumes::new(&positions, triangles),
-            conn: Connectivity::new(n, triangles),
+            closed: ClosedVolumes::new(&positions, &triangles),
+            conn: Connectivity::from_triangles(n, triangles),
             positions,
             texcoords: None,
             accumulated: vec![0.0; n],
@@ -496,9 +504,14 @@ impl Decimator {
             triangles,
         } = compact(&self.conn, order, faces);
         model.triangles = triangles;
+        // Vertices never move: the kept ones' positions are the internal copies'.
+        let mut internal = vec![0u32; order.len()];
+        for (i, &v) in order.iter().enumerate() {
+            internal[v as usize] = i as u32;
+        }
         model.positions = kept_vertices
             .iter()
-            .map(|&v| model.positions[v as usize])
+            .map(|&v| self.positions[internal[v as usize] as usize])
             .collect();
         model.colors = model
             .colors
