@@ -108,6 +108,9 @@ pub struct ModelReport {
     /// Of a fully decimated model, the vertices left on non-manifold edges: what the input
     /// holds back (counted only when nothing more could go).
     pub non_manifold_kept: usize,
+    /// Of a fully decimated model, the vertices kept only so that a closed part does not
+    /// turn inside out or flat (`decimate::closed`; vertex removal counts them).
+    pub closed_kept: usize,
 }
 
 /// What a decimation run did, model by model.
@@ -279,6 +282,7 @@ fn run(
             } else {
                 0
             },
+            closed_kept: outcome.closed_kept,
         });
     }
     // The original program's rule: a model left with fewer than four vertices is dropped.

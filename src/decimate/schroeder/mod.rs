@@ -39,6 +39,7 @@ pub mod loop_split;
 mod plan;
 mod region_removal;
 mod removal_passes;
+mod sheets;
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -106,9 +107,13 @@ pub fn decimate_model(
         exhausted: false,
         feature_angle_deg: limits.feature_angle_deg,
         pinned: pinned_count,
+        closed_kept: 0,
     };
     removal_passes::remove_in_passes(&mut d, limits, &mut outcome, progress);
     progress(outcome.removed);
+    if outcome.exhausted {
+        outcome.closed_kept = d.closed_kept();
+    }
 
     // 5. compact
     if outcome.removed > 0 {
@@ -241,7 +246,7 @@ impl Decimator {
     /// `v`'s key as its ring stands now, `NaN` when it is no candidate.
     fn key(&self, v: u32, planning: &mut Planning) -> f64 {
         match self.surface().evaluate(v, planning) {
-            Some((class, distance)) if class.removable() && !self.pinned[v as usize] => {
+            Some((_, distance)) if !self.pinned[v as usize] => {
                 distance + self.accumulated[v as usize]
             }
             _ => f64::NAN,
@@ -364,6 +369,24 @@ impl Decimator {
         self.closed
             .component(v)
             .is_none_or(|c| self.closed.allows(c, self.volume_change(v, removal), 1.0))
+    }
+
+    /// The live vertices whose removal, as the mesh stands, only the closed-volume guard
+    /// refuses: the fill is valid but would take a closed part below its floor or across
+    /// zero. Counted on all cores, once, when nothing more can go.
+    fn closed_kept(&self) -> usize {
+        (0..self.positions.len() as u32)
+            .into_par_iter()
+            .map_init(Planning::default, |planning, v| {
+                let candidate = self.closed.component(v).is_some()
+                    && !self.pinned[v as usize]
+                    && self.twin(v).is_none();
+                candidate
+                    && self.surface().plan_removal(v, planning).is_some()
+                    && !self.keeps_closed_volume(v, removal_of(planning))
+            })
+            .filter(|&kept| kept)
+            .count()
     }
 
     /// Six times the change of signed volume that replacing `v`'s triangles by the fill
