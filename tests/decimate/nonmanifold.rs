@@ -56,7 +56,13 @@ impl Builder {
     /// An `n`×`n` grid over the parallelogram `o + s·u + t·v` (s, t in 0..=1), facing
     /// `u × v`.
     fn sheet(&mut self, o: Vec3, u: Vec3, v: Vec3, n: u32) {
-        let at = |i: u32, j: u32| o + u * (i as f32 / n as f32) + v * (j as f32 / n as f32);
+        self.grid(n, |i, j| {
+            o + u * (i as f32 / n as f32) + v * (j as f32 / n as f32)
+        });
+    }
+
+    /// An `n`×`n` grid whose point `(i, j)` is `at(i, j)`.
+    fn grid(&mut self, n: u32, at: impl Fn(u32, u32) -> Vec3) {
         for j in 0..n {
             for i in 0..n {
                 let [a, b, c, d] =
@@ -368,5 +374,28 @@ fn vertex_removal_keeps_a_corner_bowtie_and_takes_the_rest() {
     let before = b.build("bowtie");
     let after = run(before.clone(), &lossless_by(Algorithm::Schroeder));
     assert_eq!(counts(&after), (7, 4, 0));
+    assert_kept(&before, &after);
+}
+
+//   A pinch: two flat 4×4 squares crossing at right angles, the first in the plane z = 0,
+//   the second in y = 0, sharing one edge from the origin to (0.5, 0, 0) — the second's
+//   other points on the x axis are moved up by 0.01 in its own plane, so it stays flat and
+//   shares nothing else. Each end of the shared edge is inside both squares: two closed
+//   fans through the edge's other end. Each goes with each fan filled apart, and the two
+//   squares come apart: four corners and two triangles each, no non-manifold edge.
+#[test]
+fn vertex_removal_takes_a_pinch_along_one_edge_apart_into_two_squares() {
+    let mut b = Builder::default();
+    b.sheet(Vec3::new(-1.0, -1.0, 0.0), 2.0 * Vec3::X, 2.0 * Vec3::Y, 4);
+    b.grid(4, |i, j| {
+        let (x, z) = (i as f32 * 0.5 - 1.0, j as f32 * 0.5 - 1.0);
+        let shared = z == 0.0 && (x == 0.0 || x == 0.5);
+        let lift = if z == 0.0 && !shared { 0.01 } else { 0.0 };
+        Vec3::new(x, 0.0, z + lift)
+    });
+    let before = b.build("pinch");
+    assert_eq!(counts(&before), (48, 64, 1));
+    let after = run(before.clone(), &lossless_by(Algorithm::Schroeder));
+    assert_eq!(counts(&after), (8, 4, 0));
     assert_kept(&before, &after);
 }

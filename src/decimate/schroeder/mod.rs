@@ -10,6 +10,8 @@
 //!    simple → distance to the loop's average plane (area-weighted normal and centre);
 //!    boundary → distance to the line through its two boundary neighbours;
 //!    interior edge → distance to the line through its two feature neighbours;
+//!    complex, on a non-manifold crease line or at a bowtie (`sheets`) → distance to the
+//!    line its fans close on;
 //!    plus the error already accumulated at the vertex by earlier removals around it, so that
 //!    the key bounds the distance to the original surface (as VTK's later implementation
 //!    of the paper does); pinned vertices (seam junctions, `mesh::seams`; borders shared
@@ -21,7 +23,7 @@
 //! 4. remove (`removal_passes`): in passes over the cheapest share of the candidates, in key order:
 //!    remove each, filling its hole by recursive loop splitting (`loop_split`, planned in
 //!    `plan`), keeping creases (an interior-edge vertex's loop is first split along its
-//!    feature edge) and rejecting fills that flip or degenerate a triangle, create an edge
+//!    feature edge; a complex vertex's fans are filled one by one) and rejecting fills that flip or degenerate a triangle, create an edge
 //!    that already exists (non-manifold) or turn a closed shape inside out or flat
 //!    (`decimate::closed`) — such a vertex is kept until a neighbour goes; a
 //!    vertex whose ring a removal changed waits for the next pass, re-ranked at the end of

@@ -126,28 +126,55 @@ impl<C: Adjacency> Surface<'_, C> {
         distance.is_finite().then_some((class, distance))
     }
 
-    /// A complex vertex's criterion when it may go through its fans: none has a feature
-    /// edge inside or turns sharply at `v` (the rules of a boundary vertex, fan by fan).
+    /// A complex vertex's criterion when it may go through its fans, each by the rules of
+    /// a manifold vertex: an open fan has no feature edge inside and does not turn sharply
+    /// at `v` (boundary), a closed one has at most one feature edge (simple). The largest
+    /// of the fans' distances: to the line an open fan closes on, to a closed fan's average
+    /// plane.
     fn sheets_distance(&self, v: u32, p: &mut Planning) -> Option<f64> {
         p.sheets.split(self.conn, v)?;
         let at = self.position(v);
         let mut distance = 0.0f64;
         for i in 0..p.sheets.count() {
-            let (path, _) = p.sheets.fan(i);
-            let (first, last) = (path[0], path[path.len() - 1]);
-            fan_geometry(self.positions, v, path, &mut p.geometry);
+            let (first, last, closed) = self.take_fan(v, i, p);
             let RingGeometry { crosses, lengths } = &p.geometry;
-            let feature = (1..crosses.len()).any(|j| {
-                let len = lengths[j - 1] * lengths[j];
-                len > 0.0 && crosses[j - 1].dot(crosses[j]) < self.cos_feature * len
-            });
-            if feature || self.sharp_turn(at, first, last) {
-                return None;
-            }
-            // On a crease line every fan closes on the same line.
-            distance = distance.max(self.line_distance(at, first, last));
+            let k = crosses.len();
+            let is_feature = |j: usize, l: usize| {
+                let len = lengths[j] * lengths[l];
+                len > 0.0 && crosses[j].dot(crosses[l]) < self.cos_feature * len
+            };
+            let fan_distance = if closed {
+                if (0..k).filter(|&j| is_feature(j, (j + 1) % k)).count() > 1 {
+                    return None;
+                }
+                let (normal, centre) = self.average_plane(p, at, 0..k)?;
+                normal.dot(at - centre).abs()
+            } else {
+                if (1..k).any(|j| is_feature(j - 1, j)) || self.sharp_turn(at, first, last) {
+                    return None;
+                }
+                // On a crease line every fan closes on the same line.
+                self.line_distance(at, first, last)
+            };
+            distance = distance.max(fan_distance);
         }
         Some(distance)
+    }
+
+    /// Puts fan `i` of `v` (`p.sheets`) in `p`'s ring and geometry, as a manifold ring:
+    /// its ends and whether it is closed (then its path's repeated end is dropped).
+    fn take_fan(&self, v: u32, i: usize, p: &mut Planning) -> (u32, u32, bool) {
+        let (path, triangles) = p.sheets.fan(i);
+        let (first, last) = (path[0], path[path.len() - 1]);
+        let closed = first == last;
+        fan_geometry(self.positions, v, path, &mut p.geometry);
+        p.ring.verts.clear();
+        p.ring
+            .verts
+            .extend_from_slice(&path[..path.len() - usize::from(closed)]);
+        p.ring.triangles.clear();
+        p.ring.triangles.extend_from_slice(triangles);
+        (first, last, closed)
     }
 
     /// Whether the line `a`–`at`–`b` turns by more than the feature angle at `at`.
@@ -175,24 +202,24 @@ impl<C: Adjacency> Surface<'_, C> {
         ok.then_some((class, distance))
     }
 
-    /// Complex vertex: each fan filled and checked on its own, as a boundary vertex's open
-    /// ring closed by the edge between its ends (on a crease line the same edge for every
-    /// fan, which must not exist yet). Leaves in `p` the whole removal: every neighbour,
-    /// every triangle, every fan's fill.
+    /// Complex vertex: each fan filled and checked on its own, an open one as a boundary
+    /// vertex's ring closed by the edge between its ends (on a crease line the same edge
+    /// for every fan, which must not exist yet), a closed one as a simple vertex's. Leaves
+    /// in `p` the whole removal: every neighbour, every triangle, every fan's fill.
     fn fill_sheets(&self, v: u32, p: &mut Planning) -> bool {
         let mut fill = std::mem::take(&mut p.sheets.fill);
         fill.clear();
         let mut ok = true;
         for i in 0..p.sheets.count() {
-            let (path, triangles) = p.sheets.fan(i);
-            p.ring.verts.clear();
-            p.ring.verts.extend_from_slice(path);
-            p.ring.triangles.clear();
-            p.ring.triangles.extend_from_slice(triangles);
-            fan_geometry(self.positions, v, path, &mut p.geometry);
+            let (_, _, closed) = self.take_fan(v, i, p);
             p.fill.clear();
             p.regions.clear();
-            if !(self.fill_open(v, p) && self.fill_is_valid(v, p)) {
+            let filled = if closed {
+                self.fill_closed(v, p)
+            } else {
+                self.fill_open(v, p)
+            };
+            if !(filled && self.fill_is_valid(v, p)) {
                 ok = false;
                 break;
             }

@@ -1,11 +1,12 @@
 //! A complex vertex's triangles split into manifold fans ("sheets"), so that vertex removal
 //! takes part on non-manifold input instead of freezing every complex vertex: a vertex inside
 //! a non-manifold crease line (on exactly two edges of k ≥ 3 triangles, every fan running
-//! from one of their far ends to the other) and a bowtie (open fans meeting only at the
-//! vertex). `plan` fills each fan on its own like a boundary vertex's hole, closed by the
-//! edge between its ends: on a crease line the k fans share that one new edge, so the line
-//! stays glued and keeps k triangles; at a bowtie the fans come apart
-//! (docs/design.md#schroeder-non-manifold).
+//! from one of their far ends to the other), a pinch (the end of a non-manifold edge, every
+//! fan closed through its far end) and a bowtie (fans meeting only at the vertex).
+//! `plan` fills each fan on its own: an open one like a boundary vertex's hole, closed by the
+//! edge between its ends (on a crease line the k fans share that one new edge, so the line
+//! stays glued and keeps k triangles; at a bowtie the fans come apart), a closed one like a
+//! simple vertex's (docs/design.md#schroeder-non-manifold).
 
 use crate::mesh::topology::{corner_of, Adjacency, MAX_VALENCE};
 
@@ -15,8 +16,11 @@ pub(super) enum SheetShape {
     /// Every fan runs between `a` and `b`, the far ends of the vertex's two non-manifold
     /// edges (each of as many triangles as there are fans).
     CreaseLine { a: u32, b: u32 },
-    /// Two or more open fans, no non-manifold edge: each fan runs between two border
-    /// neighbours of its own.
+    /// The vertex ends one non-manifold edge, and every fan is closed through its far end:
+    /// removed, the surfaces it joined touch at that end only.
+    Pinch,
+    /// Two or more fans, no non-manifold edge: each open one runs between two border
+    /// neighbours of its own, each closed one around the vertex.
     Bowtie,
 }
 
@@ -79,9 +83,10 @@ impl Sheets {
     }
 
     /// Splits `v`'s triangles into fans; their shape when `v` may be removed through them
-    /// (each fan of two triangles or more, consistently oriented, every triangle in one),
-    /// `None` otherwise: a degenerate triangle, a closed fan, a fan ending where it began, a
-    /// fan of one triangle, or any other mix of non-manifold and border edges.
+    /// (each fan consistently oriented, of two triangles or more, three when closed; every
+    /// triangle in one), `None` otherwise: a degenerate triangle, a misoriented pair, a fan
+    /// ending where its shape does not allow (a crease line's back where it began, a
+    /// pinch's across), a fan too small, or any other mix of non-manifold and border edges.
     pub fn split(&mut self, conn: &impl Adjacency, v: u32) -> Option<SheetShape> {
         self.pairs.clear();
         self.uses.clear();
@@ -123,6 +128,9 @@ impl Sheets {
                     a: a.vertex,
                     b: b.vertex,
                 })
+            }
+            (Some(_), None, _) => {
+                (!self.uses.iter().any(|u| u.total() == 1)).then_some(SheetShape::Pinch)
             }
             (None, _, _) => Some(SheetShape::Bowtie),
             _ => None,
@@ -183,20 +191,61 @@ impl Sheets {
                 cur = self.pairs.iter().position(|q| q.0 == y)?;
             };
             let path_start = self.path_ends.last().copied().unwrap_or(0);
-            let single = self.paths.len() - path_start < 3;
-            let runs_across = match shape {
+            let length = self.paths.len() - path_start;
+            let fits = match shape {
                 SheetShape::CreaseLine { a, b } => {
                     (first, last) == (a, b) || (first, last) == (b, a)
                 }
+                // Closed through the far end, of three triangles or more.
+                SheetShape::Pinch => first == last && length >= 4,
                 SheetShape::Bowtie => true,
             };
-            if single || !runs_across {
+            if length < 3 || !fits {
                 return None;
             }
-            self.path_ends.push(self.paths.len());
-            self.triangle_ends.push(self.triangles.len());
+            self.end_fan();
+        }
+        if shape == SheetShape::Bowtie {
+            self.walk_closed_fans()?;
         }
         self.taken.iter().all(|&t| t).then_some(())
+    }
+
+    /// Walks the fans left once the open ones are taken, each closed (at a bowtie, where
+    /// no neighbour stops a fan): `None` when one has fewer than three triangles.
+    fn walk_closed_fans(&mut self) -> Option<()> {
+        for start in 0..self.pairs.len() {
+            if self.taken[start] {
+                continue;
+            }
+            let (first, _, _) = self.pairs[start];
+            self.paths.push(first);
+            let mut cur = start;
+            loop {
+                if std::mem::replace(&mut self.taken[cur], true) {
+                    return None;
+                }
+                let (_, y, t) = self.pairs[cur];
+                self.triangles.push(t);
+                self.paths.push(y);
+                if y == first {
+                    break;
+                }
+                cur = self.pairs.iter().position(|q| q.0 == y)?;
+            }
+            let path_start = self.path_ends.last().copied().unwrap_or(0);
+            if self.paths.len() - path_start < 4 {
+                return None;
+            }
+            self.end_fan();
+        }
+        Some(())
+    }
+
+    /// Closes the fan being walked.
+    fn end_fan(&mut self) {
+        self.path_ends.push(self.paths.len());
+        self.triangle_ends.push(self.triangles.len());
     }
 }
 
@@ -240,9 +289,20 @@ mod tests {
     }
 
     #[test]
-    fn a_closed_fan_or_a_misoriented_pair_is_refused() {
+    fn two_closed_fans_through_one_neighbour_are_a_pinch() {
+        let conn = around(&[&[1, 2, 3, 1], &[1, 4, 5, 6, 1]]);
+        let mut s = Sheets::default();
+        assert_eq!(s.split(&conn, 0), Some(SheetShape::Pinch));
+        assert_eq!(s.count(), 2);
+        assert_eq!(s.fan(1).0, &[1, 4, 5, 6, 1][..]);
+    }
+
+    #[test]
+    fn a_closed_and_an_open_fan_are_a_bowtie_and_a_misoriented_pair_is_refused() {
         let conn = around(&[&[1, 2, 3, 1], &[4, 5, 6]]);
-        assert_eq!(Sheets::default().split(&conn, 0), None);
+        let mut s = Sheets::default();
+        assert_eq!(s.split(&conn, 0), Some(SheetShape::Bowtie));
+        assert_eq!(s.fan(1).0, &[1, 2, 3, 1][..]);
         let tris = [[0, 1, 2], [0, 3, 2], [0, 3, 4]];
         let conn = Connectivity::new(5, &tris);
         assert_eq!(Sheets::default().split(&conn, 0), None);
