@@ -210,10 +210,16 @@ impl<C: Adjacency> Surface<'_, C> {
         let mut fill = std::mem::take(&mut p.sheets.fill);
         fill.clear();
         let mut ok = true;
+        let (mut filled_across, mut flaps) = (0, 0);
         for i in 0..p.sheets.count() {
             let (_, _, closed) = self.take_fan(v, i, p);
             p.fill.clear();
             p.regions.clear();
+            if p.ring.triangles.len() == 1 {
+                flaps += 1; // a crease line's flap `(v, a, b)`: dropped, the others close on a–b
+                continue;
+            }
+            filled_across += usize::from(!closed);
             let filled = if closed {
                 self.fill_closed(v, p)
             } else {
@@ -225,6 +231,9 @@ impl<C: Adjacency> Surface<'_, C> {
             }
             fill.extend_from_slice(&p.fill);
         }
+        // Dropping a flap leaves its edge a–b to the other fans: two or more, or it would
+        // open a border.
+        ok &= flaps == 0 || filled_across >= 2;
         std::mem::swap(&mut p.fill, &mut fill);
         p.sheets.fill = fill;
         p.regions.clear();

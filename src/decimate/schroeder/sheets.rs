@@ -83,8 +83,8 @@ impl Sheets {
     }
 
     /// Splits `v`'s triangles into fans; their shape when `v` may be removed through them
-    /// (each fan consistently oriented, of two triangles or more, three when closed; every
-    /// triangle in one), `None` otherwise: a degenerate triangle, a misoriented pair, a fan
+    /// (each fan consistently oriented, of two triangles or more, three when closed, or on
+    /// a crease line one; every triangle in one), `None` otherwise: a degenerate triangle, a misoriented pair, a fan
     /// ending where its shape does not allow (a crease line's back where it began, a
     /// pinch's across), a fan too small, or any other mix of non-manifold and border edges.
     pub fn split(&mut self, conn: &impl Adjacency, v: u32) -> Option<SheetShape> {
@@ -193,14 +193,15 @@ impl Sheets {
             let path_start = self.path_ends.last().copied().unwrap_or(0);
             let length = self.paths.len() - path_start;
             let fits = match shape {
+                // A lone triangle `(v, a, b)` too: a flap the removal drops.
                 SheetShape::CreaseLine { a, b } => {
                     (first, last) == (a, b) || (first, last) == (b, a)
                 }
                 // Closed through the far end, of three triangles or more.
                 SheetShape::Pinch => first == last && length >= 4,
-                SheetShape::Bowtie => true,
+                SheetShape::Bowtie => length >= 3,
             };
-            if length < 3 || !fits {
+            if !fits {
                 return None;
             }
             self.end_fan();
@@ -276,6 +277,13 @@ mod tests {
         assert_eq!(s.all_triangles().len(), 8);
         let (path, tris) = s.fan(1);
         assert_eq!((path, tris.len()), (&[2, 5, 1][..], 2));
+        // A flap, one triangle from one end to the other: still a crease line.
+        let conn = around(&[&[1, 3, 4, 2], &[2, 5, 1], &[1, 2]]);
+        assert_eq!(
+            s.split(&conn, 0),
+            Some(SheetShape::CreaseLine { a: 1, b: 2 })
+        );
+        assert_eq!(s.fan(2).0, &[1, 2][..]);
     }
 
     #[test]
