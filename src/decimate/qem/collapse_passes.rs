@@ -106,6 +106,7 @@ pub(super) fn collapse_in_passes(
         exhausted: false,
         feature_angle_deg: limits.feature_angle_deg,
         pinned: 0,
+        closed_kept: 0,
     };
     let bound2 = limits.max_error * limits.max_error;
     // Never fewer than four vertices: a model under four is dropped from the scene, and a

@@ -10,6 +10,8 @@
 //!    simple → distance to the loop's average plane (area-weighted normal and centre);
 //!    boundary → distance to the line through its two boundary neighbours;
 //!    interior edge → distance to the line through its two feature neighbours;
+//!    complex, on a non-manifold crease line or at a bowtie (`sheets`) → distance to the
+//!    line its fans close on;
 //!    plus the error already accumulated at the vertex by earlier removals around it, so that
 //!    the key bounds the distance to the original surface (as VTK's later implementation
 //!    of the paper does); pinned vertices (seam junctions, `mesh::seams`; borders shared
@@ -21,7 +23,7 @@
 //! 4. remove (`removal_passes`): in passes over the cheapest share of the candidates, in key order:
 //!    remove each, filling its hole by recursive loop splitting (`loop_split`, planned in
 //!    `plan`), keeping creases (an interior-edge vertex's loop is first split along its
-//!    feature edge) and rejecting fills that flip or degenerate a triangle, create an edge
+//!    feature edge; a complex vertex's fans are filled one by one) and rejecting fills that flip or degenerate a triangle, create an edge
 //!    that already exists (non-manifold) or turn a closed shape inside out or flat
 //!    (`decimate::closed`) — such a vertex is kept until a neighbour goes; a
 //!    vertex whose ring a removal changed waits for the next pass, re-ranked at the end of
@@ -39,6 +41,7 @@ pub mod loop_split;
 mod plan;
 mod region_removal;
 mod removal_passes;
+mod sheets;
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -112,9 +115,13 @@ pub fn decimate_model(
         exhausted: false,
         feature_angle_deg: limits.feature_angle_deg,
         pinned: pinned_count,
+        closed_kept: 0,
     };
     removal_passes::remove_in_passes(&mut d, limits, &mut outcome, progress);
     progress(outcome.removed);
+    if outcome.exhausted {
+        outcome.closed_kept = d.closed_kept();
+    }
 
     // 5. compact
     if outcome.removed > 0 {
@@ -249,7 +256,7 @@ impl Decimator {
     /// `v`'s key as its ring stands now, `NaN` when it is no candidate.
     fn key(&self, v: u32, planning: &mut Planning) -> f64 {
         match self.surface().evaluate(v, planning) {
-            Some((class, distance)) if class.removable() && !self.pinned[v as usize] => {
+            Some((_, distance)) if !self.pinned[v as usize] => {
                 distance + self.accumulated[v as usize]
             }
             _ => f64::NAN,
@@ -372,6 +379,24 @@ impl Decimator {
         self.closed
             .component(v)
             .is_none_or(|c| self.closed.allows(c, self.volume_change(v, removal), 1.0))
+    }
+
+    /// The live vertices whose removal, as the mesh stands, only the closed-volume guard
+    /// refuses: the fill is valid but would take a closed part below its floor or across
+    /// zero. Counted on all cores, once, when nothing more can go.
+    fn closed_kept(&self) -> usize {
+        (0..self.positions.len() as u32)
+            .into_par_iter()
+            .map_init(Planning::default, |planning, v| {
+                let candidate = self.closed.component(v).is_some()
+                    && !self.pinned[v as usize]
+                    && self.twin(v).is_none();
+                candidate
+                    && self.surface().plan_removal(v, planning).is_some()
+                    && !self.keeps_closed_volume(v, removal_of(planning))
+            })
+            .filter(|&kept| kept)
+            .count()
     }
 
     /// Six times the change of signed volume that replacing `v`'s triangles by the fill

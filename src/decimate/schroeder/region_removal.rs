@@ -362,6 +362,7 @@ mod tests {
             exhausted: false,
             feature_angle_deg: 30.0,
             pinned: 0,
+            closed_kept: 0,
         }
     }
 
