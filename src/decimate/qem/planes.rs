@@ -1,8 +1,8 @@
 //! What every vertex starts with, read off its ordered one-ring in one pass on all cores:
 //! its kind (interior, boundary, fixed) and its quadric — the area-weighted planes of its
 //! triangles, plus the constraint planes of its boundary and feature edges. A non-manifold
-//! ("complex") vertex has its triangles' planes only, and a boundary edge that ends at one
-//! (the rim of a fin standing on a non-manifold edge) is not constrained
+//! ("complex") vertex has no planes through its non-manifold edges, and a fin's rim (a
+//! short boundary chain between two of them) is not constrained
 //! (docs/design.md#qem-non-manifold-weights).
 //!
 //! In the ring (`mesh::topology::Ring`) triangle `i` is `(v, verts[i], verts[i + 1])`, so the
@@ -58,7 +58,7 @@ pub(super) fn kinds_and_quadrics(
 ) -> (Vec<Kind>, Vec<Quadric>) {
     let planes = face_planes(conn, positions);
     let (kinds, mut quadrics) = ring_kinds_and_quadrics(conn, positions, &planes, constraints);
-    free_fin_rims(conn, positions, &planes, &kinds, &mut quadrics, constraints);
+    constrain_outlines(conn, positions, &planes, &kinds, &mut quadrics, constraints);
     (kinds, quadrics)
 }
 
@@ -146,12 +146,12 @@ impl FacePlane {
     }
 }
 
-/// The planes a non-manifold vertex `v` stands for: its triangles' planes, no constraint
-/// planes. Its sheets' own planes price moving it off any of them, and a constraint on its
-/// non-manifold edges or on the rims of the fins standing there kept those fins to the end,
-/// spending the budget on them (docs/design.md#qem-non-manifold-weights). `None` when a
-/// triangle at `v` is degenerate (a corner repeated) or `v` has more than `MAX_VALENCE`
-/// triangles: such a vertex stays fixed.
+/// The planes a non-manifold vertex `v` stands for from its own fan: its triangles' planes,
+/// none through its non-manifold edges (its sheets' own planes price moving it off any of
+/// them) and none yet through its boundary edges ([`constrain_outlines`] adds those that are
+/// not a fin's rim; docs/design.md#qem-non-manifold-weights). `None` when a triangle at `v`
+/// is degenerate (a corner repeated) or `v` has more than `MAX_VALENCE` triangles: such a
+/// vertex stays fixed.
 fn complex_quadric(conn: &Connectivity, planes: &[FacePlane], v: u32) -> Option<Quadric> {
     let incident = conn.incident(v);
     if incident.len() > MAX_VALENCE {
@@ -170,10 +170,12 @@ fn complex_quadric(conn: &Connectivity, planes: &[FacePlane], v: u32) -> Option<
     Some(sum)
 }
 
-/// Takes back the constraint plane that a boundary vertex put on its boundary edge to a
-/// complex vertex (see [`complex_quadric`]: such an edge is a fin's rim), one pass over
-/// the complex vertices' fans. A seam's edges keep theirs.
-fn free_fin_rims(
+/// The boundary edges at complex vertices, one pass over their fans. A fin's rim (a chain
+/// of one or two boundary edges whose ends are both complex: a flap standing on a
+/// non-manifold edge) is not constrained, and its boundary vertex takes back the plane it
+/// put there; any other boundary edge of a complex vertex gets its constraint plane, as an
+/// outline does (docs/design.md#qem-non-manifold-weights). A seam's edges keep theirs.
+fn constrain_outlines(
     conn: &Connectivity,
     positions: &[Vec3],
     planes: &[FacePlane],
@@ -182,34 +184,57 @@ fn free_fin_rims(
     constraints: Constraints<'_>,
 ) {
     let at = |w: u32| positions[w as usize].as_dvec3();
-    let complex = (0..positions.len() as u32).filter(|&c| kinds[c as usize] == Kind::Complex);
-    for c in complex {
+    let is = |v: u32, kind: Kind| kinds[v as usize] == kind;
+    for c in (0..positions.len() as u32).filter(|&c| is(c, Kind::Complex)) {
         for &t in conn.incident(c) {
             let Some(n) = planes[t as usize].normal() else {
                 continue;
             };
             let (_, next, prev) = corner_of(conn.triangle(t), c);
             for x in [next, prev] {
-                // A boundary vertex's edge to `c` has one triangle: this one.
-                let rim = kinds[x as usize] == Kind::Boundary
-                    && !(constraints.on_seam(c) && constraints.on_seam(x))
-                    && conn
-                        .incident(x)
-                        .iter()
-                        .filter(|&&u| conn.triangle(u).contains(&c))
-                        .count()
-                        == 1;
-                if !rim {
+                if edge_triangles(conn, c, x) != 1 {
                     continue;
                 }
+                let fin = is(x, Kind::Complex)
+                    || (is(x, Kind::Boundary)
+                        && other_boundary_neighbour(conn, x, c)
+                            .is_some_and(|y| is(y, Kind::Complex)));
+                let seam = constraints.on_seam(c) && constraints.on_seam(x);
                 let (pc, px) = (at(c), at(x));
                 let edge = px - pc;
                 let side = edge.cross(n).normalize_or_zero();
-                let weight = CONSTRAINT_WEIGHT * edge.length_squared();
-                quadrics[x as usize].add(&Quadric::plane(side, -side.dot(pc), -weight));
+                let plane = |weight: f64| {
+                    Quadric::plane(side, -side.dot(pc), weight * edge.length_squared())
+                };
+                let weight = if seam { SEAM_WEIGHT } else { CONSTRAINT_WEIGHT };
+                if !fin {
+                    quadrics[c as usize].add(&plane(weight));
+                } else if is(x, Kind::Boundary) && !seam {
+                    quadrics[x as usize].add(&plane(-weight));
+                }
             }
         }
     }
+}
+
+/// How many triangles at `a` have the edge `a`–`b` (a complex or boundary vertex's fan is
+/// at most `MAX_VALENCE` long).
+fn edge_triangles(conn: &Connectivity, a: u32, b: u32) -> usize {
+    let incident = conn.incident(a);
+    incident
+        .iter()
+        .filter(|&&u| conn.triangle(u).contains(&b))
+        .count()
+}
+
+/// The boundary vertex `x`'s neighbour along its boundary other than `c`, when it has one.
+fn other_boundary_neighbour(conn: &Connectivity, x: u32, c: u32) -> Option<u32> {
+    conn.incident(x).iter().find_map(|&t| {
+        let (_, next, prev) = corner_of(conn.triangle(t), x);
+        [next, prev]
+            .into_iter()
+            .find(|&y| y != c && edge_triangles(conn, x, y) == 1)
+    })
 }
 
 /// The planes `v` stands for, from its ring and the triangles' `planes`.
