@@ -142,7 +142,7 @@ pub fn simplify_file(input: &Path, output: &Path, params: &Params) -> Result<Fil
     let report = simplify_scene(&mut scene, params);
     let folder = io::texture_path::folder_of;
     io::rebase_textures(&mut scene, folder(input), folder(output));
-    warnings.extend(io::losses::losses(&scene, io::Format::from_path(output)));
+    warnings.extend(io::losses::losses_at(&scene, output));
     write_scene(&scene, output)?;
     Ok(FileReport { report, warnings })
 }

@@ -135,7 +135,7 @@ fn rebuild_levels(pm: &ProgressiveScene, args: &Args) -> ExitCode {
 fn write(scene: &mut Scene, args: &Args) -> bool {
     rebase_textures(scene, args);
     // What the output cannot hold is lost data: said even under `-q`.
-    for loss in io::losses::losses(scene, io::Format::from_path(&args.output)) {
+    for loss in io::losses::losses_at(scene, &args.output) {
         eprintln!("decimate: warning: {}: {loss}", args.output.display());
     }
     if let Err(e) = io::write_scene(scene, &args.output) {

@@ -26,6 +26,8 @@ pub enum Action {
     AskVertexCount,
     /// The level-of-detail slider (a progressive mesh by quadric edge collapse) on or off.
     ToggleLod,
+    /// Measure the current viewport's metro error against the original (its caption says it).
+    MeasureError,
     /// The current viewport's algorithm: vertex removal ↔ quadric edge collapse (its last
     /// decimation is made again with the other).
     ToggleAlgorithm,
@@ -41,6 +43,10 @@ pub enum Action {
     ToggleSmooth,
     /// Textured models textured or in their material colour.
     ToggleTexture,
+    /// Decimated viewports coloured by their distance to the original (the error heat-map).
+    ToggleErrorMap,
+    /// Multisample anti-aliasing (4×) on or off, for the whole window.
+    ToggleMsaa,
     /// The current viewport's crease angle up or down by this many degrees (0 to 180).
     CreaseAngle(i16),
     /// Model control (trackball) ↔ eye control (first person).
@@ -154,6 +160,11 @@ pub fn menu() -> Vec<MenuEntry> {
         Some("L"),
         Action::ToggleLod,
     ));
+    decimate.push(entry(
+        "Measure the distance to the original (metro)",
+        Some("d"),
+        Action::MeasureError,
+    ));
     vec![
         submenu("Decimate", decimate),
         submenu(
@@ -167,6 +178,12 @@ pub fn menu() -> Vec<MenuEntry> {
                 entry("Lighting", Some("l"), Action::ToggleLighting),
                 entry("Smooth / flat shading", Some("s"), Action::ToggleSmooth),
                 entry("Texture", Some("T"), Action::ToggleTexture),
+                entry(
+                    "Error heat-map (distance to the original)",
+                    Some("E"),
+                    Action::ToggleErrorMap,
+                ),
+                entry("Anti-aliasing (4× MSAA)", Some("M"), Action::ToggleMsaa),
                 entry(
                     "Crease angle −15° (sharper)",
                     Some("["),
@@ -221,6 +238,8 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'l' => Action::ToggleLighting,
                 's' => Action::ToggleSmooth,
                 'T' => Action::ToggleTexture,
+                'E' => Action::ToggleErrorMap,
+                'M' => Action::ToggleMsaa,
                 'm' => Action::ToggleNavigation,
                 'a' => Action::AddViewport,
                 'x' => Action::RemoveViewport,
@@ -231,6 +250,7 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'h' => Action::ToggleHelp,
                 'v' => Action::AskVertexCount,
                 'L' => Action::ToggleLod,
+                'd' => Action::MeasureError,
                 'A' => Action::ToggleAlgorithm,
                 'b' => Action::ToggleKeepBorder,
                 'q' => Action::Quit,
@@ -269,7 +289,7 @@ pub fn key_help() -> String {
     }
     walk(&menu(), &mut text);
     text.push_str(
-        "  Esc   Quit\n\
+        "  Esc   Cancel the decimation or measurement running, else quit\n\
          mouse: left drag turns the model (looks around in eye control), wheel zooms (walks),\n\
          \x20      middle or Shift + left drag pans (steps sideways)\n\
          eye control: arrows and W/S walk\n",
@@ -350,6 +370,8 @@ mod tests {
             Action::ToggleVertexNormals,
             Action::ToggleLighting,
             Action::ToggleSmooth,
+            Action::ToggleErrorMap,
+            Action::ToggleMsaa,
             Action::ToggleNavigation,
             Action::AddViewport,
             Action::RemoveViewport,

@@ -16,14 +16,15 @@ pub mod summary;
 
 use std::time::Instant;
 
-use crate::mesh::{seams, stitches, Scene};
+use crate::mesh::{seams, stitches, Model, Scene};
 
-pub use limits::{Limits, Outcome};
+pub use limits::{Cancel, Limits, Outcome};
 
 use crate::mesh::progressive::{ProgressiveModel, ProgressiveScene};
 
 /// How far to decimate. Counts are over the whole scene and shared among its models in
-/// proportion to their vertex counts.
+/// proportion to their vertex counts; a mesh several nodes place counts once, and a mesh
+/// copied through unchanged (`mesh::Instance::copied`) not at all.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Target {
     /// Remove this percentage (0–100) of the vertices; 100 means "as far as possible".
@@ -108,6 +109,13 @@ pub struct ModelReport {
     /// Of a fully decimated model, the vertices left on non-manifold edges: what the input
     /// holds back (counted only when nothing more could go).
     pub non_manifold_kept: usize,
+    /// Another instance of the same mesh (`mesh::Instance`), by its index in the report:
+    /// this model was not decimated itself but given that one's result, and totals count
+    /// the mesh once.
+    pub instance_of: Option<usize>,
+    /// True when the model was left as read: its mesh is copied through unchanged
+    /// (skinned, morph targets).
+    pub copied: bool,
 }
 
 /// What a decimation run did, model by model.
@@ -120,16 +128,21 @@ pub struct Report {
 }
 
 impl Report {
+    /// Vertices removed, a mesh several nodes place counted once.
     pub fn vertices_removed(&self) -> usize {
         self.models
             .iter()
+            .filter(|m| m.instance_of.is_none())
             .map(|m| m.vertices_before - m.vertices_after)
             .sum()
     }
 
-    /// True when every model that remains is fully decimated.
+    /// True when every model that remains and could be decimated is fully decimated.
     pub fn fully_decimated(&self) -> bool {
-        self.models.iter().all(|m| m.fully_decimated || m.dropped)
+        self.models
+            .iter()
+            .filter(|m| !m.copied && m.instance_of.is_none())
+            .all(|m| m.fully_decimated || m.dropped)
     }
 }
 
@@ -143,7 +156,19 @@ impl Report {
 /// an error bound alone, or `keep_features` never relax it, so features such as a cube's
 /// corners survive them. Quadric edge collapse never needs to relax it.
 pub fn simplify_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
-    run(scene, params, progress, None)
+    run(scene, params, progress, &Cancel::default(), None)
+}
+
+/// As [`simplify_scene`], stopping early when `cancel` is requested (from another thread):
+/// then `None`, and `scene` is valid but only partly decimated.
+pub fn simplify_scene_cancellable(
+    scene: &mut Scene,
+    params: &Params,
+    progress: &mut dyn FnMut(f32),
+    cancel: &Cancel,
+) -> Option<Report> {
+    let report = run(scene, params, progress, cancel, None);
+    (!cancel.requested()).then_some(report)
 }
 
 /// As [`simplify_scene`] with quadric edge collapse (whatever `params.algorithm` says: vertex
@@ -155,28 +180,58 @@ pub fn simplify_scene_progressive(
     params: &Params,
     progress: &mut dyn FnMut(f32),
 ) -> (Report, ProgressiveScene) {
+    simplify_scene_progressive_cancellable(scene, params, progress, &Cancel::default())
+        .unwrap_or_default()
+}
+
+/// As [`simplify_scene_progressive`], stopping early when `cancel` is requested: then
+/// `None`.
+pub fn simplify_scene_progressive_cancellable(
+    scene: &mut Scene,
+    params: &Params,
+    progress: &mut dyn FnMut(f32),
+    cancel: &Cancel,
+) -> Option<(Report, ProgressiveScene)> {
     let params = Params {
         algorithm: Algorithm::Qem,
         ..*params
     };
     let mut models = Vec::new();
-    let report = run(scene, &params, progress, Some(&mut models));
-    (report, ProgressiveScene { models })
+    let report = run(scene, &params, progress, cancel, Some(&mut models));
+    (!cancel.requested()).then_some((report, ProgressiveScene { models }))
 }
 
 fn run(
     scene: &mut Scene,
     params: &Params,
     progress: &mut dyn FnMut(f32),
+    cancel: &Cancel,
     mut record: Option<&mut Vec<ProgressiveModel>>,
 ) -> Report {
     let start = Instant::now();
     let vertices: Vec<usize> = scene.models.iter().map(|m| m.used_vertex_count()).collect();
     let triangles: Vec<usize> = scene.models.iter().map(|m| m.triangles.len()).collect();
+    // A mesh several nodes place is decimated once, at its first instance, and copied
+    // meshes are left as read, except in a progressive record (every model has its own).
+    let source = match record {
+        None => first_instances(scene),
+        Some(_) => vec![None; scene.models.len()],
+    };
+    let copied: Vec<bool> = scene
+        .models
+        .iter()
+        .map(|m| record.is_none() && m.instance.as_ref().is_some_and(|i| i.copied))
+        .collect();
+    let decimated = |i: usize| source[i].is_none() && !copied[i];
+    let weight = |counts: &[usize]| -> Vec<usize> {
+        (0..counts.len())
+            .map(|i| if decimated(i) { counts[i] } else { 0 })
+            .collect()
+    };
     let Shares {
         removals,
         keep_triangles,
-    } = Shares::of(params.target, &vertices, &triangles);
+    } = Shares::of(params.target, &weight(&vertices), &weight(&triangles));
     let relax_features = !params.keep_features
         && match params.target {
             Target::RemovePercent(p) => p < 100.0,
@@ -185,17 +240,53 @@ fn run(
         };
     let planned: usize = removals
         .iter()
-        .zip(&vertices)
-        .map(|(&r, &n)| r.min(n))
+        .zip(weight(&vertices))
+        .map(|(&r, n)| r.min(n))
         .sum::<usize>()
         .max(1);
 
     // Pinned: texture seams and borders shared with another model (cracks otherwise), and
     // with `keep_border` every open border.
     let shared = stitches::shared_border_vertices(scene);
-    let mut reports = Vec::with_capacity(scene.models.len());
+    let mut reports: Vec<ModelReport> = Vec::with_capacity(scene.models.len());
     let mut done = 0usize;
-    for (i, model) in scene.models.iter_mut().enumerate() {
+    for i in 0..scene.models.len() {
+        let (before, rest) = scene.models.split_at_mut(i);
+        let model = &mut rest[0];
+        if cancel.requested() {
+            break;
+        }
+        if let Some(j) = source[i] {
+            *model = Model {
+                name: std::mem::take(&mut model.name),
+                transform: model.transform,
+                instance: model.instance.take(),
+                ..before[j].clone()
+            };
+            let mut report = reports[j].clone();
+            report.name = model.name.clone();
+            report.instance_of = Some(j);
+            reports.push(report);
+            continue;
+        }
+        if copied[i] {
+            reports.push(ModelReport {
+                name: model.name.clone(),
+                vertices_before: vertices[i],
+                triangles_before: triangles[i],
+                vertices_after: vertices[i],
+                triangles_after: triangles[i],
+                max_error: 0.0,
+                feature_angle_deg: params.feature_angle_deg,
+                fully_decimated: false,
+                dropped: false,
+                pinned: 0,
+                non_manifold_kept: 0,
+                instance_of: None,
+                copied: true,
+            });
+            continue;
+        }
         // Both algorithms take a seam's two sides away together (`twins`); junctions of
         // three or more sides, shared borders and (`keep_border`) open borders are pinned.
         let border = if params.keep_border {
@@ -237,6 +328,7 @@ fn run(
             max_error,
             feature_angle_deg: params.feature_angle_deg,
             relax_features,
+            cancel: cancel.clone(),
         };
         let mut report_progress = |removed: usize| {
             progress(((done + removed) as f32 / planned as f32).min(1.0));
@@ -279,6 +371,8 @@ fn run(
             } else {
                 0
             },
+            instance_of: None,
+            copied: false,
         });
     }
     // The original program's rule: a model left with fewer than four vertices is dropped.
@@ -297,6 +391,33 @@ fn run(
         seconds: start.elapsed().as_secs_f64(),
         feature_angle_deg: params.feature_angle_deg,
     }
+}
+
+/// For each model, the earlier model that instances the same mesh primitive of the same
+/// node tree (`mesh::Instance::mesh_key`) and holds the same triangles, if any.
+fn first_instances(scene: &Scene) -> Vec<Option<usize>> {
+    let mut first = std::collections::HashMap::new();
+    let models = &scene.models;
+    models
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let key = m.instance.as_ref()?.mesh_key();
+            key.1?;
+            match first.entry(key) {
+                std::collections::hash_map::Entry::Occupied(e) => {
+                    let j: usize = *e.get();
+                    let same =
+                        models[j].positions == m.positions && models[j].triangles == m.triangles;
+                    same.then_some(j)
+                }
+                std::collections::hash_map::Entry::Vacant(e) => {
+                    e.insert(i);
+                    None
+                }
+            }
+        })
+        .collect()
 }
 
 /// A scene's count target shared among its models in proportion to their sizes.
@@ -355,7 +476,100 @@ fn share(total: usize, weights: &[usize]) -> Vec<usize> {
 
 #[cfg(test)]
 mod tests {
-    use super::share;
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::mesh::{shapes, Instance, LocalTransform, Node, NodeTree};
+
+    /// Three nodes placing one sphere, a fourth placing a cube, as a glTF file reads.
+    fn instanced() -> Scene {
+        let node = |mesh| Node {
+            name: None,
+            local: LocalTransform::Matrix(glam::Mat4::IDENTITY),
+            children: Vec::new(),
+            mesh: Some(mesh),
+        };
+        let tree = Arc::new(NodeTree {
+            nodes: vec![node(0), node(0), node(0), node(1)],
+            roots: vec![0, 1, 2, 3],
+            copied: None,
+        });
+        let placed = |model: Model, node| Model {
+            name: format!("n{node}"),
+            transform: glam::Mat4::from_translation(glam::Vec3::X * 3.0 * node as f32),
+            instance: Some(Instance {
+                tree: tree.clone(),
+                node,
+                primitive: 0,
+                copied: false,
+            }),
+            ..model
+        };
+        let sphere = shapes::bumpy_sphere(12, 16);
+        let cube = shapes::cube(8, 1.0);
+        Scene {
+            models: vec![
+                placed(sphere.clone(), 0),
+                placed(sphere.clone(), 1),
+                placed(sphere, 2),
+                placed(cube, 3),
+            ],
+        }
+    }
+
+    #[test]
+    fn a_mesh_several_nodes_place_is_decimated_once_and_counted_once() {
+        let mut scene = instanced();
+        let before: Vec<usize> = scene.models.iter().map(|m| m.triangles.len()).collect();
+        let distinct = before[0] + before[3];
+        let params = Params {
+            target: Target::KeepTriangles(distinct / 2),
+            algorithm: Algorithm::Qem,
+            ..Params::default()
+        };
+        let report = simplify_scene(&mut scene, &params, &mut |_| {});
+        let m = &scene.models;
+        // The count target is met over distinct meshes: the sphere once, and the cube.
+        let kept = m[0].triangles.len() + m[3].triangles.len();
+        assert!(kept.abs_diff(distinct / 2) <= 2, "{kept} of {distinct}");
+        for i in [1, 2] {
+            assert_eq!(m[i].positions, m[0].positions);
+            assert_eq!(m[i].triangles, m[0].triangles);
+            assert_eq!(m[i].name, format!("n{i}"));
+            assert_eq!(m[i].transform.w_axis.x, 3.0 * i as f32, "placed as before");
+            assert_eq!(report.models[i].instance_of, Some(0));
+        }
+        let r = &report.models;
+        let removed = |k: usize| r[k].vertices_before - r[k].vertices_after;
+        assert_eq!(report.vertices_removed(), removed(0) + removed(3));
+        let summary = report.summary();
+        assert_eq!(summary.matches("instance of n0").count(), 2, "{summary}");
+        assert!(
+            summary.contains(&format!(
+                "total (each mesh once: 2 more instances not counted): vertices {} -> {}",
+                report.models[0].vertices_before + report.models[3].vertices_before,
+                report.models[0].vertices_after + report.models[3].vertices_after,
+            )),
+            "{summary}"
+        );
+    }
+
+    #[test]
+    fn a_copied_mesh_is_left_as_read() {
+        let mut scene = instanced();
+        for m in &mut scene.models {
+            if let Some(i) = m.instance.as_mut() {
+                i.copied = i.node < 3;
+            }
+        }
+        let sphere = scene.models[0].clone();
+        let report = simplify_scene(&mut scene, &Params::default(), &mut |_| {});
+        for i in 0..3 {
+            assert_eq!(scene.models[i].triangles, sphere.triangles);
+            assert!(report.models[i].copied);
+        }
+        assert!(scene.models[3].triangles.len() < instanced().models[3].triangles.len());
+    }
 
     #[test]
     fn shares_add_up_exactly() {

@@ -18,8 +18,14 @@ impl Report {
         let report = self;
         let mut s = String::new();
         let (mut vb, mut tb, mut va, mut ta) = (0, 0, 0, 0);
+        let mut instances = 0;
         for m in &report.models {
-            let mut state = if m.dropped {
+            let mut state = if let Some(j) = m.instance_of {
+                let source = report.models.get(j).map_or("", |s| s.name.as_str());
+                format!("  instance of {source}: the same mesh, decimated once, counted once")
+            } else if m.copied {
+                "  copied through unchanged (skinned or morph targets)".to_string()
+            } else if m.dropped {
                 "  dropped (fewer than 4 vertices left)".to_string()
             } else if m.fully_decimated {
                 let mut held = Vec::new();
@@ -55,6 +61,10 @@ impl Report {
                 (m.triangles_before, m.triangles_after),
             );
             s += &format!(" max error {:.4e}{state}\n", m.max_error);
+            if m.instance_of.is_some() {
+                instances += 1;
+                continue;
+            }
             vb += m.vertices_before;
             tb += m.triangles_before;
             va += m.vertices_after;
@@ -66,9 +76,13 @@ impl Report {
         } else {
             0.0
         };
+        let counted = match instances {
+            0 => String::new(),
+            n => format!(" (each mesh once: {n} more instances not counted)"),
+        };
         s += &format!(
-            "total: vertices {vb} -> {va}, triangles {tb} -> {ta}; removed {removed} vertices in \
-             {:.3} s ({:.0} vertices/s)\n",
+            "total{counted}: vertices {vb} -> {va}, triangles {tb} -> {ta}; removed {removed} \
+             vertices in {:.3} s ({:.0} vertices/s)\n",
             report.seconds, rate
         );
         if !report.models.is_empty() && report.fully_decimated() {

@@ -9,8 +9,32 @@
 //! names one texture image shared by all); STL geometry only. Per-face colours are VRML's
 //! alone.
 
+use std::path::Path;
+
 use super::Format;
 use crate::mesh::{Attribute, Model, Scene};
+
+/// The warnings for writing `scene` to `output`: [`losses`] for its format, and for glTF
+/// the texture images that cannot be embedded or copied (`gltf::image_losses`); for other
+/// formats, what a glTF source carried through (skins, morph targets, animations).
+pub fn losses_at(scene: &Scene, output: &Path) -> Vec<String> {
+    let format = Format::from_path(output);
+    let mut out = losses(scene, format);
+    if matches!(format, Some(Format::Gltf | Format::Glb)) {
+        out.extend(super::gltf::image_losses(scene, output));
+    } else if scene.models.iter().any(|m| {
+        m.instance
+            .as_ref()
+            .is_some_and(|i| i.copied || i.tree.copied.is_some())
+    }) {
+        out.push(
+            "the source's skins, morph targets and animations are glTF's alone: a glTF \
+             output carries them, this one keeps the meshes at rest"
+                .to_string(),
+        );
+    }
+    out
+}
 
 /// The warnings for writing `scene` in `format` (`None`: VRML 2.0, the default).
 pub fn losses(scene: &Scene, format: Option<Format>) -> Vec<String> {

@@ -285,6 +285,7 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         diffuse,
         crease_angle,
         solid,
+        instance: None,
     })
 }
 

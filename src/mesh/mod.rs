@@ -16,7 +16,7 @@ pub mod stitches;
 pub mod topology;
 pub mod weld;
 
-pub use scene::{Attribute, Model, Scene};
+pub use scene::{Attribute, CopiedThrough, Instance, LocalTransform, Model, Node, NodeTree, Scene};
 
 /// Asks the CPU to start loading the cache line holding `value`: a hint that hides memory
 /// latency in loops that visit vertices in a data-dependent order; no effect on results.

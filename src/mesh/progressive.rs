@@ -127,6 +127,7 @@ impl ProgressiveModel {
             diffuse: fine.diffuse,
             crease_angle: fine.crease_angle,
             solid: fine.solid,
+            instance: fine.instance.clone(),
         };
         for (pm, &orig) in self.vertex_ids.iter().enumerate() {
             model.positions[orig as usize] = fine.positions[pm];

@@ -3,9 +3,13 @@
 //! A model is one shape of the file: positions in its local frame, triangles as index triples
 //! (counter-clockwise seen from outside), a world transform accumulated from the scene graph,
 //! and optional colours and normals bound per vertex or per face. Every algorithm and the
-//! viewer work on these arrays; nothing here knows about file syntax.
+//! viewer work on these arrays; nothing here knows about file syntax. A file with a node
+//! hierarchy (glTF) also leaves its `NodeTree`, shared by its models through `Instance`, so
+//! that a writer of the same kind can write the hierarchy back.
 
-use glam::{Mat4, Vec3};
+use std::sync::Arc;
+
+use glam::{Mat4, Quat, Vec3};
 
 /// A per-vertex or per-face attribute array (colours, normals).
 #[derive(Debug, Clone, PartialEq)]
@@ -75,6 +79,8 @@ pub struct Model {
     pub crease_angle: Option<f32>,
     /// True when the file says the shape is a closed solid (back faces may be culled).
     pub solid: bool,
+    /// The node and mesh primitive this model instances, when its file has a node tree.
+    pub instance: Option<Instance>,
 }
 
 impl Default for Model {
@@ -93,6 +99,7 @@ impl Default for Model {
             diffuse: Self::DEFAULT_DIFFUSE,
             crease_angle: None,
             solid: false,
+            instance: None,
         }
     }
 }
@@ -139,4 +146,85 @@ impl Scene {
     pub fn triangle_count(&self) -> usize {
         self.models.iter().map(|m| m.triangles.len()).sum()
     }
+}
+
+/// Where a model stands in its file's node tree: the node that places it and which
+/// primitive of that node's mesh it is. Models with the same tree, mesh and primitive are
+/// instances of one mesh: decimated once (`decimate::simplify_scene`), written once.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Instance {
+    pub tree: Arc<NodeTree>,
+    /// Index into `tree.nodes`.
+    pub node: usize,
+    /// The primitive's index in the node's mesh.
+    pub primitive: usize,
+    /// True when the mesh cannot be decimated faithfully (skinned, morph targets): it is
+    /// left as read, and the writer copies the source's primitive through unchanged.
+    pub copied: bool,
+}
+
+impl Instance {
+    /// The key instances of one mesh primitive share: the tree, mesh and primitive.
+    pub fn mesh_key(&self) -> (*const NodeTree, Option<usize>, usize) {
+        let mesh = self.tree.nodes.get(self.node).and_then(|n| n.mesh);
+        (Arc::as_ptr(&self.tree), mesh, self.primitive)
+    }
+}
+
+/// A file's node hierarchy as read: every node at its index in the file, the scene's
+/// roots, and what a writer of the source's format copies through unchanged.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct NodeTree {
+    pub nodes: Vec<Node>,
+    /// The displayed scene's root nodes.
+    pub roots: Vec<usize>,
+    /// Opaque to all but the writer of the source's format: for glTF, the skins, morph
+    /// targets and animations as a JSON fragment and the bytes its accessors read.
+    pub copied: Option<CopiedThrough>,
+}
+
+/// One node of a `NodeTree`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Node {
+    pub name: Option<String>,
+    /// The transform relative to the parent, in the form the file gave it.
+    pub local: LocalTransform,
+    /// Indices into the tree's nodes.
+    pub children: Vec<usize>,
+    /// The file's mesh this node places, by its index in the file.
+    pub mesh: Option<usize>,
+}
+
+/// A node's transform relative to its parent, as a matrix or as translation, rotation and
+/// scale (glTF 2.0 § 3.5.3): a writer writes back the form that was read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LocalTransform {
+    Matrix(Mat4),
+    Trs {
+        translation: Vec3,
+        rotation: Quat,
+        scale: Vec3,
+    },
+}
+
+impl LocalTransform {
+    pub fn matrix(&self) -> Mat4 {
+        match *self {
+            Self::Matrix(m) => m,
+            Self::Trs {
+                translation,
+                rotation,
+                scale,
+            } => Mat4::from_scale_rotation_translation(scale, rotation, translation),
+        }
+    }
+}
+
+/// Source data a writer copies through verbatim: a description (`json`) and the bytes it
+/// indexes (`data`); see the writer of `format` for their layout.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CopiedThrough {
+    pub format: &'static str,
+    pub json: String,
+    pub data: Vec<u8>,
 }

@@ -56,7 +56,97 @@ pub fn seeds() -> Vec<(&'static str, Vec<u8>)> {
         ("faces.obj", OBJ.as_bytes().to_vec()),
         ("seed.glb", gltf_seed()),
         ("seed.gltf", gltf_json_seed(&gltf_seed())),
+        ("skinned.glb", skinned_gltf_seed()),
     ]
+}
+
+/// A skinned square with a dense and a sparse morph target, a skin and an animation of
+/// its joint and weights, as `.glb`: what the reader copies through (`io::gltf`).
+fn skinned_gltf_seed() -> Vec<u8> {
+    let mut bin: Vec<u8> = Vec::new();
+    let mut views = Vec::new();
+    let mut view = |bin: &mut Vec<u8>, bytes: &[u8]| {
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        views.push(
+            serde_json::json!({ "buffer": 0, "byteOffset": bin.len(), "byteLength": bytes.len() }),
+        );
+        bin.extend_from_slice(bytes);
+        views.len() - 1
+    };
+    let floats = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    let square = [0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0.];
+    let p = view(&mut bin, &floats(&square));
+    let i = view(&mut bin, &[0, 1, 2, 0, 2, 3]);
+    let j = view(&mut bin, &[0; 16]);
+    let w = view(&mut bin, &floats(&[1., 0., 0., 0.].repeat(4)));
+    let d = view(&mut bin, &floats(&[0., 0., 0.5].repeat(4)));
+    let si = view(&mut bin, &[2]);
+    let sv = view(&mut bin, &floats(&[0., 0., 0.75]));
+    let m = view(&mut bin, &floats(&glam::Mat4::IDENTITY.to_cols_array()));
+    let t = view(&mut bin, &floats(&[0., 1.]));
+    let o = view(&mut bin, &floats(&[0., 0., 0., 0., 0., 1.]));
+    let ow = view(&mut bin, &floats(&[0., 0., 1., 1.]));
+    let json = serde_json::json!({
+        "asset": { "version": "2.0" },
+        "scene": 0,
+        "scenes": [{ "nodes": [0] }],
+        "nodes": [
+            { "name": "armature", "children": [1, 2] },
+            { "name": "body", "mesh": 0, "skin": 0, "weights": [0.5, 0.25] },
+            { "name": "bone", "translation": [0, 0, 1] },
+        ],
+        "meshes": [{ "name": "body", "weights": [0, 0], "primitives": [{
+            "attributes": { "POSITION": 0, "JOINTS_0": 2, "WEIGHTS_0": 3 },
+            "indices": 1,
+            "targets": [{ "POSITION": 4 }, { "POSITION": 5 }],
+        }] }],
+        "skins": [{ "joints": [2], "inverseBindMatrices": 6, "skeleton": 0 }],
+        "animations": [{
+            "samplers": [{ "input": 7, "output": 8 }, { "input": 7, "output": 9 }],
+            "channels": [
+                { "sampler": 0, "target": { "node": 2, "path": "translation" } },
+                { "sampler": 1, "target": { "node": 1, "path": "weights" } },
+            ],
+        }],
+        "accessors": [
+            { "bufferView": p, "componentType": 5126, "count": 4, "type": "VEC3",
+              "min": [0, 0, 0], "max": [1, 1, 0] },
+            { "bufferView": i, "componentType": 5121, "count": 6, "type": "SCALAR" },
+            { "bufferView": j, "componentType": 5121, "count": 4, "type": "VEC4" },
+            { "bufferView": w, "componentType": 5126, "count": 4, "type": "VEC4" },
+            { "bufferView": d, "componentType": 5126, "count": 4, "type": "VEC3",
+              "min": [0, 0, 0.5], "max": [0, 0, 0.5] },
+            { "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0.75],
+              "sparse": { "count": 1, "indices": { "bufferView": si, "componentType": 5121 },
+                          "values": { "bufferView": sv } } },
+            { "bufferView": m, "componentType": 5126, "count": 1, "type": "MAT4" },
+            { "bufferView": t, "componentType": 5126, "count": 2, "type": "SCALAR",
+              "min": [0], "max": [1] },
+            { "bufferView": o, "componentType": 5126, "count": 2, "type": "VEC3" },
+            { "bufferView": ow, "componentType": 5126, "count": 4, "type": "SCALAR" },
+        ],
+        "bufferViews": views,
+        "buffers": [{ "byteLength": bin.len() }],
+    });
+    let mut json = serde_json::to_vec(&json).expect("serializes");
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let mut glb = b"glTF".to_vec();
+    for n in [2, 28 + json.len() + bin.len(), json.len()] {
+        glb.extend_from_slice(&(n as u32).to_le_bytes());
+    }
+    glb.extend_from_slice(b"JSON");
+    glb.extend_from_slice(&json);
+    glb.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    glb.extend_from_slice(b"BIN\0");
+    glb.extend_from_slice(&bin);
+    glb
 }
 
 /// A small glTF scene as `.glb`, written by the program: a cube with per-face colours

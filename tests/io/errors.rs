@@ -129,6 +129,29 @@ fn very_deep_nesting_is_an_error_not_a_stack_overflow() {
 }
 
 #[test]
+fn def_use_chain_is_refused_not_walked_quadratically() {
+    // Each DEF uses the one before and is itself placed in the scene: n shapes, but n²/2
+    // node visits. Refused with the line of the walk's last node, not a minutes-long hang.
+    let n = 4_000;
+    let mut src = String::from("#VRML V1.0 ascii\nSeparator {\nDEF n0 Separator { Cube { } }\n");
+    for k in 1..n {
+        src += &format!("DEF n{k} Separator {{ USE n{} }}\n", k - 1);
+    }
+    src += "}\n";
+    let (line, msg) = fail(&src);
+    assert!(msg.contains("DEF/USE chain"), "{msg}");
+    assert!(line.is_some_and(|l| l > 3 && l <= n + 2), "{line:?}");
+    // A shorter chain reads: every DEF is drawn once where it stands, so n shapes.
+    let mut src = String::from("#VRML V1.0 ascii\nSeparator {\nDEF n0 Separator { Cube { } }\n");
+    for k in 1..200 {
+        src += &format!("DEF n{k} Separator {{ USE n{} }}\n", k - 1);
+    }
+    src += "}\n";
+    let scene = parse_str(&src, "chain.wrl").map(|o| o.scene);
+    assert!(scene.is_ok_and(|s| s.models.len() == 200));
+}
+
+#[test]
 fn binary_inventor_asks_for_ivcat() {
     let e = parse_bytes(
         b"#Inventor V2.1 binary  \n\0\0\0\x05".to_vec(),
@@ -202,8 +225,12 @@ fn instancing_bombs_are_refused() {
             i - 1
         ));
     }
+    // Either bound may trip first: the shapes made or the nodes walked.
     let (_, msg) = fail(&src);
-    assert!(msg.contains("expands to more than"), "{msg}");
+    assert!(
+        msg.contains("expands to more than") || msg.contains("walked more than"),
+        "{msg}"
+    );
 }
 
 #[test]

@@ -17,15 +17,15 @@ use glam::{Mat4, Quat, Vec3};
 use serde_json::{json, Value};
 
 /// glTF's component types (glTF 2.0 § 5.1.3).
-const BYTE: u32 = 5120;
-const UBYTE: u32 = 5121;
-const SHORT: u32 = 5122;
-const USHORT: u32 = 5123;
-const UINT: u32 = 5125;
-const FLOAT: u32 = 5126;
+pub(crate) const BYTE: u32 = 5120;
+pub(crate) const UBYTE: u32 = 5121;
+pub(crate) const SHORT: u32 = 5122;
+pub(crate) const USHORT: u32 = 5123;
+pub(crate) const UINT: u32 = 5125;
+pub(crate) const FLOAT: u32 = 5126;
 
 /// A fresh scratch folder under target/.
-fn scratch(name: &str) -> PathBuf {
+pub(crate) fn scratch(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("io_gltf-{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
@@ -33,13 +33,13 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 /// A glTF document under construction: its JSON and its one binary buffer.
-struct Doc {
-    json: Value,
-    bin: Vec<u8>,
+pub(crate) struct Doc {
+    pub(crate) json: Value,
+    pub(crate) bin: Vec<u8>,
 }
 
 impl Doc {
-    fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Self {
             json: json!({
                 "asset": { "version": "2.0" },
@@ -51,7 +51,7 @@ impl Doc {
         }
     }
 
-    fn push(&mut self, key: &str, v: Value) -> usize {
+    pub(crate) fn push(&mut self, key: &str, v: Value) -> usize {
         if self.json.get(key).is_none() {
             self.json[key] = json!([]);
         }
@@ -60,7 +60,7 @@ impl Doc {
         list.len() - 1
     }
 
-    fn view(&mut self, bytes: &[u8]) -> usize {
+    pub(crate) fn view(&mut self, bytes: &[u8]) -> usize {
         while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
@@ -70,7 +70,7 @@ impl Doc {
     }
 
     /// An accessor over `bytes` (`count` elements of `kind` made of `component`s).
-    fn accessor(
+    pub(crate) fn accessor(
         &mut self,
         bytes: &[u8],
         component: u32,
@@ -87,13 +87,13 @@ impl Doc {
         self.push("accessors", a)
     }
 
-    fn floats(&mut self, values: &[f32], kind: &str, width: usize) -> usize {
+    pub(crate) fn floats(&mut self, values: &[f32], kind: &str, width: usize) -> usize {
         let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
         self.accessor(&bytes, FLOAT, kind, values.len() / width, false)
     }
 
     /// A mesh of the given primitives, placed by a new root node with `node` fields.
-    fn mesh_node(&mut self, primitives: Vec<Value>, node: Value) -> usize {
+    pub(crate) fn mesh_node(&mut self, primitives: Vec<Value>, node: Value) -> usize {
         let mesh = self.push("meshes", json!({ "primitives": primitives }));
         let mut node = node;
         node["mesh"] = json!(mesh);
@@ -105,7 +105,7 @@ impl Doc {
         mesh
     }
 
-    fn with_buffer(&self, uri: Option<String>) -> Value {
+    pub(crate) fn with_buffer(&self, uri: Option<String>) -> Value {
         let mut json = self.json.clone();
         let mut buffer = json!({ "byteLength": self.bin.len() });
         if let Some(uri) = uri {
@@ -116,7 +116,7 @@ impl Doc {
     }
 
     /// The document as `.gltf` text, its buffer a base64 `data:` URI.
-    fn gltf_embedded(&self) -> Vec<u8> {
+    pub(crate) fn gltf_embedded(&self) -> Vec<u8> {
         let uri = format!(
             "data:application/octet-stream;base64,{}",
             base64::engine::general_purpose::STANDARD.encode(&self.bin)
@@ -125,7 +125,7 @@ impl Doc {
     }
 
     /// The document as `.glb`.
-    fn glb(&self) -> Vec<u8> {
+    pub(crate) fn glb(&self) -> Vec<u8> {
         let mut json = serde_json::to_vec(&self.with_buffer(None)).expect("serializes");
         while !json.len().is_multiple_of(4) {
             json.push(b' ');
@@ -148,7 +148,7 @@ impl Doc {
     }
 }
 
-fn read_bytes(bytes: Vec<u8>, name: &str) -> io::ReadOutcome {
+pub(crate) fn read_bytes(bytes: Vec<u8>, name: &str) -> io::ReadOutcome {
     io::parse_bytes(bytes, Path::new(name)).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -170,7 +170,7 @@ fn world_normals(m: &Model) -> Vec<Vec3> {
 }
 
 /// The unit square in the xy plane, corners counter-clockwise seen from +z.
-const SQUARE: [f32; 12] = [0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0.];
+pub(crate) const SQUARE: [f32; 12] = [0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0.];
 
 #[test]
 fn every_triangle_mode_indexed_or_not_reads_as_the_same_square_facing_up() {
@@ -380,7 +380,7 @@ fn a_mesh_several_nodes_use_is_placed_by_each_nodes_world_transform() {
 }
 
 /// An 8 × 8 PNG, its top half red and its bottom half blue.
-fn red_over_blue_png() -> Vec<u8> {
+pub(crate) fn red_over_blue_png() -> Vec<u8> {
     let mut rgb = Vec::new();
     for row in 0..8 {
         for _ in 0..8 {
@@ -523,7 +523,7 @@ fn damaged_gltf_files_fail_with_the_file_name_and_what_is_wrong() {
 
 /// Runs the Khronos validator on `files`; skips loudly where node or the validator is
 /// missing, except on CI (`CI` set), where it must run.
-fn assert_valid(files: &[&Path]) {
+pub(crate) fn assert_valid(files: &[&Path]) {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/gltf-validate.js");
     let out = Command::new("node").arg(&script).args(files).output();
     match out {

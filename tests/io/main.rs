@@ -1,8 +1,8 @@
 //! Reading and writing files: every format's syntax and geometry node, errors with file and
 //! line, round trips through our writers, real Inventor models and their triangle counts
-//! against Coin's, VTK reading our VRML output, materials and texture wrapping carried
-//! from input to output by the binary, and glTF read and written (checked by the Khronos
-//! validator).
+//! against Coin's, the primitives' texture coordinates under a texture, VTK reading our VRML
+//! output, materials and texture wrapping carried from input to output by the binary, and glTF
+//! read and written (checked by the Khronos validator).
 
 #[path = "../support/mod.rs"]
 mod support;
@@ -11,11 +11,13 @@ mod coin_counts;
 mod errors;
 mod formats;
 mod gltf;
+mod gltf_tree;
 mod inventor_data;
 mod nodes;
 mod obj_materials;
 mod parse;
 mod ply;
+mod primitive_texcoords;
 mod roundtrip;
 mod speed;
 mod texture_wrap;

@@ -43,6 +43,7 @@ fn scene() -> Scene {
         diffuse: [0.25, 0.5, 0.75],
         crease_angle: Some(0.5),
         solid: true,
+        instance: None,
     };
     // A shear (not translation/rotation/scale) and a mirror: baked into the coordinates.
     let mut shear = Mat4::IDENTITY;

@@ -1,6 +1,7 @@
 //! Our VRML 2.0 output is read by an independent reader — VTK's `vtkVRMLImporter` (Debian's
 //! `python3-vtk9`) — with the shapes and triangles we wrote: the report's models decimated
-//! by the binary, and a two-shape coloured scene with a transform.
+//! by the binary, a two-shape coloured scene with a transform, and texture coordinates (a
+//! seamed grid, a textured sphere) as we wrote them.
 //!
 //! Needs `/usr/bin/python3` with VTK. CI installs it (`.ci/run`, `tools/setup`); without it
 //! the test fails when `CI` is set and is skipped with a notice otherwise.
@@ -224,5 +225,67 @@ fn vtk_reads_our_texture_coordinates() {
                 "{algorithm}: VTK maps ({x}, {y}) to ({u}, {v})"
             );
         }
+    }
+}
+
+#[test]
+fn vtk_reads_the_coordinates_of_a_textured_sphere_we_decimated() {
+    if !vtk_available() {
+        return;
+    }
+    // A VRML 2.0 Sphere under a texture makes its own coordinates (v from the bottom pole
+    // to the top); vertex removal keeps the kept points' coordinates as they were.
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("sphere.wrl");
+    std::fs::write(
+        &input,
+        "#VRML V2.0 utf8\nShape { appearance Appearance { texture ImageTexture { url \"c.png\" } }\n\
+         geometry Sphere { radius 2 } }\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out.wrl");
+    let o = Command::new(env!("CARGO_BIN_EXE_decimate"))
+        .arg(&input)
+        .args(["nogui", "-a", "schroeder", "-p", "50", "-q", "-o"])
+        .arg(&out)
+        .output()
+        .expect("run decimate");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let vtk = Command::new("/usr/bin/python3")
+        .arg("-c")
+        .arg(vtk_script(TCOORDS))
+        .arg(&out)
+        .output()
+        .expect("run python3");
+    assert!(
+        vtk.status.success(),
+        "{}",
+        String::from_utf8_lossy(&vtk.stderr)
+    );
+    let text = String::from_utf8_lossy(&vtk.stdout);
+    let mut lines = text.lines();
+    let counts: Vec<usize> = lines
+        .next()
+        .expect("one shape")
+        .split_whitespace()
+        .map(|w| w.parse().unwrap())
+        .collect();
+    let ours = decimate::io::read_scene(&out).unwrap().scene;
+    let n = ours.models[0].positions.len();
+    assert!(n < 238, "decimated: {n} vertices");
+    assert_eq!(counts, [n, n], "VTK's points and coordinate pairs");
+    for line in lines {
+        let [_, y, u, v] = line
+            .split_whitespace()
+            .map(|w| w.parse::<f64>().unwrap())
+            .collect::<Vec<_>>()[..]
+        else {
+            panic!("{line}")
+        };
+        let expected = 1.0 - (y / 2.0).clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
+        assert!(
+            (0.0..=1.0).contains(&u) && (v - expected).abs() < 1e-4,
+            "VTK maps a point at height {y} to ({u}, {v})"
+        );
     }
 }

@@ -1,6 +1,7 @@
 //! Textured models through the built binary on lavapipe: the image (PNG or JPEG) a VRML 2.0
 //! `ImageTexture` names, read beside the file (not the working folder), drawn the right way
-//! up, before and after decimation; an image that cannot be read leaves the model in its
+//! up, before and after decimation, on a grid with coordinates and on the primitives that
+//! make their own (a sphere, a box); an image that cannot be read leaves the model in its
 //! material colour with a warning naming the texture; a fine texture seen from afar shows
 //! its average colour (mip levels), not a moiré.
 
@@ -82,15 +83,13 @@ fn write_textured_grid(path: &Path, n: usize, image: &str, u_span: f32, fields: 
 /// Takes a shot of `models/grid.wrl` from `dir` (so that relative names must be read beside
 /// the file, not from the working folder) and reads it back.
 fn shot(dir: &Path, extra: &[&str]) -> (Output, RgbaImage) {
+    shot_of(dir, "models/grid.wrl", extra)
+}
+
+/// [`shot`] of `file` (relative to `dir`).
+fn shot_of(dir: &Path, file: &str, extra: &[&str]) -> (Output, RgbaImage) {
     let out_png = dir.join("shot.png");
-    let mut args = vec![
-        "models/grid.wrl",
-        "shot",
-        "-o",
-        "shot.png",
-        "--size",
-        "320x240",
-    ];
+    let mut args = vec![file, "shot", "-o", "shot.png", "--size", "320x240"];
     args.extend_from_slice(extra);
     let out = Command::new(env!("CARGO_BIN_EXE_decimate"))
         .args(&args)
@@ -185,6 +184,49 @@ fn a_png_or_jpeg_texture_beside_the_file_is_drawn_the_right_way_up_before_and_af
         let (top, bottom) = model_rows(&image, 0, image.width);
         let (red, blue) = red_and_blue(&image, (0, image.width), (top, bottom));
         assert_eq!((red, blue), (0, 0), "textures off: a grey grid");
+    }
+}
+
+#[test]
+fn a_textured_sphere_and_box_show_the_image_upright_before_and_after_decimation() {
+    // VRML 2.0 primitives make their own texture coordinates: the sphere's v runs from the
+    // bottom pole to the top, the box's front face maps the image upright.
+    let dir = scratch("primitives");
+    write_texture(&dir.join("models/maps/halves.png"));
+    let shape = |x: f32, geometry: &str| {
+        format!(
+            "Transform {{ translation {x} 0 0 children Shape {{ appearance Appearance {{ \
+             texture ImageTexture {{ url \"maps/halves.png\" }} }} geometry {geometry} }} }}\n"
+        )
+    };
+    let text = format!(
+        "#VRML V2.0 utf8\n{}{}",
+        shape(-1.5, "Sphere {}"),
+        shape(1.5, "Box {}")
+    );
+    std::fs::write(dir.join("models/shapes.wrl"), text).unwrap();
+    let (out, image) = shot_of(
+        &dir,
+        "models/shapes.wrl",
+        &["--viewports", "2", "-p", "50", "--no-labels", "--msaa", "1"],
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("removed"), "{stderr}");
+    // Each viewport (the right one decimated): the sphere in its left half, red over blue;
+    // the box in its right half, seen a little from above: its top face too shows both
+    // halves, the far one red, so the box is mostly red above its middle, blue below.
+    let quarter = image.width / 4;
+    for viewport in [0, 2 * quarter] {
+        assert_red_over_blue(&image, viewport + 2, viewport + quarter - 2);
+        let columns = (viewport + quarter + 2, viewport + 2 * quarter - 2);
+        let (top, bottom) = model_rows(&image, columns.0, columns.1);
+        let middle = (top + bottom) / 2;
+        let (red_up, blue_up) = red_and_blue(&image, columns, (top, middle));
+        let (red_down, blue_down) = red_and_blue(&image, columns, (middle, bottom));
+        assert!(
+            red_up > 2 * blue_up && blue_down > 2 * red_down && blue_up > 0 && red_down > 0,
+            "box: above {red_up} red, {blue_up} blue; below {red_down} red, {blue_down} blue"
+        );
     }
 }
 

@@ -1,13 +1,16 @@
 //! glTF 2.0, JSON (`.gltf`) and binary (`.glb`): `read` walks a file's default scene into a
-//! `Scene` (one model per triangle primitive and node), `write` writes a `Scene` back (one
-//! node per model), `accessor` decodes the typed arrays both read from buffers.
+//! `Scene` (one model per triangle primitive and node, the node tree kept), `write` writes a
+//! `Scene` back (the node tree as read, or one node per model), `accessor` decodes the typed
+//! arrays both read from buffers, `copy_through` carries skins, morph targets and animations
+//! through unchanged.
 
 mod accessor;
+mod copy_through;
 mod read;
 mod write;
 
 pub use read::read_gltf;
-pub use write::write_gltf;
+pub use write::{image_losses, write_gltf};
 
 /// True when `bytes` start like a binary glTF file.
 pub fn is_glb(bytes: &[u8]) -> bool {

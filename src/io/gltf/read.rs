@@ -7,19 +7,23 @@
 //! model's texture coordinates at the bottom), COLOR_0 (RGB of RGB or RGBA), the base
 //! colour factor and texture (PNG or JPEG, beside the file or embedded: an embedded image
 //! becomes a `data:` URI, see `io::data_uri`), the sampler's wrapping and the double-sided
-//! flag. Points and lines, skins and morph targets cannot be held by a `Scene`: one warning
-//! names what was left out (skinned and morphed meshes are read in their rest pose).
+//! flag. The node tree is kept (`mesh::NodeTree`, every model's `Instance`) for the glTF
+//! writer. Skinned meshes and meshes with morph targets are read in their rest pose, marked
+//! to be left undecimated, and carried with their skins and the animations to a glTF output
+//! (`copy_through`); one warning names each. Points and lines cannot be held by a `Scene`:
+//! one warning names what was left out.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::path::Path;
+use std::sync::Arc;
 
-use glam::Mat4;
+use glam::{Mat4, Quat, Vec3};
 use gltf::mesh::Mode;
 use gltf::Semantic;
 
 use super::accessor::{read_floats, read_floats_prefix, read_indices, Buffers};
 use crate::io::{data_uri, texture_path, ReadError, ReadOutcome, MAX_MODELS, MAX_TRIANGLES};
-use crate::mesh::{Attribute, Model, Scene};
+use crate::mesh::{Attribute, Instance, LocalTransform, Model, Node, NodeTree, Scene};
 
 /// Most node visits one file may take (a node listed as the child of several parents is
 /// visited once per path; a file could otherwise multiply its nodes exponentially).
@@ -43,8 +47,21 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
     validate(&gltf.document).map_err(fail)?;
     let folder = texture_path::folder_of(path);
     let buffers = load_buffers(&gltf, folder).map_err(fail)?;
+    let document = &gltf.document;
+    let scene = document
+        .default_scene()
+        .or_else(|| document.scenes().next());
+    let copied = copied_meshes(document);
+    let tree = match &scene {
+        Some(scene) => Some(Arc::new(
+            node_tree(document, scene, &buffers, &copied).map_err(fail)?,
+        )),
+        None => None,
+    };
     let mut reader = Reader {
         buffers: &buffers,
+        tree,
+        copied: &copied,
         primitives: HashMap::new(),
         models: Vec::new(),
         warnings: Vec::new(),
@@ -53,11 +70,7 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         visits: 0,
         node_count: gltf.document.nodes().count(),
     };
-    let document = &gltf.document;
-    match document
-        .default_scene()
-        .or_else(|| document.scenes().next())
-    {
+    match scene {
         Some(scene) => {
             for node in scene.nodes() {
                 reader.node(&node, Mat4::IDENTITY, 0).map_err(fail)?;
@@ -75,9 +88,22 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         mut warnings,
         ..
     } = reader;
+    for mesh in document.meshes() {
+        let (m, name) = (mesh.index(), mesh.name().unwrap_or(""));
+        let Some(why) = copied.get(&m) else {
+            continue;
+        };
+        warnings.push(format!(
+            "mesh {m} '{name}' {why}: copied through unchanged to a glTF output, not decimated (shown {})",
+            match *why {
+                SKINNED => "in its rest pose",
+                _ => "in its base shape",
+            }
+        ));
+    }
     if document.animations().count() > 0 {
         warnings.push(
-            "glTF animations are not kept (the scene is read as it stands at rest)".to_string(),
+            "glTF animations are shown at rest; a glTF output carries them unchanged".to_string(),
         );
     }
     Ok(ReadOutcome {
@@ -178,6 +204,10 @@ fn load_buffers(gltf: &gltf::Gltf, folder: &Path) -> Result<Buffers, String> {
 /// What the walk carries: the decoded primitives by (mesh, primitive), the models so far.
 struct Reader<'b> {
     buffers: &'b Buffers,
+    /// The file's node tree, shared by every model a node places.
+    tree: Option<Arc<NodeTree>>,
+    /// The meshes copied through (skinned or morphed), by index.
+    copied: &'b BTreeMap<usize, &'static str>,
     primitives: HashMap<(usize, usize), Option<Model>>,
     models: Vec<Model>,
     warnings: Vec<String>,
@@ -212,17 +242,7 @@ impl Reader<'_> {
             return Err(format!("node {}'s transform is not finite", node.index()));
         }
         if let Some(mesh) = node.mesh() {
-            if node.skin().is_some() {
-                let name = mesh.name().unwrap_or("").to_string();
-                self.warn_once(
-                    "skin",
-                    format!(
-                        "skinned meshes are read in their rest pose, without joints and weights (mesh {} '{name}')",
-                        mesh.index()
-                    ),
-                );
-            }
-            self.mesh(&mesh, world, node.name())?;
+            self.mesh(&mesh, world, Some(node))?;
         }
         for child in node.children() {
             self.node(&child, world, depth + 1)?;
@@ -235,8 +255,9 @@ impl Reader<'_> {
         &mut self,
         mesh: &gltf::Mesh<'_>,
         world: Mat4,
-        node_name: Option<&str>,
+        node: Option<&gltf::Node<'_>>,
     ) -> Result<(), String> {
+        let node_name = node.and_then(|n| n.name());
         let several = mesh.primitives().len() > 1;
         for primitive in mesh.primitives() {
             let key = (mesh.index(), primitive.index());
@@ -264,9 +285,19 @@ impl Reader<'_> {
                 true => format!("{base}.{}", primitive.index()),
                 false => base,
             };
+            let instance = match (&self.tree, node) {
+                (Some(tree), Some(node)) => Some(Instance {
+                    tree: tree.clone(),
+                    node: node.index(),
+                    primitive: primitive.index(),
+                    copied: self.copied.contains_key(&mesh.index()),
+                }),
+                _ => None,
+            };
             let model = Model {
                 name,
                 transform: world,
+                instance,
                 ..local.clone()
             };
             // No winding change under a mirroring node: glTF's "clockwise when the
@@ -299,22 +330,12 @@ impl Reader<'_> {
             );
             return Ok(None);
         }
-        if p.morph_targets().len() > 0 {
-            self.warn_once(
-                "morph",
-                format!(
-                    "morph targets are left out: meshes are read in their base shape (mesh {} '{}')",
-                    mesh.index(),
-                    mesh.name().unwrap_or("")
-                ),
-            );
-        }
         let Some(pos) = p.get(&Semantic::Positions) else {
             return Err("the primitive has no POSITION attribute".into());
         };
-        let positions: Vec<glam::Vec3> = read_floats::<3>(&pos, self.buffers)?
+        let positions: Vec<Vec3> = read_floats::<3>(&pos, self.buffers)?
             .into_iter()
-            .map(glam::Vec3::from)
+            .map(Vec3::from)
             .collect();
         if let Some(k) = positions.iter().position(|v| !v.is_finite()) {
             return Err(format!("POSITION {k} is not a finite number"));
@@ -351,7 +372,7 @@ impl Reader<'_> {
             same_count("NORMAL", normals.len())?;
             all_finite("NORMAL", &normals)?;
             model.normals = Some(Attribute::PerVertex(
-                normals.into_iter().map(glam::Vec3::from).collect(),
+                normals.into_iter().map(Vec3::from).collect(),
             ));
         }
         if let Some(a) = p.get(&Semantic::TexCoords(0)) {
@@ -425,6 +446,74 @@ impl Reader<'_> {
             }
         };
     }
+}
+
+/// Why a mesh is copied through: said in its warning.
+const SKINNED: &str = "is skinned";
+const MORPHED: &str = "has morph targets";
+
+/// The meshes that cannot be decimated faithfully, by index: those a skinned node places and
+/// those with morph targets.
+fn copied_meshes(document: &gltf::Document) -> BTreeMap<usize, &'static str> {
+    let mut out = BTreeMap::new();
+    for mesh in document.meshes() {
+        if mesh.primitives().any(|p| p.morph_targets().len() > 0) {
+            out.insert(mesh.index(), MORPHED);
+        }
+    }
+    for node in document.nodes() {
+        if let (Some(mesh), Some(_)) = (node.mesh(), node.skin()) {
+            out.insert(mesh.index(), SKINNED);
+        }
+    }
+    out
+}
+
+/// Every node of the file at its index (name, local transform as given, children, mesh),
+/// `scene`'s roots, and the copy-through fragment for the `copied` meshes.
+fn node_tree(
+    document: &gltf::Document,
+    scene: &gltf::Scene<'_>,
+    buffers: &Buffers,
+    copied: &BTreeMap<usize, &'static str>,
+) -> Result<NodeTree, String> {
+    let nodes = document
+        .nodes()
+        .map(|n| Node {
+            name: n.name().map(str::to_string),
+            local: match n.transform() {
+                gltf::scene::Transform::Matrix { matrix } => {
+                    LocalTransform::Matrix(Mat4::from_cols_array_2d(&matrix))
+                }
+                gltf::scene::Transform::Decomposed {
+                    translation,
+                    rotation,
+                    scale,
+                } => LocalTransform::Trs {
+                    translation: Vec3::from(translation),
+                    rotation: Quat::from_array(rotation),
+                    scale: Vec3::from(scale),
+                },
+            },
+            children: n.children().map(|c| c.index()).collect(),
+            mesh: n.mesh().map(|m| m.index()),
+        })
+        .collect();
+    let carried =
+        !copied.is_empty() || document.skins().len() > 0 || document.animations().len() > 0;
+    let copied = match carried {
+        true => {
+            let root = serde_json::to_value(document.as_json()).map_err(|e| e.to_string())?;
+            let meshes: BTreeSet<usize> = copied.keys().copied().collect();
+            super::copy_through::gather(&root, buffers, &meshes)?
+        }
+        false => None,
+    };
+    Ok(NodeTree {
+        nodes,
+        roots: scene.nodes().map(|n| n.index()).collect(),
+        copied,
+    })
 }
 
 /// An error naming the first value of `what` that is not a finite number, if any.

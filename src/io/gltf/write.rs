@@ -1,19 +1,24 @@
 //! Writing a `Scene` as glTF 2.0: `.glb` (one file, images embedded) or `.gltf` (JSON, with
 //! its binary buffer in a `.bin` and its images beside it).
 //!
-//! One node per model, placed by the model's transform (a `Scene` keeps world transforms,
-//! not the hierarchy that made them); models with the same geometry and material share one
-//! glTF mesh. Each model is one triangle primitive: POSITION, NORMAL (per-vertex normals,
-//! unit length; per-face normals are left out, which glTF draws flat anyway), TEXCOORD_0
-//! (v flipped back to glTF's top-down images) and COLOR_0; a model with per-face colours is
-//! written with one vertex per triangle corner. Materials carry the diffuse colour as the
-//! base colour factor (not metallic, fully rough), the texture as the base colour texture
-//! (PNG or JPEG images only; another image's texture is left out) and `doubleSided` for a
-//! shape that is not `solid`. Every file goes through `replace_file` (a temporary file,
+//! Models read from a glTF file are written in its node tree (`mesh::NodeTree`): every node
+//! at its index, with its name, local transform (matrix or TRS, as read) and children, and
+//! one mesh per source mesh, its primitives the node's models, shared by every node that
+//! places the same (decimated once, see `decimate::simplify_scene`). Skinned and morphed
+//! meshes, skins and animations are copied through from the source (`copy_through`). Other
+//! models get one root node each, placed by the model's transform; models with the same
+//! geometry and material share one glTF mesh. Each model is one triangle primitive:
+//! POSITION, NORMAL (per-vertex normals, unit length; per-face normals are left out, which
+//! glTF draws flat anyway), TEXCOORD_0 (v flipped back to glTF's top-down images) and
+//! COLOR_0; a model with per-face colours is written with one vertex per triangle corner.
+//! Materials carry the diffuse colour as the base colour factor (not metallic, fully
+//! rough), the texture as the base colour texture (PNG or JPEG images only; another
+//! image's texture is left out, named by `image_losses`) and `doubleSided` for a shape that
+//! is not `solid`. Every file goes through `replace_file` (a temporary file,
 //! then a rename).
 
 use std::borrow::Cow;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::hash::{Hash, Hasher};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -21,8 +26,9 @@ use std::path::{Path, PathBuf};
 use glam::Mat4;
 use serde_json::{json, Value};
 
+use super::copy_through::Spliced;
 use crate::io::{data_uri, texture_path, WriteError};
-use crate::mesh::{Attribute, Model, Scene};
+use crate::mesh::{Attribute, LocalTransform, Model, NodeTree, Scene};
 
 /// glTF's numbers for component types and buffer view targets (glTF 2.0 § 5.1, § 5.11).
 const FLOAT: u32 = 5126;
@@ -51,7 +57,11 @@ pub fn write_gltf(scene: &Scene, path: &Path) -> Result<(), WriteError> {
         stem: stem.clone(),
         ..Builder::default()
     };
-    for m in &scene.models {
+    let (tree, placed, flat) = placement(scene);
+    if let Some(tree) = tree {
+        b.tree(tree, &placed);
+    }
+    for m in flat {
         b.model(m);
     }
     let too_big = |what: &str| WriteError {
@@ -131,6 +141,11 @@ struct Builder<'s> {
     images: Vec<Value>,
     samplers: Vec<Value>,
     nodes: Vec<Value>,
+    /// The scene's root nodes.
+    roots: Vec<usize>,
+    skins: Vec<Value>,
+    animations: Vec<Value>,
+    extensions_required: Vec<String>,
     /// Files to write beside a `.gltf` (images that came as `data:` URIs): name, bytes.
     files: Vec<(String, Vec<u8>)>,
     /// Image index by texture name (`None`: the image cannot be written).
@@ -139,6 +154,50 @@ struct Builder<'s> {
     sampler_of: HashMap<[bool; 2], usize>,
     /// Meshes written, by a hash of geometry, material and winding: equal models share one.
     mesh_of: HashMap<u64, Vec<(usize, &'s Model)>>,
+    /// Meshes written for a source mesh: the mesh and the models and materials it holds.
+    /// Keyed by the source mesh and a hash of the parts (`geometry_hash`).
+    source_mesh_of: HashMap<(usize, u64), Vec<(usize, Parts<'s>)>>,
+}
+
+/// A written mesh's models, one per primitive, each with its material's index.
+type Parts<'s> = Vec<(&'s Model, usize)>;
+
+/// A tree's models: by node, then by primitive of the node's mesh.
+type Placed<'s> = BTreeMap<usize, BTreeMap<usize, &'s Model>>;
+
+/// The tree models of `scene` share (that of its first model with one), each tree node's
+/// models by primitive, and the models written flat (no tree, or another tree).
+fn placement(scene: &Scene) -> (Option<&NodeTree>, Placed<'_>, Vec<&Model>) {
+    let tree = scene
+        .models
+        .iter()
+        .find_map(|m| m.instance.as_ref())
+        .map(|i| &i.tree);
+    let mut placed = Placed::new();
+    let mut flat = Vec::new();
+    for m in &scene.models {
+        match (&m.instance, tree) {
+            (Some(i), Some(tree))
+                if std::sync::Arc::ptr_eq(&i.tree, tree) && i.node < tree.nodes.len() =>
+            {
+                // A node reached by two paths places the same geometry twice: written once.
+                // Another geometry in the same place (a model split after reading) goes flat.
+                let slot = placed.entry(i.node).or_default().entry(i.primitive);
+                match slot {
+                    std::collections::btree_map::Entry::Vacant(e) => {
+                        e.insert(m);
+                    }
+                    std::collections::btree_map::Entry::Occupied(e) => {
+                        if !same_geometry(e.get(), m) {
+                            flat.push(m);
+                        }
+                    }
+                }
+            }
+            _ => flat.push(m),
+        }
+    }
+    (tree.map(|t| &**t), placed, flat)
 }
 
 impl<'s> Builder<'s> {
@@ -146,8 +205,12 @@ impl<'s> Builder<'s> {
         let mut doc = json!({
             "asset": { "version": "2.0", "generator": "decimate" },
             "scene": 0,
-            "scenes": [{ "nodes": (0..self.nodes.len()).collect::<Vec<_>>() }],
+            "scenes": [{ "nodes": self.roots }],
         });
+        if !self.extensions_required.is_empty() {
+            doc["extensionsUsed"] = json!(self.extensions_required);
+            doc["extensionsRequired"] = json!(self.extensions_required);
+        }
         let mut set = |key: &str, list: &[Value]| {
             if !list.is_empty() {
                 doc[key] = Value::Array(list.to_vec());
@@ -159,6 +222,8 @@ impl<'s> Builder<'s> {
         set("textures", &self.textures);
         set("images", &self.images);
         set("samplers", &self.samplers);
+        set("skins", &self.skins);
+        set("animations", &self.animations);
         set("accessors", &self.accessors);
         set("bufferViews", &self.views);
         if !self.bin.is_empty() {
@@ -254,11 +319,156 @@ impl<'s> Builder<'s> {
         if m.transform != Mat4::IDENTITY {
             node["matrix"] = json!(m.transform.to_cols_array().map(f64::from));
         }
+        self.roots.push(self.nodes.len());
         self.nodes.push(node);
+    }
+
+    /// The node tree at the source's indices, each node's mesh made of its `placed` models
+    /// (by primitive); then what the source copies through: skins and animations.
+    fn tree(&mut self, tree: &'s NodeTree, placed: &Placed<'s>) {
+        let spliced = tree
+            .copied
+            .as_ref()
+            .and_then(|c| Spliced::new(c, &mut self.accessors, &mut self.views, &mut self.bin));
+        for (i, node) in tree.nodes.iter().enumerate() {
+            let mut out = json!({});
+            if let Some(name) = &node.name {
+                out["name"] = json!(name);
+            }
+            match node.local {
+                LocalTransform::Matrix(m) if m != Mat4::IDENTITY => {
+                    out["matrix"] = json!(m.to_cols_array().map(f64::from));
+                }
+                LocalTransform::Matrix(_) => {}
+                LocalTransform::Trs {
+                    translation,
+                    rotation,
+                    scale,
+                } => {
+                    let floats = |v: &[f32]| v.iter().map(|&x| f64::from(x)).collect::<Vec<_>>();
+                    if translation != glam::Vec3::ZERO {
+                        out["translation"] = json!(floats(&translation.to_array()));
+                    }
+                    if rotation != glam::Quat::IDENTITY {
+                        out["rotation"] = json!(floats(&rotation.to_array()));
+                    }
+                    if scale != glam::Vec3::ONE {
+                        out["scale"] = json!(floats(&scale.to_array()));
+                    }
+                }
+            }
+            if !node.children.is_empty() {
+                out["children"] = json!(node.children);
+            }
+            let models = placed.get(&i);
+            let mesh = match (node.mesh, models) {
+                (Some(source), Some(models)) => self.source_mesh(source, models, spliced.as_ref()),
+                _ => None,
+            };
+            if let Some(mesh) = mesh {
+                out["mesh"] = json!(mesh);
+                for (key, v) in spliced
+                    .as_ref()
+                    .and_then(|s| s.node_fields(i))
+                    .into_iter()
+                    .flatten()
+                {
+                    out[key.as_str()] = v.clone();
+                }
+            }
+            self.nodes.push(out);
+        }
+        self.roots.extend(tree.roots.iter().copied());
+        if let Some(s) = spliced {
+            self.skins = s.skins();
+            self.animations = s.animations();
+            self.extensions_required = s.extensions_required();
+        }
+    }
+
+    /// The mesh for source mesh `source` placed with `models` (by primitive): the one
+    /// written for another node when it holds the same, else a new one, copied through
+    /// when the source's is. `None` when no model is left to write.
+    fn source_mesh(
+        &mut self,
+        source: usize,
+        models: &BTreeMap<usize, &'s Model>,
+        spliced: Option<&Spliced>,
+    ) -> Option<usize> {
+        let parts: Vec<(usize, &'s Model)> = models
+            .iter()
+            .filter(|(_, m)| !m.positions.is_empty() && !m.triangles.is_empty())
+            .map(|(&p, &m)| (p, m))
+            .collect();
+        if parts.is_empty() {
+            return None;
+        }
+        let with_materials: Parts<'s> = parts.iter().map(|&(_, m)| (m, self.material(m))).collect();
+        let same = |a: &[(&Model, usize)], b: &[(&Model, usize)]| {
+            a.len() == b.len()
+                && a.iter()
+                    .zip(b)
+                    .all(|((x, i), (y, j))| i == j && same_geometry(x, y))
+        };
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        for &(m, material) in &with_materials {
+            geometry_hash(m, material).hash(&mut h);
+        }
+        let key = (source, h.finish());
+        if let Some(list) = self.source_mesh_of.get(&key) {
+            if let Some((mesh, _)) = list.iter().find(|(_, held)| same(held, &with_materials)) {
+                return Some(*mesh);
+            }
+        }
+        let copied = parts
+            .iter()
+            .all(|(_, m)| m.instance.as_ref().is_some_and(|i| i.copied));
+        let verbatim = spliced.filter(|_| copied).and_then(|s| s.mesh(source));
+        let mesh = match verbatim {
+            Some(mut mesh) => {
+                // The source's primitives that were read, each with its model's material.
+                let prims = mesh["primitives"].as_array().cloned().unwrap_or_default();
+                let kept: Vec<Value> = parts
+                    .iter()
+                    .zip(&with_materials)
+                    .filter_map(|(&(p, _), &(_, material))| {
+                        let mut prim = prims.get(p)?.clone();
+                        prim["material"] = json!(material);
+                        Some(prim)
+                    })
+                    .collect();
+                mesh["primitives"] = json!(kept);
+                mesh
+            }
+            None => {
+                let prims: Vec<Value> = with_materials
+                    .iter()
+                    .map(|&(m, material)| self.primitive(m, material))
+                    .collect();
+                json!({ "primitives": prims })
+            }
+        };
+        self.meshes.push(mesh);
+        let index = self.meshes.len() - 1;
+        self.source_mesh_of
+            .entry(key)
+            .or_default()
+            .push((index, with_materials));
+        Some(index)
     }
 
     /// Writes `m`'s vertex arrays and triangles as a one-primitive mesh.
     fn mesh(&mut self, m: &Model, material: usize) -> usize {
+        let mut mesh = json!({ "primitives": [self.primitive(m, material)] });
+        if !m.name.is_empty() {
+            mesh["name"] = json!(m.name);
+        }
+        self.meshes.push(mesh);
+        self.meshes.len() - 1
+    }
+
+    /// `m`'s vertex arrays and triangles as a triangle primitive.
+    fn primitive(&mut self, m: &Model, material: usize) -> Value {
         let m = one_vertex_per_corner_if_face_colored(m);
         let positions: Vec<[f32; 3]> = m.positions.iter().map(|p| p.to_array()).collect();
         let mut attributes = json!({ "POSITION": self.floats(&positions, true) });
@@ -280,14 +490,7 @@ impl<'s> Builder<'s> {
             }
         }
         let indices = self.indices(&m.triangles);
-        let mut mesh = json!({
-            "primitives": [{ "attributes": attributes, "indices": indices, "material": material }],
-        });
-        if !m.name.is_empty() {
-            mesh["name"] = json!(m.name);
-        }
-        self.meshes.push(mesh);
-        self.meshes.len() - 1
+        json!({ "attributes": attributes, "indices": indices, "material": material })
     }
 
     /// The material for `m` (diffuse colour, texture, wrapping, sidedness), shared by every
@@ -353,16 +556,11 @@ impl<'s> Builder<'s> {
     }
 
     fn new_image(&mut self, name: &str) -> Option<usize> {
-        let embedded = data_uri::parse(name).and_then(Result::ok);
-        let bytes = match &embedded {
-            Some(d) => Cow::Borrowed(&d.bytes[..]),
-            None => Cow::Owned(std::fs::read(image_file(name, &self.folder)?).ok()?),
-        };
-        let media_type = data_uri::image_media_type(&bytes)?;
+        let (bytes, media_type, embedded) = load_image(name, &self.folder).ok()?;
         let image = if self.binary {
             let view = self.view(&bytes, None);
             json!({ "bufferView": view, "mimeType": media_type })
-        } else if embedded.is_some() {
+        } else if embedded {
             let ext = if media_type == "image/png" {
                 "png"
             } else {
@@ -370,7 +568,7 @@ impl<'s> Builder<'s> {
             };
             let file = format!("{}_image{}.{ext}", self.stem, self.images.len());
             let uri = uri_of(&file);
-            self.files.push((file, bytes.into_owned()));
+            self.files.push((file, bytes));
             json!({ "uri": uri })
         } else {
             json!({ "uri": uri_of(&name.replace('\\', "/")) })
@@ -378,6 +576,48 @@ impl<'s> Builder<'s> {
         self.images.push(image);
         Some(self.images.len() - 1)
     }
+}
+
+/// The bytes and media type of the image a texture name points at from `folder`, and
+/// whether it came embedded (`data:` URI); why not, when it cannot be written.
+fn load_image(name: &str, folder: &Path) -> Result<(Vec<u8>, &'static str, bool), String> {
+    let (bytes, embedded) = match data_uri::parse(name) {
+        Some(d) => (d?.bytes, true),
+        None => {
+            let file = image_file(name, folder).ok_or("it is not a file glTF can embed")?;
+            let bytes = std::fs::read(&file).map_err(|e| format!("{}: {e}", file.display()))?;
+            (bytes, false)
+        }
+    };
+    let media_type = data_uri::image_media_type(&bytes).ok_or("it is not a PNG or JPEG image")?;
+    Ok((bytes, media_type, embedded))
+}
+
+/// One warning for each texture image a glTF file written at `path` leaves out (it cannot
+/// be read, or is not PNG or JPEG), naming the image and why.
+pub fn image_losses(scene: &Scene, path: &Path) -> Vec<String> {
+    let folder = texture_path::folder_of(path);
+    let mut seen = std::collections::HashSet::new();
+    let mut out = Vec::new();
+    for m in &scene.models {
+        let Some(name) = m.texture.as_deref().filter(|_| m.texcoords.is_some()) else {
+            continue;
+        };
+        if !seen.insert(name) {
+            continue;
+        }
+        if let Err(why) = load_image(name, folder) {
+            let shown = match data_uri::is_data_uri(name) {
+                true => "an embedded image".to_string(),
+                false => format!("'{name}'"),
+            };
+            out.push(format!(
+                "the texture image {shown} of {} is left out of the glTF file: {why}",
+                m.name
+            ));
+        }
+    }
+    out
 }
 
 /// The file a (non-`data:`) texture name points at from `folder`; `None` for other URLs.
@@ -458,6 +698,7 @@ fn one_vertex_per_corner_if_face_colored(m: &Model) -> Cow<'_, Model> {
         name: m.name.clone(),
         texture: m.texture.clone(),
         material: m.material.clone(),
+        instance: m.instance.clone(),
         ..*m
     })
 }

@@ -3,7 +3,10 @@
 //! spine-aligned cross-section plane: Y along the spine, Z normal to the spine's bend (kept
 //! from the previous point where the spine is straight, flipped to stay continuous), X = Y × Z.
 //! Rings share their vertices with the caps, and a closed cross-section or spine shares its
-//! first and last points, so a closed extrusion is a closed surface.
+//! first and last points, so a closed extrusion is a closed surface. Under a texture it gets
+//! the specification's default coordinates: u along the cross-section, v along the spine
+//! (each by length, 0 to 1), the caps mapping the cross-section's square; its corners then
+//! split where the sides meet the caps and where a closed curve meets itself.
 
 use glam::{Mat3, Quat, Vec2, Vec3};
 
@@ -11,11 +14,27 @@ use super::lexer::{PResult, ParseError};
 use super::parse::Node;
 use super::vrml1::rotation;
 
-/// An extrusion's points (flat x y z) and polygons (corner lists and ends).
+/// An extrusion's points (flat x y z) and polygons (corner lists and ends), with texture
+/// coordinates (flat u v) and each corner's pair when made textured (else both empty).
 pub struct Swept {
     pub points: Vec<f32>,
     pub corners: Vec<u32>,
     pub ends: Vec<u32>,
+    pub texcoords: Vec<f32>,
+    pub texcoord_index: Vec<u32>,
+}
+
+/// Each point's distance along the polyline from its first point, over the whole length
+/// (0 to 1; all 0 for a polyline of no length).
+fn along<T: Copy>(points: &[T], distance: impl Fn(T, T) -> f32) -> Vec<f32> {
+    let mut total = 0.0;
+    let mut at = vec![0.0];
+    for w in points.windows(2) {
+        total += distance(w[0], w[1]);
+        at.push(total);
+    }
+    let scale = if total > 0.0 { 1.0 / total } else { 0.0 };
+    at.iter().map(|d| d * scale).collect()
 }
 
 fn vec2s(v: &[f32]) -> Vec<Vec2> {
@@ -82,8 +101,9 @@ fn planes(spine: &[Vec3], closed: bool) -> Vec<Mat3> {
         .collect()
 }
 
-/// Sweeps the Extrusion node `g` into points and polygons (the caps as single polygons).
-pub fn extrude(g: &Node) -> PResult<Swept> {
+/// Sweeps the Extrusion node `g` into points and polygons (the caps as single polygons),
+/// with texture coordinates when `textured`.
+pub fn extrude(g: &Node, textured: bool) -> PResult<Swept> {
     let square = [1.0, 1.0, 1.0, -1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0];
     let section = vec2s(g.floats("crossSection").unwrap_or(&square));
     let spine = vec3s(g.floats("spine").unwrap_or(&[0.0, 0.0, 0.0, 0.0, 1.0, 0.0]));
@@ -104,6 +124,8 @@ pub fn extrude(g: &Node) -> PResult<Swept> {
         points: Vec::new(),
         corners: Vec::new(),
         ends: Vec::new(),
+        texcoords: Vec::new(),
+        texcoord_index: Vec::new(),
     };
     if section.len() < 2 || spine.len() < 2 {
         return Ok(out);
@@ -122,21 +144,58 @@ pub fn extrude(g: &Node) -> PResult<Swept> {
         }
     }
     let at = |i: usize, j: usize| ((i % n) * m + j % m) as u32;
+    // Texture pairs: one per (spine point, cross-section point) as listed, then the caps'
+    // one per cross-section point.
+    let pairs = section.len();
+    let tc = |i: usize, j: usize| (i * pairs + j) as u32;
+    let cap_tc = |j: usize| (spine.len() * pairs + j) as u32;
     for i in 0..spine.len() - 1 {
         for j in 0..section.len() - 1 {
             out.corners
                 .extend([at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)]);
+            out.texcoord_index
+                .extend([tc(i, j), tc(i, j + 1), tc(i + 1, j + 1), tc(i + 1, j)]);
             out.ends.push(out.corners.len() as u32);
         }
     }
     let cap = |field: &str| g.boolean(field).unwrap_or(true) && !spine_closed && m > 2;
     if cap("beginCap") {
         out.corners.extend((0..m).rev().map(|j| at(0, j)));
+        out.texcoord_index.extend((0..m).rev().map(cap_tc));
         out.ends.push(out.corners.len() as u32);
     }
     if cap("endCap") {
         out.corners.extend((0..m).map(|j| at(n - 1, j)));
+        out.texcoord_index.extend((0..m).map(cap_tc));
         out.ends.push(out.corners.len() as u32);
     }
+    if textured {
+        out.texcoords = texcoords(&section, &spine);
+    } else {
+        out.texcoord_index.clear();
+    }
     Ok(out)
+}
+
+/// VRML 2.0 §6.18's default texture coordinates of an extrusion: the sides' pairs (spine
+/// point by cross-section point, u along the cross-section, v along the spine), then the
+/// caps' (the cross-section scaled and moved so that its larger side spans 0 to 1, u along
+/// its x and v along its z).
+fn texcoords(section: &[Vec2], spine: &[Vec3]) -> Vec<f32> {
+    let u = along(section, Vec2::distance);
+    let v = along(spine, Vec3::distance);
+    let mut out = Vec::with_capacity((spine.len() + 1) * section.len() * 2);
+    for &v in &v {
+        for &u in &u {
+            out.extend([u, v]);
+        }
+    }
+    let lo = section.iter().fold(Vec2::splat(f32::MAX), |a, &c| a.min(c));
+    let hi = section.iter().fold(Vec2::splat(f32::MIN), |a, &c| a.max(c));
+    let larger = (hi - lo).max_element();
+    let scale = if larger > 0.0 { 1.0 / larger } else { 0.0 };
+    for &c in section {
+        out.extend(((c - lo) * scale).to_array());
+    }
+    out
 }

@@ -82,6 +82,7 @@ fn vrml1_fields(kind: &str) -> Option<&'static [&'static str]> {
         "Coordinate3" | "TextureCoordinate2" => &["point"],
         "Normal" => &["vector"],
         "Texture2" => &["filename", "image", "wrapS", "wrapT", "model", "blendColor"],
+        "Texture2Transform" => &["translation", "rotation", "scaleFactor", "center"],
         "Material" => &[
             "ambientColor",
             "diffuseColor",
@@ -182,6 +183,7 @@ fn vrml2_fields(kind: &str) -> Option<&'static [&'static str]> {
         "Color" => &["color"],
         "Normal" => &["vector"],
         "ImageTexture" => &["url", "repeatS", "repeatT"],
+        "TextureTransform" => &["center", "rotation", "scale", "translation"],
         "Box" => &["size"],
         "Sphere" => &["radius"],
         "Cone" => &["bottomRadius", "height", "side", "bottom"],

@@ -83,6 +83,7 @@ impl Parser<'_> {
                 ),
             )
         })?;
+        self.included_nodes += sub.nodes_parsed();
         self.warnings.extend(
             sub.warnings
                 .into_iter()

@@ -6,12 +6,14 @@
 //! `vrml2_writer` (VRML 2.0 output). [`read_tree`] runs a parse on a thread with a big stack.
 
 mod bindings;
+mod default_texcoords;
 mod extrusion;
 mod fields;
 mod include;
 mod lexer;
 mod parse;
 mod primitives;
+mod texture_transform;
 mod vrml1;
 mod vrml2;
 mod vrml2_writer;
@@ -33,6 +35,8 @@ pub(crate) struct Budget {
     models: usize,
     triangles: usize,
     copies: usize,
+    visits: u64,
+    max_visits: u64,
     warned: HashSet<String>,
 }
 
@@ -45,6 +49,24 @@ impl Budget {
                 line,
                 format!(
                     "the scene expands to more than {MAX_MODELS} shapes or {MAX_TRIANGLES} triangles (DEF/USE instancing?)"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Counts one node visited by the walk. A USE walks its node again, so a chain of DEFs
+    /// each using the one before is walked quadratically often even when it makes few
+    /// shapes; the walk is bounded by a multiple of the nodes parsed (design.md#vrml-budget).
+    pub(crate) fn visit(&mut self, line: usize) -> PResult<()> {
+        self.visits += 1;
+        if self.visits > self.max_visits {
+            return Err(ParseError::new(
+                line,
+                format!(
+                    "the scene graph is walked more than {} times node by node: USEs of nodes \
+                     that themselves USE others multiply the walk (a long DEF/USE chain?)",
+                    self.max_visits
                 ),
             ));
         }
@@ -79,12 +101,23 @@ pub(crate) struct Ctx<'w> {
     pub(crate) budget: Budget,
 }
 
+/// Node visits allowed per node parsed, and at least (design.md#vrml-budget).
+const VISITS_PER_NODE: u64 = 64;
+const MIN_VISITS: u64 = 4_000_000;
+
 impl<'w> Ctx<'w> {
-    pub(crate) fn new(warnings: &'w mut Vec<String>) -> Self {
+    /// A walk of a tree of `nodes` parsed nodes.
+    pub(crate) fn new(warnings: &'w mut Vec<String>, nodes: usize) -> Self {
+        let budget = Budget {
+            max_visits: (nodes as u64)
+                .saturating_mul(VISITS_PER_NODE)
+                .max(MIN_VISITS),
+            ..Budget::default()
+        };
         Self {
             models: Vec::new(),
             warnings,
-            budget: Budget::default(),
+            budget,
         }
     }
 }
@@ -128,9 +161,10 @@ fn parse_tree(
     parser.including = path.canonicalize().into_iter().collect();
     let roots = parser.parse_file()?;
     let mut warnings = std::mem::take(&mut parser.warnings);
+    let nodes = parser.nodes_parsed();
     let models = match dialect {
-        Dialect::Vrml1 => vrml1::read(&roots, &mut warnings),
-        Dialect::Vrml2 => vrml2::read(&roots, &mut warnings),
+        Dialect::Vrml1 => vrml1::read(&roots, &mut warnings, nodes),
+        Dialect::Vrml2 => vrml2::read(&roots, &mut warnings, nodes),
     }?;
     // The tree (at most MAX_DEPTH deep) is dropped here, on the big stack.
     drop(roots);

@@ -217,6 +217,7 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("MultipleCopy", "matrix") => Floats,
             ("Texture2", "filename") => Strings,
             ("Texture2", "wrapS" | "wrapT") => Word,
+            ("Texture2Transform", "translation" | "rotation" | "scaleFactor" | "center") => Floats,
             ("ResetTransform", "whatToReset") => Word,
             _ => return None,
         }),
@@ -229,7 +230,8 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
             ("Switch", "whichChoice") => Ints,
             ("LOD", "level") => Nodes,
             ("Shape", "appearance" | "geometry") => Node,
-            ("Appearance", "material" | "texture") => Node,
+            ("Appearance", "material" | "texture" | "textureTransform") => Node,
+            ("TextureTransform", "center" | "rotation" | "scale" | "translation") => Floats,
             ("ImageTexture", "url") => Strings,
             ("ImageTexture", "repeatS" | "repeatT") => Bool,
             ("Material", "diffuseColor") => Floats,
@@ -307,6 +309,7 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "Normal"
                 | "TextureCoordinate2"
                 | "Texture2"
+                | "Texture2Transform"
                 | "Material"
                 | "BaseColor"
                 | "MaterialBinding"
@@ -345,6 +348,7 @@ fn is_known(dialect: Dialect, kind: &str) -> bool {
                 | "Normal"
                 | "TextureCoordinate"
                 | "ImageTexture"
+                | "TextureTransform"
                 | "Box"
                 | "Sphere"
                 | "Cone"
@@ -371,7 +375,6 @@ fn is_ignorable(dialect: Dialect, kind: &str) -> bool {
                 | "Environment"
                 | "DrawStyle"
                 | "LightModel"
-                | "Texture2Transform"
                 | "TextureCoordinatePlane"
                 | "TextureCoordinateDefault"
                 | "FontStyle"
@@ -414,9 +417,6 @@ fn is_ignorable(dialect: Dialect, kind: &str) -> bool {
                 | "AudioClip"
                 | "IndexedLineSet"
                 | "PointSet"
-                | "PixelTexture"
-                | "MovieTexture"
-                | "TextureTransform"
                 | "FontStyle"
         ),
     }
@@ -446,9 +446,16 @@ pub struct Parser<'a> {
     unknown_at: HashMap<String, usize>,
     /// Nodes parsed whose kind the reader knows or knowingly ignores.
     recognised: usize,
+    /// Nodes parsed from the files that `File` nodes include.
+    pub(super) included_nodes: usize,
 }
 
 impl<'a> Parser<'a> {
+    /// Nodes parsed so far, known or skipped as unknown, included files' too.
+    pub fn nodes_parsed(&self) -> usize {
+        self.recognised + self.included_nodes + self.unknown.iter().map(|u| u.2).sum::<usize>()
+    }
+
     pub fn new(src: &'a [u8], dialect: Dialect) -> Self {
         Self {
             lex: Lexer::new(src),
@@ -463,6 +470,7 @@ impl<'a> Parser<'a> {
             unknown: Vec::new(),
             unknown_at: HashMap::new(),
             recognised: 0,
+            included_nodes: 0,
         }
     }
 
@@ -747,6 +755,16 @@ impl<'a> Parser<'a> {
             }
             if !fields::is_field_of(self.dialect, &node.kind, &name) {
                 self.unknown_field(node, &name_tok, &name)?;
+            }
+            if node.kind == "Texture2" && name == "image" {
+                // Only images in files are read: say so rather than lose the texture silently.
+                self.warn_once(
+                    "Texture2 image",
+                    format!(
+                        "line {}: Texture2's inline 'image' ignored (only image files are read); its shapes are untextured",
+                        name_tok.line
+                    ),
+                );
             }
             // VRML 2.0 "IS" in PROTO bodies never reaches here (bodies are skipped).
             return self.skip_value();

@@ -1,18 +1,21 @@
-//! The round primitives of VRML 1.0, Open Inventor and VRML 2.0 (`Sphere`, `Cone`,
-//! `Cylinder`) as triangle meshes over shared vertices.
+//! The primitives of VRML 1.0, Open Inventor and VRML 2.0 (`Sphere`, `Cone`, `Cylinder`,
+//! and the corners and faces of `Cube` / `Box`) as triangle meshes, with the texture
+//! coordinates the specifications define when the shape has a texture.
 //!
 //! Slice and stack counts follow Coin's tessellation at a given complexity (see
-//! docs/design.md#primitives), so triangle counts match Coin's. Unlike Coin, each ring's
+//! docs/design.md#primitives), so triangle counts match Coin's. Untextured, each ring's
 //! vertices are shared by the side and the caps and a sphere's poles are single vertices: a
-//! full shape is a closed surface that decimation can treat as one. Axes are along y, shapes
-//! centred on the origin, triangles counter-clockwise seen from outside.
+//! full shape is a closed surface that decimation can treat as one. Textured, a vertex is
+//! split where the texture jumps (the seam at the back, per-slice copies at poles and apex,
+//! caps' rims), as `Model::texcoords` represents seams. Axes are along y, shapes centred on
+//! the origin, triangles counter-clockwise seen from outside.
 
 use std::f32::consts::{PI, TAU};
 
-use glam::Mat4;
+use glam::{Mat4, Vec3};
 
 use super::bindings::Geo;
-use crate::io::shape_to_model::{Bind, ShapeSpec};
+use crate::io::shape_to_model::{Bind, ShapeSpec, TexCoords};
 
 /// Which parts of a cone or cylinder to make (a cone has no top).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -56,10 +59,45 @@ impl Parts {
 #[derive(Debug, Clone, Default)]
 pub struct Tessellation {
     pub coords: Vec<f32>,
+    /// Texture coordinates, flat u v, one pair per vertex; empty when made untextured.
+    pub texcoords: Vec<f32>,
     pub triangles: Vec<[u32; 3]>,
     pub part: Vec<u32>,
     /// True when the parts make a closed surface.
     pub closed: bool,
+}
+
+/// A ring of `slices` vertices from `first`; with a seam, a copy of the first vertex ends
+/// it (same position, u = 1), so the ring does not wrap around.
+#[derive(Debug, Clone, Copy)]
+struct Ring {
+    first: u32,
+    slices: u32,
+    seam: bool,
+}
+
+impl Ring {
+    /// The ring's `j`-th vertex, `j` in `0..=slices` (the last is the seam copy, or the first).
+    fn at(self, j: u32) -> u32 {
+        if self.seam {
+            self.first + j
+        } else {
+            self.first + j % self.slices
+        }
+    }
+}
+
+/// Which texture coordinates a ring's vertices get.
+#[derive(Debug, Clone, Copy)]
+enum RingUv {
+    None,
+    /// A side's: u = j / slices around from the back, this v; the ring gets a seam copy.
+    Side(f32),
+    /// A cap's circle cut out of the unit square, upright with the top tilted towards +z
+    /// (`top`) or with the top tilted towards -z (the bottom cap).
+    Cap {
+        top: bool,
+    },
 }
 
 impl Tessellation {
@@ -77,20 +115,71 @@ impl Tessellation {
         }
     }
 
+    /// The texture coordinates bound to the corners of [`Self::to_geo`], when made textured.
+    pub fn texcoords_of(&self, geo: &Geo) -> Option<TexCoords<'_>> {
+        // Made textured, every vertex has its pair.
+        debug_assert!(
+            self.texcoords.is_empty() || self.texcoords.len() / 2 == self.coords.len() / 3
+        );
+        (!self.texcoords.is_empty()).then(|| TexCoords {
+            values: &self.texcoords,
+            index: geo.corners.clone(),
+        })
+    }
+
     fn vertex(&mut self, x: f32, y: f32, z: f32) -> u32 {
         self.coords.extend([x, y, z]);
         (self.coords.len() / 3 - 1) as u32
     }
 
+    fn textured_vertex(&mut self, p: [f32; 3], uv: [f32; 2]) -> u32 {
+        self.texcoords.extend(uv);
+        self.vertex(p[0], p[1], p[2])
+    }
+
     /// `slices` vertices on a circle of `radius` at height `y`, starting at -z and turning
-    /// towards -x (Coin's order); returns the first vertex's index.
-    fn ring(&mut self, slices: u32, radius: f32, y: f32) -> u32 {
+    /// towards -x (Coin's order, and VRML's texture direction: counter-clockwise seen from
+    /// above, from the back).
+    fn ring(&mut self, slices: u32, radius: f32, y: f32, uv: RingUv) -> Ring {
         let first = (self.coords.len() / 3) as u32;
         for j in 0..slices {
             let a = TAU * j as f32 / slices as f32;
-            self.vertex(-a.sin() * radius, y, -a.cos() * radius);
+            let (s, c) = (-a.sin(), -a.cos());
+            self.vertex(s * radius, y, c * radius);
+            match uv {
+                RingUv::None => {}
+                RingUv::Side(v) => self.texcoords.extend([j as f32 / slices as f32, v]),
+                RingUv::Cap { top } => {
+                    let v = if top { 0.5 - 0.5 * c } else { 0.5 + 0.5 * c };
+                    self.texcoords.extend([0.5 + 0.5 * s, v]);
+                }
+            }
         }
-        first
+        let seam = matches!(uv, RingUv::Side(_));
+        if let RingUv::Side(v) = uv {
+            // The seam's copy is bit-equal to the first vertex, so seams are found by position.
+            let i = first as usize * 3;
+            let p = [self.coords[i], self.coords[i + 1], self.coords[i + 2]];
+            self.textured_vertex(p, [1.0, v]);
+        }
+        Ring {
+            first,
+            slices,
+            seam,
+        }
+    }
+
+    /// One vertex at `(0, y, 0)`, or with `uv_v`, one per slice (u at the slice's middle),
+    /// for a pole or an apex where the texture's row `v` shrinks to a point.
+    fn apex(&mut self, slices: u32, y: f32, uv_v: Option<f32>) -> (u32, u32) {
+        let Some(v) = uv_v else {
+            return (self.vertex(0.0, y, 0.0), 0);
+        };
+        let first = (self.coords.len() / 3) as u32;
+        for j in 0..slices {
+            self.textured_vertex([0.0, y, 0.0], [(j as f32 + 0.5) / slices as f32, v]);
+        }
+        (first, 1)
     }
 
     /// A fan over ring `first..first+n`, facing +y (`up`) or -y.
@@ -103,23 +192,22 @@ impl Tessellation {
         }
     }
 
-    /// Triangles joining `apex` to ring `first..first+n`, counter-clockwise seen from outside
-    /// when the apex is above the ring (`up`) or below it.
-    fn apex_fan(&mut self, apex: u32, first: u32, n: u32, up: bool, part: u32) {
-        for j in 0..n {
-            let (a, b) = (first + j, first + (j + 1) % n);
-            self.triangles
-                .push(if up { [apex, a, b] } else { [apex, b, a] });
+    /// Triangles joining the apex (`apex + j * step` for slice `j`) to `ring`,
+    /// counter-clockwise seen from outside when the apex is above the ring (`up`) or below.
+    fn apex_fan(&mut self, (apex, step): (u32, u32), ring: Ring, up: bool, part: u32) {
+        for j in 0..ring.slices {
+            let (a, b, p) = (ring.at(j), ring.at(j + 1), apex + j * step);
+            self.triangles.push(if up { [p, a, b] } else { [p, b, a] });
             self.part.push(part);
         }
     }
 
-    /// Two triangles per slice between ring `upper` and ring `lower` (same size `n`).
-    fn band(&mut self, upper: u32, lower: u32, n: u32, part: u32) {
-        for j in 0..n {
-            let k = (j + 1) % n;
-            self.triangles.push([upper + j, lower + j, upper + k]);
-            self.triangles.push([upper + k, lower + j, lower + k]);
+    /// Two triangles per slice between ring `upper` and ring `lower` (same size).
+    fn band(&mut self, upper: Ring, lower: Ring, part: u32) {
+        for j in 0..upper.slices {
+            let (u0, u1, l0, l1) = (upper.at(j), upper.at(j + 1), lower.at(j), lower.at(j + 1));
+            self.triangles.push([u0, l0, u1]);
+            self.triangles.push([u1, l0, l1]);
             self.part.extend([part, part]);
         }
     }
@@ -128,12 +216,13 @@ impl Tessellation {
 /// Crease angle of primitives' generated normals (radians): facets of the default
 /// tessellations are smoothed, the rims of caps stay sharp; see docs/design.md#primitives.
 pub const CREASE_ANGLE: f32 = 1.0;
-/// The shape of a tessellated primitive over `coords` (its `Geo::triangles`): counter-clockwise,
-/// creased at [`CREASE_ANGLE`]; the caller says whether it is solid (closed).
+/// The shape of tessellation `t` over its `geo` (`t.to_geo()` with the bindings resolved):
+/// counter-clockwise, creased at [`CREASE_ANGLE`], solid when closed, with `t`'s texture
+/// coordinates when made textured.
 pub fn shape_spec<'a>(
     name: String,
     transform: Mat4,
-    coords: &'a [f32],
+    t: &'a Tessellation,
     geo: Geo,
     colors: Bind<'a>,
     diffuse: [f32; 3],
@@ -142,14 +231,14 @@ pub fn shape_spec<'a>(
     ShapeSpec {
         name,
         transform,
-        coords,
+        coords: &t.coords,
+        texcoords: t.texcoords_of(&geo),
         corners: geo.corners,
         ends: geo.ends,
         colors,
         normals: Bind::None,
-        texcoords: None,
         ccw: true,
-        solid: false,
+        solid: t.closed,
         crease_angle: Some(CREASE_ANGLE),
         diffuse,
         line,
@@ -180,79 +269,194 @@ pub fn sphere_steps(complexity: f32) -> (u32, u32) {
     (n.max(3), n.clamp(4, MAX_SLICES))
 }
 
-/// The shapes below are empty when a size is zero (they would be degenerate).
-/// A sphere of `radius`: `2 * slices * (stacks - 2)` triangles, closed.
-pub fn sphere(radius: f32, complexity: f32) -> Tessellation {
+/// The shapes below are empty when a size is zero (they would be degenerate). `textured`
+/// adds texture coordinates as VRML 2.0 defines them (§6.42 Sphere, §6.11 Cylinder, §6.8
+/// Cone; Inventor's SoSphere, SoCylinder, SoCone agree), splitting vertices at the seams.
+///
+/// A sphere of `radius`: `2 * slices * (stacks - 2)` triangles, closed. Textured, u runs
+/// around from the back (-z, then -x, +z, +x) and v from the bottom pole (0) to the top (1).
+pub fn sphere(radius: f32, complexity: f32, textured: bool) -> Tessellation {
     let (stacks, slices) = sphere_steps(complexity);
     let mut t = Tessellation::default();
     if radius == 0.0 {
         return t;
     }
-    let top = t.vertex(0.0, radius, 0.0);
+    let v_of = |i: u32| textured.then(|| 1.0 - i as f32 / (stacks - 1) as f32);
+    let top = t.apex(slices, radius, v_of(0));
     let rings = stacks - 2;
-    let mut first = Vec::with_capacity(rings as usize);
+    let mut ring = Vec::with_capacity(rings as usize);
     for i in 1..=rings {
         let rho = PI * i as f32 / (stacks - 1) as f32;
-        first.push(t.ring(slices, radius * rho.sin(), radius * rho.cos()));
+        let uv = v_of(i).map_or(RingUv::None, RingUv::Side);
+        ring.push(t.ring(slices, radius * rho.sin(), radius * rho.cos(), uv));
     }
-    let bottom = t.vertex(0.0, -radius, 0.0);
-    t.apex_fan(top, first[0], slices, true, 0);
-    for w in first.windows(2) {
-        t.band(w[0], w[1], slices, 0);
+    let bottom = t.apex(slices, -radius, v_of(stacks - 1));
+    t.apex_fan(top, ring[0], true, 0);
+    for w in ring.windows(2) {
+        t.band(w[0], w[1], 0);
     }
-    t.apex_fan(bottom, first[first.len() - 1], slices, false, 0);
+    t.apex_fan(bottom, ring[ring.len() - 1], false, 0);
     t.closed = true;
     t
 }
 
 /// A cylinder of `radius` and `height`: the side is `2 * slices` triangles, each cap
-/// `slices - 2`; closed with all parts.
-pub fn cylinder(radius: f32, height: f32, complexity: f32, parts: Parts) -> Tessellation {
+/// `slices - 2`; closed with all parts. Textured, the side's u runs as a sphere's and v from
+/// bottom to top; each cap is a circle cut out of the texture's unit square.
+pub fn cylinder(
+    radius: f32,
+    height: f32,
+    complexity: f32,
+    parts: Parts,
+    textured: bool,
+) -> Tessellation {
     let n = round_slices(complexity);
     let h = height * 0.5;
     let mut t = Tessellation::default();
     if radius == 0.0 || height == 0.0 {
         return t;
     }
-    let lower = t.ring(n, radius, -h);
-    let upper = t.ring(n, radius, h);
+    let (side, bottom, top) = if textured {
+        // The side's rings and each cap's own ring: their texture coordinates differ.
+        let side = parts.side.then(|| {
+            let lower = t.ring(n, radius, -h, RingUv::Side(0.0));
+            (t.ring(n, radius, h, RingUv::Side(1.0)), lower)
+        });
+        let bottom = parts
+            .bottom
+            .then(|| t.ring(n, radius, -h, RingUv::Cap { top: false }));
+        let top = parts
+            .top
+            .then(|| t.ring(n, radius, h, RingUv::Cap { top: true }));
+        (side, bottom, top)
+    } else {
+        let lower = t.ring(n, radius, -h, RingUv::None);
+        let upper = t.ring(n, radius, h, RingUv::None);
+        (
+            parts.side.then_some((upper, lower)),
+            parts.bottom.then_some(lower),
+            parts.top.then_some(upper),
+        )
+    };
     let mut part = 0;
-    if parts.side {
-        t.band(upper, lower, n, part);
+    if let Some((upper, lower)) = side {
+        t.band(upper, lower, part);
         part += 1;
     }
-    if parts.bottom {
-        t.cap(lower, n, false, part);
+    if let Some(ring) = bottom {
+        t.cap(ring.first, n, false, part);
         part += 1;
     }
-    if parts.top {
-        t.cap(upper, n, true, part);
+    if let Some(ring) = top {
+        t.cap(ring.first, n, true, part);
     }
     t.closed = parts == Parts::ALL;
     t
 }
 
 /// A cone of `bottom_radius` and `height`, apex up: the side is `slices` triangles, the
-/// bottom `slices - 2`; closed with both parts.
-pub fn cone(bottom_radius: f32, height: f32, complexity: f32, parts: Parts) -> Tessellation {
+/// bottom `slices - 2`; closed with both parts. Textured, the side's u runs as a sphere's
+/// and v from the bottom (0) to the apex (1); the bottom is a cylinder's bottom cap.
+pub fn cone(
+    bottom_radius: f32,
+    height: f32,
+    complexity: f32,
+    parts: Parts,
+    textured: bool,
+) -> Tessellation {
     let n = round_slices(complexity);
     let h = height * 0.5;
     let mut t = Tessellation::default();
     if bottom_radius == 0.0 || height == 0.0 {
         return t;
     }
-    let ring = t.ring(n, bottom_radius, -h);
+    let side_uv = if textured {
+        RingUv::Side(0.0)
+    } else {
+        RingUv::None
+    };
+    let ring = t.ring(n, bottom_radius, -h, side_uv);
     let mut part = 0;
     if parts.side {
-        let apex = t.vertex(0.0, h, 0.0);
-        t.apex_fan(apex, ring, n, true, part);
+        let apex = t.apex(n, h, textured.then_some(1.0));
+        t.apex_fan(apex, ring, true, part);
         part += 1;
     }
     if parts.bottom {
-        t.cap(ring, n, false, part);
+        let cap = if textured {
+            t.ring(n, bottom_radius, -h, RingUv::Cap { top: false })
+        } else {
+            ring
+        };
+        t.cap(cap.first, n, false, part);
     }
     t.closed = parts.side && parts.bottom;
     t
+}
+
+/// A box's six faces as quads over [`box_coords`]'s eight corners, counter-clockwise seen
+/// from outside, in the order +z, -z, +x, -x, +y, -y.
+const BOX_FACES: [[u32; 4]; 6] = [
+    [4, 5, 7, 6],
+    [0, 2, 3, 1],
+    [1, 3, 7, 5],
+    [0, 4, 6, 2],
+    [2, 6, 7, 3],
+    [0, 1, 5, 4],
+];
+/// The directions of u and v on each face of [`BOX_FACES`] (VRML 2.0 §6.4, Inventor's
+/// SoCube): the sides upright seen from outside, the top seen from above with -z up, the
+/// bottom seen from below with +z up.
+const BOX_FACE_AXES: [[Vec3; 2]; 6] = [
+    [Vec3::X, Vec3::Y],
+    [Vec3::NEG_X, Vec3::Y],
+    [Vec3::NEG_Z, Vec3::Y],
+    [Vec3::Z, Vec3::Y],
+    [Vec3::X, Vec3::NEG_Z],
+    [Vec3::X, Vec3::Z],
+];
+
+/// Corner `i` of a box (0..8) as signs: +x when bit 0 is set, +y for bit 1, +z for bit 2.
+fn box_corner(i: u32) -> Vec3 {
+    let sign = |bit: u32| if i & bit != 0 { 1.0 } else { -1.0 };
+    Vec3::new(sign(1), sign(2), sign(4))
+}
+
+/// The points of a centred box of half sizes `half`, flat x y z: its eight corners, or
+/// textured, each face's four corners of its own (24 points, in [`box_quads`]'s order).
+pub fn box_coords(half: Vec3, textured: bool) -> Vec<f32> {
+    let corner = |i: u32| (box_corner(i) * half).to_array();
+    if textured {
+        BOX_FACES
+            .iter()
+            .flatten()
+            .flat_map(|&i| corner(i))
+            .collect()
+    } else {
+        (0..8).flat_map(corner).collect()
+    }
+}
+
+/// The corners of a box's six quads over [`box_coords`] (4 each).
+pub fn box_quads(textured: bool) -> Vec<u32> {
+    if textured {
+        (0..24).collect()
+    } else {
+        BOX_FACES.iter().flatten().copied().collect()
+    }
+}
+
+/// The texture coordinates of a textured box's 24 points, flat u v: each face maps the
+/// whole texture (0..1), oriented as [`BOX_FACE_AXES`] says.
+pub fn box_texcoords() -> Vec<f32> {
+    let mut uv = Vec::with_capacity(48);
+    for (face, [u, v]) in BOX_FACES.iter().zip(BOX_FACE_AXES) {
+        for &i in face {
+            let p = box_corner(i);
+            uv.extend([0.5 + 0.5 * p.dot(u), 0.5 + 0.5 * p.dot(v)]);
+        }
+    }
+    uv
 }
 
 #[cfg(test)]
@@ -283,28 +487,31 @@ mod tests {
 
     #[test]
     fn coin_counts_at_the_default_complexity() {
-        assert_eq!(sphere(1.0, 0.5).triangles.len(), 390);
+        assert_eq!(sphere(1.0, 0.5, false).triangles.len(), 390);
         assert_eq!(
-            cylinder(1.0, 2.0, 0.5, Parts::ALL).triangles.len(),
+            cylinder(1.0, 2.0, 0.5, Parts::ALL, false).triangles.len(),
             40 + 18 + 18
         );
-        assert_eq!(cone(1.0, 2.0, 0.5, Parts::ALL).triangles.len(), 20 + 18);
+        assert_eq!(
+            cone(1.0, 2.0, 0.5, Parts::ALL, false).triangles.len(),
+            20 + 18
+        );
     }
 
     #[test]
     fn full_shapes_are_closed_outward_and_near_their_volume() {
-        let s = sphere(2.0, 1.0);
+        let s = sphere(2.0, 1.0, false);
         assert!(closed(&s));
         let v = signed_volume(&s);
         assert!(
             v > 0.95 * 4.0 / 3.0 * PI * 8.0 && v < 4.0 / 3.0 * PI * 8.0,
             "{v}"
         );
-        let c = cylinder(1.0, 3.0, 1.0, Parts::ALL);
+        let c = cylinder(1.0, 3.0, 1.0, Parts::ALL, false);
         assert!(closed(&c));
         let v = signed_volume(&c);
         assert!(v > 0.98 * PI * 3.0 && v < PI * 3.0, "{v}");
-        let k = cone(1.0, 3.0, 1.0, Parts::ALL);
+        let k = cone(1.0, 3.0, 1.0, Parts::ALL, false);
         assert!(closed(&k));
         let v = signed_volume(&k);
         assert!(v > 0.98 * PI && v < PI, "{v}");

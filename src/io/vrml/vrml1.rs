@@ -9,21 +9,26 @@
 //! shape node (IndexedFaceSet, IndexedTriangleStripSet, IndexedTriangleMesh, FaceSet,
 //! TriangleStripSet, QuadMesh, Cube, Sphere, Cone, Cylinder) becomes one `Model` with the
 //! state's world transform. Inventor 2.1 `vertexProperty` fields override the state for their
-//! shape. `MatrixTransform` follows the row-vector convention: the matrix is written row by
-//! row with the translation in the last row. An error inside a `USE`d node names the USE's
-//! line and the DEF's.
+//! shape. Under a `Texture2`, Cube, Sphere, Cone and Cylinder make their own texture
+//! coordinates (see `primitives`), other shapes without coordinates get the default mapping
+//! (see `default_texcoords`); `Texture2Transform`s accumulate and transform every shape's.
+//! `MatrixTransform` follows the row-vector convention: the matrix is written row by row
+//! with the translation in the last row. An error inside a `USE`d node names the USE's line
+//! and the DEF's.
 
 use std::borrow::Cow;
 use std::rc::Rc;
 
-use glam::{Mat4, Quat, Vec3};
+use glam::{Affine2, Mat4, Quat, Vec3};
 
 use super::bindings::{
     explicit, resolve, split_polygons, strips_to_triangles, texcoords_per_vertex, Binding, Geo,
 };
+use super::default_texcoords;
 use super::lexer::{PResult, ParseError};
 use super::parse::{is_kit, used_at, Node, Value, USE_KIND};
 use super::primitives::{self, Parts};
+use super::texture_transform;
 use super::Ctx;
 use crate::io::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
 use crate::mesh::Model;
@@ -40,6 +45,8 @@ struct State {
     texture: Option<String>,
     /// `Texture2`'s `wrapS`, `wrapT`: true for REPEAT (the default), false for CLAMP.
     texture_repeat: [bool; 2],
+    /// The `Texture2Transform`s met so far, composed (the last applied first).
+    texture_transform: Affine2,
     material: Option<Rc<Node>>,
     material_binding: Binding,
     normal_binding: Binding,
@@ -62,6 +69,7 @@ impl Default for State {
             texcoords: None,
             texture: None,
             texture_repeat: [true; 2],
+            texture_transform: Affine2::IDENTITY,
             material: None,
             material_binding: Binding::Overall,
             normal_binding: Binding::Default,
@@ -109,8 +117,8 @@ pub fn compose(t: Vec3, r: Quat, s: Vec3, so: Quat, c: Vec3) -> Mat4 {
 }
 
 /// Traverses the top-level nodes (an implicit root Separator) into models.
-pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>) -> PResult<Vec<Model>> {
-    let mut ctx = Ctx::new(warnings);
+pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>, nodes: usize) -> PResult<Vec<Model>> {
+    let mut ctx = Ctx::new(warnings, nodes);
     let mut state = State::default();
     for n in roots {
         traverse(n, &mut state, &mut ctx)?;
@@ -122,6 +130,7 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
     if node.skipped {
         return Ok(());
     }
+    ctx.budget.visit(node.line)?;
     if node.kind == USE_KIND {
         let target = node.target();
         let name = node.def.as_deref().unwrap_or_default();
@@ -283,6 +292,7 @@ fn apply_property(node: &Rc<Node>, state: &mut State) -> PResult<bool> {
                 .cloned();
             state.texture_repeat = [wrap(node, "wrapS")?, wrap(node, "wrapT")?];
         }
+        "Texture2Transform" => state.texture_transform *= texture_transform::inventor(node),
         "Material" | "BaseColor" => state.material = Some(node.clone()),
         "MaterialBinding" => state.material_binding = binding(node)?,
         "NormalBinding" => state.normal_binding = binding(node)?,
@@ -525,22 +535,30 @@ struct Props<'a> {
     materials: Cow<'a, [f32]>,
     material_binding: Binding,
     normal_binding: Binding,
-    texcoords: &'a [f32],
+    texcoords: Cow<'a, [f32]>,
 }
 
 fn props<'a>(node: &'a Node, state: &'a State) -> Props<'a> {
     let vp = node
         .node("vertexProperty")
         .filter(|v| !v.skipped && v.kind == "VertexProperty");
-    let coords = if node.kind == "Cube" {
+    let cube = node.kind == "Cube";
+    let textured_cube = cube && state.texture.is_some();
+    let coords = if cube {
         let half = Vec3::new(
             node.float("width").unwrap_or(2.0),
             node.float("height").unwrap_or(2.0),
             node.float("depth").unwrap_or(2.0),
         ) * 0.5;
-        Cow::Owned(box_corners(half))
+        Cow::Owned(primitives::box_coords(half, textured_cube))
     } else {
         Cow::Borrowed(property_or(vp, "vertex", &state.coords, "point"))
+    };
+    // A Cube makes its own texture coordinates, as the specification defines them.
+    let texcoords = if textured_cube {
+        Cow::Owned(primitives::box_texcoords())
+    } else {
+        Cow::Borrowed(property_or(vp, "texCoord", &state.texcoords, "point"))
     };
     let rgba = vp
         .and_then(|v| v.ints("orderedRGBA"))
@@ -566,12 +584,13 @@ fn props<'a>(node: &'a Node, state: &'a State) -> Props<'a> {
             .and_then(|v| v.word("normalBinding"))
             .and_then(Binding::parse)
             .unwrap_or(state.normal_binding),
-        texcoords: property_or(vp, "texCoord", &state.texcoords, "point"),
+        texcoords,
     }
 }
 
-/// The shape's polygons over `npoints` coordinates, and the field that indexed them.
-fn geometry(node: &Node, npoints: usize) -> PResult<(Geo, &'static str)> {
+/// The shape's polygons over `npoints` coordinates, and the field that indexed them; a
+/// textured Cube's faces have corners of their own.
+fn geometry(node: &Node, npoints: usize, textured: bool) -> PResult<(Geo, &'static str)> {
     match node.kind.as_str() {
         "IndexedFaceSet" => {
             let raw = node.ints("coordIndex").unwrap_or(&[]);
@@ -595,7 +614,7 @@ fn geometry(node: &Node, npoints: usize) -> PResult<(Geo, &'static str)> {
         }
         "FaceSet" | "TriangleStripSet" => counted(node, npoints),
         "QuadMesh" => quad_mesh(node, npoints),
-        _ => Ok((cube_geo(), "Cube")),
+        _ => Ok((cube_geo(textured), "Cube")),
     }
 }
 
@@ -696,18 +715,10 @@ fn quad_mesh(node: &Node, npoints: usize) -> PResult<(Geo, &'static str)> {
     Ok((geo, "verticesPerColumn"))
 }
 
-/// A Cube's six quads over `box_corners`, counter-clockwise seen from outside; PER_FACE and
-/// PER_PART bind one value per side.
-fn cube_geo() -> Geo {
-    let faces: [[u32; 4]; 6] = [
-        [4, 5, 7, 6],
-        [0, 2, 3, 1],
-        [1, 3, 7, 5],
-        [0, 4, 6, 2],
-        [2, 6, 7, 3],
-        [0, 1, 5, 4],
-    ];
-    let corners: Vec<u32> = faces.iter().flatten().copied().collect();
+/// A Cube's six quads over `primitives::box_coords`, counter-clockwise seen from outside;
+/// PER_FACE and PER_PART bind one value per side.
+fn cube_geo(textured: bool) -> Geo {
+    let corners = primitives::box_quads(textured);
     Geo {
         seq_no: (0..24).collect(),
         raw_pos: (0..24).collect(),
@@ -742,7 +753,11 @@ fn attributes<'a>(
             b @ (Binding::PerFace | Binding::PerPart) => resolve(b, &props.materials, None, geo),
             _ => Bind::None,
         };
-        return (colors, Bind::None, None);
+        let texcoords = state
+            .texture
+            .as_ref()
+            .and_then(|_| texcoords_per_vertex(&props.texcoords, None, geo, true));
+        return (colors, Bind::None, texcoords);
     }
     let colors = resolve(
         plain(props.material_binding),
@@ -766,13 +781,14 @@ fn attributes<'a>(
     } else {
         None
     };
-    let texcoords = texcoords_per_vertex(props.texcoords, texcoord_index, geo, by_index);
+    let texcoords = texcoords_per_vertex(&props.texcoords, texcoord_index, geo, by_index);
     (colors, normals, texcoords)
 }
 
 fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
     let props = props(node, state);
-    let (geo, index_field) = geometry(node, props.coords.len() / 3)?;
+    let textured = state.texture.is_some();
+    let (geo, index_field) = geometry(node, props.coords.len() / 3, textured)?;
     let (colors, normals, texcoords) = attributes(node, state, &props, &geo);
     let cube = node.kind == "Cube";
     let m = &props.materials;
@@ -806,9 +822,14 @@ fn shape_name(node: &Node, ctx: &Ctx<'_>) -> String {
         .unwrap_or_else(|| format!("{}_{}", node.kind, ctx.models.len() + 1))
 }
 
-/// Builds the model, gives it the state's texture and keeps it unless it is empty.
+/// Builds the model, gives it the state's texture (with the default coordinates where the
+/// shape has none) and keeps it unless it is empty.
 fn finish(spec: ShapeSpec<'_>, state: &State, line: usize, ctx: &mut Ctx<'_>) -> PResult<()> {
     let mut model = build(spec, ctx.warnings)?;
+    if state.texture.is_some() && model.texcoords.is_none() {
+        default_texcoords::bounding_box(&mut model);
+    }
+    texture_transform::apply(&mut model, state.texture_transform);
     model.texture = state.texture.clone();
     if model.texture.is_some() {
         // Wrapping means nothing without an image: left at the default, as `.pm` files keep it.
@@ -855,19 +876,22 @@ fn primitive(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
         })?,
     };
     let c = state.complexity;
+    let textured = state.texture.is_some();
     let t = match node.kind.as_str() {
-        "Sphere" => primitives::sphere(size(node, "radius", 1.0), c),
+        "Sphere" => primitives::sphere(size(node, "radius", 1.0), c, textured),
         "Cylinder" => primitives::cylinder(
             size(node, "radius", 1.0),
             size(node, "height", 2.0),
             c,
             parts,
+            textured,
         ),
         _ => primitives::cone(
             size(node, "bottomRadius", 1.0),
             size(node, "height", 2.0),
             c,
             parts,
+            textured,
         ),
     };
     if t.triangles.is_empty() {
@@ -885,29 +909,14 @@ fn primitive(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
         _ => Bind::None,
     };
     let d = diffuse_values(state.material.as_ref());
-    let mut spec = primitives::shape_spec(
+    let spec = primitives::shape_spec(
         shape_name(node, ctx),
         state.transform,
-        &t.coords,
+        &t,
         geo,
         colors,
         [d[0], d[1], d[2]],
         node.line,
     );
-    spec.solid = t.closed;
     finish(spec, state, node.line, ctx)
-}
-
-/// The eight corners of a centred box, flat x y z; corner `i` has +x when bit 0 is set, +y
-/// for bit 1, +z for bit 2.
-pub fn box_corners(half: Vec3) -> Vec<f32> {
-    (0..8)
-        .flat_map(|i| {
-            [
-                if i & 1 != 0 { half.x } else { -half.x },
-                if i & 2 != 0 { half.y } else { -half.y },
-                if i & 4 != 0 { half.z } else { -half.z },
-            ]
-        })
-        .collect()
 }

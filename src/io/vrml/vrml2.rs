@@ -4,26 +4,31 @@
 //! Each `Shape` whose geometry is an `IndexedFaceSet`, an `ElevationGrid`, a `Box` or a
 //! `Sphere`, `Cone` or `Cylinder` (see `primitives`) becomes one `Model` with the accumulated
 //! world transform, the material's diffuse colour, and the geometry's colours and normals
-//! (`colorPerVertex` / `normalPerVertex`, with or without index lists). An error inside a
-//! `USE`d node names the USE's line and the DEF's.
+//! (`colorPerVertex` / `normalPerVertex`, with or without index lists). Under an
+//! `ImageTexture`, `Box`, the round primitives and `Extrusion` make the texture coordinates
+//! the specification defines, and an IndexedFaceSet or ElevationGrid without `texCoord` gets
+//! its default mapping (see `default_texcoords`); an `Appearance`'s `TextureTransform`
+//! transforms any shape's. An error inside a `USE`d node names the USE's line and the DEF's.
 
 use std::rc::Rc;
 
 use glam::{Mat4, Vec3};
 
 use super::bindings::{explicit, resolve, split_polygons, texcoords_per_vertex, Binding, Geo};
+use super::default_texcoords;
 use super::extrusion;
 use super::lexer::{PResult, ParseError};
 use super::parse::{used_at, Node, USE_KIND};
 use super::primitives::{self, Parts, Tessellation};
-use super::vrml1::{box_corners, compose, rotation, skip_empty, vec3};
+use super::texture_transform;
+use super::vrml1::{compose, rotation, skip_empty, vec3};
 use super::Ctx;
-use crate::io::shape_to_model::{build, Bind, ShapeSpec};
+use crate::io::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
 use crate::mesh::Model;
 
 /// Walks the top-level nodes into models.
-pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>) -> PResult<Vec<Model>> {
-    let mut ctx = Ctx::new(warnings);
+pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>, nodes: usize) -> PResult<Vec<Model>> {
+    let mut ctx = Ctx::new(warnings, nodes);
     for n in roots {
         traverse(n, Mat4::IDENTITY, &mut ctx)?;
     }
@@ -34,6 +39,7 @@ fn traverse(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> 
     if node.skipped {
         return Ok(());
     }
+    ctx.budget.visit(node.line)?;
     if node.kind == USE_KIND {
         return through_use(node, |target| traverse(target, transform, ctx));
     }
@@ -109,27 +115,38 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
         .and_then(|a| a.node("texture"))
         .filter(|t| t.kind == "ImageTexture");
     let texture = image.and_then(|t| t.strings("url").first().cloned());
+    // Primitives get the texture coordinates their specifications define only under a texture.
+    let textured = texture.is_some();
     let texture_repeat =
         ["repeatS", "repeatT"].map(|field| image.and_then(|t| t.boolean(field)).unwrap_or(true));
     let boxed;
+    // Texture coordinates a Box or an Extrusion makes.
+    let made_uv;
     let tess;
     let grid;
     let spec = match geometry.kind.as_str() {
         "IndexedFaceSet" => indexed_face_set(geometry, name, transform, diffuse)?,
         "Box" => {
-            boxed = box_corners(vec3(geometry.floats("size"), Vec3::splat(2.0)) * 0.5);
-            let faces: [u32; 24] = [
-                4, 5, 7, 6, 0, 2, 3, 1, 1, 3, 7, 5, 0, 4, 6, 2, 2, 6, 7, 3, 0, 1, 5, 4,
-            ];
+            let half = vec3(geometry.floats("size"), Vec3::splat(2.0)) * 0.5;
+            boxed = primitives::box_coords(half, textured);
+            made_uv = if textured {
+                primitives::box_texcoords()
+            } else {
+                Vec::new()
+            };
+            let corners = primitives::box_quads(textured);
             ShapeSpec {
                 name,
                 transform,
                 coords: &boxed,
-                corners: faces.to_vec(),
+                texcoords: textured.then(|| TexCoords {
+                    values: &made_uv,
+                    index: corners.clone(),
+                }),
+                corners,
                 ends: (1..=6).map(|i| i * 4).collect(),
                 colors: Bind::None,
                 normals: Bind::None,
-                texcoords: None,
                 ccw: true,
                 solid: true,
                 crease_angle: None,
@@ -148,12 +165,13 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
             grid_spec(geometry, name, transform, diffuse, &grid, geo)
         }
         "Extrusion" => {
-            let swept = extrusion::extrude(geometry)?;
+            let swept = extrusion::extrude(geometry, textured)?;
             if swept.ends.is_empty() {
                 skip_empty(geometry, ctx);
                 return Ok(());
             }
             grid = swept.points;
+            made_uv = swept.texcoords;
             ShapeSpec {
                 name,
                 transform,
@@ -162,7 +180,10 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
                 ends: swept.ends,
                 colors: Bind::None,
                 normals: Bind::None,
-                texcoords: None,
+                texcoords: textured.then(|| TexCoords {
+                    values: &made_uv,
+                    index: swept.texcoord_index,
+                }),
                 ccw: geometry.boolean("ccw").unwrap_or(true),
                 solid: geometry.boolean("solid").unwrap_or(true),
                 crease_angle: geometry.float("creaseAngle"),
@@ -172,22 +193,20 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
             }
         }
         "Sphere" | "Cone" | "Cylinder" => {
-            tess = primitive(geometry);
+            tess = primitive(geometry, textured);
             if tess.triangles.is_empty() {
                 skip_empty(geometry, ctx);
                 return Ok(());
             }
-            let mut spec = primitives::shape_spec(
+            primitives::shape_spec(
                 name,
                 transform,
-                &tess.coords,
+                &tess,
                 tess.to_geo(),
                 Bind::None,
                 diffuse,
                 geometry.line,
-            );
-            spec.solid = tess.closed;
-            spec
+            )
         }
         other => {
             ctx.budget.warn_once(
@@ -202,6 +221,21 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
         }
     };
     let mut model = build(spec, ctx.warnings)?;
+    if textured && model.texcoords.is_none() {
+        match geometry.kind.as_str() {
+            "IndexedFaceSet" => default_texcoords::bounding_box(&mut model),
+            "ElevationGrid" => default_texcoords::elevation_grid(&mut model),
+            // Every other geometry makes its own.
+            _ => {}
+        }
+    }
+    if let Some(t) = node
+        .node("appearance")
+        .and_then(|a| a.node("textureTransform"))
+        .filter(|t| t.kind == "TextureTransform")
+    {
+        texture_transform::apply(&mut model, texture_transform::vrml2(t));
+    }
     model.texture = texture;
     if model.texture.is_some() {
         // Wrapping means nothing without an image: left at the default, as `.pm` files keep it.
@@ -216,8 +250,9 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
 }
 
 /// A `Sphere`, `Cone` or `Cylinder` at Coin's default complexity, with the parts its
-/// `side`, `top` and `bottom` fields keep (negative sizes taken as positive, as Coin does).
-fn primitive(g: &Node) -> Tessellation {
+/// `side`, `top` and `bottom` fields keep (negative sizes taken as positive, as Coin does),
+/// with texture coordinates when `textured`.
+fn primitive(g: &Node, textured: bool) -> Tessellation {
     let size = |field: &str, default: f32| g.float(field).map_or(default, f32::abs);
     let on = |field: &str| g.boolean(field).unwrap_or(true);
     let parts = Parts {
@@ -227,9 +262,17 @@ fn primitive(g: &Node) -> Tessellation {
     };
     let c = primitives::DEFAULT_COMPLEXITY;
     match g.kind.as_str() {
-        "Sphere" => primitives::sphere(size("radius", 1.0), c),
-        "Cylinder" => primitives::cylinder(size("radius", 1.0), size("height", 2.0), c, parts),
-        _ => primitives::cone(size("bottomRadius", 1.0), size("height", 2.0), c, parts),
+        "Sphere" => primitives::sphere(size("radius", 1.0), c, textured),
+        "Cylinder" => {
+            primitives::cylinder(size("radius", 1.0), size("height", 2.0), c, parts, textured)
+        }
+        _ => primitives::cone(
+            size("bottomRadius", 1.0),
+            size("height", 2.0),
+            c,
+            parts,
+            textured,
+        ),
     }
 }
 
