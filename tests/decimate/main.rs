@@ -14,5 +14,6 @@ mod qem;
 mod random;
 mod report_models;
 mod schroeder;
+mod seams;
 mod stitches;
 mod texcoords;

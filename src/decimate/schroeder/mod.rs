@@ -90,6 +90,10 @@ pub fn decimate_model(
     d.copies = crate::mesh::seams::copy_cycles(&d.positions, &pinned);
     d.pinned = pinned;
     d.twins = loaded.pairs(twins);
+    if !d.twins.is_empty() || !d.copies.is_empty() {
+        // A seam cuts a closed shape open: judge closedness with its copies welded.
+        d.closed = ClosedVolumes::with_seams(&d.positions, &triangles, &d.twins, &d.copies);
+    }
     d.texcoords = model
         .texcoords
         .as_ref()
