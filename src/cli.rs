@@ -37,6 +37,8 @@ pub struct ShotOptions {
     pub targets: Vec<Target>,
     /// Where relative texture names are read from: the input file's folder.
     pub texture_dir: PathBuf,
+    /// Samples per pixel for anti-aliasing (`--msaa`; 1: off), as many as the device offers.
+    pub msaa: u32,
 }
 
 impl Default for ShotOptions {
@@ -49,6 +51,7 @@ impl Default for ShotOptions {
             labels: None,
             targets: Vec::new(),
             texture_dir: PathBuf::from("."),
+            msaa: crate::render::pipeline::DEFAULT_MSAA,
         }
     }
 }
@@ -83,14 +86,15 @@ pub struct Args {
     /// `--tiles auto|N` (nogui): decimate in tiles (`tile::local`), never the whole input
     /// in memory.
     pub tiles: Option<Tiles>,
-    /// `--memory SIZE`: the budget `--tiles auto` sizes tiles for, in bytes.
+    /// `--memory SIZE`: the budget of a tiled run, in bytes: how big `auto` tiles are, how
+    /// many run at once, whether the merge re-tiles (`tile::schedule`).
     pub memory: Option<u64>,
 }
 
 /// `--tiles` of nogui: how many tiles the command line asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Tiles {
-    /// Sized from the memory budget (`tile::local::count_for`).
+    /// Sized from the memory budget (`tile::schedule::count_for`).
     Auto,
     Count(usize),
 }
@@ -129,6 +133,8 @@ pub enum TileCommand {
         dir: PathBuf,
         output: PathBuf,
         target: Option<Target>,
+        /// `--memory SIZE`: the budget that decides whether the merge re-tiles.
+        memory: Option<u64>,
     },
 }
 
@@ -195,7 +201,8 @@ also set what the viewer draws):
   --size WxH            image size (DEFAULT: 800x600)
   --viewports N         1-4 viewports: the original, then the decimated scene
   --mode LIST           comma-separated: triangles,edges,points,normals,vertex-normals,
-                        flat,unlit,untextured (DEFAULT: triangles)
+                        flat,unlit,untextured,error (DEFAULT: triangles)
+  --msaa N              anti-aliasing: 1 (off), 2, 4 or 8 samples per pixel (DEFAULT: 4)
   --crease-angle DEG    smooth shading keeps edges whose faces meet at more than DEG
                         sharp (DEFAULT: the file's creaseAngle, else 45; 180: smooth)
   --labels, --no-labels a caption on each viewport: what it shows, its counts
@@ -203,10 +210,10 @@ also set what the viewer draws):
   -p / -v / ...         decimation target, as for nogui; a list such as -p 60,80,90
                         gives each decimated viewport its own (and --viewports 4)
 
-  --tiles auto|N        decimate in N spatial tiles (auto: as many as --memory needs),
-                        borders locked, then weld them and decimate the seams again;
-                        PLY, STL or OBJ input, -p or --keep-triangles, -a qem implied
-  --memory SIZE         what --tiles auto may use, e.g. 2G or 512M (DEFAULT: a
+  --tiles auto|N        decimate in N spatial tiles (auto: sized by --memory), as many
+                        at once as --memory allows, borders locked, then weld them and
+                        decimate the seams again; PLY, STL or OBJ, -p or --keep-triangles
+  --memory SIZE         what a tiled run may use, e.g. 2G or 512M (DEFAULT: a
                         quarter of the machine's RAM)
 
 typical usage:           decimate model.wrl
@@ -218,7 +225,7 @@ tiled decimation as separate jobs (see docs/cluster.md):
   decimate tile run DIR [INDEX]   (INDEX DEFAULT: $SLURM_ARRAY_TASK_ID or
                                    $JOB_COMPLETION_INDEX)
   decimate tile status DIR
-  decimate tile merge DIR [-o OUT] [-p P | --keep-triangles T]
+  decimate tile merge DIR [-o OUT] [-p P | --keep-triangles T] [--memory SIZE]
 ";
 
 /// Parses the arguments after the program name.
@@ -355,6 +362,15 @@ where
             "--labels" => shot.labels = Some(true),
             "--no-labels" => shot.labels = Some(false),
             "--mode" => shot.modes = draw_modes(&value(&arg)?)?,
+            "--msaa" => {
+                let n: u32 = number(&arg, &value(&arg)?)?;
+                if ![1, 2, 4, 8].contains(&n) {
+                    return Err(CliError(format!(
+                        "--msaa: expected 1 (off), 2, 4 or 8 samples per pixel, got {n}"
+                    )));
+                }
+                shot.msaa = n;
+            }
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(CliError(format!("unknown option '{s}'")))
             }
@@ -475,6 +491,7 @@ fn parse_tile(args: &[String]) -> Result<TileCommand, CliError> {
     let mut output: Option<PathBuf> = None;
     let mut target: Option<Target> = None;
     let mut count: Option<TileCount> = None;
+    let mut memory: Option<u64> = None;
     while let Some(arg) = it.next() {
         let mut value = |name: &str| {
             it.next()
@@ -496,6 +513,7 @@ fn parse_tile(args: &[String]) -> Result<TileCommand, CliError> {
                 });
             }
             ("merge", "-o" | "--output") => output = Some(PathBuf::from(value(arg)?)),
+            ("merge", "--memory") => memory = Some(bytes(arg, value(arg)?)?),
             ("plan" | "merge", "-p" | "--percent") => {
                 let p: f64 = number(arg, value(arg)?)?;
                 if !(0.0..=100.0).contains(&p) {
@@ -566,6 +584,7 @@ fn parse_tile(args: &[String]) -> Result<TileCommand, CliError> {
                 dir: first("work folder")?,
                 output: output.unwrap_or_else(|| PathBuf::from("out.wrl")),
                 target,
+                memory,
             }
         }
     })
@@ -768,10 +787,11 @@ pub fn draw_modes(s: &str) -> Result<DrawOptions, CliError> {
             "flat" => m.smooth = false,
             "unlit" => m.lighting = false,
             "untextured" => m.textures = false,
+            "error" => m.error_map = true,
             other => {
                 return Err(CliError(format!(
                     "--mode: unknown mode '{other}' (expected triangles, edges, points, \
-                     normals, vertex-normals, flat, unlit, untextured)"
+                     normals, vertex-normals, flat, unlit, untextured, error)"
                 )))
             }
         }
@@ -911,6 +931,15 @@ mod tests {
                 target: Target::RemovePercent(90.0),
             }))
         );
+        assert_eq!(
+            parse(["tile", "merge", "w", "-o", "o.ply", "--memory", "512M"]),
+            Ok(Command::Tile(TileCommand::Merge {
+                dir: PathBuf::from("w"),
+                output: PathBuf::from("o.ply"),
+                target: None,
+                memory: Some(512 << 20),
+            }))
+        );
         assert_eq!(run(&["tile"]).input, PathBuf::from("tile"));
         assert_eq!(run(&["tile", "nogui", "-p", "9"]).action, Action::NoGui);
         let a = run(&[
@@ -1010,6 +1039,21 @@ mod tests {
         assert!(parse(["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "-1"]).is_err());
         assert!(parse(["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "x%"]).is_err());
         assert!(parse(["m.wrl", "shot", "--size", "0x10"]).is_err());
+    }
+
+    #[test]
+    fn msaa_and_the_error_map_are_options_of_the_viewer_and_shot() {
+        assert_eq!(run(&["m.wrl", "shot"]).shot.msaa, 4);
+        assert_eq!(run(&["m.wrl", "shot", "--msaa", "1"]).shot.msaa, 1);
+        assert_eq!(run(&["m.wrl", "--msaa", "8"]).shot.msaa, 8);
+        match parse(["m.wrl", "shot", "--msaa", "3"]) {
+            Err(e) => assert!(e.0.contains("--msaa") && e.0.contains('3'), "{}", e.0),
+            Ok(_) => panic!("--msaa 3 was accepted"),
+        }
+        assert!(parse(["m.wrl", "shot", "--msaa", "x"]).is_err());
+        let a = run(&["m.wrl", "shot", "--mode", "error"]);
+        assert!(a.shot.modes.error_map && a.shot.modes.triangles);
+        assert!(!run(&["m.wrl", "shot"]).shot.modes.error_map);
     }
 
     #[test]

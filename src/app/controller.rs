@@ -54,6 +54,8 @@ pub struct ViewportController {
     pub input_dir: PathBuf,
     /// The last thing that happened, for the status line.
     pub message: String,
+    /// Samples per pixel asked for (`--msaa`, `M`): 1 is no anti-aliasing.
+    pub msaa: u32,
 }
 
 impl ViewportController {
@@ -74,6 +76,7 @@ impl ViewportController {
             inputs: Vec::new(),
             input_dir: PathBuf::from("."),
             message: String::new(),
+            msaa: crate::render::pipeline::DEFAULT_MSAA,
         }
     }
 
@@ -317,6 +320,22 @@ impl ViewportController {
             Action::ToggleLighting => options.lighting ^= true,
             Action::ToggleSmooth => options.smooth ^= true,
             Action::ToggleTexture => options.textures ^= true,
+            Action::ToggleErrorMap => options.error_map ^= true,
+            Action::ToggleMsaa => {
+                self.msaa = if self.msaa > 1 {
+                    1
+                } else {
+                    crate::render::pipeline::DEFAULT_MSAA
+                };
+                self.message = if self.msaa > 1 {
+                    format!(
+                        "anti-aliasing on ({}× MSAA where the device has it)",
+                        self.msaa
+                    )
+                } else {
+                    "anti-aliasing off".into()
+                };
+            }
             Action::CreaseAngle(delta) => {
                 let n = self.current + 1;
                 self.message = match self.current_mut().change_crease(f32::from(delta)) {
@@ -395,6 +414,8 @@ impl ViewportController {
             Action::ToggleLighting => o.lighting,
             Action::ToggleSmooth => o.smooth,
             Action::ToggleTexture => o.textures,
+            Action::ToggleErrorMap => o.error_map,
+            Action::ToggleMsaa => self.msaa > 1,
             Action::ToggleLod => vp.lod().is_some(),
             Action::ToggleKeepBorder => vp.params.keep_border,
             Action::ToggleLinkedCameras => self.linked,

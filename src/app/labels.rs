@@ -104,6 +104,17 @@ impl HeadlessCaptions {
         extent: vk::Extent2D,
         captions: &[(Rect, String)],
     ) -> Result<Self, RenderError> {
+        Self::with_painter(context, commands, extent, &|ctx| paint(ctx, captions, 1.0))
+    }
+
+    /// As [`Self::new`], with whatever `paint_all` paints (captions, a legend) over a picture
+    /// of `extent` at one pixel per point.
+    pub fn with_painter(
+        context: &Arc<Context>,
+        commands: &Commands,
+        extent: vk::Extent2D,
+        paint_all: &dyn Fn(&egui::Context),
+    ) -> Result<Self, RenderError> {
         let overlay = |e: egui_ash_renderer::RendererError| RenderError::Overlay(e.to_string());
         let mut renderer = Renderer::with_gpu_allocator(
             context.allocator().clone(),
@@ -128,7 +139,7 @@ impl HeadlessCaptions {
         if let Some(root) = input.viewports.get_mut(&egui::ViewportId::ROOT) {
             root.native_pixels_per_point = Some(1.0);
         }
-        let output = ctx.run_ui(input, |ui| paint(ui.ctx(), captions, 1.0));
+        let output = ctx.run_ui(input, |ui| paint_all(ui.ctx()));
         let mut textures = output.textures_delta;
         let uploads = std::mem::take(&mut textures.set);
         // Nothing to free: the context ends with the shot.

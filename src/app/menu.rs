@@ -41,6 +41,10 @@ pub enum Action {
     ToggleSmooth,
     /// Textured models textured or in their material colour.
     ToggleTexture,
+    /// Decimated viewports coloured by their distance to the original (the error heat-map).
+    ToggleErrorMap,
+    /// Multisample anti-aliasing (4×) on or off, for the whole window.
+    ToggleMsaa,
     /// The current viewport's crease angle up or down by this many degrees (0 to 180).
     CreaseAngle(i16),
     /// Model control (trackball) ↔ eye control (first person).
@@ -168,6 +172,12 @@ pub fn menu() -> Vec<MenuEntry> {
                 entry("Smooth / flat shading", Some("s"), Action::ToggleSmooth),
                 entry("Texture", Some("T"), Action::ToggleTexture),
                 entry(
+                    "Error heat-map (distance to the original)",
+                    Some("E"),
+                    Action::ToggleErrorMap,
+                ),
+                entry("Anti-aliasing (4× MSAA)", Some("M"), Action::ToggleMsaa),
+                entry(
                     "Crease angle −15° (sharper)",
                     Some("["),
                     Action::CreaseAngle(-15),
@@ -221,6 +231,8 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'l' => Action::ToggleLighting,
                 's' => Action::ToggleSmooth,
                 'T' => Action::ToggleTexture,
+                'E' => Action::ToggleErrorMap,
+                'M' => Action::ToggleMsaa,
                 'm' => Action::ToggleNavigation,
                 'a' => Action::AddViewport,
                 'x' => Action::RemoveViewport,
@@ -350,6 +362,8 @@ mod tests {
             Action::ToggleVertexNormals,
             Action::ToggleLighting,
             Action::ToggleSmooth,
+            Action::ToggleErrorMap,
+            Action::ToggleMsaa,
             Action::ToggleNavigation,
             Action::AddViewport,
             Action::RemoveViewport,

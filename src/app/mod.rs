@@ -3,10 +3,13 @@
 
 pub mod app_error;
 pub mod controller;
+pub mod error_map;
 pub mod glut;
 pub mod labels;
 pub mod lod;
 pub mod menu;
+pub mod menu_layout;
+pub mod popup;
 pub mod save;
 pub mod shot;
 pub mod ui;
@@ -46,6 +49,7 @@ fn run_gui(scene: Scene, args: &Args) -> ExitCode {
     controller.input_dir = crate::io::texture_path::folder_of(&args.input).to_path_buf();
     controller.inputs = vec![args.input.clone()];
     controller.set_draw_options(args.shot.modes);
+    controller.msaa = args.shot.msaa;
     let mut viewer = viewer::Viewer::new(controller, entries);
     // (6) Hand control to the main loop.
     let title = format!("decimate — {}", args.input.display());

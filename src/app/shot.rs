@@ -20,6 +20,7 @@ use crate::render::texture::Textures;
 use crate::render::tiles::tiles;
 use crate::render::RenderError;
 
+use super::error_map::{self, Legend};
 use super::labels::{self, HeadlessCaptions};
 
 /// What can go wrong taking a shot.
@@ -73,6 +74,30 @@ struct Decimated {
     caption: String,
 }
 
+/// The decimated copies to draw, in the heat-map's colours when `heat` (the legend spans
+/// every copy), with the original to draw beside them (neutral grey in the heat-map mode).
+fn heat_mapped(
+    scene: &Scene,
+    copies: Vec<Scene>,
+    heat: bool,
+) -> (Option<Scene>, Vec<Scene>, Option<Legend>) {
+    if !heat {
+        return (None, copies, None);
+    }
+    let fields: Vec<_> = (copies.iter())
+        .map(|copy| crate::metro::field::error_field(scene, copy))
+        .collect();
+    let legend = Legend::spanning(&fields);
+    let coloured = (copies.iter().zip(&fields))
+        .map(|(copy, field)| error_map::heat_scene(copy, field, &legend))
+        .collect();
+    (
+        Some(error_map::neutral_scene(scene)),
+        coloured,
+        Some(legend),
+    )
+}
+
 /// A picture of `scene` and, when `params` is given, of its decimated copies (see
 /// [`viewport_params`]); their reports in viewport order. Every viewport uses the same camera,
 /// framed on the original. Captions (`labels`, by default with more than one viewport) say
@@ -85,8 +110,9 @@ pub fn render(
 ) -> Result<(RgbaImage, Vec<Report>), RenderError> {
     let context = Context::new(&[], false, device)?;
     let commands = Commands::new(&context)?;
-    let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
-    let target = OffscreenTarget::new(&context, options.width, options.height)?;
+    let pipelines = Pipelines::with_samples(&context, OFFSCREEN_FORMAT, options.msaa)?;
+    let target =
+        OffscreenTarget::with_samples(&context, options.width, options.height, pipelines.samples)?;
 
     let draw = options.modes;
     let mut textures = Textures::new(
@@ -94,24 +120,42 @@ pub fn render(
         pipelines.texture_layout,
         texture_image::reader(&options.texture_dir),
     )?;
-    let original = GpuScene::upload(&context, &commands, &mut textures, scene, draw.layers())?;
     let rects = tiles(options.viewports as usize, options.width, options.height);
     let shown = viewport_params(rects.len(), params, &options.targets);
-    let mut decimated: Vec<Decimated> = Vec::new();
+    let mut made: Vec<(Params, Scene, Report)> = Vec::new();
     for p in shown.iter().flatten() {
-        if decimated.iter().any(|d| d.params == *p) {
+        if made.iter().any(|(q, _, _)| q == p) {
             continue;
         }
         let mut copy = scene.clone();
         let report = simplify_scene(&mut copy, p, &mut |_| {});
+        made.push((*p, copy, report));
+    }
+    let copies = made.iter().map(|(_, copy, _)| copy.clone()).collect();
+    let (neutral, drawn, legend) = heat_mapped(scene, copies, draw.error_map);
+    let original = GpuScene::upload(
+        &context,
+        &commands,
+        &mut textures,
+        neutral.as_ref().unwrap_or(scene),
+        draw.layers(),
+    )?;
+    let mut decimated: Vec<Decimated> = Vec::new();
+    for ((p, copy, report), shown_copy) in made.into_iter().zip(&drawn) {
         let what = format!(
             "{} ({})",
             labels::target_words(p.target, p.max_error),
             labels::algorithm_name(p.algorithm)
         );
         decimated.push(Decimated {
-            params: *p,
-            gpu: GpuScene::upload(&context, &commands, &mut textures, &copy, draw.layers())?,
+            params: p,
+            gpu: GpuScene::upload(
+                &context,
+                &commands,
+                &mut textures,
+                shown_copy,
+                draw.layers(),
+            )?,
             report,
             caption: labels::caption(&what, vertices(&copy), copy.triangle_count()),
         });
@@ -131,8 +175,22 @@ pub fn render(
         });
         captions.push((rect, d.map_or(&original_caption, |d| &d.caption).clone()));
     }
-    let image = if options.labels.unwrap_or(rects.len() > 1) {
-        let mut overlay = HeadlessCaptions::new(&context, &commands, target.extent, &captions)?;
+    let labelled = options.labels.unwrap_or(rects.len() > 1);
+    let image = if labelled || legend.is_some() {
+        let screen = egui::Rect::from_min_size(
+            egui::Pos2::ZERO,
+            egui::vec2(options.width as f32, options.height as f32),
+        );
+        let paint = |ctx: &egui::Context| {
+            if labelled {
+                labels::paint(ctx, &captions, 1.0);
+            }
+            if let Some(legend) = &legend {
+                error_map::paint_legend(ctx, legend, screen);
+            }
+        };
+        let mut overlay =
+            HeadlessCaptions::with_painter(&context, &commands, target.extent, &paint)?;
         let mut record = |cmd| overlay.record(cmd);
         target.render_with_overlay(&commands, &pipelines, &views, true, Some(&mut record))?
     } else {

@@ -1,5 +1,5 @@
-//! `UiLayer`: egui over the Vulkan window — the right-click popup menu (built from the menu
-//! data), the "decimate to N vertices" text field, the status line and the help overlay.
+//! `UiLayer`: egui over the Vulkan window — the right-click popup menu (`popup`, built from
+//! the menu data), the "decimate to N vertices" text field, the status line and the help overlay.
 //! Drawn in its own colour-only rendering pass after the viewports.
 
 use std::sync::Arc;
@@ -15,8 +15,10 @@ use crate::render::context::Context;
 use crate::render::tiles::Rect;
 
 use super::app_error::AppError;
+use super::error_map::{self, Legend};
 use super::labels;
-use super::menu::{Action, MenuEntry, MenuItem};
+use super::menu::{Action, MenuEntry};
+use super::popup;
 
 /// What the user did in the UI this frame.
 #[derive(Debug, Default)]
@@ -62,6 +64,8 @@ pub struct UiState<'a> {
     pub lod: Option<(usize, usize, usize)>,
     /// Each viewport's rectangle (physical pixels) and caption.
     pub captions: &'a [(Rect, String)],
+    /// The error heat-map's legend, while a viewport shows it.
+    pub legend: Option<Legend>,
 }
 
 /// egui context, winit glue and Vulkan renderer.
@@ -145,11 +149,15 @@ impl UiLayer {
             help,
             lod,
             captions,
+            legend,
         } = ui_state;
         let scale = window.scale_factor() as f32;
         let output = self.ctx.run_ui(input, |ui| {
             let ctx = ui.ctx().clone();
             labels::paint(&ctx, captions, scale);
+            if let Some(legend) = &legend {
+                error_map::paint_legend(&ctx, legend, ctx.content_rect());
+            }
             egui::Area::new(egui::Id::new("status"))
                 .anchor(egui::Align2::LEFT_BOTTOM, egui::vec2(6.0, -6.0))
                 .show(&ctx, |ui| {
@@ -182,21 +190,9 @@ impl UiLayer {
                     });
             }
             if let Some(pos) = popup_at {
-                let area = egui::Area::new(egui::Id::new("popup menu"))
-                    .fixed_pos(pos)
-                    .order(egui::Order::Foreground)
-                    .show(&ctx, |ui| {
-                        egui::Frame::menu(ui.style()).show(ui, |ui| {
-                            ui.set_min_width(180.0);
-                            menu_entries(ui, menu, checked, &mut result.action);
-                        });
-                    });
-                if !popup_just_opened
-                    && area.response.clicked_elsewhere()
-                    && result.action.is_none()
-                {
-                    result.close_popup = true;
-                }
+                let outcome = popup::show(&ctx, menu, checked, pos, popup_just_opened);
+                result.action = outcome.action;
+                result.close_popup = outcome.close && outcome.action.is_none();
             }
             if let Some(field) = field.as_deref_mut() {
                 vertex_field(&ctx, field, &mut result);
@@ -273,37 +269,4 @@ fn vertex_field(ctx: &egui::Context, field: &mut VertexField, result: &mut UiRes
                 }
             });
         });
-}
-
-/// The menu entries as buttons; submenus as nested menu buttons.
-fn menu_entries(
-    ui: &mut egui::Ui,
-    entries: &[MenuEntry],
-    checked: &dyn Fn(Action) -> Option<bool>,
-    chosen: &mut Option<Action>,
-) {
-    for e in entries {
-        match &e.item {
-            MenuItem::Action(a) => {
-                let label = match e.key {
-                    Some(k) => format!("{}    [{k}]", e.label),
-                    None => e.label.clone(),
-                };
-                // A toggle shows whether it is on with a check mark.
-                let clicked = match checked(*a) {
-                    Some(mut on) => ui.checkbox(&mut on, label).clicked(),
-                    None => ui.button(label).clicked(),
-                };
-                if clicked {
-                    *chosen = Some(*a);
-                    ui.close();
-                }
-            }
-            MenuItem::Submenu(sub) => {
-                ui.menu_button(format!("{}  >", e.label), |ui| {
-                    menu_entries(ui, sub, checked, chosen)
-                });
-            }
-        }
-    }
 }

@@ -15,9 +15,9 @@ use crate::io::texture_image;
 use crate::render::camera::Navigation;
 use crate::render::commands::Commands;
 use crate::render::context::{Context, DevicePreference};
-use crate::render::draw::{self, ViewportDraw, BACKGROUND};
+use crate::render::draw::{self, ViewportDraw};
 use crate::render::gpu_mesh::GpuScene;
-use crate::render::image::{self, Transition, DEPTH_FORMAT};
+use crate::render::image::{self, Transition};
 use crate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
 use crate::render::pipeline::Pipelines;
 use crate::render::swapchain::{Frame, Swapchain};
@@ -26,6 +26,7 @@ use crate::render::RenderError;
 
 use super::app_error::AppError;
 use super::controller::{Effect, ViewportController};
+use super::error_map::{self, FieldCache, Legend, Look};
 use super::glut::{Button, Callbacks, Flow, Special};
 use super::labels::HeadlessCaptions;
 use super::menu::{action_for_key, key_help, Key, MenuEntry};
@@ -36,7 +37,8 @@ use super::ui::{UiLayer, UiResult, UiState, VertexField};
 /// GPU objects of the window; field order is drop order (UI and meshes before the context).
 struct Gpu {
     ui: UiLayer,
-    scenes: Vec<(u64, u64, GpuScene)>,
+    /// Each viewport's scene: its id, generation and look (own colours or heat-mapped).
+    scenes: Vec<(u64, (u64, Look), GpuScene)>,
     /// Uploaded once per name, shared by every viewport's scenes; dropped before the
     /// pipelines, whose set layout its sets were made with.
     textures: Textures,
@@ -64,6 +66,9 @@ pub struct Viewer {
     help_text: String,
     /// The last message of the status line and when it expires.
     message: Option<(String, Instant)>,
+    /// The heat-mapped viewports' error fields and the legend they share.
+    fields: FieldCache,
+    legend: Option<Legend>,
 }
 
 /// Where F2 saves the window's picture.
@@ -90,6 +95,8 @@ impl Viewer {
             field: None,
             help_text: key_help(),
             message: None,
+            fields: FieldCache::default(),
+            legend: None,
         }
     }
 
@@ -150,15 +157,32 @@ impl Viewer {
         let extent = gpu.swapchain.extent;
         gpu.context.wait_idle()?;
         // The window's pipelines draw in the swapchain's format; the picture is RGBA.
-        let pipelines = Pipelines::new(&gpu.context, OFFSCREEN_FORMAT)?;
-        let offscreen = OffscreenTarget::new(&gpu.context, extent.width, extent.height)?;
+        let msaa = gpu.pipelines.samples.as_raw();
+        let pipelines = Pipelines::with_samples(&gpu.context, OFFSCREEN_FORMAT, msaa)?;
+        let offscreen = OffscreenTarget::with_samples(
+            &gpu.context,
+            extent.width,
+            extent.height,
+            pipelines.samples,
+        )?;
         let views = viewport_draws(&gpu.scenes, &self.controller, extent, Instant::now());
         let captions: Vec<_> = (self.controller.rects_for(extent.width, extent.height))
             .into_iter()
             .zip(self.controller.viewports().iter().map(|vp| vp.caption()))
             .collect();
         let commands = &gpu.upload_commands;
-        let mut overlay = HeadlessCaptions::new(&gpu.context, commands, extent, &captions)?;
+        let screen = egui::Rect::from_min_size(
+            egui::Pos2::ZERO,
+            egui::vec2(extent.width as f32, extent.height as f32),
+        );
+        let legend = self.legend;
+        let paint = |ctx: &egui::Context| {
+            super::labels::paint(ctx, &captions, 1.0);
+            if let Some(legend) = &legend {
+                error_map::paint_legend(ctx, legend, screen);
+            }
+        };
+        let mut overlay = HeadlessCaptions::with_painter(&gpu.context, commands, extent, &paint)?;
         let mut record = |cmd| overlay.record(cmd);
         let image = offscreen
             .render_with_overlay(commands, &pipelines, &views, true, Some(&mut record))?
@@ -200,16 +224,22 @@ impl Viewer {
     /// Uploads the scenes whose generation changed, or whose draw modes now need a list that
     /// was left out (then with the lists it had too, so toggling a mode back and forth
     /// uploads once), and forgets removed viewports.
-    fn sync_scenes(gpu: &mut Gpu, controller: &ViewportController) -> Result<(), AppError> {
+    fn sync_scenes(
+        gpu: &mut Gpu,
+        controller: &ViewportController,
+        fields: &FieldCache,
+        legend: Option<&Legend>,
+    ) -> Result<(), AppError> {
         let viewports = controller.viewports();
         gpu.scenes
             .retain(|(id, _, _)| viewports.iter().any(|v| v.id == *id));
         for vp in viewports {
             let needed = vp.options.layers();
+            let key = (vp.generation, fields.look(vp, legend));
             let uploaded = gpu
                 .scenes
                 .iter()
-                .find(|(id, generation, _)| *id == vp.id && *generation == vp.generation)
+                .find(|(id, k, _)| *id == vp.id && *k == key)
                 .map(|(_, _, scene)| scene.layers);
             if uploaded.is_none_or(|layers| !layers.contains(needed)) {
                 gpu.context.wait_idle()?;
@@ -218,12 +248,12 @@ impl Viewer {
                     &gpu.context,
                     &gpu.upload_commands,
                     &mut gpu.textures,
-                    vp.scene(),
+                    &fields.scene(vp, key.1, legend),
                     morph_from,
                     uploaded.map_or(needed, |layers| layers.union(needed)),
                 )?;
                 gpu.scenes.retain(|(id, _, _)| *id != vp.id);
-                gpu.scenes.push((vp.id, vp.generation, scene));
+                gpu.scenes.push((vp.id, key, scene));
             }
         }
         Ok(())
@@ -242,7 +272,14 @@ impl Viewer {
             gpu.swapchain.recreate(self.size.0, self.size.1)?;
             self.resized = false;
         }
-        Self::sync_scenes(gpu, &self.controller)?;
+        if gpu.context.capabilities.samples(self.controller.msaa) != gpu.pipelines.samples {
+            gpu.context.wait_idle()?;
+            gpu.pipelines.set_samples(self.controller.msaa)?;
+            gpu.swapchain.set_samples(gpu.pipelines.samples)?;
+        }
+        // The heat-map's error fields are measured here, once per decimation shown.
+        self.legend = self.fields.update(self.controller.viewports());
+        Self::sync_scenes(gpu, &self.controller, &self.fields, self.legend.as_ref())?;
         let ui_result = self.run_ui(window)?;
         if !self.present(now)? {
             // The swapchain no longer fits the window: made again next frame.
@@ -285,6 +322,7 @@ impl Viewer {
                 help,
                 lod,
                 captions: &captions,
+                legend: self.legend,
             },
         )
     }
@@ -365,7 +403,7 @@ impl Viewer {
 
 /// What each viewport draws this frame, for the viewports whose scene is on the GPU.
 fn viewport_draws<'a>(
-    scenes: &'a [(u64, u64, GpuScene)],
+    scenes: &'a [(u64, (u64, Look), GpuScene)],
     controller: &'a ViewportController,
     extent: vk::Extent2D,
     now: Instant,
@@ -398,9 +436,9 @@ fn record_viewports(
 ) -> Result<(), AppError> {
     let device = &gpu.context.device;
     let (format, extent) = (gpu.swapchain.format, gpu.swapchain.extent);
-    let depth = gpu
+    let images = gpu
         .swapchain
-        .depth
+        .draw_images
         .as_ref()
         .ok_or_else(|| RenderError::Window("the swapchain has no depth buffer".into()))?;
     let rects: Vec<_> = views.iter().map(|v| v.rect).collect();
@@ -408,15 +446,9 @@ fn record_viewports(
     // stay alive until the frame's fence is waited for (next `acquire` or device idle).
     unsafe {
         image::transition(device, cmd, frame.image, format, image::TO_COLOR_ATTACHMENT);
-        image::transition(
-            device,
-            cmd,
-            depth.handle,
-            DEPTH_FORMAT,
-            image::TO_DEPTH_ATTACHMENT,
-        );
-        draw::begin_rendering(device, cmd, frame.view, depth.view, extent, BACKGROUND);
-        draw::clear_tiles(device, cmd, extent, &rects, highlight);
+        images.to_attachments(device, cmd);
+        let attachments = images.attachments(frame.view);
+        draw::begin_tiles(device, cmd, attachments, extent, &rects, highlight);
         draw::record(device, cmd, &gpu.pipelines, views);
         device.cmd_end_rendering(cmd);
         draw::begin_overlay(device, cmd, frame.view, extent);
@@ -434,8 +466,14 @@ impl Callbacks for Viewer {
             .map_err(|e| AppError::Window(format!("no Vulkan surface support: {e}")))?;
         let context = Context::new(extensions, true, DevicePreference::Fastest)?;
         let size = window.inner_size();
-        let swapchain = Swapchain::new(&context, window.as_ref(), size.width, size.height)?;
-        let pipelines = Pipelines::new(&context, swapchain.format)?;
+        let samples = context.capabilities.samples(self.controller.msaa);
+        let swapchain = Swapchain::new(
+            &context,
+            window.as_ref(),
+            (size.width, size.height),
+            samples,
+        )?;
+        let pipelines = Pipelines::with_samples(&context, swapchain.format, samples.as_raw())?;
         let textures = Textures::new(
             &context,
             pipelines.texture_layout,

@@ -14,6 +14,7 @@
 //! estimated from the face samples, which are spread in proportion to area.
 
 pub mod bvh;
+pub mod field;
 pub mod report;
 pub mod sampling;
 

@@ -26,6 +26,9 @@ pub struct Capabilities {
     /// The anisotropy textures are sampled with (`samplerAnisotropy`, at most
     /// [`MAX_ANISOTROPY`]); `None` without the feature: trilinear only.
     pub max_anisotropy: Option<f32>,
+    /// Sample counts a colour and depth target may both have (`framebufferColorSampleCounts`
+    /// and `framebufferDepthSampleCounts`); always includes 1.
+    pub sample_counts: vk::SampleCountFlags,
 }
 
 /// The most anisotropy asked of a sampler: 16 samples along a texel footprint's long axis
@@ -40,6 +43,17 @@ impl Capabilities {
         } else {
             1.0
         }
+    }
+
+    /// The most samples per pixel, at most `wanted`, that the device offers for a colour and
+    /// depth target (1: no multisampling).
+    pub fn samples(&self, wanted: u32) -> vk::SampleCountFlags {
+        [64, 32, 16, 8, 4, 2]
+            .into_iter()
+            .filter(|&n| n <= wanted)
+            .map(vk::SampleCountFlags::from_raw)
+            .find(|&s| self.sample_counts.contains(s))
+            .unwrap_or(vk::SampleCountFlags::TYPE_1)
     }
 
     /// `wanted` clamped to what the device can draw.
@@ -146,6 +160,9 @@ impl Context {
                     .max_sampler_anisotropy
                     .clamp(1.0, MAX_ANISOTROPY)
             }),
+            sample_counts: (properties.limits.framebuffer_color_sample_counts
+                & properties.limits.framebuffer_depth_sample_counts)
+                | vk::SampleCountFlags::TYPE_1,
         };
 
         let enabled = vk::PhysicalDeviceFeatures::default()

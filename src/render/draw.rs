@@ -4,6 +4,7 @@
 
 use ash::vk;
 
+use super::attachments::Attachments;
 use super::camera::Camera;
 use super::gpu_mesh::{GpuMesh, GpuScene};
 use super::mesh_data::Layers;
@@ -29,6 +30,9 @@ pub struct DrawOptions {
     pub smooth: bool,
     /// Textured models drawn textured (else in their material colour).
     pub textures: bool,
+    /// Decimated models coloured by their distance to the original (the error heat-map; the
+    /// front end supplies the coloured copy, the original is drawn in neutral grey).
+    pub error_map: bool,
 }
 
 impl Default for DrawOptions {
@@ -42,6 +46,7 @@ impl Default for DrawOptions {
             lighting: true,
             smooth: true,
             textures: true,
+            error_map: false,
         }
     }
 }
@@ -218,16 +223,48 @@ unsafe fn draw_mesh(device: &ash::Device, cmd: vk::CommandBuffer, mesh: &GpuMesh
     }
 }
 
-/// Clears the whole attachment to the separator colour, then each viewport to the background
-/// (and the `highlighted` one's border to the highlight colour).
+/// Begins dynamic rendering into `target` for the viewports `rects`: the pass's own clear
+/// gives the separator colour between them (or the background, when one viewport fills the
+/// picture), then each viewport is cleared to the background and the `highlighted` one's
+/// border to the highlight colour. Every full-size clear costs a pass over every sample, so
+/// none is made twice.
+///
+/// # Safety
+/// `cmd` must be recording outside rendering; the views must be in attachment layouts.
+pub unsafe fn begin_tiles(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    target: Attachments,
+    extent: vk::Extent2D,
+    rects: &[Rect],
+    highlighted: Option<usize>,
+) {
+    let whole = Rect {
+        x: 0,
+        y: 0,
+        width: extent.width,
+        height: extent.height,
+    };
+    let one_full_tile = rects == [whole] && highlighted.is_none();
+    let load = if one_full_tile { BACKGROUND } else { SEPARATOR };
+    // SAFETY: guaranteed by the caller; the pass begun here is the one the tiles clear.
+    unsafe {
+        begin_rendering(device, cmd, target, extent, load);
+        if !one_full_tile {
+            clear_tiles(device, cmd, rects, highlighted);
+        }
+    }
+}
+
+/// Clears each viewport to the background (and the `highlighted` one's border to the
+/// highlight colour).
 ///
 /// # Safety
 /// `cmd` must be recording inside `vkCmdBeginRendering` with colour attachment 0 covering
-/// `extent`.
-pub unsafe fn clear_tiles(
+/// every rectangle.
+unsafe fn clear_tiles(
     device: &ash::Device,
     cmd: vk::CommandBuffer,
-    extent: vk::Extent2D,
     rects: &[Rect],
     highlighted: Option<usize>,
 ) {
@@ -260,13 +297,6 @@ pub unsafe fn clear_tiles(
             height: r.height.saturating_sub(2 * inset),
         },
     };
-    clear(
-        vk::Rect2D {
-            offset: vk::Offset2D::default(),
-            extent,
-        },
-        SEPARATOR,
-    );
     for (i, &r) in rects.iter().enumerate() {
         if highlighted == Some(i) {
             clear(to_vk(r, 0), HIGHLIGHT);
@@ -277,26 +307,37 @@ pub unsafe fn clear_tiles(
     }
 }
 
-/// Begins dynamic rendering into `color` (cleared to `clear`) and `depth` (cleared to 1).
+/// Begins dynamic rendering into `target` (colour cleared to `clear`, depth to 1).
 ///
 /// # Safety
 /// `cmd` must be recording outside rendering; the views must be in attachment layouts.
 pub unsafe fn begin_rendering(
     device: &ash::Device,
     cmd: vk::CommandBuffer,
-    color: vk::ImageView,
-    depth: vk::ImageView,
+    target: Attachments,
     extent: vk::Extent2D,
     clear: [f32; 4],
 ) {
-    let color_attachments = [vk::RenderingAttachmentInfo::default()
-        .image_view(color)
+    let color = vk::RenderingAttachmentInfo::default()
         .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
         .load_op(vk::AttachmentLoadOp::CLEAR)
-        .store_op(vk::AttachmentStoreOp::STORE)
         .clear_value(vk::ClearValue {
             color: vk::ClearColorValue { float32: clear },
-        })];
+        });
+    let color = match target.multisampled {
+        // The samples are only needed until they are averaged into the picture.
+        Some(samples) => color
+            .image_view(samples)
+            .store_op(vk::AttachmentStoreOp::DONT_CARE)
+            .resolve_mode(vk::ResolveModeFlags::AVERAGE)
+            .resolve_image_view(target.color)
+            .resolve_image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL),
+        None => color
+            .image_view(target.color)
+            .store_op(vk::AttachmentStoreOp::STORE),
+    };
+    let color_attachments = [color];
+    let depth = target.depth;
     let depth_attachment = vk::RenderingAttachmentInfo::default()
         .image_view(depth)
         .image_layout(vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL)

@@ -24,6 +24,9 @@ pub enum RenderError {
     /// A mesh or image is larger than the renderer supports.
     #[error("{0}")]
     TooLarge(String),
+    /// Pipelines and a target disagree on the samples per pixel.
+    #[error("{0}")]
+    SampleCount(String),
     /// An image's levels do not have the sizes Vulkan gives an image's mip levels.
     #[error("{0}")]
     BadLevels(String),

@@ -33,7 +33,28 @@ impl Image {
         extent: vk::Extent2D,
         usage: vk::ImageUsageFlags,
     ) -> Result<Self> {
-        Self::with_levels(context, name, format, extent, usage, 1)
+        Self::create(
+            context,
+            name,
+            format,
+            extent,
+            usage,
+            1,
+            vk::SampleCountFlags::TYPE_1,
+        )
+    }
+
+    /// A device-local attachment of `samples` samples per pixel (a multisampled colour or
+    /// depth target, resolved or discarded at the end of the pass).
+    pub fn multisampled(
+        context: &Arc<Context>,
+        name: &str,
+        format: vk::Format,
+        extent: vk::Extent2D,
+        usage: vk::ImageUsageFlags,
+        samples: vk::SampleCountFlags,
+    ) -> Result<Self> {
+        Self::create(context, name, format, extent, usage, 1, samples)
     }
 
     /// As [`Self::new`], with `levels` mip levels (at least one), all in its view.
@@ -44,6 +65,26 @@ impl Image {
         extent: vk::Extent2D,
         usage: vk::ImageUsageFlags,
         levels: u32,
+    ) -> Result<Self> {
+        Self::create(
+            context,
+            name,
+            format,
+            extent,
+            usage,
+            levels,
+            vk::SampleCountFlags::TYPE_1,
+        )
+    }
+
+    fn create(
+        context: &Arc<Context>,
+        name: &str,
+        format: vk::Format,
+        extent: vk::Extent2D,
+        usage: vk::ImageUsageFlags,
+        levels: u32,
+        samples: vk::SampleCountFlags,
     ) -> Result<Self> {
         let device = &context.device;
         let info = vk::ImageCreateInfo::default()
@@ -56,7 +97,7 @@ impl Image {
             })
             .mip_levels(levels.max(1))
             .array_layers(1)
-            .samples(vk::SampleCountFlags::TYPE_1)
+            .samples(samples)
             .tiling(vk::ImageTiling::OPTIMAL)
             .usage(usage)
             .sharing_mode(vk::SharingMode::EXCLUSIVE)

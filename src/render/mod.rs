@@ -2,6 +2,7 @@
 //! them in `Drop`, plus the CPU-side mesh data, the camera and viewport tiling. Used
 //! identically by the headless `shot` action (`offscreen`) and the interactive viewer.
 
+pub mod attachments;
 pub mod buffer;
 pub mod camera;
 pub mod commands;

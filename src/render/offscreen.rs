@@ -1,5 +1,6 @@
-//! `OffscreenTarget`: a colour + depth target with no window, rendered with the same
-//! pipelines and draw code as the viewer and read back to RGBA8 rows — the `shot` action, the
+//! `OffscreenTarget`: a colour + depth target with no window (multisampled and resolved into
+//! the colour image when anti-aliased), rendered with the same pipelines and draw code as the
+//! viewer and read back to RGBA8 rows — the `shot` action, the
 //! golden-image tests and the frame-time benchmark.
 
 use std::sync::Arc;
@@ -7,12 +8,13 @@ use std::sync::Arc;
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 
+use super::attachments::DrawImages;
 use super::buffer::Buffer;
 use super::commands::Commands;
 use super::context::Context;
-use super::draw::{self, ViewportDraw, BACKGROUND};
+use super::draw::{self, ViewportDraw};
 use super::error::{RenderError, Result};
-use super::image::{self, Image, Transition, DEPTH_FORMAT};
+use super::image::{self, Image, Transition};
 use super::pipeline::Pipelines;
 pub use crate::mesh::rgba_image::RgbaImage;
 
@@ -23,13 +25,26 @@ pub const OFFSCREEN_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 pub struct OffscreenTarget {
     context: Arc<Context>,
     color: Image,
-    depth: Image,
+    /// Depth and, when anti-aliased, the multisampled colour image.
+    images: DrawImages,
     readback: Buffer,
     pub extent: vk::Extent2D,
 }
 
 impl OffscreenTarget {
+    /// A single-sampled target, for single-sampled pipelines ([`Pipelines::new`]).
     pub fn new(context: &Arc<Context>, width: u32, height: u32) -> Result<Self> {
+        Self::with_samples(context, width, height, vk::SampleCountFlags::TYPE_1)
+    }
+
+    /// A target drawn with `samples` samples per pixel: those of the pipelines that draw
+    /// into it ([`Pipelines::samples`]).
+    pub fn with_samples(
+        context: &Arc<Context>,
+        width: u32,
+        height: u32,
+        samples: vk::SampleCountFlags,
+    ) -> Result<Self> {
         let extent = vk::Extent2D { width, height };
         let bytes = u64::from(width) * u64::from(height) * 4;
         if width == 0 || height == 0 || bytes > 1 << 30 {
@@ -44,13 +59,7 @@ impl OffscreenTarget {
             extent,
             vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
         )?;
-        let depth = Image::new(
-            context,
-            "offscreen depth",
-            DEPTH_FORMAT,
-            extent,
-            vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT,
-        )?;
+        let images = DrawImages::new(context, "offscreen", OFFSCREEN_FORMAT, extent, samples)?;
         let readback = Buffer::new(
             context,
             "readback",
@@ -61,7 +70,7 @@ impl OffscreenTarget {
         Ok(Self {
             context: context.clone(),
             color,
-            depth,
+            images,
             readback,
             extent,
         })
@@ -89,6 +98,13 @@ impl OffscreenTarget {
         read_back: bool,
         overlay: Option<&mut dyn FnMut(vk::CommandBuffer) -> Result<()>>,
     ) -> Result<Option<RgbaImage>> {
+        if pipelines.samples != self.images.samples {
+            return Err(RenderError::SampleCount(format!(
+                "pipelines of {} samples per pixel cannot draw into a target of {}",
+                pipelines.samples.as_raw(),
+                self.images.samples.as_raw()
+            )));
+        }
         let device = &self.context.device;
         let cmd = commands.begin()?;
         let rects: Vec<_> = views.iter().map(|v| v.rect).collect();
@@ -102,22 +118,9 @@ impl OffscreenTarget {
                 OFFSCREEN_FORMAT,
                 image::TO_COLOR_ATTACHMENT,
             );
-            image::transition(
-                device,
-                cmd,
-                self.depth.handle,
-                DEPTH_FORMAT,
-                image::TO_DEPTH_ATTACHMENT,
-            );
-            draw::begin_rendering(
-                device,
-                cmd,
-                self.color.view,
-                self.depth.view,
-                self.extent,
-                BACKGROUND,
-            );
-            draw::clear_tiles(device, cmd, self.extent, &rects, None);
+            self.images.to_attachments(device, cmd);
+            let target = self.images.attachments(self.color.view);
+            draw::begin_tiles(device, cmd, target, self.extent, &rects, None);
             draw::record(device, cmd, pipelines, views);
             device.cmd_end_rendering(cmd);
         }

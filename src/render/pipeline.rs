@@ -1,7 +1,8 @@
 //! `Pipelines`: one graphics pipeline per draw mode (filled lit smooth / lit flat / unlit,
 //! edges, points, face normals, vertex normals) over one vertex layout, one push-constant
 //! layout and one descriptor set (the model's texture, `render::texture`), for a given colour format (dynamic rendering, no render pass). Each mode is the
-//! same two shaders with different specialization constants and topology.
+//! same two shaders with different specialization constants and topology. Every pipeline
+//! draws with one sample count (multisample anti-aliasing), changed by [`Pipelines::set_samples`].
 
 use std::sync::Arc;
 
@@ -132,10 +133,27 @@ pub struct Pipelines {
     pub texture_layout: vk::DescriptorSetLayout,
     pipelines: Vec<(DrawMode, vk::Pipeline)>,
     pub color_format: vk::Format,
+    /// Samples per pixel of the targets these pipelines draw into.
+    pub samples: vk::SampleCountFlags,
 }
 
+/// Samples per pixel asked for by default: 4× anti-aliasing, which every desktop GPU and
+/// lavapipe offer (docs/design.md#msaa).
+pub const DEFAULT_MSAA: u32 = 4;
+
 impl Pipelines {
+    /// Single-sampled pipelines (no anti-aliasing) drawing into `color_format`.
     pub fn new(context: &Arc<Context>, color_format: vk::Format) -> Result<Self> {
+        Self::with_samples(context, color_format, 1)
+    }
+
+    /// Pipelines drawing with the most samples per pixel, at most `msaa`, that the device
+    /// offers (1: no anti-aliasing); their targets need [`Self::samples`] samples.
+    pub fn with_samples(
+        context: &Arc<Context>,
+        color_format: vk::Format,
+        msaa: u32,
+    ) -> Result<Self> {
         let device = &context.device;
         let ranges = [vk::PushConstantRange::default()
             .stage_flags(vk::ShaderStageFlags::VERTEX)
@@ -167,6 +185,7 @@ impl Pipelines {
             texture_layout,
             pipelines: Vec::new(),
             color_format,
+            samples: context.capabilities.samples(msaa),
         };
         if !context.capabilities.large_points {
             eprintln!(
@@ -174,13 +193,38 @@ impl Pipelines {
                 context.device_name
             );
         }
-        let vert = ShaderModule::new(context, MESH_VERT)?;
-        let frag = ShaderModule::new(context, MESH_FRAG)?;
-        for mode in DrawMode::ALL {
-            let pipeline = this.create(mode, &vert, &frag)?;
-            this.pipelines.push((mode, pipeline));
-        }
+        this.create_all()?;
         Ok(this)
+    }
+
+    /// Makes the pipelines again for at most `msaa` samples per pixel (the layouts, and so the
+    /// textures' descriptor sets, stay); nothing is done when the count is unchanged. The
+    /// caller waits for the GPU first.
+    pub fn set_samples(&mut self, msaa: u32) -> Result<()> {
+        let samples = self.context.capabilities.samples(msaa);
+        if samples == self.samples {
+            return Ok(());
+        }
+        self.destroy_pipelines();
+        self.samples = samples;
+        self.create_all()
+    }
+
+    fn create_all(&mut self) -> Result<()> {
+        let vert = ShaderModule::new(&self.context, MESH_VERT)?;
+        let frag = ShaderModule::new(&self.context, MESH_FRAG)?;
+        for mode in DrawMode::ALL {
+            let pipeline = self.create(mode, &vert, &frag)?;
+            self.pipelines.push((mode, pipeline));
+        }
+        Ok(())
+    }
+
+    fn destroy_pipelines(&mut self) {
+        for (_, p) in self.pipelines.drain(..) {
+            // SAFETY: the caller waited for the GPU, so no command buffer uses the pipeline.
+            unsafe { self.context.device.destroy_pipeline(p, None) };
+        }
     }
 
     /// The pipeline of `mode`.
@@ -278,8 +322,8 @@ impl Pipelines {
             .depth_bias_constant_factor(FILL_DEPTH_BIAS.0)
             .depth_bias_slope_factor(FILL_DEPTH_BIAS.1)
             .line_width(1.0);
-        let multisample = vk::PipelineMultisampleStateCreateInfo::default()
-            .rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let multisample =
+            vk::PipelineMultisampleStateCreateInfo::default().rasterization_samples(self.samples);
         let depth = vk::PipelineDepthStencilStateCreateInfo::default()
             .depth_test_enable(true)
             .depth_write_enable(true)
@@ -328,11 +372,10 @@ impl Pipelines {
 
 impl Drop for Pipelines {
     fn drop(&mut self) {
-        // SAFETY: owners wait for the GPU before dropping; pipelines go before their layout.
+        // Owners wait for the GPU before dropping; pipelines go before their layout.
+        self.destroy_pipelines();
+        // SAFETY: as above; nothing uses the layouts any more.
         unsafe {
-            for &(_, p) in &self.pipelines {
-                self.context.device.destroy_pipeline(p, None);
-            }
             self.context
                 .device
                 .destroy_pipeline_layout(self.layout, None);

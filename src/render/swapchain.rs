@@ -1,5 +1,5 @@
 //! `Swapchain`: the window's surface, its swapchain images and views, a depth buffer of the
-//! same size, and the semaphores and fence of the one frame in flight. Recreated on resize;
+//! same size (and a multisampled colour image when anti-aliased), and the semaphores and fence of the one frame in flight. Recreated on resize;
 //! everything freed in `Drop` (views and swapchain before the surface).
 
 use std::sync::Arc;
@@ -7,9 +7,9 @@ use std::sync::Arc;
 use ash::vk;
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 
+use super::attachments::DrawImages;
 use super::context::Context;
 use super::error::{RenderError, Result};
-use super::image::{Image, DEPTH_FORMAT};
 
 /// A window's presentable images.
 pub struct Swapchain {
@@ -20,7 +20,10 @@ pub struct Swapchain {
     handle: vk::SwapchainKHR,
     pub images: Vec<vk::Image>,
     views: Vec<vk::ImageView>,
-    pub depth: Option<Image>,
+    /// Depth and multisampled colour, made again with the swapchain.
+    pub draw_images: Option<DrawImages>,
+    /// Samples per pixel the viewports are drawn with.
+    pub samples: vk::SampleCountFlags,
     pub format: vk::Format,
     pub extent: vk::Extent2D,
     image_available: vk::Semaphore,
@@ -37,12 +40,13 @@ pub struct Frame {
 }
 
 impl Swapchain {
-    /// Creates the surface of `window` and a swapchain of `width` × `height`.
+    /// Creates the surface of `window` and a swapchain of `width` × `height`, drawn with
+    /// `samples` samples per pixel.
     pub fn new(
         context: &Arc<Context>,
         window: &(impl HasDisplayHandle + HasWindowHandle),
-        width: u32,
-        height: u32,
+        (width, height): (u32, u32),
+        samples: vk::SampleCountFlags,
     ) -> Result<Self> {
         let display = window
             .display_handle()
@@ -71,7 +75,8 @@ impl Swapchain {
             handle: vk::SwapchainKHR::null(),
             images: Vec::new(),
             views: Vec::new(),
-            depth: None,
+            draw_images: None,
+            samples,
             format: vk::Format::B8G8R8A8_UNORM,
             extent: vk::Extent2D { width, height },
             image_available: vk::Semaphore::null(),
@@ -181,12 +186,31 @@ impl Swapchain {
             };
             self.render_finished.push(semaphore);
         }
-        self.depth = Some(Image::new(
+        self.draw_images = Some(DrawImages::new(
             &self.context,
-            "window depth",
-            DEPTH_FORMAT,
+            "window",
+            format.format,
             extent,
-            vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT,
+            self.samples,
+        )?);
+        Ok(())
+    }
+
+    /// Draws with `samples` samples per pixel from now on (the depth and multisampled images
+    /// are made again; the caller's pipelines must match).
+    pub fn set_samples(&mut self, samples: vk::SampleCountFlags) -> Result<()> {
+        if samples == self.samples && self.draw_images.is_some() {
+            return Ok(());
+        }
+        self.context.wait_idle()?;
+        self.draw_images = None;
+        self.samples = samples;
+        self.draw_images = Some(DrawImages::new(
+            &self.context,
+            "window",
+            self.format,
+            self.extent,
+            samples,
         )?);
         Ok(())
     }
@@ -266,7 +290,7 @@ impl Swapchain {
                 self.context.device.destroy_semaphore(s, None);
             }
         }
-        self.depth = None;
+        self.draw_images = None;
     }
 }
 

@@ -1,9 +1,12 @@
 //! The `decimate tile ...` steps and `nogui --tiles` as the command line runs them: messages
 //! on stderr, exit status 0 on success, 1 when a file is at fault, 2 for a bad request.
 
+use std::io::IsTerminal;
 use std::process::ExitCode;
 
-use super::local::{count_for, default_memory, run_local, work_dir_for};
+use super::bar::Progress;
+use super::local::{run_local, work_dir_for};
+use super::schedule::{count_for, default_memory};
 use super::{cut, merge, run, TileError};
 use crate::cli::{Args, TileCommand};
 
@@ -62,7 +65,15 @@ pub fn run_step(cmd: &TileCommand) -> ExitCode {
             dir,
             output,
             target,
-        } => match merge::merge(dir, output, *target, &mut |_| {}) {
+            memory,
+        } => match merge::merge(
+            dir,
+            output,
+            *target,
+            memory.unwrap_or_else(default_memory),
+            &Progress::new(true, false),
+            (0.0, 1.0),
+        ) {
             Ok(r) => {
                 let (before, after) = r.models.iter().fold((0, 0), |(b, a), m| {
                     (b + m.triangles_before, a + m.triangles_after)
@@ -94,24 +105,22 @@ pub fn nogui_tiled(args: &Args) -> ExitCode {
     let memory = args.memory.unwrap_or_else(default_memory);
     let dir = work_dir_for(&args.output);
     let start = std::time::Instant::now();
-    let quiet = args.quiet;
+    let progress = Progress::new(!args.quiet, !args.quiet && std::io::stderr().is_terminal());
     let result = run_local(
         &args.input,
         &args.output,
         &dir,
         count_for(tiles, memory),
         args.params.target,
-        &mut |s| {
-            if !quiet {
-                eprintln!("{s}");
-            }
-        },
+        memory,
+        &progress,
     );
+    progress.finish();
     // The tiles are scratch: gone whether the run succeeded or not.
     let _ = std::fs::remove_dir_all(&dir);
     match result {
         Ok(r) => {
-            if !quiet {
+            if !args.quiet {
                 let m = r.models.first();
                 eprintln!(
                     "total: triangles {} -> {} in {:.3} s, written to {}",

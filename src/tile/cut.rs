@@ -8,7 +8,7 @@
 use std::collections::HashMap;
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 
@@ -39,13 +39,69 @@ pub fn plan(
     target: Target,
     progress: &mut dyn FnMut(&str),
 ) -> Result<Manifest, TileError> {
+    let cutting = Cutting {
+        count,
+        target,
+        slack: SEAM_SLACK,
+        shifted_from: None,
+    };
+    plan_files(&[input.to_path_buf()], input, dir, &cutting, progress)
+}
+
+/// Cuts the decimated tiles of a first plan (`inputs`, bounds `min`..`max`) again, on the
+/// first plan's grid shifted by half a cell: every new cut lies half a cell from every old
+/// one, so the old locked seams fall inside the new tiles and are decimated. Each new tile
+/// keeps its exact share of `keep` (no slack: this pass makes the final count).
+pub fn retile(
+    inputs: &[PathBuf],
+    first: &Path,
+    dir: &Path,
+    count: TileCount,
+    keep: usize,
+    bounds: ([f32; 3], [f32; 3]),
+    progress: &mut dyn FnMut(&str),
+) -> Result<Manifest, TileError> {
+    let cutting = Cutting {
+        count,
+        target: Target::KeepTriangles(keep),
+        slack: 1.0,
+        shifted_from: Some(bounds),
+    };
+    plan_files(inputs, first, dir, &cutting, progress)
+}
+
+/// How a plan cuts: into how many tiles, to which final target, how much more than its
+/// share each tile keeps, and (for a re-tiling) the bounds whose grid is shifted.
+struct Cutting {
+    count: TileCount,
+    target: Target,
+    slack: f64,
+    shifted_from: Option<([f32; 3], [f32; 3])>,
+}
+
+/// Streams every triangle of `inputs` into tiles in `dir`; `source` is what the manifest
+/// names as its input.
+fn plan_files(
+    inputs: &[PathBuf],
+    source: &Path,
+    dir: &Path,
+    cutting: &Cutting,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Manifest, TileError> {
+    let (count, target) = (cutting.count, cutting.target);
     std::fs::create_dir_all(dir).map_err(|e| TileError::io(dir, e))?;
     remove_old_tiles(dir)?;
+    let each = |f: &mut dyn FnMut(Corners)| -> Result<(), TileError> {
+        for input in inputs {
+            for_each_triangle(input, f)?;
+        }
+        Ok(())
+    };
 
     // Pass 1: bounds and count.
     let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
     let mut triangles = 0usize;
-    for_each_triangle(input, &mut |t| {
+    each(&mut |t| {
         for p in t {
             let p = Vec3::from(p);
             if p.is_finite() {
@@ -58,7 +114,7 @@ pub fn plan(
     if triangles == 0 || !lo.is_finite() {
         return Err(TileError::Request(format!(
             "{}: the file has no triangles to tile",
-            input.display()
+            source.display()
         )));
     }
     let target_triangles = target_of(target, triangles)?;
@@ -71,9 +127,12 @@ pub fn plan(
     ));
 
     // Pass 2: centroid histogram, split into boxes.
-    let grid = Grid::new(lo, hi);
+    let grid = match cutting.shifted_from {
+        Some((min, max)) => Grid::new(Vec3::from(min), Vec3::from(max)).shifted_half_a_cell(),
+        None => Grid::new(lo, hi),
+    };
     let mut histogram = vec![0u32; GRID * GRID * GRID];
-    for_each_triangle(input, &mut |t| {
+    each(&mut |t| {
         let c = grid.cell(&t);
         histogram[c] = histogram[c].saturating_add(1);
     })?;
@@ -93,7 +152,7 @@ pub fn plan(
     }
     let mut counts = vec![0usize; boxes.len()];
     let mut failed: Option<(usize, std::io::Error)> = None;
-    for_each_triangle(input, &mut |t| {
+    each(&mut |t| {
         let i = cell_tile[grid.cell(&t)] as usize;
         counts[i] += 1;
         if failed.is_none() {
@@ -127,7 +186,7 @@ pub fn plan(
                 models: vec![model],
             };
             crate::io::write_ply(&scene, &Manifest::tile_input(dir, index))?;
-            let share = (counts[i] as f64 * ratio * SEAM_SLACK).ceil() as usize;
+            let share = (counts[i] as f64 * ratio * cutting.slack).ceil() as usize;
             let (min, max) = grid.world_box(*b);
             tiles.push(Tile {
                 min,
@@ -139,7 +198,7 @@ pub fn plan(
         std::fs::remove_file(&raw).map_err(|e| TileError::io(&raw, e))?;
     }
     let manifest = Manifest {
-        input: input.to_path_buf(),
+        input: source.to_path_buf(),
         triangles,
         target_triangles,
         min: lo.to_array(),
@@ -240,6 +299,15 @@ impl Grid {
             c = c * GRID + i;
         }
         c
+    }
+
+    /// The same cells moved down by half a cell on every axis: no cell boundary of the
+    /// result is one of this grid's (the top half cell is clamped into the last cell).
+    fn shifted_half_a_cell(mut self) -> Self {
+        for (lo, size) in self.lo.iter_mut().zip(&self.size) {
+            *lo -= size / GRID as f64 / 2.0;
+        }
+        self
     }
 
     fn world_box(&self, b: CellBox) -> ([f64; 3], [f64; 3]) {

@@ -2,15 +2,18 @@
 //! input into spatial tiles on disk (binary PLY each, plus `manifest.json`), `run` decimates
 //! one tile with its border locked (any order, any machine, again when pre-empted), `merge`
 //! welds the tiles and decimates the whole again so that the locked seams are freed.
-//! `local` does all three in one process (`decimate IN nogui --tiles auto`).
+//! `local` does all three in one process (`decimate IN nogui --tiles auto`), the tiles in
+//! parallel within a memory budget (`schedule`), reporting through `bar`.
 //! docs/cluster.md shows the jobs under Slurm, Kubernetes and GNU parallel.
 
+pub mod bar;
 pub mod command;
 pub mod cut;
 pub mod local;
 pub mod manifest;
 pub mod merge;
 pub mod run;
+pub mod schedule;
 
 use std::path::PathBuf;
 

@@ -107,6 +107,8 @@ pub fn render(
         viewports,
         modes,
         labels: Some(false),
+        // Goldens are single-sampled unless a test is about anti-aliasing.
+        msaa: 1,
         ..ShotOptions::default()
     };
     render_with(scene, &options, params).0

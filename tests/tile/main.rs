@@ -3,5 +3,7 @@
 
 mod common;
 mod errors;
+mod memory;
 mod pipeline;
 mod scheduler;
+mod slurm;

@@ -5,7 +5,10 @@
 mod support;
 
 mod anisotropy;
+mod error_map;
+mod menu;
 mod modes;
+mod msaa;
 mod shot_command;
 mod textures;
 mod viewports;

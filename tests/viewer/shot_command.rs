@@ -67,6 +67,8 @@ fn before_and_after_decimation_side_by_side() {
             "90",
             // Edge coverage is measured per half: no captions over them.
             "--no-labels",
+            "--msaa",
+            "1",
         ],
     );
     assert_success(&out);
@@ -102,6 +104,8 @@ fn four_viewports_default_mode() {
             "--viewports",
             "4",
             "-q",
+            "--msaa",
+            "1",
         ],
     );
     assert_success(&out);

@@ -208,7 +208,7 @@ fn a_textured_sphere_and_box_show_the_image_upright_before_and_after_decimation(
     let (out, image) = shot_of(
         &dir,
         "models/shapes.wrl",
-        &["--viewports", "2", "-p", "50", "--no-labels"],
+        &["--viewports", "2", "-p", "50", "--no-labels", "--msaa", "1"],
     );
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("removed"), "{stderr}");

@@ -89,6 +89,7 @@ fn the_report_figure_captions_each_viewport_with_its_own_target() {
         viewports: 4,
         modes: modes("triangles,edges"),
         targets: [60.0, 80.0, 90.0].map(Target::RemovePercent).to_vec(),
+        msaa: 1,
         ..ShotOptions::default()
     };
     let params = Params {

@@ -1,7 +1,8 @@
 //! Frame-time benchmark of the renderer: draws a large mesh offscreen — a generated UV sphere
 //! (about one million triangles by default) or any file `decimate` reads, such as the
-//! Stanford dragon — once per draw mode, and prints a table of frame times. No readback is
-//! timed: a frame is record + submit + wait, as in the viewer. Then it moves the
+//! Stanford dragon — once per draw mode, and prints a table of frame times without and with
+//! 4× multisample anti-aliasing (the two alternate frame by frame). No readback is timed: a
+//! frame is record + submit + wait, as in the viewer. Then it moves the
 //! level-of-detail slider as the viewer does and prints what each move costs: the new level,
 //! its upload (filled triangles), one frame, and for a coarsening move the second upload
 //! when the geomorph ends.
@@ -25,7 +26,7 @@ use decimate::render::draw::{DrawOptions, ViewportDraw};
 use decimate::render::gpu_mesh::GpuScene;
 use decimate::render::mesh_data::Layers;
 use decimate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
-use decimate::render::pipeline::Pipelines;
+use decimate::render::pipeline::{Pipelines, DEFAULT_MSAA};
 use decimate::render::texture::Textures;
 use decimate::render::tiles::tiles;
 
@@ -86,6 +87,10 @@ fn run(
     let commands = Commands::new(&context)?;
     let pipelines = Pipelines::new(&context, OFFSCREEN_FORMAT)?;
     let target = OffscreenTarget::new(&context, width, height)?;
+    let msaa_pipelines = Pipelines::with_samples(&context, OFFSCREEN_FORMAT, DEFAULT_MSAA)?;
+    let msaa_target =
+        OffscreenTarget::with_samples(&context, width, height, msaa_pipelines.samples)?;
+    let msaa = msaa_pipelines.samples.as_raw();
     let mut textures = Textures::new(
         &context,
         pipelines.texture_layout,
@@ -110,8 +115,14 @@ fn run(
         context.device_name, gpu.vertex_count, gpu.triangle_count
     );
     println!(
-        "{:<26} {:>10} {:>10} {:>10}",
-        "mode", "median ms", "min ms", "max ms"
+        "{:<26} {:>10} {:>10} {:>10} {:>12} {:>10} {:>10}",
+        "mode",
+        "median ms",
+        "min ms",
+        "max ms",
+        format!("{msaa}x med ms"),
+        format!("{msaa}x fps"),
+        format!("{msaa}x / 1x")
     );
     let base = DrawOptions::default();
     let modes = [
@@ -175,18 +186,26 @@ fn run(
             })
             .collect();
         target.render(&commands, &pipelines, &views, false)?;
+        msaa_target.render(&commands, &msaa_pipelines, &views, false)?;
         let mut times = Vec::with_capacity(frames);
+        let mut msaa_times = Vec::with_capacity(frames);
         for _ in 0..frames.max(1) {
             let t = Instant::now();
             target.render(&commands, &pipelines, &views, false)?;
             times.push(t.elapsed().as_secs_f64() * 1e3);
+            let t = Instant::now();
+            msaa_target.render(&commands, &msaa_pipelines, &views, false)?;
+            msaa_times.push(t.elapsed().as_secs_f64() * 1e3);
         }
         times.sort_by(f64::total_cmp);
+        msaa_times.sort_by(f64::total_cmp);
+        let (median, msaa_median) = (times[times.len() / 2], msaa_times[msaa_times.len() / 2]);
         println!(
-            "{name:<26} {:>10.1} {:>10.1} {:>10.1}",
-            times[times.len() / 2],
+            "{name:<26} {median:>10.1} {:>10.1} {:>10.1} {msaa_median:>12.1} {:>10.1} {:>10.2}",
             times[0],
-            times[times.len() - 1]
+            times[times.len() - 1],
+            1e3 / msaa_median,
+            msaa_median / median
         );
     }
     let gpu = (&context, &commands, &pipelines, &target);
