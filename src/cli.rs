@@ -33,6 +33,9 @@ pub struct ShotOptions {
     pub modes: DrawOptions,
     /// Captions on the viewports (`--labels` / `--no-labels`); by default with more than one.
     pub labels: Option<bool>,
+    /// Each decimated viewport's caption says its metro error against the original
+    /// (`--measure`; turns the captions on).
+    pub measure: bool,
     /// One target per decimated viewport (`-p 60,80,90`); empty when one target was given.
     pub targets: Vec<Target>,
     /// Where relative texture names are read from: the input file's folder.
@@ -49,6 +52,7 @@ impl Default for ShotOptions {
             viewports: 1,
             modes: DrawOptions::default(),
             labels: None,
+            measure: false,
             targets: Vec::new(),
             texture_dir: PathBuf::from("."),
             msaa: crate::render::pipeline::DEFAULT_MSAA,
@@ -207,6 +211,8 @@ also set what the viewer draws):
                         sharp (DEFAULT: the file's creaseAngle, else 45; 180: smooth)
   --labels, --no-labels a caption on each viewport: what it shows, its counts
                         (DEFAULT: on with more than one viewport)
+  --measure             add metro's error against the original (mean, max, % of the
+                        diagonal) to each decimated viewport's caption
   -p / -v / ...         decimation target, as for nogui; a list such as -p 60,80,90
                         gives each decimated viewport its own (and --viewports 4)
 
@@ -361,6 +367,7 @@ where
             }
             "--labels" => shot.labels = Some(true),
             "--no-labels" => shot.labels = Some(false),
+            "--measure" => shot.measure = true,
             "--mode" => shot.modes = draw_modes(&value(&arg)?)?,
             "--msaa" => {
                 let n: u32 = number(&arg, &value(&arg)?)?;
@@ -429,6 +436,7 @@ where
     }
     shot.texture_dir = crate::io::texture_path::folder_of(&input).to_path_buf();
     shot_targets(&mut shot, targets, viewports, action)?;
+    check_measure(&shot, action, target_given)?;
     if crease_angle.is_some() && action == Action::NoGui {
         return Err(CliError(
             "--crease-angle is an option of the viewer and shot (shading only)".into(),
@@ -451,6 +459,30 @@ where
         tiles,
         memory,
     })))
+}
+
+/// `--measure` belongs to `shot` with a target (something decimated to measure), and
+/// shows in the captions.
+fn check_measure(shot: &ShotOptions, action: Action, target_given: bool) -> Result<(), CliError> {
+    if !shot.measure {
+        return Ok(());
+    }
+    if action != Action::Shot {
+        return Err(CliError(
+            "--measure is an option of shot (in the viewer, key d measures)".into(),
+        ));
+    }
+    if !target_given {
+        return Err(CliError(
+            "--measure needs a target (-p, -v, ...): nothing is decimated to measure".into(),
+        ));
+    }
+    if shot.labels == Some(false) {
+        return Err(CliError(
+            "--measure says the error in the captions: it cannot go with --no-labels".into(),
+        ));
+    }
+    Ok(())
 }
 
 /// `--tiles` belongs to nogui with a count target it can share out (`tile::cut::target_of`).
@@ -1031,6 +1063,26 @@ mod tests {
         assert_eq!(a.shot.labels, None);
         let a = run(&["m.wrl", "shot", "--no-labels"]);
         assert_eq!(a.shot.labels, Some(false));
+        assert!(!a.shot.measure);
+        assert!(
+            run(&["m.wrl", "shot", "-p", "60,80", "--measure"])
+                .shot
+                .measure
+        );
+        for (args, says) in [
+            (
+                &["m.wrl", "nogui", "-p", "50", "--measure"][..],
+                "an option of shot",
+            ),
+            (&["m.wrl", "shot", "--measure"][..], "needs a target"),
+            (
+                &["m.wrl", "shot", "-p", "5", "--measure", "--no-labels"][..],
+                "--no-labels",
+            ),
+        ] {
+            let e = parse(args.iter().copied()).map(|_| ()).unwrap_err();
+            assert!(e.0.contains(says), "{args:?}: {}", e.0);
+        }
         let a = run(&["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "0.1%"]);
         assert_eq!(a.weld_tolerance, Some(Tolerance::DiagonalFraction(0.001)));
         let a = run(&["m.wrl", "nogui", "-p", "50", "--weld-tolerance", "0.25"]);

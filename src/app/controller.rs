@@ -1,6 +1,8 @@
 //! `ViewportController`: owns the 1–4 viewports tiled over the window, knows the current one
 //! (the one under the mouse, or chosen with Tab) and dispatches `Action`s — decimate events go
-//! to the current viewport only, as in the original. GPU-free, so it is unit-tested.
+//! to the current viewport only, as in the original. Decimations, progressive meshes and
+//! error measurements run as a worker job (`jobs`), one at a time; the window polls it each
+//! frame and `Esc` cancels it. GPU-free, so it is unit-tested.
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -13,9 +15,12 @@ use crate::render::camera::Navigation;
 use crate::render::draw::DrawOptions;
 use crate::render::tiles::{tiles, Rect};
 
+use super::counts::Counts;
+use super::jobs::{self, Done, Running, Task};
 use super::menu::{Action, DecimateEvent, DecimateKind};
 use super::save::{save_path, SavePath};
 use super::viewport::Viewport;
+use super::worker::Poll;
 
 /// At most this many viewports, as in the original.
 pub const MAX_VIEWPORTS: usize = 4;
@@ -34,6 +39,8 @@ pub enum Effect {
 /// The viewports of the window and the current one.
 pub struct ViewportController {
     original: Arc<Scene>,
+    /// The original's counts (welded vertices).
+    original_counts: Counts,
     params: Params,
     viewports: Vec<Viewport>,
     next_id: u64,
@@ -54,6 +61,8 @@ pub struct ViewportController {
     pub input_dir: PathBuf,
     /// The last thing that happened, for the status line.
     pub message: String,
+    /// The decimation, progressive mesh or measurement running, if any.
+    job: Option<Running>,
     /// Samples per pixel asked for (`--msaa`, `M`): 1 is no anti-aliasing.
     pub msaa: u32,
 }
@@ -61,10 +70,12 @@ pub struct ViewportController {
 impl ViewportController {
     pub fn new(original: Scene, params: Params, width: u32, height: u32) -> Self {
         let original = Arc::new(original);
+        let counts = Counts::of(&original);
         Self {
-            viewports: vec![Viewport::new(0, original.clone(), params)],
+            viewports: vec![Viewport::new(0, original.clone(), counts, params)],
             next_id: 1,
             original,
+            original_counts: counts,
             params,
             current: 0,
             width,
@@ -76,6 +87,7 @@ impl ViewportController {
             inputs: Vec::new(),
             input_dir: PathBuf::from("."),
             message: String::new(),
+            job: None,
             msaa: crate::render::pipeline::DEFAULT_MSAA,
         }
     }
@@ -91,8 +103,15 @@ impl ViewportController {
     /// Shows `scene`, read from `path`, instead: one viewport of it, the cameras framed on it;
     /// the algorithm, border and link settings stay.
     pub fn open(&mut self, scene: Scene, path: &std::path::Path) {
+        self.drop_job();
         let original = Arc::new(scene);
-        let mut first = Viewport::new(self.next_id, original.clone(), self.params);
+        self.original_counts = Counts::of(&original);
+        let mut first = Viewport::new(
+            self.next_id,
+            original.clone(),
+            self.original_counts,
+            self.params,
+        );
         first.options = self.draw_options;
         self.viewports = vec![first];
         self.next_id += 1;
@@ -148,23 +167,18 @@ impl ViewportController {
         }
     }
 
-    /// A decimate event for the current viewport only.
+    /// A decimate event for the current viewport only, run as a job.
     pub fn decimate(&mut self, event: DecimateEvent) {
-        let i = self.current;
-        let done = self.decimate_current(event);
-        self.message = format!("viewport {}: {done}", i + 1);
+        self.start(Task::Decimate(event), String::new());
     }
 
-    /// Decimates the current viewport; says what was asked and what is shown now (the same
-    /// counts as the status line).
-    fn decimate_current(&mut self, event: DecimateEvent) -> String {
-        let report = self.current_mut().decimate(event);
-        let (seconds, fully) = (report.seconds, report.fully_decimated());
+    /// What a finished decimation asked and shows now (the same counts as the status line):
+    /// it took `seconds`, and `fully` decimated the scene.
+    fn decimated_words(vp: &Viewport, event: DecimateEvent, seconds: f64, fully: bool) -> String {
         let asked = match event.kind {
             DecimateKind::Percentage => format!("removed {:.0} %", event.amount),
             DecimateKind::Number => format!("asked to remove {:.0} vertices", event.amount),
         };
-        let vp = self.current_viewport();
         format!(
             "{asked}: {} vertices, {} triangles left in {seconds:.3} s{}",
             vp.vertex_count(),
@@ -180,14 +194,167 @@ impl ViewportController {
         let i = self.current;
         let settings = self.current_viewport().settings();
         match self.current_viewport().last_event() {
-            Some(event) => {
-                let done = self.decimate_current(event);
-                self.message = format!("viewport {}: {settings}; {done}", i + 1);
-            }
+            Some(event) => self.start(Task::Decimate(event), format!("{settings}; ")),
             None => {
                 self.message = format!("viewport {}: {settings} from the next decimation", i + 1)
             }
         }
+    }
+
+    /// Starts `task` for the current viewport, cancelling the job running (the latest
+    /// request wins); `prefix` goes before the result in the status line.
+    fn start(&mut self, task: Task, prefix: String) {
+        self.drop_job();
+        let n = self.current + 1;
+        let vp = self.current_viewport();
+        let original = vp.original().clone();
+        let job = match task {
+            Task::Decimate(event) => {
+                let params = vp.params_for(event);
+                let what = format!(
+                    "viewport {n}: decimating ({})",
+                    super::labels::target_words(params.target, params.max_error)
+                );
+                jobs::decimate(what, original, params)
+            }
+            Task::Lod => {
+                let what = format!("viewport {n}: building the level of detail");
+                jobs::lod(what, original, vp.params)
+            }
+            Task::Measure { .. } => {
+                let what = format!("viewport {n}: measuring the error (metro)");
+                jobs::measure(what, original, vp.scene().clone())
+            }
+        };
+        self.job = Some(Running {
+            viewport: vp.id,
+            task,
+            prefix,
+            job,
+        });
+    }
+
+    /// The running job's line for the status line: what, a progress bar, how to stop it.
+    pub fn job_status(&self) -> Option<String> {
+        self.job.as_ref().map(|r| r.job.status())
+    }
+
+    /// Whether a job is running.
+    pub fn busy(&self) -> bool {
+        self.job.is_some()
+    }
+
+    /// Takes the running job's result when it has ended, without waiting; true when the
+    /// job ended (the viewports or the message changed).
+    pub fn poll(&mut self) -> bool {
+        let Some(running) = &self.job else {
+            return false;
+        };
+        match running.job.poll() {
+            Poll::Running => false,
+            poll => {
+                self.end_job(poll);
+                true
+            }
+        }
+    }
+
+    /// Waits for the running job and takes its result (tests: what a user sees once the
+    /// bar is full).
+    pub fn wait(&mut self) {
+        if let Some(running) = &self.job {
+            let poll = running.job.wait();
+            self.end_job(poll);
+        }
+    }
+
+    /// `Esc` while a job runs: stops it, the viewport showing what it showed. False when
+    /// no job was running.
+    pub fn cancel_job(&mut self) -> bool {
+        let Some(running) = self.job.take() else {
+            return false;
+        };
+        running.job.cancel();
+        let n = self.viewport_number(running.viewport);
+        let shows = n.map_or(String::new(), |n| {
+            let vp = &self.viewports[n - 1];
+            format!(
+                "; viewport {n} still shows {} vertices, {} triangles",
+                vp.vertex_count(),
+                vp.triangle_count()
+            )
+        });
+        self.message = format!("cancelled: {}{shows}", running.job.what);
+        true
+    }
+
+    /// Forgets the running job (a new one replaces it, or the scene it reads is closed).
+    fn drop_job(&mut self) {
+        if let Some(running) = self.job.take() {
+            running.job.cancel();
+        }
+    }
+
+    /// Viewport `id`'s number (1-based), if it is still open.
+    fn viewport_number(&self, id: u64) -> Option<usize> {
+        self.viewports
+            .iter()
+            .position(|v| v.id == id)
+            .map(|i| i + 1)
+    }
+
+    /// Hands an ended job's result to its viewport, and says what happened.
+    fn end_job(&mut self, poll: Poll<Done>) {
+        let Some(running) = self.job.take() else {
+            return;
+        };
+        let Some(n) = self.viewport_number(running.viewport) else {
+            return;
+        };
+        let vp = &mut self.viewports[n - 1];
+        let done = match poll {
+            Poll::Done(done) => done,
+            Poll::Running => return,
+            Poll::Cancelled => {
+                self.message = format!("cancelled: {}", running.job.what);
+                return;
+            }
+            Poll::Failed(e) => {
+                self.message = e;
+                return;
+            }
+        };
+        let said = match (running.task, done) {
+            (
+                Task::Decimate(event),
+                Done::Decimated {
+                    scene,
+                    report,
+                    counts,
+                },
+            ) => {
+                let (seconds, fully) = (report.seconds, report.fully_decimated());
+                vp.show_decimated(event, scene, report, counts);
+                let words = Self::decimated_words(vp, event, seconds, fully);
+                format!("{}{words}", running.prefix)
+            }
+            (Task::Lod, Done::Lod(lod)) => {
+                let (lo, hi) = lod.range();
+                let seconds = lod.build_seconds;
+                vp.show_lod(*lod);
+                format!("level of detail {lo} to {hi} vertices, built in {seconds:.3} s")
+            }
+            (Task::Measure { generation }, Done::Measured(Ok(error))) => {
+                if vp.set_error(generation, error) {
+                    error.words()
+                } else {
+                    "the scene changed while it was measured: measure again (d)".into()
+                }
+            }
+            (Task::Measure { .. }, Done::Measured(Err(e))) => format!("cannot measure: {e}"),
+            _ => "a job ended with the result of another".into(),
+        };
+        self.message = format!("viewport {n}: {said}");
     }
 
     /// Vertices of the original scene (used by some triangle).
@@ -286,19 +453,15 @@ impl ViewportController {
             Action::AskVertexCount => return Effect::AskVertexCount,
             Action::ToggleLod => {
                 let i = self.current;
-                let vp = self.current_mut();
-                vp.toggle_lod();
-                self.message = match vp.lod() {
-                    Some(lod) => {
-                        let (lo, hi) = lod.range();
-                        format!(
-                            "viewport {}: level of detail {lo} to {hi} vertices, built in {:.3} s",
-                            i + 1,
-                            lod.build_seconds
-                        )
-                    }
-                    None => format!("viewport {}: level-of-detail slider off", i + 1),
-                };
+                if self.current_mut().lod_off() {
+                    self.message = format!("viewport {}: level-of-detail slider off", i + 1);
+                } else {
+                    self.start(Task::Lod, String::new());
+                }
+            }
+            Action::MeasureError => {
+                let generation = self.current_viewport().generation;
+                self.start(Task::Measure { generation }, String::new());
             }
             Action::ToggleAlgorithm => {
                 let params = &mut self.current_mut().params;
@@ -371,7 +534,8 @@ impl ViewportController {
                 if self.viewports.len() < MAX_VIEWPORTS {
                     let id = self.next_id;
                     self.next_id += 1;
-                    let mut vp = Viewport::new(id, self.original.clone(), self.params);
+                    let mut vp =
+                        Viewport::new(id, self.original.clone(), self.original_counts, self.params);
                     vp.options = self.draw_options;
                     self.viewports.push(vp);
                     self.current = self.viewports.len() - 1;
@@ -385,7 +549,11 @@ impl ViewportController {
             }
             Action::RemoveViewport => {
                 if self.viewports.len() > 1 {
-                    self.viewports.remove(self.current);
+                    let gone = self.viewports.remove(self.current);
+                    // Its job, if it has one, works for nobody now.
+                    if self.job.as_ref().is_some_and(|r| r.viewport == gone.id) {
+                        self.drop_job();
+                    }
                     self.current = self.current.min(self.viewports.len() - 1);
                 } else {
                     self.message = "the last viewport stays".into();
@@ -509,9 +677,12 @@ mod tests {
         ViewportController::new(plane(), Params::default(), 800, 600)
     }
 
+    /// Presses `k` and waits for the job it started, if any, to end.
     fn key(c: &mut ViewportController, k: Key) -> Effect {
         let action = action_for_key(k).unwrap_or_else(|| panic!("{k:?} is not bound"));
-        c.dispatch(action)
+        let effect = c.dispatch(action);
+        c.wait();
+        effect
     }
 
     #[test]
@@ -681,6 +852,129 @@ mod tests {
     }
 
     #[test]
+    fn a_running_decimation_leaves_the_viewport_as_it_was_until_esc_cancels_it() {
+        let sphere = crate::mesh::shapes::bumpy_sphere(200, 400);
+        let n = sphere.used_vertex_count();
+        let scene = Scene {
+            models: vec![sphere],
+        };
+        let mut c = ViewportController::new(scene, Params::default(), 800, 600);
+        // Not waited for: the window keeps drawing the original meanwhile.
+        c.dispatch(Action::Decimate(DecimateEvent {
+            amount: 90.0,
+            kind: DecimateKind::Percentage,
+        }));
+        assert!(c.busy());
+        let status = c.job_status().unwrap_or_default();
+        assert!(
+            status.starts_with("viewport 1: decimating (90 % removed) [")
+                && status.ends_with("Esc cancels"),
+            "{status}"
+        );
+        assert_eq!(c.current_viewport().vertex_count(), n);
+        assert_eq!(c.current_viewport().generation, 0);
+        assert!(c.cancel_job());
+        assert!(!c.busy() && c.job_status().is_none());
+        assert!(
+            c.message.starts_with("cancelled: viewport 1: decimating")
+                && c.message.ends_with(&format!(
+                    "viewport 1 still shows {n} vertices, 159200 triangles"
+                )),
+            "{}",
+            c.message
+        );
+        std::thread::sleep(std::time::Duration::from_millis(200));
+        assert!(!c.poll(), "a cancelled job is forgotten");
+        assert_eq!(c.current_viewport().vertex_count(), n);
+        assert_eq!(c.current_viewport().generation, 0);
+        assert!(!c.cancel_job(), "nothing left to cancel: Esc quits");
+    }
+
+    #[test]
+    fn removing_a_viewport_stops_its_job() {
+        let mut c = controller();
+        key(&mut c, Key::Char('a'));
+        c.dispatch(action_for_key(Key::Char('9')).unwrap_or(Action::Quit));
+        assert!(c.busy());
+        key(&mut c, Key::Char('x'));
+        assert!(!c.busy(), "a job for a viewport that is gone still runs");
+        assert_eq!(c.viewports().len(), 1);
+        assert_eq!(c.current_viewport().vertex_count(), 121);
+    }
+
+    #[test]
+    fn the_latest_decimate_event_wins() {
+        let mut c = controller();
+        c.dispatch(action_for_key(Key::Char('9')).unwrap_or(Action::Quit));
+        key(&mut c, Key::Char('1'));
+        assert_eq!(c.current_viewport().vertex_count(), 121 - 12);
+        assert!(
+            c.message.starts_with("viewport 1: removed 10 %"),
+            "{}",
+            c.message
+        );
+        assert_eq!(
+            c.current_viewport().generation,
+            1,
+            "the 90 % result never showed"
+        );
+    }
+
+    #[test]
+    fn d_measures_the_level_shown_and_its_caption_says_it() {
+        let scene = Scene {
+            models: vec![crate::mesh::shapes::bumpy_sphere(12, 24)],
+        };
+        let mut c = ViewportController::new(scene, Params::default(), 800, 600);
+        key(&mut c, Key::Char('d'));
+        let caption = c.current_viewport().caption();
+        assert!(
+            caption.ends_with("error: mean 0 = 0.00 %, max 0 = 0.00 % of the diagonal"),
+            "the original against itself: {caption}"
+        );
+        key(&mut c, Key::Char('8'));
+        assert!(
+            !c.current_viewport().caption().contains("error"),
+            "a new level, not measured"
+        );
+        key(&mut c, Key::Char('d'));
+        let error = c.current_viewport().error().copied();
+        let error = error.unwrap_or_else(|| panic!("not measured: {}", c.message));
+        assert!(
+            error.max > 0.0 && error.mean > 0.0 && error.mean < error.max,
+            "{error:?}"
+        );
+        assert!(error.max < 0.2 * error.diagonal, "{error:?}");
+        let caption = c.current_viewport().caption();
+        assert_eq!(caption.lines().last(), Some(error.words().as_str()));
+        assert_eq!(c.message, format!("viewport 1: {}", error.words()));
+        // Shading does not change the level: the error stays.
+        key(&mut c, Key::Char(']'));
+        assert!(c.current_viewport().error().is_some());
+    }
+
+    #[test]
+    fn captions_count_a_texture_seams_copies_once() {
+        // Two quads side by side, cut between them by a texture seam: 8 vertices, 6 points.
+        let mut m = Model::default();
+        for x in [0.0, 1.0, 1.0, 2.0] {
+            for y in [0.0, 1.0] {
+                m.positions.push(Vec3::new(x, y, 0.0));
+            }
+        }
+        m.triangles = vec![[0, 2, 3], [0, 3, 1], [4, 6, 7], [4, 7, 5]];
+        m.texcoords = Some(vec![[0.0, 0.0]; 8]);
+        let c = ViewportController::new(Scene { models: vec![m] }, Params::default(), 800, 600);
+        let vp = c.current_viewport();
+        assert_eq!(vp.caption(), "original\n6 vertices, 4 triangles");
+        assert!(
+            vp.status().starts_with("6 vertices, 4 triangles"),
+            "{}",
+            vp.status()
+        );
+    }
+
+    #[test]
     fn decimation_always_starts_from_the_original() {
         let mut c = controller();
         key(&mut c, Key::Char('9'));
@@ -829,6 +1123,7 @@ mod tests {
     fn decimate_to_n_vertices_reaches_n_and_says_the_counts_shown() {
         let mut c = controller();
         assert_eq!(c.submit_vertex_count(" 60\n"), Ok(()));
+        c.wait();
         assert_eq!(c.current_viewport().vertex_count(), 60);
         let triangles = c.current_viewport().triangle_count();
         assert!(
@@ -840,6 +1135,7 @@ mod tests {
         assert_eq!(c.current_viewport().generation, 1);
         // All of them: nothing removed, the original shown.
         assert_eq!(c.submit_vertex_count("121"), Ok(()));
+        c.wait();
         assert_eq!(c.current_viewport().vertex_count(), 121);
     }
 
@@ -871,6 +1167,7 @@ mod tests {
         key(&mut by_key, Key::Char('0'));
         let mut by_field = ViewportController::new(cube, Params::default(), 800, 600);
         assert_eq!(by_field.submit_vertex_count("0"), Ok(()));
+        by_field.wait();
         for c in [&by_key, &by_field] {
             let vp = c.current_viewport();
             // The cube's eight corners are features: "as far as possible" keeps them.

@@ -14,8 +14,11 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 
-use crate::decimate::{simplify_scene_progressive, Algorithm, Params, Target};
-use crate::mesh::progressive::{Lod, ProgressiveModel};
+use crate::decimate::{
+    simplify_scene_progressive, simplify_scene_progressive_cancellable, Algorithm, Cancel, Params,
+    Report, Target,
+};
+use crate::mesh::progressive::{Lod, ProgressiveModel, ProgressiveScene};
 use crate::mesh::Scene;
 
 /// How long a geomorph takes.
@@ -47,18 +50,45 @@ pub struct LodView {
     pub build_seconds: f64,
 }
 
+/// The slider's progressive mesh goes as far down as quadric edge collapse goes.
+fn all_the_way(params: &Params) -> Params {
+    Params {
+        target: Target::RemovePercent(100.0),
+        algorithm: Algorithm::Qem,
+        max_error: None,
+        ..*params
+    }
+}
+
 impl LodView {
     /// Builds the progressive mesh of `original` (every model as far down as quadric edge
     /// collapse goes) and starts at the full level, so the view does not change.
     pub fn new(original: &Scene, params: &Params) -> Self {
         let mut coarse = original.clone();
-        let params = Params {
-            target: Target::RemovePercent(100.0),
-            algorithm: Algorithm::Qem,
-            max_error: None,
-            ..*params
-        };
-        let (report, pm) = simplify_scene_progressive(&mut coarse, &params, &mut |_| {});
+        let (report, pm) =
+            simplify_scene_progressive(&mut coarse, &all_the_way(params), &mut |_| {});
+        Self::from_progressive(report, pm)
+    }
+
+    /// As [`Self::new`], reporting the fraction done to `progress` and stopping (`None`) when
+    /// `cancel` is requested: the viewer builds it on a worker thread.
+    pub fn build(
+        original: &Scene,
+        params: &Params,
+        progress: &mut dyn FnMut(f32),
+        cancel: &Cancel,
+    ) -> Option<Self> {
+        let mut coarse = original.clone();
+        let (report, pm) = simplify_scene_progressive_cancellable(
+            &mut coarse,
+            &all_the_way(params),
+            progress,
+            cancel,
+        )?;
+        Some(Self::from_progressive(report, pm))
+    }
+
+    fn from_progressive(report: Report, pm: ProgressiveScene) -> Self {
         let mut lods: Vec<_> = pm
             .models
             .into_iter()

@@ -26,6 +26,8 @@ pub enum Action {
     AskVertexCount,
     /// The level-of-detail slider (a progressive mesh by quadric edge collapse) on or off.
     ToggleLod,
+    /// Measure the current viewport's metro error against the original (its caption says it).
+    MeasureError,
     /// The current viewport's algorithm: vertex removal ↔ quadric edge collapse (its last
     /// decimation is made again with the other).
     ToggleAlgorithm,
@@ -158,6 +160,11 @@ pub fn menu() -> Vec<MenuEntry> {
         Some("L"),
         Action::ToggleLod,
     ));
+    decimate.push(entry(
+        "Measure the distance to the original (metro)",
+        Some("d"),
+        Action::MeasureError,
+    ));
     vec![
         submenu("Decimate", decimate),
         submenu(
@@ -243,6 +250,7 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'h' => Action::ToggleHelp,
                 'v' => Action::AskVertexCount,
                 'L' => Action::ToggleLod,
+                'd' => Action::MeasureError,
                 'A' => Action::ToggleAlgorithm,
                 'b' => Action::ToggleKeepBorder,
                 'q' => Action::Quit,
@@ -281,7 +289,7 @@ pub fn key_help() -> String {
     }
     walk(&menu(), &mut text);
     text.push_str(
-        "  Esc   Quit\n\
+        "  Esc   Cancel the decimation or measurement running, else quit\n\
          mouse: left drag turns the model (looks around in eye control), wheel zooms (walks),\n\
          \x20      middle or Shift + left drag pans (steps sideways)\n\
          eye control: arrows and W/S walk\n",

@@ -3,9 +3,12 @@
 
 pub mod app_error;
 pub mod controller;
+pub mod counts;
 pub mod error_map;
 pub mod glut;
+pub mod jobs;
 pub mod labels;
+pub mod level_error;
 pub mod lod;
 pub mod menu;
 pub mod menu_layout;
@@ -15,6 +18,7 @@ pub mod shot;
 pub mod ui;
 pub mod viewer;
 pub mod viewport;
+pub mod worker;
 
 use std::process::ExitCode;
 

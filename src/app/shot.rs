@@ -1,7 +1,8 @@
 //! The `shot` action: render the scene offscreen — no window, no display — with exactly the
 //! viewer's renderer, viewports tiled as in the viewer (the first shows the original scene,
 //! the others the decimated one, each with its own target when `-p 60,80,90` lists several),
-//! captioned, and write a PNG through a temporary file and a rename.
+//! captioned (with `--measure`, each decimated viewport's metro error too), and write a PNG
+//! through a temporary file and a rename.
 
 use std::path::Path;
 
@@ -20,8 +21,10 @@ use crate::render::texture::Textures;
 use crate::render::tiles::tiles;
 use crate::render::RenderError;
 
+use super::counts::Counts;
 use super::error_map::{self, Legend};
 use super::labels::{self, HeadlessCaptions};
+use super::level_error::LevelError;
 
 /// What can go wrong taking a shot.
 #[derive(Debug, thiserror::Error)]
@@ -142,11 +145,7 @@ pub fn render(
     )?;
     let mut decimated: Vec<Decimated> = Vec::new();
     for ((p, copy, report), shown_copy) in made.into_iter().zip(&drawn) {
-        let what = format!(
-            "{} ({})",
-            labels::target_words(p.target, p.max_error),
-            labels::algorithm_name(p.algorithm)
-        );
+        let caption = decimated_caption(scene, &copy, &p, options.measure);
         decimated.push(Decimated {
             params: p,
             gpu: GpuScene::upload(
@@ -157,10 +156,11 @@ pub fn render(
                 draw.layers(),
             )?,
             report,
-            caption: labels::caption(&what, vertices(&copy), copy.triangle_count()),
+            caption,
         });
     }
-    let original_caption = labels::caption("original", vertices(scene), scene.triangle_count());
+    let counts = Counts::of(scene);
+    let original_caption = labels::caption("original", counts.vertices, counts.triangles);
     let camera = Camera::framing(original.bounds);
     let mut views = Vec::with_capacity(rects.len());
     let mut captions = Vec::with_capacity(rects.len());
@@ -175,7 +175,7 @@ pub fn render(
         });
         captions.push((rect, d.map_or(&original_caption, |d| &d.caption).clone()));
     }
-    let labelled = options.labels.unwrap_or(rects.len() > 1);
+    let labelled = options.labels.unwrap_or(rects.len() > 1 || options.measure);
     let image = if labelled || legend.is_some() {
         let screen = egui::Rect::from_min_size(
             egui::Pos2::ZERO,
@@ -200,11 +200,29 @@ pub fn render(
     Ok((image, decimated.into_iter().map(|d| d.report).collect()))
 }
 
-/// Vertices of `scene` used by some triangle.
-fn vertices(scene: &Scene) -> usize {
-    (scene.models.iter())
-        .map(crate::mesh::Model::used_vertex_count)
-        .sum()
+/// The caption of `level`, `original` decimated with `params`: its target and algorithm,
+/// its counts, and with `measure` its metro error against `original`.
+pub fn decimated_caption(
+    original: &Scene,
+    level: &Scene,
+    params: &Params,
+    measure: bool,
+) -> String {
+    let what = format!(
+        "{} ({})",
+        labels::target_words(params.target, params.max_error),
+        labels::algorithm_name(params.algorithm)
+    );
+    let counts = Counts::of(level);
+    let mut caption = labels::caption(&what, counts.vertices, counts.triangles);
+    if measure {
+        caption.push('\n');
+        caption.push_str(&match LevelError::measure(original, level) {
+            Ok(error) => error.words(),
+            Err(e) => format!("cannot measure: {e}"),
+        });
+    }
+    caption
 }
 
 /// Writes `image` as an RGBA PNG through [`crate::io::replace::replace_file`]: a temporary
@@ -236,5 +254,38 @@ pub fn write_png(image: &RgbaImage, path: &Path) -> Result<(), ShotError> {
             file: path.to_path_buf(),
             source,
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes;
+
+    #[test]
+    fn a_measured_caption_says_the_levels_metro_error() {
+        let original = Scene {
+            models: vec![shapes::test006()],
+        };
+        let params = Params {
+            target: Target::RemovePercent(90.0),
+            ..Params::default()
+        };
+        let mut level = original.clone();
+        simplify_scene(&mut level, &params, &mut |_| {});
+        let caption = decimated_caption(&original, &level, &params, true);
+        let lines: Vec<&str> = caption.lines().collect();
+        let kept = level.models[0].used_vertex_count();
+        assert_eq!(lines[0], "90 % removed (schroeder)");
+        assert_eq!(
+            lines[1],
+            format!("{kept} vertices, {} triangles", level.triangle_count())
+        );
+        let error = LevelError::measure(&original, &level).unwrap_or_else(|e| panic!("{e}"));
+        assert!(error.max > 0.0, "{error:?}");
+        assert_eq!(lines[2], error.words());
+        assert_eq!(lines.len(), 3);
+        let unmeasured = decimated_caption(&original, &level, &params, false);
+        assert_eq!(unmeasured, lines[..2].join("\n"));
     }
 }

@@ -77,6 +77,21 @@ const PICTURE: &str = "window.png";
 /// How long a message stays in the status line.
 const MESSAGE_LIFETIME: Duration = Duration::from_secs(6);
 
+/// While a job runs, a frame this often at least: the progress bar moves and the job's end
+/// is seen; see docs/design.md#viewer-jobs.
+const JOB_FRAME_INTERVAL: Duration = Duration::from_millis(100);
+
+/// With `DECIMATE_TRACE` set, the viewer prints each key it handles and each frame drawn
+/// while a job runs to stderr, with the milliseconds since it started: how the window test
+/// sees that the window keeps answering.
+fn trace(what: std::fmt::Arguments<'_>) {
+    static START: std::sync::OnceLock<Option<Instant>> = std::sync::OnceLock::new();
+    let start = START.get_or_init(|| std::env::var_os("DECIMATE_TRACE").map(|_| Instant::now()));
+    if let Some(start) = start {
+        eprintln!("decimate: trace {} ms: {what}", start.elapsed().as_millis());
+    }
+}
+
 impl Viewer {
     /// (4) The menus are built by the caller and handed in; nothing touches the GPU until the
     /// window exists.
@@ -201,6 +216,9 @@ impl Viewer {
     /// The status line, one line: the last message while it is fresh, else the current
     /// viewport's state.
     fn status(&mut self) -> String {
+        if let Some(job) = self.controller.job_status() {
+            return job;
+        }
         let now = Instant::now();
         let message = std::mem::take(&mut self.controller.message);
         if !message.is_empty() {
@@ -264,6 +282,9 @@ impl Viewer {
     fn draw_frame(&mut self, window: &Window) -> Result<Flow, AppError> {
         // Geomorphs advance with the clock; while one runs, frames keep coming.
         let now = Instant::now();
+        if self.controller.poll() {
+            eprintln!("decimate: {}", self.controller.message);
+        }
         let morphing = self.controller.tick(now);
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(Flow::Continue);
@@ -287,6 +308,12 @@ impl Viewer {
             window.request_redraw();
         }
         self.popup_just_opened = false;
+        let job = self.controller.job_status();
+        let job = job.as_deref().unwrap_or("no job");
+        trace(format_args!(
+            "frame in {} ms, {job}",
+            now.elapsed().as_millis()
+        ));
         if ui_result.repaint || morphing {
             window.request_redraw();
         }
@@ -505,8 +532,14 @@ impl Callbacks for Viewer {
     }
 
     fn keyboard(&mut self, key: Key) -> Flow {
+        trace(format_args!("key {key:?}"));
         if self.popup_at.is_some() && key == Key::Escape {
             self.popup_at = None;
+            return Flow::Continue;
+        }
+        // Esc stops the job running, if any (the viewport keeps what it showed); else quits.
+        if key == Key::Escape && self.controller.cancel_job() {
+            eprintln!("decimate: {}", self.controller.message);
             return Flow::Continue;
         }
         // W / S walk in eye control; elsewhere they keep their menu meaning.
@@ -609,7 +642,12 @@ impl Callbacks for Viewer {
     }
 
     fn wake_at(&self) -> Option<Instant> {
-        self.message.as_ref().map(|(_, until)| *until)
+        let message = self.message.as_ref().map(|(_, until)| *until);
+        let job = self
+            .controller
+            .busy()
+            .then(|| Instant::now() + JOB_FRAME_INTERVAL);
+        message.into_iter().chain(job).min()
     }
 
     fn destroy(&mut self) {

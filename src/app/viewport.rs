@@ -1,19 +1,23 @@
 //! `Viewport`: one view of the window — the original scene it decimates from, the scene it
-//! shows now, its draw toggles and camera, and what its last decimation did. No GPU here: the
-//! window re-uploads a viewport's scene when its `generation` changes. With the
-//! level-of-detail slider on, the scene shown is the slider's (`LodView`).
+//! shows now with its counts, its draw toggles and camera, what its last decimation did and
+//! its measured error. No GPU and no decimation here (the controller runs those on a worker
+//! thread and hands the result in): the window re-uploads a viewport's scene when its
+//! `generation` changes. With the level-of-detail slider on, the scene shown is the
+//! slider's (`LodView`).
 
 use std::sync::Arc;
 use std::time::Instant;
 
-use crate::decimate::{simplify_scene, Algorithm, Params, Report, Target};
+use crate::decimate::{Algorithm, Params, Report, Target};
 use crate::mesh::Scene;
 use crate::render::camera::{Camera, Navigation};
 use crate::render::draw::DrawOptions;
 use crate::render::gpu_mesh::scene_bounds;
 use crate::render::mesh_data::DEFAULT_CREASE_DEG;
 
+use super::counts::Counts;
 use super::labels;
+use super::level_error::LevelError;
 use super::lod::LodView;
 use super::menu::{DecimateEvent, DecimateKind};
 
@@ -24,6 +28,8 @@ pub struct Viewport {
     pub id: u64,
     original: Arc<Scene>,
     scene: Scene,
+    /// `scene`'s counts (welded vertices), computed when it changed.
+    counts: Counts,
     pub options: DrawOptions,
     pub camera: Camera,
     /// Bumped whenever `scene` changes, so the renderer knows to upload it again.
@@ -37,16 +43,19 @@ pub struct Viewport {
     lod: Option<LodView>,
     /// The crease angle set with `[` / `]`, in degrees; `None`: each model's own.
     crease_deg: Option<f32>,
+    /// The metro error of the scene shown at this generation, once measured (`d`).
+    error: Option<(u64, LevelError)>,
 }
 
 impl Viewport {
-    /// A viewport showing `original`, framed on it.
-    pub fn new(id: u64, original: Arc<Scene>, params: Params) -> Self {
+    /// A viewport showing `original` (whose counts are `counts`), framed on it.
+    pub fn new(id: u64, original: Arc<Scene>, counts: Counts, params: Params) -> Self {
         let camera = Camera::framing(scene_bounds(&original));
         Self {
             id,
             scene: (*original).clone(),
             original,
+            counts,
             options: DrawOptions::default(),
             camera,
             generation: 0,
@@ -54,6 +63,7 @@ impl Viewport {
             params,
             lod: None,
             crease_deg: None,
+            error: None,
         }
     }
 
@@ -66,18 +76,25 @@ impl Viewport {
         self.lod.as_ref()
     }
 
-    /// Turns the level-of-detail slider on (building the original's progressive mesh; it
-    /// starts at the original) or off (the level shown stays, as a decimated scene would).
-    pub fn toggle_lod(&mut self) {
-        match self.lod.take() {
-            Some(lod) => self.scene = lod.scene().clone(),
-            None => {
-                self.lod = Some(LodView::new(&self.original, &self.params));
-                // What is shown is the slider's level from now on, not the last decimation.
-                self.last = None;
-            }
-        }
+    /// Turns the level-of-detail slider on with `lod` (the original's progressive mesh,
+    /// starting at the original).
+    pub fn show_lod(&mut self, lod: LodView) {
+        self.lod = Some(lod);
+        // What is shown is the slider's level from now on, not the last decimation.
+        self.last = None;
         self.generation += 1;
+    }
+
+    /// Turns the level-of-detail slider off: the level shown stays, as a decimated scene
+    /// would. False when it was not on.
+    pub fn lod_off(&mut self) -> bool {
+        let Some(lod) = self.lod.take() else {
+            return false;
+        };
+        self.scene = lod.scene().clone();
+        self.counts = Counts::of(&self.scene);
+        self.generation += 1;
+        true
     }
 
     /// The slider moved to `vertices`: a geomorph towards that level starts at `now`.
@@ -113,20 +130,49 @@ impl Viewport {
         &self.original
     }
 
-    /// Decimates from the original (never from the already decimated scene), so "90 %" always
-    /// means 90 % of the original's vertices.
-    pub fn decimate(&mut self, event: DecimateEvent) -> &Report {
-        let params = Params {
+    /// The parameters of decimating for `event`. Decimation starts from the original (never
+    /// from the already decimated scene), so "90 %" always means 90 % of the original's
+    /// vertices.
+    pub fn params_for(&self, event: DecimateEvent) -> Params {
+        Params {
             target: target_of(event),
             ..self.params
-        };
-        let mut scene = (*self.original).clone();
-        let report = simplify_scene(&mut scene, &params, &mut |_| {});
+        }
+    }
+
+    /// Shows `scene`, the original decimated for `event` (with [`Self::params_for`]), which
+    /// `report` describes and whose counts are `counts`.
+    pub fn show_decimated(
+        &mut self,
+        event: DecimateEvent,
+        scene: Scene,
+        report: Report,
+        counts: Counts,
+    ) {
         self.scene = scene;
+        self.counts = counts;
         self.apply_crease();
         self.lod = None;
         self.generation += 1;
-        &self.last.insert((event, report)).1
+        self.last = Some((event, report));
+    }
+
+    /// Notes `error`, measured on the scene shown at `generation`; false (nothing noted) when
+    /// the scene changed since.
+    pub fn set_error(&mut self, generation: u64, error: LevelError) -> bool {
+        let current = generation == self.generation;
+        if current {
+            self.error = Some((generation, error));
+        }
+        current
+    }
+
+    /// The metro error of the scene shown, when it was measured.
+    pub fn error(&self) -> Option<&LevelError> {
+        self.error
+            .as_ref()
+            .filter(|(g, _)| *g == self.generation)
+            .map(|(_, e)| e)
     }
 
     /// Changes the crease angle by `delta` degrees (from the first model's own, else
@@ -142,7 +188,10 @@ impl Viewport {
         let degrees = (self.crease_deg.unwrap_or(own).round() + delta).clamp(0.0, 180.0);
         self.crease_deg = Some(degrees);
         self.apply_crease();
+        // Shading only: the error measured stays that of the scene shown.
+        let error = self.error().copied();
         self.generation += 1;
+        self.error = error.map(|e| (self.generation, e));
         Some(degrees)
     }
 
@@ -175,20 +224,20 @@ impl Viewport {
         format!("{algorithm}, {border}")
     }
 
-    /// Vertices shown now (used by some triangle).
+    /// Vertices shown now: points used by some triangle, a texture seam's copies counted
+    /// once (`Counts`); the level-of-detail slider's levels count their vertices.
     pub fn vertex_count(&self) -> usize {
-        if let Some(lod) = &self.lod {
-            return lod.vertex_count();
+        match &self.lod {
+            Some(lod) => lod.vertex_count(),
+            None => self.counts.vertices,
         }
-        self.scene
-            .models
-            .iter()
-            .map(crate::mesh::Model::used_vertex_count)
-            .sum()
     }
 
     pub fn triangle_count(&self) -> usize {
-        self.scene().triangle_count()
+        match &self.lod {
+            Some(lod) => lod.scene().triangle_count(),
+            None => self.counts.triangles,
+        }
     }
 
     /// The caption over the viewport: what it shows ("original", its target and algorithm,
@@ -205,7 +254,12 @@ impl Viewport {
         } else {
             "original".to_string()
         };
-        labels::caption(&what, self.vertex_count(), self.triangle_count())
+        let mut caption = labels::caption(&what, self.vertex_count(), self.triangle_count());
+        if let Some(error) = self.error() {
+            caption.push('\n');
+            caption.push_str(&error.words());
+        }
+        caption
     }
 
     /// The status line: counts, last decimation time, "fully decimated".

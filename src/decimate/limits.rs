@@ -1,9 +1,46 @@
 //! What both algorithms take and give for one model: the [`Limits`] a model is decimated
-//! within (its share of the scene's target, the error bound, the feature angle) and the
-//! [`Outcome`] of doing so.
+//! within (its share of the scene's target, the error bound, the feature angle, a
+//! [`Cancel`] flag) and the [`Outcome`] of doing so.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+/// A request to stop, made from another thread (the viewer's `Esc`). Both algorithms look
+/// at it at the head of each pass and each batch, and stop there: the model is left valid,
+/// short of its target. Clones share the flag; the default is never set.
+#[derive(Debug, Clone, Default)]
+pub struct Cancel(Option<Arc<AtomicBool>>);
+
+impl Cancel {
+    /// A flag that [`Self::request`] on this or any clone sets.
+    pub fn new() -> Self {
+        Self(Some(Arc::new(AtomicBool::new(false))))
+    }
+
+    pub fn request(&self) {
+        if let Some(flag) = &self.0 {
+            flag.store(true, Ordering::Relaxed);
+        }
+    }
+
+    pub fn requested(&self) -> bool {
+        self.0.as_ref().is_some_and(|f| f.load(Ordering::Relaxed))
+    }
+}
+
+/// Two handles are equal when they share one flag (or neither has one).
+impl PartialEq for Cancel {
+    fn eq(&self, other: &Self) -> bool {
+        match (&self.0, &other.0) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (None, None) => true,
+            _ => false,
+        }
+    }
+}
 
 /// How far one model may be decimated.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Limits {
     /// Most vertices to remove.
     pub remove: usize,
@@ -16,6 +53,8 @@ pub struct Limits {
     /// When no candidate is left before `remove`/`keep_triangles` is reached, raise the
     /// feature angle in `schroeder::RELAX_STEP_DEG` steps (up to 180°) and go on.
     pub relax_features: bool,
+    /// Stop early when this is set (checked between passes and batches).
+    pub cancel: Cancel,
 }
 
 /// What decimating one model did.

@@ -18,7 +18,7 @@ use std::time::Instant;
 
 use crate::mesh::{seams, stitches, Model, Scene};
 
-pub use limits::{Limits, Outcome};
+pub use limits::{Cancel, Limits, Outcome};
 
 use crate::mesh::progressive::{ProgressiveModel, ProgressiveScene};
 
@@ -156,7 +156,19 @@ impl Report {
 /// an error bound alone, or `keep_features` never relax it, so features such as a cube's
 /// corners survive them. Quadric edge collapse never needs to relax it.
 pub fn simplify_scene(scene: &mut Scene, params: &Params, progress: &mut dyn FnMut(f32)) -> Report {
-    run(scene, params, progress, None)
+    run(scene, params, progress, &Cancel::default(), None)
+}
+
+/// As [`simplify_scene`], stopping early when `cancel` is requested (from another thread):
+/// then `None`, and `scene` is valid but only partly decimated.
+pub fn simplify_scene_cancellable(
+    scene: &mut Scene,
+    params: &Params,
+    progress: &mut dyn FnMut(f32),
+    cancel: &Cancel,
+) -> Option<Report> {
+    let report = run(scene, params, progress, cancel, None);
+    (!cancel.requested()).then_some(report)
 }
 
 /// As [`simplify_scene`] with quadric edge collapse (whatever `params.algorithm` says: vertex
@@ -168,19 +180,32 @@ pub fn simplify_scene_progressive(
     params: &Params,
     progress: &mut dyn FnMut(f32),
 ) -> (Report, ProgressiveScene) {
+    simplify_scene_progressive_cancellable(scene, params, progress, &Cancel::default())
+        .unwrap_or_default()
+}
+
+/// As [`simplify_scene_progressive`], stopping early when `cancel` is requested: then
+/// `None`.
+pub fn simplify_scene_progressive_cancellable(
+    scene: &mut Scene,
+    params: &Params,
+    progress: &mut dyn FnMut(f32),
+    cancel: &Cancel,
+) -> Option<(Report, ProgressiveScene)> {
     let params = Params {
         algorithm: Algorithm::Qem,
         ..*params
     };
     let mut models = Vec::new();
-    let report = run(scene, &params, progress, Some(&mut models));
-    (report, ProgressiveScene { models })
+    let report = run(scene, &params, progress, cancel, Some(&mut models));
+    (!cancel.requested()).then_some((report, ProgressiveScene { models }))
 }
 
 fn run(
     scene: &mut Scene,
     params: &Params,
     progress: &mut dyn FnMut(f32),
+    cancel: &Cancel,
     mut record: Option<&mut Vec<ProgressiveModel>>,
 ) -> Report {
     let start = Instant::now();
@@ -228,6 +253,9 @@ fn run(
     for i in 0..scene.models.len() {
         let (before, rest) = scene.models.split_at_mut(i);
         let model = &mut rest[0];
+        if cancel.requested() {
+            break;
+        }
         if let Some(j) = source[i] {
             *model = Model {
                 name: std::mem::take(&mut model.name),
@@ -300,6 +328,7 @@ fn run(
             max_error,
             feature_angle_deg: params.feature_angle_deg,
             relax_features,
+            cancel: cancel.clone(),
         };
         let mut report_progress = |removed: usize| {
             progress(((done + removed) as f32 / planned as f32).min(1.0));

@@ -69,6 +69,7 @@ pub fn run_tile(dir: &Path, index: usize) -> Result<TileRun, TileError> {
             max_error: f64::INFINITY,
             feature_angle_deg: crate::decimate::Params::default().feature_angle_deg,
             relax_features: true,
+            cancel: Default::default(),
         };
         // No texture seams in a tile (positions only): no twins.
         qem::decimate_model(model, &limits, &pins, &[], &mut |_| {});

@@ -9,10 +9,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-const LAVAPIPE: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+pub(crate) const LAVAPIPE: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
 
 /// Kills the viewer if the test fails half-way.
-struct Viewer(Child);
+pub(crate) struct Viewer(pub(crate) Child);
 
 impl Drop for Viewer {
     fn drop(&mut self) {
@@ -21,7 +21,7 @@ impl Drop for Viewer {
     }
 }
 
-fn display_or_skip() -> bool {
+pub(crate) fn display_or_skip() -> bool {
     if std::env::var_os("DISPLAY").is_some() {
         return true;
     }
@@ -32,7 +32,7 @@ fn display_or_skip() -> bool {
     false
 }
 
-fn run(program: &str, args: &[&str]) -> String {
+pub(crate) fn run(program: &str, args: &[&str]) -> String {
     let out = Command::new(program)
         .args(args)
         .output()
@@ -59,7 +59,7 @@ fn wait_for(what: &str, timeout: Duration, log: &Path, mut ready: impl FnMut() -
 
 /// The viewer's window id, once it is mapped; `None` when none showed within `timeout`.
 /// Fails at once, with the viewer's log, when the viewer exits before its window shows.
-fn window_of(viewer: &mut Viewer, log: &Path, timeout: Duration) -> Option<String> {
+pub(crate) fn window_of(viewer: &mut Viewer, log: &Path, timeout: Duration) -> Option<String> {
     let pid = viewer.0.id().to_string();
     let start = Instant::now();
     loop {
@@ -98,7 +98,7 @@ fn window_of(viewer: &mut Viewer, log: &Path, timeout: Duration) -> Option<Strin
 /// client's exit, none with `-noreset`. The viewer was such a client, right after the
 /// `xdpyinfo` that checked the server; while this one is held the server has no reason to
 /// reset, however the test is run.
-struct HeldConnection(Child);
+pub(crate) struct HeldConnection(Child);
 
 impl Drop for HeldConnection {
     fn drop(&mut self) {
@@ -110,7 +110,7 @@ impl Drop for HeldConnection {
 /// Connects the held client to the X server on `DISPLAY`, waiting for a server that is slow
 /// to start; fails, naming the server and what `xdpyinfo` said, when none answers within
 /// `timeout`, so that a server that is gone is not blamed on the viewer.
-fn hold_x_connection(timeout: Duration) -> HeldConnection {
+pub(crate) fn hold_x_connection(timeout: Duration) -> HeldConnection {
     let display = std::env::var("DISPLAY").unwrap_or_default();
     let start = Instant::now();
     loop {
@@ -143,7 +143,7 @@ fn hold_x_connection(timeout: Duration) -> HeldConnection {
 }
 
 /// The last lines of the viewer's stderr, for failure messages.
-fn read_log(log: &Path) -> String {
+pub(crate) fn read_log(log: &Path) -> String {
     let text = std::fs::read_to_string(log).unwrap_or_default();
     let lines: Vec<&str> = text.lines().collect();
     lines[lines.len().saturating_sub(15)..].join("\n")
@@ -325,6 +325,7 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     if !display_or_skip() {
         return;
     }
+    let _window = super::ONE_WINDOW.lock();
     let _held = hold_x_connection(Duration::from_secs(20));
     let dir = scratch();
     // The input is named as F3's output: F3 must write beside it, never over it.

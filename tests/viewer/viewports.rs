@@ -128,3 +128,39 @@ fn the_report_figure_captions_each_viewport_with_its_own_target() {
     }
     assert_matches_golden("test006_report_figure", &labelled);
 }
+
+#[test]
+fn measured_captions_add_each_levels_metro_error() {
+    // decimate assets/test006.wrl shot --viewports 2 -p 90 --measure
+    let scene = Scene {
+        models: vec![decimate::mesh::shapes::test006()],
+    };
+    let (width, height) = (640, 320);
+    let mut options = ShotOptions {
+        width,
+        height,
+        viewports: 2,
+        measure: true,
+        ..ShotOptions::default()
+    };
+    let params = Params {
+        target: Target::RemovePercent(90.0),
+        ..Params::default()
+    };
+    let (measured, _) = render_with(&scene, &options, Some(&params));
+    options.measure = false;
+    let (counted, _) = render_with(&scene, &options, Some(&params));
+    // The original's caption is the same; the decimated one grows a line above its counts
+    // (captions sit in the bottom-right corner), and nothing else changes.
+    let half = width / 2;
+    assert_eq!(differing(&measured, &counted, (0, 0, half, height)), 0);
+    let caption = (half, height - 70, width, height);
+    let grown = differing(&measured, &counted, caption);
+    assert!(grown > 300, "{grown} caption pixels changed");
+    assert_eq!(
+        differing(&measured, &counted, (half, 0, width, height)),
+        grown,
+        "the decimated tile changed outside its caption"
+    );
+    assert_matches_golden("test006_measured", &measured);
+}

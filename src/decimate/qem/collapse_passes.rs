@@ -125,7 +125,7 @@ pub(super) fn collapse_in_passes(
     let (mut pass, mut tied) = (Vec::new(), Vec::new());
     let mut flagged = Flagged::default();
     let mut in_pass = vec![0u64; (n as usize).div_ceil(64)];
-    loop {
+    while !limits.cancel.requested() {
         let kinds = &d.kinds;
         lists::retain(&mut live, |v| kinds[v as usize] != Kind::Fixed);
         let best_cost = &d.best_cost;

@@ -109,7 +109,7 @@ pub(super) fn remove_in_passes(
     // Kept from pass to pass and refilled in place.
     let (mut all, mut pass, mut tied) = (Vec::new(), Vec::new(), Vec::new());
     loop {
-        if reached(d, limits, outcome) {
+        if reached(d, limits, outcome) || limits.cancel.requested() {
             break;
         }
         let conn = &d.conn;
@@ -201,7 +201,7 @@ fn remove_pass(
 }
 
 /// Removes `candidates` (in key order) on the whole mesh, a batch at a time; true when a
-/// count limit stopped it.
+/// count limit or a cancel request stopped it.
 fn remove_on_whole(
     d: &mut Decimator,
     candidates: &[Candidate],
@@ -211,6 +211,9 @@ fn remove_on_whole(
 ) -> bool {
     let mut order = Vec::with_capacity(BATCH);
     for batch in candidates.chunks(BATCH) {
+        if limits.cancel.requested() {
+            return true;
+        }
         let plans = plan_batch(d, batch, &mut order);
         d.batch += 1; // what changes from here on, this batch's plans did not see
         if remove_planned(d, batch, &plans, limits, outcome) {

@@ -1,0 +1,183 @@
+//! The window keeps answering while a big decimation runs, and `Esc` cancels it: a
+//! 1,000,000-triangle sphere (generated here, written as PLY) is decimated by 90 % with key
+//! `9`; while the job runs, frames keep coming and a key is handled within half a second,
+//! and `Esc` stops it with the original's counts still shown. The viewer says what it
+//! handles through its `DECIMATE_TRACE` lines on stderr.
+//!
+//! The triangles are hidden first (`t`): lavapipe alone takes about a second to draw a
+//! million of them on a loaded 2-core machine, job or no job (the trace says each frame's
+//! time), which is the renderer's cost (tools/bench-render), not the job's; hidden, a frame
+//! costs milliseconds, so any wait the job made a frame or a key take would show.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use super::xvfb::{display_or_skip, hold_x_connection, read_log, run, window_of, Viewer};
+
+/// The sphere's size: 2 · segments · (rings − 1) triangles.
+const RINGS: u32 = 501;
+const SEGMENTS: u32 = 1000;
+const TRIANGLES: usize = 1_000_000;
+const VERTICES: usize = 500_002;
+
+/// The longest a key may wait to be handled, or a frame for the next, while a job runs
+/// (issue 41).
+const ANSWER: Duration = Duration::from_millis(500);
+
+/// The viewer's trace lines ("decimate: trace T ms: …") whose text contains `what`, as
+/// (T, text), in order.
+fn traces(log: &Path, what: &str) -> Vec<(u64, String)> {
+    let text = std::fs::read_to_string(log).unwrap_or_default();
+    text.lines()
+        .filter_map(|l| l.strip_prefix("decimate: trace "))
+        .filter_map(|l| {
+            let (ms, rest) = l.split_once(" ms: ")?;
+            Some((ms.parse().ok()?, rest.to_string()))
+        })
+        .filter(|(_, rest)| rest.contains(what))
+        .collect()
+}
+
+/// Waits up to `timeout` for a line of `log` that contains `what`; the time it took.
+fn wait_for_line(log: &Path, what: &str, timeout: Duration) -> Option<Duration> {
+    let start = Instant::now();
+    while start.elapsed() < timeout {
+        if std::fs::read_to_string(log)
+            .unwrap_or_default()
+            .contains(what)
+        {
+            return Some(start.elapsed());
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    None
+}
+
+#[test]
+fn a_big_decimation_leaves_the_window_answering_and_esc_cancels_it() {
+    if !display_or_skip() {
+        return;
+    }
+    let _window = super::ONE_WINDOW.lock();
+    let _held = hold_x_connection(Duration::from_secs(20));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("gui_busy");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+    let sphere = decimate::mesh::shapes::uv_sphere(RINGS, SEGMENTS);
+    assert_eq!(
+        (sphere.used_vertex_count(), sphere.triangles.len()),
+        (VERTICES, TRIANGLES)
+    );
+    let scene = decimate::mesh::Scene {
+        models: vec![sphere],
+    };
+    decimate::io::write_ply(&scene, &dir.join("sphere.ply")).unwrap_or_else(|e| panic!("{e}"));
+
+    let log = dir.join("viewer.log");
+    let file = std::fs::File::create(&log).unwrap_or_else(|e| panic!("{e}"));
+    let child = Command::new(env!("CARGO_BIN_EXE_decimate"))
+        .arg("sphere.ply")
+        .current_dir(&dir)
+        .env("DECIMATE_TRACE", "1")
+        .env("VK_ICD_FILENAMES", super::xvfb::LAVAPIPE)
+        .env("VK_DRIVER_FILES", super::xvfb::LAVAPIPE)
+        .env_remove("WAYLAND_DISPLAY")
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(file)
+        .spawn()
+        .unwrap_or_else(|e| panic!("cannot start the viewer: {e}"));
+    let mut viewer = Viewer(child);
+    let wid = window_of(&mut viewer, &log, Duration::from_secs(60))
+        .unwrap_or_else(|| panic!("no window in 60 s; viewer log:\n{}", read_log(&log)));
+    let _ = Command::new("xdotool")
+        .args(["windowfocus", "--sync", &wid])
+        .status();
+    // The first frame (the sphere's upload, shaders, fonts) lands before the test starts.
+    std::thread::sleep(Duration::from_secs(3));
+
+    run("xdotool", &["key", "--window", &wid, "t"]);
+    std::thread::sleep(Duration::from_secs(2));
+    // 9: remove 90 % — a job of many seconds on this sphere.
+    run("xdotool", &["key", "--window", &wid, "9"]);
+    let started = wait_for_line(&log, "ms, viewport 1: decimating", Duration::from_secs(10));
+    assert!(
+        started.is_some(),
+        "no frame was drawn while the decimation ran; viewer log:\n{}",
+        read_log(&log)
+    );
+    // Frames keep coming while it runs.
+    std::thread::sleep(Duration::from_secs(2));
+    // A key is handled at once: h (the help overlay) is drawn while the job runs.
+    let sent = Instant::now();
+    run("xdotool", &["key", "--window", &wid, "h"]);
+    let handled = wait_for_line(&log, "key Char('h')", Duration::from_secs(10))
+        .map(|_| sent.elapsed())
+        .unwrap_or_else(|| panic!("key h never handled; viewer log:\n{}", read_log(&log)));
+    std::thread::sleep(Duration::from_secs(1));
+    let frames: Vec<u64> = traces(&log, "ms, viewport 1: decimating")
+        .into_iter()
+        .map(|(ms, _)| ms)
+        .collect();
+    assert!(
+        traces(&log, "removed 90 %").is_empty() && !read_log(&log).contains("removed 90 %"),
+        "the decimation ended before Esc: the sphere is too small for this test"
+    );
+
+    // Esc cancels: the original's counts stay, and the viewer goes on (Esc quits only
+    // when nothing runs).
+    run("xdotool", &["key", "--window", &wid, "Escape"]);
+    let cancelled = format!("still shows {} vertices, {} triangles", VERTICES, TRIANGLES);
+    assert!(
+        wait_for_line(&log, &cancelled, Duration::from_secs(5)).is_some(),
+        "Esc did not cancel with the original's counts shown; viewer log:\n{}",
+        read_log(&log)
+    );
+    std::thread::sleep(Duration::from_secs(1));
+    assert!(
+        matches!(viewer.0.try_wait(), Ok(None)),
+        "Esc quit the viewer instead of cancelling; viewer log:\n{}",
+        read_log(&log)
+    );
+    let gaps: Vec<u64> = frames.windows(2).map(|w| w[1] - w[0]).collect();
+    let longest = gaps.iter().copied().max().unwrap_or(u64::MAX);
+    eprintln!(
+        "gui_busy: {} frames while decimating, longest gap {longest} ms; key h handled in {} ms",
+        frames.len(),
+        handled.as_millis()
+    );
+    assert!(
+        frames.len() >= 5,
+        "only {} frames in 3 s of decimation; viewer log:\n{}",
+        frames.len(),
+        read_log(&log)
+    );
+    assert!(
+        longest <= ANSWER.as_millis() as u64,
+        "a frame waited {longest} ms for the next while the job ran (gaps {gaps:?})"
+    );
+    assert!(
+        handled <= ANSWER,
+        "key h took {} ms to be handled while the job ran",
+        handled.as_millis()
+    );
+
+    // q quits (nothing runs now); its release may find the window gone (see xvfb.rs).
+    let _ = Command::new("xdotool")
+        .args(["key", "--window", &wid, "q"])
+        .output();
+    let start = Instant::now();
+    loop {
+        if let Ok(Some(status)) = viewer.0.try_wait() {
+            assert!(status.success(), "the viewer exited with {status}");
+            break;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(20),
+            "q did not quit the viewer; viewer log:\n{}",
+            read_log(&log)
+        );
+        std::thread::sleep(Duration::from_millis(200));
+    }
+}
