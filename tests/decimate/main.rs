@@ -15,6 +15,7 @@ mod qem;
 mod random;
 mod report_models;
 mod schroeder;
+mod seams;
 mod stitches;
 mod texcoords;
 mod untouched;

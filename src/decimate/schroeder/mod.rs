@@ -98,9 +98,16 @@ pub fn decimate_model(
     let released = layout::release(model, &loaded);
 
     // 2. connect
-    let mut d = Decimator::new(positions, triangles, limits.feature_angle_deg);
     let pinned_count = pinned.iter().filter(|&&p| p).count();
-    d.copies = crate::mesh::seams::copy_cycles(&d.positions, &pinned);
+    let copies = crate::mesh::seams::copy_cycles(&positions, &pinned);
+    // A seam cuts a closed shape open: judge closedness with its copies welded.
+    let seamed_closed = (!twins.is_empty() || !copies.is_empty())
+        .then(|| ClosedVolumes::with_seams(&positions, &triangles, &twins, &copies));
+    let mut d = Decimator::new(positions, triangles, limits.feature_angle_deg);
+    if let Some(closed) = seamed_closed {
+        d.closed = closed;
+    }
+    d.copies = copies;
     d.pinned = pinned;
     d.twins = twins;
     d.texcoords = texcoords;
