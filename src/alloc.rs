@@ -49,6 +49,20 @@ unsafe impl GlobalAlloc for HugePages {
     }
 }
 
+/// Makes the C allocator map every block from `MIN_HUGE` on by itself and unmap it when it
+/// is freed, so that a freed mesh array goes back to the system at once. By default glibc
+/// raises that threshold to the size of each such block freed (up to 32 MiB), and later
+/// arrays below it then come from the heap, where freeing them leaves holes the process
+/// keeps (docs/design.md#in-core-memory). Called once, first thing in a binary's `main`.
+pub fn return_large_blocks() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    {
+        // SAFETY: mallopt only sets a tuning parameter of the C allocator, before any
+        // thread is started.
+        unsafe { libc::mallopt(libc::M_MMAP_THRESHOLD, MIN_HUGE as libc::c_int) };
+    }
+}
+
 /// Advises the kernel to back the whole huge pages inside `block..block + size` with huge
 /// pages (large blocks only). Errors are ignored: the advice is only a hint.
 fn advise(block: *mut u8, size: usize) {

@@ -12,6 +12,7 @@ use decimate::{batch, io, mesh, tile};
 static ALLOCATOR: decimate::alloc::HugePages = decimate::alloc::HugePages;
 
 fn main() -> ExitCode {
+    decimate::alloc::return_large_blocks();
     // (1) Parameter check.
     let args = match cli::parse(std::env::args().skip(1)) {
         Ok(Command::Run(args)) => args,

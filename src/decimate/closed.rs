@@ -5,11 +5,15 @@
 //! sign or drops to nothing while every local check passes. So every connected part of a
 //! model whose edges each have two triangles running them opposite ways has its signed
 //! volume tracked, and a step that would take it below a share of its starting volume (or
-//! across zero) is refused, keeping the vertex.
+//! across zero) is refused, keeping the vertex. A texture seam cuts a closed shape open
+//! (one vertex per side, same position): closedness is judged with the seam's copies
+//! welded ([`ClosedVolumes::with_seams`]), so a textured sphere is guarded like a plain one.
 
 use std::collections::HashMap;
 
 use glam::{DVec3, Vec3};
+
+use crate::mesh::seams;
 
 /// A closed shape keeps at least this share of its starting volume: the largest
 /// tetrahedron inside a box holds a third of it, inside a sphere an eighth, so decimating
@@ -41,14 +45,39 @@ impl ClosedVolumes {
     /// The closed components of `triangles` over `positions` (vertices `0..positions.len()`;
     /// triangles with an index out of range are ignored, and make nothing closed).
     pub fn new(positions: &[Vec3], triangles: &[[u32; 3]]) -> Self {
+        Self::welded(positions, triangles, &[])
+    }
+
+    /// As [`Self::new`], with each texture seam's copies of a point taken as one vertex:
+    /// the two sides `twins` pairs and the junction copies `cycles` links
+    /// (`mesh::seams::copies`; either may be empty).
+    pub fn with_seams(
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+        twins: &[u32],
+        cycles: &[u32],
+    ) -> Self {
+        if twins.is_empty() && cycles.is_empty() {
+            return Self::new(positions, triangles);
+        }
+        let weld: Vec<u32> = (0..positions.len() as u32)
+            .map(|v| seams::copies(v, twins, cycles).min().unwrap_or(v))
+            .collect();
+        Self::welded(positions, triangles, &weld)
+    }
+
+    /// The closed components with vertex `v` standing for `weld[v]` in the topology (itself
+    /// when `weld` is empty); positions are each vertex's own.
+    fn welded(positions: &[Vec3], triangles: &[[u32; 3]], weld: &[u32]) -> Self {
         let n = positions.len();
         let valid = |t: &[u32; 3]| t.iter().all(|&v| (v as usize) < n);
+        let one = |v: u32| weld.get(v as usize).copied().unwrap_or(v);
         // Components of the vertices, by union-find.
         let mut parent: Vec<u32> = (0..n as u32).collect();
         for t in triangles.iter().filter(|t| valid(t)) {
-            let a = find(&mut parent, t[0]);
+            let a = find(&mut parent, one(t[0]));
             for &v in &t[1..] {
-                let b = find(&mut parent, v);
+                let b = find(&mut parent, one(v));
                 parent[b as usize] = a;
             }
         }
@@ -57,7 +86,7 @@ impl ClosedVolumes {
         let mut edges: Vec<u64> = triangles
             .iter()
             .filter(|t| valid(t))
-            .flat_map(|t| (0..3).map(move |k| key(t[k], t[(k + 1) % 3])))
+            .flat_map(|t| (0..3).map(move |k| key(one(t[k]), one(t[(k + 1) % 3]))))
             .collect();
         edges.sort_unstable();
         let mut open = vec![false; n];
@@ -71,7 +100,7 @@ impl ClosedVolumes {
         }
         for t in triangles.iter().filter(|t| !valid(t)) {
             for &v in t.iter().filter(|&&v| (v as usize) < n) {
-                let root = find(&mut parent, v);
+                let root = find(&mut parent, one(v));
                 open[root as usize] = true;
             }
         }
@@ -81,7 +110,7 @@ impl ClosedVolumes {
         let mut origin = Vec::new();
         let mut volume6 = Vec::new();
         for t in triangles.iter().filter(|t| valid(t)) {
-            let root = find(&mut parent, t[0]);
+            let root = find(&mut parent, one(t[0]));
             if open[root as usize] {
                 continue;
             }
@@ -230,5 +259,23 @@ mod tests {
         assert!(c.allows(0, 3.0, 1.0));
         let open = ClosedVolumes::new(&p, &t[2..]);
         assert_eq!(open.component(0), None);
+    }
+
+    #[test]
+    fn a_box_cut_open_by_a_seam_is_closed_once_its_copies_are_welded() {
+        // The unit box with vertex 0 split: the triangles on one side use a copy (8).
+        let (mut p, mut t) = box_mesh();
+        p.push(p[0]);
+        let first = t.iter().position(|t| t.contains(&0)).unwrap_or(0);
+        for v in t[first].iter_mut().filter(|v| **v == 0) {
+            *v = 8;
+        }
+        assert_eq!(ClosedVolumes::new(&p, &t).component(0), None, "cut open");
+        let mut twins = vec![u32::MAX; 9];
+        (twins[0], twins[8]) = (8, 0);
+        let welded = ClosedVolumes::with_seams(&p, &t, &twins, &[]);
+        assert_eq!(welded.component(0), Some(0));
+        assert_eq!(welded.component(8), Some(0));
+        assert!((welded.volume6(0) - 6.0).abs() < 1e-12);
     }
 }

@@ -1,8 +1,11 @@
 //! The first and last stages shared by every algorithm: [`load`] renumbers a model's
 //! vertices along a Morton curve (memory locality) and keeps its valid triangles in that
 //! numbering; [`compact`] brings the live triangles of a decimated `Connectivity` back to the
-//! model's numbering, with the kept vertices in their input order.
+//! model's numbering, with the kept vertices in their input order. While a decimator works
+//! on its own copies, [`release`] frees the model's and [`restore`] brings them back when
+//! nothing was removed (docs/design.md#in-core-memory).
 
+use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::mesh::spatial;
@@ -94,6 +97,41 @@ fn faces_by_first_vertex(model: &Model, internal: &[u32]) -> Vec<u32> {
         }
     }
     faces
+}
+
+/// Frees `model`'s positions and triangles once a decimator holds its own copies of them
+/// in `loaded`'s numbering: no second copy of the input while it works. True when they
+/// were freed (every face was loaded, so the copies hold all of them); the decimator then
+/// writes its result back, or calls [`restore`].
+pub fn release(model: &mut Model, loaded: &Loaded) -> bool {
+    if loaded.faces.len() != model.triangles.len() || loaded.order.len() != model.positions.len() {
+        return false;
+    }
+    model.positions = Vec::new();
+    model.triangles = Vec::new();
+    true
+}
+
+/// Undoes [`release`] from the decimator's unchanged copies: `positions` and `conn`'s
+/// triangle slots in internal numbering, `order` and `faces` as [`load`] made them. The
+/// model gets back exactly the arrays it had.
+pub fn restore(
+    model: &mut Model,
+    positions: &[Vec3],
+    conn: &Connectivity,
+    order: &[u32],
+    faces: &[u32],
+) {
+    let mut restored = vec![Vec3::ZERO; order.len()];
+    for (&v, &p) in order.iter().zip(positions) {
+        restored[v as usize] = p;
+    }
+    model.positions = restored;
+    let mut triangles = vec![[0u32; 3]; faces.len()];
+    for (t, &f) in faces.iter().enumerate() {
+        triangles[f as usize] = conn.triangle(t as u32).map(|v| order[v as usize]);
+    }
+    model.triangles = triangles;
 }
 
 /// The live mesh in the model's numbering.

@@ -70,4 +70,7 @@ pub struct Outcome {
     /// Vertices never removed because they were pinned (texture seams, `mesh::seams`, and
     /// borders shared with another model, `mesh::stitches`).
     pub pinned: usize,
+    /// Of a fully decimated model (`exhausted`), the vertices whose removal only the
+    /// closed-volume guard refuses (`decimate::closed`); 0 otherwise.
+    pub closed_kept: usize,
 }

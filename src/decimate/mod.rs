@@ -109,6 +109,9 @@ pub struct ModelReport {
     /// Of a fully decimated model, the vertices left on non-manifold edges: what the input
     /// holds back (counted only when nothing more could go).
     pub non_manifold_kept: usize,
+    /// Of a fully decimated model, the vertices kept only so that a closed part does not
+    /// turn inside out or flat (`decimate::closed`; vertex removal counts them).
+    pub closed_kept: usize,
     /// Another instance of the same mesh (`mesh::Instance`), by its index in the report:
     /// this model was not decimated itself but given that one's result, and totals count
     /// the mesh once.
@@ -282,6 +285,7 @@ fn run(
                 dropped: false,
                 pinned: 0,
                 non_manifold_kept: 0,
+                closed_kept: 0,
                 instance_of: None,
                 copied: true,
             });
@@ -371,6 +375,7 @@ fn run(
             } else {
                 0
             },
+            closed_kept: outcome.closed_kept,
             instance_of: None,
             copied: false,
         });

@@ -41,6 +41,13 @@ impl Report {
                         m.non_manifold_kept
                     ));
                 }
+                if m.closed_kept > 0 {
+                    held.push(format!(
+                        "{} vertices are kept so that a closed part does not turn inside out \
+                         or flat",
+                        m.closed_kept
+                    ));
+                }
                 if held.is_empty() {
                     "  fully decimated".to_string()
                 } else {

@@ -160,11 +160,13 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         Remap::Dense(vec![u32::MAX; npoints])
     };
     let mut positions: Vec<Vec3> = Vec::new();
-    let mut local: Vec<u32> = Vec::with_capacity(corners.len());
+    // Each corner's point index is replaced by its vertex's, in place: no second array.
+    let mut local = corners;
     let mut vcolors: Vec<[f32; 3]> = Vec::new();
     let mut vnormals: Vec<Vec3> = Vec::new();
     let mut vtexcoords: Vec<[f32; 2]> = Vec::new();
-    for (k, &c) in corners.iter().enumerate() {
+    for (k, corner) in local.iter_mut().enumerate() {
+        let c = *corner;
         // With texture coordinates a vertex is a (point, coordinate pair) pair.
         let key = match &texcoords {
             Some(t) => u64::from(c) | u64::from(t.index[k]) << 32,
@@ -201,11 +203,17 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
                 vtexcoords.push([t.values[i], t.values[i + 1]]);
             }
         }
-        local.push(v);
+        *corner = v;
     }
 
-    let mut triangles: Vec<[u32; 3]> =
-        Vec::with_capacity(corners.len().saturating_sub(ends.len() * 2));
+    // A shape of triangles only (most files) takes its triangles from the corners as they
+    // are; polygons are cut below.
+    let only_triangles = (ends.iter().enumerate()).all(|(f, &end)| end as usize == 3 * (f + 1));
+    let mut triangles: Vec<[u32; 3]> = if only_triangles {
+        Vec::new()
+    } else {
+        Vec::with_capacity(local.len().saturating_sub(ends.len() * 2))
+    };
     let mut fcolors: Vec<[f32; 3]> = Vec::new();
     let mut fnormals: Vec<Vec3> = Vec::new();
     let mut scratch = EarBuffers::default();
@@ -219,6 +227,7 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         let before = triangles.len();
         match face.len() {
             0..=2 => degenerate += 1,
+            3 if only_triangles => {}
             3 => triangles.push([face[0], face[1], face[2]]),
             _ => {
                 pts.clear();
@@ -234,7 +243,11 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
                 }));
             }
         }
-        let made = triangles.len() - before;
+        let made = if only_triangles {
+            1
+        } else {
+            triangles.len() - before
+        };
         if let Bind::PerFace { values, index } = &colors {
             let c = index
                 .get(f)
@@ -250,6 +263,11 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
             fnormals.extend(std::iter::repeat_n(Vec3::from(n), made));
         }
         start = end;
+    }
+    if only_triangles {
+        triangles = into_triples(local);
+    } else {
+        drop(local);
     }
     if degenerate > 0 {
         warnings.push(format!(
@@ -289,6 +307,20 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
     })
 }
 
+/// Flat corner indices, three a triangle, as triangles: the same allocation when its size
+/// allows (`len` and capacity multiples of three), else a copy.
+fn into_triples(flat: Vec<u32>) -> Vec<[u32; 3]> {
+    if !(flat.len().is_multiple_of(3) && flat.capacity().is_multiple_of(3)) {
+        return flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    }
+    let mut flat = std::mem::ManuallyDrop::new(flat);
+    let (ptr, len, capacity) = (flat.as_mut_ptr(), flat.len(), flat.capacity());
+    // SAFETY: the allocation is `flat`'s own (never freed by it, being ManuallyDrop), and
+    // `[u32; 3]` has `u32`'s alignment and three times its size: `len / 3` triples are
+    // initialised and `capacity / 3` of them make exactly the layout it was allocated with.
+    unsafe { Vec::from_raw_parts(ptr.cast::<[u32; 3]>(), len / 3, capacity / 3) }
+}
+
 /// True when every corner has a texture coordinate pair in range and every used pair is
 /// finite; otherwise the shape's texture coordinates are dropped with a warning (the shape
 /// itself is still read).
@@ -322,5 +354,25 @@ fn texcoords_fit(
             false
         }
         None => true,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn flat_corners_become_triangles_in_place_or_copied() {
+        let mut flat = Vec::with_capacity(6);
+        flat.extend([0, 1, 2, 2, 1, 3]);
+        let at = flat.as_ptr() as usize;
+        let triangles = into_triples(flat);
+        assert_eq!(triangles, vec![[0, 1, 2], [2, 1, 3]]);
+        assert_eq!(triangles.as_ptr() as usize, at, "the same allocation");
+        // A capacity that is no multiple of three is copied.
+        let mut flat = Vec::with_capacity(7);
+        flat.extend([4, 5, 6]);
+        assert_eq!(into_triples(flat), vec![[4, 5, 6]]);
+        assert!(into_triples(Vec::new()).is_empty());
     }
 }

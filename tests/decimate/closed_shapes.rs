@@ -336,4 +336,50 @@ mod small_shapes {
             }
         }
     }
+
+    /// A low square pyramid on a flat bottom of two triangles split along `diagonal`
+    /// (0: corners 0–2, 1: corners 1–3): the apex is smooth, the base's corners are sharp.
+    fn low_pyramid(diagonal: usize) -> Model {
+        let positions = vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(2.0, 2.0, 0.0),
+            Vec3::new(0.0, 2.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.1),
+        ];
+        let bottom = [[[0, 2, 1], [0, 3, 2]], [[1, 0, 3], [1, 3, 2]]][diagonal];
+        let mut triangles = vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]];
+        triangles.extend(bottom);
+        model(positions, triangles)
+    }
+
+    /// Removing the apex of a low pyramid fills the square along corners 0–2. Over a
+    /// bottom split along 1–3 that is a valid fill, every new triangle facing up as the old
+    /// ones did, but the shape would be flat: decimated as far as it goes at the default
+    /// feature angle (the base's corners are corners), it keeps all five vertices, and the
+    /// summary names the one kept only by the closed-volume guard. Over a bottom split
+    /// along 0–2 the fill would double an edge: the apex is kept by that check instead.
+    #[test]
+    fn a_fully_decimated_summary_names_the_vertices_the_closed_volume_guard_keeps() {
+        let mut kept = Vec::new();
+        for diagonal in [0, 1] {
+            let mut scene = Scene {
+                models: vec![low_pyramid(diagonal)],
+            };
+            let params = Params {
+                target: Target::ErrorOnly,
+                max_error: Some(decimate::decimate::ErrorBound::Absolute(10.0)),
+                algorithm: Algorithm::Schroeder,
+                ..Params::default()
+            };
+            let report = simplify_scene(&mut scene, &params, &mut |_| {});
+            let m = &report.models[0];
+            assert!(m.fully_decimated);
+            assert_eq!((m.vertices_after, m.triangles_after), (5, 6));
+            let line = "1 vertices are kept so that a closed part does not turn inside out or flat";
+            assert_eq!(report.summary().contains(line), m.closed_kept == 1);
+            kept.push(m.closed_kept);
+        }
+        assert_eq!(kept, [0, 1], "kept by the guard, per diagonal below");
+    }
 }

@@ -106,6 +106,7 @@ pub(super) fn collapse_in_passes(
         exhausted: false,
         feature_angle_deg: limits.feature_angle_deg,
         pinned: 0,
+        closed_kept: 0,
     };
     let bound2 = limits.max_error * limits.max_error;
     // Never fewer than four vertices: a model under four is dropped from the scene, and a
@@ -231,13 +232,13 @@ fn collapse_pass(
         let mut whole = d.whole();
         collapse_in_order(&mut whole, &border, bounds, None, tally);
         let removed = whole.conn.finish();
-        d.conn.absorb(removed);
+        d.conn.retire(&removed);
         rest = tail;
     }
     let mut whole = d.whole();
     let stopped = collapse_in_order(&mut whole, rest, bounds, Some(limit), tally);
     let removed = whole.conn.finish();
-    d.conn.absorb(removed);
+    d.conn.retire(&removed);
     stopped
 }
 
@@ -268,7 +269,7 @@ fn collapse_in_regions(
         tally.max_error2 = tally.max_error2.max(region.max_error2);
         tally.over_bound |= region.over_bound;
         border.extend(region.border);
-        d.conn.absorb(freed);
+        d.conn.retire(&freed);
     }
     border.sort_unstable();
     border

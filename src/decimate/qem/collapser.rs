@@ -132,9 +132,15 @@ impl Collapser {
     /// Pairs the two sides of texture seams: `twins[v]` is `v`'s other side or `u32::MAX`
     /// (internal numbering; empty when no vertex has a twin, see `Loaded::pairs`). A pair
     /// collapses only together, along the seam (see `Part::plan`); a vertex with a twin
-    /// never moves otherwise.
+    /// never moves otherwise. Closed shapes are then judged with their seams welded (call
+    /// after [`Self::pin`], which links a junction's copies).
     pub fn set_twins(&mut self, twins: Vec<u32>) {
         self.twins = twins;
+        if !self.twins.is_empty() || !self.copies.is_empty() {
+            let triangles = self.conn.triangles();
+            self.closed =
+                ClosedVolumes::with_seams(&self.positions, triangles, &self.twins, &self.copies);
+        }
     }
 
     /// True when some texture seam's sides collapse together (see [`Self::set_twins`]).
@@ -232,6 +238,12 @@ impl Collapser {
     /// Adds the volume changes a part made on its own (see `ClosedView`).
     pub fn absorb_volume_changes(&mut self, changes: std::collections::HashMap<u32, f64>) {
         self.closed.absorb(changes);
+    }
+
+    /// Gives `model` back the positions and triangles `layout::release` freed, from this
+    /// state before any collapse.
+    pub fn restore(&self, model: &mut Model, order: &[u32], faces: &[u32]) {
+        crate::decimate::layout::restore(model, &self.positions, &self.conn, order, faces);
     }
 
     /// Writes live vertices (at their new positions) and triangles back into `model`.

@@ -72,13 +72,20 @@ fn run(
 ) -> (Outcome, Option<ProgressiveModel>) {
     // 1. load, renumbered along a Morton curve for memory locality
     let n = model.positions.len() as u32;
-    let loaded = layout::load(model);
-    let (order, faces) = (&loaded.order, &loaded.faces);
-    let positions: Vec<Vec3> = order
+    let mut loaded = layout::load(model);
+    let positions: Vec<Vec3> = loaded
+        .order
         .par_iter()
         .map(|&v| model.positions[v as usize])
         .collect();
     let triangles = loaded.triangles(model);
+    let twins = loaded.pairs(twins);
+    // Only loading maps the model's ids to the internal ones.
+    loaded.internal = Vec::new();
+    let (order, faces) = (&loaded.order, &loaded.faces);
+    // The decimation works on its own copies: the model's are freed meanwhile (with a
+    // recorder, which starts from the model, they stay).
+    let released = recorder.is_none() && layout::release(model, &loaded);
     let per_vertex = |a: &Option<Attribute<[f32; 3]>>| match a {
         Some(Attribute::PerVertex(c)) if c.len() == n as usize => {
             Some(order.iter().map(|&v| c[v as usize]).collect::<Vec<_>>())
@@ -96,7 +103,6 @@ fn run(
     // 2. connect, 3. quadrics (one pass over the vertices' rings)
     let cos_feature = limits.feature_angle_deg.to_radians().cos();
     let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
-    let twins = loaded.pairs(twins);
     // On a seam: one of two sides (twinned) or where more meet (pinned; shared borders are
     // pinned too, but never collapse either).
     let seam: Vec<bool> = if twins.is_empty() {
@@ -136,6 +142,8 @@ fn run(
     }
     if outcome.removed > 0 {
         d.write_back(model, order, faces);
+    } else if released {
+        d.restore(model, order, faces);
     }
     (outcome, None)
 }

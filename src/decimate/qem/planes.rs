@@ -1,6 +1,9 @@
 //! What every vertex starts with, read off its ordered one-ring in one pass on all cores:
 //! its kind (interior, boundary, fixed) and its quadric — the area-weighted planes of its
-//! triangles, plus the constraint planes of its boundary and feature edges.
+//! triangles, plus the constraint planes of its boundary and feature edges. A non-manifold
+//! ("complex") vertex has no planes through its non-manifold edges, and a fin's rim (a
+//! short boundary chain between two of them) is not constrained
+//! (docs/design.md#qem-non-manifold-weights).
 //!
 //! In the ring (`mesh::topology::Ring`) triangle `i` is `(v, verts[i], verts[i + 1])`, so the
 //! edge to `verts[j]` lies between ring triangles `j - 1` and `j` (wrapping round a closed
@@ -53,39 +56,51 @@ pub(super) fn kinds_and_quadrics(
     positions: &[Vec3],
     constraints: Constraints<'_>,
 ) -> (Vec<Kind>, Vec<Quadric>) {
-    // Each triangle's plane once (a triangle is in three rings).
-    let planes: Vec<FacePlane> = conn
-        .triangles()
+    let planes = face_planes(conn, positions);
+    let (kinds, mut quadrics) = ring_kinds_and_quadrics(conn, positions, &planes, constraints);
+    constrain_outlines(conn, positions, &planes, &kinds, &mut quadrics, constraints);
+    (kinds, quadrics)
+}
+
+/// Each triangle's plane once (a triangle is in three rings), on all cores.
+fn face_planes(conn: &Connectivity, positions: &[Vec3]) -> Vec<FacePlane> {
+    conn.triangles()
         .par_iter()
         .with_min_len(PER_TASK)
         .map(|tri| {
             let [a, b, c] = tri.map(|w| positions[w as usize].as_dvec3());
             FacePlane::of(a, b, c)
         })
-        .collect();
+        .collect()
+}
+
+/// Every vertex's kind and quadric from its own ring, on all cores.
+fn ring_kinds_and_quadrics(
+    conn: &Connectivity,
+    positions: &[Vec3],
+    planes: &[FacePlane],
+    constraints: Constraints<'_>,
+) -> (Vec<Kind>, Vec<Quadric>) {
     (0..positions.len() as u32)
         .into_par_iter()
         .with_min_len(PER_TASK)
-        .map_init(
-            || (Ring::default(), Vec::new()),
-            |(ring, scratch), v| {
-                let kind = match conn.ring(v, ring) {
-                    RingShape::Closed => Kind::Interior,
-                    RingShape::Open => Kind::Boundary,
-                    RingShape::Isolated => Kind::Fixed,
-                    RingShape::Complex => {
-                        return complex_quadric(conn, positions, &planes, v, scratch)
-                            .map_or((Kind::Fixed, Quadric::default()), |q| (Kind::Complex, q));
-                    }
-                };
-                let quadric = if kind == Kind::Fixed {
-                    Quadric::default()
-                } else {
-                    ring_quadric(positions, &planes, v, ring, kind, constraints)
-                };
-                (kind, quadric)
-            },
-        )
+        .map_init(Ring::default, |ring, v| {
+            let kind = match conn.ring(v, ring) {
+                RingShape::Closed => Kind::Interior,
+                RingShape::Open => Kind::Boundary,
+                RingShape::Isolated => Kind::Fixed,
+                RingShape::Complex => {
+                    return complex_quadric(conn, planes, v)
+                        .map_or((Kind::Fixed, Quadric::default()), |q| (Kind::Complex, q));
+                }
+            };
+            let quadric = if kind == Kind::Fixed {
+                Quadric::default()
+            } else {
+                ring_quadric(positions, planes, v, ring, kind, constraints)
+            };
+            (kind, quadric)
+        })
         .unzip()
 }
 
@@ -131,63 +146,95 @@ impl FacePlane {
     }
 }
 
-/// The planes a non-manifold vertex `v` stands for: its triangles' planes, and through
-/// each of its edges with one triangle (the outline) or with three or more (a non-manifold
-/// edge) a plane perpendicular to each of those triangles, weighted as a boundary's, so that
-/// collapsing along such an edge prices leaving its line. `None` when a triangle at `v` is
-/// degenerate (a corner repeated) or `v` has more than `MAX_VALENCE` triangles: such a
-/// vertex stays fixed. Edges are counted by sorting
-/// the neighbours (`scratch`), so a huge fan costs `k log k`.
-fn complex_quadric(
-    conn: &Connectivity,
-    positions: &[Vec3],
-    planes: &[FacePlane],
-    v: u32,
-    scratch: &mut Vec<u32>,
-) -> Option<Quadric> {
+/// The planes a non-manifold vertex `v` stands for from its own fan: its triangles' planes,
+/// none through its non-manifold edges (its sheets' own planes price moving it off any of
+/// them) and none yet through its boundary edges ([`constrain_outlines`] adds those that are
+/// not a fin's rim; docs/design.md#qem-non-manifold-weights). `None` when a triangle at `v`
+/// is degenerate (a corner repeated) or `v` has more than `MAX_VALENCE` triangles: such a
+/// vertex stays fixed.
+fn complex_quadric(conn: &Connectivity, planes: &[FacePlane], v: u32) -> Option<Quadric> {
     let incident = conn.incident(v);
     if incident.len() > MAX_VALENCE {
         return None;
     }
-    scratch.clear();
+    let mut sum = Quadric::default();
     for &t in incident {
         let (_, next, prev) = corner_of(conn.triangle(t), v);
         if next == v || prev == v || next == prev {
             return None;
         }
-        scratch.extend([next, prev]);
-    }
-    scratch.sort_unstable();
-    let triangles_on = |x: u32| {
-        let first = scratch.partition_point(|&y| y < x);
-        scratch[first..].iter().take_while(|&&y| y == x).count()
-    };
-    let at = |w: u32| positions[w as usize].as_dvec3();
-    let mut sum = Quadric::default();
-    for &t in incident {
-        let plane = &planes[t as usize];
-        let Some(n) = plane.normal() else {
-            continue;
-        };
-        if let Some(q) = plane.quadric() {
+        if let Some(q) = planes[t as usize].quadric() {
             sum.add(&q);
-        }
-        let (_, next, prev) = corner_of(conn.triangle(t), v);
-        for (u, w, x) in [(v, next, next), (prev, v, prev)] {
-            if triangles_on(x) == 2 {
-                continue;
-            }
-            let (pu, pw) = (at(u), at(w));
-            let edge = pw - pu;
-            let side = edge.cross(n).normalize_or_zero();
-            sum.add(&Quadric::plane(
-                side,
-                -side.dot(pu),
-                CONSTRAINT_WEIGHT * edge.length_squared(),
-            ));
         }
     }
     Some(sum)
+}
+
+/// The boundary edges at complex vertices, one pass over their fans. A fin's rim (a chain
+/// of one or two boundary edges whose ends are both complex: a flap standing on a
+/// non-manifold edge) is not constrained, and its boundary vertex takes back the plane it
+/// put there; any other boundary edge of a complex vertex gets its constraint plane, as an
+/// outline does (docs/design.md#qem-non-manifold-weights). A seam's edges keep theirs.
+fn constrain_outlines(
+    conn: &Connectivity,
+    positions: &[Vec3],
+    planes: &[FacePlane],
+    kinds: &[Kind],
+    quadrics: &mut [Quadric],
+    constraints: Constraints<'_>,
+) {
+    let at = |w: u32| positions[w as usize].as_dvec3();
+    let is = |v: u32, kind: Kind| kinds[v as usize] == kind;
+    for c in (0..positions.len() as u32).filter(|&c| is(c, Kind::Complex)) {
+        for &t in conn.incident(c) {
+            let Some(n) = planes[t as usize].normal() else {
+                continue;
+            };
+            let (_, next, prev) = corner_of(conn.triangle(t), c);
+            for x in [next, prev] {
+                if edge_triangles(conn, c, x) != 1 {
+                    continue;
+                }
+                let fin = is(x, Kind::Complex)
+                    || (is(x, Kind::Boundary)
+                        && other_boundary_neighbour(conn, x, c)
+                            .is_some_and(|y| is(y, Kind::Complex)));
+                let seam = constraints.on_seam(c) && constraints.on_seam(x);
+                let (pc, px) = (at(c), at(x));
+                let edge = px - pc;
+                let side = edge.cross(n).normalize_or_zero();
+                let plane = |weight: f64| {
+                    Quadric::plane(side, -side.dot(pc), weight * edge.length_squared())
+                };
+                let weight = if seam { SEAM_WEIGHT } else { CONSTRAINT_WEIGHT };
+                if !fin {
+                    quadrics[c as usize].add(&plane(weight));
+                } else if is(x, Kind::Boundary) && !seam {
+                    quadrics[x as usize].add(&plane(-weight));
+                }
+            }
+        }
+    }
+}
+
+/// How many triangles at `a` have the edge `a`–`b` (a complex or boundary vertex's fan is
+/// at most `MAX_VALENCE` long).
+fn edge_triangles(conn: &Connectivity, a: u32, b: u32) -> usize {
+    let incident = conn.incident(a);
+    incident
+        .iter()
+        .filter(|&&u| conn.triangle(u).contains(&b))
+        .count()
+}
+
+/// The boundary vertex `x`'s neighbour along its boundary other than `c`, when it has one.
+fn other_boundary_neighbour(conn: &Connectivity, x: u32, c: u32) -> Option<u32> {
+    conn.incident(x).iter().find_map(|&t| {
+        let (_, next, prev) = corner_of(conn.triangle(t), x);
+        [next, prev]
+            .into_iter()
+            .find(|&y| y != c && edge_triangles(conn, x, y) == 1)
+    })
 }
 
 /// The planes `v` stands for, from its ring and the triangles' `planes`.

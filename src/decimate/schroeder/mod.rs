@@ -10,6 +10,8 @@
 //!    simple → distance to the loop's average plane (area-weighted normal and centre);
 //!    boundary → distance to the line through its two boundary neighbours;
 //!    interior edge → distance to the line through its two feature neighbours;
+//!    complex, on a non-manifold crease line or at a bowtie (`sheets`) → distance to the
+//!    line its fans close on;
 //!    plus the error already accumulated at the vertex by earlier removals around it, so that
 //!    the key bounds the distance to the original surface (as VTK's later implementation
 //!    of the paper does); pinned vertices (seam junctions, `mesh::seams`; borders shared
@@ -21,7 +23,7 @@
 //! 4. remove (`removal_passes`): in passes over the cheapest share of the candidates, in key order:
 //!    remove each, filling its hole by recursive loop splitting (`loop_split`, planned in
 //!    `plan`), keeping creases (an interior-edge vertex's loop is first split along its
-//!    feature edge) and rejecting fills that flip or degenerate a triangle, create an edge
+//!    feature edge; a complex vertex's fans are filled one by one) and rejecting fills that flip or degenerate a triangle, create an edge
 //!    that already exists (non-manifold) or turn a closed shape inside out or flat
 //!    (`decimate::closed`) — such a vertex is kept until a neighbour goes; a
 //!    vertex whose ring a removal changed waits for the next pass, re-ranked at the end of
@@ -39,6 +41,7 @@ pub mod loop_split;
 mod plan;
 mod region_removal;
 mod removal_passes;
+mod sheets;
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -77,24 +80,37 @@ pub fn decimate_model(
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
     // 1. load
-    let (loaded, positions, triangles) = load(model);
+    let (mut loaded, positions, triangles) = load(model);
     let pinned: Vec<bool> = loaded
         .order
         .iter()
         .map(|&v| pins.get(v as usize).copied().unwrap_or(false))
         .collect();
-
-    // 2. connect
-    let mut d = Decimator::new(positions, &triangles, limits.feature_angle_deg);
-    let pinned_count = pinned.iter().filter(|&&p| p).count();
-    d.copies = crate::mesh::seams::copy_cycles(&d.positions, &pinned);
-    d.pinned = pinned;
-    d.twins = loaded.pairs(twins);
-    d.texcoords = model
+    let twins = loaded.pairs(twins);
+    let texcoords = model
         .texcoords
         .as_ref()
         .filter(|t| t.len() == model.positions.len())
         .map(|t| loaded.order.iter().map(|&v| t[v as usize]).collect());
+    // Only loading maps the model's ids to the internal ones; the decimation works on its
+    // own copies, so the model's are freed meanwhile.
+    loaded.internal = Vec::new();
+    let released = layout::release(model, &loaded);
+
+    // 2. connect
+    let pinned_count = pinned.iter().filter(|&&p| p).count();
+    let copies = crate::mesh::seams::copy_cycles(&positions, &pinned);
+    // A seam cuts a closed shape open: judge closedness with its copies welded.
+    let seamed_closed = (!twins.is_empty() || !copies.is_empty())
+        .then(|| ClosedVolumes::with_seams(&positions, &triangles, &twins, &copies));
+    let mut d = Decimator::new(positions, triangles, limits.feature_angle_deg);
+    if let Some(closed) = seamed_closed {
+        d.closed = closed;
+    }
+    d.copies = copies;
+    d.pinned = pinned;
+    d.twins = twins;
+    d.texcoords = texcoords;
 
     // 3. classify and rank
     d.rank_all();
@@ -106,13 +122,19 @@ pub fn decimate_model(
         exhausted: false,
         feature_angle_deg: limits.feature_angle_deg,
         pinned: pinned_count,
+        closed_kept: 0,
     };
     removal_passes::remove_in_passes(&mut d, limits, &mut outcome, progress);
     progress(outcome.removed);
+    if outcome.exhausted {
+        outcome.closed_kept = d.closed_kept();
+    }
 
     // 5. compact
     if outcome.removed > 0 {
         d.write_back(model, &loaded.order, &loaded.faces);
+    } else if released {
+        layout::restore(model, &d.positions, &d.conn, &loaded.order, &loaded.faces);
     }
     outcome
 }
@@ -196,11 +218,11 @@ struct Removal<'a> {
 }
 
 impl Decimator {
-    fn new(positions: Vec<Vec3>, triangles: &[[u32; 3]], feature_angle_deg: f64) -> Self {
+    fn new(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>, feature_angle_deg: f64) -> Self {
         let n = positions.len();
         Self {
-            closed: ClosedVolumes::new(&positions, triangles),
-            conn: Connectivity::new(n, triangles),
+            closed: ClosedVolumes::new(&positions, &triangles),
+            conn: Connectivity::from_triangles(n, triangles),
             positions,
             texcoords: None,
             accumulated: vec![0.0; n],
@@ -241,7 +263,7 @@ impl Decimator {
     /// `v`'s key as its ring stands now, `NaN` when it is no candidate.
     fn key(&self, v: u32, planning: &mut Planning) -> f64 {
         match self.surface().evaluate(v, planning) {
-            Some((class, distance)) if class.removable() && !self.pinned[v as usize] => {
+            Some((_, distance)) if !self.pinned[v as usize] => {
                 distance + self.accumulated[v as usize]
             }
             _ => f64::NAN,
@@ -364,6 +386,24 @@ impl Decimator {
         self.closed
             .component(v)
             .is_none_or(|c| self.closed.allows(c, self.volume_change(v, removal), 1.0))
+    }
+
+    /// The live vertices whose removal, as the mesh stands, only the closed-volume guard
+    /// refuses: the fill is valid but would take a closed part below its floor or across
+    /// zero. Counted on all cores, once, when nothing more can go.
+    fn closed_kept(&self) -> usize {
+        (0..self.positions.len() as u32)
+            .into_par_iter()
+            .map_init(Planning::default, |planning, v| {
+                let candidate = self.closed.component(v).is_some()
+                    && !self.pinned[v as usize]
+                    && self.twin(v).is_none();
+                candidate
+                    && self.surface().plan_removal(v, planning).is_some()
+                    && !self.keeps_closed_volume(v, removal_of(planning))
+            })
+            .filter(|&kept| kept)
+            .count()
     }
 
     /// Six times the change of signed volume that replacing `v`'s triangles by the fill
@@ -496,9 +536,14 @@ impl Decimator {
             triangles,
         } = compact(&self.conn, order, faces);
         model.triangles = triangles;
+        // Vertices never move: the kept ones' positions are the internal copies'.
+        let mut internal = vec![0u32; order.len()];
+        for (i, &v) in order.iter().enumerate() {
+            internal[v as usize] = i as u32;
+        }
         model.positions = kept_vertices
             .iter()
-            .map(|&v| model.positions[v as usize])
+            .map(|&v| self.positions[internal[v as usize] as usize])
             .collect();
         model.colors = model
             .colors

@@ -6,6 +6,7 @@
 use glam::{DVec2, DVec3, Vec3};
 
 use super::loop_split;
+use super::sheets::Sheets;
 use crate::mesh::classify::{classify, RingGeometry, VertexClass};
 use crate::mesh::topology::{Adjacency, Ring};
 
@@ -28,6 +29,8 @@ pub(super) struct Planning {
     regions: Vec<FillRegion>,
     loop_buf: Vec<u32>,
     triangulation: loop_split::SplitBuffers,
+    /// A complex vertex's fans (`sheets`).
+    sheets: Sheets,
 }
 
 /// The fill triangles from the previous region's `end` up to this `end` replace the ring
@@ -91,8 +94,9 @@ impl<'a> SeamSides<'a> {
 impl<C: Adjacency> Surface<'_, C> {
     /// Classifies `v` into `p`'s ring and returns its class and decimation criterion:
     /// distance to the loop's average plane (simple), or to the line through its boundary /
-    /// feature neighbours (boundary, interior edge). `None` for vertices that are never
-    /// removed.
+    /// feature neighbours (boundary, interior edge), or for a complex vertex that may go
+    /// through its fans (`sheets`), to the line its fans close on (the largest of them at a
+    /// bowtie). `None` for vertices that are never removed.
     pub fn evaluate(&self, v: u32, p: &mut Planning) -> Option<(VertexClass, f64)> {
         let seam_side = self.seams.is_some_and(|s| s.twin(v).is_some());
         let class = classify(
@@ -116,9 +120,68 @@ impl<C: Adjacency> Surface<'_, C> {
             VertexClass::InteriorEdge { first, second } => {
                 self.line_distance(at, verts[first], verts[second])
             }
+            VertexClass::Complex => self.sheets_distance(v, p)?,
             _ => return None,
         };
         distance.is_finite().then_some((class, distance))
+    }
+
+    /// A complex vertex's criterion when it may go through its fans, each by the rules of
+    /// a manifold vertex: an open fan has no feature edge inside and does not turn sharply
+    /// at `v` (boundary), a closed one has at most one feature edge (simple). The largest
+    /// of the fans' distances: to the line an open fan closes on, to a closed fan's average
+    /// plane.
+    fn sheets_distance(&self, v: u32, p: &mut Planning) -> Option<f64> {
+        p.sheets.split(self.conn, v)?;
+        let at = self.position(v);
+        let mut distance = 0.0f64;
+        for i in 0..p.sheets.count() {
+            let (first, last, closed) = self.take_fan(v, i, p);
+            let RingGeometry { crosses, lengths } = &p.geometry;
+            let k = crosses.len();
+            let is_feature = |j: usize, l: usize| {
+                let len = lengths[j] * lengths[l];
+                len > 0.0 && crosses[j].dot(crosses[l]) < self.cos_feature * len
+            };
+            let fan_distance = if closed {
+                if (0..k).filter(|&j| is_feature(j, (j + 1) % k)).count() > 1 {
+                    return None;
+                }
+                let (normal, centre) = self.average_plane(p, at, 0..k)?;
+                normal.dot(at - centre).abs()
+            } else {
+                if (1..k).any(|j| is_feature(j - 1, j)) || self.sharp_turn(at, first, last) {
+                    return None;
+                }
+                // On a crease line every fan closes on the same line.
+                self.line_distance(at, first, last)
+            };
+            distance = distance.max(fan_distance);
+        }
+        Some(distance)
+    }
+
+    /// Puts fan `i` of `v` (`p.sheets`) in `p`'s ring and geometry, as a manifold ring:
+    /// its ends and whether it is closed (then its path's repeated end is dropped).
+    fn take_fan(&self, v: u32, i: usize, p: &mut Planning) -> (u32, u32, bool) {
+        let (path, triangles) = p.sheets.fan(i);
+        let (first, last) = (path[0], path[path.len() - 1]);
+        let closed = first == last;
+        fan_geometry(self.positions, v, path, &mut p.geometry);
+        p.ring.verts.clear();
+        p.ring
+            .verts
+            .extend_from_slice(&path[..path.len() - usize::from(closed)]);
+        p.ring.triangles.clear();
+        p.ring.triangles.extend_from_slice(triangles);
+        (first, last, closed)
+    }
+
+    /// Whether the line `a`–`at`–`b` turns by more than the feature angle at `at`.
+    fn sharp_turn(&self, at: DVec3, a: u32, b: u32) -> bool {
+        let d1 = (at - self.position(a)).normalize_or_zero();
+        let d2 = (self.position(b) - at).normalize_or_zero();
+        d1.dot(d2) < self.cos_feature
     }
 
     /// Plans the removal of `v` into `p` (its ring and the fill): its class and criterion
@@ -128,12 +191,57 @@ impl<C: Adjacency> Surface<'_, C> {
         p.fill.clear();
         p.regions.clear();
         let ok = match class {
-            VertexClass::Simple => self.fill_closed(v, p),
-            VertexClass::Boundary => self.fill_open(v, p),
-            VertexClass::InteriorEdge { first, second } => self.fill_crease(v, first, second, p),
+            VertexClass::Simple => self.fill_closed(v, p) && self.fill_is_valid(v, p),
+            VertexClass::Boundary => self.fill_open(v, p) && self.fill_is_valid(v, p),
+            VertexClass::InteriorEdge { first, second } => {
+                self.fill_crease(v, first, second, p) && self.fill_is_valid(v, p)
+            }
+            VertexClass::Complex => self.fill_sheets(v, p),
             _ => false,
         };
-        (ok && self.fill_is_valid(v, p)).then_some((class, distance))
+        ok.then_some((class, distance))
+    }
+
+    /// Complex vertex: each fan filled and checked on its own, an open one as a boundary
+    /// vertex's ring closed by the edge between its ends (on a crease line the same edge
+    /// for every fan, which must not exist yet), a closed one as a simple vertex's. Leaves
+    /// in `p` the whole removal: every neighbour, every triangle, every fan's fill.
+    fn fill_sheets(&self, v: u32, p: &mut Planning) -> bool {
+        let mut fill = std::mem::take(&mut p.sheets.fill);
+        fill.clear();
+        let mut ok = true;
+        let (mut filled_across, mut flaps) = (0, 0);
+        for i in 0..p.sheets.count() {
+            let (_, _, closed) = self.take_fan(v, i, p);
+            p.fill.clear();
+            p.regions.clear();
+            if p.ring.triangles.len() == 1 {
+                flaps += 1; // a crease line's flap `(v, a, b)`: dropped, the others close on a–b
+                continue;
+            }
+            filled_across += usize::from(!closed);
+            let filled = if closed {
+                self.fill_closed(v, p)
+            } else {
+                self.fill_open(v, p)
+            };
+            if !(filled && self.fill_is_valid(v, p)) {
+                ok = false;
+                break;
+            }
+            fill.extend_from_slice(&p.fill);
+        }
+        // Dropping a flap leaves its edge a–b to the other fans: two or more, or it would
+        // open a border.
+        ok &= flaps == 0 || filled_across >= 2;
+        std::mem::swap(&mut p.fill, &mut fill);
+        p.sheets.fill = fill;
+        p.regions.clear();
+        p.ring.verts.clear();
+        p.ring.verts.extend(p.sheets.neighbours());
+        p.ring.triangles.clear();
+        p.ring.triangles.extend_from_slice(p.sheets.all_triangles());
+        ok
     }
 
     fn position(&self, v: u32) -> DVec3 {
@@ -371,6 +479,20 @@ impl<C: Adjacency> Surface<'_, C> {
             return (at - a).length();
         }
         (at - a).cross(dir).length() / len2.sqrt()
+    }
+}
+
+/// The area vectors of the open fan `path` around `v` (triangle `i` is `(v, path[i],
+/// path[i + 1])`) into `geometry`, as `classify` gives them for a manifold ring.
+fn fan_geometry(positions: &[Vec3], v: u32, path: &[u32], geometry: &mut RingGeometry) {
+    let p = |u: u32| positions[u as usize].as_dvec3();
+    let at = p(v);
+    geometry.crosses.clear();
+    geometry.lengths.clear();
+    for w in path.windows(2) {
+        let c = (p(w[0]) - at).cross(p(w[1]) - at);
+        geometry.crosses.push(c);
+        geometry.lengths.push(c.length());
     }
 }
 

@@ -341,7 +341,7 @@ mod tests {
     fn ranked() -> (Decimator, Vec<Candidate>) {
         let model = shapes::bumpy_sphere(120, 240);
         let (_, positions, triangles) = super::super::load(&model);
-        let mut d = Decimator::new(positions, &triangles, 30.0);
+        let mut d = Decimator::new(positions, triangles, 30.0);
         d.rank_all();
         let mut candidates: Vec<Candidate> = d
             .keys
@@ -362,6 +362,7 @@ mod tests {
             exhausted: false,
             feature_angle_deg: 30.0,
             pinned: 0,
+            closed_kept: 0,
         }
     }
 

@@ -114,6 +114,12 @@ impl Connectivity {
         self.alive_count -= removed.len();
         self.free.extend(removed);
     }
+
+    /// As [`Self::absorb`], for a decimation that never adds a triangle (edge collapse):
+    /// the slots count as dead but are not kept for reuse, so no free list grows with them.
+    pub fn retire(&mut self, removed: &[u32]) {
+        self.alive_count -= removed.len();
+    }
 }
 
 impl ConnectivityPart<'_> {
@@ -346,6 +352,27 @@ mod tests {
         assert_eq!(c.incident(7), &[2]);
         assert!(c.incident(6).is_empty());
         // Freed slots are reused in the order the parts gave them back.
+        assert_eq!(c.add_triangle([0, 1, 3]), 3);
+    }
+
+    #[test]
+    fn retired_slots_are_dead_and_never_reused() {
+        let mut c = Connectivity::new(5, &[[0, 1, 2], [1, 3, 2], [2, 3, 4]]);
+        let mut parts = c.split(&[0], &[0]);
+        let mut fan = Vec::new();
+        let (mut renamed, mut deleted) = (Vec::new(), Vec::new());
+        assert!(parts[0].fan(3, &mut fan));
+        parts[0].collapse_edge(3, 2, &fan, &mut renamed, &mut deleted);
+        let removed: Vec<u32> = parts
+            .pop()
+            .map(ConnectivityPart::finish)
+            .unwrap_or_default();
+        // Both triangles on edge 3–2 go; 3's renamed corners leave it with none.
+        assert_eq!(removed, vec![1, 2]);
+        c.retire(&removed);
+        assert_eq!(c.triangle_count(), 1);
+        assert_eq!(c.alive_ids().collect::<Vec<_>>(), vec![0]);
+        // A new triangle takes a new slot: the retired one stays dead.
         assert_eq!(c.add_triangle([0, 1, 3]), 3);
     }
 
