@@ -691,8 +691,13 @@ impl Callbacks for Viewer {
         let message = self.message.as_ref().map(|(_, until)| *until);
         let job = (self.controller.busy() || self.fields.busy())
             .then(|| Instant::now() + JOB_FRAME_INTERVAL);
-        // The sharp frame once the view rests, after single-sampled ones.
-        let rest = self.settle.rests_at().filter(|_| self.drawn_moving);
+        // The sharp frame once the view rests, after single-sampled ones (a button held still
+        // waits for its release, which draws a frame).
+        let held = self.dragging || self.panning;
+        let rest = self
+            .settle
+            .rests_at()
+            .filter(|_| self.drawn_moving && !held);
         message.into_iter().chain(job).chain(rest).min()
     }
 
