@@ -331,8 +331,12 @@ impl Viewer {
             .job_status()
             .or_else(|| self.fields.status());
         let job = job.as_deref().unwrap_or("no job");
+        let samples = match (&self.gpu, self.drawn_moving) {
+            (Some(gpu), false) => gpu.pipelines.samples.as_raw(),
+            _ => 1,
+        };
         trace(format_args!(
-            "frame in {} ms, {job}",
+            "frame in {} ms, {job}, {samples}x samples",
             now.elapsed().as_millis()
         ));
         if ui_result.repaint || morphing {

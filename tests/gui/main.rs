@@ -2,6 +2,7 @@
 //! test runs alone, not beside the screenshot tests, as `cargo test` runs crates one by one.
 
 mod busy;
+mod settle;
 mod xvfb;
 
 /// Held by each window test: one viewer at a time on the X server (the tests of a crate run

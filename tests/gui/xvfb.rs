@@ -282,7 +282,13 @@ fn drawn_centre_x(shot: &[u8], ys: std::ops::Range<usize>) -> f64 {
 
 /// Drags the pointer in window `wid` from `from` to `to` in small steps between the `press`
 /// and `release` xdotool commands, then lets a frame land.
-fn drag_with(wid: &str, press: &[&str], release: &[&str], from: (i32, i32), to: (i32, i32)) {
+pub(crate) fn drag_with(
+    wid: &str,
+    press: &[&str],
+    release: &[&str],
+    from: (i32, i32),
+    to: (i32, i32),
+) {
     let at = |(x, y): (i32, i32)| {
         run(
             "xdotool",
