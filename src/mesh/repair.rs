@@ -214,16 +214,24 @@ pub fn orient_consistently(triangles: &mut [[u32; 3]]) -> usize {
             }
         }
         // A non-orientable surface (a Möbius strip) keeps the walk's choice.
-        let ones = queue
-            .iter()
-            .filter(|&&t| flip[t as usize] == Some(true))
-            .count();
-        let invert = ones * 2 > queue.len();
-        for &t in &queue {
-            if (flip[t as usize] == Some(true)) != invert {
-                triangles[t as usize].swap(1, 2);
-                flipped += 1;
-            }
+        flipped += flip_minority(&queue, &flip, triangles);
+    }
+    flipped
+}
+
+/// Turns over the triangles of one walked surface (`queue`) whose flip differs from the
+/// majority's, so most of the surface keeps its orientation; returns how many turned.
+fn flip_minority(queue: &[u32], flip: &[Option<bool>], triangles: &mut [[u32; 3]]) -> usize {
+    let ones = queue
+        .iter()
+        .filter(|&&t| flip[t as usize] == Some(true))
+        .count();
+    let invert = ones * 2 > queue.len();
+    let mut flipped = 0;
+    for &t in queue {
+        if (flip[t as usize] == Some(true)) != invert {
+            triangles[t as usize].swap(1, 2);
+            flipped += 1;
         }
     }
     flipped
@@ -485,17 +493,7 @@ mod tests {
                     }
                 }
             }
-            let ones = queue
-                .iter()
-                .filter(|&&t| flip[t as usize] == Some(true))
-                .count();
-            let invert = ones * 2 > queue.len();
-            for &t in &queue {
-                if (flip[t as usize] == Some(true)) != invert {
-                    triangles[t as usize].swap(1, 2);
-                    flipped += 1;
-                }
-            }
+            flipped += flip_minority(&queue, &flip, triangles);
         }
         flipped
     }
