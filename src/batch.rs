@@ -8,10 +8,10 @@
 //! recorded decimation left it at that count. Texture names are rebased from the input's
 //! folder to the output's before writing (`io::rebase_textures`).
 
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use crate::cli::Args;
 use crate::decimate::levels::levels_for;
@@ -20,6 +20,7 @@ use crate::decimate::{simplify_scene, simplify_scene_progressive, Report};
 use crate::io;
 use crate::mesh::progressive::{Lod, ProgressiveScene};
 use crate::mesh::Scene;
+use crate::progress_bar::Progress;
 
 /// Runs the nogui job on `scene`, or on `recorded` when the input is a progressive mesh; the
 /// exit code says whether the output was written. `material_libraries` are the input OBJ's
@@ -151,8 +152,12 @@ fn write(scene: &mut Scene, args: &Args) -> bool {
 /// Decimates `scene` to the command line's target, with a progress bar on a terminal;
 /// records the progressive mesh when `--progressive` asks for it.
 fn decimate(scene: &mut Scene, args: &Args) -> (Report, Option<ProgressiveScene>) {
-    let mut bar = Progress::new(!args.quiet && std::io::stderr().is_terminal());
-    let mut update = |f| bar.update(f);
+    let bar = Progress::labelled(
+        "decimating",
+        false,
+        !args.quiet && std::io::stderr().is_terminal(),
+    );
+    let mut update = |f| bar.set(f);
     let result = if args.progressive.is_some() {
         let (report, pm) = simplify_scene_progressive(scene, &args.params, &mut update);
         (report, Some(pm))
@@ -175,53 +180,5 @@ fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
     match (a.canonicalize(), b.canonicalize()) {
         (Ok(a), Ok(b)) => a == b,
         _ => false,
-    }
-}
-
-/// A one-line progress bar on stderr, shown only once a run has lasted a second.
-struct Progress {
-    enabled: bool,
-    start: Instant,
-    last: Option<Instant>,
-    shown: bool,
-}
-
-impl Progress {
-    fn new(enabled: bool) -> Self {
-        Self {
-            enabled,
-            start: Instant::now(),
-            last: None,
-            shown: false,
-        }
-    }
-
-    fn update(&mut self, fraction: f32) {
-        if !self.enabled || self.start.elapsed() < Duration::from_secs(1) {
-            return;
-        }
-        if self
-            .last
-            .is_some_and(|t| t.elapsed() < Duration::from_millis(100))
-        {
-            return;
-        }
-        self.last = Some(Instant::now());
-        self.shown = true;
-        let width = 40;
-        let done = ((fraction.clamp(0.0, 1.0) * width as f32) as usize).min(width);
-        eprint!(
-            "\rdecimating [{}{}] {:>3.0}%",
-            "#".repeat(done),
-            " ".repeat(width - done),
-            fraction * 100.0
-        );
-        let _ = std::io::stderr().flush();
-    }
-
-    fn finish(&mut self) {
-        if self.shown {
-            eprintln!();
-        }
     }
 }

@@ -12,7 +12,7 @@
 //! `render` (Vulkan drawing of what it is given); `cli` (the parsed command line); `app` (the
 //! viewer and `shot`) beside `batch` (`nogui`) and `api` (the library's entry point for
 //! programs); the binaries in src/main.rs and src/bin/.
-//! `alloc` and `threads` are process plumbing under all of them.
+//! `alloc`, `threads` and `progress_bar` are process plumbing under all of them.
 #![warn(
     rust_2018_idioms,
     trivial_casts,
@@ -29,6 +29,7 @@ pub mod decimate;
 pub mod io;
 pub mod mesh;
 pub mod metro;
+pub mod progress_bar;
 pub mod render;
 pub mod threads;
 pub mod tile;

@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 /// each other.
 fn layer_of(top: &str) -> Option<u32> {
     Some(match top {
-        "alloc" | "threads" => 0,
+        "alloc" | "threads" | "progress_bar" => 0,
         "mesh" => 1,
         "io" | "decimate" => 2,
         "metro" => 3,

@@ -4,11 +4,11 @@
 use std::io::IsTerminal;
 use std::process::ExitCode;
 
-use super::bar::Progress;
 use super::local::{run_local, work_dir_for};
 use super::schedule::{count_for, default_memory};
 use super::{cut, merge, run, TileError};
 use crate::cli::{Args, TileCommand};
+use crate::progress_bar::Progress;
 
 fn fail(e: &TileError) -> ExitCode {
     eprintln!("decimate: {e}");

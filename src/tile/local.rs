@@ -5,11 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
-use super::bar::Progress;
 use super::cut::plan;
 use super::{merge, schedule, TileError};
 use crate::cli::TileCount;
 use crate::decimate::{Report, Target};
+use crate::progress_bar::Progress;
 
 /// The work folder for `output`: beside it, named after it and this process.
 pub fn work_dir_for(output: &Path) -> PathBuf {

@@ -11,11 +11,11 @@
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
 
-use super::bar::Progress;
 use super::schedule::{auto_tile_triangles, fits, run_all, BYTES_PER_TRIANGLE};
 use super::{cut, Manifest, TileError};
 use crate::decimate::{simplify_scene, Algorithm, Params, Report, Target};
 use crate::mesh::{weld, Model, Scene};
+use crate::progress_bar::Progress;
 
 /// The work folder a re-tiling merge cuts into, inside the first plan's.
 pub const RETILE_DIR: &str = "merge";

@@ -6,7 +6,6 @@
 //! parallel within a memory budget (`schedule`), reporting through `bar`.
 //! docs/cluster.md shows the jobs under Slurm, Kubernetes and GNU parallel.
 
-pub mod bar;
 pub mod command;
 pub mod cut;
 pub mod local;

@@ -7,9 +7,9 @@ use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
-use super::bar::Progress;
 use super::{run, Manifest, TileError};
 use crate::cli::{TileCount, Tiles};
+use crate::progress_bar::Progress;
 
 /// Bytes one triangle costs while decimated in memory, rounded up from the largest
 /// measured (docs/design.md, "Tiled decimation").

@@ -1,6 +1,6 @@
-//! What a tiled run says as it goes, shared by the threads that run tiles: step messages
-//! (one line each) and, on a terminal, a one-line progress bar over the whole run that the
-//! messages are printed above.
+//! What a long command-line run says as it goes (a decimation, a tiled run), shared by the
+//! threads that do the work: step messages (one line each) and, on a terminal, a one-line
+//! progress bar over the whole run that the messages are printed above.
 
 use std::io::Write;
 use std::sync::Mutex;
@@ -12,6 +12,8 @@ pub struct Progress {
 }
 
 struct State {
+    /// What the bar says it is doing.
+    label: &'static str,
     messages: bool,
     bar: bool,
     start: Instant,
@@ -22,10 +24,17 @@ struct State {
 }
 
 impl Progress {
-    /// `messages`: print step lines on stderr; `bar`: draw the bar (a terminal only).
+    /// A tiled run's: `messages`: print step lines on stderr; `bar`: draw the bar (a
+    /// terminal only).
     pub fn new(messages: bool, bar: bool) -> Self {
+        Self::labelled("decimating in tiles", messages, bar)
+    }
+
+    /// The same with the bar saying `label`.
+    pub fn labelled(label: &'static str, messages: bool, bar: bool) -> Self {
         Self {
             state: Mutex::new(State {
+                label,
                 messages,
                 bar,
                 start: Instant::now(),
@@ -93,7 +102,8 @@ impl State {
         let width = 40;
         let done = ((self.fraction * width as f32) as usize).min(width);
         eprint!(
-            "\rdecimating in tiles [{}{}] {:>3.0}%",
+            "\r{} [{}{}] {:>3.0}%",
+            self.label,
             "#".repeat(done),
             " ".repeat(width - done),
             self.fraction * 100.0
