@@ -9,6 +9,7 @@ mod support;
 mod cancel;
 mod closed_shapes;
 mod creases;
+mod folds;
 mod nonmanifold;
 mod progressive;
 mod qem;

@@ -29,6 +29,19 @@ const SEAM_WEIGHT: f64 = 1.0;
 /// (docs/design.md#qem-feature-weight).
 const FEATURE_WEIGHT: f64 = 15.0;
 
+/// A mesh whose median fold (the angle between the normals of an edge's two triangles) is
+/// at most this many degrees is finely sampled: its folds are weighed as they are. A coarser
+/// mesh's folds are scaled down first (docs/design.md#qem-fold-scale).
+const FINE_FOLD_DEG: f64 = 3.0;
+
+/// How sharply a coarser mesh's folds shrink: by `(FINE_FOLD_DEG / median fold)` to this power
+/// (docs/design.md#qem-fold-scale).
+const FOLD_SCALE_POWER: i32 = 4;
+
+/// Vertices whose rings estimate the median fold (every n-th vertex, so it costs nothing on
+/// a large mesh).
+const FOLD_SAMPLES: usize = 1 << 14;
+
 /// Vertices per rayon task.
 const PER_TASK: usize = 4096;
 
@@ -57,7 +70,9 @@ pub(super) fn kinds_and_quadrics(
     constraints: Constraints<'_>,
 ) -> (Vec<Kind>, Vec<Quadric>) {
     let planes = face_planes(conn, positions);
-    let (kinds, mut quadrics) = ring_kinds_and_quadrics(conn, positions, &planes, constraints);
+    let folds = FoldScale::of(conn, positions.len(), &planes);
+    let (kinds, mut quadrics) =
+        ring_kinds_and_quadrics(conn, positions, &planes, constraints, folds);
     constrain_outlines(conn, positions, &planes, &kinds, &mut quadrics, constraints);
     (kinds, quadrics)
 }
@@ -80,6 +95,7 @@ fn ring_kinds_and_quadrics(
     positions: &[Vec3],
     planes: &[FacePlane],
     constraints: Constraints<'_>,
+    folds: FoldScale,
 ) -> (Vec<Kind>, Vec<Quadric>) {
     (0..positions.len() as u32)
         .into_par_iter()
@@ -97,7 +113,7 @@ fn ring_kinds_and_quadrics(
             let quadric = if kind == Kind::Fixed {
                 Quadric::default()
             } else {
-                ring_quadric(positions, planes, v, ring, kind, constraints)
+                ring_quadric(positions, planes, v, ring, kind, constraints, folds)
             };
             (kind, quadric)
         })
@@ -168,6 +184,65 @@ fn complex_quadric(conn: &Connectivity, planes: &[FacePlane], v: u32) -> Option<
         }
     }
     Some(sum)
+}
+
+/// The factor every fold angle is scaled by before the feature test and weight: 1 on a
+/// finely sampled mesh, `(FINE_FOLD_DEG / median fold)^FOLD_SCALE_POWER` on a coarser one,
+/// where an ordinary fold is curvature sampled coarsely or scanner noise, not a crease
+/// (docs/design.md#qem-fold-scale).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct FoldScale(f64);
+
+impl FoldScale {
+    /// The scale for the mesh, from the folds of every n-th vertex's ring (a complex
+    /// vertex's fan has no order, so it is passed over).
+    fn of(conn: &Connectivity, n: usize, planes: &[FacePlane]) -> Self {
+        let stride = n.div_ceil(FOLD_SAMPLES).max(1);
+        let mut ring = Ring::default();
+        let mut folds = Vec::new();
+        for v in (0..n as u32).step_by(stride) {
+            let closed = match conn.ring(v, &mut ring) {
+                RingShape::Closed => true,
+                RingShape::Open => false,
+                RingShape::Isolated | RingShape::Complex => continue,
+            };
+            let k = ring.triangles.len();
+            let normal = |i: usize| planes[ring.triangles[i] as usize].normal();
+            // The edge to `verts[j]` lies between ring triangles `j - 1` and `j`.
+            let first = if closed { 0 } else { 1 };
+            for j in first..k {
+                let before = if j == 0 { k - 1 } else { j - 1 };
+                if let (Some(a), Some(b)) = (normal(before), normal(j)) {
+                    folds.push(a.dot(b).clamp(-1.0, 1.0).acos());
+                }
+            }
+        }
+        Self::from_folds(&mut folds)
+    }
+
+    /// The scale for these fold angles (radians; reordered).
+    fn from_folds(folds: &mut [f64]) -> Self {
+        if folds.is_empty() {
+            return Self(1.0);
+        }
+        let mid = folds.len() / 2;
+        let (_, &mut median, _) = folds.select_nth_unstable_by(mid, f64::total_cmp);
+        let fine = FINE_FOLD_DEG.to_radians();
+        Self(if median <= fine {
+            1.0
+        } else {
+            (fine / median).powi(FOLD_SCALE_POWER)
+        })
+    }
+
+    /// The cosine of a fold whose cosine is `cos`, scaled.
+    fn cos(self, cos: f64) -> f64 {
+        if self.0 >= 1.0 {
+            cos
+        } else {
+            (cos.clamp(-1.0, 1.0).acos() * self.0).cos()
+        }
+    }
 }
 
 /// The boundary edges at complex vertices, one pass over their fans. A fin's rim (a chain
@@ -245,6 +320,7 @@ fn ring_quadric(
     ring: &Ring,
     kind: Kind,
     constraints: Constraints<'_>,
+    folds: FoldScale,
 ) -> Quadric {
     let at = |w: u32| positions[w as usize].as_dvec3();
     // Ring triangle `i`'s normal, when it has a plane.
@@ -300,7 +376,7 @@ fn ring_quadric(
                     continue;
                 };
                 let n2 = normal(o).unwrap_or(DVec3::ZERO);
-                let cos = n.dot(n2);
+                let cos = folds.cos(n.dot(n2));
                 if cos < constraints.cos_feature {
                     let weight = FEATURE_WEIGHT * (1.0 - cos).powi(6);
                     constrain(run(i), n, weight);
@@ -352,6 +428,129 @@ mod tests {
         let q = &quadrics[centre];
         assert!(q.eval(DVec3::new(1.0, 0.3, -0.2)) < 1e-12);
         assert!(q.eval(DVec3::new(1.1, 0.0, 0.0)) > 1e-3);
+    }
+
+    /// An `n` × `n` sheet of unit squares in z = 0 whose inner vertices are lifted by
+    /// `lift(i, j)`, each square split along one diagonal.
+    fn sheet(n: u32, lift: impl Fn(u32, u32) -> f32) -> crate::mesh::Model {
+        let at = |i: u32, j: u32| i * (n + 1) + j;
+        let positions = (0..=n)
+            .flat_map(|i| (0..=n).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                let inner = i > 0 && j > 0 && i < n && j < n;
+                let z = if inner { lift(i, j) } else { 0.0 };
+                Vec3::new(i as f32, j as f32, z)
+            })
+            .collect();
+        let triangles = (0..n)
+            .flat_map(|i| (0..n).map(move |j| (i, j)))
+            .flat_map(|(i, j)| {
+                [
+                    [at(i, j), at(i + 1, j), at(i + 1, j + 1)],
+                    [at(i, j), at(i + 1, j + 1), at(i, j + 1)],
+                ]
+            })
+            .collect();
+        crate::mesh::Model {
+            positions,
+            triangles,
+            ..Default::default()
+        }
+    }
+
+    /// The sum of `v`'s triangles' area-weighted planes: its quadric without constraints.
+    fn face_quadric(model: &crate::mesh::Model, v: u32) -> Quadric {
+        let mut sum = Quadric::default();
+        for t in model.triangles.iter().filter(|t| t.contains(&v)) {
+            let [a, b, c] = t.map(|w| model.positions[w as usize].as_dvec3());
+            if let Some(q) = FacePlane::of(a, b, c).quadric() {
+                sum.add(&q);
+            }
+        }
+        sum
+    }
+
+    fn fold_scale(model: &crate::mesh::Model) -> FoldScale {
+        let conn = Connectivity::new(model.positions.len(), &model.triangles);
+        FoldScale::of(
+            &conn,
+            model.positions.len(),
+            &face_planes(&conn, &model.positions),
+        )
+    }
+
+    #[test]
+    fn the_fold_scale_is_one_up_to_a_fine_median_fold_and_shrinks_as_its_fourth_power() {
+        let deg = |d: f64| d.to_radians();
+        let scale = |folds: &[f64]| FoldScale::from_folds(&mut folds.to_vec()).0;
+        assert_eq!(scale(&[]), 1.0);
+        assert_eq!(
+            scale(&[deg(90.0), deg(2.0), deg(3.0), 0.0, deg(170.0)]),
+            1.0
+        );
+        let s = scale(&[deg(6.0), deg(90.0), deg(6.0), deg(1.0), deg(6.0)]);
+        assert!((s - 1.0 / 16.0).abs() < 1e-12, "{s}");
+        // Scaled, a right angle on that mesh is a fold of 90° / 16.
+        let cos = FoldScale(s).cos(0.0);
+        assert!((cos - deg(90.0 / 16.0).cos()).abs() < 1e-12);
+        assert_eq!(FoldScale(1.0).cos(0.3), 0.3, "untouched when fine");
+    }
+
+    #[test]
+    fn a_box_of_flat_faces_is_fine_and_its_crease_vertex_is_held_on_its_crease() {
+        let cube = shapes::cube(4, 2.0); // side 2, 4 × 4 squares a face
+        assert_eq!(fold_scale(&cube), FoldScale(1.0), "most folds are flat");
+        let (_, quadrics) = start(&cube);
+        // On the edge y = z = 1, between two corners: it slides along it, not off it.
+        let v = vertex_at(&cube, Vec3::new(0.5, 1.0, 1.0));
+        let q = &quadrics[v];
+        assert!(
+            q.eval(DVec3::new(0.2, 1.0, 1.0)) < 1e-12,
+            "along the crease"
+        );
+        let face_only = face_quadric(&cube, v as u32);
+        let off = DVec3::new(0.5, 0.9, 0.9);
+        assert!(
+            q.eval(off) > 10.0 * face_only.eval(off),
+            "its feature planes hold it: {} against {}",
+            q.eval(off),
+            face_only.eval(off)
+        );
+    }
+
+    #[test]
+    fn a_noisy_sheets_folds_are_not_features() {
+        // Every inner vertex lifted up or down by 0.5 in a fixed pseudo-random pattern: most
+        // folds are tens of degrees, many beyond the 60° feature angle of `start`.
+        let noisy = sheet(12, |i, j| if (i * 7 + j * 3) % 5 < 2 { 0.5 } else { -0.5 });
+        let FoldScale(s) = fold_scale(&noisy);
+        assert!(s < 0.01, "fold scale {s}");
+        let (kinds, quadrics) = start(&noisy);
+        let conn = Connectivity::new(noisy.positions.len(), &noisy.triangles);
+        let planes = face_planes(&conn, &noisy.positions);
+        let mut sharp = 0;
+        for v in (0..noisy.positions.len() as u32).filter(|&v| kinds[v as usize] == Kind::Interior)
+        {
+            let t: Vec<u32> = conn.incident(v).to_vec();
+            for (a, b) in t.iter().flat_map(|&a| t.iter().map(move |&b| (a, b))) {
+                let (ta, tb) = (conn.triangle(a), conn.triangle(b));
+                let shared = ta.iter().filter(|w| tb.contains(w)).count();
+                let (na, nb) = (planes[a as usize].normal, planes[b as usize].normal);
+                if a < b && shared == 2 && na.dot(nb) < 0.5 {
+                    sharp += 1;
+                }
+            }
+            // Its quadric is its triangles' planes and nothing more.
+            let (q, face_only) = (&quadrics[v as usize], face_quadric(&noisy, v));
+            for p in [DVec3::new(3.0, 4.0, 1.0), DVec3::new(6.5, 2.0, -2.0)] {
+                let (e, f) = (q.eval(p), face_only.eval(p));
+                assert!(
+                    (e - f).abs() <= 1e-9 * f.max(1.0),
+                    "vertex {v}: {e} against {f}"
+                );
+            }
+        }
+        assert!(sharp > 20, "only {sharp} folds beyond 60°");
     }
 
     #[test]
