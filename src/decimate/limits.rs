@@ -53,6 +53,9 @@ pub struct Limits {
     /// When no candidate is left before `remove`/`keep_triangles` is reached, raise the
     /// feature angle in `schroeder::RELAX_STEP_DEG` steps (up to 180°) and go on.
     pub relax_features: bool,
+    /// qem: scale fold angles to the mesh's sampling before the feature test
+    /// ([`super::Params::scale_folds`]).
+    pub scale_folds: bool,
     /// Stop early when this is set (checked between passes and batches).
     pub cancel: Cancel,
 }

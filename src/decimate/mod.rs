@@ -71,6 +71,10 @@ pub struct Params {
     /// (`mesh::stitches::open_border_vertices`): pieces of one mesh decimated apart still fit.
     pub keep_border: bool,
     pub algorithm: Algorithm,
+    /// qem: scale every fold angle to how finely the mesh is sampled before the feature test
+    /// (docs/design.md#qem-fold-scale). Off where the mesh given is not the input at its own
+    /// resolution: a tile, the decimated tiles welded for the merge.
+    pub scale_folds: bool,
 }
 
 impl Default for Params {
@@ -82,6 +86,7 @@ impl Default for Params {
             keep_features: false,
             keep_border: false,
             algorithm: Algorithm::default(),
+            scale_folds: true,
         }
     }
 }
@@ -332,6 +337,7 @@ fn run(
             max_error,
             feature_angle_deg: params.feature_angle_deg,
             relax_features,
+            scale_folds: params.scale_folds,
             cancel: cancel.clone(),
         };
         let mut report_progress = |removed: usize| {

@@ -114,6 +114,8 @@ pub fn merge(
     let params = Params {
         target: Target::KeepTriangles(keep),
         algorithm: Algorithm::Qem,
+        // Decimated tiles are coarser than the input: their folds are not its sampling.
+        scale_folds: false,
         ..Params::default()
     };
     let from = if last == dir { 0.0 } else { 0.5 };

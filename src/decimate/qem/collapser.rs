@@ -104,6 +104,7 @@ impl Collapser {
             .collect();
         let constraints = Constraints {
             cos_feature: 0.5,
+            scale_folds: true,
             seam: &[],
         };
         Self::new(positions, loaded.triangles(model), None, None, constraints)
@@ -321,6 +322,7 @@ mod tests {
             .collect();
         let constraints = Constraints {
             cos_feature: 0.5,
+            scale_folds: true,
             seam: &[],
         };
         Collapser::new(positions, triangles, None, None, constraints)

@@ -114,6 +114,7 @@ fn run(
     };
     let constraints = planes::Constraints {
         cos_feature,
+        scale_folds: limits.scale_folds,
         seam: &seam,
     };
     let mut d = Collapser::new(positions, triangles, colors, normals, constraints);

@@ -1,8 +1,9 @@
 //! What every vertex starts with, read off its ordered one-ring in one pass on all cores:
 //! its kind (interior, boundary, fixed) and its quadric — the area-weighted planes of its
-//! triangles, plus the constraint planes of its boundary and feature edges. A non-manifold
-//! ("complex") vertex has no planes through its non-manifold edges, and a fin's rim (a
-//! short boundary chain between two of them) is not constrained
+//! triangles, plus the constraint planes of its boundary and feature edges (a fold's angle
+//! first scaled to how finely the mesh is sampled: docs/design.md#qem-fold-scale). A
+//! non-manifold ("complex") vertex has no planes through its non-manifold edges, and a fin's
+//! rim (a short boundary chain between two of them) is not constrained
 //! (docs/design.md#qem-non-manifold-weights).
 //!
 //! In the ring (`mesh::topology::Ring`) triangle `i` is `(v, verts[i], verts[i + 1])`, so the
@@ -51,6 +52,8 @@ pub(super) struct Constraints<'a> {
     /// The cosine of the feature angle: an edge whose dihedral angle is above it is a
     /// feature edge, constrained from both sides.
     pub cos_feature: f64,
+    /// Whether fold angles are scaled to the mesh's median fold first ([`FoldScale`]).
+    pub scale_folds: bool,
     /// Vertices on a texture seam (empty when there is none): a boundary edge between two
     /// is constrained by `SEAM_WEIGHT`, any other by `CONSTRAINT_WEIGHT`.
     pub seam: &'a [bool],
@@ -70,7 +73,11 @@ pub(super) fn kinds_and_quadrics(
     constraints: Constraints<'_>,
 ) -> (Vec<Kind>, Vec<Quadric>) {
     let planes = face_planes(conn, positions);
-    let folds = FoldScale::of(conn, positions.len(), &planes);
+    let folds = if constraints.scale_folds {
+        FoldScale::of(conn, positions.len(), &planes)
+    } else {
+        FoldScale(1.0)
+    };
     let (kinds, mut quadrics) =
         ring_kinds_and_quadrics(conn, positions, &planes, constraints, folds);
     constrain_outlines(conn, positions, &planes, &kinds, &mut quadrics, constraints);
@@ -395,12 +402,17 @@ mod tests {
     use crate::mesh::shapes;
 
     fn start(model: &crate::mesh::Model) -> (Vec<Kind>, Vec<Quadric>) {
+        start_scaled(model, true)
+    }
+
+    fn start_scaled(model: &crate::mesh::Model, scale_folds: bool) -> (Vec<Kind>, Vec<Quadric>) {
         let conn = Connectivity::new(model.positions.len(), &model.triangles);
         kinds_and_quadrics(
             &conn,
             &model.positions,
             Constraints {
                 cos_feature: 60f64.to_radians().cos(),
+                scale_folds,
                 seam: &[],
             },
         )
@@ -551,6 +563,13 @@ mod tests {
             }
         }
         assert!(sharp > 20, "only {sharp} folds beyond 60°");
+        // Unscaled (a tile, a merge of decimated tiles), its sharp folds are features.
+        let (_, held) = start_scaled(&noisy, false);
+        let p = DVec3::new(6.5, 2.0, -2.0);
+        let more = (0..noisy.positions.len() as u32)
+            .filter(|&v| held[v as usize].eval(p) > 1.5 * face_quadric(&noisy, v).eval(p))
+            .count();
+        assert!(more > 20, "only {more} vertices hold feature planes");
     }
 
     #[test]
