@@ -224,41 +224,7 @@ pub fn test007() -> Model {
 /// test008: a stretched box, 1 × 8 × 1 along +y, each face a grid of quads 0.25 on a side
 /// (546 / 1088).
 pub fn test008() -> Model {
-    let n = [4i32, 32, 4];
-    let size = Vec3::new(1.0, 8.0, 1.0);
-    let mut index: HashMap<[i32; 3], u32> = HashMap::new();
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    // As `named_cube`: a fixed axis at ±n, two running axes with (u × v) pointing outwards.
-    let faces: [(usize, i32, usize, usize); 6] = [
-        (0, 1, 1, 2),
-        (0, -1, 2, 1),
-        (1, 1, 2, 0),
-        (1, -1, 0, 2),
-        (2, 1, 0, 1),
-        (2, -1, 1, 0),
-    ];
-    for (axis, sign, u, v) in faces {
-        let mut id = |i: i32, j: i32| {
-            let mut c = [0i32; 3];
-            c[axis] = sign * n[axis];
-            c[u] = 2 * i - n[u];
-            c[v] = 2 * j - n[v];
-            *index.entry(c).or_insert_with(|| {
-                let unit = |a: usize| c[a] as f32 / (2 * n[a]) as f32;
-                positions.push(Vec3::new(unit(0), unit(1), unit(2)) * size);
-                (positions.len() - 1) as u32
-            })
-        };
-        for j in 0..n[v] {
-            for i in 0..n[u] {
-                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-                triangles.push([a, b, c]);
-                triangles.push([a, c, d]);
-            }
-        }
-    }
-    named("test008", positions, triangles)
+    grid_box("test008", [4, 32, 4], Vec3::new(1.0, 8.0, 1.0))
 }
 
 /// A value in [-1, 1] from `index` and `salt`, the same on every machine (the generated
@@ -335,11 +301,17 @@ pub fn cube(n: u32, size: f32) -> Model {
 }
 
 fn named_cube(name: &str, n: u32, size: f32) -> Model {
+    grid_box(name, [n; 3], Vec3::splat(size))
+}
+
+/// A box of `size` centred at the origin, each face a grid of quads (`counts[a]` along axis
+/// `a`) split into two triangles, facing outwards; shared edge and corner vertices are merged.
+fn grid_box(name: &str, counts: [u32; 3], size: Vec3) -> Model {
+    let n = counts.map(|c| c as i32);
     let mut index: HashMap<[i32; 3], u32> = HashMap::new();
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
-    let h = n as i32;
-    // Each face: a fixed axis at ±h, two running axes chosen so (u × v) points outwards.
+    // Each face: a fixed axis at ±n, two running axes chosen so (u × v) points outwards.
     let faces: [(usize, i32, usize, usize); 6] = [
         (0, 1, 1, 2),
         (0, -1, 2, 1),
@@ -351,18 +323,18 @@ fn named_cube(name: &str, n: u32, size: f32) -> Model {
     for (axis, sign, u, v) in faces {
         let mut id = |i: i32, j: i32| {
             let mut c = [0i32; 3];
-            c[axis] = sign * h;
-            c[u] = 2 * i - h;
-            c[v] = 2 * j - h;
+            c[axis] = sign * n[axis];
+            c[u] = 2 * i - n[u];
+            c[v] = 2 * j - n[v];
             *index.entry(c).or_insert_with(|| {
-                positions.push(
-                    Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32) * (size / (2 * h) as f32),
-                );
+                // `c` runs from -n to n in steps of 2 (two per quad): c · size / 2n spans the box.
+                let at = |a: usize| c[a] as f32 * (size[a] / (2 * n[a]) as f32);
+                positions.push(Vec3::new(at(0), at(1), at(2)));
                 (positions.len() - 1) as u32
             })
         };
-        for j in 0..h {
-            for i in 0..h {
+        for j in 0..n[v] {
+            for i in 0..n[u] {
                 let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
                 triangles.push([a, b, c]);
                 triangles.push([a, c, d]);
