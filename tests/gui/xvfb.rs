@@ -171,46 +171,11 @@ pub(crate) fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// test004: a 10×10-segment cube, 602 vertices.
+/// A 2×2×2 cube of 10×10 quads a face (test004's mesh), 602 vertices.
 fn write_cube(path: &Path) {
-    use decimate::mesh::{Model, Scene};
-    use glam::Vec3;
-    let n = 10u32;
-    let mut model = Model::default();
-    let mut index = std::collections::HashMap::new();
-    for (normal, u, v) in [
-        (Vec3::X, Vec3::Y, Vec3::Z),
-        (-Vec3::X, Vec3::Z, Vec3::Y),
-        (Vec3::Y, Vec3::Z, Vec3::X),
-        (-Vec3::Y, Vec3::X, Vec3::Z),
-        (Vec3::Z, Vec3::X, Vec3::Y),
-        (-Vec3::Z, Vec3::Y, Vec3::X),
-    ] {
-        let mut ids = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                let p = normal + u * (i as f32 / 5.0 - 1.0) + v * (j as f32 / 5.0 - 1.0);
-                let key = (p * 5.0).round().as_ivec3().to_array();
-                ids.push(*index.entry(key).or_insert_with(|| {
-                    model.positions.push(p);
-                    model.positions.len() as u32 - 1
-                }));
-            }
-        }
-        let at = |i: u32, j: u32| ids[(j * (n + 1) + i) as usize];
-        for j in 0..n {
-            for i in 0..n {
-                model
-                    .triangles
-                    .push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-                model
-                    .triangles
-                    .push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-            }
-        }
-    }
+    let model = decimate::mesh::shapes::cube(10, 2.0);
     assert_eq!(model.positions.len(), 602);
-    let scene = Scene {
+    let scene = decimate::mesh::Scene {
         models: vec![model],
     };
     decimate::io::write_vrml2(&scene, path).unwrap_or_else(|e| panic!("{e}"));
