@@ -239,6 +239,18 @@ fn hash_unit(index: u32, salt: u32) -> f32 {
     (x as f32 / u32::MAX as f32) * 2.0 - 1.0
 }
 
+/// The report's (vertices, triangles) of test001–test008, in order: what [`all`] builds.
+pub const REPORTED_COUNTS: [(usize, usize); 8] = [
+    (5, 6),
+    (26, 48),
+    (121, 200),
+    (602, 1200),
+    (528, 1056),
+    (2402, 4800),
+    (9648, 19296),
+    (546, 1088),
+];
+
 /// Every report model, in order.
 pub fn all() -> Vec<Model> {
     vec![
