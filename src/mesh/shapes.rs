@@ -265,21 +265,25 @@ pub fn all() -> Vec<Model> {
     ]
 }
 
+/// A box's six faces as quads over its eight corners numbered by bits (the +x side for bit
+/// 0, +y for bit 1, +z for bit 2), counter-clockwise seen from outside, in the order +z, -z,
+/// +x, -x, +y, -y.
+pub const BOX_QUADS: [[u32; 4]; 6] = [
+    [4, 5, 7, 6],
+    [0, 2, 3, 1],
+    [1, 3, 7, 5],
+    [0, 4, 6, 2],
+    [2, 6, 7, 3],
+    [0, 1, 5, 4],
+];
+
 /// The unit box [0, 1]³: 8 corners, 12 triangles, outward.
 pub fn unit_box() -> Model {
     let corner = |i: u32| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32);
-    let quads: [[u32; 4]; 6] = [
-        [4, 5, 7, 6],
-        [0, 2, 3, 1],
-        [1, 3, 7, 5],
-        [0, 4, 6, 2],
-        [2, 6, 7, 3],
-        [0, 1, 5, 4],
-    ];
     Model {
         name: "box".into(),
         positions: (0..8).map(corner).collect(),
-        triangles: quads
+        triangles: BOX_QUADS
             .iter()
             .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
             .collect(),
