@@ -33,15 +33,7 @@ impl Image {
         extent: vk::Extent2D,
         usage: vk::ImageUsageFlags,
     ) -> Result<Self> {
-        Self::create(
-            context,
-            name,
-            format,
-            extent,
-            usage,
-            1,
-            vk::SampleCountFlags::TYPE_1,
-        )
+        Self::with_levels(context, name, format, extent, usage, 1)
     }
 
     /// A device-local attachment of `samples` samples per pixel (a multisampled colour or
