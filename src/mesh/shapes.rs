@@ -38,11 +38,19 @@ pub fn test002() -> Model {
 
 /// test003: a one-sided 10×10 plane in z = 0, facing +z (121 / 200).
 pub fn test003() -> Model {
-    let n = 10u32;
+    Model {
+        name: "test003".into(),
+        ..height_grid(10, |_, _| 0.0)
+    }
+}
+
+/// An `n`×`n` grid of unit quads over x, y in 0..=n, each point raised to z = `height(x, y)`;
+/// two triangles a quad, counter-clockwise seen from +z.
+pub fn height_grid(n: u32, height: impl Fn(u32, u32) -> f32) -> Model {
     let mut positions = Vec::new();
     for y in 0..=n {
         for x in 0..=n {
-            positions.push(Vec3::new(x as f32, y as f32, 0.0));
+            positions.push(Vec3::new(x as f32, y as f32, height(x, y)));
         }
     }
     let mut triangles = Vec::new();
@@ -53,7 +61,7 @@ pub fn test003() -> Model {
             triangles.push([a, a + n + 2, a + n + 1]);
         }
     }
-    named("test003", positions, triangles)
+    named("grid", positions, triangles)
 }
 
 /// test004: a 10×10 cube — each face a 10×10 grid of quads (602 / 1200).
