@@ -20,7 +20,7 @@
 //! they name no texture (their factors stand alone; a texture would need its image carried
 //! too); every other extension the file uses is named in a warning, and left out.
 
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 use serde_json::{json, Map, Value};
 
@@ -71,9 +71,14 @@ pub fn gather(
             .get(m)
             .cloned()
             .ok_or_else(|| format!("mesh {m} is missing"))?;
+        // Extensions are left out (named in a warning): the output does not declare them.
+        if let Some(o) = mesh.as_object_mut() {
+            o.remove("extensions");
+        }
         for p in mesh["primitives"].as_array_mut().into_iter().flatten() {
             if let Some(p) = p.as_object_mut() {
                 p.remove("material");
+                p.remove("extensions");
             }
             morphed |= p.get("targets").is_some();
             g.primitive(p)?;
@@ -500,6 +505,8 @@ impl Gatherer<'_> {
 pub struct Spliced {
     fragment: Value,
     accessor_base: usize,
+    /// The nodes that place points or lines (`lined_nodes`), looked up once per node.
+    lined_nodes: HashSet<u64>,
 }
 
 impl Spliced {
@@ -539,9 +546,16 @@ impl Spliced {
             }
             accessors.push(a);
         }
+        let lined_nodes = fragment["lined_nodes"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(Value::as_u64)
+            .collect();
         Some(Self {
             fragment,
             accessor_base,
+            lined_nodes,
         })
     }
 
@@ -606,9 +620,7 @@ impl Spliced {
 
     /// True when node `node` is reached from the scene and its mesh holds points or lines.
     pub fn places_lines(&self, node: usize) -> bool {
-        self.fragment["lined_nodes"]
-            .as_array()
-            .is_some_and(|l| l.iter().any(|n| n.as_u64() == Some(node as u64)))
+        self.lined_nodes.contains(&(node as u64))
     }
 
     /// Source material `k` without its textures (for points and lines).
