@@ -15,7 +15,7 @@ use rayon::prelude::*;
 
 use super::bvh::Bvh;
 use super::Surface;
-use crate::decimate::Cancel;
+use crate::cancel::Cancel;
 use crate::mesh::Scene;
 
 /// Per-vertex distances of a decimated scene from its original, in world (model) units.

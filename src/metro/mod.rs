@@ -24,7 +24,7 @@ use std::time::Instant;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::decimate::Cancel;
+use crate::cancel::Cancel;
 use crate::mesh::Scene;
 use bvh::Bvh;
 

@@ -16,7 +16,7 @@ use rayon::prelude::*;
 
 use super::bvh::Bvh;
 use super::{DirectionStats, Surface};
-use crate::decimate::Cancel;
+use crate::cancel::Cancel;
 
 /// Items (faces, edges or vertices) per unit of parallel work.
 const CHUNK: usize = 2048;
