@@ -7,14 +7,11 @@
 //! crate and pass the Khronos validator.
 
 use std::path::Path;
-use std::process::Command;
 
 use serde_json::{json, Value};
 
-use super::gltf::{assert_valid, red_over_blue_png, scratch, Doc, UINT};
-
-/// `UNSIGNED_SHORT` (glTF 2.0 § 5.1.3): the lines' indices, unlike the triangles'.
-const USHORT: u32 = 5123;
+use super::gltf::{assert_valid, red_over_blue_png, scratch, Doc, UINT, USHORT};
+use crate::support::binary;
 
 /// An `n × n` grid of unit squares with a wave in z (every vertex can be removed) and
 /// texture coordinates, as a triangle primitive of `d` using material 0.
@@ -123,11 +120,7 @@ fn scene_with_everything() -> Doc {
 
 /// Runs `decimate ARGS` in `dir`; its stderr, after checking that it succeeded.
 fn decimate(dir: &Path, args: &[&str]) -> String {
-    let o = Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("runs decimate");
+    let o = binary::decimate(dir, args);
     let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
     assert!(o.status.success(), "{args:?}: {stderr}");
     stderr
