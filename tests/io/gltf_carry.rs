@@ -388,3 +388,24 @@ fn lines_in_a_mesh_without_triangles_come_back_on_their_node() {
         .and_then(|p| p.get(&gltf::Semantic::Positions));
     assert_eq!(vertices.map(|a| a.count()), Some(25 - 5));
 }
+
+#[test]
+fn a_damaged_lines_primitive_is_an_error_naming_it_not_a_damaged_output() {
+    let mut d = Doc::new();
+    let grid = wavy_grid(&mut d, 2);
+    let position = bounded_positions(&mut d, &[0., 0., 1., 1., 0., 1.]);
+    let corners: Vec<u8> = [0u16, 9].iter().flat_map(|i| i.to_le_bytes()).collect();
+    let indices = d.accessor(&corners, USHORT, "SCALAR", 2, false);
+    let lines = json!({ "attributes": { "POSITION": position }, "indices": indices, "mode": 1 });
+    d.json["materials"] = json!([{}]);
+    d.mesh_node(vec![grid, lines], json!({}));
+    let e = decimate::io::parse_bytes(d.glb(), Path::new("bad-lines.glb"))
+        .err()
+        .expect("an index past the vertices is refused")
+        .to_string();
+    assert!(
+        e.starts_with("bad-lines.glb")
+            && e.contains("mesh 0 primitive 1: index 1 is 9, but there are 2 vertices"),
+        "{e}"
+    );
+}

@@ -6,7 +6,8 @@
 //! one mesh per source mesh, its primitives the node's models, shared by every node that
 //! places the same (decimated once, see `decimate::simplify_scene`). Skinned and morphed
 //! meshes, points and lines primitives, skins, animations, cameras, lights and `extras` are
-//! copied through from the source (`copy_through`). Other
+//! copied through from the source (`copy_through`), and a source material's factors and
+//! texture-free extensions join the material written for its model. Other
 //! models get one root node each, placed by the model's transform; models with the same
 //! geometry and material share one glTF mesh. Each model is one triangle primitive:
 //! POSITION, NORMAL (per-vertex normals, unit length; per-face normals are left out, which
