@@ -12,6 +12,7 @@ mod closed_shapes;
 mod creases;
 mod nonmanifold;
 mod open_borders;
+mod open_scan;
 mod progressive;
 mod qem;
 mod random;
