@@ -111,7 +111,10 @@ fn a_head_like_cap_at_one_percent_stays_close_and_keeps_its_outline() {
     let before = cap();
     assert_eq!(before.triangles.len(), 3042);
     let after = qem(&before, Target::KeepTriangles(30));
-    assert_eq!(after.triangles.len(), 30);
+    // An inner collapse takes two triangles: from 31 left, the count lands on 29 (as rikk's
+    // does at 1 %, benchmarks.md#qem-open-borders).
+    let kept = after.triangles.len();
+    assert!((29..=30).contains(&kept), "{kept} triangles");
     let broken = measure::invariant_violations(&before, &after);
     assert!(broken.is_empty(), "{broken:?}");
     // A bound the outline held harder (constraint weight 100, its vertices unmoved when
