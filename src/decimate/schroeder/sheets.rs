@@ -2,7 +2,8 @@
 //! takes part on non-manifold input instead of freezing every complex vertex: a vertex inside
 //! a non-manifold crease line (on exactly two edges of k ≥ 3 triangles, every fan running
 //! from one of their far ends to the other), a pinch (the end of a non-manifold edge, every
-//! fan closed through its far end) and a bowtie (fans meeting only at the vertex).
+//! fan closed through its far end), a fin's end (the same meeting a border, its one-triangle
+//! flap dropped) and a bowtie (fans meeting only at the vertex).
 //! `plan` fills each fan on its own: an open one like a boundary vertex's hole, closed by the
 //! edge between its ends (on a crease line the k fans share that one new edge, so the line
 //! stays glued and keeps k triangles; at a bowtie the fans come apart), a closed one like a
