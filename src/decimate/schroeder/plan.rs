@@ -227,9 +227,9 @@ impl<C: Adjacency> Surface<'_, C> {
             p.fill.clear();
             p.regions.clear();
             if p.sheets.is_fin_flap(i) {
-                // A fin's flap `(v, a, x)`: dropped, its edge a–x keeps two triangles or more.
+                // A fin's flap `(v, a, x)`: dropped, its edge a–x keeps a triangle each way.
                 let r = &p.ring.verts;
-                if sheets::triangles_on(self.conn, r[0], r[1], v) < 2 {
+                if !sheets::keeps_both_sides(self.conn, r[0], r[1], v) {
                     ok = false;
                     break;
                 }

@@ -80,8 +80,8 @@ impl Sheets {
     }
 
     /// Whether fan `i` is a fin's flap: one triangle from the non-manifold edge's far end
-    /// to a border neighbour, dropped with the vertex (its far edge must keep two
-    /// triangles or more, `triangles_on`).
+    /// to a border neighbour, dropped with the vertex (its far edge must keep a triangle
+    /// each way, `keeps_both_sides`).
     pub fn is_fin_flap(&self, i: usize) -> bool {
         matches!(self.shape, Some(SheetShape::FinEnd { .. })) && self.fan(i).1.len() == 1
     }
@@ -287,14 +287,20 @@ impl Sheets {
     }
 }
 
-/// How many triangles have the edge `p`–`q` and not the vertex `v`.
-pub(super) fn triangles_on(conn: &impl Adjacency, p: u32, q: u32, v: u32) -> usize {
-    (conn.incident(p).iter())
-        .filter(|&&t| {
-            let tri = conn.triangle(t);
-            tri.contains(&q) && !tri.contains(&v)
-        })
-        .count()
+/// Whether the triangles with the edge `p`–`q` and not the vertex `v` are two or more,
+/// at least one each way: dropping `v`'s triangle on that edge then leaves it with a
+/// consistently oriented pair (no flipped neighbours), not a border.
+pub(super) fn keeps_both_sides(conn: &impl Adjacency, p: u32, q: u32, v: u32) -> bool {
+    let (mut forward, mut backward) = (false, false);
+    for &t in conn.incident(p) {
+        let tri = conn.triangle(t);
+        if tri.contains(&q) && !tri.contains(&v) {
+            let (_, next, _) = corner_of(tri, p);
+            forward |= next == q;
+            backward |= next != q;
+        }
+    }
+    forward && backward
 }
 
 /// When `v` is the apex of one lone triangle standing on an edge of two other triangles or
@@ -306,7 +312,7 @@ pub(super) fn flap_apex(conn: &impl Adjacency, v: u32) -> Option<(u32, u32)> {
         return None;
     };
     let (_, a, b) = corner_of(conn.triangle(t), v);
-    (a != b && a != v && b != v && triangles_on(conn, a, b, v) >= 2).then_some((a, b))
+    (a != b && a != v && b != v && keeps_both_sides(conn, a, b, v)).then_some((a, b))
 }
 
 #[cfg(test)]
@@ -385,7 +391,12 @@ mod tests {
         let conn = Connectivity::new(5, &tris);
         assert_eq!(flap_apex(&conn, 4), Some((2, 0)));
         assert_eq!(flap_apex(&conn, 0), None);
-        assert_eq!(triangles_on(&conn, 0, 2, 4), 2);
+        assert!(keeps_both_sides(&conn, 0, 2, 4));
+        // Standing on two triangles that both run 2 -> 0 (flipped neighbours): dropping
+        // the flap would leave a misoriented pair, so it stays.
+        let conn = Connectivity::new(5, &[[0, 1, 2], [2, 0, 3], [0, 2, 4]]);
+        assert!(!keeps_both_sides(&conn, 0, 2, 4));
+        assert_eq!(flap_apex(&conn, 4), None);
         // Without the flap, 1 is an ordinary border corner.
         let conn = Connectivity::new(4, &tris[..2]);
         assert_eq!(flap_apex(&conn, 1), None);
