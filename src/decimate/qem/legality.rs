@@ -105,6 +105,16 @@ impl Part<'_> {
                 }
             }
         }
+        if plan.junction.is_some() {
+            // Across a junction the apex beyond the other copy is the kept point's
+            // neighbour already, welded (its other neighbours: `seam_stays_manifold`).
+            for f in fan_r.iter().filter(|f| f.touches(k)) {
+                let apex = if f.next == k { f.prev } else { f.next };
+                if !common.contains(&apex) {
+                    common.push(apex);
+                }
+            }
+        }
         // Three or more apexes on a non-manifold edge; fewer than triangles where the input
         // doubled some (a triangle and its reversed copy), which go together.
         let shares_only_apexes = common.len() == apexes && apexes >= 1;

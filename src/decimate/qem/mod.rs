@@ -11,6 +11,7 @@ mod collapse_passes;
 mod collapse_plan;
 mod collapser;
 mod edge_costs;
+mod junction_collapse;
 mod legality;
 mod part;
 mod planes;

@@ -188,6 +188,12 @@ impl Part<'_> {
         self.scratch.fans(plan)
     }
 
+    /// The fan [`Self::gather`] read around `v`, one of the edge's ends, to edit.
+    pub fn fan_mut(&mut self, v: u32) -> &mut Vec<FanTriangle> {
+        let s = &mut self.scratch;
+        &mut s.fans[usize::from(s.ends[0] != v)]
+    }
+
     /// Starts loading what collapsing an edge of `v` reads first (a hint; ignored for a
     /// vertex this part does not own).
     pub fn prefetch(&self, v: u32) {
@@ -398,6 +404,7 @@ impl Part<'_> {
             cost,
             twin,
             texcoords,
+            junction: None,
         })
     }
 

@@ -236,7 +236,7 @@ impl Region<'_> {
     /// pinned) by a new edge, when the model has seams: two of its neighbours are on a seam
     /// and are not already joined through one of its triangles.
     fn near_seam(&self, v: u32) -> bool {
-        if self.seams.twins.is_empty() {
+        if self.seams.twins.is_empty() && self.seams.copies.is_empty() {
             return false;
         }
         let mut seam = [u32::MAX; 2];
