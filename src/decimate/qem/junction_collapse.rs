@@ -45,6 +45,12 @@ impl Part<'_> {
         let Some(other) = other.filter(|&c| edge_count(c) == 1) else {
             return;
         };
+        // Into the copy with one triangle, when one of the two has one: that copy goes
+        // (the other way round, this edge's reverse, drops it).
+        let alone = |c: u32| self.conn.has_room(c, 0) && self.conn.incident(c).len() == 1;
+        if alone(keep) && !alone(other) {
+            return;
+        }
         // In three triangles, the one left joins the two apexes to the junction: it must
         // not be there already, at any copy.
         let last = fan_r.iter().find(|f| !f.touches(keep) && !f.touches(other));

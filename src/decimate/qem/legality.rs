@@ -6,13 +6,17 @@
 
 use glam::DVec2;
 
-use super::collapse_plan::Plan;
+use super::collapse_plan::{Kind, Plan};
 use super::part::Part;
 use crate::decimate::closed::tet6;
 use crate::mesh::topology::FanTriangle;
 
 /// A triangle is degenerate when its area is this small relative to its longest edge².
 const MIN_RELATIVE_AREA: f64 = 1e-8;
+
+/// A surviving triangle with a pinned (anchored) corner may turn by at most the angle of
+/// this cosine in one collapse (docs/design.md#texture-seams).
+const MIN_COS_BESIDE_ANCHOR: f64 = 0.5;
 
 /// A triangle's area in the texture may shrink to this fraction of what it was, no further.
 const MIN_TEXTURE_AREA: f64 = 1e-6;
@@ -204,8 +208,14 @@ impl Part<'_> {
                     .length_squared()
                     .max((y - x).length_squared())
                     .max((p - y).length_squared());
+                // Beside a pinned junction, which never moves to even out a turn, a
+                // triangle turns less (docs/design.md#texture-seams).
+                let pinned = [f.next, f.prev]
+                    .iter()
+                    .any(|&w| self.kind(w) == Kind::Anchored);
+                let min_cos = if pinned { MIN_COS_BESIDE_ANCHOR } else { 0.0 };
                 new_cross.length_squared() > min2 * longest * longest
-                    && new_cross.dot(old_cross) > 0.0
+                    && new_cross.dot(old_cross) > min_cos * new_cross.length() * old_cross.length()
             })
         })
     }
