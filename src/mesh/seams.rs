@@ -3,7 +3,8 @@
 //! `Model::texcoords`). The surface is cut there. Were the sides simplified on their own,
 //! their outlines would part and open a crack: decimation takes a seam's two sides away
 //! together (vertex removal removes both, edge collapse collapses both edges to one point),
-//! and pins the junctions where three or more sides meet.
+//! and pins the junctions where three or more sides meet; a vertex between two copies of a
+//! junction (a pole's first ring) goes into it as the welded surface's step would.
 
 use std::collections::HashMap;
 

@@ -14,8 +14,9 @@ use crate::mesh::topology::FanTriangle;
 /// A triangle is degenerate when its area is this small relative to its longest edge².
 const MIN_RELATIVE_AREA: f64 = 1e-8;
 
-/// A surviving triangle with a pinned (anchored) corner may turn by at most the angle of
-/// this cosine in one collapse (docs/design.md#texture-seams).
+/// On a model with seam junctions, a surviving triangle with a pinned (anchored) corner
+/// may turn by at most the angle of this cosine in one collapse
+/// (docs/design.md#texture-seams).
 const MIN_COS_BESIDE_ANCHOR: f64 = 0.5;
 
 /// A triangle's area in the texture may shrink to this fraction of what it was, no further.
@@ -190,6 +191,7 @@ impl Part<'_> {
         let p = plan.position;
         let min2 = MIN_RELATIVE_AREA * MIN_RELATIVE_AREA;
         let (fan_r, fan_k) = self.fans(plan);
+        let junctions = !self.copies.is_empty();
         [
             (plan.remove, fan_r, plan.keep),
             (plan.keep, fan_k, plan.remove),
@@ -210,9 +212,10 @@ impl Part<'_> {
                     .max((p - y).length_squared());
                 // Beside a pinned junction, which never moves to even out a turn, a
                 // triangle turns less (docs/design.md#texture-seams).
-                let pinned = [f.next, f.prev]
-                    .iter()
-                    .any(|&w| self.kind(w) == Kind::Anchored);
+                let pinned = junctions
+                    && [f.next, f.prev]
+                        .iter()
+                        .any(|&w| self.kind(w) == Kind::Anchored);
                 let min_cos = if pinned { MIN_COS_BESIDE_ANCHOR } else { 0.0 };
                 new_cross.length_squared() > min2 * longest * longest
                     && new_cross.dot(old_cross) > min_cos * new_cross.length() * old_cross.length()

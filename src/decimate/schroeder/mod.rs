@@ -390,6 +390,9 @@ impl Decimator {
     /// copy out, `Surface::close_at_junction`) that are in no other triangle.
     fn dropped_copies(&self, v: u32, removal: Removal<'_>) -> usize {
         let mut dropped = 0;
+        if self.copies.is_empty() {
+            return dropped;
+        }
         for &t in removal.triangles {
             for u in self.conn.triangle(t) {
                 let alone = u != v
