@@ -24,6 +24,7 @@ pub mod alloc;
 pub mod api;
 pub mod app;
 pub mod batch;
+pub mod cancel;
 pub mod cli;
 pub mod decimate;
 pub mod io;

@@ -7,8 +7,8 @@
 //! Test code (`#[cfg(test)]` items) is not checked: a unit test may build its fixtures with
 //! a higher layer (io's tests decimate a mesh to have a progressive one to write).
 //!
-//! Layers, bottom to top: `alloc`, `threads` (process plumbing, no imports) < `mesh` (data
-//! model) < `io` | `decimate` (siblings) < `metro` < `render` < `cli` (parsed command line,
+//! Layers, bottom to top: `alloc`, `threads`, `progress_bar`, `cancel` (process plumbing, no
+//! imports) < `mesh` (data model) < `io` | `decimate` (siblings) < `metro` < `render` < `cli` (parsed command line,
 //! shared by both front ends) < `app` | `batch` | `tile` | `api` (siblings; `api` is the
 //! library's entry point for programs) < `main` (src/main.rs, src/bin/).
 //! `render` and `metro` may import `mesh` only of the layers below them.
@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 /// each other.
 fn layer_of(top: &str) -> Option<u32> {
     Some(match top {
-        "alloc" | "threads" | "progress_bar" => 0,
+        "alloc" | "threads" | "progress_bar" | "cancel" => 0,
         "mesh" => 1,
         "io" | "decimate" => 2,
         "metro" => 3,

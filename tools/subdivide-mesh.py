@@ -10,6 +10,8 @@ import sys
 import numpy as np
 import pymeshlab
 
+from tri_ply import write_ply
+
 src, dst, levels = sys.argv[1], sys.argv[2], int(sys.argv[3])
 ms = pymeshlab.MeshSet()
 ms.load_new_mesh(src)
@@ -30,12 +32,4 @@ for _ in range(levels):
         np.stack([m[:, 2], m[:, 1], f[:, 2]], 1),
         m,
     ])
-with open(dst, "wb") as out:
-    out.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {len(v)}\n"
-               "property float x\nproperty float y\nproperty float z\n"
-               f"element face {len(f)}\nproperty list uchar int vertex_indices\n"
-               "end_header\n").encode())
-    out.write(v.astype("<f4").tobytes())
-    rec = np.zeros(len(f), dtype=[("n", "u1"), ("i", "<i4", 3)])
-    rec["n"], rec["i"] = 3, f
-    out.write(rec.tobytes())
+write_ply(dst, v, f)

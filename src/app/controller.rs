@@ -652,25 +652,14 @@ pub fn parse_vertex_count(text: &str, original: usize) -> Result<usize, String> 
 mod tests {
     use super::*;
     use crate::app::menu::{action_for_key, Key};
-    use crate::mesh::Model;
+    use crate::mesh::{shapes, Model};
     use glam::Vec3;
 
-    /// A 10×10 grid plane (121 vertices, 200 triangles), as test003.
+    /// A 10×10 grid plane (121 vertices, 200 triangles): test003.
     fn plane() -> Scene {
-        let mut m = Model::default();
-        for j in 0..=10 {
-            for i in 0..=10 {
-                m.positions.push(Vec3::new(i as f32, j as f32, 0.0));
-            }
+        Scene {
+            models: vec![shapes::test003()],
         }
-        for j in 0..10u32 {
-            for i in 0..10u32 {
-                let v = j * 11 + i;
-                m.triangles.push([v, v + 1, v + 12]);
-                m.triangles.push([v, v + 12, v + 11]);
-            }
-        }
-        Scene { models: vec![m] }
     }
 
     fn controller() -> ViewportController {
@@ -799,7 +788,7 @@ mod tests {
         key(&mut c, Key::Char('a'));
         key(&mut c, Key::Char('5'));
         let cube = Scene {
-            models: vec![crate::mesh::shapes::test004()],
+            models: vec![shapes::test004()],
         };
         let dir = std::env::temp_dir().join(format!("decimate-drop-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
@@ -853,7 +842,7 @@ mod tests {
 
     #[test]
     fn a_running_decimation_leaves_the_viewport_as_it_was_until_esc_cancels_it() {
-        let sphere = crate::mesh::shapes::bumpy_sphere(200, 400);
+        let sphere = shapes::bumpy_sphere(200, 400);
         let n = sphere.used_vertex_count();
         let scene = Scene {
             models: vec![sphere],
@@ -923,7 +912,7 @@ mod tests {
     #[test]
     fn d_measures_the_level_shown_and_its_caption_says_it() {
         let scene = Scene {
-            models: vec![crate::mesh::shapes::bumpy_sphere(12, 24)],
+            models: vec![shapes::bumpy_sphere(12, 24)],
         };
         let mut c = ViewportController::new(scene, Params::default(), 800, 600);
         key(&mut c, Key::Char('d'));
@@ -997,7 +986,7 @@ mod tests {
 
     #[test]
     fn two_viewports_compare_the_algorithms_on_the_same_target() {
-        let sphere = crate::mesh::shapes::bumpy_sphere(12, 24);
+        let sphere = shapes::bumpy_sphere(12, 24);
         let original: Vec<[u32; 3]> = (sphere.positions.iter())
             .map(|p| p.to_array().map(f32::to_bits))
             .collect();
@@ -1161,7 +1150,7 @@ mod tests {
     #[test]
     fn zero_vertices_is_key_zero() {
         let cube = Scene {
-            models: vec![crate::mesh::shapes::test004()],
+            models: vec![shapes::test004()],
         };
         let mut by_key = ViewportController::new(cube.clone(), Params::default(), 800, 600);
         key(&mut by_key, Key::Char('0'));

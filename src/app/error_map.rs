@@ -375,22 +375,9 @@ mod tests {
 
     /// A wavy 21×21 grid (441 vertices), so that a decimation moves the surface.
     fn waves() -> Scene {
-        use crate::mesh::Model;
-        use glam::Vec3;
-        let mut m = Model::default();
-        for j in 0..=20 {
-            for i in 0..=20 {
-                let z = (i as f32 * 0.7).sin() * (j as f32 * 0.5).cos();
-                m.positions.push(Vec3::new(i as f32, j as f32, z));
-            }
-        }
-        for j in 0..20u32 {
-            for i in 0..20u32 {
-                let v = j * 21 + i;
-                m.triangles.push([v, v + 1, v + 22]);
-                m.triangles.push([v, v + 22, v + 21]);
-            }
-        }
+        let m = crate::mesh::shapes::height_grid(20, |i, j| {
+            (i as f32 * 0.7).sin() * (j as f32 * 0.5).cos()
+        });
         Scene { models: vec![m] }
     }
 

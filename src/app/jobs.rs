@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use crate::decimate::{simplify_scene_cancellable, Params, Report};
 use crate::mesh::Scene;
-use crate::metro::field::{error_field, ErrorField};
+use crate::metro::field::{error_field_cancellable, ErrorField};
 
 use super::counts::Counts;
 use super::level_error::LevelError;
@@ -71,16 +71,19 @@ pub fn lod(what: String, original: Arc<Scene>, params: Params) -> Job<Done> {
     })
 }
 
-/// Measures `shown` against `original` (metro cannot stop half-way: a cancelled
-/// measurement runs to its end and is dropped).
+/// Measures `shown` against `original`; a cancelled measurement stops at its next chunk of
+/// samples and gives nothing.
 pub fn measure(what: String, original: Arc<Scene>, shown: Scene) -> Job<Done> {
-    spawn(what, move |_, _| {
-        Some(Done::Measured(LevelError::measure(&original, &shown)))
+    spawn(what, move |_, cancel| {
+        let measured = LevelError::measure_cancellable(&original, &shown, cancel);
+        (!cancel.requested()).then_some(Done::Measured(measured))
     })
 }
 
-/// Measures the heat-map's error field of `shown` against `original` (like [`measure`], it
-/// runs to its end; a cancelled one is dropped).
+/// Measures the heat-map's error field of `shown` against `original`; cancelled like
+/// [`measure`].
 pub fn field(what: String, original: Arc<Scene>, shown: Scene) -> Job<ErrorField> {
-    spawn(what, move |_, _| Some(error_field(&original, &shown)))
+    spawn(what, move |_, cancel| {
+        error_field_cancellable(&original, &shown, cancel)
+    })
 }

@@ -3,8 +3,9 @@
 //! original's bounding-box diagonal. Measured on request (`d` in the viewer, `--measure` in
 //! `shot`): it samples both surfaces, which takes about as long as decimating them.
 
+use crate::decimate::Cancel;
 use crate::mesh::Scene;
-use crate::metro::{compare, Options, Surface};
+use crate::metro::{compare_cancellable, Options, Surface};
 
 /// Metro's distance between an original and one of its levels.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -20,11 +21,20 @@ impl LevelError {
     /// Measures `level` against `original` with metro's default sampling (fixed seed: the
     /// same scenes give the same numbers); an error names the surface with no triangles.
     pub fn measure(original: &Scene, level: &Scene) -> Result<Self, String> {
+        Self::measure_cancellable(original, level, &Cancel::default())
+    }
+
+    /// [`Self::measure`], stopping soon after `cancel` is requested (then an error saying so).
+    pub fn measure_cancellable(
+        original: &Scene,
+        level: &Scene,
+        cancel: &Cancel,
+    ) -> Result<Self, String> {
         let (a, b) = rayon::join(
             || Surface::from_scene(original),
             || Surface::from_scene(level),
         );
-        let c = compare(&a, &b, &Options::default()).map_err(|e| {
+        let c = compare_cancellable(&a, &b, &Options::default(), cancel).map_err(|e| {
             let e = e.to_string();
             e.replace("surface A", "the original")
                 .replace("surface B", "the level shown")

@@ -2,42 +2,7 @@
 //! within (its share of the scene's target, the error bound, the feature angle, a
 //! [`Cancel`] flag) and the [`Outcome`] of doing so.
 
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
-
-/// A request to stop, made from another thread (the viewer's `Esc`). Both algorithms look
-/// at it at the head of each pass and each batch, and stop there: the model is left valid,
-/// short of its target. Clones share the flag; the default is never set.
-#[derive(Debug, Clone, Default)]
-pub struct Cancel(Option<Arc<AtomicBool>>);
-
-impl Cancel {
-    /// A flag that [`Self::request`] on this or any clone sets.
-    pub fn new() -> Self {
-        Self(Some(Arc::new(AtomicBool::new(false))))
-    }
-
-    pub fn request(&self) {
-        if let Some(flag) = &self.0 {
-            flag.store(true, Ordering::Relaxed);
-        }
-    }
-
-    pub fn requested(&self) -> bool {
-        self.0.as_ref().is_some_and(|f| f.load(Ordering::Relaxed))
-    }
-}
-
-/// Two handles are equal when they share one flag (or neither has one).
-impl PartialEq for Cancel {
-    fn eq(&self, other: &Self) -> bool {
-        match (&self.0, &other.0) {
-            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
-            (None, None) => true,
-            _ => false,
-        }
-    }
-}
+pub use crate::cancel::Cancel;
 
 /// How far one model may be decimated.
 #[derive(Debug, Clone, PartialEq)]

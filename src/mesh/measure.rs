@@ -184,16 +184,7 @@ mod tests {
 
     #[test]
     fn report_models_have_the_reported_counts_and_are_clean() {
-        let expected = [
-            (5, 6),
-            (26, 48),
-            (121, 200),
-            (602, 1200),
-            (528, 1056),
-            (2402, 4800),
-            (9648, 19296),
-            (546, 1088),
-        ];
+        let expected = shapes::REPORTED_COUNTS;
         assert_eq!(shapes::all().len(), expected.len());
         for (m, (v, t)) in shapes::all().iter().zip(expected) {
             assert_eq!((m.positions.len(), m.triangles.len()), (v, t), "{}", m.name);

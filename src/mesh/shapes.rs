@@ -38,11 +38,19 @@ pub fn test002() -> Model {
 
 /// test003: a one-sided 10×10 plane in z = 0, facing +z (121 / 200).
 pub fn test003() -> Model {
-    let n = 10u32;
+    Model {
+        name: "test003".into(),
+        ..height_grid(10, |_, _| 0.0)
+    }
+}
+
+/// An `n`×`n` grid of unit quads over x, y in 0..=n, each point raised to z = `height(x, y)`;
+/// two triangles a quad, counter-clockwise seen from +z.
+pub fn height_grid(n: u32, height: impl Fn(u32, u32) -> f32) -> Model {
     let mut positions = Vec::new();
     for y in 0..=n {
         for x in 0..=n {
-            positions.push(Vec3::new(x as f32, y as f32, 0.0));
+            positions.push(Vec3::new(x as f32, y as f32, height(x, y)));
         }
     }
     let mut triangles = Vec::new();
@@ -53,7 +61,7 @@ pub fn test003() -> Model {
             triangles.push([a, a + n + 2, a + n + 1]);
         }
     }
-    named("test003", positions, triangles)
+    named("grid", positions, triangles)
 }
 
 /// test004: a 10×10 cube — each face a 10×10 grid of quads (602 / 1200).
@@ -224,41 +232,7 @@ pub fn test007() -> Model {
 /// test008: a stretched box, 1 × 8 × 1 along +y, each face a grid of quads 0.25 on a side
 /// (546 / 1088).
 pub fn test008() -> Model {
-    let n = [4i32, 32, 4];
-    let size = Vec3::new(1.0, 8.0, 1.0);
-    let mut index: HashMap<[i32; 3], u32> = HashMap::new();
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    // As `named_cube`: a fixed axis at ±n, two running axes with (u × v) pointing outwards.
-    let faces: [(usize, i32, usize, usize); 6] = [
-        (0, 1, 1, 2),
-        (0, -1, 2, 1),
-        (1, 1, 2, 0),
-        (1, -1, 0, 2),
-        (2, 1, 0, 1),
-        (2, -1, 1, 0),
-    ];
-    for (axis, sign, u, v) in faces {
-        let mut id = |i: i32, j: i32| {
-            let mut c = [0i32; 3];
-            c[axis] = sign * n[axis];
-            c[u] = 2 * i - n[u];
-            c[v] = 2 * j - n[v];
-            *index.entry(c).or_insert_with(|| {
-                let unit = |a: usize| c[a] as f32 / (2 * n[a]) as f32;
-                positions.push(Vec3::new(unit(0), unit(1), unit(2)) * size);
-                (positions.len() - 1) as u32
-            })
-        };
-        for j in 0..n[v] {
-            for i in 0..n[u] {
-                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-                triangles.push([a, b, c]);
-                triangles.push([a, c, d]);
-            }
-        }
-    }
-    named("test008", positions, triangles)
+    grid_box("test008", [4, 32, 4], Vec3::new(1.0, 8.0, 1.0))
 }
 
 /// A value in [-1, 1] from `index` and `salt`, the same on every machine (the generated
@@ -272,6 +246,18 @@ fn hash_unit(index: u32, salt: u32) -> f32 {
     x ^= x >> 15;
     (x as f32 / u32::MAX as f32) * 2.0 - 1.0
 }
+
+/// The report's (vertices, triangles) of test001–test008, in order: what [`all`] builds.
+pub const REPORTED_COUNTS: [(usize, usize); 8] = [
+    (5, 6),
+    (26, 48),
+    (121, 200),
+    (602, 1200),
+    (528, 1056),
+    (2402, 4800),
+    (9648, 19296),
+    (546, 1088),
+];
 
 /// Every report model, in order.
 pub fn all() -> Vec<Model> {
@@ -287,21 +273,25 @@ pub fn all() -> Vec<Model> {
     ]
 }
 
+/// A box's six faces as quads over its eight corners numbered by bits (the +x side for bit
+/// 0, +y for bit 1, +z for bit 2), counter-clockwise seen from outside, in the order +z, -z,
+/// +x, -x, +y, -y.
+pub const BOX_QUADS: [[u32; 4]; 6] = [
+    [4, 5, 7, 6],
+    [0, 2, 3, 1],
+    [1, 3, 7, 5],
+    [0, 4, 6, 2],
+    [2, 6, 7, 3],
+    [0, 1, 5, 4],
+];
+
 /// The unit box [0, 1]³: 8 corners, 12 triangles, outward.
 pub fn unit_box() -> Model {
     let corner = |i: u32| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32);
-    let quads: [[u32; 4]; 6] = [
-        [4, 5, 7, 6],
-        [0, 2, 3, 1],
-        [1, 3, 7, 5],
-        [0, 4, 6, 2],
-        [2, 6, 7, 3],
-        [0, 1, 5, 4],
-    ];
     Model {
         name: "box".into(),
         positions: (0..8).map(corner).collect(),
-        triangles: quads
+        triangles: BOX_QUADS
             .iter()
             .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
             .collect(),
@@ -335,11 +325,17 @@ pub fn cube(n: u32, size: f32) -> Model {
 }
 
 fn named_cube(name: &str, n: u32, size: f32) -> Model {
+    grid_box(name, [n; 3], Vec3::splat(size))
+}
+
+/// A box of `size` centred at the origin, each face a grid of quads (`counts[a]` along axis
+/// `a`) split into two triangles, facing outwards; shared edge and corner vertices are merged.
+fn grid_box(name: &str, counts: [u32; 3], size: Vec3) -> Model {
+    let n = counts.map(|c| c as i32);
     let mut index: HashMap<[i32; 3], u32> = HashMap::new();
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
-    let h = n as i32;
-    // Each face: a fixed axis at ±h, two running axes chosen so (u × v) points outwards.
+    // Each face: a fixed axis at ±n, two running axes chosen so (u × v) points outwards.
     let faces: [(usize, i32, usize, usize); 6] = [
         (0, 1, 1, 2),
         (0, -1, 2, 1),
@@ -351,18 +347,18 @@ fn named_cube(name: &str, n: u32, size: f32) -> Model {
     for (axis, sign, u, v) in faces {
         let mut id = |i: i32, j: i32| {
             let mut c = [0i32; 3];
-            c[axis] = sign * h;
-            c[u] = 2 * i - h;
-            c[v] = 2 * j - h;
+            c[axis] = sign * n[axis];
+            c[u] = 2 * i - n[u];
+            c[v] = 2 * j - n[v];
             *index.entry(c).or_insert_with(|| {
-                positions.push(
-                    Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32) * (size / (2 * h) as f32),
-                );
+                // `c` runs from -n to n in steps of 2 (two per quad): c · size / 2n spans the box.
+                let at = |a: usize| c[a] as f32 * (size[a] / (2 * n[a]) as f32);
+                positions.push(Vec3::new(at(0), at(1), at(2)));
                 (positions.len() - 1) as u32
             })
         };
-        for j in 0..h {
-            for i in 0..h {
+        for j in 0..n[v] {
+            for i in 0..n[u] {
                 let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
                 triangles.push([a, b, c]);
                 triangles.push([a, c, d]);

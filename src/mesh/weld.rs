@@ -189,18 +189,10 @@ mod tests {
 
     /// A unit cube whose six faces each have their own four corners (24 vertices).
     fn split_cube() -> Model {
-        let faces: [[usize; 4]; 6] = [
-            [4, 5, 7, 6],
-            [0, 2, 3, 1],
-            [1, 3, 7, 5],
-            [0, 4, 6, 2],
-            [2, 6, 7, 3],
-            [0, 1, 5, 4],
-        ];
         let corner =
-            |i: usize| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32);
+            |i: u32| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32);
         let mut m = Model::default();
-        for f in faces {
+        for f in crate::mesh::shapes::BOX_QUADS {
             let b = m.positions.len() as u32;
             m.positions.extend(f.map(corner));
             m.triangles.push([b, b + 1, b + 2]);

@@ -15,6 +15,7 @@ use rayon::prelude::*;
 
 use super::bvh::Bvh;
 use super::Surface;
+use crate::cancel::Cancel;
 use crate::mesh::Scene;
 
 /// Per-vertex distances of a decimated scene from its original, in world (model) units.
@@ -44,6 +45,21 @@ const FACE_SAMPLES: [([f64; 3], [bool; 3]); 7] = [
 /// The distance of every vertex of `decimated` from `original` (see the module's doc). Pure
 /// and possibly long on big meshes: callers may run it on a worker thread.
 pub fn error_field(original: &Scene, decimated: &Scene) -> ErrorField {
+    field_of(original, decimated, &Cancel::default())
+}
+
+/// [`error_field`], stopping soon after `cancel` is requested (the viewer's `Esc`): `None`.
+pub fn error_field_cancellable(
+    original: &Scene,
+    decimated: &Scene,
+    cancel: &Cancel,
+) -> Option<ErrorField> {
+    let field = field_of(original, decimated, cancel);
+    (!cancel.requested()).then_some(field)
+}
+
+/// Once `cancel` is requested every query left answers 0 at once: the field is then partial.
+fn field_of(original: &Scene, decimated: &Scene, cancel: &Cancel) -> ErrorField {
     let source = Surface::from_scene(original);
     let diagonal = source.diagonal();
     let source_bvh = Bvh::new(&source.positions, &source.triangles);
@@ -67,6 +83,9 @@ pub fn error_field(original: &Scene, decimated: &Scene) -> ErrorField {
     let mut values = vec![0.0f64; positions.len()];
     if !source_bvh.is_empty() {
         let nearest = |p: DVec3, stack: &mut Vec<(u32, f64)>| {
+            if cancel.requested() {
+                return 0.0;
+            }
             source_bvh
                 .nearest(p, None, stack)
                 .map_or(0.0, |hit| hit.dist2.sqrt())
@@ -113,6 +132,9 @@ pub fn error_field(original: &Scene, decimated: &Scene) -> ErrorField {
             .used_vertices
             .par_iter()
             .map_init(Vec::new, |stack, &v| {
+                if cancel.requested() {
+                    return None;
+                }
                 let p = source.positions[v as usize];
                 let hit = decimated_bvh.nearest(p, None, stack)?;
                 let t = triangles[hit.triangle as usize];
@@ -174,6 +196,21 @@ mod tests {
         assert_eq!(field.distances.len(), 1);
         assert_eq!(field.distances[0].len(), s.models[0].positions.len());
         assert!(field.diagonal > 1.0);
+    }
+
+    #[test]
+    fn a_cancelled_field_gives_nothing_and_an_uncancelled_one_the_plain_field() {
+        let original = scene(shapes::unit_box());
+        let mut moved = original.clone();
+        moved.models[0].positions[7] += Vec3::splat(0.25);
+        let cancel = Cancel::new();
+        let field = error_field_cancellable(&original, &moved, &cancel);
+        let plain = error_field(&original, &moved);
+        let field = field.unwrap_or_else(|| panic!("not cancelled, yet no field"));
+        assert_eq!(field.distances, plain.distances);
+        assert!(plain.max > 0.4, "max {}", plain.max);
+        cancel.request();
+        assert!(error_field_cancellable(&original, &moved, &cancel).is_none());
     }
 
     #[test]

@@ -24,6 +24,7 @@ use std::time::Instant;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::cancel::Cancel;
 use crate::mesh::Scene;
 use bvh::Bvh;
 
@@ -374,10 +375,23 @@ pub enum Side {
 pub enum MetroError {
     #[error("surface {0:?} has no triangles to measure")]
     NoTriangles(Side),
+    #[error("the measurement was cancelled")]
+    Cancelled,
 }
 
 /// Measures A against B in both directions.
 pub fn compare(a: &Surface, b: &Surface, options: &Options) -> Result<Comparison, MetroError> {
+    compare_cancellable(a, b, options, &Cancel::default())
+}
+
+/// [`compare`], stopping soon after `cancel` is requested (the viewer's `Esc`) with
+/// [`MetroError::Cancelled`].
+pub fn compare_cancellable(
+    a: &Surface,
+    b: &Surface,
+    options: &Options,
+    cancel: &Cancel,
+) -> Result<Comparison, MetroError> {
     let (Some((alo, ahi)), Some((blo, bhi))) = (a.bounds(), b.bounds()) else {
         let side = if a.triangles.is_empty() {
             Side::A
@@ -400,9 +414,24 @@ pub fn compare(a: &Surface, b: &Surface, options: &Options) -> Result<Comparison
         || Bvh::new(&b.positions, &b.triangles),
     );
     let t_bvh = start.elapsed().as_secs_f64();
-    let a_to_b = sampling::measure(a, &bvh_b, options.face_samples(a), options.seed, floor);
+    let measure = |from: &Surface, to: &Bvh| {
+        let stats = sampling::measure(
+            from,
+            to,
+            options.face_samples(from),
+            options.seed,
+            floor,
+            cancel,
+        );
+        if cancel.requested() {
+            Err(MetroError::Cancelled)
+        } else {
+            Ok(stats)
+        }
+    };
+    let a_to_b = measure(a, &bvh_b)?;
     let t_ab = start.elapsed().as_secs_f64();
-    let b_to_a = sampling::measure(b, &bvh_a, options.face_samples(b), options.seed, floor);
+    let b_to_a = measure(b, &bvh_a)?;
     let t_ba = start.elapsed().as_secs_f64();
     Ok(Comparison {
         a: a.info(),

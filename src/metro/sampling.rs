@@ -16,6 +16,7 @@ use rayon::prelude::*;
 
 use super::bvh::Bvh;
 use super::{DirectionStats, Surface};
+use crate::cancel::Cancel;
 
 /// Items (faces, edges or vertices) per unit of parallel work.
 const CHUNK: usize = 2048;
@@ -148,8 +149,9 @@ fn distance(
     }
 }
 
-/// Runs `work` over `0..n` in fixed chunks in parallel and folds the partials in order.
-fn chunked<F>(n: usize, work: F) -> Partial
+/// Runs `work` over `0..n` in fixed chunks in parallel and folds the partials in order; once
+/// `cancel` is requested the chunks not yet started are skipped.
+fn chunked<F>(n: usize, cancel: &Cancel, work: F) -> Partial
 where
     F: Fn(std::ops::Range<usize>, &mut Partial) + Sync,
 {
@@ -158,7 +160,9 @@ where
         .into_par_iter()
         .map(|c| {
             let mut acc = Partial::EMPTY;
-            work(c * CHUNK..((c + 1) * CHUNK).min(n), &mut acc);
+            if !cancel.requested() {
+                work(c * CHUNK..((c + 1) * CHUNK).min(n), &mut acc);
+            }
             acc
         })
         .collect();
@@ -167,20 +171,22 @@ where
 
 /// Samples `from` (`face_samples` points by area, a tenth as many along edges by length, and
 /// every vertex) and measures each sample's distance to `to`. Max is over all samples; mean
-/// and RMS are over the face samples, which estimate the area integral without bias.
+/// and RMS are over the face samples, which estimate the area integral without bias. Once
+/// `cancel` is requested the rest is skipped and the stats are partial.
 pub fn measure(
     from: &Surface,
     to: &Bvh,
     face_samples: usize,
     seed: u64,
     floor: f64,
+    cancel: &Cancel,
 ) -> DirectionStats {
     let positions = &from.positions;
 
     // Faces: counts by area, points uniform in each face (Turk's square-root mapping).
     let mut offsets = SplitMix64::stream(seed, SALT_OFFSET, 0);
     let face_counts = allocate(&from.areas, face_samples, offsets.next_f64());
-    let faces = chunked(from.triangles.len(), |range, acc| {
+    let faces = chunked(from.triangles.len(), cancel, |range, acc| {
         let mut stack = Vec::with_capacity(64);
         let mut hint = None;
         for f in range {
@@ -212,7 +218,7 @@ pub fn measure(
         .map(|&[u, v]| positions[u as usize].distance(positions[v as usize]))
         .collect();
     let edge_counts = allocate(&lengths, edge_total, offsets.next_f64());
-    let edges = chunked(from.edges.len(), |range, acc| {
+    let edges = chunked(from.edges.len(), cancel, |range, acc| {
         let mut stack = Vec::with_capacity(64);
         let mut hint = None;
         for e in range {
@@ -233,7 +239,7 @@ pub fn measure(
     });
 
     // Vertices: every one that a triangle uses.
-    let vertices = chunked(from.used_vertices.len(), |range, acc| {
+    let vertices = chunked(from.used_vertices.len(), cancel, |range, acc| {
         let mut stack = Vec::with_capacity(64);
         let mut hint = None;
         for i in range {

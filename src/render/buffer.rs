@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use ash::vk;
-use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use gpu_allocator::vulkan::Allocation;
 use gpu_allocator::MemoryLocation;
 
 use super::context::Context;
@@ -43,17 +43,7 @@ impl Buffer {
         };
         // SAFETY: `handle` was just created on this device.
         let requirements = unsafe { device.get_buffer_memory_requirements(handle) };
-        let allocation = context
-            .allocator()
-            .lock()
-            .map_err(|_| RenderError::AllocatorPoisoned)?
-            .allocate(&AllocationCreateDesc {
-                name,
-                requirements,
-                location,
-                linear: true,
-                allocation_scheme: AllocationScheme::GpuAllocatorManaged,
-            })?;
+        let allocation = context.allocate(name, requirements, location, true)?;
         // SAFETY: the allocation satisfies the buffer's requirements and is not bound elsewhere.
         let bound =
             unsafe { device.bind_buffer_memory(handle, allocation.memory(), allocation.offset()) };
@@ -103,9 +93,7 @@ impl Drop for Buffer {
         // are fenced); the buffer is destroyed before its memory is returned.
         unsafe { self.context.device.destroy_buffer(self.handle, None) };
         if let Some(allocation) = self.allocation.take() {
-            if let Ok(mut allocator) = self.context.allocator().lock() {
-                let _ = allocator.free(allocation);
-            }
+            self.context.free(allocation);
         }
     }
 }

@@ -8,7 +8,10 @@ use std::mem::ManuallyDrop;
 use std::sync::{Arc, Mutex};
 
 use ash::vk;
-use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
+use gpu_allocator::vulkan::{
+    Allocation, AllocationCreateDesc, AllocationScheme, Allocator, AllocatorCreateDesc,
+};
+use gpu_allocator::MemoryLocation;
 
 use super::error::{RenderError, Result};
 
@@ -223,6 +226,37 @@ impl Context {
     /// The shared memory allocator.
     pub fn allocator(&self) -> &Arc<Mutex<Allocator>> {
         &self.allocator
+    }
+
+    /// Memory named `name` for a resource with `requirements`, in `location`; `linear` for
+    /// buffers, not for optimally tiled images.
+    pub fn allocate(
+        &self,
+        name: &str,
+        requirements: vk::MemoryRequirements,
+        location: MemoryLocation,
+        linear: bool,
+    ) -> Result<Allocation> {
+        let allocation = self
+            .allocator
+            .lock()
+            .map_err(|_| RenderError::AllocatorPoisoned)?
+            .allocate(&AllocationCreateDesc {
+                name,
+                requirements,
+                location,
+                linear,
+                allocation_scheme: AllocationScheme::GpuAllocatorManaged,
+            })?;
+        Ok(allocation)
+    }
+
+    /// Returns `allocation` to the allocator; a poisoned allocator keeps it until the device
+    /// goes (a drop cannot fail).
+    pub fn free(&self, allocation: Allocation) {
+        if let Ok(mut allocator) = self.allocator.lock() {
+            let _ = allocator.free(allocation);
+        }
     }
 
     /// Waits until the GPU has finished all submitted work (before freeing or resizing).

@@ -4,11 +4,11 @@
 use std::sync::Arc;
 
 use ash::vk;
-use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use gpu_allocator::vulkan::Allocation;
 use gpu_allocator::MemoryLocation;
 
 use super::context::Context;
-use super::error::{RenderError, Result};
+use super::error::Result;
 
 /// Depth format used by every target: supported for attachments by every Vulkan 1.3 device
 /// the renderer accepts in practice (lavapipe, Mesa, NVIDIA, AMD).
@@ -33,15 +33,7 @@ impl Image {
         extent: vk::Extent2D,
         usage: vk::ImageUsageFlags,
     ) -> Result<Self> {
-        Self::create(
-            context,
-            name,
-            format,
-            extent,
-            usage,
-            1,
-            vk::SampleCountFlags::TYPE_1,
-        )
+        Self::with_levels(context, name, format, extent, usage, 1)
     }
 
     /// A device-local attachment of `samples` samples per pixel (a multisampled colour or
@@ -114,17 +106,7 @@ impl Image {
         };
         // SAFETY: `handle` was just created on this device.
         let requirements = unsafe { device.get_image_memory_requirements(handle) };
-        let allocation = context
-            .allocator()
-            .lock()
-            .map_err(|_| RenderError::AllocatorPoisoned)?
-            .allocate(&AllocationCreateDesc {
-                name,
-                requirements,
-                location: MemoryLocation::GpuOnly,
-                linear: false,
-                allocation_scheme: AllocationScheme::GpuAllocatorManaged,
-            })?;
+        let allocation = context.allocate(name, requirements, MemoryLocation::GpuOnly, false)?;
         // SAFETY: the allocation satisfies the image's requirements and is bound only here.
         let bound =
             unsafe { device.bind_image_memory(handle, allocation.memory(), allocation.offset()) };
@@ -166,9 +148,7 @@ impl Drop for Image {
             self.context.device.destroy_image(self.handle, None);
         }
         if let Some(allocation) = self.allocation.take() {
-            if let Ok(mut allocator) = self.context.allocator().lock() {
-                let _ = allocator.free(allocation);
-            }
+            self.context.free(allocation);
         }
     }
 }

@@ -1,19 +1,10 @@
 //! Damaged input as a user brings it: repaired before decimation, with every repair counted
 //! on stderr.
 
-use std::path::Path;
-use std::process::{Command, Output};
-
 use decimate::io::read_scene;
 use decimate::mesh::measure;
 
-fn decimate(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run decimate")
-}
+use crate::support::binary::decimate;
 
 /// An octahedron (six corners at the unit axes) as an OFF file with two faces turned
 /// inside out, one face twice, a face with a repeated corner, one with collinear corners,

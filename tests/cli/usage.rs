@@ -9,13 +9,7 @@ use std::process::{Command, Output};
 use decimate::io::read_scene;
 use decimate::mesh::measure;
 
-fn decimate(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run decimate")
-}
+use crate::support::binary::decimate;
 
 fn asset(name: &str) -> String {
     let p: PathBuf = [env!("CARGO_MANIFEST_DIR"), "assets", name]

@@ -138,6 +138,34 @@ fn counts(m: &Model) -> (usize, usize, usize) {
     )
 }
 
+/// Decimates `before` by `params`' lossless steps and asserts what is left: `left` (used
+/// vertices, triangles, non-manifold edges) and nothing a user would notice (`assert_kept`).
+fn assert_lossless(before: &Model, params: &Params, left: (usize, usize, usize)) -> Model {
+    let after = run(before.clone(), params);
+    assert_eq!(counts(&after), left, "{}", before.name);
+    assert_kept(before, &after);
+    after
+}
+
+/// Decimates `before` by quadric collapses to `keep` triangles and asserts it gets within 2 %
+/// of them, with no misoriented edge and no degenerate triangle.
+fn assert_keeps(before: &Model, keep: usize) -> Model {
+    let params = Params {
+        target: Target::KeepTriangles(keep),
+        algorithm: Algorithm::Qem,
+        ..Params::default()
+    };
+    let after = run(before.clone(), &params);
+    let left = after.triangles.len();
+    assert!(
+        left <= keep && left * 50 >= keep * 49,
+        "{left} triangles, {keep} asked"
+    );
+    assert_eq!(measure::edge_counts(&after).misoriented, 0);
+    assert_eq!(measure::degenerate_triangles(&after, 1e-9), 0);
+    after
+}
+
 /// Three 4×4 sheets on one spine (see the drawing below).
 fn three_sheets() -> Model {
     let mut b = Builder::default();
@@ -175,9 +203,7 @@ fn two_cubes(edge: bool) -> Model {
 fn three_sheets_on_one_edge_become_three_quads_on_one_edge() {
     let before = three_sheets();
     assert_eq!(counts(&before), (65, 96, 4));
-    let after = run(before.clone(), &lossless());
-    assert_eq!(counts(&after), (8, 6, 1));
-    assert_kept(&before, &after);
+    assert_lossless(&before, &lossless(), (8, 6, 1));
 }
 
 // Two 4×4×4-gridded cubes of side 2 sharing one edge (four triangles on each of its four
@@ -186,9 +212,7 @@ fn three_sheets_on_one_edge_become_three_quads_on_one_edge() {
 fn two_cubes_sharing_an_edge_become_two_boxes_on_one_edge() {
     let before = two_cubes(true);
     assert_eq!(counts(&before), (2 * 98 - 5, 2 * 192, 4));
-    let after = run(before.clone(), &lossless());
-    assert_eq!(counts(&after), (14, 24, 1));
-    assert_kept(&before, &after);
+    let after = assert_lossless(&before, &lossless(), (14, 24, 1));
     assert!((measure::volume(&after) - 16.0).abs() < 1e-4);
 }
 
@@ -197,9 +221,7 @@ fn two_cubes_sharing_an_edge_become_two_boxes_on_one_edge() {
 fn two_cubes_sharing_a_vertex_become_two_boxes_on_one_point() {
     let before = two_cubes(false);
     assert_eq!(counts(&before), (2 * 98 - 1, 2 * 192, 0));
-    let after = run(before.clone(), &lossless());
-    assert_eq!(counts(&after), (15, 24, 0));
-    assert_kept(&before, &after);
+    let after = assert_lossless(&before, &lossless(), (15, 24, 0));
     assert!((measure::volume(&after) - 16.0).abs() < 1e-4);
 }
 
@@ -219,9 +241,7 @@ fn a_bowtie_of_two_squares_becomes_four_triangles() {
     b.sheet(Vec3::ZERO, -Vec3::X, -Vec3::Y, 4);
     let before = b.build("bowtie");
     assert_eq!(counts(&before), (49, 64, 0));
-    let after = run(before.clone(), &lossless());
-    assert_eq!(counts(&after), (7, 4, 0));
-    assert_kept(&before, &after);
+    assert_lossless(&before, &lossless(), (7, 4, 0));
 }
 
 // A curved shape with a fin: a bumpy sphere with a sheet standing out of one meridian,
@@ -251,25 +271,12 @@ fn a_finned_sphere_reaches_its_count_and_simplifies_the_fin() {
     let before = b.build("finned sphere");
     let (_, triangles, non_manifold) = counts(&before);
     assert_eq!((triangles, non_manifold), (2 * 48 * 23 + 48, 24));
-    let keep = triangles / 20;
-    let params = Params {
-        target: Target::KeepTriangles(keep),
-        algorithm: Algorithm::Qem,
-        ..Params::default()
-    };
-    let after = run(before.clone(), &params);
-    let (_, left, non_manifold) = counts(&after);
-    assert!(
-        left <= keep && left * 50 >= keep * 49,
-        "{left} triangles, {keep} asked"
-    );
+    let after = assert_keeps(&before, triangles / 20);
+    let (_, _, non_manifold) = counts(&after);
     assert!(
         (1..24).contains(&non_manifold),
         "{non_manifold} non-manifold edges"
     );
-    let e = measure::edge_counts(&after);
-    assert_eq!(e.misoriented, 0);
-    assert_eq!(measure::degenerate_triangles(&after, 1e-9), 0);
 }
 
 //   A bumpy sphere with 60 fins: single triangles standing on edges of its surface, as a
@@ -304,23 +311,11 @@ fn a_sphere_with_fins_loses_its_fins_and_keeps_its_area() {
     let before = b.build("finned sphere");
     let (_, triangles, non_manifold) = counts(&before);
     assert_eq!((triangles, non_manifold), (2 * 48 * 23 + 60, 60));
-    let keep = triangles / 10;
-    let params = Params {
-        target: Target::KeepTriangles(keep),
-        algorithm: Algorithm::Qem,
-        ..Params::default()
-    };
-    let after = run(before.clone(), &params);
-    let (_, left, non_manifold) = counts(&after);
-    assert!(
-        left <= keep && left * 50 >= keep * 49,
-        "{left} triangles, {keep} asked"
-    );
+    let after = assert_keeps(&before, triangles / 10);
+    let (_, _, non_manifold) = counts(&after);
     assert_eq!(non_manifold, 0, "fins left");
     let (a0, a1) = (measure::area(&sphere), measure::area(&after));
     assert!((a1 - a0).abs() < 0.03 * a0, "area {a0} -> {a1}");
-    assert_eq!(measure::edge_counts(&after).misoriented, 0);
-    assert_eq!(measure::degenerate_triangles(&after, 1e-9), 0);
 }
 
 // Decimated as far as vertex removal goes, three sheets on one edge keep the spine's two
@@ -359,9 +354,7 @@ fn a_fully_decimated_model_says_its_non_manifold_edges_hold_it_back() {
 #[test]
 fn vertex_removal_takes_three_sheets_on_one_edge_down_to_three_quads() {
     let before = three_sheets();
-    let after = run(before.clone(), &lossless_by(Algorithm::Schroeder));
-    assert_eq!(counts(&after), (8, 6, 1));
-    assert_kept(&before, &after);
+    assert_lossless(&before, &lossless_by(Algorithm::Schroeder), (8, 6, 1));
 }
 
 // The edge the cubes share has four fans at each inner vertex (two faces of each cube):
@@ -370,9 +363,7 @@ fn vertex_removal_takes_three_sheets_on_one_edge_down_to_three_quads() {
 #[test]
 fn vertex_removal_takes_two_cubes_sharing_an_edge_down_to_two_boxes() {
     let before = two_cubes(true);
-    let after = run(before.clone(), &lossless_by(Algorithm::Schroeder));
-    assert_eq!(counts(&after), (14, 24, 1));
-    assert_kept(&before, &after);
+    let after = assert_lossless(&before, &lossless_by(Algorithm::Schroeder), (14, 24, 1));
     assert!((measure::volume(&after) - 16.0).abs() < 1e-4);
 }
 
@@ -381,9 +372,7 @@ fn vertex_removal_takes_two_cubes_sharing_an_edge_down_to_two_boxes() {
 #[test]
 fn vertex_removal_takes_two_cubes_sharing_a_vertex_down_to_two_boxes() {
     let before = two_cubes(false);
-    let after = run(before.clone(), &lossless_by(Algorithm::Schroeder));
-    assert_eq!(counts(&after), (15, 24, 0));
-    assert_kept(&before, &after);
+    let after = assert_lossless(&before, &lossless_by(Algorithm::Schroeder), (15, 24, 0));
     assert!((measure::volume(&after) - 16.0).abs() < 1e-4);
 }
 
@@ -409,10 +398,8 @@ fn vertex_removal_takes_a_straight_bowtie_apart_into_two_squares() {
     let pinch =
         |m: &Model| (m.triangles.iter().flatten()).any(|&v| m.positions[v as usize] == Vec3::ZERO);
     assert!(pinch(&before));
-    let after = run(before.clone(), &lossless_by(Algorithm::Schroeder));
-    assert_eq!(counts(&after), (8, 4, 0));
+    let after = assert_lossless(&before, &lossless_by(Algorithm::Schroeder), (8, 4, 0));
     assert!(!pinch(&after), "the shared vertex is gone");
-    assert_kept(&before, &after);
 }
 
 // Two squares meeting at one corner each: the shared corner turns a right angle in both
@@ -423,9 +410,7 @@ fn vertex_removal_keeps_a_corner_bowtie_and_takes_the_rest() {
     b.sheet(Vec3::ZERO, Vec3::X, Vec3::Y, 4);
     b.sheet(Vec3::ZERO, -Vec3::X, -Vec3::Y, 4);
     let before = b.build("bowtie");
-    let after = run(before.clone(), &lossless_by(Algorithm::Schroeder));
-    assert_eq!(counts(&after), (7, 4, 0));
-    assert_kept(&before, &after);
+    assert_lossless(&before, &lossless_by(Algorithm::Schroeder), (7, 4, 0));
 }
 
 //   A pinch: two flat 4×4 squares crossing at right angles, the first in the plane z = 0,
@@ -446,7 +431,5 @@ fn vertex_removal_takes_a_pinch_along_one_edge_apart_into_two_squares() {
     });
     let before = b.build("pinch");
     assert_eq!(counts(&before), (48, 64, 1));
-    let after = run(before.clone(), &lossless_by(Algorithm::Schroeder));
-    assert_eq!(counts(&after), (8, 4, 0));
-    assert_kept(&before, &after);
+    assert_lossless(&before, &lossless_by(Algorithm::Schroeder), (8, 4, 0));
 }

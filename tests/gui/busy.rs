@@ -10,10 +10,10 @@
 //! costs milliseconds, so any wait the job made a frame or a key take would show.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::time::{Duration, Instant};
 
-use super::xvfb::{display_or_skip, hold_x_connection, read_log, run, window_of, Viewer};
+use super::xvfb::{display_or_skip, hold_x_connection, quit, read_log, run, scratch, start_traced};
 
 /// The sphere's size: 2 · segments · (rings − 1) triangles.
 const RINGS: u32 = 501;
@@ -61,9 +61,7 @@ fn a_big_decimation_leaves_the_window_answering_and_esc_cancels_it() {
     }
     let _window = super::ONE_WINDOW.lock();
     let _held = hold_x_connection(Duration::from_secs(20));
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("gui_busy");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+    let dir = scratch("gui_busy");
     let sphere = decimate::mesh::shapes::uv_sphere(RINGS, SEGMENTS);
     assert_eq!(
         (sphere.used_vertex_count(), sphere.triangles.len()),
@@ -75,22 +73,7 @@ fn a_big_decimation_leaves_the_window_answering_and_esc_cancels_it() {
     decimate::io::write_ply(&scene, &dir.join("sphere.ply")).unwrap_or_else(|e| panic!("{e}"));
 
     let log = dir.join("viewer.log");
-    let file = std::fs::File::create(&log).unwrap_or_else(|e| panic!("{e}"));
-    let child = Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .arg("sphere.ply")
-        .current_dir(&dir)
-        .env("DECIMATE_TRACE", "1")
-        .env("VK_ICD_FILENAMES", super::xvfb::LAVAPIPE)
-        .env("VK_DRIVER_FILES", super::xvfb::LAVAPIPE)
-        .env_remove("WAYLAND_DISPLAY")
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(file)
-        .spawn()
-        .unwrap_or_else(|e| panic!("cannot start the viewer: {e}"));
-    let mut viewer = Viewer(child);
-    let wid = window_of(&mut viewer, &log, Duration::from_secs(60))
-        .unwrap_or_else(|| panic!("no window in 60 s; viewer log:\n{}", read_log(&log)));
+    let (mut viewer, wid) = start_traced(&dir, &["sphere.ply"], &log);
     let _ = Command::new("xdotool")
         .args(["windowfocus", "--sync", &wid])
         .status();
@@ -163,21 +146,6 @@ fn a_big_decimation_leaves_the_window_answering_and_esc_cancels_it() {
         handled.as_millis()
     );
 
-    // q quits (nothing runs now); its release may find the window gone (see xvfb.rs).
-    let _ = Command::new("xdotool")
-        .args(["key", "--window", &wid, "q"])
-        .output();
-    let start = Instant::now();
-    loop {
-        if let Ok(Some(status)) = viewer.0.try_wait() {
-            assert!(status.success(), "the viewer exited with {status}");
-            break;
-        }
-        assert!(
-            start.elapsed() < Duration::from_secs(20),
-            "q did not quit the viewer; viewer log:\n{}",
-            read_log(&log)
-        );
-        std::thread::sleep(Duration::from_millis(200));
-    }
+    // q quits (nothing runs now).
+    quit(viewer, &wid, &log);
 }

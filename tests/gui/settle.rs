@@ -3,10 +3,9 @@
 //! samples). The viewer's `DECIMATE_TRACE` lines give each frame's sample count.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
 use std::time::Duration;
 
-use super::xvfb::{display_or_skip, drag_with, hold_x_connection, read_log, window_of, Viewer};
+use super::xvfb::{display_or_skip, drag_with, hold_x_connection, read_log, scratch, start_traced};
 
 /// The sample counts of the frames traced in `log`, in order.
 fn frame_samples(log: &Path) -> Vec<u32> {
@@ -30,30 +29,13 @@ fn turning_the_model_draws_single_sampled_then_one_4x_frame_at_rest() {
     }
     let _window = super::ONE_WINDOW.lock();
     let _held = hold_x_connection(Duration::from_secs(20));
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("gui_settle");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+    let dir = scratch("gui_settle");
     let scene = decimate::mesh::Scene {
         models: vec![decimate::mesh::shapes::uv_sphere(30, 60)],
     };
     decimate::io::write_ply(&scene, &dir.join("sphere.ply")).unwrap_or_else(|e| panic!("{e}"));
     let log = dir.join("viewer.log");
-    let file = std::fs::File::create(&log).unwrap_or_else(|e| panic!("{e}"));
-    let child = Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .args(["sphere.ply", "gui", "--msaa", "4"])
-        .current_dir(&dir)
-        .env("DECIMATE_TRACE", "1")
-        .env("VK_ICD_FILENAMES", super::xvfb::LAVAPIPE)
-        .env("VK_DRIVER_FILES", super::xvfb::LAVAPIPE)
-        .env_remove("WAYLAND_DISPLAY")
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(file)
-        .spawn()
-        .unwrap_or_else(|e| panic!("cannot start the viewer: {e}"));
-    let mut viewer = Viewer(child);
-    let wid = window_of(&mut viewer, &log, Duration::from_secs(60))
-        .unwrap_or_else(|| panic!("no window in 60 s; viewer log:\n{}", read_log(&log)));
+    let (_viewer, wid) = start_traced(&dir, &["sphere.ply", "gui", "--msaa", "4"], &log);
     std::thread::sleep(Duration::from_secs(2));
     let before = frame_samples(&log);
     assert_eq!(

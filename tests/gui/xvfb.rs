@@ -163,53 +163,19 @@ fn screenshot(path: &Path) -> Vec<u8> {
     std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
-fn scratch() -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("gui_xvfb");
+/// A fresh folder `name` under the test target's temp folder (left for a look after a failure).
+pub(crate) fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
     dir
 }
 
-/// test004: a 10×10-segment cube, 602 vertices.
+/// A 2×2×2 cube of 10×10 quads a face (test004's mesh), 602 vertices.
 fn write_cube(path: &Path) {
-    use decimate::mesh::{Model, Scene};
-    use glam::Vec3;
-    let n = 10u32;
-    let mut model = Model::default();
-    let mut index = std::collections::HashMap::new();
-    for (normal, u, v) in [
-        (Vec3::X, Vec3::Y, Vec3::Z),
-        (-Vec3::X, Vec3::Z, Vec3::Y),
-        (Vec3::Y, Vec3::Z, Vec3::X),
-        (-Vec3::Y, Vec3::X, Vec3::Z),
-        (Vec3::Z, Vec3::X, Vec3::Y),
-        (-Vec3::Z, Vec3::Y, Vec3::X),
-    ] {
-        let mut ids = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                let p = normal + u * (i as f32 / 5.0 - 1.0) + v * (j as f32 / 5.0 - 1.0);
-                let key = (p * 5.0).round().as_ivec3().to_array();
-                ids.push(*index.entry(key).or_insert_with(|| {
-                    model.positions.push(p);
-                    model.positions.len() as u32 - 1
-                }));
-            }
-        }
-        let at = |i: u32, j: u32| ids[(j * (n + 1) + i) as usize];
-        for j in 0..n {
-            for i in 0..n {
-                model
-                    .triangles
-                    .push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-                model
-                    .triangles
-                    .push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-            }
-        }
-    }
+    let model = decimate::mesh::shapes::cube(10, 2.0);
     assert_eq!(model.positions.len(), 602);
-    let scene = Scene {
+    let scene = decimate::mesh::Scene {
         models: vec![model],
     };
     decimate::io::write_vrml2(&scene, path).unwrap_or_else(|e| panic!("{e}"));
@@ -308,12 +274,17 @@ pub(crate) fn drag_with(
     std::thread::sleep(Duration::from_millis(800));
 }
 
-/// Starts the viewer on `input` in `dir`, its stderr going to `log`.
-fn spawn_viewer(dir: &Path, input: &str, log: &Path) -> Viewer {
+/// Starts the viewer as `decimate ARGS` in `dir` on lavapipe, its stderr going to `log`;
+/// `trace`: with its `DECIMATE_TRACE` lines there.
+fn spawn_viewer(dir: &Path, args: &[&str], trace: bool, log: &Path) -> Viewer {
     let file = std::fs::File::create(log)
         .unwrap_or_else(|e| panic!("cannot create {}: {e}", log.display()));
-    let child = Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .arg(input)
+    let mut command = Command::new(env!("CARGO_BIN_EXE_decimate"));
+    if trace {
+        command.env("DECIMATE_TRACE", "1");
+    }
+    let child = command
+        .args(args)
         .current_dir(dir)
         .env("VK_ICD_FILENAMES", LAVAPIPE)
         .env("VK_DRIVER_FILES", LAVAPIPE)
@@ -326,6 +297,44 @@ fn spawn_viewer(dir: &Path, input: &str, log: &Path) -> Viewer {
     Viewer(child)
 }
 
+/// Starts the viewer as `decimate ARGS` in `dir` with its trace going to `log` (see
+/// [`spawn_viewer`]), and waits up to 60 s for its window: the viewer and the window's id.
+pub(crate) fn start_traced(dir: &Path, args: &[&str], log: &Path) -> (Viewer, String) {
+    let mut viewer = spawn_viewer(dir, args, true, log);
+    let wid = window_of(&mut viewer, log, Duration::from_secs(60))
+        .unwrap_or_else(|| panic!("no window in 60 s; viewer log:\n{}", read_log(log)));
+    (viewer, wid)
+}
+
+/// Presses q in window `wid` and asserts that the viewer quits, successfully, within 20 s.
+pub(crate) fn quit(mut viewer: Viewer, wid: &str, log: &Path) {
+    // xdotool sends the key's press and release as two events; a viewer that quits on the
+    // press may destroy its window before the release is sent, and xdotool then fails with
+    // BadWindow. So its status is not asserted: the viewer's exit is.
+    let sent = Command::new("xdotool")
+        .args(["key", "--window", wid, "q"])
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stderr).into_owned())
+        .unwrap_or_else(|e| format!("cannot run xdotool: {e}"));
+    let start = Instant::now();
+    loop {
+        if let Ok(Some(status)) = viewer.0.try_wait() {
+            assert!(
+                status.success(),
+                "the viewer exited with {status}; viewer log:\n{}",
+                read_log(log)
+            );
+            return;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(20),
+            "q did not quit the viewer (xdotool said: {sent}); viewer log:\n{}",
+            read_log(log)
+        );
+        std::thread::sleep(Duration::from_millis(200));
+    }
+}
+
 #[test]
 fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     if !display_or_skip() {
@@ -333,7 +342,7 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     }
     let _window = super::ONE_WINDOW.lock();
     let _held = hold_x_connection(Duration::from_secs(20));
-    let dir = scratch();
+    let dir = scratch("gui_xvfb");
     // The input is named as F3's output: F3 must write beside it, never over it.
     let input = dir.join("out.wrl");
     write_cube(&input);
@@ -342,9 +351,9 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     // is started a second time first, so that one slow start on a loaded machine is told
     // apart from a viewer that cannot open its window.
     let mut attempts = Vec::new();
-    let (mut viewer, wid, log_path) = loop {
+    let (viewer, wid, log_path) = loop {
         let log_path = dir.join(format!("viewer-{}.log", attempts.len() + 1));
-        let mut viewer = spawn_viewer(&dir, "out.wrl", &log_path);
+        let mut viewer = spawn_viewer(&dir, &["out.wrl"], false, &log_path);
         if let Some(wid) = window_of(&mut viewer, &log_path, Duration::from_secs(45)) {
             break (viewer, wid, log_path);
         }
@@ -549,31 +558,8 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
         "Shift + left drag back: the model is at x {back:.0}, it started at {start:.0}"
     );
 
-    // q quits. xdotool sends the key's press and release as two events; a viewer that quits
-    // on the press may destroy its window before the release is sent, and xdotool then
-    // fails with BadWindow. So its status is not asserted: the viewer's exit is.
-    let sent = Command::new("xdotool")
-        .args(["key", "--window", &wid, "q"])
-        .output()
-        .map(|o| String::from_utf8_lossy(&o.stderr).into_owned())
-        .unwrap_or_else(|e| format!("cannot run xdotool: {e}"));
-    let start = Instant::now();
-    loop {
-        if let Ok(Some(status)) = viewer.0.try_wait() {
-            assert!(
-                status.success(),
-                "the viewer exited with {status}; viewer log:\n{}",
-                read_log(&log_path)
-            );
-            break;
-        }
-        assert!(
-            start.elapsed() < Duration::from_secs(20),
-            "q did not quit the viewer (xdotool said: {sent}); viewer log:\n{}",
-            read_log(&log_path)
-        );
-        std::thread::sleep(Duration::from_millis(200));
-    }
+    // q quits.
+    quit(viewer, &wid, &log_path);
     assert_eq!(
         std::fs::read(&input).unwrap_or_else(|e| panic!("{e}")),
         input_bytes,

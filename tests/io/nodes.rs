@@ -6,12 +6,12 @@
 
 use std::collections::HashMap;
 use std::f32::consts::{PI, TAU};
-use std::path::Path;
-use std::process::{Command, Output};
 
 use decimate::io::{parse_str, read_scene, read_scene_with, ReadOptions};
 use decimate::mesh::{Model, Scene};
 use glam::Vec3;
+
+use crate::support::binary::decimate;
 
 fn read(src: &str) -> Scene {
     parse_str(src, "t.iv")
@@ -614,14 +614,6 @@ fn control_bytes_carriage_returns_and_wrong_headers() {
         ),
         "{e}"
     );
-}
-
-fn decimate(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run decimate")
 }
 
 #[test]

@@ -469,17 +469,7 @@ fn texture_transforms_move_the_primitives_coordinates() {
         "url \"checker.png\" } textureTransform TextureTransform { translation 0.5 0 scale 2 2 }",
     );
     let moved = one_model(&text, "t.wrl");
-    for (a, b) in plain
-        .texcoords
-        .unwrap()
-        .iter()
-        .zip(moved.texcoords.unwrap())
-    {
-        assert!(
-            near(b[0], (a[0] + 0.5) * 2.0) && near(b[1], a[1] * 2.0),
-            "{a:?} -> {b:?}"
-        );
-    }
+    assert_moved(&plain, &moved, |[u, v]| [(u + 0.5) * 2.0, v * 2.0]);
     // Inventor: scaled by 2, then translated by (0.5, 0); two nodes accumulate, and a
     // Separator ends their scope.
     let plain = inventor("Sphere {}", true);
@@ -487,17 +477,7 @@ fn texture_transforms_move_the_primitives_coordinates() {
         "Texture2Transform { translation 0.5 0 } Texture2Transform { scaleFactor 2 2 } Sphere {}",
         true,
     );
-    for (a, b) in plain
-        .texcoords
-        .unwrap()
-        .iter()
-        .zip(moved.texcoords.unwrap())
-    {
-        assert!(
-            near(b[0], a[0] * 2.0 + 0.5) && near(b[1], a[1] * 2.0),
-            "{a:?} -> {b:?}"
-        );
-    }
+    assert_moved(&plain, &moved, |[u, v]| [u * 2.0 + 0.5, v * 2.0]);
     let scene = parse_str(
         "#Inventor V2.1 ascii\nSeparator { Texture2 { filename \"c.png\" } \
          Separator { Texture2Transform { rotation 1.5707964 } Cube {} } Cube {} }\n",
@@ -510,6 +490,15 @@ fn texture_transforms_move_the_primitives_coordinates() {
     // A quarter turn counter-clockwise: (u, v) -> (-v, u).
     for (a, b) in kept.iter().zip(&turned) {
         assert!(near(b[0], -a[1]) && near(b[1], a[0]), "{a:?} -> {b:?}");
+    }
+}
+
+/// Asserts that each of `moved`'s texture coordinates is `map` of `plain`'s, pair by pair.
+fn assert_moved(plain: &Model, moved: &Model, map: impl Fn([f32; 2]) -> [f32; 2]) {
+    let [plain, moved] = [plain, moved].map(|m| m.texcoords.as_deref().expect("coordinates"));
+    for (a, b) in plain.iter().zip(moved) {
+        let [u, v] = map(*a);
+        assert!(near(b[0], u) && near(b[1], v), "{a:?} -> {b:?}");
     }
 }
 

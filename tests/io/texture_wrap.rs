@@ -4,7 +4,8 @@
 //! OBJ + MTL; a wrap value Inventor does not have is refused with its file and line.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+
+use crate::support::binary::decimate;
 
 /// A fresh scratch folder for one test.
 fn scratch(name: &str) -> PathBuf {
@@ -12,14 +13,6 @@ fn scratch(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
     dir
-}
-
-fn decimate(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run decimate: {e}"))
 }
 
 /// An `n × n` grid's points, texture coordinates (twice the image across, so that wrapping

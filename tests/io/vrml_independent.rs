@@ -50,11 +50,11 @@ fn vtk_available() -> bool {
     there
 }
 
-/// Triangle counts of each shape VTK reads from `file`, sorted.
-fn vtk_triangles(file: &Path) -> Vec<usize> {
+/// What the VTK program running `per_shape` prints for `file`; fails when VTK fails.
+fn run_vtk(per_shape: &str, file: &Path) -> String {
     let o = Command::new("/usr/bin/python3")
         .arg("-c")
-        .arg(vtk_script(CHECK))
+        .arg(vtk_script(per_shape))
         .arg(file)
         .output()
         .expect("run python3");
@@ -64,7 +64,30 @@ fn vtk_triangles(file: &Path) -> Vec<usize> {
         file.display(),
         String::from_utf8_lossy(&o.stderr)
     );
-    let mut counts: Vec<usize> = String::from_utf8_lossy(&o.stdout)
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Runs `decimate INPUT nogui ARGS -q -o OUT`, which must succeed.
+fn decimate_to(input: &Path, args: &[&str], out: &Path) {
+    let o = Command::new(env!("CARGO_BIN_EXE_decimate"))
+        .arg(input)
+        .arg("nogui")
+        .args(args)
+        .args(["-q", "-o"])
+        .arg(out)
+        .output()
+        .expect("run decimate");
+    assert!(
+        o.status.success(),
+        "{}: {}",
+        input.display(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// Triangle counts of each shape VTK reads from `file`, sorted.
+fn vtk_triangles(file: &Path) -> Vec<usize> {
+    let mut counts: Vec<usize> = run_vtk(CHECK, file)
         .lines()
         .filter_map(|l| l.trim().parse().ok())
         .collect();
@@ -103,18 +126,7 @@ Transform { translation 5 0 0 rotation 0 0 1 0.5 scale 2 2 2 children [
     inputs.push(dir.path().join("scene.wrl"));
     for (i, input) in inputs.iter().enumerate() {
         let out = dir.path().join(format!("out{i}.wrl"));
-        let o = Command::new(env!("CARGO_BIN_EXE_decimate"))
-            .arg(input)
-            .args(["nogui", "-p", "50", "-q", "-o"])
-            .arg(&out)
-            .output()
-            .expect("run decimate");
-        assert!(
-            o.status.success(),
-            "{}: {}",
-            input.display(),
-            String::from_utf8_lossy(&o.stderr)
-        );
+        decimate_to(input, &["-p", "50"], &out);
         let ours = our_triangles(&out);
         assert!(!ours.is_empty(), "{}", input.display());
         assert_eq!(
@@ -133,6 +145,32 @@ const TCOORDS: &str = r#"    tc = pd.GetPointData().GetTCoords()
         u, v = tc.GetTuple2(i) if tc else (float("nan"), float("nan"))
         print(x, y, u, v)
 "#;
+
+/// What VTK reads of the one shape in `file`: its counts of points and of texture coordinate
+/// pairs, and each point's (x, y, u, v).
+fn vtk_texture_coordinates(file: &Path) -> (Vec<usize>, Vec<[f64; 4]>) {
+    let text = run_vtk(TCOORDS, file);
+    let mut lines = text.lines();
+    let counts = lines
+        .next()
+        .expect("one shape")
+        .split_whitespace()
+        .map(|w| w.parse().unwrap())
+        .collect();
+    let points = lines
+        .map(|line| {
+            let [x, y, u, v] = line
+                .split_whitespace()
+                .map(|w| w.parse::<f64>().unwrap())
+                .collect::<Vec<_>>()[..]
+            else {
+                panic!("{line}")
+            };
+            [x, y, u, v]
+        })
+        .collect();
+    (counts, points)
+}
 
 #[test]
 fn vtk_reads_our_texture_coordinates() {
@@ -174,35 +212,11 @@ fn vtk_reads_our_texture_coordinates() {
     std::fs::write(&input, scene).unwrap();
     for algorithm in ["schroeder", "qem"] {
         let out = dir.path().join(format!("{algorithm}.wrl"));
-        let o = Command::new(env!("CARGO_BIN_EXE_decimate"))
-            .arg(&input)
-            .args(["nogui", "-a", algorithm, "-p", "40", "-q", "-o"])
-            .arg(&out)
-            .output()
-            .expect("run decimate");
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        decimate_to(&input, &["-a", algorithm, "-p", "40"], &out);
         // The clamped texture is written as such, and VTK reads past it.
         let written = std::fs::read_to_string(&out).unwrap();
         assert!(written.contains("repeatS FALSE"), "{algorithm}");
-        let vtk = Command::new("/usr/bin/python3")
-            .arg("-c")
-            .arg(vtk_script(TCOORDS))
-            .arg(&out)
-            .output()
-            .expect("run python3");
-        assert!(
-            vtk.status.success(),
-            "{}",
-            String::from_utf8_lossy(&vtk.stderr)
-        );
-        let text = String::from_utf8_lossy(&vtk.stdout);
-        let mut lines = text.lines();
-        let counts: Vec<usize> = lines
-            .next()
-            .expect("one shape")
-            .split_whitespace()
-            .map(|w| w.parse().unwrap())
-            .collect();
+        let (counts, points) = vtk_texture_coordinates(&out);
         let ours = decimate::io::read_scene(&out).unwrap().scene;
         // 30 vertices (25 points, 5 of them twice) less 40 %.
         assert_eq!(ours.models[0].positions.len(), 18, "{algorithm}");
@@ -211,14 +225,7 @@ fn vtk_reads_our_texture_coordinates() {
             [18, 18],
             "{algorithm}: VTK's points and coordinate pairs"
         );
-        for line in lines {
-            let [x, y, u, v] = line
-                .split_whitespace()
-                .map(|w| w.parse::<f64>().unwrap())
-                .collect::<Vec<_>>()[..]
-            else {
-                panic!("{line}")
-            };
+        for [x, y, u, v] in points {
             let shift = if u > 1.5 { 2.0 } else { 0.0 };
             assert!(
                 (u - shift - x).abs() < 1e-5 && (v - y).abs() < 1e-5,
@@ -244,44 +251,13 @@ fn vtk_reads_the_coordinates_of_a_textured_sphere_we_decimated() {
     )
     .unwrap();
     let out = dir.path().join("out.wrl");
-    let o = Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .arg(&input)
-        .args(["nogui", "-a", "schroeder", "-p", "50", "-q", "-o"])
-        .arg(&out)
-        .output()
-        .expect("run decimate");
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let vtk = Command::new("/usr/bin/python3")
-        .arg("-c")
-        .arg(vtk_script(TCOORDS))
-        .arg(&out)
-        .output()
-        .expect("run python3");
-    assert!(
-        vtk.status.success(),
-        "{}",
-        String::from_utf8_lossy(&vtk.stderr)
-    );
-    let text = String::from_utf8_lossy(&vtk.stdout);
-    let mut lines = text.lines();
-    let counts: Vec<usize> = lines
-        .next()
-        .expect("one shape")
-        .split_whitespace()
-        .map(|w| w.parse().unwrap())
-        .collect();
+    decimate_to(&input, &["-a", "schroeder", "-p", "50"], &out);
+    let (counts, points) = vtk_texture_coordinates(&out);
     let ours = decimate::io::read_scene(&out).unwrap().scene;
     let n = ours.models[0].positions.len();
     assert!(n < 238, "decimated: {n} vertices");
     assert_eq!(counts, [n, n], "VTK's points and coordinate pairs");
-    for line in lines {
-        let [_, y, u, v] = line
-            .split_whitespace()
-            .map(|w| w.parse::<f64>().unwrap())
-            .collect::<Vec<_>>()[..]
-        else {
-            panic!("{line}")
-        };
+    for [_, y, u, v] in points {
         let expected = 1.0 - (y / 2.0).clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
         assert!(
             (0.0..=1.0).contains(&u) && (v - expected).abs() < 1e-4,

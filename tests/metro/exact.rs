@@ -398,3 +398,24 @@ fn same_seed_same_numbers_whatever_the_threads() {
     // Different seeds estimate the same integral.
     assert!(close(other.0.mean, first.0.mean, 1e-2));
 }
+
+#[test]
+fn a_cancelled_comparison_stops_with_cancelled_and_an_uncancelled_one_measures_as_before() {
+    use decimate::decimate::Cancel;
+    use decimate::metro::{compare_cancellable, MetroError};
+    let a = surface(grid(DVec3::ZERO, DVec3::X, DVec3::Y, 10, 10));
+    let b = surface(grid(DVec3::Z * 0.25, DVec3::X, DVec3::Y, 7, 13));
+    let options = Options {
+        samples: Some(20_000),
+        seed: 5,
+    };
+    let cancel = Cancel::new();
+    let whole = compare_cancellable(&a, &b, &options, &cancel).unwrap();
+    let plain = compare(&a, &b, &options).unwrap();
+    assert_eq!(whole.a_to_b, plain.a_to_b);
+    assert_eq!(whole.b_to_a, plain.b_to_a);
+    assert!(close(whole.a_to_b.mean, 0.25, 1e-9));
+    cancel.request();
+    let stopped = compare_cancellable(&a, &b, &options, &cancel).map(|_| ());
+    assert_eq!(stopped, Err(MetroError::Cancelled));
+}

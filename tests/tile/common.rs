@@ -71,3 +71,39 @@ pub fn plan(input: &Path, work: &Path, tiles: u32) {
         &[],
     );
 }
+
+/// `decimate INPUT nogui --tiles TILES -p 90 -o OUT -q`, the one-command run that the tile
+/// commands and the job scripts must equal byte for byte; it must succeed.
+pub fn one_command(input: &Path, tiles: u32, out: &Path) {
+    let tiles = tiles.to_string();
+    ok(
+        &[
+            s(input),
+            "nogui",
+            "--tiles",
+            &tiles,
+            "-p",
+            "90",
+            "-o",
+            s(out),
+            "-q",
+        ],
+        &[],
+    );
+}
+
+/// `bash SCRIPT INPUT WORK OUT --tiles 4 -p 90`: a job script of tools/ on the test mesh.
+pub fn job_script(script: &str, input: &Path, work: &Path, out: &Path) -> Command {
+    let mut c = Command::new("bash");
+    c.args([
+        script,
+        s(input),
+        s(work),
+        s(out),
+        "--tiles",
+        "4",
+        "-p",
+        "90",
+    ]);
+    c
+}

@@ -3,7 +3,7 @@
 
 use decimate::mesh::measure::{area, edge_counts, invariant_violations, volume};
 
-use crate::common::{decimate, ok, plan, read_model, s, sphere_ply};
+use crate::common::{decimate, ok, one_command, plan, read_model, s, sphere_ply};
 
 #[test]
 fn tiles_cover_the_input_exactly_with_shared_border_positions() {
@@ -79,20 +79,7 @@ fn separate_jobs_in_any_order_equal_the_one_command_run() {
     ok(&["tile", "merge", s(&work), "-o", s(&out)], &[]);
 
     let one = tmp.path().join("one.ply");
-    ok(
-        &[
-            s(&input),
-            "nogui",
-            "--tiles",
-            "5",
-            "-p",
-            "90",
-            "-o",
-            s(&one),
-            "-q",
-        ],
-        &[],
-    );
+    one_command(&input, 5, &one);
     assert_eq!(std::fs::read(&out).unwrap(), std::fs::read(&one).unwrap());
     // The one-command run cleans its work folder up.
     let left: Vec<_> = std::fs::read_dir(tmp.path())

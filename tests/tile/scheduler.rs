@@ -2,9 +2,7 @@
 //! `decimate tile run` process started by `parallel`, then merged; the same mesh as the
 //! one-command run. CI installs `parallel` (.ci/run).
 
-use std::process::Command;
-
-use crate::common::{ok, s, sphere_ply};
+use crate::common::{job_script, one_command, sphere_ply};
 
 #[test]
 fn gnu_parallel_job_array_equals_the_local_run() {
@@ -13,17 +11,7 @@ fn gnu_parallel_job_array_equals_the_local_run() {
     let work = tmp.path().join("work");
     let out = tmp.path().join("parallel.ply");
     let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tools/tile-parallel.sh");
-    let o = Command::new("bash")
-        .args([
-            script,
-            s(&input),
-            s(&work),
-            s(&out),
-            "--tiles",
-            "4",
-            "-p",
-            "90",
-        ])
+    let o = job_script(script, &input, &work, &out)
         .env("DECIMATE", env!("CARGO_BIN_EXE_decimate"))
         .env("JOBS", "2")
         .output()
@@ -39,19 +27,6 @@ fn gnu_parallel_job_array_equals_the_local_run() {
         assert!(log.contains(&format!("tile {i}: triangles")), "{log}");
     }
     let local = tmp.path().join("local.ply");
-    ok(
-        &[
-            s(&input),
-            "nogui",
-            "--tiles",
-            "4",
-            "-p",
-            "90",
-            "-o",
-            s(&local),
-            "-q",
-        ],
-        &[],
-    );
+    one_command(&input, 4, &local);
     assert_eq!(std::fs::read(&out).unwrap(), std::fs::read(&local).unwrap());
 }

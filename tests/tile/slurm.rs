@@ -4,11 +4,12 @@
 //! CI installs slurm-wlm and munge (.ci/run) and must run it; elsewhere it skips loudly
 //! when they are missing.
 
+use std::ffi::OsStr;
 use std::os::unix::fs::PermissionsExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use crate::common::{ok, s, sphere_ply};
+use crate::common::{job_script, ok, one_command, s, sphere_ply};
 
 const START: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tools/slurm-local.sh");
 const JOBS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tools/tile-slurm.sh");
@@ -35,6 +36,24 @@ impl Cluster {
 
     fn conf(&self) -> PathBuf {
         self.dir.join("slurm.conf")
+    }
+
+    /// Runs tools/tile-slurm.sh in `cwd` on this cluster, with `decimate` as the binary its
+    /// jobs run; WAIT=1: sbatch --wait on the merge job, which waits for the whole array.
+    fn submit(
+        &self,
+        cwd: &Path,
+        input: &Path,
+        work: &Path,
+        out: &Path,
+        decimate: impl AsRef<OsStr>,
+    ) -> Output {
+        run(job_script(JOBS, input, work, out)
+            .current_dir(cwd)
+            .env("SLURM_CONF", self.conf())
+            .env("DECIMATE", decimate)
+            .env("WAIT", "1")
+            .env_remove("SBATCH_OPTIONS"))
     }
 
     /// The daemons' last log lines, for a failure message.
@@ -105,23 +124,13 @@ fn slurm_job_array_equals_the_local_run() {
     let cluster = Cluster::start(&tmp.path().join("slurm"));
     let work = tmp.path().join("work");
     let out = tmp.path().join("slurm.ply");
-    // WAIT=1: sbatch --wait on the merge job, which waits for the whole array.
-    let o = run(Command::new("bash")
-        .args([
-            JOBS,
-            s(&input),
-            s(&work),
-            s(&out),
-            "--tiles",
-            "4",
-            "-p",
-            "90",
-        ])
-        .current_dir(tmp.path())
-        .env("SLURM_CONF", cluster.conf())
-        .env("DECIMATE", env!("CARGO_BIN_EXE_decimate"))
-        .env("WAIT", "1")
-        .env_remove("SBATCH_OPTIONS"));
+    let o = cluster.submit(
+        tmp.path(),
+        &input,
+        &work,
+        &out,
+        env!("CARGO_BIN_EXE_decimate"),
+    );
     let said = format!(
         "{}{}",
         String::from_utf8_lossy(&o.stdout),
@@ -153,20 +162,7 @@ fn slurm_job_array_equals_the_local_run() {
     assert!(String::from_utf8_lossy(&done.stdout).contains("4 of 4 tiles done"));
 
     let local = tmp.path().join("local.ply");
-    ok(
-        &[
-            s(&input),
-            "nogui",
-            "--tiles",
-            "4",
-            "-p",
-            "90",
-            "-o",
-            s(&local),
-            "-q",
-        ],
-        &[],
-    );
+    one_command(&input, 4, &local);
     assert_eq!(std::fs::read(&out).unwrap(), std::fs::read(&local).unwrap());
 
     // A task that fails (tile 2's job exits 7): the merge is cancelled and the script says
@@ -184,21 +180,7 @@ fn slurm_job_array_equals_the_local_run() {
     std::fs::set_permissions(&failing, std::fs::Permissions::from_mode(0o755)).unwrap();
     let work = tmp.path().join("work2");
     let out = tmp.path().join("slurm2.ply");
-    let o = run(Command::new("bash")
-        .args([
-            JOBS,
-            s(&input),
-            s(&work),
-            s(&out),
-            "--tiles",
-            "4",
-            "-p",
-            "90",
-        ])
-        .current_dir(tmp.path())
-        .env("SLURM_CONF", cluster.conf())
-        .env("DECIMATE", &failing)
-        .env("WAIT", "1"));
+    let o = cluster.submit(tmp.path(), &input, &work, &out, &failing);
     let said = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{said}");
     assert!(

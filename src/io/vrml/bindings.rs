@@ -109,6 +109,19 @@ impl Geo {
             part_no: (0..nf).collect(),
         }
     }
+
+    /// Polygons of a non-indexed shape: its corners are coordinate numbers, which both
+    /// PER_VERTEX and the raw index lists count by; `part_no` gives each polygon's part.
+    pub fn non_indexed(corners: Vec<u32>, ends: Vec<u32>, part_no: Vec<u32>) -> Self {
+        Self {
+            seq_no: corners.clone(),
+            raw_pos: corners.clone(),
+            face_no: (0..ends.len() as u32).collect(),
+            corners,
+            ends,
+            part_no,
+        }
+    }
 }
 
 /// Inventor / VRML 1.0 binding values (MaterialBinding, NormalBinding).

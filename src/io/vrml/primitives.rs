@@ -16,6 +16,7 @@ use glam::{Mat4, Vec3};
 
 use super::bindings::Geo;
 use crate::io::shape_to_model::{Bind, ShapeSpec, TexCoords};
+use crate::mesh::shapes::BOX_QUADS;
 
 /// Which parts of a cone or cylinder to make (a cone has no top).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -394,17 +395,7 @@ pub fn cone(
     t
 }
 
-/// A box's six faces as quads over [`box_coords`]'s eight corners, counter-clockwise seen
-/// from outside, in the order +z, -z, +x, -x, +y, -y.
-const BOX_FACES: [[u32; 4]; 6] = [
-    [4, 5, 7, 6],
-    [0, 2, 3, 1],
-    [1, 3, 7, 5],
-    [0, 4, 6, 2],
-    [2, 6, 7, 3],
-    [0, 1, 5, 4],
-];
-/// The directions of u and v on each face of [`BOX_FACES`] (VRML 2.0 §6.4, Inventor's
+/// The directions of u and v on each face of [`BOX_QUADS`] (VRML 2.0 §6.4, Inventor's
 /// SoCube): the sides upright seen from outside, the top seen from above with -z up, the
 /// bottom seen from below with +z up.
 const BOX_FACE_AXES: [[Vec3; 2]; 6] = [
@@ -427,7 +418,7 @@ fn box_corner(i: u32) -> Vec3 {
 pub fn box_coords(half: Vec3, textured: bool) -> Vec<f32> {
     let corner = |i: u32| (box_corner(i) * half).to_array();
     if textured {
-        BOX_FACES
+        BOX_QUADS
             .iter()
             .flatten()
             .flat_map(|&i| corner(i))
@@ -442,7 +433,7 @@ pub fn box_quads(textured: bool) -> Vec<u32> {
     if textured {
         (0..24).collect()
     } else {
-        BOX_FACES.iter().flatten().copied().collect()
+        BOX_QUADS.iter().flatten().copied().collect()
     }
 }
 
@@ -450,7 +441,7 @@ pub fn box_quads(textured: bool) -> Vec<u32> {
 /// whole texture (0..1), oriented as [`BOX_FACE_AXES`] says.
 pub fn box_texcoords() -> Vec<f32> {
     let mut uv = Vec::with_capacity(48);
-    for (face, [u, v]) in BOX_FACES.iter().zip(BOX_FACE_AXES) {
+    for (face, [u, v]) in BOX_QUADS.iter().zip(BOX_FACE_AXES) {
         for &i in face {
             let p = box_corner(i);
             uv.extend([0.5 + 0.5 * p.dot(u), 0.5 + 0.5 * p.dot(v)]);

@@ -652,16 +652,8 @@ fn counted(node: &Node, npoints: usize) -> PResult<(Geo, &'static str)> {
         next += n;
     }
     if node.kind == "FaceSet" {
-        let nf = ends.len() as u32;
-        let geo = Geo {
-            seq_no: corners.clone(),
-            raw_pos: corners.clone(),
-            corners,
-            ends,
-            face_no: (0..nf).collect(),
-            part_no: (0..nf).collect(),
-        };
-        return Ok((geo, "numVertices"));
+        let faces = (0..ends.len() as u32).collect();
+        return Ok((Geo::non_indexed(corners, ends, faces), "numVertices"));
     }
     let s = strips_to_triangles(&corners, &ends);
     let ntri = s.ends.len() as u32;
@@ -703,16 +695,7 @@ fn quad_mesh(node: &Node, npoints: usize) -> PResult<(Geo, &'static str)> {
             part.push(r);
         }
     }
-    let nf = ends.len() as u32;
-    let geo = Geo {
-        seq_no: corners.clone(),
-        raw_pos: corners.clone(),
-        corners,
-        ends,
-        face_no: (0..nf).collect(),
-        part_no: part,
-    };
-    Ok((geo, "verticesPerColumn"))
+    Ok((Geo::non_indexed(corners, ends, part), "verticesPerColumn"))
 }
 
 /// A Cube's six quads over `primitives::box_coords`, counter-clockwise seen from outside;

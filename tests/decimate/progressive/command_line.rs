@@ -1,29 +1,30 @@
 //! `--progressive` on the command line: the usage errors that write nothing, an unwritable
 //! file, and a `.pm` file as input rebuilding the level a count asks for.
 
+use std::process::Output;
+
 use decimate::io::progressive_file::read_progressive;
 use decimate::io::read_scene;
 use decimate::mesh::{measure, shapes, Model};
+use tempfile::TempDir;
 
 use super::{as_built, decimate, run_progressive, stderr, write_input};
 
-#[test]
-fn schroeder_with_progressive_is_a_usage_error_and_writes_nothing() {
+/// Runs `decimate in.wrl nogui -p 50 ARGS` in a fresh folder holding a small cube as
+/// `in.wrl`; the folder and what the command did.
+fn on_a_cube(args: &[&str]) -> (TempDir, Output) {
     let dir = tempfile::tempdir().unwrap_or_else(|e| panic!("temporary directory: {e}"));
     write_input(dir.path(), vec![shapes::cube(4, 1.0)]);
     let o = decimate(
         dir.path(),
-        &[
-            "in.wrl",
-            "nogui",
-            "-p",
-            "50",
-            "-a",
-            "schroeder",
-            "--progressive",
-            "x.pm",
-        ],
+        &[&["in.wrl", "nogui", "-p", "50"], args].concat(),
     );
+    (dir, o)
+}
+
+#[test]
+fn schroeder_with_progressive_is_a_usage_error_and_writes_nothing() {
+    let (dir, o) = on_a_cube(&["-a", "schroeder", "--progressive", "x.pm"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("-a qem"), "{}", stderr(&o));
     assert!(!dir.path().join("x.pm").exists());
@@ -48,19 +49,7 @@ fn progressive_over_the_input_is_refused_unless_overwrite() {
 
 #[test]
 fn an_unwritable_progressive_file_is_named_with_exit_1() {
-    let dir = tempfile::tempdir().unwrap_or_else(|e| panic!("temporary directory: {e}"));
-    write_input(dir.path(), vec![shapes::cube(4, 1.0)]);
-    let o = decimate(
-        dir.path(),
-        &[
-            "in.wrl",
-            "nogui",
-            "-p",
-            "50",
-            "--progressive",
-            "no/such/x.pm",
-        ],
-    );
+    let (_dir, o) = on_a_cube(&["--progressive", "no/such/x.pm"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("no/such/x.pm"), "{}", stderr(&o));
 }

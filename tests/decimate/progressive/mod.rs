@@ -5,24 +5,18 @@
 //! Malformed files are refused with a message naming the file and the byte, never a panic.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use decimate::io::progressive_file::{parse_progressive, read_progressive};
 use decimate::io::{read_scene, write_scene, ReadError};
 use decimate::mesh::progressive::{Lod, ProgressiveScene};
 use decimate::mesh::{build::build_scene, measure, shapes, Attribute, Model, Scene};
 
+use crate::support::binary::decimate;
+
 mod command_line;
 mod malformed;
 mod textures;
-
-fn decimate(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap_or_else(|e| panic!("run decimate: {e}"))
-}
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
