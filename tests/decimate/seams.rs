@@ -285,3 +285,42 @@ fn a_copy_a_pole_collapse_drops_counts_so_the_count_target_is_met_exactly() {
         }
     }
 }
+
+#[test]
+fn textured_spheres_of_any_resolution_stay_closed_manifold_and_outward_from_50_to_95_percent() {
+    let inventor = |complexity: &str| {
+        let text = format!(
+            "#Inventor V2.1 ascii\nSeparator {{ Texture2 {{ filename \"c.png\" }} \
+             Complexity {{ value {complexity} }} Sphere {{}} }}\n"
+        );
+        (
+            format!("Inventor sphere at {complexity}"),
+            scene_from("s.iv", &text),
+        )
+    };
+    let obj = |rings: usize| {
+        let text = lat_long_sphere_obj(rings, 2 * rings);
+        (
+            format!("{rings} × {} OBJ sphere", 2 * rings),
+            scene_from("s.obj", &text),
+        )
+    };
+    let spheres = ["0.3", "0.5", "0.8"].map(inventor).into_iter();
+    let mut faults = Vec::new();
+    for (name, scene) in spheres.chain([8, 12, 16, 32].map(obj)) {
+        for algorithm in [Algorithm::Qem, Algorithm::Schroeder] {
+            for percent in [50.0, 70.0, 90.0, 95.0] {
+                let out = Surface::from_scene(&decimated(&scene, algorithm, percent));
+                let inward = inward_triangles(&out);
+                if !out.is_closed() || out.nonmanifold_edges > 0 || inward > 0 {
+                    faults.push(format!(
+                        "{name}, {algorithm:?}, {percent} %: {} border, {} non-manifold \
+                         edges, {inward} inward or flat triangles",
+                        out.boundary_edges, out.nonmanifold_edges
+                    ));
+                }
+            }
+        }
+    }
+    assert!(faults.is_empty(), "{faults:#?}");
+}

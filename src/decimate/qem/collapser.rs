@@ -52,6 +52,9 @@ pub(super) struct Collapser {
     /// seam junction, one per side; `u32::MAX`: none); empty when none share a position.
     /// Never changes: pinned vertices never move.
     copies: Vec<u32>,
+    /// Each junction copy's way out at the start: the area-weighted normal of all its
+    /// copies' triangles (zero for other vertices; empty when `copies` is).
+    facing: Vec<Vec3>,
     /// Closed components' volumes: no collapse turns one inside out or flattens it.
     closed: ClosedVolumes,
 }
@@ -88,6 +91,7 @@ impl Collapser {
             recorder: None,
             twins: Vec::new(),
             copies: Vec::new(),
+            facing: Vec::new(),
             closed,
         }
     }
@@ -127,6 +131,42 @@ impl Collapser {
             }
         }
         self.copies = crate::mesh::seams::copy_cycles(&self.positions, pinned);
+        self.facing = self.junction_facing();
+    }
+
+    /// Each junction copy's starting normal, summed over the junction's copies (see
+    /// `facing`): walked once per junction along its cycle of copies.
+    fn junction_facing(&self) -> Vec<Vec3> {
+        if self.copies.is_empty() {
+            return Vec::new();
+        }
+        let mut sum = vec![glam::DVec3::ZERO; self.copies.len()];
+        for (t, tri) in self.conn.triangles().iter().enumerate() {
+            if !self.conn.is_alive(t as u32)
+                || tri.iter().all(|&v| self.copies[v as usize] == u32::MAX)
+            {
+                continue;
+            }
+            let [a, b, c] = tri.map(|v| self.positions[v as usize].as_dvec3());
+            let cross = (b - a).cross(c - a);
+            for &v in tri {
+                sum[v as usize] += cross;
+            }
+        }
+        let mut facing = vec![Vec3::ZERO; self.copies.len()];
+        let mut done = vec![false; self.copies.len()];
+        for v in 0..self.copies.len() as u32 {
+            if done[v as usize] || self.copies[v as usize] == u32::MAX {
+                continue;
+            }
+            let copies = || crate::mesh::seams::copies(v, &[], &self.copies);
+            let total: glam::DVec3 = copies().map(|c| sum[c as usize]).sum();
+            for c in copies() {
+                facing[c as usize] = total.normalize_or_zero().as_vec3();
+                done[c as usize] = true;
+            }
+        }
+        facing
     }
 
     /// Pairs the two sides of texture seams: `twins[v]` is `v`'s other side or `u32::MAX`
@@ -176,6 +216,7 @@ impl Collapser {
             recorder: self.recorder.as_mut(),
             twins: &self.twins,
             copies: &self.copies,
+            facing: &self.facing,
             closed: ClosedView::Whole(&mut self.closed),
             scratch: CollapseLists::default(),
         }
@@ -202,6 +243,7 @@ impl Collapser {
         let costs = &self.costs;
         let twins = &self.twins;
         let copies = &self.copies;
+        let facing = &self.facing;
         let closed = &self.closed;
         let conns = self.conn.split(vertex_starts, slot_starts);
         conns
@@ -228,6 +270,7 @@ impl Collapser {
                     recorder: None,
                     twins,
                     copies,
+                    facing,
                     closed: ClosedView::Part(closed, Default::default()),
                     scratch: CollapseLists::default(),
                 })

@@ -6,18 +6,13 @@
 
 use glam::DVec2;
 
-use super::collapse_plan::{Kind, Plan};
+use super::collapse_plan::Plan;
 use super::part::Part;
 use crate::decimate::closed::tet6;
 use crate::mesh::topology::FanTriangle;
 
 /// A triangle is degenerate when its area is this small relative to its longest edge².
 const MIN_RELATIVE_AREA: f64 = 1e-8;
-
-/// On a model with seam junctions, a surviving triangle with a pinned (anchored) corner
-/// may turn by at most the angle of this cosine in one collapse
-/// (docs/design.md#texture-seams).
-const MIN_COS_BESIDE_ANCHOR: f64 = 0.5;
 
 /// A triangle's area in the texture may shrink to this fraction of what it was, no further.
 const MIN_TEXTURE_AREA: f64 = 1e-6;
@@ -210,15 +205,16 @@ impl Part<'_> {
                     .length_squared()
                     .max((y - x).length_squared())
                     .max((p - y).length_squared());
-                // Beside a pinned junction, which never moves to even out a turn, a
-                // triangle turns less (docs/design.md#texture-seams).
-                let pinned = junctions
-                    && [f.next, f.prev]
-                        .iter()
-                        .any(|&w| self.kind(w) == Kind::Anchored);
-                let min_cos = if pinned { MIN_COS_BESIDE_ANCHOR } else { 0.0 };
+                // A junction never moves to even out a turn: a triangle at one keeps
+                // facing the way the junction faced (docs/design.md#texture-seams).
+                let faces_out = !junctions
+                    || [f.next, f.prev, plan.keep].iter().all(|&w| {
+                        self.copies[w as usize] == u32::MAX
+                            || new_cross.dot(self.facing[w as usize].as_dvec3()) > 0.0
+                    });
                 new_cross.length_squared() > min2 * longest * longest
-                    && new_cross.dot(old_cross) > min_cos * new_cross.length() * old_cross.length()
+                    && new_cross.dot(old_cross) > 0.0
+                    && faces_out
             })
         })
     }

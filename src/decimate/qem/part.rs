@@ -94,6 +94,9 @@ pub(super) struct Part<'a> {
     /// Anchored vertices' next copy at their position (the whole mesh's, read only; see
     /// `Collapser::pin`).
     pub copies: &'a [u32],
+    /// Junction copies' starting normals (the whole mesh's, read only; see
+    /// `Collapser::pin`).
+    pub facing: &'a [Vec3],
     /// Closed components' volumes (see `decimate::closed`).
     pub closed: ClosedView<'a>,
     pub scratch: CollapseLists,
