@@ -181,7 +181,7 @@ action-options for nogui (one target is MANDATORY):
                         (or E percent of the model's bounding-box diagonal)
   --feature-angle DEG   dihedral angle that makes an edge a feature edge (DEFAULT: 30);
                         raised in 15-degree steps when a count target cannot be met
-                        otherwise (never for -p 100 or --max-error alone)
+                        otherwise or corners would crowd it (not -p 100, --max-error)
   --keep-features       never raise the feature angle: stop short of the target instead
   --keep-border         never move or remove a vertex on the open border (edges of one
                         triangle): pieces of one mesh decimated apart still fit together

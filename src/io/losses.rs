@@ -16,24 +16,42 @@ use crate::mesh::{Attribute, Model, Scene};
 
 /// The warnings for writing `scene` to `output`: [`losses`] for its format, and for glTF
 /// the texture images that cannot be embedded or copied (`gltf::image_losses`); for other
-/// formats, what a glTF source carried through (skins, morph targets, animations).
+/// formats, what a glTF source carried through (skins, cameras, lights, lines, extras).
 pub fn losses_at(scene: &Scene, output: &Path) -> Vec<String> {
     let format = Format::from_path(output);
     let mut out = losses(scene, format);
     if matches!(format, Some(Format::Gltf | Format::Glb)) {
         out.extend(super::gltf::image_losses(scene, output));
-    } else if scene.models.iter().any(|m| {
-        m.instance
-            .as_ref()
-            .is_some_and(|i| i.copied || i.tree.copied.is_some())
-    }) {
-        out.push(
-            "the source's skins, morph targets and animations are glTF's alone: a glTF \
-             output carries them, this one keeps the meshes at rest"
-                .to_string(),
-        );
+    } else {
+        out.extend(gltf_only(scene));
     }
     out
+}
+
+/// What a glTF source carries that only a glTF output keeps, said once: "the source's
+/// skins, cameras and extras are glTF's alone ...".
+fn gltf_only(scene: &Scene) -> Option<String> {
+    let copied = scene
+        .models
+        .iter()
+        .find_map(|m| m.instance.as_ref()?.tree.copied.as_ref())?;
+    let kinds = super::gltf::carried_kinds(copied);
+    let (last, rest) = kinds.split_last()?;
+    let named = match rest.is_empty() {
+        true => last.clone(),
+        false => format!("{} and {last}", rest.join(", ")),
+    };
+    let posed = kinds
+        .iter()
+        .any(|k| matches!(k.as_str(), "skins" | "morph targets" | "animations"));
+    let fate = match (posed, kinds.len() > 1 || !posed) {
+        (true, false) => "this one keeps the meshes at rest",
+        (true, true) => "this one leaves them out and keeps the meshes at rest",
+        (false, _) => "this one leaves them out",
+    };
+    Some(format!(
+        "the source's {named} are glTF's alone: a glTF output carries them, {fate}"
+    ))
 }
 
 /// The warnings for writing `scene` in `format` (`None`: VRML 2.0, the default).

@@ -174,8 +174,13 @@ pub fn read_scene_with(path: &Path, options: ReadOptions) -> Result<ReadOutcome,
         source,
     };
     let bytes = std::fs::read(path).map_err(io_err)?;
-    let mut outcome = parse_bytes_with(bytes, path, Format::from_path(path), options)?;
-    mtl::apply_materials(&mut outcome, path);
+    let format = Format::from_path(path);
+    // A glTF material's name is its own, not an OBJ's `usemtl`: no MTL library applies.
+    let gltf = matches!(format, Some(Format::Gltf | Format::Glb)) || gltf::is_glb(&bytes);
+    let mut outcome = parse_bytes_with(bytes, path, format, options)?;
+    if !gltf {
+        mtl::apply_materials(&mut outcome, path);
+    }
     Ok(outcome)
 }
 

@@ -10,6 +10,7 @@ mod cancel;
 mod closed_shapes;
 mod creases;
 mod nonmanifold;
+mod open_scan;
 mod progressive;
 mod qem;
 mod random;

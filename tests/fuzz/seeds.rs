@@ -57,7 +57,54 @@ pub fn seeds() -> Vec<(&'static str, Vec<u8>)> {
         ("seed.glb", gltf_seed()),
         ("seed.gltf", gltf_json_seed(&gltf_seed())),
         ("skinned.glb", skinned_gltf_seed()),
+        ("carried.gltf", carried_gltf_seed()),
     ]
+}
+
+/// A triangle beside a LINES primitive, a camera, a point light, extras and a material
+/// extension, as `.gltf` text with a `data:` buffer: what the reader carries beside the
+/// meshes (`io::gltf`).
+fn carried_gltf_seed() -> Vec<u8> {
+    let floats = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    let mut bin = floats(&[0., 0., 0., 1., 0., 0., 0., 1., 0.]);
+    bin.extend_from_slice(&floats(&[0., 0., 1., 1., 1., 1.]));
+    bin.extend_from_slice(&[0, 1, 0, 0]);
+    let json = serde_json::json!({
+        "asset": { "version": "2.0", "extras": { "a": 1 } },
+        "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_ior"],
+        "extensions": { "KHR_lights_punctual": { "lights": [
+            { "type": "spot", "color": [1, 1, 0.5], "intensity": 3, "spot": { "outerConeAngle": 0.5 } },
+        ] } },
+        "scene": 0,
+        "scenes": [{ "nodes": [0, 1, 2], "extras": [1, 2] }],
+        "nodes": [
+            { "camera": 0, "extras": { "b": true } },
+            { "extensions": { "KHR_lights_punctual": { "light": 0 } } },
+            { "mesh": 0, "extras": "c" },
+        ],
+        "cameras": [{ "type": "orthographic",
+                      "orthographic": { "xmag": 1, "ymag": 1, "znear": 0, "zfar": 10 } }],
+        "materials": [{ "extensions": { "KHR_materials_ior": { "ior": 1.3 } }, "extras": {} }],
+        "meshes": [{ "extras": { "d": null }, "primitives": [
+            { "attributes": { "POSITION": 0 }, "material": 0 },
+            { "attributes": { "POSITION": 1 }, "indices": 2, "mode": 1 },
+        ] }],
+        "accessors": [
+            { "bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+              "min": [0, 0, 0], "max": [1, 1, 0] },
+            { "bufferView": 1, "componentType": 5126, "count": 2, "type": "VEC3",
+              "min": [0, 0, 1], "max": [1, 1, 1] },
+            { "bufferView": 2, "componentType": 5121, "count": 2, "type": "SCALAR" },
+        ],
+        "bufferViews": [
+            { "buffer": 0, "byteOffset": 0, "byteLength": 36 },
+            { "buffer": 0, "byteOffset": 36, "byteLength": 24 },
+            { "buffer": 0, "byteOffset": 60, "byteLength": 2 },
+        ],
+        "buffers": [{ "byteLength": bin.len(),
+                      "uri": io::data_uri::encode("application/octet-stream", &bin) }],
+    });
+    serde_json::to_vec_pretty(&json).expect("serializes")
 }
 
 /// A skinned square with a dense and a sparse morph target, a skin and an animation of

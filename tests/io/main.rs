@@ -11,6 +11,7 @@ mod coin_counts;
 mod errors;
 mod formats;
 mod gltf;
+mod gltf_carry;
 mod gltf_tree;
 mod inventor_data;
 mod nodes;

@@ -49,7 +49,7 @@ use rayon::prelude::*;
 use super::closed::{tet6, ClosedVolumes};
 use super::layout::{self, compact, Compacted};
 use super::{Limits, Outcome};
-use crate::mesh::classify::VertexClass;
+use crate::mesh::classify::{classify, VertexClass};
 use crate::mesh::seams::position_key;
 use crate::mesh::topology::{Adjacency, Connectivity};
 use crate::mesh::{Attribute, Model};
@@ -113,9 +113,6 @@ pub fn decimate_model(
     d.texcoords = texcoords;
 
     // 3. classify and rank
-    d.rank_all();
-
-    // 4. remove
     let mut outcome = Outcome {
         removed: 0,
         max_error: 0.0,
@@ -124,6 +121,12 @@ pub fn decimate_model(
         pinned: pinned_count,
         closed_kept: 0,
     };
+    if limits.relax_features {
+        removal_passes::relax_early(&mut d, limits, &mut outcome);
+    }
+    d.rank_all();
+
+    // 4. remove
     removal_passes::remove_in_passes(&mut d, limits, &mut outcome, progress);
     progress(outcome.removed);
     if outcome.exhausted {
@@ -274,6 +277,29 @@ impl Decimator {
             }
             _ => f64::NAN,
         }
+    }
+
+    /// The live vertices, pinned ones aside, that the feature angle now makes corners
+    /// (never removed), counted on all cores.
+    fn corners(&self) -> usize {
+        let surface = self.surface();
+        (0..self.positions.len() as u32)
+            .into_par_iter()
+            .map_init(Planning::default, |p, v| {
+                let seam_side = self.twin(v).is_some();
+                !self.pinned[v as usize]
+                    && classify(
+                        surface.conn,
+                        surface.positions,
+                        v,
+                        surface.cos_feature,
+                        seam_side,
+                        &mut p.ring,
+                        &mut p.geometry,
+                    ) == VertexClass::Corner
+            })
+            .filter(|&corner| corner)
+            .count()
     }
 
     /// Ranks every vertex afresh, on all cores (each key depends only on its own ring).

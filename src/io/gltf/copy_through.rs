@@ -1,16 +1,26 @@
-//! What a glTF file holds that cannot be decimated faithfully, carried from reader to writer
-//! unchanged: skinned meshes and meshes with morph targets (every accessor of their
-//! primitives, JOINTS/WEIGHTS and targets included), the skins with their inverse bind
-//! matrices, the animations, and the nodes' `skin` and `weights`. Node indices are kept as
-//! read (the writer writes the node tree at the same indices), so joints and animation
-//! targets need no renumbering; accessors and buffer views are renumbered into a fragment
-//! with its own bytes, and shifted again where the writer splices it in.
+//! What a glTF file holds that a `Scene` does not, carried from reader to writer unchanged:
+//! skinned meshes and meshes with morph targets (every accessor of their primitives,
+//! JOINTS/WEIGHTS and targets included), points and lines primitives with their accessors,
+//! the skins with their inverse bind matrices, the animations, the cameras, the
+//! `KHR_lights_punctual` lights, the nodes' `skin`, `weights`, `camera`, light and `extras`,
+//! and the names and `extras` of the asset, scene, meshes and materials. Node indices are
+//! kept as read (the writer writes the node tree at the same indices), so joints, cameras
+//! and animation targets need no renumbering; accessors and buffer views are renumbered
+//! into a fragment with its own bytes, and shifted again where the writer splices it in.
 //!
 //! The fragment (`CopiedThrough::json`): `{ "accessors", "bufferViews" (buffer 0: the
-//! fragment's bytes), "meshes": { "MESH": mesh without materials }, "skins", "animations",
-//! "nodes": { "NODE": { "skin", "weights" } }, "extensionsRequired" }`.
+//! fragment's bytes), "meshes": { "MESH": mesh without materials }, "primitives": { "MESH":
+//! { "PRIMITIVE": points or lines primitive } }, "mesh_fields": { "MESH": { "name", "extras",
+//! "materials": [source material per primitive] } }, "materials": { "MATERIAL": material
+//! without textures }, "skins", "animations", "cameras", "lights", "nodes": { "NODE": {
+//! "skin", "weights", "camera", "extras", "extensions" } }, "lined_nodes", "asset", "scene",
+//! "extensionsRequired", "carries" }`.
+//!
+//! Extensions: `KHR_lights_punctual` is carried; a material's extensions are carried when
+//! they name no texture (their factors stand alone; a texture would need its image carried
+//! too); every other extension the file uses is named in a warning, and left out.
 
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 use serde_json::{json, Map, Value};
 
@@ -20,18 +30,29 @@ use crate::mesh::CopiedThrough;
 /// The `CopiedThrough::format` of a glTF fragment.
 pub const FORMAT: &str = "glTF";
 
-/// The fragment for `meshes` (by index in `root`) and every skin and animation of `root`;
-/// `None` when there is nothing to carry.
+/// glTF's primitive modes a `Scene` cannot hold (glTF 2.0 § 5.24.4): POINTS, LINES,
+/// LINE_LOOP and LINE_STRIP.
+const POINTS_AND_LINES: [u64; 4] = [0, 1, 2, 3];
+
+/// The extensions a glTF output carries or decodes whatever they hold.
+const CARRIED_EXTENSIONS: [&str; 2] = ["KHR_lights_punctual", "KHR_mesh_quantization"];
+
+/// The fragment `gather` makes, and the warnings for what it leaves out.
+pub struct Gathered {
+    pub copied: Option<CopiedThrough>,
+    pub warnings: Vec<String>,
+}
+
+/// The fragment for `meshes` (by index in `root`, copied whole), the points and lines
+/// primitives of the meshes `scene` places, and everything else of `root` a `Scene` does
+/// not hold (see the module's doc); `copied` is `None` when there is nothing to carry.
 pub fn gather(
     root: &Value,
+    scene: Option<usize>,
     buffers: &Buffers,
     meshes: &BTreeSet<usize>,
-) -> Result<Option<CopiedThrough>, String> {
+) -> Result<Gathered, String> {
     let list = |key: &str| root[key].as_array().map(Vec::as_slice).unwrap_or(&[]);
-    let (skins, animations) = (list("skins"), list("animations"));
-    if meshes.is_empty() && skins.is_empty() && animations.is_empty() {
-        return Ok(None);
-    }
     let mut g = Gatherer {
         root,
         buffers,
@@ -41,34 +62,95 @@ pub fn gather(
         accessor_of: HashMap::new(),
         view_of: HashMap::new(),
     };
+    let mut carries = Vec::new();
+    let mut extras = false;
     let mut out_meshes = Map::new();
+    let mut morphed = false;
     for &m in meshes {
         let mut mesh = list("meshes")
             .get(m)
             .cloned()
             .ok_or_else(|| format!("mesh {m} is missing"))?;
+        // Extensions are left out (named in a warning): the output does not declare them.
+        if let Some(o) = mesh.as_object_mut() {
+            o.remove("extensions");
+        }
         for p in mesh["primitives"].as_array_mut().into_iter().flatten() {
             if let Some(p) = p.as_object_mut() {
                 p.remove("material");
+                p.remove("extensions");
             }
-            g.remap_map(&mut p["attributes"])?;
-            g.remap_field(p, "indices")?;
-            for target in p
-                .get_mut("targets")
-                .and_then(Value::as_array_mut)
-                .into_iter()
-                .flatten()
-            {
-                g.remap_map(target)?;
-            }
+            morphed |= p.get("targets").is_some();
+            g.primitive(p)?;
         }
         out_meshes.insert(m.to_string(), mesh);
     }
-    let mut out_skins = skins.to_vec();
+    // Points and lines, of the meshes the scene's nodes place.
+    let (placing, lined_meshes) = lined(root, scene);
+    let mut primitives = Map::new();
+    let mut lined_materials = BTreeSet::new();
+    for &m in &lined_meshes {
+        let mut carried = Map::new();
+        for (i, p) in list("meshes")[m]["primitives"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
+            if !is_points_or_lines(p) {
+                continue;
+            }
+            let mut p = p.clone();
+            if let Some(o) = p.as_object_mut() {
+                o.remove("extensions");
+            }
+            g.primitive(&mut p)?;
+            lined_materials.extend(p.get("material").and_then(Value::as_u64));
+            extras |= p.get("extras").is_some();
+            carried.insert(i.to_string(), p);
+        }
+        primitives.insert(m.to_string(), Value::Object(carried));
+    }
+    let lined_nodes: Vec<usize> = placing
+        .into_iter()
+        .filter(|(_, m)| lined_meshes.contains(m))
+        .map(|(n, _)| n)
+        .collect();
+    let mut mesh_fields = Map::new();
+    for (m, mesh) in list("meshes").iter().enumerate() {
+        let mut fields = pick(mesh, &["name", "extras"]);
+        extras |= fields.contains_key("extras");
+        let materials: Vec<Value> = mesh["primitives"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .map(|p| p.get("material").cloned().unwrap_or(Value::Null))
+            .collect();
+        if materials.iter().any(|v| !v.is_null()) {
+            fields.insert("materials".into(), json!(materials));
+        }
+        if !fields.is_empty() {
+            mesh_fields.insert(m.to_string(), Value::Object(fields));
+        }
+    }
+    let mut uses = ExtensionUses::default();
+    let mut warnings = Vec::new();
+    let mut materials = Map::new();
+    for (k, material) in list("materials").iter().enumerate() {
+        let (kept, lost_texture) = without_textures(material, &mut uses);
+        if lost_texture && lined_materials.contains(&(k as u64)) {
+            warnings.push(format!(
+                "material {k}'s textures are left out of its points and lines primitives (copied through without them)"
+            ));
+        }
+        extras |= kept.get("extras").is_some();
+        materials.insert(k.to_string(), kept);
+    }
+    let mut out_skins = list("skins").to_vec();
     for skin in &mut out_skins {
         g.remap_field(skin, "inverseBindMatrices")?;
     }
-    let mut out_animations = animations.to_vec();
+    let mut out_animations = list("animations").to_vec();
     for animation in &mut out_animations {
         for sampler in animation["samplers"].as_array_mut().into_iter().flatten() {
             g.remap_field(sampler, "input")?;
@@ -77,15 +159,61 @@ pub fn gather(
     }
     let mut nodes = BTreeMap::new();
     for (i, node) in list("nodes").iter().enumerate() {
-        let mut extra = Map::new();
-        for key in ["skin", "weights"] {
-            if let Some(v) = node.get(key) {
-                extra.insert(key.to_string(), v.clone());
-            }
+        let mut fields = pick(node, &["skin", "weights", "camera", "extras"]);
+        extras |= fields.contains_key("extras");
+        if let Some(light) = node.pointer("/extensions/KHR_lights_punctual") {
+            fields.insert("extensions".into(), json!({ "KHR_lights_punctual": light }));
         }
-        if !extra.is_empty() {
-            nodes.insert(i.to_string(), Value::Object(extra));
+        if !fields.is_empty() {
+            nodes.insert(i.to_string(), Value::Object(fields));
         }
+    }
+    let cameras: Vec<Value> = list("cameras").iter().map(without_extensions).collect();
+    let lights: Vec<Value> = root
+        .pointer("/extensions/KHR_lights_punctual/lights")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .map(without_extensions)
+        .collect();
+    let asset = pick(&root["asset"], &["copyright", "extras"]);
+    let scene_fields = match scene {
+        Some(s) => pick(&list("scenes")[s], &["name", "extras"]),
+        None => Map::new(),
+    };
+    extras |= asset.contains_key("extras") || scene_fields.contains_key("extras");
+    for (kind, has) in [
+        ("skins", !out_skins.is_empty()),
+        ("morph targets", morphed),
+        ("animations", !out_animations.is_empty()),
+        ("cameras", !cameras.is_empty()),
+        ("lights", !lights.is_empty()),
+        ("points and lines primitives", !lined_nodes.is_empty()),
+        ("extras", extras),
+    ] {
+        if has {
+            carries.push(kind);
+        }
+    }
+    let lost = uses.lost(list("extensionsUsed"));
+    if !lost.is_empty() {
+        warnings.push(format!(
+            "glTF extensions left out of the output: {}",
+            lost.join(", ")
+        ));
+    }
+    let anything = !(out_meshes.is_empty()
+        && carries.is_empty()
+        && mesh_fields.is_empty()
+        && materials.is_empty()
+        && nodes.is_empty()
+        && asset.is_empty()
+        && scene_fields.is_empty());
+    if !anything {
+        return Ok(Gathered {
+            copied: None,
+            warnings,
+        });
     }
     let required: Vec<&Value> = list("extensionsRequired")
         .iter()
@@ -95,16 +223,180 @@ pub fn gather(
         "accessors": g.accessors,
         "bufferViews": g.views,
         "meshes": out_meshes,
+        "primitives": primitives,
+        "mesh_fields": mesh_fields,
+        "materials": materials,
         "skins": out_skins,
         "animations": out_animations,
+        "cameras": cameras,
+        "lights": lights,
         "nodes": nodes,
+        "lined_nodes": lined_nodes,
+        "asset": asset,
+        "scene": scene_fields,
         "extensionsRequired": required,
+        "carries": carries,
     });
-    Ok(Some(CopiedThrough {
-        format: FORMAT,
-        json: fragment.to_string(),
-        data: g.data,
-    }))
+    Ok(Gathered {
+        copied: Some(CopiedThrough {
+            format: FORMAT,
+            json: fragment.to_string(),
+            data: g.data,
+        }),
+        warnings,
+    })
+}
+
+/// What of a source a glTF fragment carries that other formats leave out ("skins",
+/// "cameras", ...), in the order a warning names them.
+pub fn carried_kinds(copied: &CopiedThrough) -> Vec<String> {
+    if copied.format != FORMAT {
+        return Vec::new();
+    }
+    let fragment: Value = serde_json::from_str(&copied.json).unwrap_or_default();
+    fragment["carries"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|k| k.as_str().map(str::to_string))
+        .collect()
+}
+
+fn is_points_or_lines(p: &Value) -> bool {
+    p.get("mode")
+        .and_then(Value::as_u64)
+        .is_some_and(|m| POINTS_AND_LINES.contains(&m))
+}
+
+/// The nodes reachable from `scene`'s roots with the mesh each places, and those meshes
+/// that hold points or lines.
+fn lined(root: &Value, scene: Option<usize>) -> (Vec<(usize, usize)>, BTreeSet<usize>) {
+    let nodes = root["nodes"].as_array().map(Vec::as_slice).unwrap_or(&[]);
+    let mut seen = vec![false; nodes.len()];
+    let mut stack: Vec<usize> = scene
+        .and_then(|s| root["scenes"][s]["nodes"].as_array())
+        .into_iter()
+        .flatten()
+        .filter_map(|n| n.as_u64().map(|n| n as usize))
+        .collect();
+    let mut placing = Vec::new();
+    while let Some(n) = stack.pop() {
+        if n >= nodes.len() || std::mem::replace(&mut seen[n], true) {
+            continue;
+        }
+        if let Some(m) = nodes[n]["mesh"].as_u64() {
+            placing.push((n, m as usize));
+        }
+        stack.extend(
+            nodes[n]["children"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(|c| c.as_u64().map(|c| c as usize)),
+        );
+    }
+    placing.sort_unstable();
+    let meshes = root["meshes"].as_array().map(Vec::as_slice).unwrap_or(&[]);
+    let lined = placing
+        .iter()
+        .map(|&(_, m)| m)
+        .filter(|&m| {
+            meshes.get(m).is_some_and(|mesh| {
+                mesh["primitives"]
+                    .as_array()
+                    .is_some_and(|ps| ps.iter().any(is_points_or_lines))
+            })
+        })
+        .collect();
+    (placing, lined)
+}
+
+/// The fields `keys` of `object` that it has.
+fn pick(object: &Value, keys: &[&str]) -> Map<String, Value> {
+    keys.iter()
+        .filter_map(|&k| Some((k.to_string(), object.get(k)?.clone())))
+        .collect()
+}
+
+/// `v` without its `extensions` (a camera's or light's: none is carried).
+fn without_extensions(v: &Value) -> Value {
+    let mut v = v.clone();
+    if let Some(o) = v.as_object_mut() {
+        o.remove("extensions");
+    }
+    v
+}
+
+/// Which extensions were carried where met, and which were left out somewhere.
+#[derive(Default)]
+struct ExtensionUses {
+    carried: BTreeSet<String>,
+    dropped: BTreeSet<String>,
+}
+
+impl ExtensionUses {
+    /// The extensions of `used` (the file's `extensionsUsed`) the output does not carry
+    /// everywhere they were.
+    fn lost(&self, used: &[Value]) -> Vec<String> {
+        used.iter()
+            .filter_map(Value::as_str)
+            .filter(|e| {
+                !CARRIED_EXTENSIONS.contains(e)
+                    && (self.dropped.contains(*e) || !self.carried.contains(*e))
+            })
+            .map(str::to_string)
+            .collect()
+    }
+}
+
+/// True when `v` holds a texture reference anywhere (a member named `...Texture`, as core
+/// glTF and the KHR_materials extensions name them).
+fn names_texture(v: &Value) -> bool {
+    match v {
+        Value::Object(o) => o
+            .iter()
+            .any(|(k, v)| k.ends_with("Texture") || names_texture(v)),
+        Value::Array(a) => a.iter().any(names_texture),
+        _ => false,
+    }
+}
+
+/// `material` without its textures, and its extensions that name none; and whether a core
+/// texture was removed. The extensions met are tallied in `uses`.
+fn without_textures(material: &Value, uses: &mut ExtensionUses) -> (Value, bool) {
+    let mut m = material.clone();
+    let mut lost_texture = false;
+    let Some(o) = m.as_object_mut() else {
+        return (m, false);
+    };
+    let mut strip = |o: &mut Map<String, Value>| {
+        let before = o.len();
+        o.retain(|k, _| !k.ends_with("Texture"));
+        lost_texture |= o.len() != before;
+    };
+    strip(o);
+    if let Some(pbr) = o
+        .get_mut("pbrMetallicRoughness")
+        .and_then(Value::as_object_mut)
+    {
+        strip(pbr);
+        // Extensions below the material's own are not carried (nor tallied as carried).
+        pbr.remove("extensions");
+    }
+    if let Some(ext) = o.get_mut("extensions").and_then(Value::as_object_mut) {
+        ext.retain(|name, v| {
+            let keep = !names_texture(v);
+            match keep {
+                true => uses.carried.insert(name.clone()),
+                false => uses.dropped.insert(name.clone()),
+            };
+            keep
+        });
+        if ext.is_empty() {
+            o.remove("extensions");
+        }
+    }
+    (m, lost_texture)
 }
 
 /// Copies accessors and their buffer views (once each) into the fragment.
@@ -119,6 +411,21 @@ struct Gatherer<'a> {
 }
 
 impl Gatherer<'_> {
+    /// A primitive's attributes, indices and morph targets, renumbered.
+    fn primitive(&mut self, p: &mut Value) -> Result<(), String> {
+        self.remap_map(&mut p["attributes"])?;
+        self.remap_field(p, "indices")?;
+        for target in p
+            .get_mut("targets")
+            .and_then(Value::as_array_mut)
+            .into_iter()
+            .flatten()
+        {
+            self.remap_map(target)?;
+        }
+        Ok(())
+    }
+
     /// Every value of a `{ "NAME": accessor }` map, renumbered.
     fn remap_map(&mut self, map: &mut Value) -> Result<(), String> {
         for v in map.as_object_mut().into_iter().flat_map(|m| m.values_mut()) {
@@ -198,6 +505,8 @@ impl Gatherer<'_> {
 pub struct Spliced {
     fragment: Value,
     accessor_base: usize,
+    /// The nodes that place points or lines (`lined_nodes`), looked up once per node.
+    lined_nodes: HashSet<u64>,
 }
 
 impl Spliced {
@@ -237,9 +546,16 @@ impl Spliced {
             }
             accessors.push(a);
         }
+        let lined_nodes = fragment["lined_nodes"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(Value::as_u64)
+            .collect();
         Some(Self {
             fragment,
             accessor_base,
+            lined_nodes,
         })
     }
 
@@ -255,25 +571,102 @@ impl Spliced {
         }
     }
 
+    /// A primitive's accessors renumbered.
+    fn shift_primitive(&self, p: &mut Value) {
+        self.shift_map(&mut p["attributes"]);
+        if let Some(i) = p.get_mut("indices") {
+            self.shift(i);
+        }
+        for t in p
+            .get_mut("targets")
+            .and_then(Value::as_array_mut)
+            .into_iter()
+            .flatten()
+        {
+            self.shift_map(t);
+        }
+    }
+
     /// The source's mesh `mesh`, when it is copied through: its primitives, accessors
     /// renumbered, without materials.
     pub fn mesh(&self, mesh: usize) -> Option<Value> {
         let mut mesh = self.fragment["meshes"].get(mesh.to_string())?.clone();
         for p in mesh["primitives"].as_array_mut().into_iter().flatten() {
-            self.shift_map(&mut p["attributes"]);
-            if let Some(i) = p.get_mut("indices") {
-                self.shift(i);
-            }
-            for t in p
-                .get_mut("targets")
-                .and_then(Value::as_array_mut)
-                .into_iter()
-                .flatten()
-            {
-                self.shift_map(t);
-            }
+            self.shift_primitive(p);
         }
         Some(mesh)
+    }
+
+    /// The points and lines primitives of source mesh `mesh`, by their index in it, their
+    /// accessors renumbered; `material` still names the source's material.
+    pub fn lines(&self, mesh: usize) -> Vec<(usize, Value)> {
+        let Some(list) = self.fragment["primitives"]
+            .get(mesh.to_string())
+            .and_then(Value::as_object)
+        else {
+            return Vec::new();
+        };
+        let mut out: Vec<(usize, Value)> = list
+            .iter()
+            .filter_map(|(p, prim)| {
+                let mut prim = prim.clone();
+                self.shift_primitive(&mut prim);
+                Some((p.parse().ok()?, prim))
+            })
+            .collect();
+        out.sort_by_key(|(p, _)| *p);
+        out
+    }
+
+    /// True when node `node` is reached from the scene and its mesh holds points or lines.
+    pub fn places_lines(&self, node: usize) -> bool {
+        self.lined_nodes.contains(&(node as u64))
+    }
+
+    /// Source material `k` without its textures (for points and lines).
+    pub fn material(&self, k: usize) -> Option<&Value> {
+        self.fragment["materials"].get(k.to_string())
+    }
+
+    /// The source material of primitive `p` of mesh `mesh`, without its textures.
+    pub fn source_material(&self, mesh: usize, p: usize) -> Option<&Value> {
+        let k = self.fragment["mesh_fields"]
+            .get(mesh.to_string())
+            .and_then(|f| f["materials"].get(p))
+            .and_then(Value::as_u64)?;
+        self.material(k as usize)
+    }
+
+    /// Source mesh `mesh`'s `name` and `extras`.
+    pub fn mesh_fields(&self, mesh: usize) -> Map<String, Value> {
+        match self.fragment["mesh_fields"].get(mesh.to_string()) {
+            Some(f) => pick(f, &["name", "extras"]),
+            None => Map::new(),
+        }
+    }
+
+    /// The source's cameras, at their indices (nodes name them so).
+    pub fn cameras(&self) -> Vec<Value> {
+        self.list("cameras")
+    }
+
+    /// The source's `KHR_lights_punctual` lights, at their indices.
+    pub fn lights(&self) -> Vec<Value> {
+        self.list("lights")
+    }
+
+    /// The source asset's `copyright` and `extras`.
+    pub fn asset(&self) -> Map<String, Value> {
+        pick(&self.fragment["asset"], &["copyright", "extras"])
+    }
+
+    /// The source scene's `name` and `extras`.
+    pub fn scene(&self) -> Map<String, Value> {
+        pick(&self.fragment["scene"], &["name", "extras"])
+    }
+
+    fn list(&self, key: &str) -> Vec<Value> {
+        self.fragment[key].as_array().cloned().unwrap_or_default()
     }
 
     /// Every skin, in the source's order (nodes name them by index).
@@ -308,7 +701,7 @@ impl Spliced {
         list
     }
 
-    /// Node `node`'s `skin` and `weights`, as read.
+    /// Node `node`'s `skin`, `weights`, `camera`, `extras` and light, as read.
     pub fn node_fields(&self, node: usize) -> Option<&Map<String, Value>> {
         self.fragment["nodes"].get(node.to_string())?.as_object()
     }

@@ -1,14 +1,15 @@
 //! glTF 2.0, JSON (`.gltf`) and binary (`.glb`): `read` walks a file's default scene into a
 //! `Scene` (one model per triangle primitive and node, the node tree kept), `write` writes a
 //! `Scene` back (the node tree as read, or one node per model), `accessor` decodes the typed
-//! arrays both read from buffers, `copy_through` carries skins, morph targets and animations
-//! through unchanged.
+//! arrays both read from buffers, `copy_through` carries what a `Scene` does not hold (skins, morph
+//! targets, animations, points and lines, cameras, lights, `extras`) through unchanged.
 
 mod accessor;
 mod copy_through;
 mod read;
 mod write;
 
+pub use copy_through::carried_kinds;
 pub use read::read_gltf;
 pub use write::{image_losses, write_gltf};
 

@@ -10,8 +10,10 @@
 //! flag. The node tree is kept (`mesh::NodeTree`, every model's `Instance`) for the glTF
 //! writer. Skinned meshes and meshes with morph targets are read in their rest pose, marked
 //! to be left undecimated, and carried with their skins and the animations to a glTF output
-//! (`copy_through`); one warning names each. Points and lines cannot be held by a `Scene`:
-//! one warning names what was left out.
+//! (`copy_through`); one warning names each. Points and lines primitives cannot be held by
+//! a `Scene`: their positions and indices are checked, and they are carried to a glTF
+//! output unchanged (`copy_through`, with cameras, lights and `extras`); one warning names
+//! them.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::path::Path;
@@ -52,10 +54,13 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         .default_scene()
         .or_else(|| document.scenes().next());
     let copied = copied_meshes(document);
+    let mut carried_warnings = Vec::new();
     let tree = match &scene {
-        Some(scene) => Some(Arc::new(
-            node_tree(document, scene, &buffers, &copied).map_err(fail)?,
-        )),
+        Some(scene) => {
+            let (tree, w) = node_tree(bytes, document, scene, &buffers, &copied).map_err(fail)?;
+            carried_warnings = w;
+            Some(Arc::new(tree))
+        }
         None => None,
     };
     let mut reader = Reader {
@@ -66,6 +71,7 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         models: Vec::new(),
         warnings: Vec::new(),
         warned: HashSet::new(),
+        lines: Vec::new(),
         triangles: 0,
         visits: 0,
         node_count: gltf.document.nodes().count(),
@@ -83,11 +89,29 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
             }
         }
     }
+    let carried = reader.tree.is_some();
     let Reader {
         models,
         mut warnings,
+        lines,
         ..
     } = reader;
+    if !lines.is_empty() {
+        let shown: Vec<&str> = lines.iter().take(3).map(String::as_str).collect();
+        let more = match lines.len() {
+            n if n > 3 => format!(" and {} more", n - 3),
+            _ => String::new(),
+        };
+        let fate = match carried {
+            true => "are copied through unchanged to a glTF output, not decimated nor shown",
+            false => "are left out: the scene holds triangles",
+        };
+        warnings.push(format!(
+            "points and lines primitives {fate} ({}{more})",
+            shown.join(", ")
+        ));
+    }
+    warnings.extend(carried_warnings);
     for mesh in document.meshes() {
         let (m, name) = (mesh.index(), mesh.name().unwrap_or(""));
         let Some(why) = copied.get(&m) else {
@@ -211,8 +235,10 @@ struct Reader<'b> {
     primitives: HashMap<(usize, usize), Option<Model>>,
     models: Vec<Model>,
     warnings: Vec<String>,
-    /// The kinds of warning given (one each), and the triangles placed so far.
+    /// The kinds of warning given (one each), the points and lines primitives met (said
+    /// in one warning), and the triangles placed so far.
     warned: HashSet<&'static str>,
+    lines: Vec<String>,
     triangles: usize,
     /// Nodes visited so far, and the file's node count (a sound hierarchy's deepest path).
     visits: usize,
@@ -316,20 +342,6 @@ impl Reader<'_> {
         p: &gltf::Primitive<'_>,
     ) -> Result<Option<Model>, String> {
         let mode = p.mode();
-        if !matches!(
-            mode,
-            Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
-        ) {
-            self.warn_once(
-                "lines",
-                format!(
-                    "points and lines primitives are left out: the scene holds triangles (mesh {} primitive {}, {mode:?})",
-                    mesh.index(),
-                    p.index()
-                ),
-            );
-            return Ok(None);
-        }
         let Some(pos) = p.get(&Semantic::Positions) else {
             return Err("the primitive has no POSITION attribute".into());
         };
@@ -354,6 +366,15 @@ impl Reader<'_> {
             }
             None => (0..n as u32).collect(),
         };
+        // Points and lines, checked above, go to a glTF output as they are (`copy_through`).
+        if let Some(kind) = points_or_lines(mode) {
+            self.lines.push(format!(
+                "mesh {} primitive {} {kind}",
+                mesh.index(),
+                p.index()
+            ));
+            return Ok(None);
+        }
         let triangles = assemble(mode, &corners);
         let same_count = |what: &str, len: usize| {
             if len == n {
@@ -448,6 +469,17 @@ impl Reader<'_> {
     }
 }
 
+/// glTF's name of a points or lines mode; `None` for triangles.
+fn points_or_lines(mode: Mode) -> Option<&'static str> {
+    match mode {
+        Mode::Points => Some("POINTS"),
+        Mode::Lines => Some("LINES"),
+        Mode::LineLoop => Some("LINE_LOOP"),
+        Mode::LineStrip => Some("LINE_STRIP"),
+        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan => None,
+    }
+}
+
 /// Why a mesh is copied through: said in its warning.
 const SKINNED: &str = "is skinned";
 const MORPHED: &str = "has morph targets";
@@ -470,13 +502,16 @@ fn copied_meshes(document: &gltf::Document) -> BTreeMap<usize, &'static str> {
 }
 
 /// Every node of the file at its index (name, local transform as given, children, mesh),
-/// `scene`'s roots, and the copy-through fragment for the `copied` meshes.
+/// `scene`'s roots, and the copy-through fragment (the `copied` meshes and all else a
+/// `Scene` does not hold, read from the file's JSON `bytes`); the warnings for what even a
+/// glTF output leaves out.
 fn node_tree(
+    bytes: &[u8],
     document: &gltf::Document,
     scene: &gltf::Scene<'_>,
     buffers: &Buffers,
     copied: &BTreeMap<usize, &'static str>,
-) -> Result<NodeTree, String> {
+) -> Result<(NodeTree, Vec<String>), String> {
     let nodes = document
         .nodes()
         .map(|n| Node {
@@ -499,21 +534,29 @@ fn node_tree(
             mesh: n.mesh().map(|m| m.index()),
         })
         .collect();
-    let carried =
-        !copied.is_empty() || document.skins().len() > 0 || document.animations().len() > 0;
-    let copied = match carried {
-        true => {
-            let root = serde_json::to_value(document.as_json()).map_err(|e| e.to_string())?;
-            let meshes: BTreeSet<usize> = copied.keys().copied().collect();
-            super::copy_through::gather(&root, buffers, &meshes)?
-        }
-        false => None,
-    };
-    Ok(NodeTree {
+    let root = raw_json(bytes)?;
+    let meshes: BTreeSet<usize> = copied.keys().copied().collect();
+    let gathered = super::copy_through::gather(&root, Some(scene.index()), buffers, &meshes)?;
+    let tree = NodeTree {
         nodes,
         roots: scene.nodes().map(|n| n.index()).collect(),
-        copied,
-    })
+        copied: gathered.copied,
+    };
+    Ok((tree, gathered.warnings))
+}
+
+/// The file's JSON as read, with every field the gltf crate's types leave out (unknown
+/// extensions, `extras` of every kind) for `copy_through`.
+fn raw_json(bytes: &[u8]) -> Result<serde_json::Value, String> {
+    let json = match super::is_glb(bytes) {
+        true => {
+            gltf::binary::Glb::from_slice(bytes)
+                .map_err(|e| describe(&e))?
+                .json
+        }
+        false => std::borrow::Cow::Borrowed(bytes),
+    };
+    serde_json::from_slice(&json).map_err(|e| format!("not valid glTF JSON: {e}"))
 }
 
 /// An error naming the first value of `what` that is not a finite number, if any.

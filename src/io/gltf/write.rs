@@ -5,7 +5,9 @@
 //! at its index, with its name, local transform (matrix or TRS, as read) and children, and
 //! one mesh per source mesh, its primitives the node's models, shared by every node that
 //! places the same (decimated once, see `decimate::simplify_scene`). Skinned and morphed
-//! meshes, skins and animations are copied through from the source (`copy_through`). Other
+//! meshes, points and lines primitives, skins, animations, cameras, lights and `extras` are
+//! copied through from the source (`copy_through`), and a source material's factors and
+//! texture-free extensions join the material written for its model. Other
 //! models get one root node each, placed by the model's transform; models with the same
 //! geometry and material share one glTF mesh. Each model is one triangle primitive:
 //! POSITION, NORMAL (per-vertex normals, unit length; per-face normals are left out, which
@@ -24,7 +26,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use glam::Mat4;
-use serde_json::{json, Value};
+use serde_json::{json, Map, Value};
 
 use super::copy_through::Spliced;
 use crate::io::{data_uri, texture_path, WriteError};
@@ -146,6 +148,11 @@ struct Builder<'s> {
     skins: Vec<Value>,
     animations: Vec<Value>,
     extensions_required: Vec<String>,
+    cameras: Vec<Value>,
+    lights: Vec<Value>,
+    /// The source asset's and scene's fields carried (`copyright`, `name`, `extras`).
+    asset: Map<String, Value>,
+    scene: Map<String, Value>,
     /// Files to write beside a `.gltf` (images that came as `data:` URIs): name, bytes.
     files: Vec<(String, Vec<u8>)>,
     /// Image index by texture name (`None`: the image cannot be written).
@@ -202,13 +209,31 @@ fn placement(scene: &Scene) -> (Option<&NodeTree>, Placed<'_>, Vec<&Model>) {
 
 impl<'s> Builder<'s> {
     fn document(&self, bin_name: &str) -> Value {
-        let mut doc = json!({
-            "asset": { "version": "2.0", "generator": "decimate" },
-            "scene": 0,
-            "scenes": [{ "nodes": self.roots }],
-        });
+        let mut asset = self.asset.clone();
+        asset.insert("version".into(), json!("2.0"));
+        asset.insert("generator".into(), json!("decimate"));
+        let mut scene = self.scene.clone();
+        scene.insert("nodes".into(), json!(self.roots));
+        let mut doc = json!({ "asset": asset, "scene": 0, "scenes": [scene] });
+        // Every extension written: the copied accessors', the lights', the materials'.
+        let mut used: std::collections::BTreeSet<String> =
+            self.extensions_required.iter().cloned().collect();
+        if !self.lights.is_empty() {
+            used.insert("KHR_lights_punctual".into());
+            doc["extensions"] = json!({ "KHR_lights_punctual": { "lights": self.lights } });
+        }
+        for m in &self.materials {
+            used.extend(
+                m["extensions"]
+                    .as_object()
+                    .into_iter()
+                    .flat_map(|e| e.keys().cloned()),
+            );
+        }
+        if !used.is_empty() {
+            doc["extensionsUsed"] = json!(used);
+        }
         if !self.extensions_required.is_empty() {
-            doc["extensionsUsed"] = json!(self.extensions_required);
             doc["extensionsRequired"] = json!(self.extensions_required);
         }
         let mut set = |key: &str, list: &[Value]| {
@@ -217,6 +242,7 @@ impl<'s> Builder<'s> {
             }
         };
         set("nodes", &self.nodes);
+        set("cameras", &self.cameras);
         set("meshes", &self.meshes);
         set("materials", &self.materials);
         set("textures", &self.textures);
@@ -297,7 +323,7 @@ impl<'s> Builder<'s> {
         if m.positions.is_empty() || m.triangles.is_empty() {
             return;
         }
-        let material = self.material(m);
+        let material = self.material(m, None);
         let key = geometry_hash(m, material);
         let shared = self
             .mesh_of
@@ -360,19 +386,18 @@ impl<'s> Builder<'s> {
             if !node.children.is_empty() {
                 out["children"] = json!(node.children);
             }
-            let models = placed.get(&i);
-            let mesh = match (node.mesh, models) {
-                (Some(source), Some(models)) => self.source_mesh(source, models, spliced.as_ref()),
-                _ => None,
-            };
+            let empty = BTreeMap::new();
+            let models = placed.get(&i).unwrap_or(&empty);
+            let mesh = node
+                .mesh
+                .and_then(|source| self.source_mesh(source, i, models, spliced.as_ref()));
             if let Some(mesh) = mesh {
                 out["mesh"] = json!(mesh);
-                for (key, v) in spliced
-                    .as_ref()
-                    .and_then(|s| s.node_fields(i))
-                    .into_iter()
-                    .flatten()
-                {
+            }
+            // A skin and morph weights only beside the mesh they apply to.
+            let fields = spliced.as_ref().and_then(|s| s.node_fields(i));
+            for (key, v) in fields.into_iter().flatten() {
+                if mesh.is_some() || !matches!(key.as_str(), "skin" | "weights") {
                     out[key.as_str()] = v.clone();
                 }
             }
@@ -383,15 +408,21 @@ impl<'s> Builder<'s> {
             self.skins = s.skins();
             self.animations = s.animations();
             self.extensions_required = s.extensions_required();
+            self.cameras = s.cameras();
+            self.lights = s.lights();
+            self.asset = s.asset();
+            self.scene = s.scene();
         }
     }
 
-    /// The mesh for source mesh `source` placed with `models` (by primitive): the one
-    /// written for another node when it holds the same, else a new one, copied through
-    /// when the source's is. `None` when no model is left to write.
+    /// The mesh for source mesh `source` placed by node `node` with `models` (by
+    /// primitive) and the source's points and lines: the one written for another node when
+    /// it holds the same, else a new one, copied through when the source's is. `None` when
+    /// nothing is left to write.
     fn source_mesh(
         &mut self,
         source: usize,
+        node: usize,
         models: &BTreeMap<usize, &'s Model>,
         spliced: Option<&Spliced>,
     ) -> Option<usize> {
@@ -400,10 +431,20 @@ impl<'s> Builder<'s> {
             .filter(|(_, m)| !m.positions.is_empty() && !m.triangles.is_empty())
             .map(|(&p, &m)| (p, m))
             .collect();
-        if parts.is_empty() {
+        let lines = match spliced {
+            Some(s) if s.places_lines(node) => s.lines(source),
+            _ => Vec::new(),
+        };
+        if parts.is_empty() && lines.is_empty() {
             return None;
         }
-        let with_materials: Parts<'s> = parts.iter().map(|&(_, m)| (m, self.material(m))).collect();
+        let with_materials: Parts<'s> = parts
+            .iter()
+            .map(|&(p, m)| {
+                let from = spliced.and_then(|s| s.source_material(source, p));
+                (m, self.material(m, from))
+            })
+            .collect();
         let same = |a: &[(&Model, usize)], b: &[(&Model, usize)]| {
             a.len() == b.len()
                 && a.iter()
@@ -423,8 +464,10 @@ impl<'s> Builder<'s> {
         let copied = parts
             .iter()
             .all(|(_, m)| m.instance.as_ref().is_some_and(|i| i.copied));
-        let verbatim = spliced.filter(|_| copied).and_then(|s| s.mesh(source));
-        let mesh = match verbatim {
+        let verbatim = spliced
+            .filter(|_| copied && !parts.is_empty())
+            .and_then(|s| s.mesh(source));
+        let mut mesh = match verbatim {
             Some(mut mesh) => {
                 // The source's primitives that were read, each with its model's material.
                 let prims = mesh["primitives"].as_array().cloned().unwrap_or_default();
@@ -448,6 +491,12 @@ impl<'s> Builder<'s> {
                 json!({ "primitives": prims })
             }
         };
+        if let Some(s) = spliced {
+            self.add_lines(&mut mesh, &parts, lines, s);
+            for (key, v) in s.mesh_fields(source) {
+                mesh[key.as_str()] = v;
+            }
+        }
         self.meshes.push(mesh);
         let index = self.meshes.len() - 1;
         self.source_mesh_of
@@ -455,6 +504,36 @@ impl<'s> Builder<'s> {
             .or_default()
             .push((index, with_materials));
         Some(index)
+    }
+
+    /// Puts the source's points and lines primitives `lines` into `mesh` at their places
+    /// among the triangle primitives of `parts` (by source index), with their materials.
+    fn add_lines(
+        &mut self,
+        mesh: &mut Value,
+        parts: &[(usize, &Model)],
+        lines: Vec<(usize, Value)>,
+        spliced: &Spliced,
+    ) {
+        if lines.is_empty() {
+            return;
+        }
+        let triangles = mesh["primitives"].as_array().cloned().unwrap_or_default();
+        let mut all: Vec<(usize, Value)> = parts.iter().map(|&(p, _)| p).zip(triangles).collect();
+        for (p, mut prim) in lines {
+            let source = prim.get("material").and_then(Value::as_u64);
+            match source.and_then(|k| spliced.material(k as usize)) {
+                Some(material) => prim["material"] = json!(self.add_material(material.clone())),
+                None => {
+                    if let Some(o) = prim.as_object_mut() {
+                        o.remove("material");
+                    }
+                }
+            }
+            all.push((p, prim));
+        }
+        all.sort_by_key(|(p, _)| *p);
+        mesh["primitives"] = Value::Array(all.into_iter().map(|(_, prim)| prim).collect());
     }
 
     /// Writes `m`'s vertex arrays and triangles as a one-primitive mesh.
@@ -494,8 +573,9 @@ impl<'s> Builder<'s> {
     }
 
     /// The material for `m` (diffuse colour, texture, wrapping, sidedness), shared by every
-    /// model that has the same.
-    fn material(&mut self, m: &Model) -> usize {
+    /// model that has the same; with what `source` (the glTF material read, without
+    /// textures) says beside them: its factors, alpha, `extras` and extensions.
+    fn material(&mut self, m: &Model, source: Option<&Value>) -> usize {
         let textured = m.texcoords.is_some();
         let image = match (&m.texture, textured) {
             (Some(name), true) => self.image(name),
@@ -523,6 +603,14 @@ impl<'s> Builder<'s> {
         if let Some(name) = &m.material {
             material["name"] = json!(name);
         }
+        if let Some(source) = source {
+            carry_material_fields(&mut material, source);
+        }
+        self.add_material(material)
+    }
+
+    /// `material`'s index, written once however many primitives use it.
+    fn add_material(&mut self, material: Value) -> usize {
         let key = material.to_string();
         if let Some(&i) = self.material_of.get(&key) {
             return i;
@@ -575,6 +663,33 @@ impl<'s> Builder<'s> {
         };
         self.images.push(image);
         Some(self.images.len() - 1)
+    }
+}
+
+/// The fields of a source glTF material beyond a model's (factors, alpha, `extras`,
+/// texture-free extensions), onto `material`: an emissive strength keeps its emissive
+/// factor, a metal stays metallic.
+fn carry_material_fields(material: &mut Value, source: &Value) {
+    for key in [
+        "emissiveFactor",
+        "alphaMode",
+        "alphaCutoff",
+        "extras",
+        "extensions",
+    ] {
+        if let Some(v) = source.get(key) {
+            material[key] = v.clone();
+        }
+    }
+    let pbr = &source["pbrMetallicRoughness"];
+    // Written as floats, as the writer's own factors are.
+    for key in ["metallicFactor", "roughnessFactor"] {
+        if let Some(v) = pbr.get(key).and_then(Value::as_f64) {
+            material["pbrMetallicRoughness"][key] = json!(v);
+        }
+    }
+    if let Some(alpha) = pbr["baseColorFactor"].get(3).and_then(Value::as_f64) {
+        material["pbrMetallicRoughness"]["baseColorFactor"][3] = json!(alpha);
     }
 }
 

@@ -1,0 +1,105 @@
+//! Schroeder vertex removal on an open, rough scanned grid (a stand-in for the Cyberware
+//! heads: a 40×40 grid where many vertices are "corners" at the 30° feature angle).
+//! What a user notices: the count asked for, an error below the bound the early relaxation
+//! of the feature angle brings (docs/design.md#schroeder-relax-early), the outline kept
+//! (one border loop, the grid's whole footprint) and no triangle flipped.
+
+use decimate::decimate::{simplify_scene, Params, Report, Target};
+use decimate::mesh::{measure, shapes, Model, Scene};
+use decimate::metro::{compare, Options, Surface};
+
+use crate::support::rng::Rng;
+
+/// A grid of `n`×`n` unit quads: two broad hills plus per-vertex roughness of about a
+/// third of the spacing, so that many of its vertices are corners at 30°.
+fn rough_grid(n: u32) -> Model {
+    let mut rng = Rng(0x5eed_0040);
+    let roughness: Vec<f32> = (0..(n + 1) * (n + 1)).map(|_| rng.signed()).collect();
+    let pi = std::f32::consts::PI;
+    shapes::height_grid(n, |x, y| {
+        let (u, v) = (x as f32 / n as f32, y as f32 / n as f32);
+        let hills = 0.15 * n as f32 * (3.0 * pi * u).sin() * (2.0 * pi * v).sin();
+        hills + 0.35 * roughness[(y * (n + 1) + x) as usize]
+    })
+}
+
+fn decimate(model: &Model, keep: usize) -> (Model, Report) {
+    let mut scene = Scene {
+        models: vec![model.clone()],
+    };
+    let params = Params {
+        target: Target::KeepTriangles(keep),
+        ..Params::default()
+    };
+    let report = simplify_scene(&mut scene, &params, &mut |_| {});
+    (scene.models.pop().unwrap_or_default(), report)
+}
+
+/// Metro's symmetric mean error as a fraction of the bounding-box diagonal.
+fn mean_error(before: &Model, after: &Model) -> f64 {
+    let surface = |m: &Model| {
+        Surface::from_scene(&Scene {
+            models: vec![m.clone()],
+        })
+    };
+    let options = Options {
+        samples: Some(200_000),
+        ..Options::default()
+    };
+    let c = compare(&surface(before), &surface(after), &options).expect("comparable surfaces");
+    c.relative(c.symmetric().mean)
+}
+
+/// The area of the mesh's shadow on the xy plane: the grid's footprint.
+fn footprint(m: &Model) -> f64 {
+    m.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| m.positions[i as usize].as_dvec3());
+            (b - a).cross(c - a).z / 2.0
+        })
+        .sum()
+}
+
+fn check(keep: usize, bound: f64) {
+    let before = rough_grid(39);
+    let (after, report) = decimate(&before, keep);
+    let left = after.triangles.len();
+    assert!(
+        left.abs_diff(keep) * 50 <= keep,
+        "{left} triangles for {keep} asked"
+    );
+    let broken = measure::invariant_violations(&before, &after);
+    assert!(broken.is_empty(), "{broken:?}");
+    // The outline: the border's corners and lines stay, so the shadow on the grid's plane
+    // (signed: a fold would not add to it) is the whole square.
+    let kept = footprint(&after) / footprint(&before);
+    assert!(
+        (kept - 1.0).abs() < 1e-6,
+        "{:.3} % of the footprint kept",
+        100.0 * kept
+    );
+    let error = mean_error(&before, &after);
+    eprintln!(
+        "{keep}: {left} triangles, mean error {:.4} %, feature angle {}",
+        100.0 * error,
+        report.models[0].feature_angle_deg
+    );
+    assert!(
+        error < bound,
+        "mean error {:.4} % of the diagonal",
+        100.0 * error
+    );
+}
+
+#[test]
+fn a_rough_open_grid_at_ten_percent_keeps_its_outline_and_a_low_error() {
+    // Relaxing the feature angle only once out of candidates gave 0.47 %.
+    check(304, 0.0035);
+}
+
+#[test]
+fn a_rough_open_grid_at_two_percent_keeps_its_outline_and_a_low_error() {
+    // Relaxing the feature angle only once out of candidates gave 1.47 %.
+    check(61, 0.012);
+}
