@@ -308,16 +308,9 @@ fn textured_spheres_of_many_resolutions_stay_closed_manifold_and_outward_from_50
     let spheres = ["0.3", "0.5", "0.8"].map(inventor).into_iter();
     let mut faults = Vec::new();
     for (name, scene) in spheres.chain([8, 12, 16, 32].map(obj)) {
-        // At 95 % the two coarsest keep six points or fewer, where schroeder may still
-        // leave a triangle facing inwards (docs/design.md#texture-seams, what is left).
-        let coarse = Surface::from_scene(&scene).positions.len() < 150;
-        let percents: &[f64] = if coarse {
-            &[50.0, 70.0, 90.0]
-        } else {
-            &[50.0, 70.0, 90.0, 95.0]
-        };
+        let percents = [50.0, 70.0, 90.0, 95.0];
         for algorithm in [Algorithm::Qem, Algorithm::Schroeder] {
-            for &percent in percents {
+            for percent in percents {
                 let out = Surface::from_scene(&decimated(&scene, algorithm, percent));
                 let inward = inward_triangles(&out);
                 if !out.is_closed() || out.nonmanifold_edges > 0 || inward > 0 {

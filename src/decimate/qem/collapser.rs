@@ -131,42 +131,10 @@ impl Collapser {
             }
         }
         self.copies = crate::mesh::seams::copy_cycles(&self.positions, pinned);
-        self.facing = self.junction_facing();
-    }
-
-    /// Each junction copy's starting normal, summed over the junction's copies (see
-    /// `facing`): walked once per junction along its cycle of copies.
-    fn junction_facing(&self) -> Vec<Vec3> {
-        if self.copies.is_empty() {
-            return Vec::new();
-        }
-        let mut sum = vec![glam::DVec3::ZERO; self.copies.len()];
-        for (t, tri) in self.conn.triangles().iter().enumerate() {
-            if !self.conn.is_alive(t as u32)
-                || tri.iter().all(|&v| self.copies[v as usize] == u32::MAX)
-            {
-                continue;
-            }
-            let [a, b, c] = tri.map(|v| self.positions[v as usize].as_dvec3());
-            let cross = (b - a).cross(c - a);
-            for &v in tri {
-                sum[v as usize] += cross;
-            }
-        }
-        let mut facing = vec![Vec3::ZERO; self.copies.len()];
-        let mut done = vec![false; self.copies.len()];
-        for v in 0..self.copies.len() as u32 {
-            if done[v as usize] || self.copies[v as usize] == u32::MAX {
-                continue;
-            }
-            let copies = || crate::mesh::seams::copies(v, &[], &self.copies);
-            let total: glam::DVec3 = copies().map(|c| sum[c as usize]).sum();
-            for c in copies() {
-                facing[c as usize] = total.normalize_or_zero().as_vec3();
-                done[c as usize] = true;
-            }
-        }
-        facing
+        let live: Vec<[u32; 3]> = (self.conn.alive_ids())
+            .map(|t| self.conn.triangle(t))
+            .collect();
+        self.facing = crate::mesh::seams::junction_normals(&self.positions, &live, &self.copies);
     }
 
     /// Pairs the two sides of texture seams: `twins[v]` is `v`'s other side or `u32::MAX`

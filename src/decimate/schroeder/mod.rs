@@ -103,7 +103,9 @@ pub fn decimate_model(
     // A seam cuts a closed shape open: judge closedness with its copies welded.
     let seamed_closed = (!twins.is_empty() || !copies.is_empty())
         .then(|| ClosedVolumes::with_seams(&positions, &triangles, &twins, &copies));
+    let facing = crate::mesh::seams::junction_normals(&positions, &triangles, &copies);
     let mut d = Decimator::new(positions, triangles, limits.feature_angle_deg);
+    d.facing = facing;
     if let Some(closed) = seamed_closed {
         d.closed = closed;
     }
@@ -195,6 +197,8 @@ struct Decimator {
     twins: Vec<u32>,
     /// Pinned vertices' next copy at their position (`mesh::seams::copy_cycles`).
     copies: Vec<u32>,
+    /// Junction copies' starting normals (`mesh::seams::junction_normals`).
+    facing: Vec<Vec3>,
     /// A seam removal's second side.
     twin_planning: Planning,
     /// The pass in which each vertex's ring last changed (a removal took it or a
@@ -239,6 +243,7 @@ impl Decimator {
             pinned: vec![false; n],
             twins: Vec::new(),
             copies: Vec::new(),
+            facing: Vec::new(),
             twin_planning: Planning::default(),
             // Marks start below the first pass and batch: nothing has changed yet.
             changed_in: vec![0; n],
@@ -266,6 +271,7 @@ impl Decimator {
             twins: &self.twins,
             pinned: &self.pinned,
             copies: &self.copies,
+            facing: &self.facing,
         }
     }
 

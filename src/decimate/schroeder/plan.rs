@@ -66,6 +66,8 @@ pub(super) struct SeamSides<'a> {
     pub pinned: &'a [bool],
     /// Pinned vertices' next copy at their position (`mesh::seams::copy_cycles`).
     pub copies: &'a [u32],
+    /// Junction copies' starting normals (`mesh::seams::junction_normals`).
+    pub facing: &'a [Vec3],
 }
 
 impl<'a> SeamSides<'a> {
@@ -425,6 +427,10 @@ impl<C: Adjacency> Surface<'_, C> {
                 if cross.dot(old) <= 0.0 || !faces_like_old(p, cross, tri, region) {
                     return false;
                 }
+                // A junction never moves: a triangle at one faces the way it faced.
+                if !self.faces_like_junction(cross, tri) {
+                    return false;
+                }
                 // A diagonal of the hole is in two fill triangles, once each way: looked
                 // up once. (The edge closing an open ring and a crease's split edge, in
                 // one triangle, were looked up before the fill was made.)
@@ -463,6 +469,20 @@ impl<C: Adjacency> Surface<'_, C> {
         seams
             .copy_pairs(x, y)
             .any(|(x2, y2)| (x2, y2) != (x, y) && self.conn.has_edge_avoiding(x2, y2, u32::MAX))
+    }
+
+    /// Whether a triangle of normal `cross` at the corners `tri` faces, at each junction
+    /// copy among them, the way the junction faced at the start (docs/design.md#texture-seams).
+    fn faces_like_junction(&self, cross: DVec3, tri: &[u32; 3]) -> bool {
+        self.seams.is_none_or(|seams| {
+            tri.iter().all(|&c| {
+                seams.copies.get(c as usize).is_none_or(|&n| n == u32::MAX)
+                    || seams
+                        .facing
+                        .get(c as usize)
+                        .is_none_or(|f| cross.dot(f.as_dvec3()) > 0.0)
+            })
+        })
     }
 
     /// Whether a copy of `x` (its twin, a junction's copies) and a copy of `y` other than
