@@ -1,7 +1,8 @@
 //! Decimation by both algorithms: exact counts on the report's models, the invariants every
 //! output keeps (on random meshes too), creases, models stitched along shared borders,
-//! texture coordinates and seams, progressive meshes, non-manifold shapes, and closed shapes
-//! never turned inside out or flat; a model nothing is taken from given back exactly.
+//! texture coordinates and seams, progressive meshes, non-manifold shapes, open borders, and
+//! closed shapes never turned inside out or flat; a model nothing is taken from given back
+//! exactly.
 
 #[path = "../support/mod.rs"]
 mod support;
@@ -10,6 +11,7 @@ mod cancel;
 mod closed_shapes;
 mod creases;
 mod nonmanifold;
+mod open_borders;
 mod open_scan;
 mod progressive;
 mod qem;

@@ -263,8 +263,8 @@ fn wavy_sheet(n: u32) -> Model {
 
 #[test]
 fn an_open_sheet_keeps_its_outline_in_regions_on_any_number_of_cores() {
-    // 200 × 200 vertices: the passes run in nine regions, and the outline's vertices (which
-    // move only along it) sit on many region borders.
+    // 200 × 200 vertices: the passes run in nine regions, and the outline's vertices (held
+    // on it by their constraint planes) sit on many region borders.
     let before = wavy_sheet(200);
     let n = before.positions.len();
     let params = qem(Target::RemovePercent(90.0));

@@ -323,8 +323,13 @@ mod tests {
     /// A 2 × 2 grid of unit squares in z = 0, each cut along its diagonal from its first
     /// corner: point `(x, y)` is vertex `3y + x`; 4 is the only interior one.
     fn grid() -> Collapser {
+        grid_raised(0.0)
+    }
+
+    /// As [`grid`], the interior vertex 4 raised to `z`.
+    fn grid_raised(z: f32) -> Collapser {
         let positions = (0..9)
-            .map(|i| Vec3::new((i % 3) as f32, (i / 3) as f32, 0.0))
+            .map(|i| Vec3::new((i % 3) as f32, (i / 3) as f32, if i == 4 { z } else { 0.0 }))
             .collect();
         let triangles = [0, 1, 3, 4]
             .into_iter()
@@ -355,5 +360,25 @@ mod tests {
         let mut d = grid();
         d.pin(&(0..9).map(|v| v <= 1).collect::<Vec<_>>());
         assert!(d.whole().plan(0, 1).is_none());
+    }
+
+    #[test]
+    fn a_boundary_vertex_taking_in_an_interior_one_moves_to_their_optimum() {
+        // The raised interior vertex 4 goes into the outline's vertex 1, which rises towards
+        // it (cheaper than staying put), held near its outline (the line y = z = 0) by its
+        // constraint planes: less than half as far off it as 4 was
+        // (docs/design.md#qem-border-placement).
+        let mut d = grid_raised(0.5);
+        let q = d.quadrics[1].sum(&d.quadrics[4]);
+        let stay = DVec3::new(1.0, 0.0, 0.0);
+        let plan = d.whole().plan(1, 4).expect("interior into boundary");
+        assert_eq!((plan.remove, plan.keep), (4, 1));
+        let p = plan.position;
+        assert!(p.z > 0.0, "stays at {p}");
+        assert!(plan.cost < q.eval(stay), "{} ≥ {}", plan.cost, q.eval(stay));
+        assert!(p.y.hypot(p.z) < 0.25, "{p} left the outline");
+        // Flat, staying put is already the best: it does not move.
+        let plan = grid().whole().plan(1, 4).expect("interior into boundary");
+        assert_eq!((plan.remove, plan.keep, plan.position), (4, 1, stay));
     }
 }

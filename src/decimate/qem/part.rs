@@ -284,7 +284,7 @@ impl Part<'_> {
     /// |----------|----------|-----------|---------------------------------------------------|
     /// | fixed    | any      | any       | none: a complex vertex never moves                |
     /// | interior | interior | interior  | either way, to the quadric's optimum              |
-    /// | interior | boundary | interior  | the interior end into the boundary end, unmoved: a boundary vertex moves only along its boundary |
+    /// | interior | boundary | interior  | the interior end into the boundary end, which moves to the optimum (its constraint planes keep it on the outline; docs/design.md#qem-border-placement); a seam's end stays put |
     /// | boundary | boundary | boundary  | either way, to the optimum (the constraint planes keep it on the outline) |
     /// | boundary | boundary | interior  | none: it would pinch the surface                  |
     /// | interior | anchored | any       | the interior end into the anchored end, unmoved   |
@@ -310,12 +310,10 @@ impl Part<'_> {
             | (Kind::Anchored, Kind::Complex)
             | (Kind::Complex, Kind::Anchored) => return None,
             (Kind::Interior, Kind::Interior) => (a, b, true, false),
-            (Kind::Interior, Kind::Boundary | Kind::Anchored | Kind::Complex) => {
-                (a, b, false, false)
-            }
-            (Kind::Boundary | Kind::Anchored | Kind::Complex, Kind::Interior) => {
-                (b, a, false, false)
-            }
+            (Kind::Interior, Kind::Boundary) => (a, b, self.twin(b).is_none(), false),
+            (Kind::Boundary, Kind::Interior) => (b, a, self.twin(a).is_none(), false),
+            (Kind::Interior, Kind::Anchored | Kind::Complex) => (a, b, false, false),
+            (Kind::Anchored | Kind::Complex, Kind::Interior) => (b, a, false, false),
             (Kind::Boundary, Kind::Boundary) => along_boundary((a, b, true))?,
             (Kind::Boundary, Kind::Anchored | Kind::Complex) => along_boundary((a, b, false))?,
             (Kind::Anchored | Kind::Complex, Kind::Boundary) => along_boundary((b, a, false))?,

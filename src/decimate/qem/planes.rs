@@ -16,8 +16,9 @@ use super::collapse_plan::Kind;
 use super::quadric::Quadric;
 use crate::mesh::topology::{corner_of, Adjacency, Connectivity, Ring, RingShape, MAX_VALENCE};
 
-/// Weight of boundary and feature constraint planes relative to an area-weighted face plane.
-const CONSTRAINT_WEIGHT: f64 = 100.0;
+/// Weight of a boundary edge's constraint plane, times its length², relative to an
+/// area-weighted face plane (docs/design.md#qem-constraint-weight).
+const CONSTRAINT_WEIGHT: f64 = 30.0;
 
 /// Weight of a texture seam's constraint planes (an edge between two vertices on seams),
 /// relative to an area-weighted face plane: a seam's sides collapse together, so it is priced
