@@ -433,3 +433,80 @@ fn vertex_removal_takes_a_pinch_along_one_edge_apart_into_two_squares() {
     assert_eq!(counts(&before), (48, 64, 1));
     assert_lossless(&before, &lossless_by(Algorithm::Schroeder), (8, 4, 0));
 }
+
+/// A flat 4×4 sheet over the unit square (facing +z) and one more triangle, its corners
+/// merged with the sheet's where they meet.
+fn sheet_with(extra: [Vec3; 3]) -> Model {
+    let mut b = Builder::default();
+    b.sheet(Vec3::ZERO, Vec3::X, Vec3::Y, 4);
+    let t = extra.map(|p| b.vertex(p));
+    b.model.triangles.push(t);
+    b.build("sheet with a flap")
+}
+
+/// The sheet's grid point `(i, j)`, raised by `z`.
+fn grid(i: u32, j: u32, z: f32) -> Vec3 {
+    Vec3::new(i as f32 / 4.0, j as f32 / 4.0, z)
+}
+
+//   A sliver flap lying on a flat sheet, as reconstructed scans leave them: the triangle
+//   v-a-x over two of the sheet's edges (v-a, a-x: three triangles each), its third edge
+//   v-x open (a fin's end meeting its border at v and at x):
+//
+//      +---+---+---+---+
+//      |   |   |  /|   |
+//      +---+---+-x-+---+
+//      |   | / |/  |   |
+//      +---v---a---+---+
+//
+// v and x each end a non-manifold edge and meet a border; removed, the flap goes with
+// them and its two edges are left with the sheet's two triangles: the sheet's four corners,
+// two triangles, no non-manifold edge (v, a and x were frozen before).
+#[test]
+fn vertex_removal_drops_a_sliver_flap_lying_on_a_sheet() {
+    let before = sheet_with([grid(1, 1, 0.0), grid(2, 1, 0.0), grid(3, 2, 0.0)]);
+    assert_eq!(counts(&before), (25, 33, 2));
+    let after = run(before.clone(), &lossless_by(Algorithm::Schroeder));
+    assert_eq!(counts(&after), (4, 2, 0));
+    assert_flat_sheet_kept(&before, &after);
+}
+
+//   A flap standing on an interior edge of a flat sheet: the triangle v-a-x, x a tenth of
+//   the sheet's side above the middle of v-a, in no other triangle (a dangling fin of
+//   one triangle; v-a has three triangles, its ends each meet the fin's border):
+//
+//             x
+//            / \
+//      +---v---a---+---+   (seen from the side)
+//
+// x is a corner by its sharp turn, and v and a fin ends whose flap cannot go (its edge a-x
+// would be left with no triangle): all three were kept. Decimated as far as it goes, x
+// goes first, dropping the flap (its height is the error), then v and a as flat vertices:
+// the sheet's four corners and two triangles are left, no non-manifold edge.
+#[test]
+fn vertex_removal_drops_a_flap_standing_on_a_sheet() {
+    let before = sheet_with([grid(1, 2, 0.0), grid(2, 2, 0.0), Vec3::new(0.375, 0.5, 0.1)]);
+    assert_eq!(counts(&before), (26, 33, 1));
+    let params = Params {
+        target: Target::RemovePercent(100.0),
+        algorithm: Algorithm::Schroeder,
+        ..Params::default()
+    };
+    let after = run(before.clone(), &params);
+    assert_eq!(counts(&after), (4, 2, 0));
+    assert_flat_sheet_kept(&before, &after);
+}
+
+/// What a user would notice after a flap is dropped from a flat sheet: the sheet left
+/// whole (its area, every triangle facing +z in its plane, no degenerate one) and no
+/// non-manifold edge added.
+fn assert_flat_sheet_kept(before: &Model, after: &Model) {
+    assert_eq!(measure::degenerate_triangles(after, 1e-9), 0);
+    for (n, d) in planes(after) {
+        assert!(n.dot(DVec3::Z) > 1.0 - 1e-9 && d.abs() < 1e-6, "{n} {d}");
+    }
+    let (e0, e1) = (measure::edge_counts(before), measure::edge_counts(after));
+    assert!(e1.non_manifold <= e0.non_manifold, "{e0:?} -> {e1:?}");
+    assert_eq!(e1.misoriented, 0);
+    assert!((measure::area(after) - 1.0).abs() < 1e-6);
+}

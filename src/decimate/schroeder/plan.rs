@@ -6,7 +6,7 @@
 use glam::{DVec2, DVec3, Vec3};
 
 use super::loop_split;
-use super::sheets::Sheets;
+use super::sheets::{self, Sheets};
 use crate::mesh::classify::{classify, classify_ring, RingGeometry, VertexClass};
 use crate::mesh::seams::position_key;
 use crate::mesh::topology::{Adjacency, Ring, RingShape};
@@ -139,6 +139,12 @@ impl<C: Adjacency> Surface<'_, C> {
                 self.line_distance(at, verts[first], verts[second])
             }
             VertexClass::Complex => self.sheets_distance(v, p)?,
+            // A dangling flap's apex goes like a boundary vertex of one triangle.
+            VertexClass::Corner => {
+                let (a, b) = sheets::flap_apex(self.conn, v)?;
+                return Some((VertexClass::Boundary, self.line_distance(at, a, b)))
+                    .filter(|(_, d)| d.is_finite());
+            }
             _ => return None,
         };
         distance.is_finite().then_some((class, distance))
@@ -183,6 +189,11 @@ impl<C: Adjacency> Surface<'_, C> {
         let at = self.position(v);
         let mut distance = 0.0f64;
         for i in 0..p.sheets.count() {
+            if p.sheets.is_fin_flap(i) {
+                // Dropped: its corners stay on the surface but `v`, whose distance the
+                // closed fan beside it measures.
+                continue;
+            }
             let (first, last, closed) = self.take_fan(v, i, p);
             let RingGeometry { crosses, lengths } = &p.geometry;
             let k = crosses.len();
@@ -262,6 +273,15 @@ impl<C: Adjacency> Surface<'_, C> {
             let (_, _, closed) = self.take_fan(v, i, p);
             p.fill.clear();
             p.regions.clear();
+            if p.sheets.is_fin_flap(i) {
+                // A fin's flap `(v, a, x)`: dropped, its edge a–x keeps a triangle each way.
+                let r = &p.ring.verts;
+                if !sheets::keeps_both_sides(self.conn, r[0], r[1], v) {
+                    ok = false;
+                    break;
+                }
+                continue;
+            }
             if p.ring.triangles.len() == 1 {
                 flaps += 1; // a crease line's flap `(v, a, b)`: dropped, the others close on a–b
                 continue;

@@ -2,7 +2,8 @@
 //! takes part on non-manifold input instead of freezing every complex vertex: a vertex inside
 //! a non-manifold crease line (on exactly two edges of k ≥ 3 triangles, every fan running
 //! from one of their far ends to the other), a pinch (the end of a non-manifold edge, every
-//! fan closed through its far end) and a bowtie (fans meeting only at the vertex).
+//! fan closed through its far end), a fin's end (the same meeting a border, its one-triangle
+//! flap dropped) and a bowtie (fans meeting only at the vertex).
 //! `plan` fills each fan on its own: an open one like a boundary vertex's hole, closed by the
 //! edge between its ends (on a crease line the k fans share that one new edge, so the line
 //! stays glued and keeps k triangles; at a bowtie the fans come apart), a closed one like a
@@ -19,6 +20,10 @@ pub(super) enum SheetShape {
     /// The vertex ends one non-manifold edge, and every fan is closed through its far end:
     /// removed, the surfaces it joined touch at that end only.
     Pinch,
+    /// The vertex ends one non-manifold edge, to `a`, and meets a border (a fin's end): one
+    /// fan or more closed through `a`, the others open from `a` (or between two border
+    /// neighbours); an open fan of one triangle `(v, a, x)` is a flap the removal drops.
+    FinEnd { a: u32 },
     /// Two or more fans, no non-manifold edge: each open one runs between two border
     /// neighbours of its own, each closed one around the vertex.
     Bowtie,
@@ -54,6 +59,8 @@ pub(super) struct Sheets {
     triangle_ends: Vec<usize>,
     /// The removal's fill, fan after fan, while the ring holds one fan at a time.
     pub fill: Vec<[u32; 3]>,
+    /// The shape the last [`Self::split`] found.
+    shape: Option<SheetShape>,
 }
 
 impl Sheets {
@@ -72,6 +79,13 @@ impl Sheets {
         )
     }
 
+    /// Whether fan `i` is a fin's flap: one triangle from the non-manifold edge's far end
+    /// to a border neighbour, dropped with the vertex (its far edge must keep a triangle
+    /// each way, `keeps_both_sides`).
+    pub fn is_fin_flap(&self, i: usize) -> bool {
+        matches!(self.shape, Some(SheetShape::FinEnd { .. })) && self.fan(i).1.len() == 1
+    }
+
     /// Every triangle of the vertex, fan after fan.
     pub fn all_triangles(&self) -> &[u32] {
         &self.triangles
@@ -88,6 +102,11 @@ impl Sheets {
     /// ending where its shape does not allow (a crease line's back where it began, a
     /// pinch's across), a fan too small, or any other mix of non-manifold and border edges.
     pub fn split(&mut self, conn: &impl Adjacency, v: u32) -> Option<SheetShape> {
+        self.shape = self.split_fans(conn, v);
+        self.shape
+    }
+
+    fn split_fans(&mut self, conn: &impl Adjacency, v: u32) -> Option<SheetShape> {
         self.pairs.clear();
         self.uses.clear();
         self.paths.clear();
@@ -129,9 +148,11 @@ impl Sheets {
                     b: b.vertex,
                 })
             }
-            (Some(_), None, _) => {
-                (!self.uses.iter().any(|u| u.total() == 1)).then_some(SheetShape::Pinch)
-            }
+            (Some(a), None, _) => Some(if self.uses.iter().any(|u| u.total() == 1) {
+                SheetShape::FinEnd { a: a.vertex }
+            } else {
+                SheetShape::Pinch
+            }),
             (None, _, _) => Some(SheetShape::Bowtie),
             _ => None,
         }?;
@@ -199,12 +220,28 @@ impl Sheets {
                 }
                 // Closed through the far end, of three triangles or more.
                 SheetShape::Pinch => first == last && length >= 4,
+                // Open from `a` (a flap too) or between two border neighbours, or closed.
+                SheetShape::FinEnd { a } => match (first == a, last == a) {
+                    (true, true) => length >= 4,
+                    (true, false) | (false, true) => true,
+                    (false, false) => length >= 3,
+                },
                 SheetShape::Bowtie => length >= 3,
             };
             if !fits {
                 return None;
             }
             self.end_fan();
+        }
+        // The fin stands on a surface closed around the vertex: the ends of three sheets'
+        // borders on one edge (a spine's end) stay.
+        if let SheetShape::FinEnd { a } = shape {
+            if !(0..self.count()).any(|i| {
+                let path = self.fan(i).0;
+                path[0] == a && path[path.len() - 1] == a
+            }) {
+                return None;
+            }
         }
         if shape == SheetShape::Bowtie {
             self.walk_closed_fans()?;
@@ -248,6 +285,34 @@ impl Sheets {
         self.path_ends.push(self.paths.len());
         self.triangle_ends.push(self.triangles.len());
     }
+}
+
+/// Whether the triangles with the edge `p`–`q` and not the vertex `v` are two or more,
+/// at least one each way: dropping `v`'s triangle on that edge then leaves it with a
+/// consistently oriented pair (no flipped neighbours), not a border.
+pub(super) fn keeps_both_sides(conn: &impl Adjacency, p: u32, q: u32, v: u32) -> bool {
+    let (mut forward, mut backward) = (false, false);
+    for &t in conn.incident(p) {
+        let tri = conn.triangle(t);
+        if tri.contains(&q) && !tri.contains(&v) {
+            let (_, next, _) = corner_of(tri, p);
+            forward |= next == q;
+            backward |= next != q;
+        }
+    }
+    forward && backward
+}
+
+/// When `v` is the apex of one lone triangle standing on an edge of two other triangles or
+/// more (a dangling flap on a non-manifold edge, as reconstructed scans leave them), that
+/// edge's two ends: removing `v` drops the flap and leaves the edge manifold or less
+/// non-manifold. Such an apex is a corner by its sharp turn, and would stay for ever.
+pub(super) fn flap_apex(conn: &impl Adjacency, v: u32) -> Option<(u32, u32)> {
+    let &[t] = conn.incident(v) else {
+        return None;
+    };
+    let (_, a, b) = corner_of(conn.triangle(t), v);
+    (a != b && a != v && b != v && keeps_both_sides(conn, a, b, v)).then_some((a, b))
 }
 
 #[cfg(test)]
@@ -303,6 +368,38 @@ mod tests {
         assert_eq!(s.split(&conn, 0), Some(SheetShape::Pinch));
         assert_eq!(s.count(), 2);
         assert_eq!(s.fan(1).0, &[1, 4, 5, 6, 1][..]);
+    }
+
+    #[test]
+    fn a_closed_fan_and_a_flap_through_one_neighbour_are_a_fin_end() {
+        let conn = around(&[&[1, 2, 3, 1], &[1, 4]]);
+        let mut s = Sheets::default();
+        assert_eq!(s.split(&conn, 0), Some(SheetShape::FinEnd { a: 1 }));
+        assert_eq!(s.count(), 2);
+        assert!(!s.is_fin_flap(0) && s.is_fin_flap(1));
+        assert_eq!(s.fan(1).0, &[1, 4][..]);
+        // The end of three sheets' borders on one edge, no surface around it: kept.
+        let conn = around(&[&[1, 2, 3], &[1, 4, 5], &[1, 6, 7]]);
+        assert_eq!(s.split(&conn, 0), None);
+        assert!(!s.is_fin_flap(0));
+    }
+
+    #[test]
+    fn a_flap_standing_on_an_edge_of_two_triangles_has_its_apex_removable() {
+        // Triangles 0-1-2 and 0-2-3 share 0-2; the flap 0-2-4 stands on it.
+        let tris = [[0, 1, 2], [0, 2, 3], [2, 0, 4]];
+        let conn = Connectivity::new(5, &tris);
+        assert_eq!(flap_apex(&conn, 4), Some((2, 0)));
+        assert_eq!(flap_apex(&conn, 0), None);
+        assert!(keeps_both_sides(&conn, 0, 2, 4));
+        // Standing on two triangles that both run 2 -> 0 (flipped neighbours): dropping
+        // the flap would leave a misoriented pair, so it stays.
+        let conn = Connectivity::new(5, &[[0, 1, 2], [2, 0, 3], [0, 2, 4]]);
+        assert!(!keeps_both_sides(&conn, 0, 2, 4));
+        assert_eq!(flap_apex(&conn, 4), None);
+        // Without the flap, 1 is an ordinary border corner.
+        let conn = Connectivity::new(4, &tris[..2]);
+        assert_eq!(flap_apex(&conn, 1), None);
     }
 
     #[test]
