@@ -71,6 +71,20 @@ pub fn classify(
     geometry: &mut RingGeometry,
 ) -> VertexClass {
     let shape = conn.ring(v, ring);
+    classify_ring(positions, v, cos_feature, seam_side, shape, ring, geometry)
+}
+
+/// As [`classify`], for `v`'s one-ring `ring` of shape `shape` as read already (or
+/// reshaped: a ring whose two ends are copies of one seam junction, closed there).
+pub fn classify_ring(
+    positions: &[Vec3],
+    v: u32,
+    cos_feature: f64,
+    seam_side: bool,
+    shape: RingShape,
+    ring: &Ring,
+    geometry: &mut RingGeometry,
+) -> VertexClass {
     let RingGeometry { crosses, lengths } = geometry;
     crosses.clear();
     lengths.clear();

@@ -3,7 +3,8 @@
 //! `Model::texcoords`). The surface is cut there. Were the sides simplified on their own,
 //! their outlines would part and open a crack: decimation takes a seam's two sides away
 //! together (vertex removal removes both, edge collapse collapses both edges to one point),
-//! and pins the junctions where three or more sides meet.
+//! and pins the junctions where three or more sides meet; a vertex between two copies of a
+//! junction (a pole's first ring) goes into it as the welded surface's step would.
 
 use std::collections::HashMap;
 
@@ -89,6 +90,42 @@ pub fn copy_cycles(positions: &[Vec3], pinned: &[bool]) -> Vec<u32> {
         }
     }
     cycles
+}
+
+/// Each junction copy's starting normal: the unit area-weighted normal of all the
+/// triangles at any of its copies (`cycles`, from [`copy_cycles`]), the way the surface
+/// faces there; zero for other vertices, empty when `cycles` is. A junction never moves,
+/// so decimation keeps the triangles at it facing this way.
+pub fn junction_normals(positions: &[Vec3], triangles: &[[u32; 3]], cycles: &[u32]) -> Vec<Vec3> {
+    if cycles.is_empty() {
+        return Vec::new();
+    }
+    let at_junction = |v: u32| cycles.get(v as usize).is_some_and(|&c| c != u32::MAX);
+    let mut sum = vec![glam::DVec3::ZERO; cycles.len()];
+    for tri in triangles
+        .iter()
+        .filter(|t| t.iter().any(|&v| at_junction(v)))
+    {
+        let [a, b, c] = tri.map(|v| positions[v as usize].as_dvec3());
+        let cross = (b - a).cross(c - a);
+        for &v in tri {
+            sum[v as usize] += cross;
+        }
+    }
+    let mut normals = vec![Vec3::ZERO; cycles.len()];
+    let mut done = vec![false; cycles.len()];
+    for v in 0..cycles.len() as u32 {
+        if done[v as usize] || !at_junction(v) {
+            continue;
+        }
+        // Walked once per junction, along its cycle of copies.
+        let total: glam::DVec3 = copies(v, &[], cycles).map(|c| sum[c as usize]).sum();
+        for c in copies(v, &[], cycles) {
+            normals[c as usize] = total.normalize_or_zero().as_vec3();
+            done[c as usize] = true;
+        }
+    }
+    normals
 }
 
 /// `v` and the other vertices at its position that stand for the same point of the
@@ -191,6 +228,30 @@ mod tests {
         assert_eq!(of(4), [4, 1], "a twin");
         assert_eq!(of(2), [2], "neither");
         assert!(copy_cycles(&positions, &[false; 9]).is_empty());
+    }
+
+    #[test]
+    fn a_junction_faces_the_way_all_its_copies_triangles_do() {
+        // A pyramid's apex split in two copies (0, 4), each in two of its four faces, over
+        // the square 1, 2, 3, 5; a lone pinned vertex (6) has no copy.
+        let positions = vec![
+            Vec3::Z,
+            Vec3::X,
+            Vec3::Y,
+            Vec3::NEG_X,
+            Vec3::Z,
+            Vec3::NEG_Y,
+            Vec3::ONE,
+        ];
+        let triangles = [[0, 1, 2], [0, 2, 3], [4, 3, 5], [4, 5, 1]];
+        let pinned = [true, false, false, false, true, false, true];
+        let cycles = copy_cycles(&positions, &pinned);
+        let normals = junction_normals(&positions, &triangles, &cycles);
+        for v in [0, 4] {
+            assert!((normals[v] - Vec3::Z).length() < 1e-6, "{:?}", normals[v]);
+        }
+        assert!([1, 2, 3, 5, 6].iter().all(|&v| normals[v] == Vec3::ZERO));
+        assert!(junction_normals(&positions, &triangles, &[]).is_empty());
     }
 
     #[test]

@@ -366,7 +366,13 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
     if !d.gather(v, w) || !gather_seam_sides(d, v, w) {
         return Attempt::Elsewhere;
     }
-    let plan = early.unwrap_or_else(|| d.plan(v.min(w), v.max(w)));
+    let mut plan = early.unwrap_or_else(|| d.plan(v.min(w), v.max(w)));
+    if let Some(p) = plan.as_mut() {
+        d.join_junction(p);
+    }
+    // A junction copy left with no triangle goes too; a progressive record cannot bring
+    // back a vertex that is in no base triangle, so it keeps such collapses out.
+    let drops = plan.is_some_and(|p| d.drops_junction_copy(&p));
     // Asked before anything is decided: a collapse this part cannot judge goes elsewhere.
     let Some(welded) = plan.map_or(Some(true), |p| seam_stays_manifold(d, &p)) else {
         return Attempt::Elsewhere;
@@ -395,7 +401,10 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
     // No plan (the edge's shape changed since it was planned) counts as illegal, so that
     // every candidate either goes, waits or is blocked: each pass progresses. A seam
     // collapse with room for one vertex only counts so too: the count stops exactly.
-    let fits = plan.is_some_and(|p| p.twin.is_none() || room >= 2);
+    let removes = plan.map_or(1, |p| {
+        1 + usize::from(p.twin.is_some()) + usize::from(drops)
+    });
+    let fits = plan.is_some() && room >= removes && !(drops && d.recorder.is_some());
     let legal =
         fits && welded && plan.is_some_and(|p| d.is_collapse_legal(&p) && twin_is_legal(d, &p));
     let Some(plan) = plan.filter(|p| legal && p.error2 <= bounds.bound2) else {
@@ -434,7 +443,12 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
             d.flags[i] |= REPLAN;
         }
     }
-    Attempt::Collapsed(1 + usize::from(plan.twin.is_some()), plan.error2)
+    if let Some(c) = plan.junction {
+        // Its triangle with the removed end went: its edges are planned again.
+        let i = d.at(c);
+        d.flags[i] |= REPLAN;
+    }
+    Attempt::Collapsed(removes, plan.error2)
 }
 
 /// Whether `Part::plan` decides an edge between vertices of these kinds without counting
@@ -501,7 +515,7 @@ fn twin_is_legal(d: &mut Part<'_>, plan: &Plan) -> bool {
 /// side's own link condition judges those.) Only a collapse into a vertex with copies can
 /// make such an edge. `None` when a copy's fan is outside the part.
 fn seam_stays_manifold(d: &mut Part<'_>, plan: &Plan) -> Option<bool> {
-    if d.twin(plan.keep).is_none() && d.kind(plan.keep) != Kind::Anchored {
+    if d.twins.is_empty() && d.copies.is_empty() {
         return Some(true);
     }
     let keeps = [plan.keep, plan.twin.map_or(plan.keep, |[_, k2]| k2)];
@@ -524,7 +538,9 @@ fn side_stays_manifold(d: &Part<'_>, plan: &Plan, keeps: [u32; 2], seam: bool) -
             if seam && inside && y != x && d.other_side_touches(y) {
                 return Some(false);
             }
-            for c in d.copies(plan.keep).filter(|c| !keeps.contains(c)) {
+            // The kept end itself may not be joined to another copy of its new neighbour.
+            let other = |c: &u32| !keeps.contains(c) || (*c == plan.keep && y != x);
+            for c in d.copies(plan.keep).filter(other) {
                 if d.joined(c, y)? {
                     return Some(false);
                 }
@@ -540,11 +556,16 @@ fn side_stays_manifold(d: &Part<'_>, plan: &Plan, keeps: [u32; 2], seam: bool) -
 fn new_neighbours<'a>(d: &'a Part<'_>, plan: &Plan) -> impl Iterator<Item = (u32, bool)> + 'a {
     let (fan_r, fan_k) = d.fans(plan);
     let (keep, remove) = (plan.keep, plan.remove);
+    // Across a junction (`Part::join_junction`) an apex may be joined to the other copy
+    // only: it is the kept point's neighbour already.
+    let apex = move |x: u32| fan_r.iter().any(|f| f.touches(keep) && f.touches(x));
+    let junction = plan.junction.is_some();
     fan_r
         .iter()
         .filter(move |f| !f.touches(keep))
         .flat_map(|f| [f.next, f.prev])
         .filter(move |&x| x != remove && !fan_k.iter().any(|g| g.touches(x)))
+        .filter(move |&x| !(junction && apex(x)))
         .map(move |x| (x, fan_r.iter().filter(|f| f.touches(x)).count() == 2))
 }
 

@@ -42,6 +42,10 @@ pub(super) struct Plan {
     /// interior collapse of a textured model); otherwise they are interpolated along the
     /// edge.
     pub texcoords: Option<[f32; 2]>,
+    /// Into a junction copy (`keep`) from a vertex whose other outline edge runs to another
+    /// copy at the same point: that copy, whose triangle with the removed end goes too
+    /// (see `Part::join_junction`).
+    pub junction: Option<u32>,
 }
 
 impl Plan {
@@ -52,6 +56,7 @@ impl Plan {
             keep,
             twin: None,
             texcoords: None,
+            junction: None,
             ..*self
         })
     }

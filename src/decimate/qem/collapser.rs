@@ -52,6 +52,9 @@ pub(super) struct Collapser {
     /// seam junction, one per side; `u32::MAX`: none); empty when none share a position.
     /// Never changes: pinned vertices never move.
     copies: Vec<u32>,
+    /// Each junction copy's way out at the start: the area-weighted normal of all its
+    /// copies' triangles (zero for other vertices; empty when `copies` is).
+    facing: Vec<Vec3>,
     /// Closed components' volumes: no collapse turns one inside out or flattens it.
     closed: ClosedVolumes,
 }
@@ -88,6 +91,7 @@ impl Collapser {
             recorder: None,
             twins: Vec::new(),
             copies: Vec::new(),
+            facing: Vec::new(),
             closed,
         }
     }
@@ -127,6 +131,10 @@ impl Collapser {
             }
         }
         self.copies = crate::mesh::seams::copy_cycles(&self.positions, pinned);
+        let live: Vec<[u32; 3]> = (self.conn.alive_ids())
+            .map(|t| self.conn.triangle(t))
+            .collect();
+        self.facing = crate::mesh::seams::junction_normals(&self.positions, &live, &self.copies);
     }
 
     /// Pairs the two sides of texture seams: `twins[v]` is `v`'s other side or `u32::MAX`
@@ -176,6 +184,7 @@ impl Collapser {
             recorder: self.recorder.as_mut(),
             twins: &self.twins,
             copies: &self.copies,
+            facing: &self.facing,
             closed: ClosedView::Whole(&mut self.closed),
             scratch: CollapseLists::default(),
         }
@@ -202,6 +211,7 @@ impl Collapser {
         let costs = &self.costs;
         let twins = &self.twins;
         let copies = &self.copies;
+        let facing = &self.facing;
         let closed = &self.closed;
         let conns = self.conn.split(vertex_starts, slot_starts);
         conns
@@ -228,6 +238,7 @@ impl Collapser {
                     recorder: None,
                     twins,
                     copies,
+                    facing,
                     closed: ClosedView::Part(closed, Default::default()),
                     scratch: CollapseLists::default(),
                 })

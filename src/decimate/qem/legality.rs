@@ -105,6 +105,16 @@ impl Part<'_> {
                 }
             }
         }
+        if plan.junction.is_some() {
+            // Across a junction the apex beyond the other copy is the kept point's
+            // neighbour already, welded (its other neighbours: `seam_stays_manifold`).
+            for f in fan_r.iter().filter(|f| f.touches(k)) {
+                let apex = if f.next == k { f.prev } else { f.next };
+                if !common.contains(&apex) {
+                    common.push(apex);
+                }
+            }
+        }
         // Three or more apexes on a non-manifold edge; fewer than triangles where the input
         // doubled some (a triangle and its reversed copy), which go together.
         let shares_only_apexes = common.len() == apexes && apexes >= 1;
@@ -176,6 +186,7 @@ impl Part<'_> {
         let p = plan.position;
         let min2 = MIN_RELATIVE_AREA * MIN_RELATIVE_AREA;
         let (fan_r, fan_k) = self.fans(plan);
+        let junctions = !self.copies.is_empty();
         [
             (plan.remove, fan_r, plan.keep),
             (plan.keep, fan_k, plan.remove),
@@ -194,8 +205,16 @@ impl Part<'_> {
                     .length_squared()
                     .max((y - x).length_squared())
                     .max((p - y).length_squared());
+                // A junction never moves to even out a turn: a triangle at one keeps
+                // facing the way the junction faced (docs/design.md#texture-seams).
+                let faces_out = !junctions
+                    || [f.next, f.prev, plan.keep].iter().all(|&w| {
+                        self.copies[w as usize] == u32::MAX
+                            || new_cross.dot(self.facing[w as usize].as_dvec3()) > 0.0
+                    });
                 new_cross.length_squared() > min2 * longest * longest
                     && new_cross.dot(old_cross) > 0.0
+                    && faces_out
             })
         })
     }

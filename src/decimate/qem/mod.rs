@@ -11,6 +11,7 @@ mod collapse_passes;
 mod collapse_plan;
 mod collapser;
 mod edge_costs;
+mod junction_collapse;
 mod legality;
 mod part;
 mod planes;
@@ -31,7 +32,8 @@ use collapser::Collapser;
 /// only picks the feature edges that are constrained; it is never relaxed — QEM needs no
 /// relaxing to reach a count). Vertices flagged in `pins` (indexed like the model's
 /// positions: seam junctions, shared borders) never move nor go, but may take in their
-/// neighbours where they stand; vertices `twins` pairs (the two
+/// neighbours where they stand (a junction copy left with no triangle by a collapse across
+/// the junction is dropped, `junction_collapse`); vertices `twins` pairs (the two
 /// sides of a texture seam, `mesh::seams::Seams::twin`; may be empty) move only together,
 /// along the seam. `progress` gets the running removal count.
 pub fn decimate_model(

@@ -94,6 +94,9 @@ pub(super) struct Part<'a> {
     /// Anchored vertices' next copy at their position (the whole mesh's, read only; see
     /// `Collapser::pin`).
     pub copies: &'a [u32],
+    /// Junction copies' starting normals (the whole mesh's, read only; see
+    /// `Collapser::pin`).
+    pub facing: &'a [Vec3],
     /// Closed components' volumes (see `decimate::closed`).
     pub closed: ClosedView<'a>,
     pub scratch: CollapseLists,
@@ -186,6 +189,12 @@ impl Part<'_> {
     /// The fans [`Self::gather`] read, as `plan`'s (removed end's, kept end's).
     pub fn fans(&self, plan: &Plan) -> (&[FanTriangle], &[FanTriangle]) {
         self.scratch.fans(plan)
+    }
+
+    /// The fan [`Self::gather`] read around `v`, one of the edge's ends, to edit.
+    pub fn fan_mut(&mut self, v: u32) -> &mut Vec<FanTriangle> {
+        let s = &mut self.scratch;
+        &mut s.fans[usize::from(s.ends[0] != v)]
     }
 
     /// Starts loading what collapsing an edge of `v` reads first (a hint; ignored for a
@@ -396,6 +405,7 @@ impl Part<'_> {
             cost,
             twin,
             texcoords,
+            junction: None,
         })
     }
 

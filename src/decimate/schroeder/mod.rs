@@ -103,7 +103,9 @@ pub fn decimate_model(
     // A seam cuts a closed shape open: judge closedness with its copies welded.
     let seamed_closed = (!twins.is_empty() || !copies.is_empty())
         .then(|| ClosedVolumes::with_seams(&positions, &triangles, &twins, &copies));
+    let facing = crate::mesh::seams::junction_normals(&positions, &triangles, &copies);
     let mut d = Decimator::new(positions, triangles, limits.feature_angle_deg);
+    d.facing = facing;
     if let Some(closed) = seamed_closed {
         d.closed = closed;
     }
@@ -195,6 +197,8 @@ struct Decimator {
     twins: Vec<u32>,
     /// Pinned vertices' next copy at their position (`mesh::seams::copy_cycles`).
     copies: Vec<u32>,
+    /// Junction copies' starting normals (`mesh::seams::junction_normals`).
+    facing: Vec<Vec3>,
     /// A seam removal's second side.
     twin_planning: Planning,
     /// The pass in which each vertex's ring last changed (a removal took it or a
@@ -210,6 +214,10 @@ struct Decimator {
     batch: u32,
     /// Closed components' volumes: no removal turns one inside out or flattens it.
     closed: ClosedVolumes,
+    /// Junction copies removals left with no triangle (dropped: see `dropped_copies`), and
+    /// how many more vertices the count target lets go (a removal that drops one needs two).
+    dropped: usize,
+    room: usize,
 }
 
 /// A planned removal's ring (vertices and triangles) and fill.
@@ -235,6 +243,7 @@ impl Decimator {
             pinned: vec![false; n],
             twins: Vec::new(),
             copies: Vec::new(),
+            facing: Vec::new(),
             twin_planning: Planning::default(),
             // Marks start below the first pass and batch: nothing has changed yet.
             changed_in: vec![0; n],
@@ -242,6 +251,8 @@ impl Decimator {
             changed: Vec::new(),
             touched_in: vec![0; n],
             batch: 1,
+            dropped: 0,
+            room: usize::MAX,
         }
     }
 
@@ -251,7 +262,7 @@ impl Decimator {
             positions: &self.positions,
             texcoords: self.texcoords.as_deref(),
             cos_feature: self.cos_feature,
-            seams: (!self.twins.is_empty()).then(|| self.seam_sides()),
+            seams: (!self.twins.is_empty() || !self.copies.is_empty()).then(|| self.seam_sides()),
         }
     }
 
@@ -260,6 +271,7 @@ impl Decimator {
             twins: &self.twins,
             pinned: &self.pinned,
             copies: &self.copies,
+            facing: &self.facing,
         }
     }
 
@@ -386,6 +398,7 @@ impl Decimator {
     /// ones in (reusing their slots, so per-face attributes of the region carry over), and
     /// `key` accumulated around the ring, whose vertices are re-ranked at the pass's end.
     fn apply(&mut self, v: u32, removal: Removal<'_>, key: f64) {
+        self.dropped += self.dropped_copies(v, removal);
         if let Some(c) = self.closed.component(v) {
             let change = self.volume_change(v, removal);
             self.closed.apply(c, change);
@@ -402,6 +415,26 @@ impl Decimator {
             *acc = acc.max(key);
             self.mark_changed(u);
         }
+    }
+
+    /// The junction copies that removing `v` as planned leaves with no triangle: pinned
+    /// corners of its triangles outside its ring (a ring closed at a junction leaves one
+    /// copy out, `Surface::close_at_junction`) that are in no other triangle.
+    fn dropped_copies(&self, v: u32, removal: Removal<'_>) -> usize {
+        let mut dropped = 0;
+        if self.copies.is_empty() {
+            return dropped;
+        }
+        for &t in removal.triangles {
+            for u in self.conn.triangle(t) {
+                let alone = u != v
+                    && self.pinned[u as usize]
+                    && !removal.ring.contains(&u)
+                    && (self.conn.incident(u).iter()).all(|s| removal.triangles.contains(s));
+                dropped += usize::from(alone);
+            }
+        }
+        dropped
     }
 
     /// Whether removing `v` as planned keeps its closed component (if any) on its side of
@@ -444,7 +477,8 @@ impl Decimator {
     fn try_remove(&mut self, v: u32, key: f64) -> bool {
         let mut planning = std::mem::take(&mut self.planning);
         let planned = self.surface().plan_removal(v, &mut planning).is_some()
-            && self.keeps_closed_volume(v, removal_of(&planning));
+            && self.keeps_closed_volume(v, removal_of(&planning))
+            && self.dropped_copies(v, removal_of(&planning)) < self.room;
         if planned {
             self.apply(v, removal_of(&planning), key);
         }

@@ -7,8 +7,9 @@ use glam::{DVec2, DVec3, Vec3};
 
 use super::loop_split;
 use super::sheets::{self, Sheets};
-use crate::mesh::classify::{classify, RingGeometry, VertexClass};
-use crate::mesh::topology::{Adjacency, Ring};
+use crate::mesh::classify::{classify, classify_ring, RingGeometry, VertexClass};
+use crate::mesh::seams::position_key;
+use crate::mesh::topology::{Adjacency, Ring, RingShape};
 
 /// A fill is rejected when a new triangle's area is this small relative to its longest edge².
 const MIN_RELATIVE_AREA: f64 = 1e-10;
@@ -31,6 +32,8 @@ pub(super) struct Planning {
     triangulation: loop_split::SplitBuffers,
     /// A complex vertex's fans (`sheets`).
     sheets: Sheets,
+    /// A ring closed at a seam junction (`Surface::close_at_junction`): the copy left out.
+    junction: Option<u32>,
 }
 
 /// The fill triangles from the previous region's `end` up to this `end` replace the ring
@@ -63,6 +66,8 @@ pub(super) struct SeamSides<'a> {
     pub pinned: &'a [bool],
     /// Pinned vertices' next copy at their position (`mesh::seams::copy_cycles`).
     pub copies: &'a [u32],
+    /// Junction copies' starting normals (`mesh::seams::junction_normals`).
+    pub facing: &'a [Vec3],
 }
 
 impl<'a> SeamSides<'a> {
@@ -99,7 +104,7 @@ impl<C: Adjacency> Surface<'_, C> {
     /// bowtie). `None` for vertices that are never removed.
     pub fn evaluate(&self, v: u32, p: &mut Planning) -> Option<(VertexClass, f64)> {
         let seam_side = self.seams.is_some_and(|s| s.twin(v).is_some());
-        let class = classify(
+        let mut class = classify(
             self.conn,
             self.positions,
             v,
@@ -108,6 +113,19 @@ impl<C: Adjacency> Surface<'_, C> {
             &mut p.ring,
             &mut p.geometry,
         );
+        p.junction = None;
+        if self.close_at_junction(v, p) {
+            let (closed, ring) = (RingShape::Closed, &p.ring);
+            class = classify_ring(
+                self.positions,
+                v,
+                self.cos_feature,
+                false,
+                closed,
+                ring,
+                &mut p.geometry,
+            );
+        }
         let at = self.position(v);
         let verts = &p.ring.verts;
         let distance = match class {
@@ -130,6 +148,35 @@ impl<C: Adjacency> Surface<'_, C> {
             _ => return None,
         };
         distance.is_finite().then_some((class, distance))
+    }
+
+    /// Closes `v`'s open ring when its two ends are copies of one seam junction (a
+    /// textured sphere's pole, a cone's apex; `v` has no twin and is not pinned): welded,
+    /// `v` is an interior vertex. The first end is left out of the ring, the last stands
+    /// for both, so the fill uses it and the other copy loses its triangle with `v`
+    /// (docs/design.md#texture-seams).
+    fn close_at_junction(&self, v: u32, p: &mut Planning) -> bool {
+        let Some(seams) = self.seams else {
+            return false;
+        };
+        let pinned = |x: u32| seams.pinned.get(x as usize).copied().unwrap_or(false);
+        let r = &p.ring;
+        if seams.twin(v).is_some()
+            || pinned(v)
+            || r.verts.len() != r.triangles.len() + 1
+            || r.triangles.len() < 3
+        {
+            return false;
+        }
+        let (first, last) = (r.verts[0], r.verts[r.verts.len() - 1]);
+        let key = |x: u32| position_key(self.positions[x as usize]);
+        if first == last || !pinned(first) || !pinned(last) || key(first) != key(last) {
+            return false;
+        }
+        p.ring.verts.remove(0);
+        p.ring.triangles.rotate_left(1);
+        p.junction = Some(first);
+        true
     }
 
     /// A complex vertex's criterion when it may go through its fans, each by the rules of
@@ -275,7 +322,11 @@ impl<C: Adjacency> Surface<'_, C> {
             return false;
         };
         let r = &p.ring.verts;
-        if r.len() == 3 && self.conn.has_triangle(r[0], r[1], r[2]) {
+        // Closed at a junction, its last vertex stands for all the junction's copies.
+        let at_junction = |c: u32| self.conn.has_triangle(c, r[0], r[1]);
+        let doubled =
+            || p.junction.is_some() && self.seams.is_some_and(|s| s.copies(r[2]).any(at_junction));
+        if r.len() == 3 && (self.conn.has_triangle(r[0], r[1], r[2]) || doubled()) {
             return false; // would duplicate a face: the last step before a tetrahedron
         }
         self.fill_whole_ring(normal, p)
@@ -396,6 +447,10 @@ impl<C: Adjacency> Surface<'_, C> {
                 if cross.dot(old) <= 0.0 || !faces_like_old(p, cross, tri, region) {
                     return false;
                 }
+                // A junction never moves: a triangle at one faces the way it faced.
+                if !self.faces_like_junction(cross, tri) {
+                    return false;
+                }
                 // A diagonal of the hole is in two fill triangles, once each way: looked
                 // up once. (The edge closing an open ring and a crease's split edge, in
                 // one triangle, were looked up before the fill was made.)
@@ -407,6 +462,11 @@ impl<C: Adjacency> Surface<'_, C> {
                     // other side's removal closes its hole with the same edge.
                     let closing = !closed && is_ring_end(r, x) && is_ring_end(r, y);
                     if x < y && !is_ring_edge(x, y) && !closing && self.joins_seam_sides(x, y) {
+                        return false;
+                    }
+                    // Welded, no other copies of the two may be joined already (at a
+                    // junction, its copies are joined to much of the ring).
+                    if x < y && !is_ring_edge(x, y) && !closing && self.joined_elsewhere(v, x, y) {
                         return false;
                     }
                 }
@@ -429,6 +489,31 @@ impl<C: Adjacency> Surface<'_, C> {
         seams
             .copy_pairs(x, y)
             .any(|(x2, y2)| (x2, y2) != (x, y) && self.conn.has_edge_avoiding(x2, y2, u32::MAX))
+    }
+
+    /// Whether a triangle of normal `cross` at the corners `tri` faces, at each junction
+    /// copy among them, the way the junction faced at the start (docs/design.md#texture-seams).
+    fn faces_like_junction(&self, cross: DVec3, tri: &[u32; 3]) -> bool {
+        self.seams.is_none_or(|seams| {
+            tri.iter().all(|&c| {
+                seams.copies.get(c as usize).is_none_or(|&n| n == u32::MAX)
+                    || seams
+                        .facing
+                        .get(c as usize)
+                        .is_none_or(|f| cross.dot(f.as_dvec3()) > 0.0)
+            })
+        })
+    }
+
+    /// Whether a copy of `x` (its twin, a junction's copies) and a copy of `y` other than
+    /// the two are joined by an edge of a triangle without `v`.
+    fn joined_elsewhere(&self, v: u32, x: u32, y: u32) -> bool {
+        self.seams.is_some_and(|seams| {
+            (seams.on_seam(x) || seams.on_seam(y))
+                && seams
+                    .copy_pairs(x, y)
+                    .any(|(x2, y2)| (x2, y2) != (x, y) && self.conn.has_edge_avoiding(x2, y2, v))
+        })
     }
 
     /// With texture coordinates, the `fill` of `region` faces in the texture the way the

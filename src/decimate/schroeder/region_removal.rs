@@ -92,6 +92,7 @@ impl Decimator {
             twins: &self.twins,
             pinned: &self.pinned,
             copies: &self.copies,
+            facing: &self.facing,
         };
         let closed = &self.closed;
         let parts: Vec<Region<'_>> = self
@@ -234,9 +235,10 @@ impl Region<'_> {
 
     /// Whether filling the owned `v`'s hole could join two seam vertices (with a twin or
     /// pinned) by a new edge, when the model has seams: two of its neighbours are on a seam
-    /// and are not already joined through one of its triangles.
+    /// and are not already joined through one of its triangles; or it touches a junction's
+    /// copy, whose fill must keep the junction's facing (checked on the whole mesh).
     fn near_seam(&self, v: u32) -> bool {
-        if self.seams.twins.is_empty() {
+        if self.seams.twins.is_empty() && self.seams.copies.is_empty() {
             return false;
         }
         let mut seam = [u32::MAX; 2];
@@ -244,6 +246,14 @@ impl Region<'_> {
             for u in self.conn.triangle(t) {
                 if u == v || !self.seams.on_seam(u) || seam.contains(&u) {
                     continue;
+                }
+                if self
+                    .seams
+                    .copies
+                    .get(u as usize)
+                    .is_some_and(|&c| c != u32::MAX)
+                {
+                    return true; // a fill at a junction keeps its facing: on the whole mesh
                 }
                 if seam[0] != u32::MAX && seam[1] != u32::MAX {
                     return true; // a third

@@ -328,6 +328,9 @@ fn remove_planned(
         }
         let key = d.keys[v as usize];
         let planned = plans.tasks[task as usize].removal(entry as usize);
+        // A removal that drops a junction copy takes two vertices.
+        d.room = limits.remove.saturating_sub(outcome.removed);
+        let dropped_before = d.dropped;
         if let Some(w) = d.twin(v) {
             remove_twins(d, v, w, key, limits, outcome);
             continue;
@@ -339,7 +342,10 @@ fn remove_planned(
                 let stale = removal.ring.iter().any(|&u| d.touched_now(u));
                 if stale {
                     d.try_remove(v, key)
-                } else if fills && d.keeps_closed_volume(v, removal) {
+                } else if fills
+                    && d.keeps_closed_volume(v, removal)
+                    && d.dropped_copies(v, removal) < d.room
+                {
                     d.apply(v, removal, key);
                     true
                 } else {
@@ -349,7 +355,7 @@ fn remove_planned(
             None => d.try_remove(v, key),
         };
         if removed {
-            outcome.removed += 1;
+            outcome.removed += 1 + (d.dropped - dropped_before);
             outcome.max_error = outcome.max_error.max(key);
         } else {
             d.keys[v as usize] = f64::NAN; // kept until a neighbour goes
