@@ -26,22 +26,26 @@ def main():
         sys.exit(__doc__)
     vi, fi = read(sys.argv[1])
     vo, fo = read(sys.argv[2])
-    at = {tuple(p): i for i, p in enumerate(vi)}
-    to_input = np.array([at.get(tuple(p), -1) for p in vo])
-    if (to_input < 0).any():
-        sys.exit(f"{sys.argv[2]}: {int((to_input < 0).sum())} vertices are not input vertices")
-    incident = [[] for _ in vi]
+    # Every input vertex at a position counts (a scan may repeat a point in two places).
+    at = {}
+    for i, p in enumerate(vi):
+        at.setdefault(tuple(p), []).append(i)
+    missing = sum(tuple(p) not in at for p in vo)
+    if missing:
+        sys.exit(f"{sys.argv[2]}: {missing} vertices are not input vertices")
+    incident = {}
     for t, tri in enumerate(fi):
         for x in tri:
-            incident[x].append(t)
+            incident.setdefault(tuple(vi[x]), []).append(t)
     ni, no = unit_normals(vi, fi), unit_normals(vo, fo)
     flipped = 0
     for t, tri in enumerate(fo):
-        corners = to_input[tri]
-        best = max(float(no[t].dot(ni[s])) for x in corners for s in incident[x])
+        keys = [tuple(vo[x]) for x in tri]
+        best = max((float(no[t].dot(ni[s])) for k in keys for s in incident.get(k, [])), default=-1.0)
         if best <= 0.0:
             flipped += 1
-            print(f"triangle {t} (input vertices {corners.tolist()}): best cosine {best:.3f}")
+            corners = [at[k][0] for k in keys]
+            print(f"triangle {t} (input vertices {corners}): best cosine {best:.3f}")
     print(f"{sys.argv[2]}: {len(fo)} triangles, {flipped} flipped")
     sys.exit(1 if flipped else 0)
 

@@ -222,3 +222,73 @@ fn random_texture_charts_stay_closed_and_manifold_once_welded() {
         );
     }
 }
+
+/// Output triangles of a vertex removal (which keeps input positions) that face more than a
+/// right angle away from every input triangle at their three corners.
+fn turned_away(before: &Model, after: &Model) -> usize {
+    let key = |p: Vec3| p.to_array().map(f32::to_bits);
+    let normal = |p: [Vec3; 3]| (p[1] - p[0]).cross(p[2] - p[0]);
+    let mut incident: std::collections::HashMap<[u32; 3], Vec<Vec3>> = Default::default();
+    for t in &before.triangles {
+        let n = normal(t.map(|v| before.positions[v as usize])).normalize_or_zero();
+        for &v in t {
+            incident
+                .entry(key(before.positions[v as usize]))
+                .or_default()
+                .push(n);
+        }
+    }
+    after
+        .triangles
+        .iter()
+        .filter(|t| {
+            let n = normal(t.map(|v| after.positions[v as usize]));
+            let best = t
+                .iter()
+                .filter_map(|&v| incident.get(&key(after.positions[v as usize])))
+                .flatten()
+                .map(|m| n.dot(*m))
+                .fold(f32::NEG_INFINITY, f32::max);
+            best <= 0.0
+        })
+        .count()
+}
+
+#[test]
+fn vertex_removal_never_turns_a_triangle_away_from_the_input_at_all_its_corners() {
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let mut checked = 0;
+    for case in 0..240 {
+        let roughness = [0.02, 0.05, 0.1, 0.2, 0.4, 0.8][case % 6];
+        let mut model = if case % 2 == 0 {
+            shapes::uv_sphere(16 + rng.below(24) as u32, 24 + rng.below(40) as u32)
+        } else {
+            // A rough open sheet, like a scan: spacing 1, noise up to 8 times the roughness.
+            let n = 20 + rng.below(30) as u32;
+            let heights: Vec<f32> = (0..(n + 1) * (n + 1)).map(|_| rng.signed()).collect();
+            let sheet = shapes::height_grid(n, |x, y| heights[(y * (n + 1) + x) as usize]);
+            Model {
+                positions: sheet.positions.iter().map(|p| *p * 0.125).collect(),
+                ..sheet
+            }
+        };
+        for p in &mut model.positions {
+            *p += Vec3::new(rng.signed(), rng.signed(), rng.signed()) * roughness;
+        }
+        let before = model.clone();
+        let keep = before.triangles.len() * (1 + rng.below(20) as usize) / 100;
+        let after = run(
+            model,
+            Target::KeepTriangles(keep.max(8)),
+            30.0,
+            Algorithm::Schroeder,
+        );
+        let away = turned_away(&before, &after);
+        assert_eq!(
+            away, 0,
+            "case {case}: roughness {roughness}, {keep} triangles kept"
+        );
+        checked += after.triangles.len();
+    }
+    assert!(checked > 1000, "only {checked} triangles checked");
+}
