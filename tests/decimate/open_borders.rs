@@ -3,9 +3,9 @@
 //! hole keeps the hole where it was and its area (docs/design.md#qem-constraint-weight,
 //! docs/design.md#qem-border-placement).
 
+use crate::support::metro::compare_models;
 use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
 use decimate::mesh::{measure, Model, Scene};
-use decimate::metro::{compare, Options, Surface};
 use glam::Vec3;
 
 fn qem(model: &Model, target: Target) -> Model {
@@ -92,18 +92,8 @@ fn distance_to(p: Vec3, m: &Model, edges: &[[u32; 2]]) -> f32 {
 
 /// Symmetric mean distance between two models by metro, as a fraction of `a`'s diagonal.
 fn mean_error(a: &Model, b: &Model) -> f64 {
-    let surface = |m: &Model| {
-        Surface::from_scene(&Scene {
-            models: vec![m.clone()],
-        })
-    };
-    let options = Options {
-        samples: Some(200_000),
-        ..Options::default()
-    };
-    let c = compare(&surface(a), &surface(b), &options).expect("comparable surfaces");
-    let diagonal = a.bounds().map_or(0.0, |(lo, hi)| (hi - lo).length() as f64);
-    c.symmetric().mean / diagonal
+    let c = compare_models(a, b);
+    c.relative(c.symmetric().mean)
 }
 
 #[test]

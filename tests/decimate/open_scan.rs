@@ -4,9 +4,9 @@
 //! of the feature angle brings (docs/design.md#schroeder-relax-early), the outline kept
 //! (one border loop, the grid's whole footprint) and no triangle flipped.
 
+use crate::support::metro::compare_models;
 use decimate::decimate::{simplify_scene, Params, Report, Target};
 use decimate::mesh::{measure, shapes, Model, Scene};
-use decimate::metro::{compare, Options, Surface};
 
 use crate::support::rng::Rng;
 
@@ -37,16 +37,7 @@ fn decimate(model: &Model, keep: usize) -> (Model, Report) {
 
 /// Metro's symmetric mean error as a fraction of the bounding-box diagonal.
 fn mean_error(before: &Model, after: &Model) -> f64 {
-    let surface = |m: &Model| {
-        Surface::from_scene(&Scene {
-            models: vec![m.clone()],
-        })
-    };
-    let options = Options {
-        samples: Some(200_000),
-        ..Options::default()
-    };
-    let c = compare(&surface(before), &surface(after), &options).expect("comparable surfaces");
+    let c = compare_models(before, after);
     c.relative(c.symmetric().mean)
 }
 

@@ -3,9 +3,9 @@
 //! manifold, Euler characteristic and boundary loops unchanged), flat shapes kept exactly,
 //! an error bound respected, and a lower mean error than Schroeder's at the same size.
 
+use crate::support::metro::compare_models;
 use decimate::decimate::{simplify_scene, Algorithm, ErrorBound, Params, Report, Target};
 use decimate::mesh::{measure, shapes, Attribute, Model, Scene};
-use decimate::metro::{compare, Options, Surface};
 
 use crate::progressive::red_above_blue_below;
 
@@ -47,17 +47,7 @@ fn assert_invariants(before: &Model, after: &Model) {
 
 /// Symmetric mean and max distance between two models, measured by metro.
 fn distance(a: &Model, b: &Model) -> (f64, f64) {
-    let surface = |m: &Model| {
-        Surface::from_scene(&Scene {
-            models: vec![m.clone()],
-        })
-    };
-    let options = Options {
-        samples: Some(200_000),
-        ..Options::default()
-    };
-    let c = compare(&surface(a), &surface(b), &options).expect("comparable surfaces");
-    let s = c.symmetric();
+    let s = compare_models(a, b).symmetric();
     (s.mean, s.max)
 }
 

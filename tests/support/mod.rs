@@ -6,6 +6,7 @@
 #![allow(dead_code)]
 
 pub mod binary;
+pub mod metro;
 pub mod rng;
 pub mod shot;
 pub mod texture;
