@@ -28,29 +28,20 @@ fn qem(model: &Model, triangles: usize, feature_angle_deg: f64) -> Model {
 /// `noise`: a rough scan of a flat sheet.
 fn noisy_sheet(n: u32, noise: f32) -> Model {
     let mut rng = Rng(40);
-    let at = |i: u32, j: u32| i * (n + 1) + j;
-    let positions = (0..=n)
-        .flat_map(|i| (0..=n).map(move |j| (i, j)))
-        .map(|(i, j)| {
-            let z = rng.signed() * noise;
-            let inner = i > 0 && j > 0 && i < n && j < n;
-            Vec3::new(i as f32, j as f32, if inner { z } else { 0.0 })
-        })
+    let lift: Vec<f32> = (0..(n + 1) * (n + 1))
+        .map(|_| rng.signed() * noise)
         .collect();
-    let triangles = (0..n)
-        .flat_map(|i| (0..n).map(move |j| (i, j)))
-        .flat_map(|(i, j)| {
-            [
-                [at(i, j), at(i + 1, j), at(i + 1, j + 1)],
-                [at(i, j), at(i + 1, j + 1), at(i, j + 1)],
-            ]
-        })
-        .collect();
+    let inner = |i: u32, j: u32| i > 0 && j > 0 && i < n && j < n;
+    let sheet = shapes::height_grid(n, |i, j| {
+        if inner(i, j) {
+            lift[(i * (n + 1) + j) as usize]
+        } else {
+            0.0
+        }
+    });
     Model {
         name: "noisy sheet".into(),
-        positions,
-        triangles,
-        ..Model::default()
+        ..sheet
     }
 }
 

@@ -446,29 +446,8 @@ mod tests {
     /// An `n` × `n` sheet of unit squares in z = 0 whose inner vertices are lifted by
     /// `lift(i, j)`, each square split along one diagonal.
     fn sheet(n: u32, lift: impl Fn(u32, u32) -> f32) -> crate::mesh::Model {
-        let at = |i: u32, j: u32| i * (n + 1) + j;
-        let positions = (0..=n)
-            .flat_map(|i| (0..=n).map(move |j| (i, j)))
-            .map(|(i, j)| {
-                let inner = i > 0 && j > 0 && i < n && j < n;
-                let z = if inner { lift(i, j) } else { 0.0 };
-                Vec3::new(i as f32, j as f32, z)
-            })
-            .collect();
-        let triangles = (0..n)
-            .flat_map(|i| (0..n).map(move |j| (i, j)))
-            .flat_map(|(i, j)| {
-                [
-                    [at(i, j), at(i + 1, j), at(i + 1, j + 1)],
-                    [at(i, j), at(i + 1, j + 1), at(i, j + 1)],
-                ]
-            })
-            .collect();
-        crate::mesh::Model {
-            positions,
-            triangles,
-            ..Default::default()
-        }
+        let inner = |i: u32, j: u32| i > 0 && j > 0 && i < n && j < n;
+        shapes::height_grid(n, |i, j| if inner(i, j) { lift(i, j) } else { 0.0 })
     }
 
     /// The sum of `v`'s triangles' area-weighted planes: its quadric without constraints.
