@@ -43,7 +43,7 @@ mod region_removal;
 mod removal_passes;
 mod sheets;
 
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 use rayon::prelude::*;
 
 use super::closed::{tet6, ClosedVolumes};
@@ -199,8 +199,6 @@ struct Decimator {
     copies: Vec<u32>,
     /// Junction copies' starting normals (`mesh::seams::junction_normals`).
     facing: Vec<Vec3>,
-    /// Each vertex's normal on the input surface ([`original_normals`]).
-    normals: Vec<Vec3>,
     /// A seam removal's second side.
     twin_planning: Planning,
     /// The pass in which each vertex's ring last changed (a removal took it or a
@@ -235,7 +233,6 @@ impl Decimator {
         let n = positions.len();
         Self {
             closed: ClosedVolumes::new(&positions, &triangles),
-            normals: original_normals(&positions, &triangles),
             conn: Connectivity::from_triangles(n, triangles),
             positions,
             texcoords: None,
@@ -263,7 +260,6 @@ impl Decimator {
         Surface {
             conn: &self.conn,
             positions: &self.positions,
-            normals: &self.normals,
             texcoords: self.texcoords.as_deref(),
             cos_feature: self.cos_feature,
             seams: (!self.twins.is_empty() || !self.copies.is_empty()).then(|| self.seam_sides()),
@@ -633,33 +629,4 @@ fn removal_of(p: &Planning) -> Removal<'_> {
         triangles: &p.ring.triangles,
         fill: &p.fill,
     }
-}
-
-/// Each vertex's normal on the input surface: the sum of its triangles' area vectors,
-/// normalised; zero where they cancel to under a quarter of their total length (a fold, a
-/// fin, a non-manifold vertex), where no direction is the surface's.
-fn original_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec3> {
-    let mut sum = vec![(DVec3::ZERO, 0.0f64); positions.len()];
-    for tri in triangles {
-        if tri.iter().any(|&v| v as usize >= positions.len()) {
-            continue;
-        }
-        let [a, b, c] = tri.map(|v| positions[v as usize].as_dvec3());
-        let cross = (b - a).cross(c - a);
-        let length = cross.length();
-        for &v in tri {
-            let (s, total) = &mut sum[v as usize];
-            *s += cross;
-            *total += length;
-        }
-    }
-    sum.iter()
-        .map(|&(s, total)| {
-            if s.length() > 0.25 * total {
-                s.normalize_or_zero().as_vec3()
-            } else {
-                Vec3::ZERO
-            }
-        })
-        .collect()
 }

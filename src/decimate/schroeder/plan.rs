@@ -50,9 +50,6 @@ struct FillRegion {
 pub(super) struct Surface<'a, C> {
     pub conn: &'a C,
     pub positions: &'a [Vec3],
-    /// Each vertex's normal on the input surface (`original_normals`): zero where the
-    /// surface folds too much there to say.
-    pub normals: &'a [Vec3],
     /// One pair per vertex, when the model has texture coordinates.
     pub texcoords: Option<&'a [[f32; 2]]>,
     pub cos_feature: f64,
@@ -451,7 +448,7 @@ impl<C: Adjacency> Surface<'_, C> {
                     return false;
                 }
                 // A junction never moves: a triangle at one faces the way it faced.
-                if !self.faces_like_junction(cross, tri) || !self.faces_like_input(cross, tri) {
+                if !self.faces_like_junction(cross, tri) {
                     return false;
                 }
                 // A diagonal of the hole is in two fill triangles, once each way: looked
@@ -496,17 +493,6 @@ impl<C: Adjacency> Surface<'_, C> {
 
     /// Whether a triangle of normal `cross` at the corners `tri` faces, at each junction
     /// copy among them, the way the junction faced at the start (docs/design.md#texture-seams).
-    /// Whether a new triangle faces within a right angle of the input surface at one of
-    /// its corners at least: each fill is checked against the triangles it replaces, so
-    /// small turns could otherwise add up over many removals into a flipped triangle.
-    fn faces_like_input(&self, cross: DVec3, tri: &[u32; 3]) -> bool {
-        tri.iter().any(|&c| {
-            self.normals
-                .get(c as usize)
-                .is_none_or(|n| *n == Vec3::ZERO || cross.dot(n.as_dvec3()) > 0.0)
-        })
-    }
-
     fn faces_like_junction(&self, cross: DVec3, tri: &[u32; 3]) -> bool {
         self.seams.is_none_or(|seams| {
             tri.iter().all(|&c| {

@@ -39,8 +39,6 @@ struct Region<'a> {
     conn: ConnectivityPart<'a>,
     /// All of them: a removal moves no vertex.
     positions: &'a [Vec3],
-    /// All of them: the input surface's normals.
-    normals: &'a [Vec3],
     /// All of them, when the model has texture coordinates.
     texcoords: Option<&'a [[f32; 2]]>,
     /// Texture-seam twins and pinned vertices by vertex id, all of them (no twins when the
@@ -90,7 +88,6 @@ impl Decimator {
         let mut changed_in = split_mut(&mut self.changed_in, &starts).into_iter();
         let (positions, cos_feature, pass) = (&self.positions[..], self.cos_feature, self.pass);
         let texcoords = self.texcoords.as_deref();
-        let normals = &self.normals[..];
         let seams = SeamSides {
             twins: &self.twins,
             pinned: &self.pinned,
@@ -108,7 +105,6 @@ impl Decimator {
                     v0,
                     conn,
                     positions,
-                    normals,
                     texcoords,
                     seams,
                     cos_feature,
@@ -165,7 +161,6 @@ impl Region<'_> {
             let surface = Surface {
                 conn: &self.conn,
                 positions: self.positions,
-                normals: self.normals,
                 texcoords: self.texcoords,
                 cos_feature: self.cos_feature,
                 seams: None,
