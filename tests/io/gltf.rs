@@ -92,6 +92,21 @@ impl Doc {
         self.accessor(&bytes, FLOAT, kind, values.len() / width, false)
     }
 
+    /// A VEC3 float accessor with the `min` and `max` a POSITION accessor needs.
+    pub(crate) fn positions(&mut self, xyz: &[f32]) -> usize {
+        let a = self.floats(xyz, "VEC3", 3);
+        let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+        for p in xyz.chunks(3) {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        self.json["accessors"][a]["min"] = json!(lo);
+        self.json["accessors"][a]["max"] = json!(hi);
+        a
+    }
+
     /// A mesh of the given primitives, placed by a new root node with `node` fields.
     pub(crate) fn mesh_node(&mut self, primitives: Vec<Value>, node: Value) -> usize {
         let mesh = self.push("meshes", json!({ "primitives": primitives }));

@@ -30,7 +30,7 @@ fn wavy_grid(d: &mut Doc, n: u32) -> Value {
             idx.extend_from_slice(&[a, a + 1, a + n + 2, a, a + n + 2, a + n + 1]);
         }
     }
-    let position = bounded_positions(d, &pos);
+    let position = d.positions(&pos);
     let uv: Vec<f32> = pos
         .chunks(3)
         .flat_map(|p| [p[0] / n as f32, p[1] / n as f32])
@@ -42,21 +42,6 @@ fn wavy_grid(d: &mut Doc, n: u32) -> Value {
             "material": 0 })
 }
 
-/// A VEC3 float accessor with the `min` and `max` a POSITION accessor needs.
-fn bounded_positions(d: &mut Doc, xyz: &[f32]) -> usize {
-    let a = d.floats(xyz, "VEC3", 3);
-    let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
-    for p in xyz.chunks(3) {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    d.json["accessors"][a]["min"] = json!(lo);
-    d.json["accessors"][a]["max"] = json!(hi);
-    a
-}
-
 /// A 10 × 10 grid (121 vertices, 200 triangles) with a LINES primitive outlining a frame
 /// above it, a perspective camera and a point light on their own nodes, extras everywhere
 /// the writer writes them, a material extension without a texture (carried), one with a
@@ -65,7 +50,7 @@ fn scene_with_everything() -> Doc {
     let mut d = Doc::new();
     let triangles = wavy_grid(&mut d, 10);
     let frame = [0., 0., 1., 10., 0., 1., 10., 10., 1., 0., 10., 1.];
-    let position = bounded_positions(&mut d, &frame);
+    let position = d.positions(&frame);
     let corners: Vec<u8> = [0u16, 1, 1, 2, 2, 3, 3, 0]
         .iter()
         .flat_map(|i| i.to_le_bytes())
@@ -356,7 +341,7 @@ fn lines_in_a_mesh_without_triangles_come_back_on_their_node() {
     d.json["materials"] = json!([{}]);
     d.mesh_node(vec![grid], json!({ "name": "ground" }));
     let strip = [0., 0., 2., 1., 0., 2., 2., 1., 2.];
-    let position = bounded_positions(&mut d, &strip);
+    let position = d.positions(&strip);
     d.mesh_node(
         vec![json!({ "attributes": { "POSITION": position }, "mode": 3 })],
         json!({ "name": "path", "translation": [0, 0, 1] }),
@@ -393,7 +378,7 @@ fn lines_in_a_mesh_without_triangles_come_back_on_their_node() {
 fn a_damaged_lines_primitive_is_an_error_naming_it_not_a_damaged_output() {
     let mut d = Doc::new();
     let grid = wavy_grid(&mut d, 2);
-    let position = bounded_positions(&mut d, &[0., 0., 1., 1., 0., 1.]);
+    let position = d.positions(&[0., 0., 1., 1., 0., 1.]);
     let corners: Vec<u8> = [0u16, 9].iter().flat_map(|i| i.to_le_bytes()).collect();
     let indices = d.accessor(&corners, USHORT, "SCALAR", 2, false);
     let lines = json!({ "attributes": { "POSITION": position }, "indices": indices, "mode": 1 });

@@ -37,26 +37,10 @@ fn grid_primitive(d: &mut Doc, n: usize) -> Value {
             idx.extend_from_slice(&[a, b, c, a, c, e]);
         }
     }
-    let position = positions(d, &pos);
+    let position = d.positions(&pos);
     let bytes: Vec<u8> = idx.iter().flat_map(|i| i.to_le_bytes()).collect();
     let indices = d.accessor(&bytes, UINT, "SCALAR", idx.len(), false);
     json!({ "attributes": { "POSITION": position }, "indices": indices })
-}
-
-/// A VEC3 float accessor with the `min` and `max` POSITION accessors need.
-fn positions(d: &mut Doc, xyz: &[f32]) -> usize {
-    let a = d.floats(xyz, "VEC3", 3);
-    let mut lo = [f32::INFINITY; 3];
-    let mut hi = [f32::NEG_INFINITY; 3];
-    for p in xyz.chunks(3) {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    d.json["accessors"][a]["min"] = json!(lo);
-    d.json["accessors"][a]["max"] = json!(hi);
-    a
 }
 
 /// Runs `decimate ARGS` in `dir`; its stderr, after checking that it succeeded.
@@ -285,8 +269,8 @@ fn skinned_and_morphed() -> Doc {
     skinned["attributes"]["JOINTS_0"] = json!(joints);
     skinned["attributes"]["WEIGHTS_0"] = json!(weights);
     let body = d.push("meshes", json!({ "name": "body", "primitives": [skinned] }));
-    let base = positions(&mut d, &[0., 0., 0., 1., 0., 0., 0., 1., 0.]);
-    let delta = positions(&mut d, &[0., 0., 1., 0., 0., 0.5, 0., 0., 0.]);
+    let base = d.positions(&[0., 0., 0., 1., 0., 0., 0., 1., 0.]);
+    let delta = d.positions(&[0., 0., 1., 0., 0., 0.5, 0., 0., 0.]);
     // A sparse target: zeros but for vertex 2, lifted by 0.75.
     let (si, sv) = (d.view(&[2]), d.view(&0.75f32.to_le_bytes().repeat(3)));
     let sparse = d.push(
