@@ -23,8 +23,10 @@
 //! 4. remove (`removal_passes`): in passes over the cheapest share of the candidates, in key order:
 //!    remove each, filling its hole by recursive loop splitting (`loop_split`, planned in
 //!    `plan`), keeping creases (an interior-edge vertex's loop is first split along its
-//!    feature edge; a complex vertex's fans are filled one by one) and rejecting fills that flip or degenerate a triangle, create an edge
-//!    that already exists (non-manifold) or turn a closed shape inside out or flat
+//!    feature edge; a complex vertex's fans are filled one by one) and rejecting fills that
+//!    flip (against the current mesh and the input surface, `input_surface`) or degenerate
+//!    a triangle, create an edge that already exists (non-manifold) or turn a closed shape
+//!    inside out or flat
 //!    (`decimate::closed`) — such a vertex is kept until a neighbour goes; a
 //!    vertex whose ring a removal changed waits for the next pass, re-ranked at the end of
 //!    this one; removals run in regions on all cores (`region_removal`) while a round of them
@@ -37,6 +39,7 @@
 //! loop's splitting more, bounded by the valence cap of `mesh::topology`), a pass O(n) to
 //! select its candidates, and a scan takes a dozen or so passes.
 
+mod input_surface;
 pub mod loop_split;
 mod plan;
 mod region_removal;
@@ -53,6 +56,7 @@ use crate::mesh::classify::{classify, VertexClass};
 use crate::mesh::seams::position_key;
 use crate::mesh::topology::{Adjacency, Connectivity};
 use crate::mesh::{Attribute, Model};
+use input_surface::{InputCorners, InputSurface};
 use plan::{is_ring_end, Planning, SeamSides, Surface};
 
 /// How much the feature angle grows each time a count target could not otherwise be met.
@@ -182,6 +186,11 @@ struct Decimator {
     /// the texture too.
     texcoords: Option<Vec<[f32; 2]>>,
     conn: Connectivity,
+    /// Per triangle slot, the summed area vectors of the input triangles it stands for
+    /// (`plan::InputSurface`): a fill faces within 90° of what it replaces in the input.
+    input: Vec<Vec3>,
+    /// The input triangles at each vertex: a fill faces one of them at one of its corners.
+    corners: InputCorners,
     /// Error already accumulated around each vertex by earlier removals.
     accumulated: Vec<f64>,
     /// Each vertex's key (decimation criterion plus accumulated error), `NaN` when it is no
@@ -226,13 +235,18 @@ struct Removal<'a> {
     ring: &'a [u32],
     triangles: &'a [u32],
     fill: &'a [[u32; 3]],
+    /// Per fill triangle, the input surface it stands for.
+    fill_input: &'a [Vec3],
 }
 
 impl Decimator {
     fn new(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>, feature_angle_deg: f64) -> Self {
         let n = positions.len();
+        let areas = input_surface::area_vectors(&positions, &triangles);
         Self {
             closed: ClosedVolumes::new(&positions, &triangles),
+            input: areas.clone(),
+            corners: InputCorners::new(n, &triangles, areas),
             conn: Connectivity::from_triangles(n, triangles),
             positions,
             texcoords: None,
@@ -263,6 +277,11 @@ impl Decimator {
             texcoords: self.texcoords.as_deref(),
             cos_feature: self.cos_feature,
             seams: (!self.twins.is_empty() || !self.copies.is_empty()).then(|| self.seam_sides()),
+            input: InputSurface {
+                t0: 0,
+                vectors: &self.input,
+            },
+            corners: &self.corners,
         }
     }
 
@@ -406,8 +425,13 @@ impl Decimator {
         for &t in removal.triangles {
             self.conn.remove_triangle(t);
         }
-        for &tri in removal.fill {
-            self.conn.add_triangle(tri);
+        debug_assert_eq!(removal.fill.len(), removal.fill_input.len());
+        for (&tri, &input) in removal.fill.iter().zip(removal.fill_input) {
+            let t = self.conn.add_triangle(tri) as usize;
+            if t >= self.input.len() {
+                self.input.resize(t + 1, Vec3::ZERO);
+            }
+            self.input[t] = input;
         }
         self.mark_changed(v);
         for &u in removal.ring {
@@ -628,5 +652,6 @@ fn removal_of(p: &Planning) -> Removal<'_> {
         ring: &p.ring.verts,
         triangles: &p.ring.triangles,
         fill: &p.fill,
+        fill_input: &p.fill_input,
     }
 }

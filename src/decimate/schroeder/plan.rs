@@ -5,6 +5,7 @@
 
 use glam::{DVec2, DVec3, Vec3};
 
+use super::input_surface::{InputCorners, InputSurface};
 use super::loop_split;
 use super::sheets::{self, Sheets};
 use crate::mesh::classify::{classify, classify_ring, RingGeometry, VertexClass};
@@ -25,6 +26,8 @@ pub(super) struct Planning {
     pub geometry: RingGeometry,
     /// The triangles that fill the hole.
     pub fill: Vec<[u32; 3]>,
+    /// Per triangle of `fill`: the input surface it stands for (see [`InputSurface`]).
+    pub fill_input: Vec<Vec3>,
     /// Which ring triangles each stretch of `fill` replaces: one region for a closed or open
     /// ring, one per side of a crease.
     regions: Vec<FillRegion>,
@@ -32,6 +35,8 @@ pub(super) struct Planning {
     triangulation: loop_split::SplitBuffers,
     /// A complex vertex's fans (`sheets`).
     sheets: Sheets,
+    /// The fans' fills' input surfaces, gathered while each fan is filled.
+    sheets_input: Vec<Vec3>,
     /// A ring closed at a seam junction (`Surface::close_at_junction`): the copy left out.
     junction: Option<u32>,
 }
@@ -56,6 +61,9 @@ pub(super) struct Surface<'a, C> {
     /// The two sides of texture seams, on the whole mesh when the model has any; `None` in
     /// a region, which leaves removals next to a seam to the whole mesh.
     pub seams: Option<SeamSides<'a>>,
+    /// The input surface each triangle slot stands for, and the input at each vertex.
+    pub input: InputSurface<'a>,
+    pub corners: &'a InputCorners,
 }
 
 /// Each seam vertex's other side (`u32::MAX`: none) and the pinned vertices (seam
@@ -267,6 +275,8 @@ impl<C: Adjacency> Surface<'_, C> {
     fn fill_sheets(&self, v: u32, p: &mut Planning) -> bool {
         let mut fill = std::mem::take(&mut p.sheets.fill);
         fill.clear();
+        let mut input = std::mem::take(&mut p.sheets_input);
+        input.clear();
         let mut ok = true;
         let (mut filled_across, mut flaps) = (0, 0);
         for i in 0..p.sheets.count() {
@@ -297,12 +307,15 @@ impl<C: Adjacency> Surface<'_, C> {
                 break;
             }
             fill.extend_from_slice(&p.fill);
+            input.extend_from_slice(&p.fill_input);
         }
         // Dropping a flap leaves its edge a–b to the other fans: two or more, or it would
         // open a border.
         ok &= flaps == 0 || filled_across >= 2;
         std::mem::swap(&mut p.fill, &mut fill);
         p.sheets.fill = fill;
+        std::mem::swap(&mut p.fill_input, &mut input);
+        p.sheets_input = input;
         p.regions.clear();
         p.ring.verts.clear();
         p.ring.verts.extend(p.sheets.neighbours());
@@ -406,11 +419,22 @@ impl<C: Adjacency> Surface<'_, C> {
         true
     }
 
-    /// The fill must not flip or degenerate a triangle and must not create an edge that
-    /// already exists elsewhere (the result would be non-manifold). A new triangle is
+    /// The fill must not flip or degenerate a triangle (against the old triangles and the
+    /// input surface they stand for) and must not create an edge that already exists
+    /// elsewhere (the result would be non-manifold); each new triangle's share of the input
+    /// surface goes to `p.fill_input`. A new triangle is
     /// compared with the old triangles of its own region only: across a crease the two sides
     /// may face apart by up to 180°.
-    fn fill_is_valid(&self, v: u32, p: &Planning) -> bool {
+    fn fill_is_valid(&self, v: u32, p: &mut Planning) -> bool {
+        let mut fill_input = std::mem::take(&mut p.fill_input);
+        fill_input.clear();
+        let valid = self.fill_checks(v, p, &mut fill_input);
+        p.fill_input = fill_input;
+        valid
+    }
+
+    /// [`Self::fill_is_valid`]'s checks; each fill triangle's input surface into `fill_input`.
+    fn fill_checks(&self, v: u32, p: &Planning, fill_input: &mut Vec<Vec3>) -> bool {
         let r = &p.ring.verts;
         let k = r.len();
         let closed = k == p.ring.triangles.len();
@@ -425,13 +449,19 @@ impl<C: Adjacency> Surface<'_, C> {
             d == 1 || (closed && d == k - 1)
         };
         let crosses = &p.geometry.crosses;
+        let slots = &p.ring.triangles;
         let mut start = 0;
         for &region in &p.regions {
-            // Normal of the old region: the sum of its ring triangles' area vectors.
+            // Normal of the old region: the sum of its ring triangles' area vectors; and
+            // the input surface they stand for.
             let old: DVec3 = (region.from..region.to).map(|i| crosses[i % k]).sum();
+            let input: DVec3 = (region.from..region.to)
+                .map(|i| self.input.of(slots[i % k]))
+                .sum();
             if !self.fill_keeps_texture(v, p, region, &p.fill[start..region.end]) {
                 return false;
             }
+            let mut area = 0.0;
             for tri in &p.fill[start..region.end] {
                 let [a, b, c] = tri.map(|i| self.position(i));
                 let cross = (b - a).cross(c - a);
@@ -447,6 +477,14 @@ impl<C: Adjacency> Surface<'_, C> {
                 if cross.dot(old) <= 0.0 || !faces_like_old(p, cross, tri, region) {
                     return false;
                 }
+                // Nor against the input surface (what the region stands for, and some
+                // input triangle at a corner): checks against the current triangles alone
+                // let turns add up over removals in a row.
+                if cross.dot(input) <= 0.0 || !self.corners.faces(cross, tri) {
+                    return false;
+                }
+                area += cross.length();
+                fill_input.push(Vec3::splat(cross.length() as f32));
                 // A junction never moves: a triangle at one faces the way it faced.
                 if !self.faces_like_junction(cross, tri) {
                     return false;
@@ -471,9 +509,43 @@ impl<C: Adjacency> Surface<'_, C> {
                     }
                 }
             }
+            self.share_input(
+                p,
+                region,
+                &p.fill[start..region.end],
+                input,
+                area,
+                &mut fill_input[start..region.end],
+            );
             start = region.end;
         }
         true
+    }
+
+    /// Gives each new triangle of `region` (`fill`, the lengths of whose area vectors are in
+    /// `shares`, `area` in all) its share of the input surface the region's old slots stand
+    /// for, `input` in all: half by area, half the input of the old triangles whose outer edge
+    /// it takes (each old triangle's outer edge is in one new triangle), so the total is kept
+    /// and stays local (docs/design.md#schroeder-input-surface).
+    fn share_input(
+        &self,
+        p: &Planning,
+        region: FillRegion,
+        fill: &[[u32; 3]],
+        input: DVec3,
+        area: f64,
+        shares: &mut [Vec3],
+    ) {
+        let (r, slots) = (&p.ring.verts, &p.ring.triangles);
+        let k = r.len();
+        for (tri, share) in fill.iter().zip(shares) {
+            let near: DVec3 = (region.from..region.to)
+                .map(|i| i % k)
+                .filter(|&i| tri.contains(&r[i]) && tri.contains(&r[(i + 1) % k]))
+                .map(|i| self.input.of(slots[i]))
+                .sum();
+            *share = (input * (0.5 * f64::from(share.x) / area) + 0.5 * near).as_vec3();
+        }
     }
 
     /// Whether a new edge `x`–`y` inside one side of a texture seam would meet an edge of

@@ -20,6 +20,7 @@ use std::collections::HashMap;
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::input_surface::{InputCorners, InputSurface};
 use super::plan::{Planning, SeamSides, Surface};
 use super::{volume_change, waits, Decimator, HELD};
 use crate::decimate::candidates::Candidate;
@@ -45,6 +46,11 @@ struct Region<'a> {
     /// model has no seams).
     seams: SeamSides<'a>,
     cos_feature: f64,
+    /// The input surface of the region's triangle slots, from slot `t0`.
+    input: &'a mut [Vec3],
+    t0: u32,
+    /// The input triangles at each vertex, all of them.
+    corners: &'a InputCorners,
     keys: &'a mut [f64],
     accumulated: &'a mut [f64],
     changed_in: &'a mut [u32],
@@ -86,6 +92,8 @@ impl Decimator {
         let mut keys = split_mut(&mut self.keys, &starts).into_iter();
         let mut accumulated = split_mut(&mut self.accumulated, &starts).into_iter();
         let mut changed_in = split_mut(&mut self.changed_in, &starts).into_iter();
+        let slot_starts: Vec<usize> = regions.slot_starts.iter().map(|&t| t as usize).collect();
+        let mut input = split_mut(&mut self.input, &slot_starts).into_iter();
         let (positions, cos_feature, pass) = (&self.positions[..], self.cos_feature, self.pass);
         let texcoords = self.texcoords.as_deref();
         let seams = SeamSides {
@@ -95,12 +103,13 @@ impl Decimator {
             facing: &self.facing,
         };
         let closed = &self.closed;
+        let corners = &self.corners;
         let parts: Vec<Region<'_>> = self
             .conn
             .split(&regions.vertex_starts, &regions.slot_starts)
             .into_iter()
-            .zip(&regions.vertex_starts)
-            .filter_map(|(conn, &v0)| {
+            .zip(regions.vertex_starts.iter().zip(&regions.slot_starts))
+            .filter_map(|(conn, (&v0, &t0))| {
                 Some(Region {
                     v0,
                     conn,
@@ -108,6 +117,9 @@ impl Decimator {
                     texcoords,
                     seams,
                     cos_feature,
+                    input: input.next()?,
+                    t0,
+                    corners,
                     keys: keys.next()?,
                     accumulated: accumulated.next()?,
                     changed_in: changed_in.next()?,
@@ -164,6 +176,11 @@ impl Region<'_> {
                 texcoords: self.texcoords,
                 cos_feature: self.cos_feature,
                 seams: None,
+                input: InputSurface {
+                    t0: self.t0,
+                    vectors: self.input,
+                },
+                corners: self.corners,
             };
             let i = self.at(v);
             if surface.plan_removal(v, &mut self.planning).is_some() && self.keeps_closed_volume(v)
@@ -323,6 +340,14 @@ impl Region<'_> {
         let planning = std::mem::take(&mut self.planning);
         self.conn
             .replace_triangles(&planning.ring.triangles, &planning.fill);
+        // As `replace_triangles` reuses the slots: fill[i] in old[old.len() - 1 - i].
+        debug_assert_eq!(planning.fill.len(), planning.fill_input.len());
+        let old = planning.ring.triangles.iter().rev();
+        for (&t, &input) in old.zip(&planning.fill_input) {
+            if let Some(slot) = self.input.get_mut(t.wrapping_sub(self.t0) as usize) {
+                *slot = input;
+            }
+        }
         self.mark_changed(v);
         for &u in &planning.ring.verts {
             let i = self.at(u);

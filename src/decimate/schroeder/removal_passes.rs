@@ -16,6 +16,7 @@
 //! its checks read), so every removal is made as if planned in its turn. The result is the
 //! same on any number of cores, and the count stops exactly at the target.
 
+use glam::Vec3;
 use rayon::prelude::*;
 
 use super::plan::Planning;
@@ -67,6 +68,8 @@ struct Plans {
     ring: Vec<u32>,
     triangles: Vec<u32>,
     fill: Vec<[u32; 3]>,
+    /// Per fill triangle, the input surface it stands for (as long as `fill`).
+    fill_input: Vec<Vec3>,
 }
 
 impl Plans {
@@ -85,6 +88,7 @@ impl Plans {
                     ring: &self.ring[s0..e0],
                     triangles: &self.triangles[s1..e1],
                     fill: &self.fill[s2..e2],
+                    fill_input: &self.fill_input[s2..e2],
                 };
                 Some((removal, fills))
             }
@@ -278,6 +282,7 @@ fn plan_batch(d: &Decimator, batch: &[Candidate], order: &mut Vec<u32>) -> Batch
                     if fills {
                         plans.triangles.extend_from_slice(&planning.ring.triangles);
                         plans.fill.extend_from_slice(&planning.fill);
+                        plans.fill_input.extend_from_slice(&planning.fill_input);
                     }
                     let ends = plans.offsets();
                     Planned::Ring {
