@@ -38,6 +38,9 @@ pub(super) struct InputCorners {
     offsets: Vec<u32>,
     triangles: Vec<u32>,
     areas: Vec<Vec3>,
+    /// Per vertex, its input triangles' area vectors summed: facing within 90° of the sum
+    /// faces so of one of them, which is all most checks need to read.
+    sums: Vec<Vec3>,
 }
 
 impl InputCorners {
@@ -51,6 +54,12 @@ impl InputCorners {
         for v in 0..vertex_count {
             offsets[v + 1] += offsets[v];
         }
+        let mut sums = vec![DVec3::ZERO; vertex_count];
+        for (t, a) in triangles.iter().zip(&areas) {
+            for &v in t {
+                sums[v as usize] += a.as_dvec3();
+            }
+        }
         let mut next = offsets.clone();
         let mut at = vec![0u32; offsets[vertex_count] as usize];
         for (i, t) in triangles.iter().enumerate() {
@@ -63,6 +72,7 @@ impl InputCorners {
             offsets,
             triangles: at,
             areas,
+            sums: sums.iter().map(|s| s.as_vec3()).collect(),
         }
     }
 
@@ -72,16 +82,22 @@ impl InputCorners {
         if self.offsets.is_empty() {
             return true;
         }
-        tri.iter().any(|&v| {
-            let (Some(&from), Some(&to)) = (
-                self.offsets.get(v as usize),
-                self.offsets.get(v as usize + 1),
-            ) else {
-                return false;
-            };
-            self.triangles[from as usize..to as usize]
-                .iter()
-                .any(|&t| cross.dot(self.areas[t as usize].as_dvec3()) > 0.0)
-        })
+        let by_sum = |v: u32| {
+            self.sums
+                .get(v as usize)
+                .is_some_and(|s| cross.dot(s.as_dvec3()) > 0.0)
+        };
+        tri.iter().any(|&v| by_sum(v))
+            || tri.iter().any(|&v| {
+                let (Some(&from), Some(&to)) = (
+                    self.offsets.get(v as usize),
+                    self.offsets.get(v as usize + 1),
+                ) else {
+                    return false;
+                };
+                self.triangles[from as usize..to as usize]
+                    .iter()
+                    .any(|&t| cross.dot(self.areas[t as usize].as_dvec3()) > 0.0)
+            })
     }
 }
