@@ -51,6 +51,8 @@ struct Region<'a> {
     t0: u32,
     /// The input triangles at each vertex, all of them.
     corners: &'a InputCorners,
+    /// Whether folds may be removed (`Surface::unfold`).
+    unfold: bool,
     keys: &'a mut [f64],
     accumulated: &'a mut [f64],
     changed_in: &'a mut [u32],
@@ -95,6 +97,7 @@ impl Decimator {
         let slot_starts: Vec<usize> = regions.slot_starts.iter().map(|&t| t as usize).collect();
         let mut input = split_mut(&mut self.input, &slot_starts).into_iter();
         let (positions, cos_feature, pass) = (&self.positions[..], self.cos_feature, self.pass);
+        let unfold = self.unfold;
         let texcoords = self.texcoords.as_deref();
         let seams = SeamSides {
             twins: &self.twins,
@@ -120,6 +123,7 @@ impl Decimator {
                     input: input.next()?,
                     t0,
                     corners,
+                    unfold,
                     keys: keys.next()?,
                     accumulated: accumulated.next()?,
                     changed_in: changed_in.next()?,
@@ -175,6 +179,7 @@ impl Region<'_> {
                 positions: self.positions,
                 texcoords: self.texcoords,
                 cos_feature: self.cos_feature,
+                unfold: self.unfold,
                 seams: None,
                 input: InputSurface {
                     t0: self.t0,
