@@ -145,13 +145,13 @@ trait WithScales {
 }
 
 impl WithScales for Vec<FacePlane> {
-    /// Each plane's `scale` from the mean area of the triangles that have one.
+    /// Each plane's `scale` from the mean area of the triangles that have one (summed in
+    /// order, so the result is the same on any number of cores).
     fn with_scales(mut self) -> Self {
         let (sum, count) = self
-            .par_iter()
+            .iter()
             .filter(|p| p.area > 0.0)
-            .map(|p| (p.area, 1usize))
-            .reduce(|| (0.0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+            .fold((0.0, 0usize), |(s, n), p| (s + p.area, n + 1));
         if count > 0 {
             let mean = sum / count as f64;
             self.par_iter_mut()
