@@ -481,10 +481,11 @@ mod tests {
 
     /// The sum of `v`'s triangles' area-weighted planes: its quadric without constraints.
     fn face_quadric(model: &crate::mesh::Model, v: u32) -> Quadric {
+        let conn = Connectivity::new(model.positions.len(), &model.triangles);
+        let planes = face_planes(&conn, &model.positions);
         let mut sum = Quadric::default();
-        for t in model.triangles.iter().filter(|t| t.contains(&v)) {
-            let [a, b, c] = t.map(|w| model.positions[w as usize].as_dvec3());
-            if let Some(q) = FacePlane::of(a, b, c).quadric() {
+        for &t in conn.incident(v) {
+            if let Some(q) = planes[t as usize].quadric() {
                 sum.add(&q);
             }
         }
