@@ -510,3 +510,34 @@ fn assert_flat_sheet_kept(before: &Model, after: &Model) {
     assert_eq!(e1.misoriented, 0);
     assert!((measure::area(after) - 1.0).abs() < 1e-6);
 }
+
+//   A flat 4×4 sheet with one inner vertex v pulled over its ring's edge a-b, as
+//   reconstructed scans leave them: the triangle v-a-b faces down, folded back under the
+//   others (seen from above, v lies outside its own ring):
+//
+//      +---+---+---b-+-+
+//      |   |   | / | v |
+//      +---+---+---a---+
+//
+// No fill of v's ring (nor of a's or b's) faces like both sides of the fold, so all three
+// were kept for ever. Once nothing else can go the folded triangle is left out of the flip
+// check (at 180°, where no edge is a feature): lossless steps leave the sheet's four
+// corners and two triangles, every one facing up, the area the unit square's.
+#[test]
+fn vertex_removal_takes_out_a_fold_in_a_flat_sheet() {
+    let mut b = Builder::default();
+    b.grid(4, |i, j| match (i, j) {
+        (2, 2) => Vec3::new(0.8, 0.6, 0.0),
+        _ => grid(i, j, 0.0),
+    });
+    let before = b.build("folded sheet");
+    let down = planes(&before).iter().filter(|(n, _)| n.z < 0.0).count();
+    assert_eq!((counts(&before), down), ((25, 32, 0), 1));
+    let params = Params {
+        feature_angle_deg: 180.0,
+        ..lossless_by(Algorithm::Schroeder)
+    };
+    let after = run(before.clone(), &params);
+    assert_eq!(counts(&after), (4, 2, 0));
+    assert_flat_sheet_kept(&before, &after);
+}

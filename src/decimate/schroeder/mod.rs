@@ -105,6 +105,7 @@ pub fn decimate_model(
         .then(|| ClosedVolumes::with_seams(&positions, &triangles, &twins, &copies));
     let facing = crate::mesh::seams::junction_normals(&positions, &triangles, &copies);
     let mut d = Decimator::new(positions, triangles, limits.feature_angle_deg);
+    d.unfold = sheets::any_non_manifold_edge(&d.conn, d.positions.len());
     d.facing = facing;
     if let Some(closed) = seamed_closed {
         d.closed = closed;
@@ -189,6 +190,10 @@ struct Decimator {
     /// neighbour goes).
     keys: Vec<f64>,
     cos_feature: f64,
+    /// Whether folded rings may be filled (`plan::Surface::unfold`): from the start on a
+    /// mesh with non-manifold edges, else once the candidates first run out
+    /// (docs/design.md#schroeder-folds).
+    unfold: bool,
     planning: Planning,
     /// Vertices never removed: texture seams and shared borders.
     pinned: Vec<bool>,
@@ -239,6 +244,7 @@ impl Decimator {
             accumulated: vec![0.0; n],
             keys: vec![f64::NAN; n],
             cos_feature: feature_angle_deg.to_radians().cos(),
+            unfold: false,
             planning: Planning::default(),
             pinned: vec![false; n],
             twins: Vec::new(),
@@ -262,6 +268,7 @@ impl Decimator {
             positions: &self.positions,
             texcoords: self.texcoords.as_deref(),
             cos_feature: self.cos_feature,
+            unfold: self.unfold,
             seams: (!self.twins.is_empty() || !self.copies.is_empty()).then(|| self.seam_sides()),
         }
     }

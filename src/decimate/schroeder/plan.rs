@@ -53,6 +53,9 @@ pub(super) struct Surface<'a, C> {
     /// One pair per vertex, when the model has texture coordinates.
     pub texcoords: Option<&'a [[f32; 2]]>,
     pub cos_feature: f64,
+    /// Whether a folded ring may be filled: split along its sharpest turns, its triangles
+    /// folded back against it left out of the flip check (docs/design.md#schroeder-folds).
+    pub unfold: bool,
     /// The two sides of texture seams, on the whole mesh when the model has any; `None` in
     /// a region, which leaves removals next to a seam to the whole mesh.
     pub seams: Option<SeamSides<'a>>,
@@ -125,6 +128,12 @@ impl<C: Adjacency> Surface<'_, C> {
                 ring,
                 &mut p.geometry,
             );
+        }
+        // A folded ring cannot be filled in one piece: a crease along its sharpest turns.
+        if class == VertexClass::Simple && self.unfold {
+            if let Some((first, second)) = fold_line(&p.geometry) {
+                class = VertexClass::InteriorEdge { first, second };
+            }
         }
         let at = self.position(v);
         let verts = &p.ring.verts;
@@ -444,7 +453,9 @@ impl<C: Adjacency> Surface<'_, C> {
                 }
                 // Flip test against the old triangles this one covers: it must face the same
                 // way as at least the region as a whole and as the nearest old triangle.
-                if cross.dot(old) <= 0.0 || !faces_like_old(p, cross, tri, region) {
+                if cross.dot(old) <= 0.0
+                    || !faces_like_old(p, cross, tri, region, self.unfold.then_some(old))
+                {
                     return false;
                 }
                 // A junction never moves: a triangle at one faces the way it faced.
@@ -607,15 +618,132 @@ pub(super) fn is_ring_end(r: &[u32], x: u32) -> bool {
 }
 
 /// A new triangle faces like the old ring triangles of its region that share one of its
-/// vertices.
-fn faces_like_old(p: &Planning, cross: DVec3, tri: &[u32; 3], region: FillRegion) -> bool {
+/// vertices; given the region's summed normal `unfold`, those folded back against it (more
+/// than 120° away) aside: the fill removes such a fold, and no fill could face like both
+/// sides of it (docs/design.md#schroeder-folds).
+fn faces_like_old(
+    p: &Planning,
+    cross: DVec3,
+    tri: &[u32; 3],
+    region: FillRegion,
+    unfold: Option<DVec3>,
+) -> bool {
     let r = &p.ring.verts;
     let k = r.len();
     let crosses = &p.geometry.crosses;
+    let apart = |a: DVec3, b: DVec3| a.dot(b) <= FOLD_COS * a.length() * b.length();
     (region.from..region.to).all(|i| {
         let (i, c) = (i % k, crosses[i % k]);
         let next = if i + 1 == k { r[0] } else { r[i + 1] };
         let touches = tri.contains(&r[i]) || tri.contains(&next);
-        !touches || cross.dot(c) > -0.5 * cross.length() * c.length()
+        !touches || unfold.is_some_and(|old| apart(c, old)) || !apart(cross, c)
     })
+}
+
+/// Two ring triangles facing more than 120° apart: the bound of the fill's flip check
+/// (`faces_like_old`), past which no single fill can face like both.
+const FOLD_COS: f64 = -0.5;
+
+/// When the closed ring in `geometry` folds (two of its triangles face more than 120°
+/// apart), its two sharpest turns (ring positions, ascending) when each side keeps two
+/// triangles or more: filled side by side as a crease's, as no single fill of the whole
+/// ring could be (docs/design.md#schroeder-folds).
+fn fold_line(geometry: &RingGeometry) -> Option<(usize, usize)> {
+    let RingGeometry { crosses, lengths } = geometry;
+    let k = crosses.len();
+    let cos = |i: usize, j: usize| {
+        let len = lengths[i] * lengths[j];
+        if len > 0.0 {
+            crosses[i].dot(crosses[j]) / len
+        } else {
+            1.0
+        }
+    };
+    if !(0..k).any(|i| (i + 1..k).any(|j| cos(i, j) < FOLD_COS)) {
+        return None;
+    }
+    // The turn at ring vertex i lies between triangles i - 1 and i.
+    let mut best = [(f64::INFINITY, 0usize); 2];
+    for i in 0..k {
+        let turn = cos((i + k - 1) % k, i);
+        if turn < best[0].0 {
+            best = [(turn, i), best[0]];
+        } else if turn < best[1].0 {
+            best[1] = (turn, i);
+        }
+    }
+    let (first, second) = (best[0].1.min(best[1].1), best[0].1.max(best[1].1));
+    (second - first >= 2 && k - second + first >= 2).then_some((first, second))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::topology::Connectivity;
+
+    /// Vertex 0 pulled over its hexagonal ring's edge 1–2 (in the plane z = 0): its
+    /// triangle 0-1-2 faces down, folded back under the five others.
+    fn folded_hexagon() -> (Vec<Vec3>, Connectivity) {
+        let positions = [
+            (0.8, 0.6),
+            (0.75, 0.5),
+            (0.75, 0.75),
+            (0.5, 0.75),
+            (0.25, 0.5),
+            (0.25, 0.25),
+            (0.5, 0.25),
+        ]
+        .map(|(x, y)| Vec3::new(x, y, 0.0))
+        .to_vec();
+        let tris: Vec<[u32; 3]> = (1..=6).map(|i| [0, i, i % 6 + 1]).collect();
+        (positions, Connectivity::new(7, &tris))
+    }
+
+    #[test]
+    fn a_vertex_pulled_over_its_ring_is_filled_flat_once_folds_may_go() {
+        let (positions, conn) = folded_hexagon();
+        let mut surface = Surface {
+            conn: &conn,
+            positions: &positions,
+            texcoords: None,
+            cos_feature: -1.0, // 180°: no feature edge
+            unfold: false,
+            seams: None,
+        };
+        let mut p = Planning::default();
+        assert_eq!(surface.plan_removal(0, &mut p), None);
+        surface.unfold = true;
+        let (class, distance) = surface.plan_removal(0, &mut p).expect("filled");
+        assert_eq!((class, distance), (VertexClass::Simple, 0.0));
+        // Four triangles over the hexagon, every one facing up: the fold is gone.
+        assert_eq!(p.fill.len(), 4);
+        let mut area = 0.0;
+        for t in &p.fill {
+            let [a, b, c] = t.map(|v| positions[v as usize].as_dvec3());
+            let cross = (b - a).cross(c - a);
+            assert!(cross.z > 0.0, "{t:?} faces down");
+            area += cross.z / 2.0;
+        }
+        assert!((area - 0.1875).abs() < 1e-6, "{area}");
+    }
+
+    #[test]
+    fn a_ring_folded_in_two_halves_is_split_along_its_sharpest_turns() {
+        let geometry = |zs: &[f64]| RingGeometry {
+            crosses: zs.iter().map(|&z| DVec3::new(0.0, 0.1, z)).collect(),
+            lengths: zs
+                .iter()
+                .map(|&z| DVec3::new(0.0, 0.1, z).length())
+                .collect(),
+        };
+        // Three triangles up, three down (a blade's edge): split where they turn.
+        assert_eq!(
+            fold_line(&geometry(&[1.0, 1.0, 1.0, -1.0, -1.0, -1.0])),
+            Some((0, 3))
+        );
+        // One triangle folded back: its two turns leave it alone on one side.
+        assert_eq!(fold_line(&geometry(&[1.0, -1.0, 1.0, 1.0, 1.0])), None);
+        // Curved but not folded.
+        assert_eq!(fold_line(&geometry(&[1.0, 0.5, 0.0, 0.5, 1.0])), None);
+    }
 }

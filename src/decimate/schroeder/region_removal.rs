@@ -45,6 +45,8 @@ struct Region<'a> {
     /// model has no seams).
     seams: SeamSides<'a>,
     cos_feature: f64,
+    /// Whether folds may be removed (`Surface::unfold`).
+    unfold: bool,
     keys: &'a mut [f64],
     accumulated: &'a mut [f64],
     changed_in: &'a mut [u32],
@@ -87,6 +89,7 @@ impl Decimator {
         let mut accumulated = split_mut(&mut self.accumulated, &starts).into_iter();
         let mut changed_in = split_mut(&mut self.changed_in, &starts).into_iter();
         let (positions, cos_feature, pass) = (&self.positions[..], self.cos_feature, self.pass);
+        let unfold = self.unfold;
         let texcoords = self.texcoords.as_deref();
         let seams = SeamSides {
             twins: &self.twins,
@@ -108,6 +111,7 @@ impl Decimator {
                     texcoords,
                     seams,
                     cos_feature,
+                    unfold,
                     keys: keys.next()?,
                     accumulated: accumulated.next()?,
                     changed_in: changed_in.next()?,
@@ -163,6 +167,7 @@ impl Region<'_> {
                 positions: self.positions,
                 texcoords: self.texcoords,
                 cos_feature: self.cos_feature,
+                unfold: self.unfold,
                 seams: None,
             };
             let i = self.at(v);

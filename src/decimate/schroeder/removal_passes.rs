@@ -128,6 +128,13 @@ pub(super) fn remove_in_passes(
             (key <= limits.max_error).then(|| Candidate::new(key as f32, v))
         });
         if count == 0 {
+            // Out of candidates: let folded rings be filled (docs/design.md#schroeder-folds),
+            // re-rank what is left, and go on.
+            if !d.unfold {
+                d.unfold = true;
+                d.rank_all();
+                continue;
+            }
             if live.par_iter().any(|&v| keys[v as usize].is_finite()) {
                 break; // all above the error bound
             }

@@ -9,7 +9,9 @@
 //! stays glued and keeps k triangles; at a bowtie the fans come apart), a closed one like a
 //! simple vertex's (docs/design.md#schroeder-non-manifold).
 
-use crate::mesh::topology::{corner_of, Adjacency, MAX_VALENCE};
+use rayon::prelude::*;
+
+use crate::mesh::topology::{corner_of, Adjacency, Connectivity, MAX_VALENCE};
 
 /// How a complex vertex's fans lie, when it may be removed through them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -287,6 +289,20 @@ impl Sheets {
     }
 }
 
+/// Whether some edge has three triangles or more, on all cores (each vertex looks at its
+/// own triangles; one of more than `MAX_VALENCE` is left out, as it is never removed).
+pub(super) fn any_non_manifold_edge(conn: &Connectivity, vertices: usize) -> bool {
+    (0..vertices as u32).into_par_iter().any(|v| {
+        let incident = conn.incident(v);
+        incident.len() <= MAX_VALENCE
+            && incident.iter().any(|&t| {
+                let (_, x, _) = corner_of(conn.triangle(t), v);
+                let with_x = |&s: &u32| conn.triangle(s).contains(&x);
+                incident.iter().filter(|s| with_x(s)).count() >= 3
+            })
+    })
+}
+
 /// Whether the triangles with the edge `p`–`q` and not the vertex `v` are two or more,
 /// at least one each way: dropping `v`'s triangle on that edge then leaves it with a
 /// consistently oriented pair (no flipped neighbours), not a border.
@@ -318,7 +334,6 @@ pub(super) fn flap_apex(conn: &impl Adjacency, v: u32) -> Option<(u32, u32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::topology::Connectivity;
 
     /// Vertex 0 at the centre of `fans`, each a path of neighbours around it (ccw).
     fn around(fans: &[&[u32]]) -> Connectivity {
