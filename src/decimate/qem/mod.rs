@@ -1,7 +1,6 @@
 //! Quadric edge collapse (Garland, Heckbert, SIGGRAPH 1997; area weighting, colour and
 //! texture after their 1998 paper and Hoppe 1999): a collapsed edge's kept vertex moves to
-//! the point that minimises the area-weighted squared distance to the planes it stands for
-//! (a small triangle's plane weighs less than its area: docs/design.md#qem-face-weight).
+//! the point that minimises the area-weighted squared distance to the planes it stands for.
 //!
 //! Stages over flat arrays: load in Morton order (`layout`) → connect (`mesh::topology`) →
 //! kinds and quadrics (`planes`, `texture_quadrics`) → rank every edge (`ranking`) →

@@ -1,11 +1,10 @@
 //! What every vertex starts with, read off its ordered one-ring in one pass on all cores:
-//! its kind (interior, boundary, fixed) and its quadric — its triangles' planes, each
-//! weighted by its area and by its size against the mesh's mean triangle
-//! (docs/design.md#qem-face-weight), plus the constraint planes of its boundary and feature
-//! edges (a fold's angle first scaled to how finely the mesh is sampled:
-//! docs/design.md#qem-fold-scale). A non-manifold ("complex") vertex has no planes through
-//! its non-manifold edges, and a fin's rim (a short boundary chain between two of them) is
-//! not constrained (docs/design.md#qem-non-manifold-weights).
+//! its kind (interior, boundary, fixed) and its quadric — the area-weighted planes of its
+//! triangles, plus the constraint planes of its boundary and feature edges (a fold's angle
+//! first scaled to how finely the mesh is sampled: docs/design.md#qem-fold-scale). A
+//! non-manifold ("complex") vertex has no planes through its non-manifold edges, and a fin's
+//! rim (a short boundary chain between two of them) is not constrained
+//! (docs/design.md#qem-non-manifold-weights).
 //!
 //! In the ring (`mesh::topology::Ring`) triangle `i` is `(v, verts[i], verts[i + 1])`, so the
 //! edge to `verts[j]` lies between ring triangles `j - 1` and `j` (wrapping round a closed
@@ -86,37 +85,16 @@ pub(super) fn kinds_and_quadrics(
     (kinds, quadrics)
 }
 
-/// Each triangle's plane once (a triangle is in three rings), on all cores, weighted by
-/// [`face_weight`] against the mean triangle area.
+/// Each triangle's plane once (a triangle is in three rings), on all cores.
 fn face_planes(conn: &Connectivity, positions: &[Vec3]) -> Vec<FacePlane> {
-    let mut planes: Vec<FacePlane> = conn
-        .triangles()
+    conn.triangles()
         .par_iter()
         .with_min_len(PER_TASK)
         .map(|tri| {
             let [a, b, c] = tri.map(|w| positions[w as usize].as_dvec3());
             FacePlane::of(a, b, c)
         })
-        .collect();
-    // Summed in order: a parallel sum's rounding would vary from run to run.
-    let mean = planes.iter().map(|p| p.area).sum::<f64>() / planes.len().max(1) as f64;
-    planes
-        .par_iter_mut()
-        .with_min_len(PER_TASK)
-        .for_each(|p| p.weight = face_weight(p.area, mean));
-    planes
-}
-
-/// A face plane's weight in the quadrics: its area times `sqrt(area / mean area)`. Area alone
-/// makes the quadric the integral of the squared distance; the extra factor trusts a
-/// triangle's normal less the smaller it is against the mesh's typical triangle (a scan's
-/// slivers), and equals 1 on a uniformly sampled mesh (docs/design.md#qem-face-weight).
-fn face_weight(area: f64, mean: f64) -> f64 {
-    if mean > 0.0 && mean.is_finite() {
-        area * (area / mean).sqrt()
-    } else {
-        area
-    }
+        .collect()
 }
 
 /// Every vertex's kind and quadric from its own ring, on all cores.
@@ -150,15 +128,12 @@ fn ring_kinds_and_quadrics(
         .unzip()
 }
 
-/// A triangle's unit normal, plane offset, area and the weight of its plane (a zero normal:
-/// no area, no plane).
+/// A triangle's unit normal, plane offset and area (a zero normal: no area, no plane).
 #[derive(Debug, Clone, Copy)]
 struct FacePlane {
     normal: DVec3,
     d: f64,
     area: f64,
-    /// Its area until [`face_planes`] weighs it against the mean ([`face_weight`]).
-    weight: f64,
 }
 
 impl FacePlane {
@@ -170,7 +145,6 @@ impl FacePlane {
                 normal: DVec3::ZERO,
                 d: 0.0,
                 area: 0.0,
-                weight: 0.0,
             };
         }
         let normal = cross / len;
@@ -178,7 +152,6 @@ impl FacePlane {
             normal,
             d: -normal.dot(a),
             area: 0.5 * len,
-            weight: 0.5 * len,
         }
     }
 
@@ -187,10 +160,10 @@ impl FacePlane {
         (self.normal != DVec3::ZERO).then_some(self.normal)
     }
 
-    /// Its plane with its weight, and its area, when it has a plane.
+    /// Its plane weighted by its area, with the area, when it has a plane.
     fn quadric(&self) -> Option<Quadric> {
         self.normal().map(|n| {
-            let mut q = Quadric::plane(n, self.d, self.weight);
+            let mut q = Quadric::plane(n, self.d, self.area);
             q.area = self.area;
             q
         })
@@ -477,13 +450,12 @@ mod tests {
         shapes::height_grid(n, |i, j| if inner(i, j) { lift(i, j) } else { 0.0 })
     }
 
-    /// The sum of `v`'s triangles' weighted planes: its quadric without constraints.
+    /// The sum of `v`'s triangles' area-weighted planes: its quadric without constraints.
     fn face_quadric(model: &crate::mesh::Model, v: u32) -> Quadric {
-        let conn = Connectivity::new(model.positions.len(), &model.triangles);
-        let planes = face_planes(&conn, &model.positions);
         let mut sum = Quadric::default();
-        for (t, plane) in model.triangles.iter().zip(&planes) {
-            if let Some(q) = plane.quadric().filter(|_| t.contains(&v)) {
+        for t in model.triangles.iter().filter(|t| t.contains(&v)) {
+            let [a, b, c] = t.map(|w| model.positions[w as usize].as_dvec3());
+            if let Some(q) = FacePlane::of(a, b, c).quadric() {
                 sum.add(&q);
             }
         }
@@ -578,44 +550,6 @@ mod tests {
             .filter(|&v| held[v as usize].eval(p) > 1.5 * face_quadric(&noisy, v).eval(p))
             .count();
         assert!(more > 20, "only {more} vertices hold feature planes");
-    }
-
-    #[test]
-    fn a_face_plane_weighs_its_area_times_the_root_of_its_size_against_the_mean() {
-        assert_eq!(face_weight(2.0, 2.0), 2.0, "a mean triangle: its area");
-        assert_eq!(
-            face_weight(0.5, 2.0),
-            0.25,
-            "a quarter of the mean: half its area"
-        );
-        assert_eq!(face_weight(8.0, 2.0), 16.0, "four times the mean: twice");
-        assert_eq!(face_weight(3.0, 0.0), 3.0, "no mean: its area");
-        // Two triangles tilted alike, one a sliver: the sliver's plane counts for less than
-        // its share of the area.
-        let positions = [
-            Vec3::ZERO,
-            Vec3::new(2.0, 0.0, 0.0),
-            Vec3::new(0.0, 2.0, 1.0),
-            Vec3::new(5.0, 0.0, 0.0),
-            Vec3::new(7.0, 0.0, 0.0),
-            Vec3::new(5.0, 0.02, 0.01),
-        ];
-        let conn = Connectivity::new(positions.len(), &[[0, 1, 2], [3, 4, 5]]);
-        let planes = face_planes(&conn, &positions);
-        let [big, sliver] = [planes[0], planes[1]];
-        let mean = 0.5 * (big.area + sliver.area);
-        assert!((big.weight - big.area * (big.area / mean).sqrt()).abs() < 1e-12);
-        let ratio = (sliver.weight / big.weight) / (sliver.area / big.area);
-        assert!((ratio - 0.1).abs() < 1e-6, "{ratio}");
-    }
-
-    #[test]
-    fn a_uniformly_sampled_mesh_weighs_its_planes_by_area_alone() {
-        let cube = shapes::cube(4, 2.0); // every triangle the same area
-        let conn = Connectivity::new(cube.positions.len(), &cube.triangles);
-        for p in face_planes(&conn, &cube.positions) {
-            assert!((p.weight - p.area).abs() <= 1e-12 * p.area, "{p:?}");
-        }
     }
 
     #[test]
