@@ -1,11 +1,12 @@
 //! `qem` on open surfaces: a head-like cap (a scan's open border, curved in space) kept at
 //! 1 % stays close to the original and its outline stays on the original's; a plane with a
 //! hole keeps the hole where it was and its area (docs/design.md#qem-constraint-weight,
-//! docs/design.md#qem-border-placement).
+//! docs/design.md#qem-border-placement); either algorithm asked for fewer triangles than a
+//! surface can keep stops at four vertices.
 
 use crate::support::metro::compare_models;
 use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
-use decimate::mesh::{measure, Model, Scene};
+use decimate::mesh::{measure, shapes, Model, Scene};
 use glam::Vec3;
 
 fn qem(model: &Model, target: Target) -> Model {
@@ -164,4 +165,49 @@ fn a_plane_with_a_hole_keeps_its_hole_where_it_was() {
         let found = after.positions.iter().any(|p| p.distance(corner) < 1e-5);
         assert!(found, "the hole's corner {corner} moved");
     }
+}
+
+/// Asked for fewer triangles than a surface can keep, either algorithm stops at four
+/// vertices, says the model is fully decimated (when short of the count) and keeps it: a model under four vertices
+/// is dropped from the scene (the original program's rule), which no count asked for
+/// should cause. A flat sheet and a triangle split at an inner point, asked for 1 and 2.
+#[test]
+fn a_surface_asked_for_one_triangle_keeps_four_vertices_with_either_algorithm() {
+    let sheet = shapes::height_grid(4, |_, _| 0.0);
+    let split_triangle = Model {
+        name: "split triangle".into(),
+        positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(0.3, 0.3, 0.0)],
+        triangles: vec![[0, 1, 3], [1, 2, 3], [2, 0, 3]],
+        ..Model::default()
+    };
+    let mut checked = 0;
+    for (model, left) in [(&sheet, 2), (&split_triangle, 3)] {
+        for algorithm in [Algorithm::Schroeder, Algorithm::Qem] {
+            for keep in [1, 2] {
+                let mut scene = Scene {
+                    models: vec![model.clone()],
+                };
+                let params = Params {
+                    target: Target::KeepTriangles(keep),
+                    algorithm,
+                    ..Params::default()
+                };
+                let report = simplify_scene(&mut scene, &params, &mut |_| {});
+                let what = format!("{} by {algorithm:?} asked for {keep}", model.name);
+                let r = &report.models[0];
+                // "Fully decimated" only where the count was not reached.
+                assert!(!r.dropped, "{what}: {r:?}");
+                assert_eq!(r.fully_decimated, left > keep, "{what}: {r:?}");
+                let after = scene
+                    .models
+                    .first()
+                    .unwrap_or_else(|| panic!("{what}: dropped"));
+                let counts = (after.positions.len(), after.triangles.len());
+                assert_eq!(counts, (4, left), "{what}");
+                assert_eq!(measure::degenerate_triangles(after, 1e-9), 0, "{what}");
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 8);
 }

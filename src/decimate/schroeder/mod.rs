@@ -115,6 +115,22 @@ pub fn decimate_model(
     d.twins = twins;
     d.texcoords = texcoords;
 
+    // A triangle count asked for stops at four vertices, as qem does: a model under four is
+    // dropped from the scene (the original's rule, which `-p 100` keeps), and a plane's two
+    // triangles or a tetrahedron is as far as a count should take it.
+    let used = (0..d.positions.len() as u32)
+        .filter(|&v| !d.conn.incident(v).is_empty())
+        .count();
+    let floor = if limits.keep_triangles > 0 {
+        used.saturating_sub(4)
+    } else {
+        used
+    };
+    let floored = Limits {
+        remove: limits.remove.min(floor),
+        ..limits.clone()
+    };
+
     // 3. classify and rank
     let mut outcome = Outcome {
         removed: 0,
@@ -130,8 +146,12 @@ pub fn decimate_model(
     d.rank_all();
 
     // 4. remove
-    removal_passes::remove_in_passes(&mut d, limits, &mut outcome, progress);
+    removal_passes::remove_in_passes(&mut d, &floored, &mut outcome, progress);
     progress(outcome.removed);
+    // Stopped by the floor short of the count asked: nothing more can go.
+    outcome.exhausted |= outcome.removed >= floor
+        && outcome.removed < limits.remove
+        && d.conn.triangle_count() > limits.keep_triangles;
     if outcome.exhausted {
         outcome.closed_kept = d.closed_kept();
     }
