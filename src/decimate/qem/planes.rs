@@ -94,7 +94,8 @@ fn face_planes(conn: &Connectivity, positions: &[Vec3]) -> Vec<FacePlane> {
             let [a, b, c] = tri.map(|w| positions[w as usize].as_dvec3());
             FacePlane::of(a, b, c)
         })
-        .collect()
+        .collect::<Vec<_>>()
+        .with_scales()
 }
 
 /// Every vertex's kind and quadric from its own ring, on all cores.
@@ -134,6 +135,30 @@ struct FacePlane {
     normal: DVec3,
     d: f64,
     area: f64,
+    /// √(area / the mesh's mean triangle area): a plane weighs its area times this, and a
+    /// border edge's constraint on it this much more (docs/design.md#qem-face-weight).
+    scale: f64,
+}
+
+trait WithScales {
+    fn with_scales(self) -> Self;
+}
+
+impl WithScales for Vec<FacePlane> {
+    /// Each plane's `scale` from the mean area of the triangles that have one (summed in
+    /// order, so the result is the same on any number of cores).
+    fn with_scales(mut self) -> Self {
+        let (sum, count) = self
+            .iter()
+            .filter(|p| p.area > 0.0)
+            .fold((0.0, 0usize), |(s, n), p| (s + p.area, n + 1));
+        if count > 0 {
+            let mean = sum / count as f64;
+            self.par_iter_mut()
+                .for_each(|p| p.scale = (p.area / mean).sqrt());
+        }
+        self
+    }
 }
 
 impl FacePlane {
@@ -145,6 +170,7 @@ impl FacePlane {
                 normal: DVec3::ZERO,
                 d: 0.0,
                 area: 0.0,
+                scale: 1.0,
             };
         }
         let normal = cross / len;
@@ -152,6 +178,7 @@ impl FacePlane {
             normal,
             d: -normal.dot(a),
             area: 0.5 * len,
+            scale: 1.0,
         }
     }
 
@@ -160,10 +187,10 @@ impl FacePlane {
         (self.normal != DVec3::ZERO).then_some(self.normal)
     }
 
-    /// Its plane weighted by its area, with the area, when it has a plane.
+    /// Its plane weighted by its area times `scale`, with the area, when it has a plane.
     fn quadric(&self) -> Option<Quadric> {
         self.normal().map(|n| {
-            let mut q = Quadric::plane(n, self.d, self.area);
+            let mut q = Quadric::plane(n, self.d, self.area * self.scale);
             q.area = self.area;
             q
         })
@@ -289,7 +316,8 @@ fn constrain_outlines(
                 let plane = |weight: f64| {
                     Quadric::plane(side, -side.dot(pc), weight * edge.length_squared())
                 };
-                let weight = if seam { SEAM_WEIGHT } else { CONSTRAINT_WEIGHT };
+                let weight =
+                    planes[t as usize].scale * if seam { SEAM_WEIGHT } else { CONSTRAINT_WEIGHT };
                 if !fin {
                     quadrics[c as usize].add(&plane(weight));
                 } else if is(x, Kind::Boundary) && !seam {
@@ -370,7 +398,8 @@ fn ring_quadric(
                     } else {
                         CONSTRAINT_WEIGHT
                     };
-                    constrain(run(i), n, weight);
+                    let scale = planes[ring.triangles[i] as usize].scale;
+                    constrain(run(i), n, weight * scale);
                 }
             }
             (Some(a), Some(b)) => {
@@ -452,10 +481,11 @@ mod tests {
 
     /// The sum of `v`'s triangles' area-weighted planes: its quadric without constraints.
     fn face_quadric(model: &crate::mesh::Model, v: u32) -> Quadric {
+        let conn = Connectivity::new(model.positions.len(), &model.triangles);
+        let planes = face_planes(&conn, &model.positions);
         let mut sum = Quadric::default();
-        for t in model.triangles.iter().filter(|t| t.contains(&v)) {
-            let [a, b, c] = t.map(|w| model.positions[w as usize].as_dvec3());
-            if let Some(q) = FacePlane::of(a, b, c).quadric() {
+        for &t in conn.incident(v) {
+            if let Some(q) = planes[t as usize].quadric() {
                 sum.add(&q);
             }
         }
