@@ -1,10 +1,10 @@
 //! What every vertex starts with, read off its ordered one-ring in one pass on all cores:
-//! its kind (interior, boundary, fixed) and its quadric — the area-weighted planes of its
-//! triangles, plus the constraint planes of its boundary and feature edges (a fold's angle
-//! first scaled to how finely the mesh is sampled: docs/design.md#qem-fold-scale). A
-//! non-manifold ("complex") vertex has no planes through its non-manifold edges, and a fin's
-//! rim (a short boundary chain between two of them) is not constrained
-//! (docs/design.md#qem-non-manifold-weights).
+//! its kind (interior, boundary, fixed) and its quadric — the planes of its triangles,
+//! weighted by area × √(area / mean area) (docs/design.md#qem-face-weight), plus the
+//! constraint planes of its boundary and feature edges (a fold's angle first scaled to how
+//! finely the mesh is sampled: docs/design.md#qem-fold-scale). A non-manifold ("complex")
+//! vertex has no planes through its non-manifold edges, and a fin's rim (a short boundary
+//! chain between two of them) is not constrained (docs/design.md#qem-non-manifold-weights).
 //!
 //! In the ring (`mesh::topology::Ring`) triangle `i` is `(v, verts[i], verts[i + 1])`, so the
 //! edge to `verts[j]` lies between ring triangles `j - 1` and `j` (wrapping round a closed
@@ -17,8 +17,9 @@ use super::collapse_plan::Kind;
 use super::quadric::Quadric;
 use crate::mesh::topology::{corner_of, Adjacency, Connectivity, Ring, RingShape, MAX_VALENCE};
 
-/// Weight of a boundary edge's constraint plane, times its length², relative to an
-/// area-weighted face plane (docs/design.md#qem-constraint-weight).
+/// Weight of a boundary edge's constraint plane, times its length² and its triangle's face
+/// weight scale, relative to an area-weighted face plane
+/// (docs/design.md#qem-constraint-weight).
 const CONSTRAINT_WEIGHT: f64 = 30.0;
 
 /// Weight of a texture seam's constraint planes (an edge between two vertices on seams),
