@@ -4,6 +4,10 @@
 
 pub use crate::cancel::Cancel;
 
+/// A decimated model left with fewer vertices than this is dropped from the scene (the
+/// original program's rule); a count never takes a model below it.
+pub const MIN_VERTICES: usize = 4;
+
 /// How far one model may be decimated.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Limits {

@@ -18,7 +18,7 @@ use std::time::Instant;
 
 use crate::mesh::{seams, stitches, Model, Scene};
 
-pub use limits::{Cancel, Limits, Outcome};
+pub use limits::{Cancel, Limits, Outcome, MIN_VERTICES};
 
 use crate::mesh::progressive::{ProgressiveModel, ProgressiveScene};
 
@@ -374,7 +374,7 @@ fn run(
             feature_angle_deg: outcome.feature_angle_deg,
             fully_decimated: outcome.exhausted,
             // As the original: only a removal can drop a model, never the input itself.
-            dropped: outcome.removed > 0 && vertices_after < 4,
+            dropped: outcome.removed > 0 && vertices_after < MIN_VERTICES,
             pinned: outcome.pinned,
             non_manifold_kept: if outcome.exhausted {
                 crate::mesh::measure::non_manifold_vertices(model)

@@ -32,7 +32,7 @@ use super::ranking::stored;
 use crate::decimate::candidates::{cheapest, Candidate};
 use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
-use crate::decimate::{Limits, Outcome};
+use crate::decimate::{Limits, Outcome, MIN_VERTICES};
 
 /// One pass takes the cheapest `1 / PASS_SHARE` of the candidate vertices: bigger passes
 /// are faster but cost mean error (docs/design.md#qem-pass-share).
@@ -115,7 +115,7 @@ pub(super) fn collapse_in_passes(
         .into_par_iter()
         .filter(|&v| !d.conn.incident(v).is_empty())
         .count();
-    let removable = used.saturating_sub(4);
+    let removable = used.saturating_sub(MIN_VERTICES);
     let regions =
         [false, true].map(|shifted| Regions::new(d.vertex_count(), d.conn.triangles(), shifted));
     let mut skipped_for_error = false;

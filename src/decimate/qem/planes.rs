@@ -88,15 +88,17 @@ pub(super) fn kinds_and_quadrics(
 
 /// Each triangle's plane once (a triangle is in three rings), on all cores.
 fn face_planes(conn: &Connectivity, positions: &[Vec3]) -> Vec<FacePlane> {
-    conn.triangles()
+    let mut planes: Vec<FacePlane> = conn
+        .triangles()
         .par_iter()
         .with_min_len(PER_TASK)
         .map(|tri| {
             let [a, b, c] = tri.map(|w| positions[w as usize].as_dvec3());
             FacePlane::of(a, b, c)
         })
-        .collect::<Vec<_>>()
-        .with_scales()
+        .collect();
+    set_scales(&mut planes);
+    planes
 }
 
 /// Every vertex's kind and quadric from its own ring, on all cores.
@@ -141,24 +143,18 @@ struct FacePlane {
     scale: f64,
 }
 
-trait WithScales {
-    fn with_scales(self) -> Self;
-}
-
-impl WithScales for Vec<FacePlane> {
-    /// Each plane's `scale` from the mean area of the triangles that have one (summed in
-    /// order, so the result is the same on any number of cores).
-    fn with_scales(mut self) -> Self {
-        let (sum, count) = self
-            .iter()
-            .filter(|p| p.area > 0.0)
-            .fold((0.0, 0usize), |(s, n), p| (s + p.area, n + 1));
-        if count > 0 {
-            let mean = sum / count as f64;
-            self.par_iter_mut()
-                .for_each(|p| p.scale = (p.area / mean).sqrt());
-        }
-        self
+/// Sets each plane's `scale` from the mean area of the triangles that have one (summed in
+/// order, so the result is the same on any number of cores).
+fn set_scales(planes: &mut [FacePlane]) {
+    let (sum, count) = planes
+        .iter()
+        .filter(|p| p.area > 0.0)
+        .fold((0.0, 0usize), |(s, n), p| (s + p.area, n + 1));
+    if count > 0 {
+        let mean = sum / count as f64;
+        planes
+            .par_iter_mut()
+            .for_each(|p| p.scale = (p.area / mean).sqrt());
     }
 }
 

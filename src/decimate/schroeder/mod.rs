@@ -51,7 +51,7 @@ use rayon::prelude::*;
 
 use super::closed::{tet6, ClosedVolumes};
 use super::layout::{self, compact, Compacted};
-use super::{Limits, Outcome};
+use super::{Limits, Outcome, MIN_VERTICES};
 use crate::mesh::classify::{classify, VertexClass};
 use crate::mesh::seams::position_key;
 use crate::mesh::topology::{Adjacency, Connectivity};
@@ -126,7 +126,7 @@ pub fn decimate_model(
         .filter(|&v| !d.conn.incident(v).is_empty())
         .count();
     let floor = if limits.keep_triangles > 0 {
-        used.saturating_sub(4)
+        used.saturating_sub(MIN_VERTICES)
     } else {
         used
     };
