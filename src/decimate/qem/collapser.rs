@@ -57,9 +57,9 @@ pub(super) struct Collapser {
     facing: Vec<Vec3>,
     /// Closed components' volumes: no collapse turns one inside out or flattens it.
     closed: ClosedVolumes,
-    /// Per vertex, the summed area vectors of the input triangles it stands for, carried
-    /// through every collapse: the input surface triangles are checked against
-    /// (docs/design.md#qem-input-surface).
+    /// Per vertex, the summed area vectors of the input triangles it stands for (their
+    /// lengths summed in `w`), carried through every collapse: the input surface that
+    /// triangles are checked against (docs/design.md#qem-input-surface).
     input_surface: Vec<Vec4>,
 }
 

@@ -97,8 +97,9 @@ pub(super) struct Part<'a> {
     /// Junction copies' starting normals (the whole mesh's, read only; see
     /// `Collapser::pin`).
     pub facing: &'a [Vec3],
-    /// Per owned vertex, the summed area vectors of the input triangles it stands for (see
-    /// `Collapser`): a collapse's kept vertex takes both ends'.
+    /// Per owned vertex, the summed area vectors of the input triangles it stands for, and
+    /// their lengths summed in `w` (see `Collapser`): a collapse's kept vertex takes both
+    /// ends'.
     pub input_surface: &'a mut [glam::Vec4],
     /// Closed components' volumes (see `decimate::closed`).
     pub closed: ClosedView<'a>,
