@@ -12,6 +12,7 @@
 use std::collections::HashMap;
 
 use glam::{DVec3, Vec3};
+use rayon::slice::ParallelSliceMut;
 
 use crate::mesh::seams;
 
@@ -22,6 +23,9 @@ const MIN_VOLUME_SHARE: f64 = 0.05;
 
 /// No closed component (`ClosedVolumes::component`).
 const NONE: u32 = u32::MAX;
+
+/// Vertices an edge key ([`edge_key`]) can tell apart: two ids and a direction in 64 bits.
+const MAX_VERTICES: usize = 1 << 31;
 
 /// Six times the signed volume of the tetrahedron (o, a, b, c): positive when triangle
 /// (a, b, c) faces away from `o`.
@@ -70,6 +74,9 @@ impl ClosedVolumes {
     /// when `weld` is empty); positions are each vertex's own.
     fn welded(positions: &[Vec3], triangles: &[[u32; 3]], weld: &[u32]) -> Self {
         let n = positions.len();
+        if n > MAX_VERTICES {
+            return Self::default(); // no edge key for them: nothing is taken as closed
+        }
         let valid = |t: &[u32; 3]| t.iter().all(|&v| (v as usize) < n);
         let one = |v: u32| weld.get(v as usize).copied().unwrap_or(v);
         // Components of the vertices, by union-find.
@@ -82,18 +89,25 @@ impl ClosedVolumes {
             }
         }
         // A component is closed when every directed edge appears once and so does its
-        // reverse: sort the directed edges and look each one's reverse up.
+        // reverse: sort the edges, each with its direction beside it, and check that each
+        // edge is run exactly once each way.
         let mut edges: Vec<u64> = triangles
             .iter()
             .filter(|t| valid(t))
-            .flat_map(|t| (0..3).map(move |k| key(one(t[k]), one(t[(k + 1) % 3]))))
+            .flat_map(|t| (0..3).map(move |k| edge_key(one(t[k]), one(t[(k + 1) % 3]))))
             .collect();
-        edges.sort_unstable();
+        edges.par_sort_unstable();
         let mut open = vec![false; n];
-        for (i, &e) in edges.iter().enumerate() {
-            let repeated = edges.get(i + 1) == Some(&e) || (i > 0 && edges[i - 1] == e);
-            let (a, b) = ((e >> 32) as u32, e as u32);
-            if repeated || edges.binary_search(&key(b, a)).is_err() {
+        for run in edges.chunk_by(|x, y| x >> 1 == y >> 1) {
+            let a = (run[0] >> 33) as u32;
+            let b = (run[0] >> 1) as u32;
+            // A degenerate edge (a, a) is its own reverse: it must only not repeat.
+            let once_each_way = if a == b {
+                run.len() == 1
+            } else {
+                run.len() == 2 && run[0] & 1 == 0 && run[1] & 1 == 1
+            };
+            if !once_each_way {
                 let root = find(&mut parent, a);
                 open[root as usize] = true;
             }
@@ -185,6 +199,17 @@ impl ClosedView<'_> {
         }
     }
 
+    /// Asks for `v`'s component ahead of [`Self::component`] (a hint only).
+    pub fn prefetch(&self, v: u32) {
+        let all = match self {
+            Self::Whole(c) => &c.component,
+            Self::Part(c, _) => &c.component,
+        };
+        if let Some(component) = all.get(v as usize) {
+            crate::mesh::prefetch(component);
+        }
+    }
+
     /// Whether a step changing component `c`'s volume by `change6` may be made.
     pub fn allows(&self, c: u32, change6: f64) -> bool {
         match self {
@@ -223,8 +248,11 @@ impl ClosedVolumes {
 }
 
 /// The directed edge a → b as a sort key.
-fn key(a: u32, b: u32) -> u64 {
-    u64::from(a) << 32 | u64::from(b)
+/// Edge `a`–`b` as a sort key: its smaller vertex, its larger one, then one bit for its
+/// direction (set when it runs from the larger to the smaller); ids below `MAX_VERTICES`.
+fn edge_key(a: u32, b: u32) -> u64 {
+    let (lo, hi) = (a.min(b), a.max(b));
+    u64::from(lo) << 33 | u64::from(hi) << 1 | u64::from(a > b)
 }
 
 fn find(parent: &mut [u32], mut v: u32) -> u32 {

@@ -76,6 +76,13 @@ impl InputCorners {
         }
     }
 
+    /// Asks for vertex `v`'s summed input areas ahead of a check at it (a hint only).
+    pub fn prefetch(&self, v: u32) {
+        if let Some(sum) = self.sums.get(v as usize) {
+            crate::mesh::prefetch(sum);
+        }
+    }
+
     /// Whether a triangle of area vector `cross` at the corners `tri` faces within 90° of
     /// some input triangle at one of them (vacuously true when nothing is known).
     pub fn faces(&self, cross: DVec3, tri: &[u32; 3]) -> bool {
