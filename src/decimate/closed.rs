@@ -170,6 +170,13 @@ impl ClosedVolumes {
         self.volume6[c as usize] += change6;
     }
 
+    /// Asks for `v`'s component ahead of [`Self::component`] (a hint only).
+    pub fn prefetch(&self, v: u32) {
+        if let Some(component) = self.component.get(v as usize) {
+            crate::mesh::prefetch(component);
+        }
+    }
+
     /// Six times component `c`'s signed volume now.
     pub fn volume6(&self, c: u32) -> f64 {
         self.volume6[c as usize]
@@ -201,12 +208,9 @@ impl ClosedView<'_> {
 
     /// Asks for `v`'s component ahead of [`Self::component`] (a hint only).
     pub fn prefetch(&self, v: u32) {
-        let all = match self {
-            Self::Whole(c) => &c.component,
-            Self::Part(c, _) => &c.component,
-        };
-        if let Some(component) = all.get(v as usize) {
-            crate::mesh::prefetch(component);
+        match self {
+            Self::Whole(c) => c.prefetch(v),
+            Self::Part(c, _) => c.prefetch(v),
         }
     }
 

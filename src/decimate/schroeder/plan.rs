@@ -41,6 +41,9 @@ pub(super) struct Planning {
     old_input: Vec<DVec3>,
     /// A ring closed at a seam junction (`Surface::close_at_junction`): the copy left out.
     junction: Option<u32>,
+    /// Whether the vertex last evaluated classified as a corner as its ring stands (before
+    /// a junction closes it or a fold splits it): what the early relaxation counts.
+    pub corner: bool,
 }
 
 /// The fill triangles from the previous region's `end` up to this `end` replace the ring
@@ -126,6 +129,7 @@ impl<C: Adjacency> Surface<'_, C> {
             &mut p.ring,
             &mut p.geometry,
         );
+        p.corner = class == VertexClass::Corner;
         p.junction = None;
         if self.close_at_junction(v, p) {
             let (closed, ring) = (RingShape::Closed, &p.ring);
