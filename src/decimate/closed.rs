@@ -119,7 +119,7 @@ impl ClosedVolumes {
             }
         }
         // Number the closed components and sum their volumes about their first vertex.
-        let mut id: HashMap<u32, u32> = HashMap::new();
+        let mut id = vec![NONE; n];
         let mut component = vec![NONE; n];
         let mut origin = Vec::new();
         let mut volume6 = Vec::new();
@@ -128,11 +128,12 @@ impl ClosedVolumes {
             if open[root as usize] {
                 continue;
             }
-            let c = *id.entry(root).or_insert_with(|| {
+            if id[root as usize] == NONE {
+                id[root as usize] = origin.len() as u32;
                 origin.push(positions[t[0] as usize].as_dvec3());
                 volume6.push(0.0);
-                origin.len() as u32 - 1
-            });
+            }
+            let c = id[root as usize];
             let [a, b, d] = t.map(|v| positions[v as usize].as_dvec3());
             volume6[c as usize] += tet6(origin[c as usize], a, b, d);
             for &v in t {
