@@ -6,11 +6,11 @@
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-/// Each triangle's area vector (its normal, twice its area long).
+/// Each triangle's area vector (its normal, twice its area long), on all cores.
 pub(super) fn area_vectors(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec3> {
     let p = |v: u32| positions[v as usize].as_dvec3();
     triangles
-        .iter()
+        .par_iter()
         .map(|&[a, b, c]| (p(b) - p(a)).cross(p(c) - p(a)).as_vec3())
         .collect()
 }

@@ -279,8 +279,13 @@ fn plan_batch(d: &Decimator, batch: &[Candidate], order: &mut Vec<u32>) -> Batch
         .par_chunks(PER_TASK)
         .map_init(Planning::default, |planning, chunk| {
             let mut plans = Plans::default();
-            for &i in chunk {
-                let v = batch[i as usize].vertex();
+            let mut vertices = [0u32; PER_TASK];
+            for (slot, &i) in vertices.iter_mut().zip(chunk) {
+                *slot = batch[i as usize].vertex();
+            }
+            let vertices = &vertices[..chunk.len()];
+            for (n, &v) in vertices.iter().enumerate() {
+                d.prefetch_ahead(vertices, n);
                 let entry = if d.changed_now(v) || d.twin(v).is_some() {
                     Planned::Later
                 } else {
