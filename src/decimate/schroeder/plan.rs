@@ -679,13 +679,20 @@ fn share_input(
     let k = r.len();
     let input: DVec3 = old_input.iter().sum();
     for (tri, share) in fill.iter().zip(shares) {
+        // Old triangle i's outer edge runs from ring vertex i to i + 1: each vertex is
+        // looked up in `tri` once, as the end of one edge and the start of the next.
+        let corner = |i: usize| {
+            let x = r[wrap(i, k)];
+            (tri[0] == x) | (tri[1] == x) | (tri[2] == x)
+        };
         let mut near = DVec3::ZERO;
+        let mut starts_in = corner(region.from);
         for (i, &old) in (region.from..region.to).zip(old_input) {
-            let i = wrap(i, k);
-            let (a, b) = (r[i], r[if i + 1 == k { 0 } else { i + 1 }]);
-            if tri.contains(&a) && tri.contains(&b) {
+            let ends_in = corner(i + 1);
+            if starts_in & ends_in {
                 near += old;
             }
+            starts_in = ends_in;
         }
         *share = (input * (0.5 * f64::from(share.x) / area) + 0.5 * near).as_vec3();
     }
