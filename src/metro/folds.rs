@@ -5,9 +5,9 @@
 //! Owns [`Folds`] and [`measure`]. An output triangle is sampled on a grid (at least four
 //! points, the centroid among them; more where it covers many input triangles). Each sample
 //! stands for the nearest input triangle, unless that one faces away from the output triangle
-//! and another, facing like it, lies within the nearest input triangle's size beyond the
-//! nearest distance, or the sample lies inside a thin part, behind both, the other within
-//! `(1 + reach)` times the nearest distance. The triangle is folded when the sum of its
+//! and another, facing like it, lies within the nearest input triangle's size of the nearest
+//! point, or the sample lies inside a thin part, behind both, the other within `(1 + reach)`
+//! times the nearest distance. The triangle is folded when the sum of its
 //! samples' unit stood-for normals points away from its own normal. Why this reach and not
 //! the nearest triangle alone (thin parts: both sides near): docs/design.md
 //! [Folded triangles](../../docs/design.md#folds). Triangles with no normal count as
@@ -22,16 +22,17 @@ use crate::cancel::Cancel;
 
 /// Input triangles a sample looks at, at most, for one facing like it: the cost of a sample
 /// that has none stays bounded whatever the mesh (docs/design.md#folds).
-const BUDGET: usize = 4096;
+const BUDGET: usize = 512;
 
 /// A sample inside a thin part (behind the nearest input triangle, which faces away) is backed
-/// by a triangle facing like it, also in front of it, within `1 + DEFAULT_REACH` times the
+/// by a triangle facing like it, also behind it, within `1 + DEFAULT_REACH` times the
 /// nearest distance: the output crossed the middle of a part up to about three times as thick
 /// as its error (docs/design.md#folds).
 pub const DEFAULT_REACH: f64 = 1.0;
 
-/// Samples also look this many times the nearest input triangle's size beyond their nearest
-/// distance: sides closer than the input's own triangles are one sheet (docs/design.md#folds).
+/// A triangle facing like the sample within this many times the nearest input triangle's size
+/// of the nearest point backs it: sides closer than the input's own triangles are one sheet
+/// (docs/design.md#folds).
 const SIZE_SHARE: f64 = 1.0;
 
 /// Largest grid side: at most `MAX_SIDE²` samples on one output triangle (docs/design.md#folds).
@@ -220,7 +221,7 @@ impl Judge<'_> {
 
     /// The unit normal of the input surface that the output point `p` (on a triangle facing
     /// `normal`) stands for: the nearest input triangle's, unless that faces away and another,
-    /// facing like `normal`, is near enough to be the same place (see [`SIZE_SHARE`]) or `p`
+    /// facing like `normal`, is at the same place (see [`SIZE_SHARE`]) or `p`
     /// lies inside a thin part between the two, both behind it (see [`DEFAULT_REACH`]).
     fn stood_for(&self, p: DVec3, normal: DVec3, stack: &mut Vec<(u32, f64)>) -> DVec3 {
         let Some(nearest) = self.input_bvh.nearest(p, None, stack) else {
@@ -230,28 +231,31 @@ impl Judge<'_> {
         if own.dot(normal) > 0.0 {
             return own.normalize_or_zero();
         }
+        let facing = |id: u32| self.input_normals[id as usize].dot(normal) > 0.0;
         // √(2 × area): about the nearest input triangle's edge length.
         let size = own.length().sqrt();
-        let d = nearest.dist2.sqrt();
-        let same_place = d + SIZE_SHARE * size + self.floor;
+        let same_place = SIZE_SHARE * size + self.floor;
+        let at_nearest = self.input_bvh.nearest_where(
+            nearest.point,
+            same_place * same_place,
+            BUDGET,
+            |id, _| facing(id),
+            stack,
+        );
         let inside = (p - nearest.point).dot(own) <= 0.0;
-        let across = if inside {
-            (1.0 + self.reach) * d + self.floor
-        } else {
-            0.0
-        };
-        let reach = same_place.max(across);
-        let backs = |id: u32, q: DVec3| {
-            let n = self.input_normals[id as usize];
-            n.dot(normal) > 0.0 && {
-                let dist = q.distance(p);
-                dist <= same_place || (dist <= across && (p - q).dot(n) <= 0.0)
+        let backing = at_nearest.or_else(|| {
+            if !inside {
+                return None;
             }
-        };
-        match self
-            .input_bvh
-            .nearest_where(p, reach * reach, BUDGET, backs, stack)
-        {
+            let across = (1.0 + self.reach) * nearest.dist2.sqrt() + self.floor;
+            let behind = |id: u32, q: DVec3| {
+                let n = self.input_normals[id as usize];
+                n.dot(normal) > 0.0 && (p - q).dot(n) <= 0.0
+            };
+            self.input_bvh
+                .nearest_where(p, across * across, BUDGET, behind, stack)
+        });
+        match backing {
             Some(hit) => self.input_normals[hit.triangle as usize].normalize_or_zero(),
             None => own.normalize_or_zero(),
         }
