@@ -27,9 +27,11 @@ options:
   -s, --seed S      seed of the sample placement (default 1); same seed, same numbers
       --folds       also count B's triangles folded over A (A the input, B the output): a
                     triangle whose normal turns more than 90° from the part of A it stands
-                    for; zero-area triangles are counted apart as degenerate
-      --fold-reach R  a fold sample is backed by A's triangles within (1 + R) times its
-                    nearest distance that face like it (default 1)
+                    for; triangles with no normal are counted apart as degenerate
+      --fold-reach R
+                    a fold sample inside a thin part of A whose nearest side faces away
+                    stands for the other side if that faces like it within (1 + R) times
+                    the nearest distance (default 1)
   -j, --threads N   worker threads (default: all cores)
       --json        print JSON instead of a table
   -h, --help        this text

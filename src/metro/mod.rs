@@ -6,7 +6,8 @@
 //! [`compare`] (samples each surface and measures the distance of every sample from the other,
 //! in both directions) and the [`Comparison`] it returns. `bvh` answers the nearest-point
 //! queries, `sampling` places the samples and reduces their distances, `folds` counts B's
-//! triangles folded over A (optional), `report` prints the result as a table or JSON. The `metro` binary (src/bin/metro.rs) is a thin shell over this.
+//! triangles folded over A (optional), `report` prints the result as a table or JSON. The
+//! `metro` binary (src/bin/metro.rs) is a thin shell over this.
 //!
 //! Definitions, as in the paper: the one-sided distance `E(A, B)` is the distance of points of
 //! A from surface B; the Hausdorff distance is `max(E(A, B), E(B, A))`. Max is taken over every
@@ -288,7 +289,8 @@ pub struct Options {
     pub seed: u64,
     /// Also count B's triangles folded over A ([`folds`]: A the input, B the output).
     pub folds: bool,
-    /// How far beyond its nearest input a fold sample looks for backing ([`folds::measure`]).
+    /// How far beyond its nearest input a fold sample inside a thin part looks for backing
+    /// ([`folds::measure`]).
     pub fold_reach: f64,
 }
 
