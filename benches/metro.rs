@@ -50,6 +50,7 @@ fn main() {
         let options = Options {
             samples: Some(samples),
             seed: 1,
+            ..Options::default()
         };
         let Ok(c) = compare(&sa, &sb, &options) else {
             eprintln!("metro bench: empty surface");

@@ -25,6 +25,13 @@ options:
   -n, --samples N   face samples per direction (default: 10 per triangle, at least 10000);
                     edge samples are a tenth of this, and every vertex is sampled too
   -s, --seed S      seed of the sample placement (default 1); same seed, same numbers
+      --folds       also count B's triangles folded over A (A the input, B the output): a
+                    triangle whose normal turns more than 90° from the part of A it stands
+                    for; triangles with no normal are counted apart as degenerate
+      --fold-reach R
+                    a fold sample inside a thin part of A whose nearest side faces away
+                    stands for the other side if that faces like it within (1 + R) times
+                    the nearest distance (default 1)
   -j, --threads N   worker threads (default: all cores)
       --json        print JSON instead of a table
   -h, --help        this text
@@ -63,6 +70,14 @@ fn parse(args: &[String]) -> Result<Option<Args>, String> {
                 parsed.options.seed = v
                     .parse()
                     .map_err(|_| format!("{arg}: '{v}' is not a whole number"))?;
+            }
+            "--folds" => parsed.options.folds = true,
+            "--fold-reach" => {
+                let v = value(arg)?;
+                parsed.options.fold_reach = match v.parse::<f64>() {
+                    Ok(r) if r.is_finite() && r >= 0.0 => r,
+                    _ => return Err(format!("{arg}: '{v}' is not a number of at least 0")),
+                };
             }
             "-j" | "--threads" => {
                 let v = value(arg)?;
@@ -145,12 +160,14 @@ fn main() -> ExitCode {
     }
     let t = comparison.timings;
     eprintln!(
-        "metro: {:.3} s (read {:.3}, hierarchies {:.3}, A->B {:.3}, B->A {:.3}) on {} threads",
+        "metro: {:.3} s (read {:.3}, hierarchies {:.3}, A->B {:.3}, B->A {:.3}, folds {:.3}) on {} \
+         threads",
         start.elapsed().as_secs_f64(),
         t_read,
         t.bvh,
         t.a_to_b,
         t.b_to_a,
+        t.folds,
         rayon::current_num_threads()
     );
     ExitCode::SUCCESS

@@ -12,6 +12,7 @@
 use std::collections::HashMap;
 
 use glam::{DVec3, Vec3};
+use rayon::slice::ParallelSliceMut;
 
 use crate::mesh::seams;
 
@@ -22,6 +23,9 @@ const MIN_VOLUME_SHARE: f64 = 0.05;
 
 /// No closed component (`ClosedVolumes::component`).
 const NONE: u32 = u32::MAX;
+
+/// Vertices an edge key ([`edge_key`]) can tell apart: two ids and a direction in 64 bits.
+const MAX_VERTICES: usize = 1 << 31;
 
 /// Six times the signed volume of the tetrahedron (o, a, b, c): positive when triangle
 /// (a, b, c) faces away from `o`.
@@ -70,6 +74,9 @@ impl ClosedVolumes {
     /// when `weld` is empty); positions are each vertex's own.
     fn welded(positions: &[Vec3], triangles: &[[u32; 3]], weld: &[u32]) -> Self {
         let n = positions.len();
+        if n > MAX_VERTICES {
+            return Self::default(); // no edge key for them: nothing is taken as closed
+        }
         let valid = |t: &[u32; 3]| t.iter().all(|&v| (v as usize) < n);
         let one = |v: u32| weld.get(v as usize).copied().unwrap_or(v);
         // Components of the vertices, by union-find.
@@ -82,18 +89,25 @@ impl ClosedVolumes {
             }
         }
         // A component is closed when every directed edge appears once and so does its
-        // reverse: sort the directed edges and look each one's reverse up.
+        // reverse: sort the edges, each with its direction beside it, and check that each
+        // edge is run exactly once each way.
         let mut edges: Vec<u64> = triangles
             .iter()
             .filter(|t| valid(t))
-            .flat_map(|t| (0..3).map(move |k| key(one(t[k]), one(t[(k + 1) % 3]))))
+            .flat_map(|t| (0..3).map(move |k| edge_key(one(t[k]), one(t[(k + 1) % 3]))))
             .collect();
-        edges.sort_unstable();
+        edges.par_sort_unstable();
         let mut open = vec![false; n];
-        for (i, &e) in edges.iter().enumerate() {
-            let repeated = edges.get(i + 1) == Some(&e) || (i > 0 && edges[i - 1] == e);
-            let (a, b) = ((e >> 32) as u32, e as u32);
-            if repeated || edges.binary_search(&key(b, a)).is_err() {
+        for run in edges.chunk_by(|x, y| x >> 1 == y >> 1) {
+            let a = (run[0] >> 33) as u32;
+            let b = (run[0] >> 1) as u32;
+            // A degenerate edge (a, a) is its own reverse: it must only not repeat.
+            let once_each_way = if a == b {
+                run.len() == 1
+            } else {
+                run.len() == 2 && run[0] & 1 == 0 && run[1] & 1 == 1
+            };
+            if !once_each_way {
                 let root = find(&mut parent, a);
                 open[root as usize] = true;
             }
@@ -105,7 +119,7 @@ impl ClosedVolumes {
             }
         }
         // Number the closed components and sum their volumes about their first vertex.
-        let mut id: HashMap<u32, u32> = HashMap::new();
+        let mut id = vec![NONE; n];
         let mut component = vec![NONE; n];
         let mut origin = Vec::new();
         let mut volume6 = Vec::new();
@@ -114,11 +128,12 @@ impl ClosedVolumes {
             if open[root as usize] {
                 continue;
             }
-            let c = *id.entry(root).or_insert_with(|| {
+            if id[root as usize] == NONE {
+                id[root as usize] = origin.len() as u32;
                 origin.push(positions[t[0] as usize].as_dvec3());
                 volume6.push(0.0);
-                origin.len() as u32 - 1
-            });
+            }
+            let c = id[root as usize];
             let [a, b, d] = t.map(|v| positions[v as usize].as_dvec3());
             volume6[c as usize] += tet6(origin[c as usize], a, b, d);
             for &v in t {
@@ -156,6 +171,13 @@ impl ClosedVolumes {
         self.volume6[c as usize] += change6;
     }
 
+    /// Asks for `v`'s component ahead of [`Self::component`] (a hint only).
+    pub fn prefetch(&self, v: u32) {
+        if let Some(component) = self.component.get(v as usize) {
+            crate::mesh::prefetch(component);
+        }
+    }
+
     /// Six times component `c`'s signed volume now.
     pub fn volume6(&self, c: u32) -> f64 {
         self.volume6[c as usize]
@@ -182,6 +204,14 @@ impl ClosedView<'_> {
         match self {
             Self::Whole(c) => c.component(v),
             Self::Part(c, _) => c.component(v),
+        }
+    }
+
+    /// Asks for `v`'s component ahead of [`Self::component`] (a hint only).
+    pub fn prefetch(&self, v: u32) {
+        match self {
+            Self::Whole(c) => c.prefetch(v),
+            Self::Part(c, _) => c.prefetch(v),
         }
     }
 
@@ -223,8 +253,11 @@ impl ClosedVolumes {
 }
 
 /// The directed edge a → b as a sort key.
-fn key(a: u32, b: u32) -> u64 {
-    u64::from(a) << 32 | u64::from(b)
+/// Edge `a`–`b` as a sort key: its smaller vertex, its larger one, then one bit for its
+/// direction (set when it runs from the larger to the smaller); ids below `MAX_VERTICES`.
+fn edge_key(a: u32, b: u32) -> u64 {
+    let (lo, hi) = (a.min(b), a.max(b));
+    u64::from(lo) << 33 | u64::from(hi) << 1 | u64::from(a > b)
 }
 
 fn find(parent: &mut [u32], mut v: u32) -> u32 {

@@ -262,6 +262,72 @@ impl Bvh {
         }
         (best.dist2.is_finite()).then_some(best)
     }
+
+    /// The triangle nearest to `p` among those for which `accept(triangle index, closest
+    /// point)` holds and whose distance is at most `max_dist2` (squared). Stops early, with the best found so far,
+    /// once `budget` triangles have been looked at (accepted or not), so that a query whose answer is "none" costs
+    /// at most that much whatever the mesh. `stack` is scratch space, as for [`Bvh::nearest`].
+    pub fn nearest_where(
+        &self,
+        p: DVec3,
+        max_dist2: f64,
+        budget: usize,
+        accept: impl Fn(u32, DVec3) -> bool,
+        stack: &mut Vec<(u32, f64)>,
+    ) -> Option<Hit> {
+        let root = self.nodes.first()?;
+        let mut best: Option<Hit> = None;
+        let mut tested = 0;
+        let bound = |best: &Option<Hit>| best.map_or(max_dist2, |h| h.dist2);
+        stack.clear();
+        stack.push((0, box_dist2(p, root.lo, root.hi)));
+        while let Some((index, d2)) = stack.pop() {
+            if d2 > bound(&best) {
+                continue;
+            }
+            let node = self.nodes[index as usize];
+            if node.count > 0 {
+                let first = node.first as usize;
+                for slot in first..first + node.count as usize {
+                    if tested == budget {
+                        return best;
+                    }
+                    tested += 1;
+                    let id = self.ids[slot];
+                    let [a, b, c] = self.tris[slot];
+                    let q = closest_point_on_triangle(p, a, b, c);
+                    let qd2 = q.distance_squared(p);
+                    if qd2 <= bound(&best) && best.is_none_or(|h| qd2 < h.dist2) && accept(id, q) {
+                        best = Some(Hit {
+                            dist2: qd2,
+                            point: q,
+                            triangle: id,
+                        });
+                    }
+                }
+            } else {
+                let l = node.first;
+                let r = l + 1;
+                let ln = &self.nodes[l as usize];
+                let rn = &self.nodes[r as usize];
+                let dl = box_dist2(p, ln.lo, ln.hi);
+                let dr = box_dist2(p, rn.lo, rn.hi);
+                let (near, dn, far, df) = if dl <= dr {
+                    (l, dl, r, dr)
+                } else {
+                    (r, dr, l, dl)
+                };
+                let limit = bound(&best);
+                if df <= limit {
+                    stack.push((far, df));
+                }
+                if dn <= limit {
+                    stack.push((near, dn));
+                }
+            }
+        }
+        best
+    }
 }
 
 /// Subtrees smaller than this are built on one thread.
@@ -593,6 +659,37 @@ mod tests {
             let hit = bvh.nearest(p, hint, &mut stack).map(|h| h.dist2);
             assert_eq!(hit, Some(brute));
             hint = bvh.nearest(p, None, &mut stack).map(|h| h.triangle);
+        }
+    }
+
+    #[test]
+    fn nearest_where_matches_brute_force() {
+        // The nearest accepted triangle within the bound, exactly as a scan of all finds it;
+        // none when no accepted triangle is that near.
+        let (positions, triangles) = bumpy_grid(30);
+        let bvh = Bvh::new(&positions, &triangles);
+        let mut stack = Vec::new();
+        let accept = |id: u32, _| id % 7 == 3;
+        for i in 0..200 {
+            let t = i as f64 / 200.0;
+            let p = DVec3::new(1.3 * t - 0.15, (17.0 * t).fract(), 0.4 * (11.0 * t).sin());
+            let brute = triangles
+                .iter()
+                .enumerate()
+                .filter(|&(id, _)| id % 7 == 3)
+                .map(|(_, t)| {
+                    let [a, b, c] = t.map(|v| positions[v as usize]);
+                    closest_point_on_triangle(p, a, b, c).distance_squared(p)
+                })
+                .fold(f64::INFINITY, f64::min);
+            let max2 = 0.01 * (i % 5) as f64;
+            let found = bvh.nearest_where(p, max2, usize::MAX, accept, &mut stack);
+            let expected = (brute <= max2).then_some(brute);
+            assert_eq!(found.map(|h| h.dist2), expected);
+            assert!(found.is_none_or(|h| h.triangle % 7 == 3));
+            // A budget of a few triangles tested gives an accepted one or none, never nearer.
+            let few = bvh.nearest_where(p, f64::INFINITY, 8, accept, &mut stack);
+            assert!(few.is_none_or(|h| h.triangle % 7 == 3 && h.dist2 >= brute));
         }
     }
 }

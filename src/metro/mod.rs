@@ -5,8 +5,9 @@
 //! triangle soup, welded by exact position, with areas, edges, closedness and volume),
 //! [`compare`] (samples each surface and measures the distance of every sample from the other,
 //! in both directions) and the [`Comparison`] it returns. `bvh` answers the nearest-point
-//! queries, `sampling` places the samples and reduces their distances, `report` prints the
-//! result as a table or JSON. The `metro` binary (src/bin/metro.rs) is a thin shell over this.
+//! queries, `sampling` places the samples and reduces their distances, `folds` counts B's
+//! triangles folded over A (optional), `report` prints the result as a table or JSON. The
+//! `metro` binary (src/bin/metro.rs) is a thin shell over this.
 //!
 //! Definitions, as in the paper: the one-sided distance `E(A, B)` is the distance of points of
 //! A from surface B; the Hausdorff distance is `max(E(A, B), E(B, A))`. Max is taken over every
@@ -15,6 +16,7 @@
 
 pub mod bvh;
 pub mod field;
+pub mod folds;
 pub mod report;
 pub mod sampling;
 
@@ -285,6 +287,11 @@ pub struct Options {
     pub samples: Option<usize>,
     /// Seed of the sample placement: the same seed gives the same numbers.
     pub seed: u64,
+    /// Also count B's triangles folded over A ([`folds`]: A the input, B the output).
+    pub folds: bool,
+    /// How far beyond its nearest input a fold sample inside a thin part looks for backing
+    /// ([`folds::measure`]).
+    pub fold_reach: f64,
 }
 
 /// Face samples used by default on tiny meshes.
@@ -295,6 +302,8 @@ impl Default for Options {
         Self {
             samples: None,
             seed: 1,
+            folds: false,
+            fold_reach: folds::DEFAULT_REACH,
         }
     }
 }
@@ -312,6 +321,7 @@ pub struct Timings {
     pub bvh: f64,
     pub a_to_b: f64,
     pub b_to_a: f64,
+    pub folds: f64,
 }
 
 /// Everything Metro measured between two surfaces A and B.
@@ -326,6 +336,8 @@ pub struct Comparison {
     pub a_to_b: DirectionStats,
     /// Distances of B's samples from A.
     pub b_to_a: DirectionStats,
+    /// B's triangles folded over A, when [`Options::folds`] asked for them.
+    pub folds: Option<folds::Folds>,
     pub timings: Timings,
 }
 
@@ -433,6 +445,13 @@ pub fn compare_cancellable(
     let t_ab = start.elapsed().as_secs_f64();
     let b_to_a = measure(b, &bvh_a)?;
     let t_ba = start.elapsed().as_secs_f64();
+    let folds = options
+        .folds
+        .then(|| folds::measure(a, &bvh_a, b, options.fold_reach, floor, cancel));
+    if cancel.requested() {
+        return Err(MetroError::Cancelled);
+    }
+    let t_folds = start.elapsed().as_secs_f64();
     Ok(Comparison {
         a: a.info(),
         b: b.info(),
@@ -440,10 +459,12 @@ pub fn compare_cancellable(
         seed: options.seed,
         a_to_b,
         b_to_a,
+        folds,
         timings: Timings {
             bvh: t_bvh,
             a_to_b: t_ab - t_bvh,
             b_to_a: t_ba - t_ab,
+            folds: t_folds - t_ba,
         },
     })
 }

@@ -2,7 +2,7 @@
 //! simplified surfaces", Computer Graphics Forum 17(2), 1998): a table for people and JSON for
 //! scripts.
 //!
-//! Owns the output formats. Both are deterministic: the same comparison prints the same bytes
+//! Owns the output formats (the folded-triangle count only when it was measured). Both are deterministic: the same comparison prints the same bytes
 //! (timings are not part of either; the binary prints them on standard error).
 
 use std::fmt::Write as _;
@@ -82,6 +82,30 @@ pub fn table(c: &Comparison, names: [&str; 2]) -> String {
         num(farthest.1.y),
         num(farthest.1.z)
     );
+    if let Some(f) = &c.folds {
+        let _ = writeln!(s);
+        let _ = writeln!(
+            s,
+            "folded triangles of B over A: {} ({:.4} % of B's area); degenerate: {}",
+            f.triangles,
+            100.0 * f.area_fraction,
+            f.degenerate
+        );
+        let _ = writeln!(
+            s,
+            "   {} triangles checked with {} samples",
+            f.checked, f.samples
+        );
+        if let Some(p) = f.largest_at {
+            let _ = writeln!(
+                s,
+                "   the largest at ({}, {}, {})",
+                num(p.x),
+                num(p.y),
+                num(p.z)
+            );
+        }
+    }
     s
 }
 
@@ -164,6 +188,21 @@ pub fn json(c: &Comparison, names: [&str; 2]) -> String {
         float(c.relative(sym.mean)),
         float(c.relative(sym.rms)),
     );
+    if let Some(f) = &c.folds {
+        let _ = writeln!(
+            s,
+            "  \"folded\": {{\"triangles\": {}, \"area\": {}, \"area_fraction\": {}, \
+             \"degenerate\": {}, \"checked\": {}, \"samples\": {}, \"largest_at\": {}}},",
+            f.triangles,
+            float(f.area),
+            float(f.area_fraction),
+            f.degenerate,
+            f.checked,
+            f.samples,
+            f.largest_at
+                .map_or("null".to_string(), |p| vec3(p.to_array())),
+        );
+    }
     let _ = writeln!(s, "  \"hausdorff\": {},", float(c.hausdorff()));
     let _ = writeln!(
         s,

@@ -107,3 +107,63 @@ fn same_seed_same_output_other_seed_other_output() {
     assert_eq!(first, run("7"));
     assert_ne!(first, run("8"));
 }
+
+/// A 4×4 grid of unit squares facing +z as OBJ text, with triangle `flip` (if any) reversed.
+fn grid_obj(flip: Option<usize>) -> String {
+    let mut s = String::new();
+    for j in 0..5 {
+        for i in 0..5 {
+            s += &format!("v {i} {j} 0\n");
+        }
+    }
+    let mut k = 0;
+    for j in 0..4 {
+        for i in 0..4 {
+            let a = j * 5 + i + 1;
+            let c = a + 5;
+            for [x, y, z] in [[a, a + 1, c + 1], [a, c + 1, c]] {
+                if flip == Some(k) {
+                    s += &format!("f {x} {z} {y}\n");
+                } else {
+                    s += &format!("f {x} {y} {z}\n");
+                }
+                k += 1;
+            }
+        }
+    }
+    s
+}
+
+#[test]
+fn folds_are_counted_in_json_and_table_when_asked() {
+    let dir = std::env::temp_dir().join(format!("metro-folds-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (a, b) = (dir.join("plane.obj"), dir.join("flipped.obj"));
+    std::fs::write(&a, grid_obj(None)).unwrap();
+    std::fs::write(&b, grid_obj(Some(5))).unwrap();
+    let (a, b) = (a.to_string_lossy(), b.to_string_lossy());
+    let (code, out, err) = metro(&["--json", "--folds", &a, &b]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(json_number(&out, "folded", "triangles"), 1.0);
+    assert_eq!(json_number(&out, "folded", "area_fraction"), 1.0 / 32.0);
+    assert_eq!(json_number(&out, "folded", "degenerate"), 0.0);
+    assert_eq!(json_number(&out, "folded", "checked"), 32.0);
+    // The flipped triangle, (2, 0) (3, 1) (2, 1): centroid (7/3, 2/3, 0).
+    assert!(
+        out.contains("\"largest_at\": [2.3333333333333335e0, 6.666666666666666e-1, 0e0]"),
+        "{out}"
+    );
+    let (code, out, _) = metro(&["--folds", &a, &b]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("folded triangles of B over A: 1 (3.1250 % of B's area); degenerate: 0"),
+        "{out}"
+    );
+    // Not asked: not measured, not printed.
+    let (_, out, _) = metro(&["--json", &a, &b]);
+    assert!(!out.contains("folded"), "{out}");
+    let (code, _, err) = metro(&["--folds", "--fold-reach", "-1", &a, &b]);
+    assert_eq!(code, 2);
+    assert!(err.contains("'-1' is not a number of at least 0"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

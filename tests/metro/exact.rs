@@ -147,6 +147,7 @@ fn measure(a: &Surface, b: &Surface, samples: usize, seed: u64) -> Comparison {
     let options = Options {
         samples: Some(samples),
         seed,
+        ..Options::default()
     };
     compare(a, b, &options).unwrap()
 }
@@ -408,6 +409,7 @@ fn a_cancelled_comparison_stops_with_cancelled_and_an_uncancelled_one_measures_a
     let options = Options {
         samples: Some(20_000),
         seed: 5,
+        ..Options::default()
     };
     let cancel = Cancel::new();
     let whole = compare_cancellable(&a, &b, &options, &cancel).unwrap();

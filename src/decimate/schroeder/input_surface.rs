@@ -4,12 +4,13 @@
 //! and per vertex, the input triangles at it.
 
 use glam::{DVec3, Vec3};
+use rayon::prelude::*;
 
-/// Each triangle's area vector (its normal, twice its area long).
+/// Each triangle's area vector (its normal, twice its area long), on all cores.
 pub(super) fn area_vectors(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec3> {
     let p = |v: u32| positions[v as usize].as_dvec3();
     triangles
-        .iter()
+        .par_iter()
         .map(|&[a, b, c]| (p(b) - p(a)).cross(p(c) - p(a)).as_vec3())
         .collect()
 }
@@ -54,12 +55,6 @@ impl InputCorners {
         for v in 0..vertex_count {
             offsets[v + 1] += offsets[v];
         }
-        let mut sums = vec![DVec3::ZERO; vertex_count];
-        for (t, a) in triangles.iter().zip(&areas) {
-            for &v in t {
-                sums[v as usize] += a.as_dvec3();
-            }
-        }
         let mut next = offsets.clone();
         let mut at = vec![0u32; offsets[vertex_count] as usize];
         for (i, t) in triangles.iter().enumerate() {
@@ -68,11 +63,28 @@ impl InputCorners {
                 next[v as usize] += 1;
             }
         }
+        drop(next);
+        // Each vertex's list is in triangle order: summed in that order, on all cores.
+        let sums = (0..vertex_count)
+            .into_par_iter()
+            .map(|v| {
+                let list = &at[offsets[v] as usize..offsets[v + 1] as usize];
+                let sum: DVec3 = list.iter().map(|&t| areas[t as usize].as_dvec3()).sum();
+                sum.as_vec3()
+            })
+            .collect();
         Self {
             offsets,
             triangles: at,
             areas,
-            sums: sums.iter().map(|s| s.as_vec3()).collect(),
+            sums,
+        }
+    }
+
+    /// Asks for vertex `v`'s summed input areas ahead of a check at it (a hint only).
+    pub fn prefetch(&self, v: u32) {
+        if let Some(sum) = self.sums.get(v as usize) {
+            crate::mesh::prefetch(sum);
         }
     }
 

@@ -46,13 +46,15 @@ mod region_removal;
 mod removal_passes;
 mod sheets;
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use glam::Vec3;
 use rayon::prelude::*;
 
 use super::closed::{tet6, ClosedVolumes};
 use super::layout::{self, compact, Compacted};
 use super::{Limits, Outcome, MIN_VERTICES};
-use crate::mesh::classify::{classify, VertexClass};
+use crate::mesh::classify::VertexClass;
 use crate::mesh::seams::position_key;
 use crate::mesh::topology::{Adjacency, Connectivity};
 use crate::mesh::{Attribute, Model};
@@ -146,8 +148,9 @@ pub fn decimate_model(
     };
     if limits.relax_features {
         removal_passes::relax_early(&mut d, limits, &mut outcome);
+    } else {
+        d.rank_all();
     }
-    d.rank_all();
 
     // 4. remove
     removal_passes::remove_in_passes(&mut d, &floored, &mut outcome, progress);
@@ -331,37 +334,24 @@ impl Decimator {
         }
     }
 
-    /// The live vertices, pinned ones aside, that the feature angle now makes corners
-    /// (never removed), counted on all cores.
-    fn corners(&self) -> usize {
-        let surface = self.surface();
-        (0..self.positions.len() as u32)
-            .into_par_iter()
-            .map_init(Planning::default, |p, v| {
-                let seam_side = self.twin(v).is_some();
-                !self.pinned[v as usize]
-                    && classify(
-                        surface.conn,
-                        surface.positions,
-                        v,
-                        surface.cos_feature,
-                        seam_side,
-                        &mut p.ring,
-                        &mut p.geometry,
-                    ) == VertexClass::Corner
-            })
-            .filter(|&corner| corner)
-            .count()
-    }
-
-    /// Ranks every vertex afresh, on all cores (each key depends only on its own ring).
-    fn rank_all(&mut self) {
+    /// Ranks every vertex afresh, on all cores (each key depends only on its own ring);
+    /// returns how many vertices, pinned ones aside, the feature angle now makes corners
+    /// (never removed).
+    fn rank_all(&mut self) -> usize {
         let this = &*self;
+        let corners = AtomicUsize::new(0);
         let keys: Vec<f64> = (0..this.positions.len() as u32)
             .into_par_iter()
-            .map_init(Planning::default, |planning, v| this.key(v, planning))
+            .map_init(Planning::default, |planning, v| {
+                let key = this.key(v, planning);
+                if planning.corner && !this.pinned[v as usize] {
+                    corners.fetch_add(1, Ordering::Relaxed);
+                }
+                key
+            })
             .collect();
         self.keys = keys;
+        corners.into_inner()
     }
 
     /// Ranks `vertices` (ascending) afresh, on all cores, asking for each vertex's data
@@ -406,6 +396,24 @@ impl Decimator {
                 }
             }
         }
+    }
+
+    /// Asks for `v`'s per-vertex state ahead of a removal that reads or marks it (its
+    /// marks, key, accumulated error, closed component; hints only).
+    fn prefetch_vertex(&self, v: u32) {
+        let i = v as usize;
+        if let (Some(changed), Some(touched), Some(key), Some(acc)) = (
+            self.changed_in.get(i),
+            self.touched_in.get(i),
+            self.keys.get(i),
+            self.accumulated.get(i),
+        ) {
+            crate::mesh::prefetch(changed);
+            crate::mesh::prefetch(touched);
+            crate::mesh::prefetch(key);
+            crate::mesh::prefetch(acc);
+        }
+        self.closed.prefetch(v);
     }
 
     /// `v`'s other side on a texture seam, when it has one.

@@ -37,8 +37,13 @@ pub(super) struct Planning {
     sheets: Sheets,
     /// The fans' fills' input surfaces, gathered while each fan is filled.
     sheets_input: Vec<Vec3>,
+    /// The input surface of each old triangle of the region being checked, read once.
+    old_input: Vec<DVec3>,
     /// A ring closed at a seam junction (`Surface::close_at_junction`): the copy left out.
     junction: Option<u32>,
+    /// Whether the vertex last evaluated classified as a corner as its ring stands (before
+    /// a junction closes it or a fold splits it): what the early relaxation counts.
+    pub corner: bool,
 }
 
 /// The fill triangles from the previous region's `end` up to this `end` replace the ring
@@ -124,6 +129,7 @@ impl<C: Adjacency> Surface<'_, C> {
             &mut p.ring,
             &mut p.geometry,
         );
+        p.corner = class == VertexClass::Corner;
         p.junction = None;
         if self.close_at_junction(v, p) {
             let (closed, ring) = (RingShape::Closed, &p.ring);
@@ -436,14 +442,23 @@ impl<C: Adjacency> Surface<'_, C> {
     /// may face apart by up to 180°.
     fn fill_is_valid(&self, v: u32, p: &mut Planning) -> bool {
         let mut fill_input = std::mem::take(&mut p.fill_input);
+        let mut old_input = std::mem::take(&mut p.old_input);
         fill_input.clear();
-        let valid = self.fill_checks(v, p, &mut fill_input);
+        let valid = self.fill_checks(v, p, &mut fill_input, &mut old_input);
         p.fill_input = fill_input;
+        p.old_input = old_input;
         valid
     }
 
-    /// [`Self::fill_is_valid`]'s checks; each fill triangle's input surface into `fill_input`.
-    fn fill_checks(&self, v: u32, p: &Planning, fill_input: &mut Vec<Vec3>) -> bool {
+    /// [`Self::fill_is_valid`]'s checks; each fill triangle's input surface into `fill_input`
+    /// (`old_input` is scratch).
+    fn fill_checks(
+        &self,
+        v: u32,
+        p: &Planning,
+        fill_input: &mut Vec<Vec3>,
+        old_input: &mut Vec<DVec3>,
+    ) -> bool {
         let r = &p.ring.verts;
         let k = r.len();
         let closed = k == p.ring.triangles.len();
@@ -463,10 +478,10 @@ impl<C: Adjacency> Surface<'_, C> {
         for &region in &p.regions {
             // Normal of the old region: the sum of its ring triangles' area vectors; and
             // the input surface they stand for.
-            let old: DVec3 = (region.from..region.to).map(|i| crosses[i % k]).sum();
-            let input: DVec3 = (region.from..region.to)
-                .map(|i| self.input.of(slots[i % k]))
-                .sum();
+            let old: DVec3 = (region.from..region.to).map(|i| crosses[wrap(i, k)]).sum();
+            old_input.clear();
+            old_input.extend((region.from..region.to).map(|i| self.input.of(slots[wrap(i, k)])));
+            let input: DVec3 = old_input.iter().sum();
             if !self.fill_keeps_texture(v, p, region, &p.fill[start..region.end]) {
                 return false;
             }
@@ -504,59 +519,36 @@ impl<C: Adjacency> Surface<'_, C> {
                 // up once. (The edge closing an open ring and a crease's split edge, in
                 // one triangle, were looked up before the fill was made.)
                 for (x, y) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
-                    if x < y && !is_ring_edge(x, y) && self.conn.has_edge_avoiding(x, y, v) {
+                    if x > y || is_ring_edge(x, y) {
+                        continue;
+                    }
+                    if self.conn.has_edge_avoiding(x, y, v) {
                         return false;
                     }
                     // An open ring's closing edge lies on the outline: on a seam, the
                     // other side's removal closes its hole with the same edge.
                     let closing = !closed && is_ring_end(r, x) && is_ring_end(r, y);
-                    if x < y && !is_ring_edge(x, y) && !closing && self.joins_seam_sides(x, y) {
+                    if !closing && self.joins_seam_sides(x, y) {
                         return false;
                     }
                     // Welded, no other copies of the two may be joined already (at a
                     // junction, its copies are joined to much of the ring).
-                    if x < y && !is_ring_edge(x, y) && !closing && self.joined_elsewhere(v, x, y) {
+                    if !closing && self.joined_elsewhere(v, x, y) {
                         return false;
                     }
                 }
             }
-            self.share_input(
+            share_input(
                 p,
                 region,
                 &p.fill[start..region.end],
-                input,
+                old_input,
                 area,
                 &mut fill_input[start..region.end],
             );
             start = region.end;
         }
         true
-    }
-
-    /// Gives each new triangle of `region` (`fill`, the lengths of whose area vectors are in
-    /// `shares`, `area` in all) its share of the input surface the region's old slots stand
-    /// for, `input` in all: half by area, half the input of the old triangles whose outer edge
-    /// it takes (each old triangle's outer edge is in one new triangle), so the total is kept
-    /// and stays local (docs/design.md#schroeder-input-surface).
-    fn share_input(
-        &self,
-        p: &Planning,
-        region: FillRegion,
-        fill: &[[u32; 3]],
-        input: DVec3,
-        area: f64,
-        shares: &mut [Vec3],
-    ) {
-        let (r, slots) = (&p.ring.verts, &p.ring.triangles);
-        let k = r.len();
-        for (tri, share) in fill.iter().zip(shares) {
-            let near: DVec3 = (region.from..region.to)
-                .map(|i| i % k)
-                .filter(|&i| tri.contains(&r[i]) && tri.contains(&r[(i + 1) % k]))
-                .map(|i| self.input.of(slots[i]))
-                .sum();
-            *share = (input * (0.5 * f64::from(share.x) / area) + 0.5 * near).as_vec3();
-        }
     }
 
     /// Whether a new edge `x`–`y` inside one side of a texture seam would meet an edge of
@@ -670,6 +662,52 @@ impl<C: Adjacency> Surface<'_, C> {
     }
 }
 
+/// Gives each new triangle of `region` (`fill`, the lengths of whose area vectors are in
+/// `shares`, `area` in all) its share of the input surface the region's old slots stand
+/// for (`old_input`, in region order): half by area, half the input of the old triangles
+/// whose outer edge it takes (each old triangle's outer edge is in one new triangle), so the
+/// total is kept and stays local (docs/design.md#schroeder-input-surface).
+fn share_input(
+    p: &Planning,
+    region: FillRegion,
+    fill: &[[u32; 3]],
+    old_input: &[DVec3],
+    area: f64,
+    shares: &mut [Vec3],
+) {
+    let r = &p.ring.verts;
+    let k = r.len();
+    let input: DVec3 = old_input.iter().sum();
+    for (tri, share) in fill.iter().zip(shares) {
+        // Old triangle i's outer edge runs from ring vertex i to i + 1: each vertex is
+        // looked up in `tri` once, as the end of one edge and the start of the next.
+        let corner = |i: usize| {
+            let x = r[wrap(i, k)];
+            (tri[0] == x) | (tri[1] == x) | (tri[2] == x)
+        };
+        let mut near = DVec3::ZERO;
+        let mut starts_in = corner(region.from);
+        for (i, &old) in (region.from..region.to).zip(old_input) {
+            let ends_in = corner(i + 1);
+            if starts_in & ends_in {
+                near += old;
+            }
+            starts_in = ends_in;
+        }
+        *share = (input * (0.5 * f64::from(share.x) / area) + 0.5 * near).as_vec3();
+    }
+}
+
+/// Ring position `i` of a ring of `k` (`i < 2k`: a region runs at most once around).
+fn wrap(i: usize, k: usize) -> usize {
+    debug_assert!(i < 2 * k);
+    if i >= k {
+        i - k
+    } else {
+        i
+    }
+}
+
 /// The area vectors of the open fan `path` around `v` (triangle `i` is `(v, path[i],
 /// path[i + 1])`) into `geometry`, as `classify` gives them for a manifold ring.
 fn fan_geometry(positions: &[Vec3], v: u32, path: &[u32], geometry: &mut RingGeometry) {
@@ -705,7 +743,8 @@ fn faces_like_old(
     let crosses = &p.geometry.crosses;
     let apart = |a: DVec3, b: DVec3| a.dot(b) <= FOLD_COS * a.length() * b.length();
     (region.from..region.to).all(|i| {
-        let (i, c) = (i % k, crosses[i % k]);
+        let i = wrap(i, k);
+        let c = crosses[i];
         let next = if i + 1 == k { r[0] } else { r[i + 1] };
         let touches = tri.contains(&r[i]) || tri.contains(&next);
         !touches || unfold.is_some_and(|old| apart(c, old)) || !apart(cross, c)

@@ -204,8 +204,10 @@ impl Region<'_> {
     }
 
     /// Asks for the data of the candidates ahead of candidate `n`, in three stages as each
-    /// becomes addressable: a candidate's incident list, then its triangles, then its ring
-    /// vertices' incident lists (which the ownership check and the fill's checks read).
+    /// becomes addressable: a candidate's incident list and per-vertex state, then its
+    /// triangles and their input surface, then its ring vertices' incident lists, input
+    /// corners and per-vertex state (which the ownership check, the fill's checks and the
+    /// removal read).
     fn prefetch_ahead(&self, candidates: &[Candidate], n: usize) {
         let conn = &self.conn;
         let listed = |k: usize| {
@@ -215,11 +217,21 @@ impl Region<'_> {
                 .filter(|&v| conn.has_room(v, 0))
         };
         if let Some(c) = candidates.get(n + 3 * AHEAD) {
-            conn.prefetch_incident(c.vertex());
+            let v = c.vertex();
+            conn.prefetch_incident(v);
+            self.closed.prefetch(v);
+            let i = v.wrapping_sub(self.v0) as usize;
+            if let (Some(mark), Some(key)) = (self.changed_in.get(i), self.keys.get(i)) {
+                crate::mesh::prefetch(mark);
+                crate::mesh::prefetch(key);
+            }
         }
         if let Some(v) = listed(2 * AHEAD) {
             for &t in conn.incident(v) {
                 conn.prefetch_triangle(t);
+                if let Some(input) = self.input.get(t.wrapping_sub(self.t0) as usize) {
+                    crate::mesh::prefetch(input);
+                }
             }
         }
         if let Some(v) = listed(AHEAD) {
@@ -227,6 +239,14 @@ impl Region<'_> {
                 if conn.owns_slot(t) {
                     for u in conn.triangle(t) {
                         conn.prefetch_incident(u);
+                        self.corners.prefetch(u);
+                        let i = u.wrapping_sub(self.v0) as usize;
+                        if let (Some(mark), Some(acc)) =
+                            (self.changed_in.get(i), self.accumulated.get(i))
+                        {
+                            crate::mesh::prefetch(mark);
+                            crate::mesh::prefetch(acc);
+                        }
                     }
                 }
             }

@@ -169,9 +169,10 @@ pub(super) fn remove_in_passes(
     }
 }
 
-/// Raises the feature angle in `RELAX_STEP_DEG` steps before any removal while the corners
-/// it makes are more than `MAX_CORNER_SHARE` of the vertices the count target leaves: kept
-/// whatever their error, they would crowd the result, and be relaxed in bulk at the end.
+/// Ranks every vertex, raising the feature angle in `RELAX_STEP_DEG` steps before any
+/// removal while the corners it makes (counted by the ranking) are more than
+/// `MAX_CORNER_SHARE` of the vertices the count target leaves: kept whatever their error,
+/// they would crowd the result, and be relaxed in bulk at the end.
 pub(super) fn relax_early(d: &mut Decimator, limits: &Limits, outcome: &mut Outcome) {
     let live = (0..d.positions.len() as u32)
         .filter(|&v| !d.conn.incident(v).is_empty())
@@ -185,8 +186,8 @@ pub(super) fn relax_early(d: &mut Decimator, limits: &Limits, outcome: &mut Outc
     // `remove` at or above the live count: no vertex target.
     let by_vertices = live.checked_sub(limits.remove).unwrap_or(live);
     let left = by_vertices.min(by_triangles);
-    while outcome.feature_angle_deg < MAX_EARLY_ANGLE_DEG
-        && d.corners() as f64 > MAX_CORNER_SHARE * left as f64
+    while d.rank_all() as f64 > MAX_CORNER_SHARE * left as f64
+        && outcome.feature_angle_deg < MAX_EARLY_ANGLE_DEG
     {
         outcome.feature_angle_deg = (outcome.feature_angle_deg + RELAX_STEP_DEG).min(180.0);
         d.cos_feature = outcome.feature_angle_deg.to_radians().cos();
@@ -278,8 +279,13 @@ fn plan_batch(d: &Decimator, batch: &[Candidate], order: &mut Vec<u32>) -> Batch
         .par_chunks(PER_TASK)
         .map_init(Planning::default, |planning, chunk| {
             let mut plans = Plans::default();
-            for &i in chunk {
-                let v = batch[i as usize].vertex();
+            let mut vertices = [0u32; PER_TASK];
+            for (slot, &i) in vertices.iter_mut().zip(chunk) {
+                *slot = batch[i as usize].vertex();
+            }
+            let vertices = &vertices[..chunk.len()];
+            for (n, &v) in vertices.iter().enumerate() {
+                d.prefetch_ahead(vertices, n);
                 let entry = if d.changed_now(v) || d.twin(v).is_some() {
                     Planned::Later
                 } else {
@@ -322,9 +328,13 @@ fn remove_planned(
 ) -> bool {
     for (i, (c, &(task, entry))) in batch.iter().zip(&plans.at).enumerate() {
         if let Some(&(task, entry)) = plans.at.get(i + PREFETCH_AHEAD) {
+            if let Some(c) = batch.get(i + PREFETCH_AHEAD) {
+                d.prefetch_vertex(c.vertex());
+            }
             if let Some((removal, _)) = plans.tasks[task as usize].removal(entry as usize) {
                 for &u in removal.ring {
                     d.conn.prefetch_incident(u);
+                    d.prefetch_vertex(u);
                 }
                 for &t in removal.triangles {
                     d.conn.prefetch_triangle(t);
