@@ -54,7 +54,8 @@ fn assert_invariants(before: &Model, after: &Model) {
 fn a_noisy_sheet_spends_nothing_on_its_folds() {
     let before = noisy_sheet(40, 0.6);
     let after = qem(&before, 640, 30.0);
-    assert_eq!(after.triangles.len(), 640);
+    // An inside collapse takes two triangles: from 641 the count ends at 639.
+    assert!((639..=640).contains(&after.triangles.len()));
     assert_invariants(&before, &after);
     let unconstrained = qem(&before, 640, 180.0);
     assert_eq!(after.triangles, unconstrained.triangles);

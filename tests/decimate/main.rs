@@ -22,4 +22,5 @@ mod schroeder;
 mod seams;
 mod stitches;
 mod texcoords;
+mod turned_from_input;
 mod untouched;

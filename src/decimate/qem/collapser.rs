@@ -4,7 +4,7 @@
 //! The operations live on `Part`: planning and collapsing in `part`, the checks in
 //! `legality`, the cost cache in `ranking`; the loop is in `collapse_passes`.
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 use super::collapse_plan::Kind;
 use super::edge_costs::EdgeCosts;
@@ -57,6 +57,10 @@ pub(super) struct Collapser {
     facing: Vec<Vec3>,
     /// Closed components' volumes: no collapse turns one inside out or flattens it.
     closed: ClosedVolumes,
+    /// Per vertex, the summed area vectors of the input triangles it stands for (their
+    /// lengths summed in `w`), carried through every collapse: the input surface that
+    /// triangles are checked against (docs/design.md#qem-input-surface).
+    input_surface: Vec<Vec4>,
 }
 
 impl Collapser {
@@ -71,6 +75,7 @@ impl Collapser {
     ) -> Self {
         let n = positions.len();
         let closed = ClosedVolumes::new(&positions, &triangles);
+        let input_surface = input_surface(&positions, &triangles);
         let conn = Connectivity::from_triangles(n, triangles);
         let (kinds, quadrics) = planes::kinds_and_quadrics(&conn, &positions, constraints);
         let costs = EdgeCosts::new(conn.triangles());
@@ -93,6 +98,7 @@ impl Collapser {
             copies: Vec::new(),
             facing: Vec::new(),
             closed,
+            input_surface,
         }
     }
 
@@ -186,6 +192,7 @@ impl Collapser {
             twins: &self.twins,
             copies: &self.copies,
             facing: &self.facing,
+            input_surface: &mut self.input_surface,
             closed: ClosedView::Whole(&mut self.closed),
             scratch: CollapseLists::default(),
         }
@@ -209,6 +216,7 @@ impl Collapser {
         let mut best_cost = split_mut(&mut self.best_cost, &vs).into_iter();
         let mut has_blocked = split_mut(&mut self.has_blocked, &vs).into_iter();
         let mut flags = split_mut(&mut self.flags, &vs).into_iter();
+        let mut input_surface = split_mut(&mut self.input_surface, &vs).into_iter();
         let costs = &self.costs;
         let twins = &self.twins;
         let copies = &self.copies;
@@ -240,6 +248,7 @@ impl Collapser {
                     twins,
                     copies,
                     facing,
+                    input_surface: input_surface.next()?,
                     closed: ClosedView::Part(closed, Default::default()),
                     scratch: CollapseLists::default(),
                 })
@@ -303,6 +312,20 @@ impl Collapser {
             .map(|i| i as u32)
             .collect()
     }
+}
+
+/// Each vertex's input surface: the sum of its triangles' area vectors (normal, twice the
+/// area long) and of their lengths, in `f64` and stored as `f32`.
+fn input_surface(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec4> {
+    let mut sums = vec![glam::DVec4::ZERO; positions.len()];
+    let p = |v: u32| positions[v as usize].as_dvec3();
+    for &[a, b, c] in triangles {
+        let area = (p(b) - p(a)).cross(p(c) - p(a));
+        for v in [a, b, c] {
+            sums[v as usize] += area.extend(area.length());
+        }
+    }
+    sums.iter().map(|s| s.as_vec4()).collect()
 }
 
 /// A per-vertex attribute, when there is one, split at `starts` (see `split_mut`).

@@ -4,7 +4,7 @@
 //! turned inside out or flattened (`decimate::closed`). Vertex kinds (boundary,
 //! complex) were already applied by `plan`.
 
-use glam::DVec2;
+use glam::{DVec2, DVec3, DVec4};
 
 use super::collapse_plan::Plan;
 use super::part::Part;
@@ -16,6 +16,10 @@ const MIN_RELATIVE_AREA: f64 = 1e-8;
 
 /// A triangle's area in the texture may shrink to this fraction of what it was, no further.
 const MIN_TEXTURE_AREA: f64 = 1e-6;
+
+/// The input surface under a triangle's corners is judged only where it faces one way: its
+/// summed area vector at least this share of its area (docs/design.md#qem-input-surface).
+const MIN_INPUT_COHERENCE: f64 = 0.75;
 
 impl Part<'_> {
     /// Whether the planned collapse of the edge [`Part::gather`] read last is legal.
@@ -179,14 +183,17 @@ impl Part<'_> {
         })
     }
 
-    /// Every triangle that survives around either end keeps facing the same way and keeps
-    /// an area. Such a triangle has exactly one of the ends, `v`: it turns about the other
-    /// two corners as `v` moves to the plan's position.
+    /// Every triangle that survives around either end keeps facing the same way, keeps
+    /// an area, and faces within 90° of the input surface its corners stand for (so that
+    /// turns do not add up over collapses in a row). Such a triangle has exactly one of the
+    /// ends, `v`: it turns about the other two corners as `v` moves to the plan's position.
     fn no_triangle_flips_or_degenerates(&self, plan: &Plan) -> bool {
         let p = plan.position;
         let min2 = MIN_RELATIVE_AREA * MIN_RELATIVE_AREA;
         let (fan_r, fan_k) = self.fans(plan);
         let junctions = !self.copies.is_empty();
+        let surface = |w: u32| self.input_surface[self.at(w)].as_dvec4();
+        let kept = surface(plan.remove) + surface(plan.keep);
         [
             (plan.remove, fan_r, plan.keep),
             (plan.keep, fan_k, plan.remove),
@@ -215,7 +222,16 @@ impl Part<'_> {
                 new_cross.length_squared() > min2 * longest * longest
                     && new_cross.dot(old_cross) > 0.0
                     && faces_out
+                    && faces_input(new_cross, surface(f.next) + surface(f.prev) + kept)
             })
         })
     }
+}
+
+/// Whether a triangle of area vector `cross` faces within 90° of `input`, its corners'
+/// input surface (summed area vectors, and their lengths summed in `w`); vacuously true
+/// where that surface faces no one way (a thin part's two sides, a crumpled patch).
+fn faces_input(cross: DVec3, input: DVec4) -> bool {
+    let sum = input.truncate();
+    sum.length() < MIN_INPUT_COHERENCE * input.w || cross.dot(sum) >= 0.0
 }

@@ -97,6 +97,10 @@ pub(super) struct Part<'a> {
     /// Junction copies' starting normals (the whole mesh's, read only; see
     /// `Collapser::pin`).
     pub facing: &'a [Vec3],
+    /// Per owned vertex, the summed area vectors of the input triangles it stands for, and
+    /// their lengths summed in `w` (see `Collapser`): a collapse's kept vertex takes both
+    /// ends'.
+    pub input_surface: &'a mut [glam::Vec4],
     /// Closed components' volumes (see `decimate::closed`).
     pub closed: ClosedView<'a>,
     pub scratch: CollapseLists,
@@ -654,6 +658,8 @@ impl Part<'_> {
             });
         }
         self.positions[k] = plan.position.as_vec3();
+        let surface = self.input_surface[r];
+        self.input_surface[k] += surface;
         let q = self.quadrics[r];
         self.quadrics[k].add(&q);
         if let Some(t) = self.texture_quadrics.as_deref_mut() {
