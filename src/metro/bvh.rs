@@ -240,18 +240,7 @@ impl Bvh {
                     }
                 }
             } else {
-                let l = node.first;
-                let r = l + 1;
-                let ln = &self.nodes[l as usize];
-                let rn = &self.nodes[r as usize];
-                let dl = box_dist2(p, ln.lo, ln.hi);
-                let dr = box_dist2(p, rn.lo, rn.hi);
-                // Push the farther child first so the nearer one is searched first.
-                let (near, dn, far, df) = if dl <= dr {
-                    (l, dl, r, dr)
-                } else {
-                    (r, dr, l, dl)
-                };
+                let [(far, df), (near, dn)] = self.children_far_first(&node, p);
                 if df < best.dist2 {
                     stack.push((far, df));
                 }
@@ -261,6 +250,22 @@ impl Bvh {
             }
         }
         (best.dist2.is_finite()).then_some(best)
+    }
+
+    /// An inner node's two children with their boxes' squared distances to `p`, the
+    /// farther first (pushed first, so the nearer is searched first).
+    fn children_far_first(&self, node: &Node, p: DVec3) -> [(u32, f64); 2] {
+        let (l, r) = (node.first, node.first + 1);
+        let dist2 = |i: u32| {
+            let n = &self.nodes[i as usize];
+            box_dist2(p, n.lo, n.hi)
+        };
+        let (dl, dr) = (dist2(l), dist2(r));
+        if dl <= dr {
+            [(r, dr), (l, dl)]
+        } else {
+            [(l, dl), (r, dr)]
+        }
     }
 
     /// The triangle nearest to `p` among those for which `accept(triangle index, closest
@@ -306,17 +311,7 @@ impl Bvh {
                     }
                 }
             } else {
-                let l = node.first;
-                let r = l + 1;
-                let ln = &self.nodes[l as usize];
-                let rn = &self.nodes[r as usize];
-                let dl = box_dist2(p, ln.lo, ln.hi);
-                let dr = box_dist2(p, rn.lo, rn.hi);
-                let (near, dn, far, df) = if dl <= dr {
-                    (l, dl, r, dr)
-                } else {
-                    (r, dr, l, dl)
-                };
+                let [(far, df), (near, dn)] = self.children_far_first(&node, p);
                 let limit = bound(&best);
                 if df <= limit {
                     stack.push((far, df));
