@@ -5,6 +5,7 @@
 
 mod candidates;
 pub mod closed;
+pub mod hanging_sheets;
 pub mod layout;
 pub mod levels;
 mod limits;
@@ -124,6 +125,9 @@ pub struct ModelReport {
     /// True when the model was left as read: its mesh is copied through unchanged
     /// (skinned, morph targets).
     pub copied: bool,
+    /// Sheets hanging on non-manifold edges or vertices, smaller than the result's
+    /// triangles, removed before quadric decimation (`decimate::hanging_sheets`).
+    pub hanging_sheets: hanging_sheets::RemovedSheets,
 }
 
 /// What a decimation run did, model by model.
@@ -293,6 +297,7 @@ fn run(
                 closed_kept: 0,
                 instance_of: None,
                 copied: true,
+                hanging_sheets: hanging_sheets::RemovedSheets::default(),
             });
             continue;
         }
@@ -308,6 +313,15 @@ fn run(
             let flag = |flags: &[bool]| flags.get(v as usize).copied().unwrap_or(false);
             flag(shared) || flag(border)
         };
+        let max_error = match params.max_error {
+            None => f64::INFINITY,
+            Some(ErrorBound::Absolute(e)) => e,
+            Some(ErrorBound::DiagonalFraction(f)) => {
+                f * model
+                    .bounds()
+                    .map_or(0.0, |(lo, hi)| (hi - lo).length() as f64)
+            }
+        };
         let seams = seams::find(model);
         let mut twins = seams.twin;
         for v in 0..twins.len() as u32 {
@@ -322,15 +336,22 @@ fn run(
                 on_pinned_border(v) || (seams.on_seam[v as usize] && !paired)
             })
             .collect();
-        let max_error = match params.max_error {
-            None => f64::INFINITY,
-            Some(ErrorBound::Absolute(e)) => e,
-            Some(ErrorBound::DiagonalFraction(f)) => {
-                f * model
-                    .bounds()
-                    .map_or(0.0, |(lo, hi)| (hi - lo).length() as f64)
+        // qem: hanging sheets smaller than the result's triangles go first (`hanging_sheets`;
+        // the result estimated from the target). Only a run that removes something removes
+        // them (`-p 0` converts a file as is), never one recording a progressive mesh (it
+        // must refine back to the input).
+        let result_triangles = match (keep_triangles[i], removals[i]) {
+            (0, usize::MAX) => max_error.is_finite().then_some(None),
+            (0, 0) => None,
+            (0, r) => {
+                let kept = vertices[i].saturating_sub(r) as f64;
+                Some(Some(
+                    (triangles[i] as f64 * kept / vertices[i].max(1) as f64) as usize,
+                ))
             }
+            (k, _) => (k < triangles[i]).then_some(Some(k)),
         };
+        let mut sheets = hanging_sheets::RemovedSheets::default();
         let limits = Limits {
             remove: removals[i],
             keep_triangles: keep_triangles[i],
@@ -358,19 +379,43 @@ fn run(
             (Algorithm::Schroeder, None) => {
                 schroeder::decimate_model(model, &limits, &pins, &twins, &mut report_progress)
             }
-            (Algorithm::Qem, None) => {
-                qem::decimate_model(model, &limits, &pins, &twins, &mut report_progress)
-            }
+            (Algorithm::Qem, None) => match result_triangles {
+                Some(result_triangles) => {
+                    let limit = hanging_sheets::SheetLimit {
+                        result_triangles,
+                        max_error,
+                    };
+                    // Seam sides and pinned vertices stay where they are.
+                    let fixed = |v: u32| {
+                        pins.get(v as usize).copied().unwrap_or(false)
+                            || twins.get(v as usize).is_some_and(|&w| w != u32::MAX)
+                    };
+                    let mut prune = |model: &mut Model| {
+                        sheets = hanging_sheets::remove_hanging_sheets(model, limit, &fixed);
+                        (sheets.triangles > 0).then_some(sheets.vertices)
+                    };
+                    qem::decimate_model_pruning(
+                        model,
+                        &limits,
+                        &pins,
+                        &twins,
+                        &mut report_progress,
+                        &mut prune,
+                    )
+                }
+                None => qem::decimate_model(model, &limits, &pins, &twins, &mut report_progress),
+            },
         };
         done += outcome.removed;
-        let vertices_after = model.positions.len().min(vertices[i] - outcome.removed);
+        let vertices_after = (model.positions.len())
+            .min(vertices[i].saturating_sub(outcome.removed + sheets.vertices));
         reports.push(ModelReport {
             name: model.name.clone(),
             vertices_before: vertices[i],
             triangles_before: triangles[i],
             vertices_after,
             triangles_after: model.triangles.len(),
-            max_error: outcome.max_error,
+            max_error: outcome.max_error.max(sheets.max_diagonal),
             feature_angle_deg: outcome.feature_angle_deg,
             fully_decimated: outcome.exhausted,
             // As the original: only a removal can drop a model, never the input itself.
@@ -384,6 +429,7 @@ fn run(
             closed_kept: outcome.closed_kept,
             instance_of: None,
             copied: false,
+            hanging_sheets: sheets,
         });
     }
     // The original program's rule: a model left with fewer than four vertices is dropped.

@@ -56,6 +56,14 @@ impl Report {
             } else {
                 String::new()
             };
+            let sheets = &m.hanging_sheets;
+            if sheets.sheets > 0 {
+                state += &format!(
+                    "  ({} sheets hanging on non-manifold edges, smaller than the result's \
+                     triangles, removed: {} triangles, {} closed pockets among them)",
+                    sheets.sheets, sheets.triangles, sheets.pockets
+                );
+            }
             if m.feature_angle_deg > report.feature_angle_deg {
                 state += &format!(
                     "  (feature angle relaxed to {:.0} deg to reach the target)",

@@ -155,7 +155,7 @@ fn keep_proper_triangles(model: &Model, r: &mut Repairs) -> Vec<bool> {
 }
 
 /// Keeps the triangles marked in `keep`, with their per-face attributes.
-fn retain_triangles(model: &mut Model, keep: &[bool]) {
+pub fn retain_triangles(model: &mut Model, keep: &[bool]) {
     if keep.iter().all(|&k| k) {
         return;
     }

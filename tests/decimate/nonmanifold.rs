@@ -541,3 +541,92 @@ fn vertex_removal_takes_out_a_fold_in_a_flat_sheet() {
     assert_eq!(counts(&after), (4, 2, 0));
     assert_flat_sheet_kept(&before, &after);
 }
+
+//   A bumpy sphere carrying what a reconstructed scan leaves on its surface: 10 closed
+//   tetrahedra ("pockets") and 10 single-triangle flaps, each hanging on one edge of the
+//   surface (that edge then has four or three triangles), each its edge's length across.
+fn sphere_with_pockets_and_flaps() -> (Model, Model) {
+    let (rings, segments) = (24, 48);
+    let sphere = shapes::bumpy_sphere(rings, segments);
+    let mut b = Builder::default();
+    b.add(&sphere, Vec3::ZERO);
+    // As `add` placed them (adding the zero offset turns -0 into 0).
+    let at = |r: u32, s: u32| {
+        sphere.positions[(1 + (r - 1) * segments + s % segments) as usize] + Vec3::ZERO
+    };
+    for (k, r) in (3..=21).step_by(2).enumerate() {
+        for (flap, s) in [(false, k as u32 * 4), (true, k as u32 * 4 + 24)] {
+            let (p, q) = (at(r, s), at(r, s + 1));
+            let mid = (p + q) * 0.5;
+            let side = (q - p).cross(mid).normalize() * (q - p).length() * 0.05;
+            let [p, q] = [p, q].map(|x| b.vertex(x));
+            if !flap {
+                // A flat tetrahedron over the edge, facing out.
+                let [x, y] = [mid * 1.02 + side, mid * 1.02 - side].map(|x| b.vertex(x));
+                let tetra = [[q, p, x], [p, q, y], [p, y, x], [q, x, y]];
+                b.model.triangles.extend(tetra);
+            } else {
+                let apex = b.vertex(mid * 1.05);
+                b.model.triangles.push([p, q, apex]);
+            }
+        }
+    }
+    (b.build("sphere with pockets and flaps"), sphere)
+}
+
+// Kept at 2 %, the pockets and flaps go before decimating (each smaller than what a result
+// triangle covers), the count is reached and the result has no non-manifold edge left and
+// the bare sphere's area, every triangle facing out. At 50 % they are larger than that and
+// stay for the collapses.
+#[test]
+fn pockets_and_flaps_smaller_than_the_result_triangles_go_before_decimating() {
+    let (before, sphere) = sphere_with_pockets_and_flaps();
+    let (_, triangles, non_manifold) = counts(&before);
+    assert_eq!((triangles, non_manifold), (2 * 48 * 23 + 50, 20));
+    let mut scene = Scene {
+        models: vec![before.clone()],
+    };
+    let params = |keep| Params {
+        target: Target::KeepTriangles(keep),
+        algorithm: Algorithm::Qem,
+        ..Params::default()
+    };
+    let report = simplify_scene(&mut scene, &params(44), &mut |_| {});
+    let sheets = report.models[0].hanging_sheets;
+    assert_eq!(
+        (sheets.sheets, sheets.pockets, sheets.triangles),
+        (20, 10, 50)
+    );
+    assert!(
+        report.summary().contains(
+            "20 sheets hanging on non-manifold edges, smaller than the result's triangles, \
+             removed: 50 triangles, 10 closed pockets among them"
+        ),
+        "{}",
+        report.summary()
+    );
+    let after = scene.models.pop().expect("kept");
+    let bare = assert_keeps(&sphere, 44);
+    assert_eq!(after.triangles.len(), bare.triangles.len());
+    assert_eq!(measure::edge_counts(&after).non_manifold, 0);
+    assert_eq!(measure::edge_counts(&after).misoriented, 0);
+    assert_eq!(measure::degenerate_triangles(&after, 1e-9), 0);
+    let (a0, a1) = (measure::area(&bare), measure::area(&after));
+    assert!(
+        (a1 - a0).abs() < 0.02 * a0,
+        "area {a1}, the bare sphere's {a0}"
+    );
+    assert!(measure::volume(&after) > 0.9 * measure::volume(&bare));
+    for t in &after.triangles {
+        let [a, b, c] = t.map(|v| after.positions[v as usize]);
+        let outward = (b - a).cross(c - a).dot(a + b + c);
+        assert!(outward > 0.0, "a triangle turned in: {t:?}");
+    }
+
+    let mut scene = Scene {
+        models: vec![before.clone()],
+    };
+    let report = simplify_scene(&mut scene, &params(triangles / 2), &mut |_| {});
+    assert_eq!(report.models[0].hanging_sheets.sheets, 0);
+    assert!(measure::edge_counts(&scene.models[0]).non_manifold <= non_manifold);
+}

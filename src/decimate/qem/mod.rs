@@ -26,6 +26,7 @@ use super::layout;
 use super::{Limits, Outcome};
 use crate::mesh::progressive::{ProgressiveModel, Recorder};
 use crate::mesh::{Attribute, Model};
+use collapse_plan::Kind;
 use collapser::Collapser;
 
 /// Decimates `model` in place by quadric edge collapse within `limits` (the feature angle
@@ -43,7 +44,27 @@ pub fn decimate_model(
     twins: &[u32],
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
-    run(model, limits, pins, twins, progress, None).0
+    run(model, limits, pins, twins, progress, None, None).0
+}
+
+/// What [`decimate_model_pruning`] calls on a mesh with non-manifold vertices: removes
+/// triangles, returns how many vertices it left unused (`None`: it removed nothing).
+pub type Prune<'a> = dyn FnMut(&mut Model) -> Option<usize> + 'a;
+
+/// As [`decimate_model`], except that where the mesh turns out to have non-manifold
+/// vertices, `prune` first gets the model as it came: when it removes triangles (never
+/// vertices: it returns how many it left unused, `None` when it removed nothing), the run
+/// starts again on what is left, that many vertices fewer to remove. A clean mesh never
+/// pays for the pruning's own pass (`decimate::hanging_sheets`).
+pub fn decimate_model_pruning(
+    model: &mut Model,
+    limits: &Limits,
+    pins: &[bool],
+    twins: &[u32],
+    progress: &mut dyn FnMut(usize),
+    prune: &mut Prune<'_>,
+) -> Outcome {
+    run(model, limits, pins, twins, progress, None, Some(prune)).0
 }
 
 /// As [`decimate_model`], and records every collapse: the returned progressive model's base
@@ -56,14 +77,15 @@ pub fn decimate_model_progressive(
     progress: &mut dyn FnMut(usize),
 ) -> (Outcome, ProgressiveModel) {
     let recorder = Recorder::new(model);
-    match run(model, limits, pins, twins, progress, Some(recorder)) {
+    match run(model, limits, pins, twins, progress, Some(recorder), None) {
         (outcome, Some(pm)) => (outcome, pm),
         (_, None) => unreachable!("a run given a recorder returns its progressive model"),
     }
 }
 
 /// The pipeline; with a `recorder`, every collapse is recorded and the progressive model
-/// returned (its base is what is written back into `model`).
+/// returned (its base is what is written back into `model`); `prune` as in
+/// [`decimate_model_pruning`].
 fn run(
     model: &mut Model,
     limits: &Limits,
@@ -71,6 +93,7 @@ fn run(
     twins: &[u32],
     progress: &mut dyn FnMut(usize),
     recorder: Option<Recorder>,
+    prune: Option<&mut Prune<'_>>,
 ) -> (Outcome, Option<ProgressiveModel>) {
     // 1. load, renumbered along a Morton curve for memory locality
     let n = model.positions.len() as u32;
@@ -81,13 +104,13 @@ fn run(
         .map(|&v| model.positions[v as usize])
         .collect();
     let triangles = loaded.triangles(model);
-    let twins = loaded.pairs(twins);
+    let pairs = loaded.pairs(twins);
     // Only loading maps the model's ids to the internal ones.
     loaded.internal = Vec::new();
     let (order, faces) = (&loaded.order, &loaded.faces);
     // The decimation works on its own copies: the model's are freed meanwhile (with a
     // recorder, which starts from the model, they stay).
-    let released = recorder.is_none() && layout::release(model, &loaded);
+    let mut released = recorder.is_none() && layout::release(model, &loaded);
     let per_vertex = |a: &Option<Attribute<[f32; 3]>>| match a {
         Some(Attribute::PerVertex(c)) if c.len() == n as usize => {
             Some(order.iter().map(|&v| c[v as usize]).collect::<Vec<_>>())
@@ -107,10 +130,10 @@ fn run(
     let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
     // On a seam: one of two sides (twinned) or where more meet (pinned; shared borders are
     // pinned too, but never collapse either).
-    let seam: Vec<bool> = if twins.is_empty() {
+    let seam: Vec<bool> = if pairs.is_empty() {
         Vec::new()
     } else {
-        (order.iter().zip(&twins))
+        (order.iter().zip(&pairs))
             .map(|(&v, &w)| w != u32::MAX || pinned(v))
             .collect()
     };
@@ -120,6 +143,20 @@ fn run(
         seam: &seam,
     };
     let mut d = Collapser::new(positions, triangles, colors, normals, constraints);
+    if let Some(prune) = prune.filter(|_| d.kinds.contains(&Kind::Complex)) {
+        if released {
+            d.restore(model, order, faces);
+        }
+        if let Some(unused) = prune(model) {
+            drop(d);
+            let limits = Limits {
+                remove: limits.remove.saturating_sub(unused),
+                ..limits.clone()
+            };
+            return run(model, &limits, pins, twins, progress, None, None);
+        }
+        released = layout::release(model, &loaded);
+    }
     d.texcoords = model
         .texcoords
         .as_ref()
@@ -127,7 +164,7 @@ fn run(
         .map(|t| order.iter().map(|&v| t[v as usize]).collect());
     d.weigh_texture();
     d.pin(&order.iter().map(|&v| pinned(v)).collect::<Vec<_>>());
-    d.set_twins(twins);
+    d.set_twins(pairs);
     d.recorder = recorder;
 
     // 4. rank

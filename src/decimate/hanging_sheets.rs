@@ -1,0 +1,499 @@
+//! Sheets hanging on the rest of a mesh by non-manifold edges or vertices, smaller than
+//! the result's triangles, removed when quadric decimation meets a non-manifold vertex
+//! (`qem::decimate_model_pruning`, so a clean mesh never pays for it): the flaps and tiny closed
+//! pockets a reconstructed scan carries (dragon_res2: 1,224 one-triangle flaps and 36 small
+//! cells). A collapse cannot take a closed pocket away (it needs four triangles) and a flap
+//! goes only once its foot has collapsed, so each would hold several of the result's
+//! triangles for less area than one of them covers (docs/design.md#hanging-sheets).
+//!
+//! A *sheet* is a set of triangles joined across edges that exactly two triangles use. It
+//! *hangs* when it shares a vertex with another sheet (a separate part never hangs) and is
+//! either a *pocket*, every edge of it used by exactly two of its own triangles, or a *flap*,
+//! with a free rim (an edge no other triangle uses). A patch of the surface walled in by
+//! non-manifold edges is neither, and stays: without it the surface would have a hole.
+//! Edges are bucketed by vertex and sorted bucket by bucket: linear time.
+
+use std::borrow::Cow;
+
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+
+use crate::mesh::{repair, seams, Attribute, Model};
+
+/// The sheets removed never add up to more than this share of the model's area: where
+/// small sheets are a real share of a model (cells or voxels sharing edges), they are the
+/// model.
+const MAX_AREA_SHARE: f64 = 0.01;
+
+/// A sheet goes when its bounding-box diagonal is at most this many times √a, `a` the mean
+/// area a result triangle covers (about 0.26 of their edges): a longer flap, pulled down by
+/// decimation instead, turns fewer of the result's triangles over
+/// (docs/design.md#hanging-sheets).
+const MAX_DIAGONAL: f64 = 0.4;
+
+/// How small a sheet must be to go.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SheetLimit {
+    /// Triangles the result is to have: a sheet goes when its area is at most the mean
+    /// area `a` one of them covers and its bounding-box diagonal at most `MAX_DIAGONAL` √a
+    /// (`None`: no count target).
+    pub result_triangles: Option<usize>,
+    /// The error bound, in model units: a sheet goes only when its bounding-box diagonal
+    /// (how far it reaches from the surface it hangs on) is within it.
+    pub max_error: f64,
+}
+
+/// What [`remove_hanging_sheets`] removed.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RemovedSheets {
+    /// Sheets removed, pockets among them.
+    pub sheets: usize,
+    pub pockets: usize,
+    pub triangles: usize,
+    /// Vertices no triangle uses any more (left in the model for the decimator's compaction).
+    pub vertices: usize,
+    /// The largest bounding-box diagonal of a removed sheet: how far the surface moved.
+    pub max_diagonal: f64,
+}
+
+/// One sheet's tally.
+#[derive(Clone, Copy)]
+struct Sheet {
+    closed: bool,
+    rim: bool,
+    touches: bool,
+    pinned: bool,
+    area: f64,
+    lo: DVec3,
+    hi: DVec3,
+}
+
+/// Removes `model`'s hanging sheets within `limit` (none with a vertex flagged in `pinned`,
+/// indexed like the positions); per-face attributes follow their triangles, vertices stay.
+pub fn remove_hanging_sheets(
+    model: &mut Model,
+    limit: SheetLimit,
+    pinned: &dyn Fn(u32) -> bool,
+) -> RemovedSheets {
+    let n = model.positions.len();
+    if model.triangles.len() < 5 || model.triangles.iter().flatten().any(|&v| v as usize >= n) {
+        return RemovedSheets::default();
+    }
+    // Copies of a point (the sides of a texture seam or of a normal crease, kept apart by
+    // their attributes when the file was welded) are one vertex here: a seam does not cut a
+    // sheet, and a part sharing only copies still hangs.
+    let split = model.texcoords.is_some()
+        || matches!(model.normals, Some(Attribute::PerVertex(_)))
+        || matches!(model.colors, Some(Attribute::PerVertex(_)));
+    let corners: Cow<'_, [[u32; 3]]> = if split {
+        let point = points(&model.positions);
+        let at = |t: &[u32; 3]| t.map(|v| point[v as usize]);
+        Cow::Owned(model.triangles.iter().map(at).collect())
+    } else {
+        Cow::Borrowed(&model.triangles)
+    };
+    let edges = Edges::of(&corners, n);
+    let (sheet_of, count) = sheets(model.triangles.len(), &edges);
+
+    // Whether a second sheet uses each vertex (its first sheet noted as it is met): only a
+    // sheet with such a vertex can be a pocket, and a mesh without one has none.
+    let mut first = vec![u32::MAX; n];
+    let mut shared = vec![false; n];
+    for (tri, &s) in corners.iter().zip(&sheet_of) {
+        for &v in tri {
+            let f = &mut first[v as usize];
+            if *f == u32::MAX {
+                *f = s;
+            } else if *f != s {
+                shared[v as usize] = true;
+            }
+        }
+    }
+    drop(first);
+    if !shared.iter().any(|&s| s) {
+        return RemovedSheets::default();
+    }
+
+    let mut sheet = vec![
+        Sheet {
+            closed: true,
+            rim: false,
+            touches: false,
+            pinned: false,
+            area: 0.0,
+            lo: DVec3::splat(f64::INFINITY),
+            hi: DVec3::splat(f64::NEG_INFINITY),
+        };
+        count
+    ];
+    mark_open_sheets(&edges, &sheet_of, &mut sheet);
+    drop(edges);
+    let mut total_area = 0.0;
+    let p = |v: u32| model.positions[v as usize].as_dvec3();
+    for ((tri, corners), &s) in model.triangles.iter().zip(corners.iter()).zip(&sheet_of) {
+        let [a, b, c] = tri.map(p);
+        let area = (b - a).cross(c - a).length() / 2.0;
+        total_area += area;
+        let st = &mut sheet[s as usize];
+        st.area += area;
+        for q in [a, b, c] {
+            st.lo = st.lo.min(q);
+            st.hi = st.hi.max(q);
+        }
+        st.touches |= corners.iter().any(|&v| shared[v as usize]);
+        st.pinned |= tri.iter().any(|&v| pinned(v));
+    }
+
+    let max_area = limit
+        .result_triangles
+        .map_or(f64::INFINITY, |k| total_area / k.max(1) as f64);
+    let diagonal2 = |s: &Sheet| (s.hi - s.lo).length_squared();
+    let goes: Vec<bool> = sheet
+        .iter()
+        .map(|s| {
+            s.touches
+                && (s.closed || s.rim)
+                && !s.pinned
+                && s.area <= max_area
+                && diagonal2(s) <= MAX_DIAGONAL * MAX_DIAGONAL * max_area
+                && diagonal2(s) <= limit.max_error * limit.max_error
+        })
+        .collect();
+    let removed_area: f64 = (0..count).filter(|&s| goes[s]).map(|s| sheet[s].area).sum();
+    if !goes.iter().any(|&g| g) || removed_area > MAX_AREA_SHARE * total_area {
+        return RemovedSheets::default();
+    }
+    let gone = || (0..count).filter(|&s| goes[s]).map(|s| &sheet[s]);
+    let keep: Vec<bool> = sheet_of.iter().map(|&s| !goes[s as usize]).collect();
+    let removed = RemovedSheets {
+        sheets: gone().count(),
+        pockets: gone().filter(|s| s.closed).count(),
+        triangles: keep.iter().filter(|&&k| !k).count(),
+        vertices: 0,
+        max_diagonal: gone().map(diagonal2).fold(0.0, f64::max).sqrt(),
+    };
+    let mut used_before = vec![false; n];
+    let mut used_after = vec![false; n];
+    for (tri, &k) in model.triangles.iter().zip(&keep) {
+        for &v in tri {
+            used_before[v as usize] = true;
+            used_after[v as usize] |= k;
+        }
+    }
+    repair::retain_triangles(model, &keep);
+    RemovedSheets {
+        vertices: (0..n).filter(|&v| used_before[v] && !used_after[v]).count(),
+        ..removed
+    }
+}
+
+/// Each of the `triangles`' sheet, numbered from 0 in the order of their first triangles
+/// (union–find across the `edges` that exactly two triangles use), and how many.
+fn sheets(triangles: usize, edges: &Edges) -> (Vec<u32>, usize) {
+    let mut parent: Vec<u32> = (0..triangles as u32).collect();
+    fn find(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            let up = parent[parent[x as usize] as usize];
+            parent[x as usize] = up;
+            x = up;
+        }
+        x
+    }
+    for run in edges.runs() {
+        if let [(_, s), (_, t)] = run {
+            let (a, b) = (find(&mut parent, *s), find(&mut parent, *t));
+            // The smaller id roots the set: a sheet's root is its first triangle.
+            let (lo, hi) = (a.min(b), a.max(b));
+            parent[hi as usize] = lo;
+        }
+    }
+    for t in 0..triangles as u32 {
+        parent[t as usize] = find(&mut parent, t);
+    }
+    // Now every entry is its root; a root comes before the rest of its sheet, so its entry
+    // already holds the sheet's number when they read it.
+    let mut count = 0u32;
+    for t in 0..triangles {
+        let root = parent[t] as usize;
+        parent[t] = if root == t {
+            count += 1;
+            count - 1
+        } else {
+            parent[root]
+        };
+    }
+    (parent, count as usize)
+}
+
+/// Marks open every sheet with an edge (of `edges`) not used by exactly two of
+/// its own triangles, and rimmed every sheet with an edge no other triangle uses.
+fn mark_open_sheets(edges: &Edges, sheet_of: &[u32], sheet: &mut [Sheet]) {
+    let mut owners: Vec<u32> = Vec::new();
+    for run in edges.runs() {
+        match run {
+            [(_, t)] => {
+                let s = &mut sheet[sheet_of[*t as usize] as usize];
+                (s.closed, s.rim) = (false, true);
+            }
+            [_, _] => {} // one sheet's, twice
+            _ => {
+                owners.clear();
+                owners.extend(run.iter().map(|&(_, t)| sheet_of[t as usize]));
+                owners.sort_unstable();
+                for group in owners.chunk_by(|a, b| a == b) {
+                    if group.len() != 2 {
+                        sheet[group[0] as usize].closed = false;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Each vertex's point: the smallest vertex at the same position, bit for bit.
+fn points(positions: &[Vec3]) -> Vec<u32> {
+    let mut order: Vec<([u32; 3], u32)> = positions
+        .iter()
+        .enumerate()
+        .map(|(v, &p)| (seams::position_key(p), v as u32))
+        .collect();
+    order.par_sort_unstable();
+    let mut point = vec![0u32; positions.len()];
+    for run in order.chunk_by(|a, b| a.0 == b.0) {
+        for &(_, v) in run {
+            point[v as usize] = run[0].1;
+        }
+    }
+    point
+}
+
+/// Vertices per task of the buckets' sorts.
+const PER_TASK: usize = 1 << 14;
+
+/// Every triangle's three edges as `entry(larger vertex, triangle)`, bucketed by their
+/// smaller vertex by counting, each bucket then sorted on its own (on all cores): linear
+/// time. Bucket `v` is `entries[start[v]..start[v + 1]]`.
+fn bucketed<T: Copy + Default + Ord + Send>(
+    triangles: &[[u32; 3]],
+    n: usize,
+    entry: impl Fn(u32, u32) -> T,
+) -> (Vec<usize>, Vec<T>) {
+    let mut start = vec![0usize; n + 1];
+    for &[a, b, c] in triangles {
+        for (x, y) in [(a, b), (b, c), (c, a)] {
+            start[x.min(y) as usize + 1] += 1;
+        }
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    let mut entries = vec![T::default(); start[n]];
+    let mut next = start.clone();
+    for (t, &[a, b, c]) in triangles.iter().enumerate() {
+        for (x, y) in [(a, b), (b, c), (c, a)] {
+            let slot = &mut next[x.min(y) as usize];
+            entries[*slot] = entry(x.max(y), t as u32);
+            *slot += 1;
+        }
+    }
+    drop(next);
+    let mut tasks = Vec::new();
+    let mut rest = entries.as_mut_slice();
+    for v in (0..n).step_by(PER_TASK) {
+        let end = (v + PER_TASK).min(n);
+        let (task, tail) = rest.split_at_mut(start[end] - start[v]);
+        tasks.push((v..end, task));
+        rest = tail;
+    }
+    tasks.into_par_iter().for_each(|(vertices, task)| {
+        let base = start[vertices.start];
+        for v in vertices {
+            task[start[v] - base..start[v + 1] - base].sort_unstable();
+        }
+    });
+    (start, entries)
+}
+
+/// Every triangle's three edges, bucketed by their smaller vertex: bucket `v` holds
+/// (the larger vertex, the triangle) of `v`'s edges, sorted, in `ends[start[v]..start[v + 1]]`.
+struct Edges {
+    start: Vec<usize>,
+    ends: Vec<(u32, u32)>,
+}
+
+impl Edges {
+    fn of(triangles: &[[u32; 3]], n: usize) -> Self {
+        let (start, ends) = bucketed(triangles, n, |larger, t| (larger, t));
+        Self { start, ends }
+    }
+
+    /// Each edge's triangles, as runs of `(larger vertex, triangle)`.
+    fn runs(&self) -> impl Iterator<Item = &[(u32, u32)]> + '_ {
+        self.start
+            .windows(2)
+            .flat_map(|w| self.ends[w[0]..w[1]].chunk_by(|a, b| a.0 == b.0))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    /// A unit square gridded 10 × 10 (z = 0), with a closed tetrahedron hanging on the
+    /// diagonal of cell (5, 5): its two own vertices `s` of a cell off the diagonal's middle.
+    fn grid_with_pocket(s: f32) -> Model {
+        let mut m = Model::default();
+        let at = |i: u32, j: u32| j * 11 + i;
+        for j in 0..=10 {
+            for i in 0..=10 {
+                m.positions.push(Vec3::new(i as f32, j as f32, 0.0) * 0.1);
+            }
+        }
+        for j in 0..10 {
+            for i in 0..10 {
+                let [a, b, c, d] = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+                m.triangles.extend([[a, b, c], [a, c, d]]);
+            }
+        }
+        let (a, c) = (at(5, 5), at(6, 6));
+        let n = m.positions.len() as u32;
+        m.positions.extend(
+            [
+                Vec3::new(5.5 - s, 5.5 + s, s),
+                Vec3::new(5.5 + s, 5.5 - s, s),
+            ]
+            .map(|p| p * 0.1),
+        );
+        let (x, y) = (n, n + 1);
+        m.triangles
+            .extend([[a, c, x], [c, a, y], [a, x, y], [c, y, x]]);
+        m
+    }
+
+    fn limit(result_triangles: usize) -> SheetLimit {
+        SheetLimit {
+            result_triangles: Some(result_triangles),
+            max_error: f64::INFINITY,
+        }
+    }
+
+    #[test]
+    fn a_tetrahedron_hanging_on_an_edge_goes_when_smaller_than_a_result_triangle() {
+        let mut m = grid_with_pocket(0.1);
+        let removed = remove_hanging_sheets(&mut m, limit(5), &|_| false);
+        assert_eq!((removed.sheets, removed.pockets), (1, 1));
+        assert_eq!((removed.triangles, removed.vertices), (4, 2));
+        // The pocket spans the cell's diagonal.
+        assert!((removed.max_diagonal - 0.1 * 2f64.sqrt()).abs() < 1e-3);
+        assert_eq!(m.triangles.len(), 200);
+    }
+
+    #[test]
+    fn a_flap_on_an_edge_goes_as_a_pocket_does() {
+        // One face of the tetrahedron off: three triangles with a free rim.
+        let mut m = grid_with_pocket(0.1);
+        m.triangles.pop();
+        let removed = remove_hanging_sheets(&mut m, limit(5), &|_| false);
+        assert_eq!(
+            (removed.sheets, removed.pockets, removed.triangles),
+            (1, 0, 3)
+        );
+        assert_eq!(m.triangles.len(), 200);
+    }
+
+    #[test]
+    fn a_sheet_larger_than_a_result_triangle_a_pinned_one_or_one_over_the_bound_stays() {
+        for (result, pinned, bound) in [
+            (1000, None, f64::INFINITY),
+            (5, Some(121), f64::INFINITY),
+            (5, None, 0.1),
+        ] {
+            let mut m = grid_with_pocket(0.1);
+            let limit = SheetLimit {
+                result_triangles: Some(result),
+                max_error: bound,
+            };
+            let removed = remove_hanging_sheets(&mut m, limit, &|v| Some(v) == pinned);
+            assert_eq!(
+                removed,
+                RemovedSheets::default(),
+                "{result} {pinned:?} {bound}"
+            );
+            assert_eq!(m.triangles.len(), 204);
+        }
+    }
+
+    #[test]
+    fn a_separate_part_does_not_hang() {
+        // The tetrahedron on two vertices of its own, over the grid.
+        let mut m = grid_with_pocket(0.1);
+        let n = m.positions.len() as u32;
+        m.positions
+            .extend([Vec3::new(0.5, 0.5, 0.01), Vec3::new(0.6, 0.6, 0.01)]);
+        for t in &mut m.triangles[200..] {
+            *t = t.map(|v| match v {
+                60 => n,
+                72 => n + 1,
+                v => v,
+            });
+        }
+        assert_eq!(
+            remove_hanging_sheets(&mut m, limit(5), &|_| false),
+            RemovedSheets::default()
+        );
+    }
+
+    #[test]
+    fn a_patch_walled_in_by_non_manifold_edges_stays_and_its_fins_go() {
+        // A fin standing on each of cell (5, 5)'s four sides: the cell's two triangles are a
+        // sheet of their own, with no free rim.
+        let mut m = Model::default();
+        let mut grid = grid_with_pocket(0.1);
+        grid.triangles.truncate(200);
+        m.positions = grid.positions[..121].to_vec();
+        m.triangles = grid.triangles;
+        let at = |i: u32, j: u32| j * 11 + i;
+        let corners = [at(5, 5), at(6, 5), at(6, 6), at(5, 6)];
+        for k in 0..4 {
+            let (a, b) = (corners[k], corners[(k + 1) % 4]);
+            let apex = (m.positions[a as usize] + m.positions[b as usize]) * 0.5
+                + Vec3::new(0.0, 0.0, 0.02);
+            m.positions.push(apex);
+            m.triangles.push([b, a, m.positions.len() as u32 - 1]);
+        }
+        let removed = remove_hanging_sheets(&mut m, limit(5), &|_| false);
+        assert_eq!((removed.sheets, removed.triangles), (4, 4));
+        assert_eq!(m.triangles.len(), 200);
+    }
+
+    #[test]
+    fn sheets_that_are_a_real_share_of_the_model_stay() {
+        // Two unit squares on one edge with a third hanging on it: each is a third of the area.
+        let mut m = Model {
+            positions: [
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [2.0, 0.0, 0.0],
+                [2.0, 1.0, 0.0],
+                [1.0, 0.0, 1.0],
+                [1.0, 1.0, 1.0],
+            ]
+            .map(Vec3::from_array)
+            .to_vec(),
+            triangles: vec![
+                [0, 1, 2],
+                [0, 2, 3],
+                [1, 4, 5],
+                [1, 5, 2],
+                [1, 2, 7],
+                [1, 7, 6],
+            ],
+            ..Model::default()
+        };
+        let removed = remove_hanging_sheets(&mut m, limit(1), &|_| false);
+        assert_eq!(removed, RemovedSheets::default());
+    }
+}
