@@ -279,6 +279,23 @@ fn a_finned_sphere_reaches_its_count_and_simplifies_the_fin() {
     );
 }
 
+/// Segments of the bumpy sphere the fin tests build on.
+const SEGMENTS: u32 = 48;
+
+/// A builder holding `shapes::bumpy_sphere(24, SEGMENTS)`, and the sphere.
+fn bumpy_sphere_builder() -> (Builder, Model) {
+    let sphere = shapes::bumpy_sphere(24, SEGMENTS);
+    let mut b = Builder::default();
+    b.add(&sphere, Vec3::ZERO);
+    (b, sphere)
+}
+
+/// The sphere's vertex on parallel `r`, segment `s` (see `shapes::uv_sphere`'s numbering),
+/// as `Builder::add` placed it (adding the zero offset turns -0 into 0).
+fn on_parallel(sphere: &Model, r: u32, s: u32) -> Vec3 {
+    sphere.positions[(1 + (r - 1) * SEGMENTS + s % SEGMENTS) as usize] + Vec3::ZERO
+}
+
 //   A bumpy sphere with 60 fins: single triangles standing on edges of its surface, as a
 //   scan's reconstruction leaves them (each fin's foot has three triangles, its two other
 //   edges are open):
@@ -291,17 +308,11 @@ fn a_finned_sphere_reaches_its_count_and_simplifies_the_fin() {
 // left, and the sphere keeps its area within 3 %, without a flipped or degenerate triangle.
 #[test]
 fn a_sphere_with_fins_loses_its_fins_and_keeps_its_area() {
-    let (rings, segments) = (24, 48);
-    let sphere = shapes::bumpy_sphere(rings, segments);
-    let mut b = Builder::default();
-    b.add(&sphere, Vec3::ZERO);
-    // Every fourth edge of every fourth parallel (see `shapes::uv_sphere`'s numbering).
-    // As `add` placed them (adding the zero offset turns -0 into 0).
-    let at = |r: u32, s: u32| {
-        sphere.positions[(1 + (r - 1) * segments + s % segments) as usize] + Vec3::ZERO
-    };
+    let (mut b, sphere) = bumpy_sphere_builder();
+    // Every fourth edge of every fourth parallel.
+    let at = |r: u32, s: u32| on_parallel(&sphere, r, s);
     for r in (4..=20).step_by(4) {
-        for s in (0..segments).step_by(4) {
+        for s in (0..SEGMENTS).step_by(4) {
             let (p, q) = (at(r, s), at(r, s + 1));
             let apex = (p + q) * 0.5 * 1.08;
             let t = [p, q, apex].map(|x| b.vertex(x));
@@ -546,14 +557,8 @@ fn vertex_removal_takes_out_a_fold_in_a_flat_sheet() {
 //   tetrahedra ("pockets") and 10 single-triangle flaps, each hanging on one edge of the
 //   surface (that edge then has four or three triangles), each its edge's length across.
 fn sphere_with_pockets_and_flaps() -> (Model, Model) {
-    let (rings, segments) = (24, 48);
-    let sphere = shapes::bumpy_sphere(rings, segments);
-    let mut b = Builder::default();
-    b.add(&sphere, Vec3::ZERO);
-    // As `add` placed them (adding the zero offset turns -0 into 0).
-    let at = |r: u32, s: u32| {
-        sphere.positions[(1 + (r - 1) * segments + s % segments) as usize] + Vec3::ZERO
-    };
+    let (mut b, sphere) = bumpy_sphere_builder();
+    let at = |r: u32, s: u32| on_parallel(&sphere, r, s);
     for (k, r) in (3..=21).step_by(2).enumerate() {
         for (flap, s) in [(false, k as u32 * 4), (true, k as u32 * 4 + 24)] {
             let (p, q) = (at(r, s), at(r, s + 1));
