@@ -58,10 +58,14 @@ impl Report {
             };
             let sheets = &m.hanging_sheets;
             if sheets.sheets > 0 {
+                let plural =
+                    |n: usize, one: &str| format!("{n} {one}{}", if n == 1 { "" } else { "s" });
                 state += &format!(
-                    "  ({} sheets hanging on non-manifold edges, smaller than the result's \
-                     triangles, removed: {} triangles, {} closed pockets among them)",
-                    sheets.sheets, sheets.triangles, sheets.pockets
+                    "  ({} hanging on non-manifold edges, smaller than the result's triangles, \
+                     removed: {}, {} among them)",
+                    plural(sheets.sheets, "sheet"),
+                    plural(sheets.triangles, "triangle"),
+                    plural(sheets.pockets, "closed pocket")
                 );
             }
             if m.feature_angle_deg > report.feature_angle_deg {
