@@ -1,8 +1,8 @@
 //! Sheets hanging on the rest of a mesh by non-manifold edges or vertices, smaller than
 //! the result's triangles, removed when quadric decimation meets a non-manifold vertex
-//! (`qem::decimate_model_pruning`, so a clean mesh never pays for it): the flaps and tiny closed
-//! pockets a reconstructed scan carries (dragon_res2: 1,224 one-triangle flaps and 36 small
-//! cells). A collapse cannot take a closed pocket away (it needs four triangles) and a flap
+//! (`qem::decimate_model_pruning`, so a clean mesh never pays for it): the flaps and tiny
+//! closed pockets a reconstructed scan carries (dragon_vrip_res2 has over a thousand). A
+//! collapse cannot take a closed pocket away (it needs four triangles) and a flap
 //! goes only once its foot has collapsed, so each would hold several of the result's
 //! triangles for less area than one of them covers (docs/design.md#hanging-sheets).
 //!
@@ -96,7 +96,7 @@ pub fn remove_hanging_sheets(
     let (sheet_of, count) = sheets(model.triangles.len(), &edges);
 
     // Whether a second sheet uses each vertex (its first sheet noted as it is met): only a
-    // sheet with such a vertex can be a pocket, and a mesh without one has none.
+    // sheet with such a vertex hangs, and a mesh without one has none that does.
     let mut first = vec![u32::MAX; n];
     let mut shared = vec![false; n];
     for (tri, &s) in corners.iter().zip(&sheet_of) {
