@@ -1,10 +1,10 @@
 //! Sheets hanging on the rest of a mesh by non-manifold edges or vertices, smaller than
 //! the result's triangles, removed when quadric decimation meets a non-manifold vertex
 //! (`qem::decimate_model_pruning`, so a clean mesh never pays for it): the flaps and tiny
-//! closed pockets a reconstructed scan carries (dragon_vrip_res2 has over a thousand). A
-//! collapse cannot take a closed pocket away (it needs four triangles) and a flap
-//! goes only once its foot has collapsed, so each would hold several of the result's
-//! triangles for less area than one of them covers (docs/design.md#hanging-sheets).
+//! closed pockets a reconstructed scan carries. A collapse cannot take a closed pocket away
+//! (it needs four triangles) and a flap goes only once its foot has collapsed, so each
+//! would hold several of the result's triangles for less area than one of them covers
+//! (docs/design.md#hanging-sheets).
 //!
 //! A *sheet* is a set of triangles joined across edges that exactly two triangles use. It
 //! *hangs* when it shares a vertex with another sheet (a separate part never hangs) and is
@@ -270,50 +270,6 @@ fn points(positions: &[Vec3]) -> Vec<u32> {
 /// Vertices per task of the buckets' sorts.
 const PER_TASK: usize = 1 << 14;
 
-/// Every triangle's three edges as `entry(larger vertex, triangle)`, bucketed by their
-/// smaller vertex by counting, each bucket then sorted on its own (on all cores): linear
-/// time. Bucket `v` is `entries[start[v]..start[v + 1]]`.
-fn bucketed<T: Copy + Default + Ord + Send>(
-    triangles: &[[u32; 3]],
-    n: usize,
-    entry: impl Fn(u32, u32) -> T,
-) -> (Vec<usize>, Vec<T>) {
-    let mut start = vec![0usize; n + 1];
-    for &[a, b, c] in triangles {
-        for (x, y) in [(a, b), (b, c), (c, a)] {
-            start[x.min(y) as usize + 1] += 1;
-        }
-    }
-    for v in 0..n {
-        start[v + 1] += start[v];
-    }
-    let mut entries = vec![T::default(); start[n]];
-    let mut next = start.clone();
-    for (t, &[a, b, c]) in triangles.iter().enumerate() {
-        for (x, y) in [(a, b), (b, c), (c, a)] {
-            let slot = &mut next[x.min(y) as usize];
-            entries[*slot] = entry(x.max(y), t as u32);
-            *slot += 1;
-        }
-    }
-    drop(next);
-    let mut tasks = Vec::new();
-    let mut rest = entries.as_mut_slice();
-    for v in (0..n).step_by(PER_TASK) {
-        let end = (v + PER_TASK).min(n);
-        let (task, tail) = rest.split_at_mut(start[end] - start[v]);
-        tasks.push((v..end, task));
-        rest = tail;
-    }
-    tasks.into_par_iter().for_each(|(vertices, task)| {
-        let base = start[vertices.start];
-        for v in vertices {
-            task[start[v] - base..start[v + 1] - base].sort_unstable();
-        }
-    });
-    (start, entries)
-}
-
 /// Every triangle's three edges, bucketed by their smaller vertex: bucket `v` holds
 /// (the larger vertex, the triangle) of `v`'s edges, sorted, in `ends[start[v]..start[v + 1]]`.
 struct Edges {
@@ -322,8 +278,42 @@ struct Edges {
 }
 
 impl Edges {
+    /// The `triangles`' edges over `n` vertices, bucketed by counting, each bucket then
+    /// sorted on its own (on all cores): linear time.
     fn of(triangles: &[[u32; 3]], n: usize) -> Self {
-        let (start, ends) = bucketed(triangles, n, |larger, t| (larger, t));
+        let mut start = vec![0usize; n + 1];
+        for &[a, b, c] in triangles {
+            for (x, y) in [(a, b), (b, c), (c, a)] {
+                start[x.min(y) as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut ends = vec![(0u32, 0u32); start[n]];
+        let mut next = start.clone();
+        for (t, &[a, b, c]) in triangles.iter().enumerate() {
+            for (x, y) in [(a, b), (b, c), (c, a)] {
+                let slot = &mut next[x.min(y) as usize];
+                ends[*slot] = (x.max(y), t as u32);
+                *slot += 1;
+            }
+        }
+        drop(next);
+        let mut tasks = Vec::new();
+        let mut rest = ends.as_mut_slice();
+        for v in (0..n).step_by(PER_TASK) {
+            let end = (v + PER_TASK).min(n);
+            let (task, tail) = rest.split_at_mut(start[end] - start[v]);
+            tasks.push((v..end, task));
+            rest = tail;
+        }
+        tasks.into_par_iter().for_each(|(vertices, task)| {
+            let base = start[vertices.start];
+            for v in vertices {
+                task[start[v] - base..start[v + 1] - base].sort_unstable();
+            }
+        });
         Self { start, ends }
     }
 
