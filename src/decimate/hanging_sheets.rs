@@ -15,10 +15,10 @@
 
 use std::borrow::Cow;
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::mesh::{repair, seams, Attribute, Model};
+use crate::mesh::{repair, weld, Attribute, Model};
 
 /// The sheets removed never add up to more than this share of the model's area: where
 /// small sheets are a real share of a model (cells or voxels sharing edges), they are the
@@ -26,8 +26,8 @@ use crate::mesh::{repair, seams, Attribute, Model};
 const MAX_AREA_SHARE: f64 = 0.01;
 
 /// A sheet goes when its bounding-box diagonal is at most this many times √a, `a` the mean
-/// area a result triangle covers (about 0.26 of their edges): a longer flap, pulled down by
-/// decimation instead, turns fewer of the result's triangles over
+/// area a result triangle covers (about 0.26 of their edges): larger bounds moved the
+/// surface further and left folded slivers at non-manifold edges
 /// (docs/design.md#hanging-sheets).
 const MAX_DIAGONAL: f64 = 0.4;
 
@@ -86,7 +86,7 @@ pub fn remove_hanging_sheets(
         || matches!(model.normals, Some(Attribute::PerVertex(_)))
         || matches!(model.colors, Some(Attribute::PerVertex(_)));
     let corners: Cow<'_, [[u32; 3]]> = if split {
-        let point = points(&model.positions);
+        let point = weld::point_ids(&model.positions);
         let at = |t: &[u32; 3]| t.map(|v| point[v as usize]);
         Cow::Owned(model.triangles.iter().map(at).collect())
     } else {
@@ -248,23 +248,6 @@ fn mark_open_sheets(edges: &Edges, sheet_of: &[u32], sheet: &mut [Sheet]) {
             }
         }
     }
-}
-
-/// Each vertex's point: the smallest vertex at the same position, bit for bit.
-fn points(positions: &[Vec3]) -> Vec<u32> {
-    let mut order: Vec<([u32; 3], u32)> = positions
-        .iter()
-        .enumerate()
-        .map(|(v, &p)| (seams::position_key(p), v as u32))
-        .collect();
-    order.par_sort_unstable();
-    let mut point = vec![0u32; positions.len()];
-    for run in order.chunk_by(|a, b| a.0 == b.0) {
-        for &(_, v) in run {
-            point[v as usize] = run[0].1;
-        }
-    }
-    point
 }
 
 /// Vertices per task of the buckets' sorts.

@@ -71,6 +71,12 @@ fn exact_groups(positions: &[Vec3], texcoords: Option<&[[f32; 2]]>) -> (Vec<u32>
     (map, kept)
 }
 
+/// Each vertex's point: vertices at the same position, bit for bit (`-0` as `0`), share
+/// one number, numbered in the order of their first vertices.
+pub fn point_ids(positions: &[Vec3]) -> Vec<u32> {
+    exact_groups(positions, None).0
+}
+
 /// Groups vertices within `tolerance` of a group's first vertex (and with its texture
 /// coordinates), in input order, as [`exact_groups`] returns them.
 fn near_groups(
