@@ -13,6 +13,7 @@ use decimate::io::read_scene;
 use decimate::mesh::build::build_scene;
 use decimate::mesh::Scene;
 use decimate::metro::{compare, Options, Surface};
+use glam::DVec3;
 
 /// The share of the input's volume a decimated sphere keeps at least (an untextured one
 /// keeps 88 % or more at 95 %: see docs/design.md#texture-seams).
@@ -105,12 +106,20 @@ fn decimated(scene: &Scene, algorithm: Algorithm, percent: f64) -> Scene {
     out
 }
 
-/// Triangles of a sphere about the origin that face inwards or have no area.
+/// Triangles of a convex shape that face inwards (towards the mean of their corners, a
+/// point inside: the origin on a sphere about it) or have no area. A cone left with four
+/// vertices is a tetrahedron that may lean off the axis (docs/design.md#schroeder-loosen).
 fn inward_triangles(s: &Surface) -> usize {
+    let corners = s
+        .triangles
+        .iter()
+        .flatten()
+        .map(|&v| s.positions[v as usize]);
+    let centre = corners.sum::<DVec3>() / (3 * s.triangles.len()).max(1) as f64;
     s.triangles
         .iter()
         .filter(|t| {
-            let [a, b, c] = t.map(|v| s.positions[v as usize]);
+            let [a, b, c] = t.map(|v| s.positions[v as usize] - centre);
             (b - a).cross(c - a).dot(a + b + c) <= 0.0
         })
         .count()

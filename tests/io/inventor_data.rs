@@ -5,10 +5,9 @@
 
 use decimate::io::read_scene;
 use glam::Vec3;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
-const MODELS: &str = "/usr/share/inventor/data/models";
+use crate::support::inventor::{ascii_copy, install_hint, MODELS};
 
 /// (file under MODELS, fewest models expected, fewest triangles expected)
 const CASES: &[(&str, usize, usize)] = &[
@@ -23,34 +22,6 @@ const CASES: &[(&str, usize, usize)] = &[
     ("buildings/windmill.iv", 6, 70),
     ("CyberHeads/josie.iv", 1, 3042),
 ];
-
-fn install_hint() -> String {
-    "this test needs Debian's Open Inventor sample data and tools: run \
-     `apt-get install inventor-data inventor-clients`"
-        .to_string()
-}
-
-/// An ASCII version of `src`: the file itself, or its `ivcat` conversion in `dir`.
-fn ascii_copy(src: &Path, dir: &Path) -> PathBuf {
-    let head = std::fs::read(src).unwrap_or_else(|e| panic!("{}: {e}", src.display()));
-    let first_line = head.split(|&b| b == b'\n').next().unwrap_or(&[]);
-    if !first_line.windows(6).any(|w| w == b"binary") {
-        return src.to_path_buf();
-    }
-    let out = Command::new("ivcat")
-        .arg(src)
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run ivcat ({e}); {}", install_hint()));
-    assert!(
-        out.status.success() && !out.stdout.is_empty(),
-        "ivcat {} failed: {}",
-        src.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let dst = dir.join(src.file_name().unwrap());
-    std::fs::write(&dst, out.stdout).unwrap();
-    dst
-}
 
 #[test]
 fn real_inventor_models_parse_with_triangles_and_plausible_bounds() {

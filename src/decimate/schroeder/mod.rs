@@ -41,6 +41,7 @@
 
 mod input_surface;
 pub mod loop_split;
+mod loosen;
 mod plan;
 mod region_removal;
 mod removal_passes;
@@ -147,7 +148,7 @@ pub fn decimate_model(
         closed_kept: 0,
     };
     if limits.relax_features {
-        removal_passes::relax_early(&mut d, limits, &mut outcome);
+        loosen::relax_early(&mut d, limits, &mut outcome);
     } else {
         d.rank_all();
     }

@@ -19,6 +19,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::loosen;
 use super::plan::Planning;
 use super::{Decimator, Removal, RELAX_STEP_DEG};
 use crate::decimate::candidates::{cheapest, Candidate};
@@ -29,14 +30,6 @@ use crate::decimate::{Limits, Outcome};
 /// One pass takes the cheapest `1 / PASS_SHARE` of the candidates: as accurate as the
 /// greedy queue it replaced, in about half the time (docs/design.md#schroeder-pass-share).
 const PASS_SHARE: usize = 2;
-
-/// Before the first removal the feature angle is raised while its corners are more than
-/// this share of the vertices the count target leaves (docs/design.md#schroeder-relax-early).
-const MAX_CORNER_SHARE: f64 = 0.5;
-
-/// The early relaxation stops at a right angle; past it only running out of candidates
-/// relaxes further (docs/design.md#schroeder-relax-early).
-const MAX_EARLY_ANGLE_DEG: f64 = 90.0;
 
 /// Candidates planned together before any of them is removed.
 const BATCH: usize = 4096;
@@ -154,6 +147,9 @@ pub(super) fn remove_in_passes(
             break;
         }
         let needed = allowed(d, limits, outcome);
+        if loosen::when_short(d, limits, outcome, count, needed) {
+            continue; // re-ranked under the loosened rules
+        }
         let take = (count / PASS_SHARE).min(2 * needed).clamp(1, count);
         cheapest(&all[..count], take, &mut pass, &mut tied);
         d.pass += 1;
@@ -166,31 +162,6 @@ pub(super) fn remove_in_passes(
         d.rerank(&changed);
         changed.clear();
         d.changed = changed;
-    }
-}
-
-/// Ranks every vertex, raising the feature angle in `RELAX_STEP_DEG` steps before any
-/// removal while the corners it makes (counted by the ranking) are more than
-/// `MAX_CORNER_SHARE` of the vertices the count target leaves: kept whatever their error,
-/// they would crowd the result, and be relaxed in bulk at the end.
-pub(super) fn relax_early(d: &mut Decimator, limits: &Limits, outcome: &mut Outcome) {
-    let live = (0..d.positions.len() as u32)
-        .filter(|&v| !d.conn.incident(v).is_empty())
-        .count();
-    // About two triangles per vertex on a triangle mesh (Euler's formula).
-    let by_triangles = if (1..d.conn.triangle_count()).contains(&limits.keep_triangles) {
-        limits.keep_triangles.div_ceil(2)
-    } else {
-        live
-    };
-    // `remove` at or above the live count: no vertex target.
-    let by_vertices = live.checked_sub(limits.remove).unwrap_or(live);
-    let left = by_vertices.min(by_triangles);
-    while d.rank_all() as f64 > MAX_CORNER_SHARE * left as f64
-        && outcome.feature_angle_deg < MAX_EARLY_ANGLE_DEG
-    {
-        outcome.feature_angle_deg = (outcome.feature_angle_deg + RELAX_STEP_DEG).min(180.0);
-        d.cos_feature = outcome.feature_angle_deg.to_radians().cos();
     }
 }
 
