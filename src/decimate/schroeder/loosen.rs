@@ -23,6 +23,20 @@ const MAX_EARLY_ANGLE_DEG: f64 = 90.0;
 /// and would otherwise reach into the dear half.
 const SHORT_SHARE: usize = 2;
 
+/// Whether a count target is short of candidates from the start: it needs more than half
+/// of the live vertices. Folded rings are then filled from the first ranking on, rather
+/// than re-ranked for at the first pass ([`when_short`]).
+pub(super) fn short_from_start(d: &Decimator, limits: &Limits) -> bool {
+    let live = (0..d.positions.len() as u32)
+        .filter(|&v| !d.conn.incident(v).is_empty())
+        .count();
+    let over = d
+        .conn
+        .triangle_count()
+        .saturating_sub(limits.keep_triangles);
+    live < SHORT_SHARE * limits.remove.min(over.div_ceil(2))
+}
+
 /// Ranks every vertex, raising the feature angle in `RELAX_STEP_DEG` steps before any
 /// removal while the corners it makes (counted by the ranking) are more than
 /// `MAX_CORNER_SHARE` of the vertices the count target leaves: kept whatever their error,

@@ -26,6 +26,7 @@ use crate::decimate::candidates::{cheapest, Candidate};
 use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
 use crate::decimate::{Limits, Outcome};
+use crate::mesh::topology::Connectivity;
 
 /// One pass takes the cheapest `1 / PASS_SHARE` of the candidates: as accurate as the
 /// greedy queue it replaced, in about half the time (docs/design.md#schroeder-pass-share).
@@ -150,6 +151,17 @@ pub(super) fn remove_in_passes(
         if loosen::when_short(d, limits, outcome, count, needed) {
             continue; // re-ranked under the loosened rules
         }
+        // One triangle over the count: only a border vertex's removal (one triangle fewer)
+        // lands on it, so the pass takes those when there are any.
+        let count =
+            if limits.keep_triangles > 0 && d.conn.triangle_count() == limits.keep_triangles + 1 {
+                match border_first(&d.conn, &mut all[..count]) {
+                    0 => count,
+                    border => border,
+                }
+            } else {
+                count
+            };
         let take = (count / PASS_SHARE).min(2 * needed).clamp(1, count);
         cheapest(&all[..count], take, &mut pass, &mut tied);
         d.pass += 1;
@@ -163,6 +175,42 @@ pub(super) fn remove_in_passes(
         changed.clear();
         d.changed = changed;
     }
+}
+
+/// Moves the candidates on one open border (a vertex whose ring is one open fan: its
+/// removal takes one triangle) to the front of `candidates`, in order (the rest is left in
+/// any order); returns how many.
+fn border_first(conn: &Connectivity, candidates: &mut [Candidate]) -> usize {
+    let mut border = 0;
+    for i in 0..candidates.len() {
+        if on_one_border(conn, candidates[i].vertex()) {
+            candidates.swap(border, i);
+            border += 1;
+        }
+    }
+    border
+}
+
+/// Whether `v`'s triangles form one open fan: exactly two of its edges have one triangle.
+fn on_one_border(conn: &Connectivity, v: u32) -> bool {
+    let incident = conn.incident(v);
+    let others = |t: u32| {
+        let [a, b, c] = conn.triangle(t);
+        [a, b, c].into_iter().filter(move |&x| x != v)
+    };
+    let border_edges = incident
+        .iter()
+        .flat_map(|&t| others(t))
+        .filter(|&u| {
+            incident
+                .iter()
+                .flat_map(|&t| others(t))
+                .filter(|&w| w == u)
+                .count()
+                == 1
+        })
+        .count();
+    border_edges == 2
 }
 
 /// Removals the count limits still allow, at most: a removal takes one vertex and at most
