@@ -7,7 +7,7 @@
 //! the rules are loosened a step ([`when_short`]). Running out of candidates loosens them
 //! too (`removal_passes`).
 
-use super::{Decimator, RELAX_STEP_DEG};
+use super::{removal_passes, Decimator, RELAX_STEP_DEG};
 use crate::decimate::{Limits, Outcome};
 
 /// Before the first removal the feature angle is raised while its corners are more than
@@ -26,15 +26,15 @@ const SHORT_SHARE: usize = 2;
 /// Whether a count target is short of candidates from the start: it needs more than half
 /// of the live vertices. Folded rings are then filled from the first ranking on, rather
 /// than re-ranked for at the first pass ([`when_short`]).
-pub(super) fn short_from_start(d: &Decimator, limits: &Limits) -> bool {
-    let live = (0..d.positions.len() as u32)
+pub(super) fn short_from_start(d: &Decimator, limits: &Limits, outcome: &Outcome) -> bool {
+    live_count(d) < SHORT_SHARE * removal_passes::allowed(d, limits, outcome)
+}
+
+/// Vertices with a triangle.
+fn live_count(d: &Decimator) -> usize {
+    (0..d.positions.len() as u32)
         .filter(|&v| !d.conn.incident(v).is_empty())
-        .count();
-    let over = d
-        .conn
-        .triangle_count()
-        .saturating_sub(limits.keep_triangles);
-    live < SHORT_SHARE * limits.remove.min(over.div_ceil(2))
+        .count()
 }
 
 /// Ranks every vertex, raising the feature angle in `RELAX_STEP_DEG` steps before any
@@ -42,9 +42,7 @@ pub(super) fn short_from_start(d: &Decimator, limits: &Limits) -> bool {
 /// `MAX_CORNER_SHARE` of the vertices the count target leaves: kept whatever their error,
 /// they would crowd the result, and be relaxed in bulk at the end.
 pub(super) fn relax_early(d: &mut Decimator, limits: &Limits, outcome: &mut Outcome) {
-    let live = (0..d.positions.len() as u32)
-        .filter(|&v| !d.conn.incident(v).is_empty())
-        .count();
+    let live = live_count(d);
     // About two triangles per vertex on a triangle mesh (Euler's formula).
     let by_triangles = if (1..d.conn.triangle_count()).contains(&limits.keep_triangles) {
         limits.keep_triangles.div_ceil(2)

@@ -147,7 +147,7 @@ pub fn decimate_model(
         pinned: pinned_count,
         closed_kept: 0,
     };
-    d.unfold |= loosen::short_from_start(&d, limits);
+    d.unfold |= loosen::short_from_start(&d, limits, &outcome);
     if limits.relax_features {
         loosen::relax_early(&mut d, limits, &mut outcome);
     } else {

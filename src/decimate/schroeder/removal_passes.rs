@@ -26,7 +26,7 @@ use crate::decimate::candidates::{cheapest, Candidate};
 use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
 use crate::decimate::{Limits, Outcome};
-use crate::mesh::topology::Connectivity;
+use crate::mesh::topology::{Adjacency, Connectivity, Ring, RingShape};
 
 /// One pass takes the cheapest `1 / PASS_SHARE` of the candidates: as accurate as the
 /// greedy queue it replaced, in about half the time (docs/design.md#schroeder-pass-share).
@@ -181,9 +181,10 @@ pub(super) fn remove_in_passes(
 /// removal takes one triangle) to the front of `candidates`, in order (the rest is left in
 /// any order); returns how many.
 fn border_first(conn: &Connectivity, candidates: &mut [Candidate]) -> usize {
+    let mut ring = Ring::default();
     let mut border = 0;
     for i in 0..candidates.len() {
-        if on_one_border(conn, candidates[i].vertex()) {
+        if conn.ring(candidates[i].vertex(), &mut ring) == RingShape::Open {
             candidates.swap(border, i);
             border += 1;
         }
@@ -191,31 +192,9 @@ fn border_first(conn: &Connectivity, candidates: &mut [Candidate]) -> usize {
     border
 }
 
-/// Whether `v`'s triangles form one open fan: exactly two of its edges have one triangle.
-fn on_one_border(conn: &Connectivity, v: u32) -> bool {
-    let incident = conn.incident(v);
-    let others = |t: u32| {
-        let [a, b, c] = conn.triangle(t);
-        [a, b, c].into_iter().filter(move |&x| x != v)
-    };
-    let border_edges = incident
-        .iter()
-        .flat_map(|&t| others(t))
-        .filter(|&u| {
-            incident
-                .iter()
-                .flat_map(|&t| others(t))
-                .filter(|&w| w == u)
-                .count()
-                == 1
-        })
-        .count();
-    border_edges == 2
-}
-
 /// Removals the count limits still allow, at most: a removal takes one vertex and at most
 /// two triangles (a closed ring's; an open one's takes one).
-fn allowed(d: &Decimator, limits: &Limits, outcome: &Outcome) -> usize {
+pub(super) fn allowed(d: &Decimator, limits: &Limits, outcome: &Outcome) -> usize {
     let over = d
         .conn
         .triangle_count()
