@@ -7,7 +7,7 @@
 //! the rules are loosened a step ([`when_short`]). Running out of candidates loosens them
 //! too (`removal_passes`).
 
-use super::{removal_passes, Decimator, RELAX_STEP_DEG};
+use super::{Decimator, RELAX_STEP_DEG};
 use crate::decimate::{Limits, Outcome};
 
 /// Before the first removal the feature angle is raised while its corners are more than
@@ -27,7 +27,7 @@ const SHORT_SHARE: usize = 2;
 /// of the live vertices. Folded rings are then filled from the first ranking on, rather
 /// than re-ranked for at the first pass ([`when_short`]).
 pub(super) fn short_from_start(d: &Decimator, limits: &Limits, outcome: &Outcome) -> bool {
-    live_count(d) < SHORT_SHARE * removal_passes::allowed(d, limits, outcome)
+    live_count(d) < SHORT_SHARE * d.removals_allowed(limits, outcome)
 }
 
 /// Vertices with a triangle.

@@ -326,6 +326,19 @@ impl Decimator {
         }
     }
 
+    /// Removals the count limits still allow, at most: a removal takes one vertex and at
+    /// most two triangles (a closed ring's; an open one's takes one).
+    fn removals_allowed(&self, limits: &Limits, outcome: &Outcome) -> usize {
+        let over = self
+            .conn
+            .triangle_count()
+            .saturating_sub(limits.keep_triangles);
+        limits
+            .remove
+            .saturating_sub(outcome.removed)
+            .min(over.div_ceil(2))
+    }
+
     /// `v`'s key as its ring stands now, `NaN` when it is no candidate.
     fn key(&self, v: u32, planning: &mut Planning) -> f64 {
         match self.surface().evaluate(v, planning) {

@@ -147,7 +147,7 @@ pub(super) fn remove_in_passes(
             outcome.exhausted = true;
             break;
         }
-        let needed = allowed(d, limits, outcome);
+        let needed = d.removals_allowed(limits, outcome);
         if loosen::when_short(d, limits, outcome, count, needed) {
             continue; // re-ranked under the loosened rules
         }
@@ -192,19 +192,6 @@ fn border_first(conn: &Connectivity, candidates: &mut [Candidate]) -> usize {
     border
 }
 
-/// Removals the count limits still allow, at most: a removal takes one vertex and at most
-/// two triangles (a closed ring's; an open one's takes one).
-pub(super) fn allowed(d: &Decimator, limits: &Limits, outcome: &Outcome) -> usize {
-    let over = d
-        .conn
-        .triangle_count()
-        .saturating_sub(limits.keep_triangles);
-    limits
-        .remove
-        .saturating_sub(outcome.removed)
-        .min(over.div_ceil(2))
-}
-
 /// True when a count limit is met.
 fn reached(d: &Decimator, limits: &Limits, outcome: &Outcome) -> bool {
     outcome.removed >= limits.remove || d.conn.triangle_count() <= limits.keep_triangles
@@ -226,7 +213,11 @@ fn remove_pass(
     let in_regions = regions[0].count() > 1;
     let mut rest = candidates;
     while in_regions && !rest.is_empty() {
-        let size = round_size(candidates.len(), rest.len(), allowed(d, limits, outcome));
+        let size = round_size(
+            candidates.len(),
+            rest.len(),
+            d.removals_allowed(limits, outcome),
+        );
         if size == 0 {
             break;
         }
