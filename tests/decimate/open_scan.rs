@@ -103,9 +103,9 @@ fn a_rough_open_grid_at_two_percent_keeps_its_outline_and_a_low_error() {
 
 /// The Cyberware heads of Debian's `inventor-data` (open 40×40 grids of rough scans), cut
 /// to 1 % by the binary as a user would: the count asked for exactly, no triangle folded,
-/// and the face kept. Taking the few dear candidates the feature angle left, instead of loosening
-/// it (docs/design.md#schroeder-loosen), cut josie's face by a chord: 7.8 % mean error,
-/// 30 % max.
+/// and the face kept. Taking the few dear candidates the feature angle left, instead of
+/// loosening it (docs/design.md#schroeder-loosen), cut josie's face by a chord: 7.8 % mean
+/// error, 30 % max.
 #[test]
 fn the_cyberware_heads_at_one_percent_keep_their_faces() {
     let dir = std::env::temp_dir().join(format!("decimate-heads-{}", std::process::id()));

@@ -55,8 +55,7 @@ pub(super) fn relax_early(d: &mut Decimator, limits: &Limits, outcome: &mut Outc
     while d.rank_all() as f64 > MAX_CORNER_SHARE * left as f64
         && outcome.feature_angle_deg < MAX_EARLY_ANGLE_DEG
     {
-        outcome.feature_angle_deg = (outcome.feature_angle_deg + RELAX_STEP_DEG).min(180.0);
-        d.cos_feature = outcome.feature_angle_deg.to_radians().cos();
+        raise_feature_angle(d, outcome);
     }
 }
 
@@ -79,11 +78,17 @@ pub(super) fn when_short(
     if !d.unfold && candidates < SHORT_SHARE * needed {
         d.unfold = true;
     } else if candidates < needed && limits.relax_features && outcome.feature_angle_deg < 180.0 {
-        outcome.feature_angle_deg = (outcome.feature_angle_deg + RELAX_STEP_DEG).min(180.0);
-        d.cos_feature = outcome.feature_angle_deg.to_radians().cos();
+        raise_feature_angle(d, outcome);
     } else {
         return false;
     }
     d.rank_all();
     true
+}
+
+/// Raises the feature angle one `RELAX_STEP_DEG` step, up to 180° (the keys are not
+/// re-ranked).
+pub(super) fn raise_feature_angle(d: &mut Decimator, outcome: &mut Outcome) {
+    outcome.feature_angle_deg = (outcome.feature_angle_deg + RELAX_STEP_DEG).min(180.0);
+    d.cos_feature = outcome.feature_angle_deg.to_radians().cos();
 }

@@ -21,7 +21,7 @@ use rayon::prelude::*;
 
 use super::loosen;
 use super::plan::Planning;
-use super::{Decimator, Removal, RELAX_STEP_DEG};
+use super::{Decimator, Removal};
 use crate::decimate::candidates::{cheapest, Candidate};
 use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
@@ -139,8 +139,7 @@ pub(super) fn remove_in_passes(
             // Out of candidates before the target: a coarse scan has "features"
             // everywhere. Relax the feature angle, re-rank what is left, and go on.
             if limits.relax_features && outcome.feature_angle_deg < 180.0 {
-                outcome.feature_angle_deg = (outcome.feature_angle_deg + RELAX_STEP_DEG).min(180.0);
-                d.cos_feature = outcome.feature_angle_deg.to_radians().cos();
+                loosen::raise_feature_angle(d, outcome);
                 d.rank_all();
                 continue;
             }
