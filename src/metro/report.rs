@@ -16,9 +16,15 @@ pub fn table(c: &Comparison, names: [&str; 2]) -> String {
         let _ = writeln!(s, "{label}: {name}");
         let _ = writeln!(
             s,
-            "   {} triangles, {} vertices, area {}, {}",
+            "   {} triangles, {} vertices, {} {}, area {}, {}",
             info.triangles,
             info.vertices,
+            info.components,
+            if info.components == 1 {
+                "piece"
+            } else {
+                "pieces"
+            },
             num(info.area),
             volume_text(info)
         );
@@ -142,7 +148,7 @@ pub fn json(c: &Comparison, names: [&str; 2]) -> String {
             s,
             "  \"{key}\": {{\"file\": {}, \"triangles\": {}, \"vertices\": {}, \"area\": {}, \
              \"volume\": {}, \"closed\": {}, \"boundary_edges\": {}, \"nonmanifold_edges\": {}, \
-             \"skipped_triangles\": {}, \"bbox_min\": {}, \"bbox_max\": {}}},",
+             \"components\": {}, \"skipped_triangles\": {}, \"bbox_min\": {}, \"bbox_max\": {}}},",
             string(name),
             info.triangles,
             info.vertices,
@@ -151,6 +157,7 @@ pub fn json(c: &Comparison, names: [&str; 2]) -> String {
             info.volume.is_some(),
             info.boundary_edges,
             info.nonmanifold_edges,
+            info.components,
             info.skipped_triangles,
             vec3(info.bbox_min.to_array()),
             vec3(info.bbox_max.to_array()),

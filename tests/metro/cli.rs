@@ -74,6 +74,7 @@ fn concentric_cubes_from_the_bundled_assets() {
     assert_eq!(json_number(&out, "a", "volume"), 8.0);
     assert_eq!(json_number(&out, "b", "area"), 600.0);
     assert_eq!(json_number(&out, "b", "volume"), 1000.0);
+    assert_eq!(json_number(&out, "a", "components"), 1.0);
     // Every point of the small cube is exactly 4 inside the big one's faces.
     for key in ["max", "mean", "rms"] {
         assert!((json_number(&out, "a_to_b", key) - 4.0).abs() < 1e-12);

@@ -325,6 +325,40 @@ fn cube_area_and_volume() {
 }
 
 #[test]
+fn pieces_are_counted_through_shared_positions_not_indices() {
+    // The cube's six faces are separate grids, one piece once their edges are welded.
+    let (p, t) = cube(2.0, 3);
+    assert_eq!(Surface::new(&p, &t).components, 1);
+    // A second cube beside it, and a lone triangle: three pieces.
+    let (mut p2, mut t2) = (p.clone(), t.clone());
+    let base = p2.len() as u32;
+    p2.extend(p.iter().map(|&q| q + DVec3::new(5.0, 0.0, 0.0)));
+    t2.extend(t.iter().map(|f| f.map(|i| i + base)));
+    let base = p2.len() as u32;
+    p2.extend([
+        DVec3::new(0.0, 9.0, 0.0),
+        DVec3::new(1.0, 9.0, 0.0),
+        DVec3::Y * 10.0,
+    ]);
+    t2.push([base, base + 1, base + 2]);
+    assert_eq!(Surface::new(&p2, &t2).components, 3);
+    // Two triangles meeting at one corner only (a bowtie) are one piece; moved apart, two.
+    let bowtie = [
+        DVec3::ZERO,
+        DVec3::new(1.0, 1.0, 0.0),
+        DVec3::new(1.0, -1.0, 0.0),
+        DVec3::new(-1.0, 1.0, 0.0),
+        DVec3::new(-1.0, -1.0, 0.0),
+    ];
+    assert_eq!(Surface::new(&bowtie, &[[0, 1, 2], [0, 4, 3]]).components, 1);
+    let mut apart = bowtie.to_vec();
+    apart.push(DVec3::new(-0.1, 0.0, 0.0));
+    assert_eq!(Surface::new(&apart, &[[0, 1, 2], [5, 4, 3]]).components, 2);
+    // Unused positions are no piece.
+    assert_eq!(Surface::new(&apart, &[[0, 1, 2]]).info().components, 1);
+}
+
+#[test]
 fn icosahedron_and_sphere_areas_and_volumes() {
     let ico = surface(icosahedron());
     let a = 4.0 / (10.0 + 2.0 * 5f64.sqrt()).sqrt(); // edge for circumradius 1
