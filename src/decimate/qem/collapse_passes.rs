@@ -20,8 +20,9 @@
 //! get a second chance in fewer, larger regions shifted by half a region, and those on
 //! both borders go, in cost order, on the whole mesh. A round runs in regions only when it
 //! cannot reach the target; the last candidates before the target go one at a time on the
-//! whole mesh, so that the count stops exactly there. A progressive record is kept on the
-//! whole mesh only.
+//! whole mesh, so that the count stops exactly there; one triangle over a triangle count,
+//! the pass ends and the next takes only edges on an open border (a collapse of one
+//! triangle) when there are any. A progressive record is kept on the whole mesh only.
 
 use rayon::prelude::*;
 
@@ -33,6 +34,7 @@ use crate::decimate::candidates::{cheapest, Candidate};
 use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
 use crate::decimate::{Limits, Outcome, MIN_VERTICES};
+use crate::mesh::topology::Connectivity;
 
 /// One pass takes the cheapest `1 / PASS_SHARE` of the candidate vertices: bigger passes
 /// are faster but cost mean error (docs/design.md#qem-pass-share).
@@ -77,6 +79,8 @@ struct Limit {
     remove: usize,
     removable: usize,
     keep_triangles: usize,
+    /// End the pass one triangle over `keep_triangles`, for a pass of border edges only.
+    end_one_over: bool,
 }
 
 /// What a run of candidates did.
@@ -126,6 +130,8 @@ pub(super) fn collapse_in_passes(
     let (mut pass, mut tied) = (Vec::new(), Vec::new());
     let mut flagged = Flagged::default();
     let mut in_pass = vec![0u64; (n as usize).div_ceil(64)];
+    // Cleared when a pass of border edges only removed nothing: it is not tried again.
+    let mut border_only = true;
     while !limits.cancel.requested() {
         let kinds = &d.kinds;
         lists::retain(&mut live, |v| kinds[v as usize] != Kind::Fixed);
@@ -134,11 +140,23 @@ pub(super) fn collapse_in_passes(
             let cost = best_cost[v as usize];
             cost.is_finite().then(|| Candidate::new(cost, v))
         });
-        let candidates = &all_candidates[..count];
-        if candidates.is_empty() {
+        if count == 0 {
             outcome.exhausted = !skipped_for_error;
             break;
         }
+        // One triangle over a triangle count: only a collapse of an open border's edge (in
+        // one triangle) lands on it, so the pass takes those when there are any.
+        let one_over = border_only
+            && limits.keep_triangles > 0
+            && d.conn.triangle_count() == limits.keep_triangles + 1;
+        let count = match one_over {
+            true => match border_edges_first(&d.conn, &d.best, &mut all_candidates[..count]) {
+                0 => count,
+                border => border,
+            },
+            false => count,
+        };
+        let candidates = &all_candidates[..count];
         let over = d
             .conn
             .triangle_count()
@@ -147,6 +165,7 @@ pub(super) fn collapse_in_passes(
             remove: limits.remove.saturating_sub(outcome.removed),
             removable: removable.saturating_sub(outcome.removed),
             keep_triangles: limits.keep_triangles,
+            end_one_over: border_only && !one_over && limits.keep_triangles > 0,
         };
         let needed = limit.remove.min(limit.removable).min(over.div_ceil(2));
         let take = (candidates.len() / PASS_SHARE)
@@ -164,6 +183,7 @@ pub(super) fn collapse_in_passes(
         outcome.max_error = outcome.max_error.max(tally.max_error2.sqrt());
         outcome.exhausted |= tally.floor;
         skipped_for_error |= tally.over_bound;
+        border_only &= !(one_over && tally.removed == 0);
         progress(outcome.removed);
         if stopped {
             break;
@@ -172,6 +192,27 @@ pub(super) fn collapse_in_passes(
     }
     progress(outcome.removed);
     outcome
+}
+
+/// Moves the candidates whose best edge lies on an open border (in one triangle: its
+/// collapse takes one) to the front of `candidates`, in order (the rest is left in any
+/// order); returns how many.
+fn border_edges_first(conn: &Connectivity, best: &[u32], candidates: &mut [Candidate]) -> usize {
+    let mut border = 0;
+    for i in 0..candidates.len() {
+        let v = candidates[i].vertex();
+        let w = best[v as usize];
+        let shared = conn
+            .incident(v)
+            .iter()
+            .filter(|&&t| conn.triangle(t).contains(&w))
+            .count();
+        if shared == 1 {
+            candidates.swap(border, i);
+            border += 1;
+        }
+    }
+    border
 }
 
 /// Drops from `pass` (in cost order) the larger end of every edge that is the cheapest of
@@ -293,6 +334,9 @@ fn collapse_in_order(
             if tally.removed >= limit.removable {
                 tally.floor = true;
                 return true;
+            }
+            if limit.end_one_over && part.conn.triangle_count() == limit.keep_triangles + 1 {
+                return false;
             }
         }
         // Vertices the limit still allows: a seam collapse needs two.

@@ -257,6 +257,9 @@ struct Decimator {
     /// how many more vertices the count target lets go (a removal that drops one needs two).
     dropped: usize,
     room: usize,
+    /// The pass ends one triangle over a triangle count, so that the next can take only
+    /// border vertices (`removal_passes`).
+    end_one_over: bool,
 }
 
 /// A planned removal's ring (vertices and triangles) and fill.
@@ -298,6 +301,7 @@ impl Decimator {
             batch: 1,
             dropped: 0,
             room: usize::MAX,
+            end_one_over: false,
         }
     }
 

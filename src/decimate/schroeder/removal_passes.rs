@@ -114,6 +114,12 @@ pub(super) fn remove_in_passes(
         [false, true].map(|shifted| Regions::new(d.positions.len(), d.conn.triangles(), shifted));
     // Kept from pass to pass and refilled in place.
     let (mut all, mut pass, mut tied) = (Vec::new(), Vec::new(), Vec::new());
+    // Only a mesh with an open border can land on every triangle count.
+    let bordered = limits.keep_triangles > 0
+        && live
+            .par_iter()
+            .map_init(Ring::default, |ring, &v| d.conn.ring(v, ring))
+            .any(|shape| shape == RingShape::Open);
     loop {
         if reached(d, limits, outcome) || limits.cancel.requested() {
             break;
@@ -151,20 +157,22 @@ pub(super) fn remove_in_passes(
             continue; // re-ranked under the loosened rules
         }
         // One triangle over the count: only a border vertex's removal (one triangle fewer)
-        // lands on it, so the pass takes those when there are any.
-        let count =
-            if limits.keep_triangles > 0 && d.conn.triangle_count() == limits.keep_triangles + 1 {
-                match border_first(&d.conn, &mut all[..count]) {
-                    0 => count,
-                    border => border,
-                }
-            } else {
-                count
-            };
+        // lands on it, so the pass takes those when there are any. A pass that gets there
+        // ends there, so that the next one can.
+        let at_one_over = one_over(d, limits);
+        let count = match at_one_over {
+            true => match border_first(&d.conn, &mut all[..count]) {
+                0 => count,
+                border => border,
+            },
+            false => count,
+        };
+        d.end_one_over = bordered && !at_one_over;
         let take = (count / PASS_SHARE).min(2 * needed).clamp(1, count);
         cheapest(&all[..count], take, &mut pass, &mut tied);
         d.pass += 1;
-        if remove_pass(d, &regions, &pass, limits, outcome, progress) {
+        let ended = remove_pass(d, &regions, &pass, limits, outcome, progress);
+        if ended && (reached(d, limits, outcome) || limits.cancel.requested()) {
             break; // a count limit: the keys are not needed any more
         }
         // In vertex order, so that neighbours share the memory they read.
@@ -194,6 +202,11 @@ fn border_first(conn: &Connectivity, candidates: &mut [Candidate]) -> usize {
 /// True when a count limit is met.
 fn reached(d: &Decimator, limits: &Limits, outcome: &Outcome) -> bool {
     outcome.removed >= limits.remove || d.conn.triangle_count() <= limits.keep_triangles
+}
+
+/// True one triangle over a triangle count.
+fn one_over(d: &Decimator, limits: &Limits) -> bool {
+    limits.keep_triangles > 0 && d.conn.triangle_count() == limits.keep_triangles + 1
 }
 
 /// Removes the pass's `candidates` (in key order); true when a count limit stopped it.
@@ -329,7 +342,7 @@ fn remove_planned(
                 }
             }
         }
-        if reached(d, limits, outcome) {
+        if reached(d, limits, outcome) || (d.end_one_over && one_over(d, limits)) {
             return true;
         }
         let v = c.vertex();
