@@ -18,8 +18,8 @@ usage: metro [options] A B
 Measures the distance between the surfaces in files A and B (any format decimate reads):
 A->B (samples of A against surface B), B->A, and the Hausdorff distance (the larger max).
 Max is over vertex, edge and face samples; mean and RMS are area-weighted. Relative values
-are fractions of A's bounding-box diagonal. Also prints areas and, for closed surfaces,
-volumes.
+are fractions of A's bounding-box diagonal. Also prints each surface's areas, connected
+pieces, boundary and non-manifold edges and, for closed surfaces, volumes.
 
 options:
   -n, --samples N   face samples per direction (default: 10 per triangle, at least 10000);
