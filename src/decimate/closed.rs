@@ -15,6 +15,7 @@ use glam::{DVec3, Vec3};
 use rayon::slice::ParallelSliceMut;
 
 use crate::mesh::seams;
+use crate::mesh::union_find;
 
 /// A closed shape keeps at least this share of its starting volume: the largest
 /// tetrahedron inside a box holds a third of it, inside a sphere an eighth, so decimating
@@ -80,11 +81,11 @@ impl ClosedVolumes {
         let valid = |t: &[u32; 3]| t.iter().all(|&v| (v as usize) < n);
         let one = |v: u32| weld.get(v as usize).copied().unwrap_or(v);
         // Components of the vertices, by union-find.
-        let mut parent: Vec<u32> = (0..n as u32).collect();
+        let mut parent = union_find::singletons(n);
         for t in triangles.iter().filter(|t| valid(t)) {
-            let a = find(&mut parent, one(t[0]));
+            let a = union_find::root(&mut parent, one(t[0]));
             for &v in &t[1..] {
-                let b = find(&mut parent, one(v));
+                let b = union_find::root(&mut parent, one(v));
                 parent[b as usize] = a;
             }
         }
@@ -108,13 +109,13 @@ impl ClosedVolumes {
                 run.len() == 2 && run[0] & 1 == 0 && run[1] & 1 == 1
             };
             if !once_each_way {
-                let root = find(&mut parent, a);
+                let root = union_find::root(&mut parent, a);
                 open[root as usize] = true;
             }
         }
         for t in triangles.iter().filter(|t| !valid(t)) {
             for &v in t.iter().filter(|&&v| (v as usize) < n) {
-                let root = find(&mut parent, one(v));
+                let root = union_find::root(&mut parent, one(v));
                 open[root as usize] = true;
             }
         }
@@ -124,7 +125,7 @@ impl ClosedVolumes {
         let mut origin = Vec::new();
         let mut volume6 = Vec::new();
         for t in triangles.iter().filter(|t| valid(t)) {
-            let root = find(&mut parent, one(t[0]));
+            let root = union_find::root(&mut parent, one(t[0]));
             if open[root as usize] {
                 continue;
             }
@@ -258,15 +259,6 @@ impl ClosedVolumes {
 fn edge_key(a: u32, b: u32) -> u64 {
     let (lo, hi) = (a.min(b), a.max(b));
     u64::from(lo) << 33 | u64::from(hi) << 1 | u64::from(a > b)
-}
-
-fn find(parent: &mut [u32], mut v: u32) -> u32 {
-    while parent[v as usize] != v {
-        let p = parent[parent[v as usize] as usize];
-        parent[v as usize] = p;
-        v = p;
-    }
-    v
 }
 
 #[cfg(test)]

@@ -18,7 +18,7 @@ use std::borrow::Cow;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::mesh::{repair, weld, Attribute, Model};
+use crate::mesh::{repair, union_find, weld, Attribute, Model};
 
 /// The sheets removed never add up to more than this share of the model's area: where
 /// small sheets are a real share of a model (cells or voxels sharing edges), they are the
@@ -190,25 +190,20 @@ pub fn remove_hanging_sheets(
 /// Each of the `triangles`' sheet, numbered from 0 in the order of their first triangles
 /// (union–find across the `edges` that exactly two triangles use), and how many.
 fn sheets(triangles: usize, edges: &Edges) -> (Vec<u32>, usize) {
-    let mut parent: Vec<u32> = (0..triangles as u32).collect();
-    fn find(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            let up = parent[parent[x as usize] as usize];
-            parent[x as usize] = up;
-            x = up;
-        }
-        x
-    }
+    let mut parent = union_find::singletons(triangles);
     for run in edges.runs() {
         if let [(_, s), (_, t)] = run {
-            let (a, b) = (find(&mut parent, *s), find(&mut parent, *t));
+            let (a, b) = (
+                union_find::root(&mut parent, *s),
+                union_find::root(&mut parent, *t),
+            );
             // The smaller id roots the set: a sheet's root is its first triangle.
             let (lo, hi) = (a.min(b), a.max(b));
             parent[hi as usize] = lo;
         }
     }
     for t in 0..triangles as u32 {
-        parent[t as usize] = find(&mut parent, t);
+        parent[t as usize] = union_find::root(&mut parent, t);
     }
     // Now every entry is its root; a root comes before the rest of its sheet, so its entry
     // already holds the sheet's number when they read it.

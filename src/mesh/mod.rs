@@ -14,6 +14,7 @@ pub mod shapes;
 pub mod spatial;
 pub mod stitches;
 pub mod topology;
+pub mod union_find;
 pub mod weld;
 
 pub use scene::{Attribute, CopiedThrough, Instance, LocalTransform, Model, Node, NodeTree, Scene};

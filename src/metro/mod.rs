@@ -27,7 +27,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::cancel::Cancel;
-use crate::mesh::Scene;
+use crate::mesh::{union_find, Scene};
 use bvh::Bvh;
 
 /// A scene as one world-space triangle soup, ready to be sampled or searched.
@@ -49,8 +49,8 @@ pub struct Surface {
     pub nonmanifold_edges: usize,
     /// Edges used twice in the same direction (neighbours with opposite orientation).
     pub misoriented_edges: usize,
-    /// Connected pieces: triangles joined through shared positions (a surface torn along a
-    /// crack, corners apart though at one place, stays one piece; torn apart, it is several).
+    /// Connected pieces: triangles joined through shared positions (a surface torn apart
+    /// comes back as several).
     pub components: usize,
     /// Triangles dropped: a repeated corner, or a coordinate that is not finite.
     pub skipped_triangles: usize,
@@ -237,17 +237,10 @@ impl Surface {
 }
 
 /// Pieces of `triangles` over `vertices` positions joined through shared corners
-/// (union-find with path halving: near-linear).
+/// (union-find: near-linear).
 fn count_components(vertices: usize, triangles: &[[u32; 3]]) -> usize {
-    fn root(parent: &mut [u32], mut v: u32) -> u32 {
-        while parent[v as usize] != v {
-            let up = parent[parent[v as usize] as usize];
-            parent[v as usize] = up;
-            v = up;
-        }
-        v
-    }
-    let mut parent: Vec<u32> = (0..vertices as u32).collect();
+    use union_find::root;
+    let mut parent = union_find::singletons(vertices);
     for t in triangles {
         let a = root(&mut parent, t[0]);
         for &v in &t[1..] {
