@@ -41,6 +41,23 @@ impl Candidate {
 /// few thousand candidates of a scan of a million triangles), and the histogram stays small.
 const BUCKET_BITS: u32 = 12;
 
+/// Moves the candidates `first` picks to the front of `candidates`, in order (the rest is
+/// left in any order); returns how many. The pass loops' "one triangle over a count" takes
+/// only those whose removal or collapse takes one triangle.
+pub(crate) fn move_to_front(
+    candidates: &mut [Candidate],
+    mut first: impl FnMut(Candidate) -> bool,
+) -> usize {
+    let mut front = 0;
+    for i in 0..candidates.len() {
+        if first(candidates[i]) {
+            candidates.swap(front, i);
+            front += 1;
+        }
+    }
+    front
+}
+
 /// The `take` cheapest of `candidates` (distinct), sorted, into `out` (`tied` is scratch):
 /// a histogram of the keys' top bits, on all cores, gives the bucket the last of them falls
 /// in; the buckets below it are taken whole and that one is selected in. The same set as a

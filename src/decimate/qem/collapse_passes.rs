@@ -30,7 +30,7 @@ use super::collapse_plan::{others, Kind, Plan};
 use super::collapser::Collapser;
 use super::part::Part;
 use super::ranking::stored;
-use crate::decimate::candidates::{cheapest, Candidate};
+use crate::decimate::candidates::{cheapest, move_to_front, Candidate};
 use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
 use crate::decimate::{Limits, Outcome, MIN_VERTICES};
@@ -195,24 +195,17 @@ pub(super) fn collapse_in_passes(
 }
 
 /// Moves the candidates whose best edge lies on an open border (in one triangle: its
-/// collapse takes one) to the front of `candidates`, in order (the rest is left in any
-/// order); returns how many.
+/// collapse takes one) to the front of `candidates`; returns how many.
 fn border_edges_first(conn: &Connectivity, best: &[u32], candidates: &mut [Candidate]) -> usize {
-    let mut border = 0;
-    for i in 0..candidates.len() {
-        let v = candidates[i].vertex();
+    move_to_front(candidates, |c| {
+        let v = c.vertex();
         let w = best[v as usize];
-        let shared = conn
+        let with_w = conn
             .incident(v)
             .iter()
-            .filter(|&&t| conn.triangle(t).contains(&w))
-            .count();
-        if shared == 1 {
-            candidates.swap(border, i);
-            border += 1;
-        }
-    }
-    border
+            .filter(|&&t| conn.triangle(t).contains(&w));
+        with_w.count() == 1
+    })
 }
 
 /// Drops from `pass` (in cost order) the larger end of every edge that is the cheapest of

@@ -26,12 +26,18 @@ const SHORT_SHARE: usize = 2;
 /// Whether a count target is short of candidates from the start: it needs more than half
 /// of the live vertices. Folded rings are then filled from the first ranking on, rather
 /// than re-ranked for at the first pass ([`when_short`]).
-pub(super) fn short_from_start(d: &Decimator, limits: &Limits, outcome: &Outcome) -> bool {
-    live_count(d) < SHORT_SHARE * d.removals_allowed(limits, outcome)
+/// `live`: [`live_count`].
+pub(super) fn short_from_start(
+    d: &Decimator,
+    limits: &Limits,
+    outcome: &Outcome,
+    live: usize,
+) -> bool {
+    live < SHORT_SHARE * d.removals_allowed(limits, outcome)
 }
 
 /// Vertices with a triangle.
-fn live_count(d: &Decimator) -> usize {
+pub(super) fn live_count(d: &Decimator) -> usize {
     (0..d.positions.len() as u32)
         .filter(|&v| !d.conn.incident(v).is_empty())
         .count()
@@ -40,9 +46,8 @@ fn live_count(d: &Decimator) -> usize {
 /// Ranks every vertex, raising the feature angle in `RELAX_STEP_DEG` steps before any
 /// removal while the corners it makes (counted by the ranking) are more than
 /// `MAX_CORNER_SHARE` of the vertices the count target leaves: kept whatever their error,
-/// they would crowd the result, and be relaxed in bulk at the end.
-pub(super) fn relax_early(d: &mut Decimator, limits: &Limits, outcome: &mut Outcome) {
-    let live = live_count(d);
+/// they would crowd the result, and be relaxed in bulk at the end. `live`: [`live_count`].
+pub(super) fn relax_early(d: &mut Decimator, limits: &Limits, outcome: &mut Outcome, live: usize) {
     // About two triangles per vertex on a triangle mesh (Euler's formula).
     let by_triangles = if (1..d.conn.triangle_count()).contains(&limits.keep_triangles) {
         limits.keep_triangles.div_ceil(2)

@@ -147,9 +147,10 @@ pub fn decimate_model(
         pinned: pinned_count,
         closed_kept: 0,
     };
-    d.unfold |= loosen::short_from_start(&d, limits, &outcome);
+    let live = loosen::live_count(&d);
+    d.unfold |= loosen::short_from_start(&d, limits, &outcome, live);
     if limits.relax_features {
-        loosen::relax_early(&mut d, limits, &mut outcome);
+        loosen::relax_early(&mut d, limits, &mut outcome, live);
     } else {
         d.rank_all();
     }

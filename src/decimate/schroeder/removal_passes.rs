@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use super::loosen;
 use super::plan::Planning;
 use super::{Decimator, Removal};
-use crate::decimate::candidates::{cheapest, Candidate};
+use crate::decimate::candidates::{cheapest, move_to_front, Candidate};
 use crate::decimate::lists;
 use crate::decimate::regions::{round_size, Regions};
 use crate::decimate::{Limits, Outcome};
@@ -185,18 +185,12 @@ pub(super) fn remove_in_passes(
 }
 
 /// Moves the candidates on one open border (a vertex whose ring is one open fan: its
-/// removal takes one triangle) to the front of `candidates`, in order (the rest is left in
-/// any order); returns how many.
+/// removal takes one triangle) to the front of `candidates`; returns how many.
 fn border_first(conn: &Connectivity, candidates: &mut [Candidate]) -> usize {
     let mut ring = Ring::default();
-    let mut border = 0;
-    for i in 0..candidates.len() {
-        if conn.ring(candidates[i].vertex(), &mut ring) == RingShape::Open {
-            candidates.swap(border, i);
-            border += 1;
-        }
-    }
-    border
+    move_to_front(candidates, |c| {
+        conn.ring(c.vertex(), &mut ring) == RingShape::Open
+    })
 }
 
 /// True when a count limit is met.
