@@ -8,7 +8,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use decimate::metro::{compare, Options, Surface};
+use decimate_core::metro::{compare, Options, Surface};
 use glam::DVec3;
 
 fn main() {
@@ -74,7 +74,7 @@ fn main() {
 
 fn load(path: &str) -> Option<Surface> {
     let t = Instant::now();
-    if let Ok(outcome) = decimate::io::read_scene(Path::new(path)) {
+    if let Ok(outcome) = decimate_core::io::read_scene(Path::new(path)) {
         let parsed = t.elapsed().as_secs_f64();
         let surface = Surface::from_scene(&outcome.scene);
         println!(

@@ -8,7 +8,7 @@
 use std::path::Path;
 use std::process::ExitCode;
 
-use decimate::api::{simplify, simplify_file, Algorithm, Params, Target};
+use decimate_core::api::{simplify, simplify_file, Algorithm, Params, Target};
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();

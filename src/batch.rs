@@ -14,13 +14,13 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use crate::cli::Args;
-use crate::decimate::levels::levels_for;
-use crate::decimate::summary::counts_column;
-use crate::decimate::{simplify_scene, simplify_scene_progressive, Report};
-use crate::io;
-use crate::mesh::progressive::{Lod, ProgressiveScene};
-use crate::mesh::Scene;
-use crate::progress_bar::Progress;
+use decimate_core::decimate::levels::levels_for;
+use decimate_core::decimate::summary::counts_column;
+use decimate_core::decimate::{simplify_scene, simplify_scene_progressive, Report};
+use decimate_core::io;
+use decimate_core::mesh::progressive::{Lod, ProgressiveScene};
+use decimate_core::mesh::Scene;
+use decimate_core::progress_bar::Progress;
 
 /// Runs the nogui job on `scene`, or on `recorded` when the input is a progressive mesh; the
 /// exit code says whether the output was written. `material_libraries` are the input OBJ's
@@ -31,7 +31,7 @@ pub fn run(
     material_libraries: &[String],
     args: &Args,
 ) -> ExitCode {
-    crate::threads::join_pool();
+    decimate_core::threads::join_pool();
     let input_dir = io::texture_path::folder_of(&args.input);
     let inputs: Vec<PathBuf> = std::iter::once(args.input.clone())
         .chain(material_libraries.iter().map(|l| input_dir.join(l)))

@@ -7,9 +7,11 @@
 
 use std::path::PathBuf;
 
-use crate::decimate::{Algorithm, ErrorBound, Params, Target};
-use crate::mesh::repair::Tolerance;
-use crate::render::draw::DrawOptions;
+use decimate_core::decimate::{Algorithm, ErrorBound, Params, Target};
+use decimate_core::mesh::repair::Tolerance;
+pub use decimate_core::tile::{TileCount, Tiles, DEFAULT_TILE_TRIANGLES};
+use decimate_viewer::app::shot::ShotOptions;
+use decimate_viewer::render::draw::DrawOptions;
 
 /// What the program does after reading the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -20,44 +22,6 @@ pub enum Action {
     NoGui,
     /// Render offscreen to a PNG, no window.
     Shot,
-}
-
-/// Options of the `shot` action.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ShotOptions {
-    pub width: u32,
-    pub height: u32,
-    /// 1–4 viewports: the first shows the original, the others the decimated scene.
-    pub viewports: u32,
-    /// What each viewport draws (`--mode`).
-    pub modes: DrawOptions,
-    /// Captions on the viewports (`--labels` / `--no-labels`); by default with more than one.
-    pub labels: Option<bool>,
-    /// Each decimated viewport's caption says its metro error against the original
-    /// (`--measure`; turns the captions on).
-    pub measure: bool,
-    /// One target per decimated viewport (`-p 60,80,90`); empty when one target was given.
-    pub targets: Vec<Target>,
-    /// Where relative texture names are read from: the input file's folder.
-    pub texture_dir: PathBuf,
-    /// Samples per pixel for anti-aliasing (`--msaa`; 1: off), as many as the device offers.
-    pub msaa: u32,
-}
-
-impl Default for ShotOptions {
-    fn default() -> Self {
-        Self {
-            width: 800,
-            height: 600,
-            viewports: 1,
-            modes: DrawOptions::default(),
-            labels: None,
-            measure: false,
-            targets: Vec::new(),
-            texture_dir: PathBuf::from("."),
-            msaa: crate::render::pipeline::DEFAULT_MSAA,
-        }
-    }
 }
 
 /// A fully parsed command line.
@@ -94,28 +58,6 @@ pub struct Args {
     /// many run at once, whether the merge re-tiles (`tile::schedule`).
     pub memory: Option<u64>,
 }
-
-/// `--tiles` of nogui: how many tiles the command line asked for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Tiles {
-    /// Sized from the memory budget (`tile::schedule::count_for`).
-    Auto,
-    Count(usize),
-}
-
-/// How many tiles `tile plan` cuts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum TileCount {
-    /// This many (fewer when the mesh has fewer cells).
-    Tiles(usize),
-    /// As many as needed for about this many triangles each.
-    TrianglesEach(usize),
-}
-
-/// Largest tile `tile plan` and `--tiles auto` cut unless told otherwise: small tiles bound
-/// the peak at little cost, since the seams are decimated again at merge (docs/design.md,
-/// "Tiled decimation").
-pub const DEFAULT_TILE_TRIANGLES: usize = 1 << 20;
 
 /// `decimate tile ...`: one step of tiled decimation (`tile`), for a scheduler's jobs.
 #[derive(Debug, Clone, PartialEq)]
@@ -428,13 +370,13 @@ where
     if tiles.is_some() || memory.is_some() {
         check_tiles(action, &params, progressive.is_some(), tiles.is_some())?;
     }
-    if action == Action::NoGui && crate::io::Format::from_path(&output).is_none() {
+    if action == Action::NoGui && decimate_core::io::Format::from_path(&output).is_none() {
         return Err(CliError(format!(
             "-o {}: no writer knows this extension (expected .wrl, .vrml, .ply, .obj, .stl, .off, .gltf or .glb)",
             output.display()
         )));
     }
-    shot.texture_dir = crate::io::texture_path::folder_of(&input).to_path_buf();
+    shot.texture_dir = decimate_core::io::texture_path::folder_of(&input).to_path_buf();
     shot_targets(&mut shot, targets, viewports, action)?;
     check_measure(&shot, action, target_given)?;
     if crease_angle.is_some() && action == Action::NoGui {

@@ -5,18 +5,19 @@
 use std::process::ExitCode;
 
 use decimate::cli::{self, Action, Command};
-use decimate::{batch, io, mesh, tile};
+use decimate::{batch, tile_command, viewer_start};
+use decimate_core::{io, mesh};
 
-/// The mesh arrays on huge pages (see `decimate::alloc`).
+/// The mesh arrays on huge pages (see `decimate_core::alloc`).
 #[global_allocator]
-static ALLOCATOR: decimate::alloc::HugePages = decimate::alloc::HugePages;
+static ALLOCATOR: decimate_core::alloc::HugePages = decimate_core::alloc::HugePages;
 
 fn main() -> ExitCode {
-    decimate::alloc::return_large_blocks();
+    decimate_core::alloc::return_large_blocks();
     // (1) Parameter check.
     let args = match cli::parse(std::env::args().skip(1)) {
         Ok(Command::Run(args)) => args,
-        Ok(Command::Tile(step)) => return tile::command::run_step(&step),
+        Ok(Command::Tile(step)) => return tile_command::run_step(&step),
         Ok(Command::Help) => {
             print!("{}", cli::USAGE);
             return ExitCode::SUCCESS;
@@ -33,7 +34,7 @@ fn main() -> ExitCode {
 
     // Tiled: the input is streamed, never read whole.
     if args.tiles.is_some() {
-        return tile::command::nogui_tiled(&args);
+        return tile_command::nogui_tiled(&args);
     }
 
     // (2) Parse the VRML / Open Inventor file.
@@ -86,6 +87,6 @@ fn main() -> ExitCode {
             &args,
         ),
         // (4) menus, (5) callbacks, (6) main loop: the viewer.
-        Action::Gui | Action::Shot => decimate::app::run(scene, &args),
+        Action::Gui | Action::Shot => viewer_start::run(scene, &args),
     }
 }

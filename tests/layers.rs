@@ -1,16 +1,20 @@
-//! The crate's layering, checked from its source text: every `crate::`, `super::` and `self::`
-//! path in src/**/*.rs (and `decimate::` in the binaries) is resolved to the file it names, and
-//! the test fails on an import from a higher layer, between two sibling areas, or on a cycle of
-//! files. Paths from a module to its own children (`child::f`) are not edges: a parent that
-//! declares a module may use it.
+//! The workspace's layering, checked from its source text. The three crates' sources
+//! (crates/core/src, crates/viewer/src, src) are read as one tree of modules: every `crate::`,
+//! `super::`, `self::`, `decimate_core::`, `decimate_viewer::` and `decimate::` path is
+//! resolved to the file it names, and the test fails on an import from a higher layer, between
+//! two sibling areas, or on a cycle of files. Cargo already refuses imports against the crate
+//! graph (core < viewer < the command line); this test holds the modules inside each crate to
+//! their layers. Paths from a module to its own children (`child::f`) are not edges: a parent
+//! that declares a module may use it.
 //!
 //! Test code (`#[cfg(test)]` items) is not checked: a unit test may build its fixtures with
 //! a higher layer (io's tests decimate a mesh to have a progressive one to write).
 //!
-//! Layers, bottom to top: `alloc`, `threads`, `progress_bar`, `cancel` (process plumbing, no
-//! imports) < `mesh` (data model) < `io` | `decimate` (siblings) < `metro` < `render` < `cli` (parsed command line,
-//! shared by both front ends) < `app` | `batch` | `tile` | `api` (siblings; `api` is the
-//! library's entry point for programs) < `main` (src/main.rs, src/bin/).
+//! Layers, bottom to top. decimate-core: `alloc`, `threads`, `progress_bar`, `cancel`
+//! (process plumbing, no imports) < `mesh` (data model) < `io` | `decimate` (siblings) <
+//! `metro` < `tile` | `api` (siblings; `api` is the library's entry point for programs).
+//! decimate-viewer: `render` < `app`. The command line: `cli` < `batch` | `tile_command` |
+//! `viewer_start` (siblings) < `main` (src/main.rs, src/bin/).
 //! `render` and `metro` may import `mesh` only of the layers below them.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -25,10 +29,12 @@ fn layer_of(top: &str) -> Option<u32> {
         "mesh" => 1,
         "io" | "decimate" => 2,
         "metro" => 3,
-        "render" => 4,
-        "cli" => 5,
-        "app" | "batch" | "tile" | "api" => 6,
-        "main" => 7,
+        "tile" | "api" => 4,
+        "render" => 5,
+        "app" => 6,
+        "cli" => 7,
+        "batch" | "tile_command" | "viewer_start" => 8,
+        "main" => 9,
         _ => return None,
     })
 }
@@ -42,9 +48,11 @@ fn forbidden(from: &str, to: &str) -> bool {
     )
 }
 
-/// One source file: its module path (`["io", "vrml", "lexer"]`) and whether it is a binary root.
+/// One source file: its module path (`["io", "vrml", "lexer"]`), whether it is a binary root
+/// and its path as messages show it.
 struct SourceFile {
     path: PathBuf,
+    shown: String,
     module: Vec<String>,
     is_binary: bool,
 }
@@ -64,7 +72,18 @@ fn collect(dir: &Path, files: &mut Vec<PathBuf>) {
     }
 }
 
-fn source_files(src: &Path) -> Vec<SourceFile> {
+/// A crate's source folder and the name messages give it (`crates/core/src`).
+struct Root {
+    dir: PathBuf,
+    label: String,
+}
+
+fn source_files(roots: &[Root]) -> Vec<SourceFile> {
+    roots.iter().flat_map(root_files).collect()
+}
+
+fn root_files(root: &Root) -> Vec<SourceFile> {
+    let src = root.dir.as_path();
     let mut paths = Vec::new();
     collect(src, &mut paths);
     paths
@@ -81,8 +100,10 @@ fn source_files(src: &Path) -> Vec<SourceFile> {
             } else if module.last().is_some_and(|m| m == "mod" || m == "lib") {
                 module.pop();
             }
+            let shown = format!("{}/{}", root.label, relative.display());
             SourceFile {
                 path,
+                shown,
                 module,
                 is_binary,
             }
@@ -318,7 +339,7 @@ fn in_test_code(toks: &[Tok]) -> Vec<bool> {
     marks
 }
 
-fn references(text: &str, is_binary: bool) -> Vec<Reference> {
+fn references(text: &str) -> Vec<Reference> {
     let toks = tokens(&code_only(text));
     let all: Vec<Tok> = toks.iter().map(|(t, _)| t.clone()).collect();
     let test = in_test_code(&all);
@@ -331,9 +352,7 @@ fn references(text: &str, is_binary: bool) -> Vec<Reference> {
     let plain: Vec<Tok> = toks.iter().map(|(t, _)| t.clone()).collect();
     let mut out = Vec::new();
     let is_root = |t: &Tok| match t {
-        Tok::Ident(n) => {
-            n == "crate" || n == "super" || n == "self" || (is_binary && n == "decimate")
-        }
+        Tok::Ident(n) => n == "crate" || n == "super" || n == "self" || is_crate_name(n),
         _ => false,
     };
     let mut i = 0;
@@ -376,6 +395,11 @@ fn references(text: &str, is_binary: bool) -> Vec<Reference> {
     out
 }
 
+/// The workspace's crates, which the checker reads as one tree of modules.
+fn is_crate_name(name: &str) -> bool {
+    matches!(name, "decimate" | "decimate_core" | "decimate_viewer")
+}
+
 /// The file a path names: the longest prefix of its module path that is a file of the crate.
 fn resolve(
     reference: &[String],
@@ -384,7 +408,7 @@ fn resolve(
 ) -> Option<usize> {
     let mut segments = reference.iter().peekable();
     let mut module: Vec<String> = match segments.peek().map(|s| s.as_str()) {
-        Some("crate") | Some("decimate") => {
+        Some(n) if n == "crate" || is_crate_name(n) => {
             segments.next();
             Vec::new()
         }
@@ -394,7 +418,7 @@ fn resolve(
         }
         _ => from.module.clone(),
     };
-    if from.is_binary && reference.first().is_some_and(|s| s != "decimate") {
+    if from.is_binary && reference.first().is_some_and(|s| !is_crate_name(s)) {
         return None;
     }
     while segments.peek().is_some_and(|s| *s == "super") {
@@ -421,8 +445,8 @@ struct Edge {
 }
 
 /// Files and their edges to the files they name.
-fn graph(src: &Path) -> (Vec<SourceFile>, Vec<Vec<Edge>>) {
-    let files = source_files(src);
+fn graph(roots: &[Root]) -> (Vec<SourceFile>, Vec<Vec<Edge>>) {
+    let files = source_files(roots);
     let modules: BTreeMap<Vec<String>, usize> = files
         .iter()
         .enumerate()
@@ -436,7 +460,7 @@ fn graph(src: &Path) -> (Vec<SourceFile>, Vec<Vec<Edge>>) {
             let text = fs::read_to_string(&file.path)
                 .unwrap_or_else(|e| panic!("{}: {e}", file.path.display()));
             let mut seen = BTreeSet::new();
-            references(&text, file.is_binary)
+            references(&text)
                 .into_iter()
                 .filter_map(|r| {
                     let to = resolve(&r.path, file, &modules)?;
@@ -448,22 +472,19 @@ fn graph(src: &Path) -> (Vec<SourceFile>, Vec<Vec<Edge>>) {
     (files, edges)
 }
 
-fn shown(file: &SourceFile, src: &Path) -> String {
-    format!(
-        "src/{}",
-        file.path.strip_prefix(src).expect("under src").display()
-    )
+fn shown(file: &SourceFile) -> String {
+    file.shown.clone()
 }
 
 /// Imports that go up a layer or sideways between sibling areas.
-fn layer_violations(src: &Path) -> Vec<String> {
-    let (files, edges) = graph(src);
+fn layer_violations(roots: &[Root]) -> Vec<String> {
+    let (files, edges) = graph(roots);
     let mut found = Vec::new();
     for (i, file) in files.iter().enumerate() {
         let from = layer_name(file);
         let Some(from_layer) = layer_of(&from) else {
             if from != "lib" {
-                found.push(format!("{}: area `{from}` has no layer", shown(file, src)));
+                found.push(format!("{}: area `{from}` has no layer", shown(file)));
             }
             continue;
         };
@@ -476,9 +497,9 @@ fn layer_violations(src: &Path) -> Vec<String> {
             if upward || forbidden(&from, &to) {
                 found.push(format!(
                     "{}:{}: `{from}` imports `{to}` ({})",
-                    shown(file, src),
+                    shown(file),
                     edge.line,
-                    shown(&files[edge.to], src)
+                    shown(&files[edge.to])
                 ));
             }
         }
@@ -487,8 +508,8 @@ fn layer_violations(src: &Path) -> Vec<String> {
 }
 
 /// Cycles between files, each printed as the path of files that closes it.
-fn cycles(src: &Path) -> Vec<String> {
-    let (files, edges) = graph(src);
+fn cycles(roots: &[Root]) -> Vec<String> {
+    let (files, edges) = graph(roots);
     // Iterative depth-first search; an edge back to a file on the stack closes a cycle.
     #[derive(Clone, Copy, PartialEq)]
     enum State {
@@ -516,9 +537,9 @@ fn cycles(src: &Path) -> Vec<String> {
                         let start = stack.iter().position(|&(n, _)| n == edge.to).unwrap_or(0);
                         let mut names: Vec<String> = stack[start..]
                             .iter()
-                            .map(|&(n, _)| shown(&files[n], src))
+                            .map(|&(n, _)| shown(&files[n]))
                             .collect();
-                        names.push(shown(&files[edge.to], src));
+                        names.push(shown(&files[edge.to]));
                         found.push(names.join(" -> "));
                     }
                     State::Done => {}
@@ -532,15 +553,21 @@ fn cycles(src: &Path) -> Vec<String> {
     found
 }
 
-fn src_dir() -> PathBuf {
-    std::env::var_os("LAYERS_SRC")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("src"))
+/// The workspace's three source folders, core first.
+fn workspace_roots() -> Vec<Root> {
+    let top = Path::new(env!("CARGO_MANIFEST_DIR"));
+    ["crates/core/src", "crates/viewer/src", "src"]
+        .into_iter()
+        .map(|label| Root {
+            dir: top.join(label),
+            label: label.to_string(),
+        })
+        .collect()
 }
 
 #[test]
 fn no_file_imports_a_higher_layer_or_a_sibling_area() {
-    let found = layer_violations(&src_dir());
+    let found = layer_violations(&workspace_roots());
     assert!(
         found.is_empty(),
         "imports against the layers:\n{}",
@@ -550,21 +577,20 @@ fn no_file_imports_a_higher_layer_or_a_sibling_area() {
 
 #[test]
 fn no_import_cycle_between_files() {
-    let found = cycles(&src_dir());
+    let found = cycles(&workspace_roots());
     assert!(found.is_empty(), "import cycles:\n{}", found.join("\n"));
 }
 
 #[test]
 fn no_two_source_files_share_a_name() {
-    let src = src_dir();
     let mut by_name: BTreeMap<String, Vec<String>> = BTreeMap::new();
-    for file in source_files(&src) {
+    for file in source_files(&workspace_roots()) {
         let name = file
             .path
             .file_name()
             .map(|n| n.to_string_lossy().to_string());
-        if let Some(name) = name.filter(|n| n != "mod.rs") {
-            by_name.entry(name).or_default().push(shown(&file, &src));
+        if let Some(name) = name.filter(|n| n != "mod.rs" && n != "lib.rs") {
+            by_name.entry(name).or_default().push(shown(&file));
         }
     }
     let twins: Vec<String> = by_name
@@ -584,10 +610,7 @@ fn the_checker_sees_grouped_uses_and_inline_paths() {
     let text = "use crate::{mesh::Model, io::{obj, ply::read as r}};\n\
                 // use crate::render::x;\n\
                 fn f() { let s = \"crate::app\"; super::super::decimate::run(); }\n";
-    let paths: Vec<String> = references(text, false)
-        .iter()
-        .map(|r| r.path.join("::"))
-        .collect();
+    let paths: Vec<String> = references(text).iter().map(|r| r.path.join("::")).collect();
     assert_eq!(
         paths,
         [
@@ -599,7 +622,7 @@ fn the_checker_sees_grouped_uses_and_inline_paths() {
     );
     let tested = "use crate::mesh::Model;\n#[cfg(test)]\nmod tests { use crate::app::x; }\n\
                   #[cfg(test)]\nuse crate::batch::y;\nfn g() { crate::io::f(); }\n";
-    let paths: Vec<String> = references(tested, false)
+    let paths: Vec<String> = references(tested)
         .iter()
         .map(|r| r.path.join("::"))
         .collect();
@@ -620,12 +643,16 @@ fn the_checker_finds_a_cycle_and_an_upward_import() {
     )
     .expect("write");
     fs::write(src.join("io.rs"), "pub fn f() {}\n").expect("write");
+    let roots = [Root {
+        dir: src.to_path_buf(),
+        label: "src".into(),
+    }];
     assert_eq!(
-        cycles(src),
+        cycles(&roots),
         ["src/mesh/a.rs -> src/mesh/b.rs -> src/mesh/a.rs"]
     );
     assert_eq!(
-        layer_violations(src),
+        layer_violations(&roots),
         ["src/mesh/b.rs:1: `mesh` imports `io` (src/io.rs)"]
     );
 }

@@ -1,5 +1,5 @@
 //! `gen-models`: writes the report's test models (test001–test008) and large synthetic meshes
-//! for benchmarks, from `decimate::mesh::shapes`.
+//! for benchmarks, from `decimate_core::mesh::shapes`.
 //!
 //! ```text
 //! gen-models assets DIR                      test001.wrl … test008.wrl into DIR
@@ -17,8 +17,8 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use decimate::io;
-use decimate::mesh::{shapes, Model, Scene};
+use decimate_core::io;
+use decimate_core::mesh::{shapes, Model, Scene};
 
 fn write(model: Model, path: &Path) -> Result<(), String> {
     let scene = Scene {

@@ -3,14 +3,14 @@
 //! 1998.
 //!
 //! Owns the command line only: argument parsing, reading both files with the project's readers,
-//! and printing `decimate::metro`'s report. Exit status: 0 measured, 1 a file could not be read
+//! and printing `decimate_core::metro`'s report. Exit status: 0 measured, 1 a file could not be read
 //! or has nothing to measure, 2 bad usage.
 
 use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use decimate::metro::{self, report, Options, Surface};
+use decimate_core::metro::{self, report, Options, Surface};
 
 const USAGE: &str = "\
 usage: metro [options] A B
@@ -101,7 +101,7 @@ fn number(v: &str, name: &str) -> Result<usize, String> {
 }
 
 fn read(path: &str) -> Result<Surface, String> {
-    let outcome = decimate::io::read_scene(Path::new(path)).map_err(|e| e.to_string())?;
+    let outcome = decimate_core::io::read_scene(Path::new(path)).map_err(|e| e.to_string())?;
     for w in &outcome.warnings {
         eprintln!("metro: {path}: warning: {w}");
     }
@@ -112,9 +112,9 @@ fn read(path: &str) -> Result<Surface, String> {
     Ok(surface)
 }
 
-/// The mesh arrays on huge pages (see `decimate::alloc`).
+/// The mesh arrays on huge pages (see `decimate_core::alloc`).
 #[global_allocator]
-static ALLOCATOR: decimate::alloc::HugePages = decimate::alloc::HugePages;
+static ALLOCATOR: decimate_core::alloc::HugePages = decimate_core::alloc::HugePages;
 
 fn main() -> ExitCode {
     let argv: Vec<String> = std::env::args().skip(1).collect();

@@ -2,8 +2,8 @@
 //! files users open and the shapes the tests decimate never drift apart), with the report's
 //! vertex and triangle counts.
 
-use decimate::io::read_scene;
-use decimate::mesh::shapes;
+use decimate_core::io::read_scene;
+use decimate_core::mesh::shapes;
 
 #[test]
 fn assets_match_the_generator_and_the_report() {
@@ -48,9 +48,12 @@ fn the_bundled_bunny_scan_is_the_npm_package_as_converted() {
     assert_eq!(scene.models.len(), 1);
     let m = &scene.models[0];
     assert_eq!((m.positions.len(), m.triangles.len()), (1839, 3674));
-    assert_eq!(decimate::mesh::measure::degenerate_triangles(m, 1e-12), 0);
+    assert_eq!(
+        decimate_core::mesh::measure::degenerate_triangles(m, 1e-12),
+        0
+    );
     // Closed and facing out, as the package gives it.
-    assert_eq!(decimate::mesh::measure::boundary_loops(m), 0);
-    let volume = decimate::mesh::measure::volume(m);
+    assert_eq!(decimate_core::mesh::measure::boundary_loops(m), 0);
+    let volume = decimate_core::mesh::measure::volume(m);
     assert!((volume - 194.29).abs() < 0.01, "volume {volume}");
 }

@@ -1,8 +1,8 @@
 //! Damaged input as a user brings it: repaired before decimation, with every repair counted
 //! on stderr.
 
-use decimate::io::read_scene;
-use decimate::mesh::measure;
+use decimate_core::io::read_scene;
+use decimate_core::mesh::measure;
 
 use crate::support::binary::decimate;
 

@@ -6,8 +6,8 @@ use std::os::unix::fs::FileTypeExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use decimate::io::read_scene;
-use decimate::mesh::measure;
+use decimate_core::io::read_scene;
+use decimate_core::mesh::measure;
 
 use crate::support::binary::decimate;
 
@@ -236,7 +236,7 @@ fn an_output_through_a_link_or_into_a_pipe_lands_where_it_points() {
     let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
     assert!(kind.is_fifo(), "the pipe was replaced by a file");
     let bytes = reader.join().unwrap().unwrap();
-    let scene = decimate::io::parse_bytes(bytes, &fifo).unwrap().scene;
+    let scene = decimate_core::io::parse_bytes(bytes, &fifo).unwrap().scene;
     let piped: Vec<_> = scene
         .models
         .iter()

@@ -2,11 +2,11 @@
 //! the next pass or batch, say so (`None`), and leave a valid mesh short of the target; a
 //! cancel made before the start leaves the scene as it was.
 
-use decimate::decimate::{
+use decimate_core::decimate::{
     simplify_scene_cancellable, simplify_scene_progressive_cancellable, Algorithm, Cancel, Params,
     Target,
 };
-use decimate::mesh::{measure, shapes, Scene};
+use decimate_core::mesh::{measure, shapes, Scene};
 
 fn sphere() -> Scene {
     Scene {

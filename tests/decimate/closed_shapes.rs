@@ -7,10 +7,10 @@ mod demo_scenes {
     use std::path::{Path, PathBuf};
     use std::process::Command;
 
-    use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
-    use decimate::io::read_scene;
-    use decimate::mesh::build::build_scene;
-    use decimate::mesh::{Model, Scene};
+    use decimate_core::decimate::{simplify_scene, Algorithm, Params, Target};
+    use decimate_core::io::read_scene;
+    use decimate_core::mesh::build::build_scene;
+    use decimate_core::mesh::{Model, Scene};
     use glam::DVec3;
 
     const MODELS: &str = "/usr/share/inventor/data/models";
@@ -221,8 +221,8 @@ mod demo_scenes {
 }
 
 mod small_shapes {
-    use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
-    use decimate::mesh::{shapes, Model, Scene};
+    use decimate_core::decimate::{simplify_scene, Algorithm, Params, Target};
+    use decimate_core::mesh::{shapes, Model, Scene};
     use glam::Vec3;
 
     use super::demo_scenes::closed_components;
@@ -368,7 +368,7 @@ mod small_shapes {
             };
             let params = Params {
                 target: Target::ErrorOnly,
-                max_error: Some(decimate::decimate::ErrorBound::Absolute(10.0)),
+                max_error: Some(decimate_core::decimate::ErrorBound::Absolute(10.0)),
                 algorithm: Algorithm::Schroeder,
                 ..Params::default()
             };

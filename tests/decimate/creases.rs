@@ -5,8 +5,8 @@
 //! every crease vertex was kept: a 5000-segment cone lost no vertex, and with the feature
 //! angle relaxed lost its apex and nine tenths of its volume.)
 
-use decimate::decimate::{simplify_scene, Algorithm, Params, Report, Target};
-use decimate::mesh::{measure, shapes, Model, Scene};
+use decimate_core::decimate::{simplify_scene, Algorithm, Params, Report, Target};
+use decimate_core::mesh::{measure, shapes, Model, Scene};
 use glam::Vec3;
 
 /// `triangles` over `positions`, each turned to face away from `inside` (the shapes here

@@ -3,8 +3,8 @@
 //! (the same result as with no feature edges at all), while a finely sampled box with bumps
 //! keeps its corners and volume (docs/design.md#qem-fold-scale).
 
-use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
-use decimate::mesh::{measure, shapes, Model, Scene};
+use decimate_core::decimate::{simplify_scene, Algorithm, Params, Target};
+use decimate_core::mesh::{measure, shapes, Model, Scene};
 use glam::Vec3;
 
 use crate::support::rng::Rng;

@@ -7,8 +7,8 @@
 
 use std::collections::HashMap;
 
-use decimate::decimate::{simplify_scene, Algorithm, ErrorBound, Params, Target};
-use decimate::mesh::{measure, shapes, Model, Scene};
+use decimate_core::decimate::{simplify_scene, Algorithm, ErrorBound, Params, Target};
+use decimate_core::mesh::{measure, shapes, Model, Scene};
 use glam::{DVec3, Vec3};
 
 fn run(model: Model, params: &Params) -> Model {

@@ -5,8 +5,8 @@
 //! surface can keep stops at four vertices.
 
 use crate::support::metro::compare_models;
-use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
-use decimate::mesh::{measure, shapes, Model, Scene};
+use decimate_core::decimate::{simplify_scene, Algorithm, Params, Target};
+use decimate_core::mesh::{measure, shapes, Model, Scene};
 use glam::Vec3;
 
 fn qem(model: &Model, target: Target) -> Model {

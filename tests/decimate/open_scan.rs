@@ -10,9 +10,9 @@ use std::path::Path;
 use crate::support::binary;
 use crate::support::inventor::{ascii_copy, MODELS};
 use crate::support::metro::compare_models;
-use decimate::decimate::{simplify_scene, Params, Report, Target};
-use decimate::io::read_scene;
-use decimate::mesh::{measure, shapes, Model, Scene};
+use decimate_core::decimate::{simplify_scene, Params, Report, Target};
+use decimate_core::io::read_scene;
+use decimate_core::mesh::{measure, shapes, Model, Scene};
 
 use crate::support::rng::Rng;
 

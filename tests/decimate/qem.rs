@@ -4,8 +4,8 @@
 //! an error bound respected, and a lower mean error than Schroeder's at the same size.
 
 use crate::support::metro::compare_models;
-use decimate::decimate::{simplify_scene, Algorithm, ErrorBound, Params, Report, Target};
-use decimate::mesh::{measure, shapes, Attribute, Model, Scene};
+use decimate_core::decimate::{simplify_scene, Algorithm, ErrorBound, Params, Report, Target};
+use decimate_core::mesh::{measure, shapes, Attribute, Model, Scene};
 
 use crate::progressive::red_above_blue_below;
 
@@ -354,7 +354,9 @@ fn the_binary_runs_qem_end_to_end() {
         .output()
         .expect("run decimate");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let scene = decimate::io::read_scene(&out).expect("output parses").scene;
+    let scene = decimate_core::io::read_scene(&out)
+        .expect("output parses")
+        .scene;
     let after = &scene.models[0];
     assert_eq!(after.positions.len(), 60);
     assert!((measure::volume(after) - 1000.0).abs() < 1e-3);

@@ -6,8 +6,8 @@
 //! one triangle may become a two-triangle edge of one direction: one defect traded for
 //! another); spheres cut into random texture charts stay closed and manifold once welded.
 
-use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
-use decimate::mesh::{measure, shapes, Model, Scene};
+use decimate_core::decimate::{simplify_scene, Algorithm, Params, Target};
+use decimate_core::mesh::{measure, shapes, Model, Scene};
 use glam::Vec3;
 
 use crate::support::rng::Rng;
@@ -189,7 +189,7 @@ fn random_texture_charts_stay_closed_and_manifold_once_welded() {
     let mut rng = Rng(0x5eed_c0de_1234_5678);
     for case in 0..300 {
         let obj = charted_sphere_obj(&mut rng);
-        let read = decimate::io::parse_str(&obj, "charts.obj").map(|o| o.scene.models);
+        let read = decimate_core::io::parse_str(&obj, "charts.obj").map(|o| o.scene.models);
         let Ok([model]) = read.as_deref() else {
             panic!("case {case}: the OBJ does not read as one model");
         };

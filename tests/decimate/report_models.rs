@@ -3,8 +3,8 @@
 //! user notices — no degenerate or flipped triangle, manifold in → manifold out, Euler
 //! characteristic and boundary loops unchanged, area/volume kept on flat-faced shapes.
 
-use decimate::decimate::{simplify_scene, Params, Report, Target};
-use decimate::mesh::{measure, shapes, Model, Scene};
+use decimate_core::decimate::{simplify_scene, Params, Report, Target};
+use decimate_core::mesh::{measure, shapes, Model, Scene};
 
 fn decimate(model: Model, target: Target) -> (Model, Report) {
     let mut scene = Scene {

@@ -5,8 +5,8 @@
 //! a user would notice if that went wrong: a broken mesh (non-manifold, flipped or
 //! degenerate triangles), a count off the target, a different result on another machine.
 
-use decimate::decimate::{simplify_scene, Params, Target};
-use decimate::mesh::{measure, shapes, Model, Scene};
+use decimate_core::decimate::{simplify_scene, Params, Target};
+use decimate_core::mesh::{measure, shapes, Model, Scene};
 use glam::Vec3;
 
 fn run(model: Model, params: &Params) -> Model {
@@ -62,7 +62,7 @@ fn an_error_bound_stops_the_passes_without_a_count() {
     let bound = 2e-3;
     let params = Params {
         target: Target::ErrorOnly,
-        max_error: Some(decimate::decimate::ErrorBound::Absolute(bound)),
+        max_error: Some(decimate_core::decimate::ErrorBound::Absolute(bound)),
         ..Params::default()
     };
     let mut scene = Scene {

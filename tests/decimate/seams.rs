@@ -8,11 +8,11 @@
 
 use std::path::Path;
 
-use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
-use decimate::io::read_scene;
-use decimate::mesh::build::build_scene;
-use decimate::mesh::Scene;
-use decimate::metro::{compare, Options, Surface};
+use decimate_core::decimate::{simplify_scene, Algorithm, Params, Target};
+use decimate_core::io::read_scene;
+use decimate_core::mesh::build::build_scene;
+use decimate_core::mesh::Scene;
+use decimate_core::metro::{compare, Options, Surface};
 use glam::DVec3;
 
 /// The share of the input's volume a decimated sphere keeps at least (an untextured one

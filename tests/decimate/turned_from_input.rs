@@ -3,8 +3,8 @@
 //! (docs/design.md#qem-input-surface): checked geometrically, each output triangle against
 //! the input triangles nearest to points on it.
 
-use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
-use decimate::mesh::{shapes, Model, Scene};
+use decimate_core::decimate::{simplify_scene, Algorithm, Params, Target};
+use decimate_core::mesh::{shapes, Model, Scene};
 use glam::Vec3;
 
 use crate::support::rng::Rng;

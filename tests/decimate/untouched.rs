@@ -6,8 +6,8 @@
 
 use std::collections::HashSet;
 
-use decimate::decimate::{simplify_scene, Algorithm, ErrorBound, Params, Target};
-use decimate::mesh::{measure, shapes, Attribute, Model, Scene};
+use decimate_core::decimate::{simplify_scene, Algorithm, ErrorBound, Params, Target};
+use decimate_core::mesh::{measure, shapes, Attribute, Model, Scene};
 use glam::Vec3;
 
 /// A bumpy sphere with its triangles in a scrambled order, an unused vertex at the end and

@@ -15,11 +15,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use decimate::decimate::{
+use decimate_core::decimate::{
     simplify_scene, simplify_scene_progressive, Algorithm, ErrorBound, Params, Target,
 };
-use decimate::io::{self, parse_bytes};
-use decimate::mesh::{Attribute, Scene};
+use decimate_core::io::{self, parse_bytes};
+use decimate_core::mesh::{Attribute, Scene};
 
 use crate::seeds::seeds;
 use crate::support::rng::Rng;
@@ -256,7 +256,7 @@ fn assert_finite(scene: &Scene) {
     }
 }
 
-fn dropped(report: &decimate::decimate::Report) -> usize {
+fn dropped(report: &decimate_core::decimate::Report) -> usize {
     report.models.iter().filter(|m| m.dropped).count()
 }
 

@@ -3,9 +3,9 @@
 
 use std::path::Path;
 
-use decimate::decimate::{simplify_scene_progressive, Params};
-use decimate::io;
-use decimate::mesh::{shapes, Attribute, Scene};
+use decimate_core::decimate::{simplify_scene_progressive, Params};
+use decimate_core::io;
+use decimate_core::mesh::{shapes, Attribute, Scene};
 
 /// The small valid files the mutants start from, one or more per format, as (file name,
 /// bytes): the name's extension says the format where the content does not.

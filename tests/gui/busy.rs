@@ -62,15 +62,15 @@ fn a_big_decimation_leaves_the_window_answering_and_esc_cancels_it() {
     let _window = super::ONE_WINDOW.lock();
     let _held = hold_x_connection(Duration::from_secs(20));
     let dir = scratch("gui_busy");
-    let sphere = decimate::mesh::shapes::uv_sphere(RINGS, SEGMENTS);
+    let sphere = decimate_core::mesh::shapes::uv_sphere(RINGS, SEGMENTS);
     assert_eq!(
         (sphere.used_vertex_count(), sphere.triangles.len()),
         (VERTICES, TRIANGLES)
     );
-    let scene = decimate::mesh::Scene {
+    let scene = decimate_core::mesh::Scene {
         models: vec![sphere],
     };
-    decimate::io::write_ply(&scene, &dir.join("sphere.ply")).unwrap_or_else(|e| panic!("{e}"));
+    decimate_core::io::write_ply(&scene, &dir.join("sphere.ply")).unwrap_or_else(|e| panic!("{e}"));
 
     let log = dir.join("viewer.log");
     let (mut viewer, wid) = start_traced(&dir, &["sphere.ply"], &log);

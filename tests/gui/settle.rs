@@ -30,10 +30,10 @@ fn turning_the_model_draws_single_sampled_then_one_4x_frame_at_rest() {
     let _window = super::ONE_WINDOW.lock();
     let _held = hold_x_connection(Duration::from_secs(20));
     let dir = scratch("gui_settle");
-    let scene = decimate::mesh::Scene {
-        models: vec![decimate::mesh::shapes::uv_sphere(30, 60)],
+    let scene = decimate_core::mesh::Scene {
+        models: vec![decimate_core::mesh::shapes::uv_sphere(30, 60)],
     };
-    decimate::io::write_ply(&scene, &dir.join("sphere.ply")).unwrap_or_else(|e| panic!("{e}"));
+    decimate_core::io::write_ply(&scene, &dir.join("sphere.ply")).unwrap_or_else(|e| panic!("{e}"));
     let log = dir.join("viewer.log");
     let (_viewer, wid) = start_traced(&dir, &["sphere.ply", "gui", "--msaa", "4"], &log);
     std::thread::sleep(Duration::from_secs(2));

@@ -173,18 +173,18 @@ pub(crate) fn scratch(name: &str) -> PathBuf {
 
 /// A 2×2×2 cube of 10×10 quads a face (test004's mesh), 602 vertices.
 fn write_cube(path: &Path) {
-    let model = decimate::mesh::shapes::cube(10, 2.0);
+    let model = decimate_core::mesh::shapes::cube(10, 2.0);
     assert_eq!(model.positions.len(), 602);
-    let scene = decimate::mesh::Scene {
+    let scene = decimate_core::mesh::Scene {
         models: vec![model],
     };
-    decimate::io::write_vrml2(&scene, path).unwrap_or_else(|e| panic!("{e}"));
+    decimate_core::io::write_vrml2(&scene, path).unwrap_or_else(|e| panic!("{e}"));
 }
 
 /// Vertices used by the scene F3 saved, once its writer has renamed it into place.
 fn saved_vertices(out: &Path) -> usize {
     std::thread::sleep(Duration::from_millis(300));
-    let saved = decimate::io::read_scene(out).unwrap_or_else(|e| panic!("{e}"));
+    let saved = decimate_core::io::read_scene(out).unwrap_or_else(|e| panic!("{e}"));
     saved
         .scene
         .models

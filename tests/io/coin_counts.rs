@@ -9,8 +9,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use decimate::io::read_scene;
-use decimate::mesh::build::build_scene;
+use decimate_core::io::read_scene;
+use decimate_core::mesh::build::build_scene;
 
 const MODELS: &str = "/usr/share/inventor/data/models";
 

@@ -1,7 +1,7 @@
 //! Malformed files: each gives a `ReadError` naming the file (and the line where there is
 //! one), never a panic or a stack overflow.
 
-use decimate::io::{parse_bytes, parse_str, read_scene, ReadError};
+use decimate_core::io::{parse_bytes, parse_str, read_scene, ReadError};
 use std::path::Path;
 
 /// Parses `src` as `bad.wrl`, expecting an error; returns (line, message as displayed).

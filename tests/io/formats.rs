@@ -7,9 +7,9 @@ use std::process::Command;
 
 use crate::support::texture::textured_corners;
 
-use decimate::io::{parse_bytes, read_scene, write_scene, ReadError, ReadOutcome};
-use decimate::mesh::build::build_scene;
-use decimate::mesh::{Attribute, Scene};
+use decimate_core::io::{parse_bytes, read_scene, write_scene, ReadError, ReadOutcome};
+use decimate_core::mesh::build::build_scene;
+use decimate_core::mesh::{Attribute, Scene};
 use glam::Vec3;
 
 fn read(name: &str, src: &[u8]) -> ReadOutcome {
@@ -258,7 +258,7 @@ fn off_texture_coordinates_are_read_and_round_trip_exactly() {
 
     // Written back: STCOFF with the colour before s t, and the same corners exactly.
     let mut text = Vec::new();
-    decimate::io::off::write_off_to(&mut text, &out.scene).unwrap();
+    decimate_core::io::off::write_off_to(&mut text, &out.scene).unwrap();
     assert!(
         text.starts_with(b"STCOFF\n"),
         "{}",
@@ -278,7 +278,7 @@ fn off_texture_coordinates_are_read_and_round_trip_exactly() {
         models: vec![model],
     };
     let mut text = Vec::new();
-    decimate::io::off::write_off_to(&mut text, &scene).unwrap();
+    decimate_core::io::off::write_off_to(&mut text, &scene).unwrap();
     assert!(
         text.starts_with(b"STOFF\n"),
         "{}",

@@ -11,8 +11,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use base64::Engine as _;
-use decimate::io::{self, read_scene, write_scene};
-use decimate::mesh::{shapes, Attribute, Model, Scene};
+use decimate_core::io::{self, read_scene, write_scene};
+use decimate_core::mesh::{shapes, Attribute, Model, Scene};
 use glam::{Mat4, Quat, Vec3};
 use serde_json::{json, Value};
 

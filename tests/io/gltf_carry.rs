@@ -384,7 +384,7 @@ fn a_damaged_lines_primitive_is_an_error_naming_it_not_a_damaged_output() {
     let lines = json!({ "attributes": { "POSITION": position }, "indices": indices, "mode": 1 });
     d.json["materials"] = json!([{}]);
     d.mesh_node(vec![grid, lines], json!({}));
-    let e = match decimate::io::parse_bytes(d.glb(), Path::new("bad-lines.glb")) {
+    let e = match decimate_core::io::parse_bytes(d.glb(), Path::new("bad-lines.glb")) {
         Ok(_) => panic!("an index past the vertices is read"),
         Err(e) => e.to_string(),
     };

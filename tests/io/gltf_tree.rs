@@ -7,7 +7,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use decimate::io::read_scene;
+use decimate_core::io::read_scene;
 use glam::{Mat4, Quat, Vec3};
 use serde_json::{json, Value};
 
@@ -251,7 +251,7 @@ fn a_mesh_three_nodes_place_is_decimated_once_and_written_once() {
             m.name
         );
     }
-    let placed = |m: &decimate::mesh::Model| m.transform.transform_point3(m.positions[0]);
+    let placed = |m: &decimate_core::mesh::Model| m.transform.transform_point3(m.positions[0]);
     assert!(close(
         placed(&back.models[1]) - placed(a),
         Vec3::new(20.0, 0.0, 0.0)

@@ -3,7 +3,7 @@
 //! and finite, plausible bounds. CI installs both packages; without them this test fails and
 //! says how to install them.
 
-use decimate::io::read_scene;
+use decimate_core::io::read_scene;
 use glam::Vec3;
 use std::path::Path;
 

@@ -7,8 +7,8 @@
 use std::collections::HashMap;
 use std::f32::consts::{PI, TAU};
 
-use decimate::io::{parse_str, read_scene, read_scene_with, ReadOptions};
-use decimate::mesh::{Model, Scene};
+use decimate_core::io::{parse_str, read_scene, read_scene_with, ReadOptions};
+use decimate_core::mesh::{Model, Scene};
 use glam::Vec3;
 
 use crate::support::binary::decimate;
@@ -272,7 +272,7 @@ Shape { geometry ElevationGrid { xDimension 1 zDimension 4 height [ 0 0 0 0 ] } 
     // Two slopes of 2 x 5 rising by 1: each sqrt(4 + 1) x 5.
     assert!((area - 2.0 * 5.0 * 5f32.sqrt()).abs() < 1e-4, "{area}");
     let colours = match &m.colors {
-        Some(decimate::mesh::Attribute::PerFace(c)) => c.clone(),
+        Some(decimate_core::mesh::Attribute::PerFace(c)) => c.clone(),
         other => panic!("{other:?}"),
     };
     assert_eq!(

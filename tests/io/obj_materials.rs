@@ -8,8 +8,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use decimate::io::texture_path::rebase;
-use decimate::io::{read_scene, write_scene};
+use decimate_core::io::texture_path::rebase;
+use decimate_core::io::{read_scene, write_scene};
 
 /// The image file this test's scans point at.
 const IMAGE: &[u8] = b"\xff\xd8\xff\xe0 not really a JPEG";

@@ -1,8 +1,8 @@
 //! Reading hand-written VRML 1.0, Open Inventor and VRML 2.0 scenes: counts, transforms,
 //! instancing, Switch, triangulation, orientation, bindings, gzip.
 
-use decimate::io::{parse_str, read_scene};
-use decimate::mesh::{Attribute, Model, Scene};
+use decimate_core::io::{parse_str, read_scene};
+use decimate_core::mesh::{Attribute, Model, Scene};
 use glam::Vec3;
 
 fn parse(src: &str) -> Scene {

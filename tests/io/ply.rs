@@ -1,9 +1,9 @@
 //! PLY input: ASCII and binary big-endian files with quads, colours and extra properties;
 //! texture coordinates as Blender, MeshLab and others write them, and through our writer.
 
-use decimate::io::ply::write_ply_to;
-use decimate::io::{parse_bytes, ReadError, ReadOutcome};
-use decimate::mesh::{Attribute, Model, Scene};
+use decimate_core::io::ply::write_ply_to;
+use decimate_core::io::{parse_bytes, ReadError, ReadOutcome};
+use decimate_core::mesh::{Attribute, Model, Scene};
 use glam::Vec3;
 use std::path::Path;
 

@@ -11,10 +11,10 @@
 use std::collections::{HashMap, HashSet};
 use std::f32::consts::TAU;
 
-use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
-use decimate::io::{parse_str, read_scene, write_scene};
-use decimate::mesh::build::build_scene;
-use decimate::mesh::{Model, Scene};
+use decimate_core::decimate::{simplify_scene, Algorithm, Params, Target};
+use decimate_core::io::{parse_str, read_scene, write_scene};
+use decimate_core::mesh::build::build_scene;
+use decimate_core::mesh::{Model, Scene};
 use glam::Vec3;
 
 use crate::support::texture::textured_corners;
@@ -560,7 +560,7 @@ fn textures_the_reader_cannot_use_are_named_in_a_warning() {
             "{name}: {:?}",
             out.warnings
         );
-        assert!(out.warnings.iter().any(|w| decimate::io::means_lost_data(w)));
+        assert!(out.warnings.iter().any(|w| decimate_core::io::means_lost_data(w)));
     }
 }
 

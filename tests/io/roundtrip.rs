@@ -1,8 +1,8 @@
 //! Writing VRML 2.0 and PLY and reading the files back: same counts, positions (exactly, as
 //! f32 round-trips), colours, names and world placement; the target is replaced atomically.
 
-use decimate::io::{read_scene, write_ply, write_vrml2, write_vrml2_to};
-use decimate::mesh::{Attribute, Model, Scene};
+use decimate_core::io::{read_scene, write_ply, write_vrml2, write_vrml2_to};
+use decimate_core::mesh::{Attribute, Model, Scene};
 use glam::{Mat4, Quat, Vec3};
 use std::path::PathBuf;
 

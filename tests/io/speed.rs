@@ -4,7 +4,7 @@
 //! prints the time to read each file. Without the variable it builds a 1M-triangle VRML 2.0
 //! grid in memory and requires it to parse within a generous bound.
 
-use decimate::io::{parse_bytes, read_scene};
+use decimate_core::io::{parse_bytes, read_scene};
 use std::fmt::Write;
 use std::path::Path;
 use std::time::Instant;

@@ -61,7 +61,7 @@ fn decimate_and_read(dir: &Path, name: &str, out: &str) -> [bool; 2] {
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{name} -> {out}: {stderr}");
     assert!(!stderr.contains("warning"), "{name} -> {out}: {stderr}");
-    let scene = decimate::io::read_scene(&dir.join(out))
+    let scene = decimate_core::io::read_scene(&dir.join(out))
         .unwrap_or_else(|e| panic!("{out}: {e}"))
         .scene;
     let [m] = scene.models.as_slice() else {

@@ -97,7 +97,9 @@ fn vtk_triangles(file: &Path) -> Vec<usize> {
 
 /// Triangle counts of each model our reader sees, sorted.
 fn our_triangles(file: &Path) -> Vec<usize> {
-    let scene = decimate::io::read_scene(file).expect("our reader").scene;
+    let scene = decimate_core::io::read_scene(file)
+        .expect("our reader")
+        .scene;
     let mut counts: Vec<usize> = scene.models.iter().map(|m| m.triangles.len()).collect();
     counts.sort_unstable();
     counts
@@ -217,7 +219,7 @@ fn vtk_reads_our_texture_coordinates() {
         let written = std::fs::read_to_string(&out).unwrap();
         assert!(written.contains("repeatS FALSE"), "{algorithm}");
         let (counts, points) = vtk_texture_coordinates(&out);
-        let ours = decimate::io::read_scene(&out).unwrap().scene;
+        let ours = decimate_core::io::read_scene(&out).unwrap().scene;
         // 30 vertices (25 points, 5 of them twice) less 40 %.
         assert_eq!(ours.models[0].positions.len(), 18, "{algorithm}");
         assert_eq!(
@@ -253,7 +255,7 @@ fn vtk_reads_the_coordinates_of_a_textured_sphere_we_decimated() {
     let out = dir.path().join("out.wrl");
     decimate_to(&input, &["-a", "schroeder", "-p", "50"], &out);
     let (counts, points) = vtk_texture_coordinates(&out);
-    let ours = decimate::io::read_scene(&out).unwrap().scene;
+    let ours = decimate_core::io::read_scene(&out).unwrap().scene;
     let n = ours.models[0].positions.len();
     assert!(n < 238, "decimated: {n} vertices");
     assert_eq!(counts, [n, n], "VTK's points and coordinate pairs");

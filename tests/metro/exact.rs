@@ -4,9 +4,9 @@
 
 use std::collections::HashMap;
 
-use decimate::mesh::{Model, Scene};
-use decimate::metro::bvh::closest_point_on_triangle;
-use decimate::metro::{compare, Comparison, Options, Surface};
+use decimate_core::mesh::{Model, Scene};
+use decimate_core::metro::bvh::closest_point_on_triangle;
+use decimate_core::metro::{compare, Comparison, Options, Surface};
 use glam::{DVec3, Mat4, Vec3};
 
 /// A `w`×`h` rectangle in the plane through `origin` spanned by `u` and `v`, cut into
@@ -436,8 +436,8 @@ fn same_seed_same_numbers_whatever_the_threads() {
 
 #[test]
 fn a_cancelled_comparison_stops_with_cancelled_and_an_uncancelled_one_measures_as_before() {
-    use decimate::decimate::Cancel;
-    use decimate::metro::{compare_cancellable, MetroError};
+    use decimate_core::decimate::Cancel;
+    use decimate_core::metro::{compare_cancellable, MetroError};
     let a = surface(grid(DVec3::ZERO, DVec3::X, DVec3::Y, 10, 10));
     let b = surface(grid(DVec3::Z * 0.25, DVec3::X, DVec3::Y, 7, 13));
     let options = Options {

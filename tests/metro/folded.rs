@@ -3,10 +3,10 @@
 //! decimations by both algorithms count none, and a thin sheet whose sides came close counts
 //! none either.
 
-use decimate::decimate::{simplify_scene, Algorithm, Params, Target};
-use decimate::mesh::{shapes, Model, Scene};
-use decimate::metro::folds::{self, Folds};
-use decimate::metro::{compare, Options, Surface};
+use decimate_core::decimate::{simplify_scene, Algorithm, Params, Target};
+use decimate_core::mesh::{shapes, Model, Scene};
+use decimate_core::metro::folds::{self, Folds};
+use decimate_core::metro::{compare, Options, Surface};
 use glam::DVec3;
 
 use crate::support::rng::Rng;

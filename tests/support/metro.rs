@@ -1,7 +1,7 @@
 //! Metro between two models in a test: 200,000 face samples a direction, the default seed.
 
-use decimate::mesh::{Model, Scene};
-use decimate::metro::{compare, Comparison, Options, Surface};
+use decimate_core::mesh::{Model, Scene};
+use decimate_core::metro::{compare, Comparison, Options, Surface};
 
 /// `a` against `b` in both directions.
 pub fn compare_models(a: &Model, b: &Model) -> Comparison {

@@ -7,13 +7,13 @@
 
 use std::path::{Path, PathBuf};
 
-use decimate::app::shot;
-use decimate::cli::ShotOptions;
-use decimate::decimate::{Params, Report};
-use decimate::mesh::{Model, Scene};
-use decimate::render::context::DevicePreference;
-use decimate::render::draw::{DrawOptions, BACKGROUND};
-use decimate::render::offscreen::RgbaImage;
+use decimate_core::decimate::{Params, Report};
+use decimate_core::mesh::{Model, Scene};
+use decimate_viewer::app::shot;
+use decimate_viewer::app::shot::ShotOptions;
+use decimate_viewer::render::context::DevicePreference;
+use decimate_viewer::render::draw::{DrawOptions, BACKGROUND};
+use decimate_viewer::render::offscreen::RgbaImage;
 use glam::{Mat4, Vec3};
 
 /// Golden picture size: small, so the PNGs stay a few kilobytes.
@@ -81,7 +81,7 @@ pub fn sphere(rings: u32, segments: u32, transform: Mat4) -> Scene {
     let model = Model {
         transform,
         diffuse: [0.45, 0.65, 0.85],
-        ..decimate::mesh::shapes::uv_sphere(rings, segments)
+        ..decimate_core::mesh::shapes::uv_sphere(rings, segments)
     };
     Scene {
         models: vec![model],

@@ -1,6 +1,6 @@
 //! What the texture tests compare: a scene's triangle corners with their coordinates.
 
-use decimate::mesh::Scene;
+use decimate_core::mesh::Scene;
 
 /// Each triangle corner as (position bits, texture coordinate bits): what a round trip must
 /// keep exactly, whatever order the vertices come back in.

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use decimate::mesh::{shapes, Model, Scene};
+use decimate_core::mesh::{shapes, Model, Scene};
 
 /// A closed bumpy sphere of 57 600 triangles written as binary PLY into `dir`.
 pub fn sphere_ply(dir: &Path) -> (PathBuf, Model) {
@@ -12,7 +12,7 @@ pub fn sphere_ply(dir: &Path) -> (PathBuf, Model) {
     let scene = Scene {
         models: vec![model.clone()],
     };
-    decimate::io::write_ply(&scene, &path).expect("write the test mesh");
+    decimate_core::io::write_ply(&scene, &path).expect("write the test mesh");
     (path, model)
 }
 
@@ -41,11 +41,11 @@ pub fn ok(args: &[&str], env: &[(&str, &str)]) -> Output {
 
 /// The single model a PLY file holds, read by the in-memory reader.
 pub fn read_model(path: &Path) -> Model {
-    let outcome = decimate::io::read_scene(path).expect("read the result");
+    let outcome = decimate_core::io::read_scene(path).expect("read the result");
     let mut models = outcome.scene.models;
     assert_eq!(models.len(), 1, "{}", path.display());
     let mut m = models.remove(0);
-    decimate::mesh::weld::weld(&mut m, 0.0);
+    decimate_core::mesh::weld::weld(&mut m, 0.0);
     m
 }
 

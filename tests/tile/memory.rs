@@ -2,7 +2,7 @@
 //! same bytes as one at a time), and welded tiles too big for it are cut again on a shifted
 //! grid before the last pass — still one closed mesh at the exact target.
 
-use decimate::mesh::measure::{area, edge_counts, invariant_violations, volume};
+use decimate_core::mesh::measure::{area, edge_counts, invariant_violations, volume};
 
 use crate::common::{decimate, ok, read_model, s, sphere_ply};
 
@@ -81,7 +81,7 @@ fn welded_tiles_over_the_budget_are_cut_again_and_stay_one_closed_mesh() {
     let edges = edge_counts(&m);
     assert_eq!((edges.boundary, edges.non_manifold), (0, 0));
     // As close to the input as the one-piece merge: area and volume lost within 1.5 times.
-    let lost = |x: &decimate::mesh::Model| {
+    let lost = |x: &decimate_core::mesh::Model| {
         (
             (area(x) - area(&model)).abs() / area(&model),
             (volume(x) - volume(&model)).abs() / volume(&model),

@@ -1,7 +1,7 @@
 //! Plan, run (separately, in any order, some twice) and merge: one welded mesh with no
 //! cracks, the same as `nogui --tiles`, close to the in-core result.
 
-use decimate::mesh::measure::{area, edge_counts, invariant_violations, volume};
+use decimate_core::mesh::measure::{area, edge_counts, invariant_violations, volume};
 
 use crate::common::{decimate, ok, one_command, plan, read_model, s, sphere_ply};
 
@@ -23,7 +23,7 @@ fn tiles_cover_the_input_exactly_with_shared_border_positions() {
     );
     // All tiles welded together again are the input: every triangle once, no vertex moved,
     // so the border vertices are bit-identical in the tiles that share them.
-    let mut all = decimate::mesh::Model::default();
+    let mut all = decimate_core::mesh::Model::default();
     let mut sizes = Vec::new();
     for i in 0..6 {
         let t = read_model(&work.join(format!("tile-{i:05}.ply")));
@@ -33,7 +33,7 @@ fn tiles_cover_the_input_exactly_with_shared_border_positions() {
         all.triangles
             .extend(t.triangles.iter().map(|t| t.map(|v| v + base)));
     }
-    decimate::mesh::weld::weld(&mut all, 0.0);
+    decimate_core::mesh::weld::weld(&mut all, 0.0);
     assert_eq!(all.triangles.len(), model.triangles.len());
     assert_eq!(all.positions.len(), model.positions.len());
     assert!(invariant_violations(&model, &all).is_empty());
@@ -137,7 +137,7 @@ fn tiled_result_is_as_close_as_the_in_core_one() {
     let broken = invariant_violations(&model, &t);
     assert!(broken.is_empty(), "{broken:?}");
     // Area and volume lost by the tiled run: no more than 1.5 times the in-core run's.
-    let lost = |m: &decimate::mesh::Model| {
+    let lost = |m: &decimate_core::mesh::Model| {
         (
             (area(m) - area(&model)).abs() / area(&model),
             (volume(m) - volume(&model)).abs() / volume(&model),
@@ -154,13 +154,13 @@ fn tiled_result_is_as_close_as_the_in_core_one() {
 fn stl_and_obj_inputs_plan_like_the_ply() {
     let tmp = tempfile::tempdir().unwrap();
     let (ply, model) = sphere_ply(tmp.path());
-    let scene = decimate::mesh::Scene {
+    let scene = decimate_core::mesh::Scene {
         models: vec![model.clone()],
     };
     let stl = tmp.path().join("sphere.stl");
     let obj = tmp.path().join("sphere.obj");
-    decimate::io::write_stl(&scene, &stl).unwrap();
-    decimate::io::write_obj(&scene, &obj).unwrap();
+    decimate_core::io::write_stl(&scene, &stl).unwrap();
+    decimate_core::io::write_obj(&scene, &obj).unwrap();
     let mut outs = Vec::new();
     for input in [&ply, &stl, &obj] {
         let out = tmp.path().join(format!(

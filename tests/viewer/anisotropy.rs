@@ -6,17 +6,17 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use decimate::io::texture_image;
-use decimate::mesh::{Model, Scene};
-use decimate::render::camera::{Bounds, Camera};
-use decimate::render::commands::Commands;
-use decimate::render::context::{Context, DevicePreference};
-use decimate::render::draw::ViewportDraw;
-use decimate::render::gpu_mesh::GpuScene;
-use decimate::render::offscreen::{OffscreenTarget, RgbaImage, OFFSCREEN_FORMAT};
-use decimate::render::pipeline::Pipelines;
-use decimate::render::texture::Textures;
-use decimate::render::tiles::Rect;
+use decimate_core::io::texture_image;
+use decimate_core::mesh::{Model, Scene};
+use decimate_viewer::render::camera::{Bounds, Camera};
+use decimate_viewer::render::commands::Commands;
+use decimate_viewer::render::context::{Context, DevicePreference};
+use decimate_viewer::render::draw::ViewportDraw;
+use decimate_viewer::render::gpu_mesh::GpuScene;
+use decimate_viewer::render::offscreen::{OffscreenTarget, RgbaImage, OFFSCREEN_FORMAT};
+use decimate_viewer::render::pipeline::Pipelines;
+use decimate_viewer::render::texture::Textures;
+use decimate_viewer::render::tiles::Rect;
 use glam::{Mat4, Quat, Vec3};
 
 use crate::support::shot::{background, close, modes, pixel, write_rgb_png, HEIGHT, WIDTH};
@@ -199,7 +199,7 @@ fn rails_on_a_floor_seen_side_on_stay_sharp_into_the_distance() {
     if std::env::var_os("SAVE_SHOTS").is_some() {
         for (name, image) in [("aniso", &sharp), ("trilinear", &blurred)] {
             let path = dir.join(format!("{name}.png"));
-            decimate::app::shot::write_png(image, &path)
+            decimate_viewer::app::shot::write_png(image, &path)
                 .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
             eprintln!("wrote {}", path.display());
         }

@@ -2,12 +2,12 @@
 //! of the ramp, the original is drawn in neutral grey, decimated viewports in ramp colours
 //! with a legend; and a golden of a decimated sphere beside its original.
 
-use decimate::app::error_map::{self, heat_scene, neutral_scene, ramp, Legend};
-use decimate::cli::ShotOptions;
-use decimate::decimate::{Params, Target};
-use decimate::mesh::Attribute;
-use decimate::metro::field::error_field;
-use decimate::render::offscreen::RgbaImage;
+use decimate_core::decimate::{Params, Target};
+use decimate_core::mesh::Attribute;
+use decimate_core::metro::field::error_field;
+use decimate_viewer::app::error_map::{self, heat_scene, neutral_scene, ramp, Legend};
+use decimate_viewer::app::shot::ShotOptions;
+use decimate_viewer::render::offscreen::RgbaImage;
 use glam::Vec3;
 
 use crate::support::shot::*;

@@ -2,16 +2,16 @@
 //! wherever the menu is opened; every entry with a key shows it; and a golden of the menu
 //! with its Draw submenu open, painted on lavapipe by the same code as the window's.
 
-use decimate::app::controller::ViewportController;
-use decimate::app::labels::HeadlessCaptions;
-use decimate::app::menu::{action_for_key, actions, menu, Key, MenuEntry, MenuItem};
-use decimate::app::menu_layout::{hint, layout, MenuBox, Metrics};
-use decimate::app::popup;
-use decimate::decimate::Params;
-use decimate::render::commands::Commands;
-use decimate::render::context::{Context, DevicePreference};
-use decimate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
-use decimate::render::pipeline::Pipelines;
+use decimate_core::decimate::Params;
+use decimate_viewer::app::controller::ViewportController;
+use decimate_viewer::app::labels::HeadlessCaptions;
+use decimate_viewer::app::menu::{action_for_key, actions, menu, Key, MenuEntry, MenuItem};
+use decimate_viewer::app::menu_layout::{hint, layout, MenuBox, Metrics};
+use decimate_viewer::app::popup;
+use decimate_viewer::render::commands::Commands;
+use decimate_viewer::render::context::{Context, DevicePreference};
+use decimate_viewer::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
+use decimate_viewer::render::pipeline::Pipelines;
 
 use crate::support::shot::*;
 

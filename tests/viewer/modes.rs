@@ -97,9 +97,9 @@ fn edges_alone_show_the_background_between_them() {
 
 /// A floor: a 20 × 20 grid of quads in y = 0, seen from the default view's slight height,
 /// so its triangles lie at a grazing angle to the eye.
-fn floor() -> decimate::mesh::Scene {
+fn floor() -> decimate_core::mesh::Scene {
     let n = 20u32;
-    let mut m = decimate::mesh::Model {
+    let mut m = decimate_core::mesh::Model {
         diffuse: [0.6, 0.6, 0.6],
         ..Default::default()
     };
@@ -115,7 +115,7 @@ fn floor() -> decimate::mesh::Scene {
             m.triangles.push([v, v + n + 1, v + n + 2]);
         }
     }
-    decimate::mesh::Scene { models: vec![m] }
+    decimate_core::mesh::Scene { models: vec![m] }
 }
 
 #[test]
@@ -147,9 +147,9 @@ fn edges_over_a_grazing_surface_are_unbroken() {
 
 /// A UV sphere split along the meridian facing the camera as a texture seam splits it: the
 /// vertices there have a second copy, used by the faces on one side, with u = 1 instead of 0.
-fn seamed_sphere() -> (decimate::mesh::Scene, decimate::mesh::Scene) {
+fn seamed_sphere() -> (decimate_core::mesh::Scene, decimate_core::mesh::Scene) {
     let (rings, segments) = (16u32, 32u32);
-    let mut whole = decimate::mesh::shapes::uv_sphere(rings, segments);
+    let mut whole = decimate_core::mesh::shapes::uv_sphere(rings, segments);
     whole.diffuse = [0.45, 0.65, 0.85];
     let n = whole.positions.len() as u32;
     let column = |v: u32| (v != 0 && v != n - 1).then(|| (v - 1) % segments);
@@ -177,7 +177,7 @@ fn seamed_sphere() -> (decimate::mesh::Scene, decimate::mesh::Scene) {
             }
         }
     }
-    let scene = |m| decimate::mesh::Scene { models: vec![m] };
+    let scene = |m| decimate_core::mesh::Scene { models: vec![m] };
     (scene(whole), scene(split))
 }
 

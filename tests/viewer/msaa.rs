@@ -1,9 +1,9 @@
 //! Multisample anti-aliasing on lavapipe: a slanted edge gets pixels of intermediate colour
 //! with 4× MSAA and none without, and a golden of a cube's edges over its faces with 4× MSAA.
 
-use decimate::cli::ShotOptions;
-use decimate::mesh::{Model, Scene};
-use decimate::render::offscreen::RgbaImage;
+use decimate_core::mesh::{Model, Scene};
+use decimate_viewer::app::shot::ShotOptions;
+use decimate_viewer::render::offscreen::RgbaImage;
 use glam::Vec3;
 
 use crate::support::shot::*;

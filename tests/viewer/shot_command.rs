@@ -18,7 +18,7 @@ fn scratch(name: &str) -> PathBuf {
 
 fn cube_file(dir: &Path) -> PathBuf {
     let path = dir.join("cube.wrl");
-    decimate::io::write_vrml2(&cube(10), &path).unwrap_or_else(|e| panic!("{e}"));
+    decimate_core::io::write_vrml2(&cube(10), &path).unwrap_or_else(|e| panic!("{e}"));
     path
 }
 
@@ -42,7 +42,7 @@ fn assert_success(out: &Output) {
 }
 
 /// Pixels of `(x0..x1) × all rows` that are not background.
-fn covered_columns(image: &decimate::render::offscreen::RgbaImage, x0: u32, x1: u32) -> f64 {
+fn covered_columns(image: &decimate_viewer::render::offscreen::RgbaImage, x0: u32, x1: u32) -> f64 {
     coverage(image, x0, 0, x1, image.height)
 }
 

@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use decimate::render::offscreen::RgbaImage;
+use decimate_viewer::render::offscreen::RgbaImage;
 
 use crate::support::shot::{background, close, pixel, write_rgb_png};
 

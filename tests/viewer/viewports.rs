@@ -2,10 +2,10 @@
 //! framing the whole model; the world transform of a model is honoured when framing; the
 //! report's four-up figure, each viewport with its own target and a caption.
 
-use decimate::cli::ShotOptions;
-use decimate::decimate::{Params, Target};
-use decimate::mesh::Scene;
-use decimate::render::offscreen::RgbaImage;
+use decimate_core::decimate::{Params, Target};
+use decimate_core::mesh::Scene;
+use decimate_viewer::app::shot::ShotOptions;
+use decimate_viewer::render::offscreen::RgbaImage;
 use glam::{Mat4, Vec3};
 
 use crate::support::shot::*;
@@ -80,7 +80,7 @@ fn differing(a: &RgbaImage, b: &RgbaImage, (x0, y0, x1, y1): (u32, u32, u32, u32
 fn the_report_figure_captions_each_viewport_with_its_own_target() {
     // decimate assets/test006.wrl shot --viewports 4 -p 60,80,90 --mode triangles,edges
     let scene = Scene {
-        models: vec![decimate::mesh::shapes::test006()],
+        models: vec![decimate_core::mesh::shapes::test006()],
     };
     let (width, height) = (640, 480);
     let mut options = ShotOptions {
@@ -133,7 +133,7 @@ fn the_report_figure_captions_each_viewport_with_its_own_target() {
 fn measured_captions_add_each_levels_metro_error() {
     // decimate assets/test006.wrl shot --viewports 2 -p 90 --measure
     let scene = Scene {
-        models: vec![decimate::mesh::shapes::test006()],
+        models: vec![decimate_core::mesh::shapes::test006()],
     };
     let (width, height) = (640, 320);
     let mut options = ShotOptions {

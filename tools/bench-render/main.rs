@@ -16,20 +16,20 @@
 use std::process::ExitCode;
 use std::time::Instant;
 
-use decimate::app::lod::LodView;
-use decimate::decimate::Params;
-use decimate::io::texture_image;
-use decimate::mesh::Scene;
-use decimate::render::camera::Camera;
-use decimate::render::commands::Commands;
-use decimate::render::context::{Context, DevicePreference};
-use decimate::render::draw::{DrawOptions, ViewportDraw};
-use decimate::render::gpu_mesh::GpuScene;
-use decimate::render::mesh_data::Layers;
-use decimate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
-use decimate::render::pipeline::{Pipelines, DEFAULT_MSAA};
-use decimate::render::texture::Textures;
-use decimate::render::tiles::tiles;
+use decimate_core::decimate::Params;
+use decimate_core::io::texture_image;
+use decimate_core::mesh::Scene;
+use decimate_viewer::app::lod::LodView;
+use decimate_viewer::render::camera::Camera;
+use decimate_viewer::render::commands::Commands;
+use decimate_viewer::render::context::{Context, DevicePreference};
+use decimate_viewer::render::draw::{DrawOptions, ViewportDraw};
+use decimate_viewer::render::gpu_mesh::GpuScene;
+use decimate_viewer::render::mesh_data::Layers;
+use decimate_viewer::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
+use decimate_viewer::render::pipeline::{Pipelines, DEFAULT_MSAA};
+use decimate_viewer::render::texture::Textures;
+use decimate_viewer::render::tiles::tiles;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -69,7 +69,7 @@ fn run(
 ) -> Result<(), Box<dyn std::error::Error>> {
     let folder = match &source {
         Source::File(path) => {
-            decimate::io::texture_path::folder_of(std::path::Path::new(path)).to_path_buf()
+            decimate_core::io::texture_path::folder_of(std::path::Path::new(path)).to_path_buf()
         }
         Source::Sphere(_) => std::path::PathBuf::from("."),
     };
@@ -80,8 +80,8 @@ fn run(
             sphere(rings, rings * 2)
         }
         Source::File(path) => {
-            let outcome = decimate::io::read_scene(std::path::Path::new(&path))?;
-            decimate::mesh::build::build_scene(outcome.scene, true)
+            let outcome = decimate_core::io::read_scene(std::path::Path::new(&path))?;
+            decimate_core::mesh::build::build_scene(outcome.scene, true)
         }
     };
     let context = Context::new(&[], false, DevicePreference::Fastest)?;
@@ -367,6 +367,6 @@ fn slider_moves(
 /// A unit UV sphere with `rings` × `segments` quads.
 fn sphere(rings: u32, segments: u32) -> Scene {
     Scene {
-        models: vec![decimate::mesh::shapes::uv_sphere(rings, segments)],
+        models: vec![decimate_core::mesh::shapes::uv_sphere(rings, segments)],
     }
 }

@@ -3,9 +3,9 @@
 
 use std::process::Output;
 
-use decimate::io::progressive_file::read_progressive;
-use decimate::io::read_scene;
-use decimate::mesh::{measure, shapes, Model};
+use decimate_core::io::progressive_file::read_progressive;
+use decimate_core::io::read_scene;
+use decimate_core::mesh::{measure, shapes, Model};
 use tempfile::TempDir;
 
 use super::{as_built, decimate, run_progressive, stderr, write_input};

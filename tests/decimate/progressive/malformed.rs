@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use decimate::io::progressive_file::{read_progressive, MAGIC};
-use decimate::mesh::shapes;
+use decimate_core::io::progressive_file::{read_progressive, MAGIC};
+use decimate_core::mesh::shapes;
 
 use super::{decimate, refused, stderr, write_input};
 

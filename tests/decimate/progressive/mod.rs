@@ -7,10 +7,10 @@
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-use decimate::io::progressive_file::{parse_progressive, read_progressive};
-use decimate::io::{read_scene, write_scene, ReadError};
-use decimate::mesh::progressive::{Lod, ProgressiveScene};
-use decimate::mesh::{build::build_scene, measure, shapes, Attribute, Model, Scene};
+use decimate_core::io::progressive_file::{parse_progressive, read_progressive};
+use decimate_core::io::{read_scene, write_scene, ReadError};
+use decimate_core::mesh::progressive::{Lod, ProgressiveScene};
+use decimate_core::mesh::{build::build_scene, measure, shapes, Attribute, Model, Scene};
 
 use crate::support::binary::decimate;
 
@@ -219,8 +219,8 @@ fn refused(dir: &Path, name: &str, bytes: &[u8]) -> String {
 #[test]
 #[ignore]
 fn timing_of_a_million_triangle_sphere() {
-    use decimate::decimate::{simplify_scene_progressive, Algorithm, Params, Target};
-    use decimate::io::progressive_file::write_progressive;
+    use decimate_core::decimate::{simplify_scene_progressive, Algorithm, Params, Target};
+    use decimate_core::io::progressive_file::write_progressive;
     use std::time::Instant;
 
     let mut scene = Scene {

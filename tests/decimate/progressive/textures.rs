@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use decimate::mesh::progressive::VertexSplit;
-use decimate::mesh::Model;
+use decimate_core::mesh::progressive::VertexSplit;
+use decimate_core::mesh::Model;
 
 use super::{assert_round_trip, decimate, refused, run_progressive_as, stderr};
 

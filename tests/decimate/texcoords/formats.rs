@@ -84,7 +84,7 @@ fn vrml_and_inventor_textures_come_out_in_vrml_with_their_image() {
             let stderr = String::from_utf8_lossy(&run.stderr);
             assert!(run.status.success(), "{kind} {algorithm}: {stderr}");
             assert!(!stderr.contains("warning"), "{kind} {algorithm}: {stderr}");
-            let scene = decimate::io::read_scene(&output).unwrap().scene;
+            let scene = decimate_core::io::read_scene(&output).unwrap().scene;
             std::fs::remove_dir_all(&dir).ok();
             let [m] = scene.models.as_slice() else {
                 panic!("{kind} {algorithm}: one model expected")
@@ -132,7 +132,7 @@ fn inventor_texture_bindings_pick_pairs_by_index_or_in_corner_order() {
         )
     };
     let read = |text: String| {
-        let scene = decimate::io::parse_str(&text, "t.iv").unwrap().scene;
+        let scene = decimate_core::io::parse_str(&text, "t.iv").unwrap().scene;
         let m = &scene.models[0];
         // Each corner's u, triangle by triangle.
         let t = m.texcoords.as_ref().expect("texture coordinates");
@@ -152,7 +152,9 @@ fn inventor_texture_bindings_pick_pairs_by_index_or_in_corner_order() {
     // at points 0 and 2 splits them.
     let per_vertex = shape("TextureCoordinateBinding { value PER_VERTEX }", "");
     assert_eq!(read(per_vertex.clone()), [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]);
-    let scene = decimate::io::parse_str(&per_vertex, "t.iv").unwrap().scene;
+    let scene = decimate_core::io::parse_str(&per_vertex, "t.iv")
+        .unwrap()
+        .scene;
     assert_eq!(scene.models[0].positions.len(), 6);
 }
 

@@ -1,0 +1,166 @@
+//! The library's entry point for programs: decimate a triangle mesh given as plain arrays
+//! ([`simplify`]), a [`Scene`] already in memory ([`simplify_scene`]), or a file into
+//! another file in any format the `decimate` program reads and writes ([`simplify_file`]:
+//! VRML 1.0/2.0, Open Inventor, PLY, OBJ, STL, OFF, glTF 2.0).
+//!
+//! ```
+//! use decimate_core::api::{simplify, Algorithm, Params, Target};
+//!
+//! // A 10 × 10 grid of squares, two triangles each.
+//! let n = 10;
+//! let positions: Vec<[f32; 3]> = (0..=n)
+//!     .flat_map(|j| (0..=n).map(move |i| [i as f32, j as f32, 0.0]))
+//!     .collect();
+//! let mut indices = Vec::new();
+//! for j in 0..n {
+//!     for i in 0..n {
+//!         let a = j * (n + 1) + i;
+//!         indices.extend([a, a + 1, a + n + 2, a, a + n + 2, a + n + 1]);
+//!     }
+//! }
+//! let params = Params {
+//!     target: Target::KeepTriangles(50),
+//!     algorithm: Algorithm::Qem,
+//!     ..Params::default()
+//! };
+//! let (mesh, report) = simplify(&positions, &indices, &params)?;
+//! assert!(mesh.indices.len() / 3 <= 50);
+//! assert_eq!(report.models[0].triangles_before, 200);
+//! # Ok::<(), decimate_core::api::Error>(())
+//! ```
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+
+pub use crate::decimate::{Algorithm, ErrorBound, ModelReport, Params, Report, Target};
+use crate::io;
+pub use crate::io::{read_scene, write_scene, ReadError, WriteError};
+pub use crate::mesh::{Model, Scene};
+
+/// A triangle mesh as plain arrays: positions, and three indices into them per triangle
+/// (counter-clockwise seen from the front).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Mesh {
+    pub positions: Vec<[f32; 3]>,
+    pub indices: Vec<u32>,
+}
+
+/// What stops a simplification: a file that cannot be read or written, or arrays that do
+/// not make a mesh.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    #[error("{0}")]
+    Read(#[from] ReadError),
+    #[error("{0}")]
+    Write(#[from] WriteError),
+    #[error("{0}")]
+    InvalidMesh(String),
+    #[error("{}: is the input file: refusing to write over it", .0.display())]
+    SameFile(PathBuf),
+}
+
+/// What [`simplify_file`] did: the decimation's report, and the warnings met reading the
+/// input (parts it skipped) and writing the output (what its format cannot hold).
+#[derive(Debug, Clone, Default)]
+pub struct FileReport {
+    pub report: Report,
+    pub warnings: Vec<String>,
+}
+
+/// Decimates the mesh of `positions` and `indices` (three per triangle) as `params` says and
+/// returns the result as arrays, with the report. Unused positions are left out of the
+/// result. A mesh decimated below four vertices comes back empty (`report.models[0].dropped`).
+pub fn simplify(
+    positions: &[[f32; 3]],
+    indices: &[u32],
+    params: &Params,
+) -> Result<(Mesh, Report), Error> {
+    if !indices.len().is_multiple_of(3) {
+        return Err(Error::InvalidMesh(format!(
+            "{} indices: not a whole number of triangles",
+            indices.len()
+        )));
+    }
+    if let Some(k) = positions
+        .iter()
+        .position(|p| !p.iter().all(|c| c.is_finite()))
+    {
+        return Err(Error::InvalidMesh(format!(
+            "position {k} is not a finite number"
+        )));
+    }
+    let n = positions.len();
+    if let Some((k, i)) = indices.iter().enumerate().find(|(_, &i)| i as usize >= n) {
+        return Err(Error::InvalidMesh(format!(
+            "index {k} is {i}, but there are {n} positions"
+        )));
+    }
+    let model = Model {
+        name: "mesh".into(),
+        positions: positions.iter().map(|&p| Vec3::from(p)).collect(),
+        triangles: indices
+            .chunks_exact(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect(),
+        ..Model::default()
+    };
+    let mut scene = Scene {
+        models: vec![model],
+    };
+    let report = simplify_scene(&mut scene, params);
+    let mesh = scene
+        .models
+        .first()
+        .map(|m| Mesh {
+            positions: m.positions.iter().map(|p| p.to_array()).collect(),
+            indices: m.triangles.iter().flatten().copied().collect(),
+        })
+        .unwrap_or_default();
+    Ok((mesh, report))
+}
+
+/// Decimates every model of `scene` in place (see [`crate::decimate::simplify_scene`]).
+pub fn simplify_scene(scene: &mut Scene, params: &Params) -> Report {
+    crate::decimate::simplify_scene(scene, params, &mut |_| {})
+}
+
+/// Reads `input`, decimates it as `params` says and writes it to `output`, in the format
+/// the output's extension names (texture names re-expressed for the output's folder, files
+/// replaced atomically). Refuses to write over the input.
+pub fn simplify_file(input: &Path, output: &Path, params: &Params) -> Result<FileReport, Error> {
+    if let (Ok(a), Ok(b)) = (input.canonicalize(), output.canonicalize()) {
+        if a == b {
+            return Err(Error::SameFile(output.to_path_buf()));
+        }
+    }
+    let io::ReadOutcome {
+        mut scene,
+        mut warnings,
+        ..
+    } = read_scene(input)?;
+    let report = simplify_scene(&mut scene, params);
+    let folder = io::texture_path::folder_of;
+    io::rebase_textures(&mut scene, folder(input), folder(output));
+    warnings.extend(io::losses::losses_at(&scene, output));
+    write_scene(&scene, output)?;
+    Ok(FileReport { report, warnings })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arrays_that_are_not_a_mesh_are_refused_with_the_reason() {
+        let p = [[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let params = Params::default();
+        let e = simplify(&p, &[0, 1], &params).unwrap_err().to_string();
+        assert!(e.contains("whole number of triangles"), "{e}");
+        let e = simplify(&p, &[0, 1, 3], &params).unwrap_err().to_string();
+        assert!(e.contains("index 2 is 3"), "{e}");
+        let nan = [[f32::NAN, 0.0, 0.0], p[1], p[2]];
+        let e = simplify(&nan, &[0, 1, 2], &params).unwrap_err().to_string();
+        assert!(e.contains("position 0"), "{e}");
+    }
+}

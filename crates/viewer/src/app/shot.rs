@@ -1,0 +1,329 @@
+//! The `shot` action: render the scene offscreen — no window, no display — with exactly the
+//! viewer's renderer, viewports tiled as in the viewer (the first shows the original scene,
+//! the others the decimated one, each with its own target when `-p 60,80,90` lists several),
+//! captioned (with `--measure`, each decimated viewport's metro error too), and write a PNG
+//! through a temporary file and a rename.
+
+use std::path::{Path, PathBuf};
+
+use crate::render::camera::Camera;
+use crate::render::commands::Commands;
+use crate::render::context::{Context, DevicePreference};
+use crate::render::draw::DrawOptions;
+use crate::render::draw::ViewportDraw;
+use crate::render::gpu_mesh::GpuScene;
+use crate::render::offscreen::{OffscreenTarget, RgbaImage, OFFSCREEN_FORMAT};
+use crate::render::pipeline::Pipelines;
+use crate::render::texture::Textures;
+use crate::render::tiles::tiles;
+use crate::render::RenderError;
+use decimate_core::decimate::{simplify_scene, Params, Report, Target};
+use decimate_core::io::texture_image;
+use decimate_core::mesh::Scene;
+
+use super::counts::Counts;
+use super::error_map::{self, Legend};
+use super::labels::{self, HeadlessCaptions};
+use super::level_error::LevelError;
+
+/// What can go wrong taking a shot.
+/// Options of the `shot` action.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShotOptions {
+    pub width: u32,
+    pub height: u32,
+    /// 1–4 viewports: the first shows the original, the others the decimated scene.
+    pub viewports: u32,
+    /// What each viewport draws (`--mode`).
+    pub modes: DrawOptions,
+    /// Captions on the viewports (`--labels` / `--no-labels`); by default with more than one.
+    pub labels: Option<bool>,
+    /// Each decimated viewport's caption says its metro error against the original
+    /// (`--measure`; turns the captions on).
+    pub measure: bool,
+    /// One target per decimated viewport (`-p 60,80,90`); empty when one target was given.
+    pub targets: Vec<Target>,
+    /// Where relative texture names are read from: the input file's folder.
+    pub texture_dir: PathBuf,
+    /// Samples per pixel for anti-aliasing (`--msaa`; 1: off), as many as the device offers.
+    pub msaa: u32,
+}
+
+impl Default for ShotOptions {
+    fn default() -> Self {
+        Self {
+            width: 800,
+            height: 600,
+            viewports: 1,
+            modes: DrawOptions::default(),
+            labels: None,
+            measure: false,
+            targets: Vec::new(),
+            texture_dir: PathBuf::from("."),
+            msaa: crate::render::pipeline::DEFAULT_MSAA,
+        }
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum ShotError {
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    #[error("{file}: {source}")]
+    Write {
+        file: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{file}: PNG encoding failed: {source}")]
+    Encode {
+        file: PathBuf,
+        #[source]
+        source: png::EncodingError,
+    },
+}
+
+/// What viewport `i` of `count` shows: `None` for the original, else the parameters of its
+/// decimation. Viewport 1 shows the original and the others the decimated scene, each with
+/// its own target from `targets` (the last one repeated) or `params`' own; a single viewport
+/// with a target shows the decimated scene (otherwise the target would be ignored).
+pub fn viewport_params(
+    count: usize,
+    params: Option<&Params>,
+    targets: &[Target],
+) -> Vec<Option<Params>> {
+    (0..count)
+        .map(|i| {
+            let params = params?;
+            if count > 1 && i == 0 {
+                return None;
+            }
+            let target = targets.get(i.saturating_sub(1)).or(targets.last());
+            Some(Params {
+                target: target.copied().unwrap_or(params.target),
+                ..*params
+            })
+        })
+        .collect()
+}
+
+/// A decimated copy of the scene on the GPU, with its report and caption.
+struct Decimated {
+    params: Params,
+    gpu: GpuScene,
+    report: Report,
+    caption: String,
+}
+
+/// The decimated copies to draw, in the heat-map's colours when `heat` (the legend spans
+/// every copy), with the original to draw beside them (neutral grey in the heat-map mode).
+fn heat_mapped(
+    scene: &Scene,
+    copies: Vec<Scene>,
+    heat: bool,
+) -> (Option<Scene>, Vec<Scene>, Option<Legend>) {
+    if !heat {
+        return (None, copies, None);
+    }
+    let fields: Vec<_> = (copies.iter())
+        .map(|copy| decimate_core::metro::field::error_field(scene, copy))
+        .collect();
+    let legend = Legend::spanning(&fields);
+    let coloured = (copies.iter().zip(&fields))
+        .map(|(copy, field)| error_map::heat_scene(copy, field, &legend))
+        .collect();
+    (
+        Some(error_map::neutral_scene(scene)),
+        coloured,
+        Some(legend),
+    )
+}
+
+/// A picture of `scene` and, when `params` is given, of its decimated copies (see
+/// [`viewport_params`]); their reports in viewport order. Every viewport uses the same camera,
+/// framed on the original. Captions (`labels`, by default with more than one viewport) say
+/// what each viewport shows.
+pub fn render(
+    scene: &Scene,
+    options: &ShotOptions,
+    params: Option<&Params>,
+    device: DevicePreference,
+) -> Result<(RgbaImage, Vec<Report>), RenderError> {
+    let context = Context::new(&[], false, device)?;
+    let commands = Commands::new(&context)?;
+    let pipelines = Pipelines::with_samples(&context, OFFSCREEN_FORMAT, options.msaa)?;
+    let target =
+        OffscreenTarget::with_samples(&context, options.width, options.height, pipelines.samples)?;
+
+    let draw = options.modes;
+    let mut textures = Textures::new(
+        &context,
+        pipelines.texture_layout,
+        texture_image::reader(&options.texture_dir),
+    )?;
+    let rects = tiles(options.viewports as usize, options.width, options.height);
+    let shown = viewport_params(rects.len(), params, &options.targets);
+    let mut made: Vec<(Params, Scene, Report)> = Vec::new();
+    for p in shown.iter().flatten() {
+        if made.iter().any(|(q, _, _)| q == p) {
+            continue;
+        }
+        let mut copy = scene.clone();
+        let report = simplify_scene(&mut copy, p, &mut |_| {});
+        made.push((*p, copy, report));
+    }
+    let copies = made.iter().map(|(_, copy, _)| copy.clone()).collect();
+    let (neutral, drawn, legend) = heat_mapped(scene, copies, draw.error_map);
+    let original = GpuScene::upload(
+        &context,
+        &commands,
+        &mut textures,
+        neutral.as_ref().unwrap_or(scene),
+        draw.layers(),
+    )?;
+    let mut decimated: Vec<Decimated> = Vec::new();
+    for ((p, copy, report), shown_copy) in made.into_iter().zip(&drawn) {
+        let caption = decimated_caption(scene, &copy, &p, options.measure);
+        decimated.push(Decimated {
+            params: p,
+            gpu: GpuScene::upload(
+                &context,
+                &commands,
+                &mut textures,
+                shown_copy,
+                draw.layers(),
+            )?,
+            report,
+            caption,
+        });
+    }
+    let counts = Counts::of(scene);
+    let original_caption = labels::caption("original", counts.vertices, counts.triangles);
+    let camera = Camera::framing(original.bounds);
+    let mut views = Vec::with_capacity(rects.len());
+    let mut captions = Vec::with_capacity(rects.len());
+    for (&rect, p) in rects.iter().zip(&shown) {
+        let d = p.and_then(|p| decimated.iter().find(|d| d.params == p));
+        views.push(ViewportDraw {
+            rect,
+            scene: d.map_or(&original, |d| &d.gpu),
+            camera: &camera,
+            options: draw,
+            morph: 1.0,
+        });
+        captions.push((rect, d.map_or(&original_caption, |d| &d.caption).clone()));
+    }
+    let labelled = options.labels.unwrap_or(rects.len() > 1 || options.measure);
+    let image = if labelled || legend.is_some() {
+        let screen = egui::Rect::from_min_size(
+            egui::Pos2::ZERO,
+            egui::vec2(options.width as f32, options.height as f32),
+        );
+        let paint = |ctx: &egui::Context| {
+            if labelled {
+                labels::paint(ctx, &captions, 1.0);
+            }
+            if let Some(legend) = &legend {
+                error_map::paint_legend(ctx, legend, screen);
+            }
+        };
+        let mut overlay =
+            HeadlessCaptions::with_painter(&context, &commands, target.extent, &paint)?;
+        let mut record = |cmd| overlay.record(cmd);
+        target.render_with_overlay(&commands, &pipelines, &views, true, Some(&mut record))?
+    } else {
+        target.render(&commands, &pipelines, &views, true)?
+    };
+    let image = image.ok_or_else(|| RenderError::TooLarge("no picture was read back".into()))?;
+    Ok((image, decimated.into_iter().map(|d| d.report).collect()))
+}
+
+/// The caption of `level`, `original` decimated with `params`: its target and algorithm,
+/// its counts, and with `measure` its metro error against `original`.
+pub fn decimated_caption(
+    original: &Scene,
+    level: &Scene,
+    params: &Params,
+    measure: bool,
+) -> String {
+    let what = format!(
+        "{} ({})",
+        labels::target_words(params.target, params.max_error),
+        labels::algorithm_name(params.algorithm)
+    );
+    let counts = Counts::of(level);
+    let mut caption = labels::caption(&what, counts.vertices, counts.triangles);
+    if measure {
+        caption.push('\n');
+        caption.push_str(&match LevelError::measure(original, level) {
+            Ok(error) => error.words(),
+            Err(e) => format!("cannot measure: {e}"),
+        });
+    }
+    caption
+}
+
+/// Writes `image` as an RGBA PNG through [`decimate_core::io::replace::replace_file`]: a temporary
+/// file renamed over `path`, so a crash never leaves half a file under the real name.
+pub fn write_png(image: &RgbaImage, path: &Path) -> Result<(), ShotError> {
+    // The encoder's own error is kept aside: `replace_file` passes on I/O errors only.
+    let mut encoding = None;
+    let written = decimate_core::io::replace::replace_file(path, |out| {
+        let mut encoder = png::Encoder::new(out, image.width, image.height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        let result = encoder.write_header().and_then(|mut writer| {
+            writer.write_image_data(&image.pixels)?;
+            writer.finish()
+        });
+        result.map_err(|e| {
+            let message = e.to_string();
+            encoding = Some(e);
+            std::io::Error::other(message)
+        })
+    });
+    match (written, encoding) {
+        (Ok(()), _) => Ok(()),
+        (Err(_), Some(source)) => Err(ShotError::Encode {
+            file: path.to_path_buf(),
+            source,
+        }),
+        (Err(source), None) => Err(ShotError::Write {
+            file: path.to_path_buf(),
+            source,
+        }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use decimate_core::mesh::shapes;
+
+    #[test]
+    fn a_measured_caption_says_the_levels_metro_error() {
+        let original = Scene {
+            models: vec![shapes::test006()],
+        };
+        let params = Params {
+            target: Target::RemovePercent(90.0),
+            ..Params::default()
+        };
+        let mut level = original.clone();
+        simplify_scene(&mut level, &params, &mut |_| {});
+        let caption = decimated_caption(&original, &level, &params, true);
+        let lines: Vec<&str> = caption.lines().collect();
+        let kept = level.models[0].used_vertex_count();
+        assert_eq!(lines[0], "90 % removed (schroeder)");
+        assert_eq!(
+            lines[1],
+            format!("{kept} vertices, {} triangles", level.triangle_count())
+        );
+        let error = LevelError::measure(&original, &level).unwrap_or_else(|e| panic!("{e}"));
+        assert!(error.max > 0.0, "{error:?}");
+        assert_eq!(lines[2], error.words());
+        assert_eq!(lines.len(), 3);
+        let unmeasured = decimated_caption(&original, &level, &params, false);
+        assert_eq!(unmeasured, lines[..2].join("\n"));
+    }
+}
