@@ -42,7 +42,9 @@ pub use crate::mesh::{Model, Scene};
 /// (counter-clockwise seen from the front).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Mesh {
+    /// Vertex positions.
     pub positions: Vec<[f32; 3]>,
+    /// Three indices into `positions` per triangle.
     pub indices: Vec<u32>,
 }
 
@@ -50,12 +52,16 @@ pub struct Mesh {
 /// not make a mesh.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
+    /// The input file could not be read.
     #[error("{0}")]
     Read(#[from] ReadError),
+    /// The output file could not be written.
     #[error("{0}")]
     Write(#[from] WriteError),
+    /// The arrays do not make a mesh (an index out of range, a count not a multiple of 3, ...).
     #[error("{0}")]
     InvalidMesh(String),
+    /// The output path names the input file.
     #[error("{}: is the input file: refusing to write over it", .0.display())]
     SameFile(PathBuf),
 }
@@ -64,7 +70,9 @@ pub enum Error {
 /// input (parts it skipped) and writing the output (what its format cannot hold).
 #[derive(Debug, Clone, Default)]
 pub struct FileReport {
+    /// What the decimation did.
     pub report: Report,
+    /// Warnings from reading the input and writing the output.
     pub warnings: Vec<String>,
 }
 

@@ -17,12 +17,14 @@ impl Cancel {
         Self(Some(Arc::new(AtomicBool::new(false))))
     }
 
+    /// Asks the work holding this flag (or a clone) to stop.
     pub fn request(&self) {
         if let Some(flag) = &self.0 {
             flag.store(true, Ordering::Relaxed);
         }
     }
 
+    /// Whether a stop was asked for.
     pub fn requested(&self) -> bool {
         self.0.as_ref().is_some_and(|f| f.load(Ordering::Relaxed))
     }

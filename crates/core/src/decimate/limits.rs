@@ -32,6 +32,7 @@ pub struct Limits {
 /// What decimating one model did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Outcome {
+    /// Vertices removed.
     pub removed: usize,
     /// Largest key of a removal made (accumulated distance, model units).
     pub max_error: f64,

@@ -4,15 +4,15 @@
 //! [`Report`].
 
 mod candidates;
-pub mod closed;
-pub mod hanging_sheets;
-pub mod layout;
+pub(crate) mod closed;
+pub(crate) mod hanging_sheets;
+pub(crate) mod layout;
 pub mod levels;
 mod limits;
 mod lists;
-pub mod qem;
+pub(crate) mod qem;
 mod regions;
-pub mod schroeder;
+pub(crate) mod schroeder;
 pub mod summary;
 
 use std::time::Instant;

@@ -7,7 +7,9 @@ use base64::Engine as _;
 /// A decoded `data:` URI: its media type (`image/png`, empty when not given) and bytes.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct DataUri {
+    /// The media type, `image/png`; empty when the URI gives none.
     pub media_type: String,
+    /// The decoded payload.
     pub bytes: Vec<u8>,
 }
 

@@ -18,9 +18,9 @@
 //! written) and `data_uri` (the `data:` URIs glTF embeds buffers and images in).
 
 pub mod data_uri;
-pub mod gltf;
+pub(crate) mod gltf;
 pub mod losses;
-pub mod mtl;
+pub(crate) mod mtl;
 pub mod obj;
 pub mod off;
 pub mod ply;
@@ -28,11 +28,11 @@ pub mod progressive_file;
 pub mod replace;
 mod shape_to_model;
 pub mod stl;
-pub mod stream;
+pub(crate) mod stream;
 mod text;
 pub mod texture_image;
 pub mod texture_path;
-pub mod triangulate;
+pub(crate) mod triangulate;
 mod vrml;
 
 use std::io::Read;

@@ -34,16 +34,6 @@ pub enum VertexClass {
     Isolated,
 }
 
-impl VertexClass {
-    /// Whether the decimator may try to remove the vertex.
-    pub fn removable(self) -> bool {
-        matches!(
-            self,
-            Self::Simple | Self::Boundary | Self::InteriorEdge { .. }
-        )
-    }
-}
-
 /// Per-triangle geometry of a ring, filled by [`classify`] for the caller's error terms.
 #[derive(Debug, Clone, Default)]
 pub struct RingGeometry {

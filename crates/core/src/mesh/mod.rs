@@ -3,18 +3,18 @@
 //! welding built on top of them.
 
 pub mod build;
-pub mod classify;
+pub(crate) mod classify;
 pub mod measure;
 pub mod progressive;
 pub mod repair;
 pub mod rgba_image;
-pub mod scene;
+pub(crate) mod scene;
 pub mod seams;
 pub mod shapes;
-pub mod spatial;
-pub mod stitches;
-pub mod topology;
-pub mod union_find;
+pub(crate) mod spatial;
+pub(crate) mod stitches;
+pub(crate) mod topology;
+pub(crate) mod union_find;
 pub mod weld;
 
 pub use scene::{Attribute, CopiedThrough, Instance, LocalTransform, Model, Node, NodeTree, Scene};

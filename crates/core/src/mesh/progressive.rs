@@ -27,6 +27,7 @@ pub struct VertexSplit {
     pub keep: u32,
     /// `keep`'s position before the split (coarse) and after it (fine).
     pub keep_coarse: Vec3,
+    /// `keep`'s position after the split.
     pub keep_fine: Vec3,
     /// The new vertex's position; its id is the base vertex count plus this split's index.
     pub position: Vec3,
@@ -62,6 +63,7 @@ pub struct ProgressiveModel {
 /// Every model of a scene, in scene order.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ProgressiveScene {
+    /// One record per model of the scene, in scene order.
     pub models: Vec<ProgressiveModel>,
 }
 
@@ -276,6 +278,7 @@ impl<P: Borrow<ProgressiveModel>> Lod<P> {
         self.pm.borrow()
     }
 
+    /// The number of splits applied so far (0: the coarse mesh).
     pub fn level(&self) -> usize {
         self.level
     }
@@ -437,16 +440,25 @@ pub struct Recorder {
 /// What the collapse loop knows of one collapse, before it performs it.
 #[derive(Debug, Clone, Copy)]
 pub struct CollapseRecord<'a> {
+    /// The vertex that stays.
     pub keep: u32,
+    /// The vertex that goes.
     pub remove: u32,
+    /// `keep`'s position before the collapse.
     pub keep_before: Vec3,
+    /// `keep`'s position after the collapse.
     pub keep_after: Vec3,
+    /// `remove`'s position.
     pub removed_position: Vec3,
     /// `keep` before, `keep` after, `remove`.
     pub colors: Option<[[f32; 3]; 3]>,
+    /// Normals, in the order of `colors`, when the model has per-vertex normals.
     pub normals: Option<[Vec3; 3]>,
+    /// Texture coordinates, in the order of `colors`, when the model has them per vertex.
     pub texcoords: Option<[[f32; 2]; 3]>,
+    /// Triangles whose corner `remove` becomes `keep`.
     pub renamed: &'a [u32],
+    /// Triangles the collapse deletes, with their corners.
     pub deleted: &'a [(u32, [u32; 3])],
 }
 
@@ -463,6 +475,7 @@ impl Recorder {
         }
     }
 
+    /// Records one collapse, in the order the decimator performs them.
     pub fn collapse(&mut self, c: CollapseRecord<'_>) {
         self.renamed.extend_from_slice(c.renamed);
         self.deleted.extend_from_slice(c.deleted);

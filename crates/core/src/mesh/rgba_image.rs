@@ -4,7 +4,10 @@
 /// A picture: `width * height` RGBA8 pixels, rows top to bottom.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct RgbaImage {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
+    /// `width * height * 4` bytes, RGBA, rows top to bottom.
     pub pixels: Vec<u8>,
 }

@@ -133,6 +133,7 @@ impl Model {
 /// Everything read from one file: its models, in file order.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Scene {
+    /// The models, in file order.
     pub models: Vec<Model>,
 }
 
@@ -153,6 +154,7 @@ impl Scene {
 /// instances of one mesh: decimated once (`decimate::simplify_scene`), written once.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Instance {
+    /// The node tree the instance belongs to.
     pub tree: Arc<NodeTree>,
     /// Index into `tree.nodes`.
     pub node: usize,
@@ -175,6 +177,7 @@ impl Instance {
 /// roots, and what a writer of the source's format copies through unchanged.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct NodeTree {
+    /// All nodes; parents refer to children by index.
     pub nodes: Vec<Node>,
     /// The displayed scene's root nodes.
     pub roots: Vec<usize>,
@@ -186,6 +189,7 @@ pub struct NodeTree {
 /// One node of a `NodeTree`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Node {
+    /// The node's name in the file, if it has one.
     pub name: Option<String>,
     /// The transform relative to the parent, in the form the file gave it.
     pub local: LocalTransform,
@@ -199,15 +203,21 @@ pub struct Node {
 /// scale (glTF 2.0 § 3.5.3): a writer writes back the form that was read.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum LocalTransform {
+    /// A 4 × 4 matrix.
     Matrix(Mat4),
+    /// Translation, rotation and scale, applied scale first.
     Trs {
+        /// The translation.
         translation: Vec3,
+        /// The rotation, a unit quaternion.
         rotation: Quat,
+        /// The scale along each axis.
         scale: Vec3,
     },
 }
 
 impl LocalTransform {
+    /// The transform as a matrix.
     pub fn matrix(&self) -> Mat4 {
         match *self {
             Self::Matrix(m) => m,
@@ -224,7 +234,10 @@ impl LocalTransform {
 /// indexes (`data`); see the writer of `format` for their layout.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CopiedThrough {
+    /// The format whose writer reads this (`"gltf"`).
     pub format: &'static str,
+    /// The source's JSON, with the meshes this program replaces marked.
     pub json: String,
+    /// The binary data the JSON indexes.
     pub data: Vec<u8>,
 }

@@ -18,7 +18,7 @@ pub mod bvh;
 pub mod field;
 pub mod folds;
 pub mod report;
-pub mod sampling;
+pub(crate) mod sampling;
 
 use std::collections::HashMap;
 use std::time::Instant;
@@ -270,25 +270,36 @@ fn weld_id(map: &mut WeldMap, positions: &mut Vec<DVec3>, p: DVec3) -> u32 {
 /// Summary of one surface for the report.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SurfaceInfo {
+    /// Triangles measured.
     pub triangles: usize,
+    /// Distinct positions.
     pub vertices: usize,
+    /// Total area.
     pub area: f64,
     /// Enclosed volume when the surface is closed and consistently oriented.
     pub volume: Option<f64>,
+    /// Edges of one triangle.
     pub boundary_edges: usize,
+    /// Edges of three or more triangles.
     pub nonmanifold_edges: usize,
     /// Connected pieces (through shared positions).
     pub components: usize,
+    /// Triangles with no area, left out of the sampling.
     pub skipped_triangles: usize,
+    /// Bounding box, lower corner.
     pub bbox_min: DVec3,
+    /// Bounding box, upper corner.
     pub bbox_max: DVec3,
 }
 
 /// Distances of the samples of one surface from the other.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DirectionStats {
+    /// Samples taken inside triangles.
     pub face_samples: usize,
+    /// Samples taken on edges.
     pub edge_samples: usize,
+    /// Samples taken at vertices.
     pub vertex_samples: usize,
     /// Largest distance of any sample.
     pub max: f64,
@@ -301,6 +312,7 @@ pub struct DirectionStats {
 }
 
 impl DirectionStats {
+    /// All samples taken.
     pub fn samples(&self) -> usize {
         self.face_samples + self.edge_samples + self.vertex_samples
     }
@@ -345,19 +357,26 @@ impl Options {
 /// Seconds spent in each phase of [`compare`].
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Timings {
+    /// Building the bounding-volume hierarchies.
     pub bvh: f64,
+    /// Sampling A against B.
     pub a_to_b: f64,
+    /// Sampling B against A.
     pub b_to_a: f64,
+    /// Looking for folded triangles.
     pub folds: f64,
 }
 
 /// Everything Metro measured between two surfaces A and B.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Comparison {
+    /// Surface A (the reference, usually the input).
     pub a: SurfaceInfo,
+    /// Surface B (usually the decimated result).
     pub b: SurfaceInfo,
     /// A's bounding-box diagonal: relative errors are fractions of it.
     pub diagonal: f64,
+    /// The sampling's random seed: the same seed gives the same figures.
     pub seed: u64,
     /// Distances of A's samples from B.
     pub a_to_b: DirectionStats,
@@ -365,6 +384,7 @@ pub struct Comparison {
     pub b_to_a: DirectionStats,
     /// B's triangles folded over A, when [`Options::folds`] asked for them.
     pub folds: Option<folds::Folds>,
+    /// Where the time went.
     pub timings: Timings,
 }
 
@@ -373,7 +393,9 @@ pub struct Comparison {
 pub struct Symmetric {
     /// The Hausdorff distance.
     pub max: f64,
+    /// The larger area-weighted mean distance.
     pub mean: f64,
+    /// The larger root mean square distance.
     pub rms: f64,
 }
 
@@ -405,15 +427,19 @@ impl Comparison {
 /// Which input a problem is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Side {
+    /// The first surface.
     A,
+    /// The second surface.
     B,
 }
 
 /// Why two surfaces cannot be compared.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
 pub enum MetroError {
+    /// A surface has no triangle with an area.
     #[error("surface {0:?} has no triangles to measure")]
     NoTriangles(Side),
+    /// The cancel flag was raised.
     #[error("the measurement was cancelled")]
     Cancelled,
 }

@@ -31,6 +31,7 @@ const SALT_OFFSET: u64 = 0x3c6e_f372_fe94_f82b;
 pub struct SplitMix64(u64);
 
 impl SplitMix64 {
+    #[cfg(test)]
     pub fn new(seed: u64) -> Self {
         Self(seed)
     }

@@ -22,6 +22,7 @@ pub struct Tile {
     /// Box of the centroids this tile took (its triangles may reach beyond it).
     pub min: [f64; 3],
     pub max: [f64; 3],
+    /// Triangles in this tile.
     pub triangles: usize,
     /// Triangles `run` keeps (its share of the target, with the seam slack of `plan`).
     pub target: usize,
@@ -30,12 +31,17 @@ pub struct Tile {
 /// The whole plan.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Manifest {
+    /// The input file the tiles were cut from.
     pub input: PathBuf,
+    /// Triangles in the input.
     pub triangles: usize,
     /// Final triangle count `merge` decimates to, unless it is given another.
     pub target_triangles: usize,
+    /// The input's bounding box, lower corner.
     pub min: [f32; 3],
+    /// The input's bounding box, upper corner.
     pub max: [f32; 3],
+    /// The tiles, in index order.
     pub tiles: Vec<Tile>,
 }
 
@@ -50,6 +56,7 @@ impl Manifest {
         dir.join(format!("tile-{i:05}.out.ply"))
     }
 
+    /// The manifest as `manifest.json` holds it.
     pub fn to_json(&self) -> String {
         let tiles: Vec<Value> = self
             .tiles

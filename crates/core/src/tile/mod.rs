@@ -8,7 +8,7 @@
 
 pub mod cut;
 pub mod local;
-pub mod manifest;
+pub(crate) mod manifest;
 pub mod merge;
 pub mod run;
 pub mod schedule;
@@ -22,6 +22,7 @@ pub use manifest::Manifest;
 pub enum Tiles {
     /// Sized from the memory budget (`schedule::count_for`).
     Auto,
+    /// This many tiles.
     Count(usize),
 }
 
@@ -42,19 +43,29 @@ pub const DEFAULT_TILE_TRIANGLES: usize = 1 << 20;
 /// What went wrong in a tiling step; every variant names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum TileError {
+    /// An input could not be read.
     #[error("{0}")]
     Read(#[from] crate::io::ReadError),
+    /// An output could not be written.
     #[error("cannot write {0}")]
     Write(#[from] crate::io::WriteError),
+    /// A file operation failed.
     #[error("{file}: {source}")]
     Io {
+        /// The file.
         file: PathBuf,
+        /// What the system said.
         #[source]
         source: std::io::Error,
     },
     /// The manifest is missing, unreadable or not one of ours.
     #[error("{file}: {message}")]
-    Manifest { file: PathBuf, message: String },
+    Manifest {
+        /// The manifest file.
+        file: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
     /// The request does not fit the work folder (a tile index out of range, tiles not run).
     #[error("{0}")]
     Request(String),

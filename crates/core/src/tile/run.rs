@@ -35,7 +35,9 @@ pub fn tile_index(given: Option<usize>) -> Result<usize, TileError> {
 /// Triangles before and after one tile's run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TileRun {
+    /// Triangles before.
     pub before: usize,
+    /// Triangles after.
     pub after: usize,
 }
 

@@ -40,7 +40,7 @@
 //! select its candidates, and a scan takes a dozen or so passes.
 
 mod input_surface;
-pub mod loop_split;
+pub(crate) mod loop_split;
 mod loosen;
 mod plan;
 mod region_removal;
