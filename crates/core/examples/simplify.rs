@@ -1,9 +1,10 @@
-//! Decimating with the `decimate` library, as a program would.
+//! Decimating with the `decimate-core` library alone, as a program would.
 //!
-//! `cargo run --example simplify` decimates a generated sphere given as arrays;
-//! `cargo run --example simplify -- IN OUT [PERCENT]` decimates the file IN (any format the
-//! `decimate` program reads) by quadric edge collapse, removing PERCENT of its vertices
-//! (90 by default), and writes OUT in the format its extension names (`.glb`, `.ply`, …).
+//! `cargo run -p decimate-core --example simplify` decimates a generated sphere given as
+//! arrays; `cargo run -p decimate-core --example simplify -- IN OUT [PERCENT]` decimates the
+//! file IN (any format the `decimate` program reads) by quadric edge collapse, removing
+//! PERCENT of its vertices (90 by default), and writes OUT in the format its extension names
+//! (`.glb`, `.ply`, …).
 
 use std::path::Path;
 use std::process::ExitCode;
