@@ -19,7 +19,7 @@ fn main() -> ExitCode {
         Ok(Command::Run(args)) => args,
         Ok(Command::Tile(step)) => return tile_command::run_step(&step),
         Ok(Command::Help) => {
-            print!("{}", cli::USAGE);
+            print!("{}", cli::usage());
             return ExitCode::SUCCESS;
         }
         Ok(Command::Version) => {
@@ -27,7 +27,7 @@ fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) => {
-            eprintln!("decimate: {e}\n\n{}", cli::USAGE);
+            eprintln!("decimate: {e}\n\n{}", cli::usage());
             return ExitCode::from(2);
         }
     };

@@ -26,7 +26,7 @@ pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
 fn run_gui(scene: Scene, args: &Args) -> ExitCode {
     if !args.quiet {
         // As the original did: the usage, then the keys, on the console at start.
-        eprint!("{}\n{}", crate::cli::USAGE, menu::key_help());
+        eprint!("{}\n{}", crate::cli::usage(), menu::key_help());
     }
     // (4) Build the popup menu: one list of entries, shared by the popup and the keyboard.
     let entries = menu::menu();
