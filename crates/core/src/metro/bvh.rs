@@ -430,17 +430,8 @@ fn split(items: &mut [BuildItem], plo: DVec3, phi: DVec3) -> Option<usize> {
     );
     let extent = chi - clo;
     if n <= SMALL_NODE {
-        // Binning costs more than it gains on a handful of triangles: split at the median
-        // centroid along the longest axis, down to leaves of at most MAX_LEAF.
-        if n <= MAX_LEAF {
-            return None;
-        }
-        let axis = extent.max_position();
-        let mid = n / 2;
-        items.select_nth_unstable_by(mid, |x, y| x.centroid[axis].total_cmp(&y.centroid[axis]));
-        return Some(mid);
+        return median_split(items, extent);
     }
-    let parent_area = half_area(plo, phi);
     let usable = [0, 1, 2].map(|axis| extent[axis] > 0.0 && extent[axis].is_finite());
     let scale = DVec3::from_array([0, 1, 2].map(|axis| {
         if usable[axis] {
@@ -449,25 +440,92 @@ fn split(items: &mut [BuildItem], plo: DVec3, phi: DVec3) -> Option<usize> {
             0.0
         }
     }));
+    let bins = Bins::of(items, clo, scale);
+    let best = (0..3)
+        .filter(|&a| usable[a])
+        .filter_map(|axis| bins.best_boundary(axis).map(|(cost, b)| (cost, axis, b)))
+        .fold(None, |best: Option<(f64, usize, usize)>, c| match best {
+            // Only a strictly lower cost wins: ties keep the first axis.
+            Some(b) if c.0.partial_cmp(&b.0) != Some(std::cmp::Ordering::Less) => Some(b),
+            _ => Some(c),
+        });
+    match best {
+        Some((cost, axis, boundary)) => {
+            // Leaf cost n (one test per triangle) against traversal + the children's tests.
+            let split_cost = 1.0 + cost / half_area(plo, phi).max(f64::MIN_POSITIVE);
+            if n <= MAX_LEAF && split_cost >= n as f64 {
+                return None;
+            }
+            Some(partition(items, axis, boundary, clo[axis], scale[axis]))
+        }
+        // All centroids coincide: no plane separates them; halve the list to bound leaf size.
+        None if n > MAX_LEAF => Some(n / 2),
+        None => None,
+    }
+}
 
-    // One pass bins every item on all three axes at once.
-    let mut count = [[0usize; BINS]; 3];
-    let mut blo = [[DVec3::splat(f64::INFINITY); BINS]; 3];
-    let mut bhi = [[DVec3::splat(f64::NEG_INFINITY); BINS]; 3];
-    for it in items.iter() {
-        let rel = (it.centroid - clo) * scale;
-        for axis in 0..3 {
-            let b = ((rel[axis]) as usize).min(BINS - 1);
-            count[axis][b] += 1;
-            blo[axis][b] = blo[axis][b].min(it.lo);
-            bhi[axis][b] = bhi[axis][b].max(it.hi);
+/// Binning costs more than it gains on a handful of triangles: split at the median
+/// centroid along the longest axis, down to leaves of at most MAX_LEAF.
+fn median_split(items: &mut [BuildItem], extent: DVec3) -> Option<usize> {
+    let n = items.len();
+    if n <= MAX_LEAF {
+        return None;
+    }
+    let axis = extent.max_position();
+    let mid = n / 2;
+    items.select_nth_unstable_by(mid, |x, y| x.centroid[axis].total_cmp(&y.centroid[axis]));
+    Some(mid)
+}
+
+/// The bin of a centroid coordinate already shifted and scaled to bin units.
+fn bin_of(rel: f64) -> usize {
+    (rel as usize).min(BINS - 1)
+}
+
+/// Moves the items whose centroid's bin on `axis` is left of `boundary` to the front;
+/// returns how many there are.
+fn partition(items: &mut [BuildItem], axis: usize, boundary: usize, lo: f64, scale: f64) -> usize {
+    let mut left = 0;
+    for i in 0..items.len() {
+        if bin_of((items[i].centroid[axis] - lo) * scale) < boundary {
+            items.swap(i, left);
+            left += 1;
         }
     }
+    left
+}
 
-    // Best (cost, axis, bin boundary) over the three axes.
-    let mut best: Option<(f64, usize, usize)> = None;
-    for axis in (0..3).filter(|&a| usable[a]) {
-        let (count, blo, bhi) = (&count[axis], &blo[axis], &bhi[axis]);
+/// Per axis and bin: how many centroids fall in it, and the box of their triangles.
+struct Bins {
+    count: [[usize; BINS]; 3],
+    lo: [[DVec3; BINS]; 3],
+    hi: [[DVec3; BINS]; 3],
+}
+
+impl Bins {
+    /// One pass bins every item on all three axes at once.
+    fn of(items: &[BuildItem], clo: DVec3, scale: DVec3) -> Self {
+        let mut bins = Self {
+            count: [[0usize; BINS]; 3],
+            lo: [[DVec3::splat(f64::INFINITY); BINS]; 3],
+            hi: [[DVec3::splat(f64::NEG_INFINITY); BINS]; 3],
+        };
+        for it in items {
+            let rel = (it.centroid - clo) * scale;
+            for axis in 0..3 {
+                let b = bin_of(rel[axis]);
+                bins.count[axis][b] += 1;
+                bins.lo[axis][b] = bins.lo[axis][b].min(it.lo);
+                bins.hi[axis][b] = bins.hi[axis][b].max(it.hi);
+            }
+        }
+        bins
+    }
+
+    /// The cheapest bin boundary on `axis` with items on both sides, and its cost (area
+    /// times count, summed over the two sides).
+    fn best_boundary(&self, axis: usize) -> Option<(f64, usize)> {
+        let (count, blo, bhi) = (&self.count[axis], &self.lo[axis], &self.hi[axis]);
         // Sweep from the right to get suffix areas, then from the left for the cost.
         let mut right_area = [0.0f64; BINS];
         let mut right_count = [0usize; BINS];
@@ -488,6 +546,7 @@ fn split(items: &mut [BuildItem], plo: DVec3, phi: DVec3) -> Option<usize> {
             DVec3::splat(f64::NEG_INFINITY),
             0usize,
         );
+        let mut best: Option<(f64, usize)> = None;
         for b in 1..BINS {
             lo = lo.min(blo[b - 1]);
             hi = hi.max(bhi[b - 1]);
@@ -496,32 +555,11 @@ fn split(items: &mut [BuildItem], plo: DVec3, phi: DVec3) -> Option<usize> {
                 continue;
             }
             let cost = half_area(lo, hi) * c as f64 + right_area[b] * right_count[b] as f64;
-            if best.is_none_or(|(bc, _, _)| cost < bc) {
-                best = Some((cost, axis, b));
+            if best.is_none_or(|(bc, _)| cost < bc) {
+                best = Some((cost, b));
             }
         }
-    }
-
-    match best {
-        Some((cost, axis, boundary)) => {
-            // Leaf cost n (one test per triangle) against traversal + the children's tests.
-            let split_cost = 1.0 + cost / parent_area.max(f64::MIN_POSITIVE);
-            if n <= MAX_LEAF && split_cost >= n as f64 {
-                return None;
-            }
-            let mut left = 0;
-            for i in 0..n {
-                let rel = (items[i].centroid[axis] - clo[axis]) * scale[axis];
-                if ((rel as usize).min(BINS - 1)) < boundary {
-                    items.swap(i, left);
-                    left += 1;
-                }
-            }
-            Some(left)
-        }
-        // All centroids coincide: no plane separates them; halve the list to bound leaf size.
-        None if n > MAX_LEAF => Some(n / 2),
-        None => None,
+        best
     }
 }
 

@@ -63,92 +63,17 @@ fn field_of(original: &Scene, decimated: &Scene, cancel: &Cancel) -> ErrorField 
     let source = Surface::from_scene(original);
     let diagonal = source.diagonal();
     let source_bvh = Bvh::new(&source.positions, &source.triangles);
-
-    // The decimated scene as one world-space soup: model m's vertex v is `offsets[m] + v`.
-    let mut offsets = Vec::with_capacity(decimated.models.len());
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    for model in &decimated.models {
-        let first = positions.len() as u32;
-        offsets.push(first as usize);
-        let m = model.transform.as_dmat4();
-        positions.extend((model.positions.iter()).map(|p| m.transform_point3(p.as_dvec3())));
-        let count = model.positions.len() as u32;
-        triangles.extend(
-            (model.triangles.iter())
-                .filter(|t| t.iter().all(|&v| v < count))
-                .map(|t| t.map(|v| v + first)),
-        );
-    }
-    let mut values = vec![0.0f64; positions.len()];
+    let soup = Soup::of(decimated);
+    let mut values = vec![0.0f64; soup.positions.len()];
     if !source_bvh.is_empty() {
-        let nearest = |p: DVec3, stack: &mut Vec<(u32, f64)>| {
-            if cancel.requested() {
-                return 0.0;
-            }
-            source_bvh
-                .nearest(p, None, stack)
-                .map_or(0.0, |hit| hit.dist2.sqrt())
-        };
-        // The vertices themselves.
-        values
-            .par_iter_mut()
-            .zip(positions.par_iter())
-            .for_each_init(Vec::new, |stack, (value, &p)| {
-                *value = if p.is_finite() {
-                    nearest(p, stack)
-                } else {
-                    0.0
-                };
-            });
-        // Samples on the faces, each counted for its nearest corners.
-        let samples: Vec<[f64; 7]> = triangles
-            .par_iter()
-            .map_init(Vec::new, |stack, t| {
-                let [a, b, c] = t.map(|v| positions[v as usize]);
-                FACE_SAMPLES.map(|(w, _)| {
-                    let p = a * w[0] + b * w[1] + c * w[2];
-                    if p.is_finite() {
-                        nearest(p, stack)
-                    } else {
-                        0.0
-                    }
-                })
-            })
-            .collect();
-        for (t, distances) in triangles.iter().zip(&samples) {
-            for ((_, corners), &d) in FACE_SAMPLES.iter().zip(distances) {
-                for (&v, _) in t.iter().zip(corners).filter(|(_, &on)| on) {
-                    let value = &mut values[v as usize];
-                    *value = value.max(d);
-                }
-            }
-        }
+        from_source(&soup, &source_bvh, cancel, &mut values);
     }
-    // The other way: original vertices far from the decimated surface.
-    let decimated_bvh = Bvh::new(&positions, &triangles);
+    let decimated_bvh = Bvh::new(&soup.positions, &soup.triangles);
     if !decimated_bvh.is_empty() {
-        let hits: Vec<Option<(u32, f64)>> = source
-            .used_vertices
-            .par_iter()
-            .map_init(Vec::new, |stack, &v| {
-                if cancel.requested() {
-                    return None;
-                }
-                let p = source.positions[v as usize];
-                let hit = decimated_bvh.nearest(p, None, stack)?;
-                let t = triangles[hit.triangle as usize];
-                let corner = nearest_corner(hit.point, t.map(|v| positions[v as usize]));
-                Some((t[corner], hit.dist2.sqrt()))
-            })
-            .collect();
-        for (v, d) in hits.into_iter().flatten() {
-            let value = &mut values[v as usize];
-            *value = value.max(d);
-        }
+        to_source(&soup, &decimated_bvh, &source, cancel, &mut values);
     }
     let max = values.iter().copied().fold(0.0, f64::max);
-    let distances = (decimated.models.iter().zip(&offsets))
+    let distances = (decimated.models.iter().zip(&soup.offsets))
         .map(|(model, &first)| {
             values[first..first + model.positions.len()]
                 .iter()
@@ -160,6 +85,98 @@ fn field_of(original: &Scene, decimated: &Scene, cancel: &Cancel) -> ErrorField 
         distances,
         max,
         diagonal,
+    }
+}
+
+/// The decimated scene as one world-space soup: model m's vertex v is `offsets[m] + v`.
+struct Soup {
+    offsets: Vec<usize>,
+    positions: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+}
+
+impl Soup {
+    fn of(scene: &Scene) -> Self {
+        let mut soup = Self {
+            offsets: Vec::with_capacity(scene.models.len()),
+            positions: Vec::new(),
+            triangles: Vec::new(),
+        };
+        for model in &scene.models {
+            let first = soup.positions.len() as u32;
+            soup.offsets.push(first as usize);
+            let m = model.transform.as_dmat4();
+            (soup.positions)
+                .extend((model.positions.iter()).map(|p| m.transform_point3(p.as_dvec3())));
+            let count = model.positions.len() as u32;
+            soup.triangles.extend(
+                (model.triangles.iter())
+                    .filter(|t| t.iter().all(|&v| v < count))
+                    .map(|t| t.map(|v| v + first)),
+            );
+        }
+        soup
+    }
+}
+
+/// Distances from the decimated surface to the source: at each vertex, and at samples on
+/// the faces, each sample counted for its nearest corners.
+fn from_source(soup: &Soup, source_bvh: &Bvh, cancel: &Cancel, values: &mut [f64]) {
+    let nearest = |p: DVec3, stack: &mut Vec<(u32, f64)>| {
+        if cancel.requested() || !p.is_finite() {
+            return 0.0;
+        }
+        source_bvh
+            .nearest(p, None, stack)
+            .map_or(0.0, |hit| hit.dist2.sqrt())
+    };
+    values
+        .par_iter_mut()
+        .zip(soup.positions.par_iter())
+        .for_each_init(Vec::new, |stack, (value, &p)| *value = nearest(p, stack));
+    let samples: Vec<[f64; 7]> = (soup.triangles)
+        .par_iter()
+        .map_init(Vec::new, |stack, t| {
+            let [a, b, c] = t.map(|v| soup.positions[v as usize]);
+            FACE_SAMPLES.map(|(w, _)| nearest(a * w[0] + b * w[1] + c * w[2], stack))
+        })
+        .collect();
+    for (t, distances) in soup.triangles.iter().zip(&samples) {
+        for ((_, corners), &d) in FACE_SAMPLES.iter().zip(distances) {
+            for (&v, _) in t.iter().zip(corners).filter(|(_, &on)| on) {
+                let value = &mut values[v as usize];
+                *value = value.max(d);
+            }
+        }
+    }
+}
+
+/// The other way: source vertices far from the decimated surface raise the nearest corner
+/// of the decimated triangle they are nearest to.
+fn to_source(
+    soup: &Soup,
+    decimated_bvh: &Bvh,
+    source: &Surface,
+    cancel: &Cancel,
+    values: &mut [f64],
+) {
+    let hits: Vec<Option<(u32, f64)>> = source
+        .used_vertices
+        .par_iter()
+        .map_init(Vec::new, |stack, &v| {
+            if cancel.requested() {
+                return None;
+            }
+            let p = source.positions[v as usize];
+            let hit = decimated_bvh.nearest(p, None, stack)?;
+            let t = soup.triangles[hit.triangle as usize];
+            let corner = nearest_corner(hit.point, t.map(|v| soup.positions[v as usize]));
+            Some((t[corner], hit.dist2.sqrt()))
+        })
+        .collect();
+    for (v, d) in hits.into_iter().flatten() {
+        let value = &mut values[v as usize];
+        *value = value.max(d);
     }
 }
 

@@ -79,8 +79,13 @@ struct Cutting {
     shifted_from: Option<([f32; 3], [f32; 3])>,
 }
 
+/// Every triangle of the inputs, in file order, handed to a callback.
+type EachTriangle<'a> = dyn Fn(&mut dyn FnMut(Corners)) -> Result<(), TileError> + 'a;
+
 /// Streams every triangle of `inputs` into tiles in `dir`; `source` is what the manifest
-/// names as its input.
+/// names as its input. Three passes over the input: bounds and count, a histogram of the
+/// centroids split into boxes, the triangles bucketed into one raw file a box; then each
+/// bucket is welded into its tile.
 fn plan_files(
     inputs: &[PathBuf],
     source: &Path,
@@ -88,7 +93,6 @@ fn plan_files(
     cutting: &Cutting,
     progress: &mut dyn FnMut(&str),
 ) -> Result<Manifest, TileError> {
-    let (count, target) = (cutting.count, cutting.target);
     std::fs::create_dir_all(dir).map_err(|e| TileError::io(dir, e))?;
     remove_old_tiles(dir)?;
     let each = |f: &mut dyn FnMut(Corners)| -> Result<(), TileError> {
@@ -97,8 +101,46 @@ fn plan_files(
         }
         Ok(())
     };
+    let (lo, hi, triangles) = bounds(&each, source)?;
+    let target_triangles = target_of(cutting.target, triangles)?;
+    let wanted = match cutting.count {
+        TileCount::Tiles(n) => n.max(1),
+        TileCount::TrianglesEach(m) => triangles.div_ceil(m.max(1)),
+    };
+    progress(&format!(
+        "plan: {triangles} triangles, cutting {wanted} tiles"
+    ));
+    let grid = match cutting.shifted_from {
+        Some((min, max)) => Grid::new(Vec3::from(min), Vec3::from(max)).shifted_half_a_cell(),
+        None => Grid::new(lo, hi),
+    };
+    let (boxes, cell_tile) = cut_boxes(&each, &grid, wanted)?;
+    let counts = bucket(&each, dir, &grid, &cell_tile, boxes.len())?;
+    let ratio = target_triangles as f64 / triangles as f64;
+    let tiles = weld_buckets(
+        dir,
+        &grid,
+        &boxes,
+        &counts,
+        (ratio, cutting.slack),
+        progress,
+    )?;
+    let manifest = Manifest {
+        input: source.to_path_buf(),
+        triangles,
+        target_triangles,
+        min: lo.to_array(),
+        max: hi.to_array(),
+        tiles,
+    };
+    let path = dir.join(super::manifest::FILE);
+    crate::io::replace::replace_file(&path, |w| w.write_all(manifest.to_json().as_bytes()))
+        .map_err(|e| TileError::io(&path, e))?;
+    Ok(manifest)
+}
 
-    // Pass 1: bounds and count.
+/// Pass 1: the bounds of the finite corners and the triangle count.
+fn bounds(each: &EachTriangle<'_>, source: &Path) -> Result<(Vec3, Vec3, usize), TileError> {
     let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
     let mut triangles = 0usize;
     each(&mut |t| {
@@ -117,20 +159,15 @@ fn plan_files(
             source.display()
         )));
     }
-    let target_triangles = target_of(target, triangles)?;
-    let wanted = match count {
-        TileCount::Tiles(n) => n.max(1),
-        TileCount::TrianglesEach(m) => triangles.div_ceil(m.max(1)),
-    };
-    progress(&format!(
-        "plan: {triangles} triangles, cutting {wanted} tiles"
-    ));
+    Ok((lo, hi, triangles))
+}
 
-    // Pass 2: centroid histogram, split into boxes.
-    let grid = match cutting.shifted_from {
-        Some((min, max)) => Grid::new(Vec3::from(min), Vec3::from(max)).shifted_half_a_cell(),
-        None => Grid::new(lo, hi),
-    };
+/// Pass 2: the centroids' histogram split into `wanted` boxes, and each cell's box.
+fn cut_boxes(
+    each: &EachTriangle<'_>,
+    grid: &Grid,
+    wanted: usize,
+) -> Result<(Vec<CellBox>, Vec<u32>), TileError> {
     let mut histogram = vec![0u32; GRID * GRID * GRID];
     each(&mut |t| {
         let c = grid.cell(&t);
@@ -142,15 +179,29 @@ fn plan_files(
     for (i, b) in boxes.iter().enumerate() {
         for_cells(*b, |c| cell_tile[c] = i as u32);
     }
+    Ok((boxes, cell_tile))
+}
 
-    // Pass 3: bucket the triangles.
-    let raw_path = |i: usize| dir.join(format!("tile-{i:05}.raw"));
-    let mut writers = Vec::with_capacity(boxes.len());
-    for i in 0..boxes.len() {
-        let f = File::create(raw_path(i)).map_err(|e| TileError::io(&raw_path(i), e))?;
+/// The raw file box `i`'s triangles are bucketed into.
+fn raw_path(dir: &Path, i: usize) -> PathBuf {
+    dir.join(format!("tile-{i:05}.raw"))
+}
+
+/// Pass 3: every triangle appended to its box's raw file; the count of each box.
+fn bucket(
+    each: &EachTriangle<'_>,
+    dir: &Path,
+    grid: &Grid,
+    cell_tile: &[u32],
+    boxes: usize,
+) -> Result<Vec<usize>, TileError> {
+    let mut writers = Vec::with_capacity(boxes);
+    for i in 0..boxes {
+        let path = raw_path(dir, i);
+        let f = File::create(&path).map_err(|e| TileError::io(&path, e))?;
         writers.push(BufWriter::with_capacity(1 << 15, f));
     }
-    let mut counts = vec![0usize; boxes.len()];
+    let mut counts = vec![0usize; boxes];
     let mut failed: Option<(usize, std::io::Error)> = None;
     each(&mut |t| {
         let i = cell_tile[grid.cell(&t)] as usize;
@@ -166,49 +217,47 @@ fn plan_files(
         }
     })?;
     if let Some((i, e)) = failed {
-        return Err(TileError::io(&raw_path(i), e));
+        return Err(TileError::io(&raw_path(dir, i), e));
     }
     for (i, w) in writers.into_iter().enumerate() {
         w.into_inner()
-            .map_err(|e| TileError::io(&raw_path(i), e.into_error()))?;
+            .map_err(|e| TileError::io(&raw_path(dir, i), e.into_error()))?;
     }
+    Ok(counts)
+}
 
-    // Weld each bucket into its tile PLY; empty boxes are dropped.
-    let ratio = target_triangles as f64 / triangles as f64;
+/// Each non-empty bucket welded into its tile PLY, with its share of the target (its
+/// triangles times the target's ratio, times the seam slack); the raw files are removed,
+/// empty boxes dropped.
+fn weld_buckets(
+    dir: &Path,
+    grid: &Grid,
+    boxes: &[CellBox],
+    counts: &[usize],
+    (ratio, slack): (f64, f64),
+    progress: &mut dyn FnMut(&str),
+) -> Result<Vec<Tile>, TileError> {
     let mut tiles = Vec::new();
     for (i, b) in boxes.iter().enumerate() {
-        let raw = raw_path(i);
+        let raw = raw_path(dir, i);
         if counts[i] > 0 {
             let index = tiles.len();
             progress(&format!("plan: tile {index}: {} triangles", counts[i]));
-            let model = weld_raw(&raw)?;
             let scene = Scene {
-                models: vec![model],
+                models: vec![weld_raw(&raw)?],
             };
             crate::io::write_ply(&scene, &Manifest::tile_input(dir, index))?;
-            let share = (counts[i] as f64 * ratio * cutting.slack).ceil() as usize;
             let (min, max) = grid.world_box(*b);
             tiles.push(Tile {
                 min,
                 max,
                 triangles: counts[i],
-                target: share.clamp(1, counts[i]),
+                target: ((counts[i] as f64 * ratio * slack).ceil() as usize).clamp(1, counts[i]),
             });
         }
         std::fs::remove_file(&raw).map_err(|e| TileError::io(&raw, e))?;
     }
-    let manifest = Manifest {
-        input: source.to_path_buf(),
-        triangles,
-        target_triangles,
-        min: lo.to_array(),
-        max: hi.to_array(),
-        tiles,
-    };
-    let path = dir.join(super::manifest::FILE);
-    crate::io::replace::replace_file(&path, |w| w.write_all(manifest.to_json().as_bytes()))
-        .map_err(|e| TileError::io(&path, e))?;
-    Ok(manifest)
+    Ok(tiles)
 }
 
 /// The final triangle count `target` asks of a mesh of `triangles`: tiling knows triangles,
