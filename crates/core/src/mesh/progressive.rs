@@ -156,19 +156,25 @@ impl ProgressiveModel {
     /// Checks that every index is in range for the level it is used at, so that [`Lod`]
     /// never indexes out of bounds: a file read from disk is checked before use.
     pub fn validate(&self) -> Result<(), String> {
+        self.validate_base()?;
+        let faces = self.validate_splits()?;
+        self.validate_ids(faces)
+    }
+
+    /// The base mesh: its faces' indices and its attributes' lengths.
+    fn validate_base(&self) -> Result<(), String> {
         let base_v = self.base.positions.len();
-        let mut faces = self.base.triangles.len();
         for (t, tri) in self.base.triangles.iter().enumerate() {
             if tri.iter().any(|&v| v as usize >= base_v) {
                 return Err(format!("base face {t} uses a vertex out of range"));
             }
         }
-        let vertex_attr_ok = |a: &Option<Attribute<[f32; 3]>>| match a {
+        let colors_ok = match &self.base.colors {
             None => true,
             Some(Attribute::PerVertex(c)) => c.len() == base_v,
             Some(Attribute::PerFace(c)) => c.len() == self.base.triangles.len(),
         };
-        if !vertex_attr_ok(&self.base.colors) {
+        if !colors_ok {
             return Err("base colours do not match the base mesh".into());
         }
         match &self.base.normals {
@@ -176,14 +182,16 @@ impl ProgressiveModel {
             Some(Attribute::PerVertex(n)) if n.len() == base_v => {}
             Some(_) => return Err("base normals must be one per base vertex".into()),
         }
-        if self
-            .base
-            .texcoords
-            .as_ref()
-            .is_some_and(|t| t.len() != base_v)
-        {
+        if (self.base.texcoords.as_ref()).is_some_and(|t| t.len() != base_v) {
             return Err("base texture coordinates must be one pair per base vertex".into());
         }
+        Ok(())
+    }
+
+    /// Each split against the level it applies to; returns the face count of the full mesh.
+    fn validate_splits(&self) -> Result<usize, String> {
+        let base_v = self.base.positions.len();
+        let mut faces = self.base.triangles.len();
         let vertex_colors = matches!(self.base.colors, Some(Attribute::PerVertex(_)));
         let face_colors = matches!(self.base.colors, Some(Attribute::PerFace(_)));
         let normals = self.base.normals.is_some();
@@ -213,6 +221,11 @@ impl ProgressiveModel {
             }
             faces += s.added.len();
         }
+        Ok(faces)
+    }
+
+    /// The original vertex and face ids: one per vertex and face of the full mesh.
+    fn validate_ids(&self, faces: usize) -> Result<(), String> {
         if self.vertex_ids.len() != self.full_vertex_count() {
             return Err("one original vertex id per vertex expected".into());
         }
@@ -225,11 +238,7 @@ impl ProgressiveModel {
                 self.vertex_ids.len()
             ));
         }
-        if self
-            .face_ids
-            .iter()
-            .any(|&id| id as usize >= 2 * faces + 1024)
-        {
+        if (self.face_ids.iter()).any(|&id| id as usize >= 2 * faces + 1024) {
             return Err(format!(
                 "an original face id is out of range for {faces} faces"
             ));
@@ -509,16 +518,10 @@ impl Recorder {
         let face_colors = self.face_colors.as_deref();
         let mut pm_vertex = vec![u32::MAX; order.len()];
         let mut vertex_ids = Vec::with_capacity(kept.len() + self.collapses.len());
-        for (i, &v) in kept.iter().enumerate() {
-            pm_vertex[v as usize] = i as u32;
-            vertex_ids.push(order[v as usize]);
-        }
+        number_base(kept, order, &mut pm_vertex, &mut vertex_ids);
         let mut pm_face = vec![u32::MAX; conn.triangles().len()];
         let mut face_ids = Vec::new();
-        for (i, t) in conn.alive_ids().enumerate() {
-            pm_face[t as usize] = i as u32;
-            face_ids.push(faces[t as usize]);
-        }
+        number_base(conn.alive_ids(), faces, &mut pm_face, &mut face_ids);
         // Attributes are recorded for every collapse or for none.
         let n = self.collapses.len();
         let vertex_colors =
@@ -582,6 +585,21 @@ impl Recorder {
             vertex_ids,
             face_ids,
         }
+    }
+}
+
+/// Numbers the base's vertices (or faces) `internal` in order: `numbering` maps an internal
+/// id to its number, `ids` gets each one's original id (`original[internal]`).
+fn number_base(
+    internal: impl IntoIterator<Item = impl Borrow<u32>>,
+    original: &[u32],
+    numbering: &mut [u32],
+    ids: &mut Vec<u32>,
+) {
+    for (i, v) in internal.into_iter().enumerate() {
+        let v = *v.borrow() as usize;
+        numbering[v] = i as u32;
+        ids.push(original[v]);
     }
 }
 

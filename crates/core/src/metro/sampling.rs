@@ -182,74 +182,21 @@ pub fn measure(
     floor: f64,
     cancel: &Cancel,
 ) -> DirectionStats {
-    let positions = &from.positions;
-
-    // Faces: counts by area, points uniform in each face (Turk's square-root mapping).
+    let probe = Probe {
+        to,
+        seed,
+        floor,
+        cancel,
+    };
     let mut offsets = SplitMix64::stream(seed, SALT_OFFSET, 0);
-    let face_counts = allocate(&from.areas, face_samples, offsets.next_f64());
-    let faces = chunked(from.triangles.len(), cancel, |range, acc| {
-        let mut stack = Vec::with_capacity(64);
-        let mut hint = None;
-        for f in range {
-            let k = face_counts[f];
-            if k == 0 {
-                continue;
-            }
-            let [a, b, c] = from.triangles[f].map(|v| positions[v as usize]);
-            let mut rng = SplitMix64::stream(seed, SALT_FACE, f as u64);
-            for _ in 0..k {
-                let s = rng.next_f64().sqrt();
-                let t = rng.next_f64();
-                let p = a * (1.0 - s) + b * (s * (1.0 - t)) + c * (s * t);
-                let d = distance(to, p, &mut hint, &mut stack, floor);
-                acc.add(d, p);
-            }
-        }
-    });
-
-    // Edges: counts by length, points stratified along each edge.
+    let faces = sample_faces(from, &probe, face_samples, offsets.next_f64());
     let edge_total = if from.edges.is_empty() {
         0
     } else {
         (face_samples / 10).max(1)
     };
-    let lengths: Vec<f64> = from
-        .edges
-        .iter()
-        .map(|&[u, v]| positions[u as usize].distance(positions[v as usize]))
-        .collect();
-    let edge_counts = allocate(&lengths, edge_total, offsets.next_f64());
-    let edges = chunked(from.edges.len(), cancel, |range, acc| {
-        let mut stack = Vec::with_capacity(64);
-        let mut hint = None;
-        for e in range {
-            let k = edge_counts[e];
-            if k == 0 {
-                continue;
-            }
-            let [u, v] = from.edges[e];
-            let (a, b) = (positions[u as usize], positions[v as usize]);
-            let mut rng = SplitMix64::stream(seed, SALT_EDGE, e as u64);
-            for j in 0..k {
-                let t = (j as f64 + rng.next_f64()) / k as f64;
-                let p = a + (b - a) * t;
-                let d = distance(to, p, &mut hint, &mut stack, floor);
-                acc.add(d, p);
-            }
-        }
-    });
-
-    // Vertices: every one that a triangle uses.
-    let vertices = chunked(from.used_vertices.len(), cancel, |range, acc| {
-        let mut stack = Vec::with_capacity(64);
-        let mut hint = None;
-        for i in range {
-            let p = positions[from.used_vertices[i] as usize];
-            let d = distance(to, p, &mut hint, &mut stack, floor);
-            acc.add(d, p);
-        }
-    });
-
+    let edges = sample_edges(from, &probe, edge_total, offsets.next_f64());
+    let vertices = sample_vertices(from, &probe);
     let all = faces.merge(&edges).merge(&vertices);
     let n = faces.count.max(1) as f64;
     DirectionStats {
@@ -261,6 +208,82 @@ pub fn measure(
         mean: faces.sum / n,
         rms: (faces.sum2 / n).sqrt(),
     }
+}
+
+/// What every sample is measured against, and how.
+struct Probe<'a> {
+    to: &'a Bvh,
+    seed: u64,
+    floor: f64,
+    cancel: &'a Cancel,
+}
+
+/// Faces: counts by area, points uniform in each face (Turk's square-root mapping).
+fn sample_faces(from: &Surface, probe: &Probe<'_>, total: usize, offset: f64) -> Partial {
+    let positions = &from.positions;
+    let face_counts = allocate(&from.areas, total, offset);
+    chunked(from.triangles.len(), probe.cancel, |range, acc| {
+        let mut stack = Vec::with_capacity(64);
+        let mut hint = None;
+        for f in range {
+            let k = face_counts[f];
+            if k == 0 {
+                continue;
+            }
+            let [a, b, c] = from.triangles[f].map(|v| positions[v as usize]);
+            let mut rng = SplitMix64::stream(probe.seed, SALT_FACE, f as u64);
+            for _ in 0..k {
+                let s = rng.next_f64().sqrt();
+                let t = rng.next_f64();
+                let p = a * (1.0 - s) + b * (s * (1.0 - t)) + c * (s * t);
+                let d = distance(probe.to, p, &mut hint, &mut stack, probe.floor);
+                acc.add(d, p);
+            }
+        }
+    })
+}
+
+/// Edges: counts by length, points stratified along each edge.
+fn sample_edges(from: &Surface, probe: &Probe<'_>, total: usize, offset: f64) -> Partial {
+    let positions = &from.positions;
+    let lengths: Vec<f64> = from
+        .edges
+        .iter()
+        .map(|&[u, v]| positions[u as usize].distance(positions[v as usize]))
+        .collect();
+    let edge_counts = allocate(&lengths, total, offset);
+    chunked(from.edges.len(), probe.cancel, |range, acc| {
+        let mut stack = Vec::with_capacity(64);
+        let mut hint = None;
+        for e in range {
+            let k = edge_counts[e];
+            if k == 0 {
+                continue;
+            }
+            let [u, v] = from.edges[e];
+            let (a, b) = (positions[u as usize], positions[v as usize]);
+            let mut rng = SplitMix64::stream(probe.seed, SALT_EDGE, e as u64);
+            for j in 0..k {
+                let t = (j as f64 + rng.next_f64()) / k as f64;
+                let p = a + (b - a) * t;
+                let d = distance(probe.to, p, &mut hint, &mut stack, probe.floor);
+                acc.add(d, p);
+            }
+        }
+    })
+}
+
+/// Vertices: every one that a triangle uses.
+fn sample_vertices(from: &Surface, probe: &Probe<'_>) -> Partial {
+    chunked(from.used_vertices.len(), probe.cancel, |range, acc| {
+        let mut stack = Vec::with_capacity(64);
+        let mut hint = None;
+        for i in range {
+            let p = from.positions[from.used_vertices[i] as usize];
+            let d = distance(probe.to, p, &mut hint, &mut stack, probe.floor);
+            acc.add(d, p);
+        }
+    })
 }
 
 #[cfg(test)]

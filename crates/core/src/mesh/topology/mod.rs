@@ -352,52 +352,12 @@ pub trait Adjacency {
         // backward from it. The neighbourhood is one manifold fan exactly when the walks
         // visit every incident triangle once: a repeated neighbour (non-manifold edge,
         // inconsistent orientation) or a second fan leaves some triangle unvisited.
-        let pairs = &ring.pairs;
-        let k = pairs.len();
-        let first = pairs[0].0;
-        let mut cur = 0;
-        let mut closed = false;
-        loop {
-            let (x, y, t) = pairs[cur];
-            ring.verts.push(x);
-            ring.triangles.push(t);
-            if ring.triangles.len() > k {
-                return RingShape::Complex;
-            }
-            if y == first {
-                closed = true;
-                break;
-            }
-            match pairs.iter().position(|q| q.0 == y) {
-                Some(next) => cur = next,
-                None => {
-                    ring.verts.push(y);
-                    break;
-                }
-            }
-        }
-        if !closed {
-            // Prepend the part of the fan before the first edge, found walking backward.
-            let forward = ring.triangles.len();
-            let mut x = first;
-            while let Some(prev) = pairs.iter().position(|q| q.1 == x) {
-                let (px, _, t) = pairs[prev];
-                ring.verts.push(px);
-                ring.triangles.push(t);
-                if ring.triangles.len() > k {
-                    return RingShape::Complex;
-                }
-                x = px;
-            }
-            let back = ring.triangles.len() - forward;
-            if back > 0 {
-                // verts: [forward (forward + 1 items)][back items, nearest first] -> rotate
-                // so the back part, reversed, comes first.
-                ring.verts[forward + 1..].reverse();
-                ring.verts.rotate_right(back);
-                ring.triangles[forward..].reverse();
-                ring.triangles.rotate_right(back);
-            }
+        let k = ring.pairs.len();
+        let Some(closed) = walk_forward(ring) else {
+            return RingShape::Complex;
+        };
+        if !closed && !walk_backward(ring) {
+            return RingShape::Complex;
         }
         if ring.triangles.len() != k {
             return RingShape::Complex; // several fans meet at v
@@ -414,6 +374,62 @@ pub trait Adjacency {
             RingShape::Open
         }
     }
+}
+
+/// Fills the ring from its first edge forward, following each edge's end to the edge
+/// that starts there. Returns whether the walk came back to the start (a closed fan), or
+/// `None` when it visits more triangles than there are (a non-manifold neighbourhood).
+fn walk_forward(ring: &mut Ring) -> Option<bool> {
+    let pairs = &ring.pairs;
+    let k = pairs.len();
+    let first = pairs[0].0;
+    let mut cur = 0;
+    loop {
+        let (x, y, t) = pairs[cur];
+        ring.verts.push(x);
+        ring.triangles.push(t);
+        if ring.triangles.len() > k {
+            return None;
+        }
+        if y == first {
+            return Some(true);
+        }
+        match pairs.iter().position(|q| q.0 == y) {
+            Some(next) => cur = next,
+            None => {
+                ring.verts.push(y);
+                return Some(false);
+            }
+        }
+    }
+}
+
+/// Prepends the part of an open fan before its first edge, found walking backward; false
+/// when the walk visits more triangles than there are.
+fn walk_backward(ring: &mut Ring) -> bool {
+    let pairs = &ring.pairs;
+    let k = pairs.len();
+    let forward = ring.triangles.len();
+    let mut x = pairs[0].0;
+    while let Some(prev) = pairs.iter().position(|q| q.1 == x) {
+        let (px, _, t) = pairs[prev];
+        ring.verts.push(px);
+        ring.triangles.push(t);
+        if ring.triangles.len() > k {
+            return false;
+        }
+        x = px;
+    }
+    let back = ring.triangles.len() - forward;
+    if back > 0 {
+        // verts: [forward (forward + 1 items)][back items, nearest first] -> rotate so the
+        // back part, reversed, comes first.
+        ring.verts[forward + 1..].reverse();
+        ring.verts.rotate_right(back);
+        ring.triangles[forward..].reverse();
+        ring.triangles.rotate_right(back);
+    }
+    true
 }
 
 impl Adjacency for Connectivity {
