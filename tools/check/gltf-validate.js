@@ -1,6 +1,6 @@
 #!/usr/bin/env node
 // Validates glTF files (.gltf with its .bin and images, or .glb) with the Khronos glTF
-// validator (npm `gltf-validator`, installed into .cache/npm by tools/setup; another install
+// validator (npm `gltf-validator`, installed into .cache/npm by tools/setup --test; another install
 // is named by GLTF_VALIDATOR=DIR/node_modules/gltf-validator). Prints every error (and, with
 // -v, warnings), and exits 1 when any file has an error, 2 when it cannot run.
 // Usage: tools/check/gltf-validate.js [-v] FILE...
@@ -14,7 +14,7 @@ let validator;
 try {
   validator = require(where);
 } catch (e) {
-  console.error(`gltf-validate: cannot load gltf-validator from ${where} (run tools/setup): ${e.message}`);
+  console.error(`gltf-validate: cannot load gltf-validator from ${where} (run tools/setup --test): ${e.message}`);
   process.exit(2);
 }
 

@@ -136,7 +136,10 @@ fn subdivide(model: &Model) -> Model {
     let n = model.positions.len() as u32;
     let mut positions = model.positions.clone();
     positions.extend(edges.iter().map(|&e| {
-        let (a, b) = (model.positions[(e >> 32) as usize], model.positions[e as u32 as usize]);
+        let (a, b) = (
+            model.positions[(e >> 32) as usize],
+            model.positions[e as u32 as usize],
+        );
         ((a.as_dvec3() + b.as_dvec3()) * 0.5).as_vec3()
     }));
     // Every key is in `edges`, so the search finds it.
@@ -162,9 +165,7 @@ fn subdivide(model: &Model) -> Model {
 /// `gen-models subdivide`: reads IN (any format `decimate` reads), splits every model's
 /// triangles `levels` times and writes OUT, positions and triangles only.
 fn subdivide_file(input: &Path, output: &Path, levels: u32) -> Result<(), String> {
-    let scene = io::read_scene(input)
-        .map_err(|e| e.to_string())?
-        .scene;
+    let scene = io::read_scene(input).map_err(|e| e.to_string())?.scene;
     let models = (scene.models.iter())
         .map(|m| {
             let mut m = Model {
