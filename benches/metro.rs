@@ -2,7 +2,7 @@
 //! hierarchies and measures both directions, printing the time of each phase.
 //!
 //! `cargo bench --bench metro -- A B [SAMPLES]` (defaults: the Stanford dragon against its
-//! `res2` version from `.cache/`, which `tools/evaluate` downloads, and 10⁶ samples). Files are
+//! `res2` version from `.cache/`, which `tools/eval/evaluate` downloads, and 10⁶ samples). Files are
 //! read with the project's reader; ASCII PLY files that it cannot read yet are parsed here.
 
 use std::path::Path;
@@ -36,7 +36,9 @@ fn main() {
         .unwrap_or(1_000_000);
     let t = Instant::now();
     let (Some(sa), Some(sb)) = (load(&a), load(&b)) else {
-        eprintln!("metro bench: cannot read {a} or {b}; run tools/evaluate once to fetch them");
+        eprintln!(
+            "metro bench: cannot read {a} or {b}; run tools/eval/evaluate once to fetch them"
+        );
         return;
     };
     println!(

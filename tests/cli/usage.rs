@@ -269,19 +269,46 @@ fn bad_files_fail_with_file_and_line_and_leave_no_output() {
 }
 
 #[test]
-fn the_readme_shows_the_usage_that_help_prints() {
-    // A user reads the README's usage block first: it must be what the binary accepts.
+fn the_readme_commands_use_only_options_the_usage_lists() {
+    // A user copies the README's typical commands and reads `--help` for the rest: every
+    // option those commands use must be one the binary's usage lists.
     let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
         .expect("README.md");
+    assert!(readme.contains("`decimate --help` prints every option"));
     let block = readme
-        .split("## Usage")
+        .split("## Typical commands")
         .nth(1)
         .and_then(|rest| rest.split("```").nth(1))
-        .expect("a fenced block under '## Usage'");
+        .expect("a fenced block under '## Typical commands'");
     let dir = tempfile::tempdir().unwrap();
-    let o = decimate(dir.path(), &["--help"]);
-    let help = String::from_utf8_lossy(&o.stdout);
-    assert_eq!(block.trim(), help.trim());
+    let decimate_help =
+        String::from_utf8_lossy(&decimate(dir.path(), &["--help"]).stdout).into_owned();
+    let metro = Command::new(env!("CARGO_BIN_EXE_metro"))
+        .arg("--help")
+        .output()
+        .expect("run metro");
+    let metro_help = String::from_utf8_lossy(&metro.stdout).into_owned();
+    let (mut commands, mut options) = (0, 0);
+    for line in block.lines() {
+        let mut words = line.split('#').next().unwrap_or("").split_whitespace();
+        let help = match words.next() {
+            Some("decimate") => &decimate_help,
+            Some("metro") => &metro_help,
+            _ => continue,
+        };
+        commands += 1;
+        for option in words.filter(|w| w.starts_with('-')) {
+            let listed = help
+                .split(|c: char| c.is_whitespace() || c == ',')
+                .any(|w| w == option);
+            assert!(listed, "README: '{line}': {option} is not in the usage");
+            options += 1;
+        }
+    }
+    assert!(
+        commands >= 10 && options >= 20,
+        "{commands} commands, {options} options"
+    );
 }
 
 #[test]

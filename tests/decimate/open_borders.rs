@@ -112,7 +112,7 @@ fn a_head_like_cap_at_one_percent_stays_close_and_keeps_its_outline() {
     let broken = measure::invariant_violations(&before, &after);
     assert!(broken.is_empty(), "{broken:?}");
     // A bound the outline held harder (constraint weight 100, its vertices unmoved when
-    // they take in an interior neighbour) does not meet (benchmarks.md#qem-open-borders).
+    // they take in an interior neighbour) does not meet (experiments.md#qem-open-borders).
     let mean = mean_error(&before, &after);
     assert!(
         mean < 0.008,

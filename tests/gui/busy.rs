@@ -6,7 +6,7 @@
 //!
 //! The triangles are hidden first (`t`): lavapipe alone takes about a second to draw a
 //! million of them on a loaded 2-core machine, job or no job (the trace says each frame's
-//! time), which is the renderer's cost (tools/bench-render), not the job's; hidden, a frame
+//! time), which is the renderer's cost (tools/bench/render.rs), not the job's; hidden, a frame
 //! costs milliseconds, so any wait the job made a frame or a key take would show.
 
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! triangles Coin makes of it (text, NURBS and zero-area triangles left out, which we skip).
 //!
 //! The reference, tests/data/coin_counts.tsv, is Coin 4.0's count written by
-//! `tools/coin-table --reference` (Coin's `SoCallbackAction` through tools/coin-count): it
+//! `tools/check/coin-table --reference` (Coin's `SoCallbackAction` through tools/check/coin-count): it
 //! is kept in the repository because the scenes are a fixed Debian package, so the test
 //! needs no C++ toolchain or Coin library. Binary scenes are converted with `ivcat` first.
 

@@ -3,7 +3,7 @@
 //! takes (floats, normalized and plain integers of `KHR_mesh_quantization`), a node
 //! hierarchy whose mesh several nodes use, a `.glb` with its texture embedded and a `.gltf`
 //! with its buffer and image beside it; damaged files fail with the file's name. Writing:
-//! `.glb` and `.gltf` read back equal and pass the Khronos validator (tools/gltf-validate.js);
+//! `.glb` and `.gltf` read back equal and pass the Khronos validator (tools/check/gltf-validate.js);
 //! PLY → glTF → PLY keeps counts and positions exactly; a textured OBJ decimated to `.glb`
 //! is drawn textured.
 
@@ -539,7 +539,7 @@ fn damaged_gltf_files_fail_with_the_file_name_and_what_is_wrong() {
 /// Runs the Khronos validator on `files`; skips loudly where node or the validator is
 /// missing, except on CI (`CI` set), where it must run.
 pub(crate) fn assert_valid(files: &[&Path]) {
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/gltf-validate.js");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/check/gltf-validate.js");
     let out = Command::new("node").arg(&script).args(files).output();
     match out {
         Ok(o) if o.status.code() == Some(2) || o.status.code().is_none() => {
@@ -548,7 +548,7 @@ pub(crate) fn assert_valid(files: &[&Path]) {
                 std::env::var_os("CI").is_none(),
                 "the validator cannot run: {why}"
             );
-            eprintln!("\n*** SKIPPED glTF validation: {why} (run tools/setup) ***\n");
+            eprintln!("\n*** SKIPPED glTF validation: {why} (run tools/setup --test) ***\n");
         }
         Ok(o) => assert!(
             o.status.success(),

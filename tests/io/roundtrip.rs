@@ -199,11 +199,11 @@ fn ply_round_trip_bakes_transforms_and_keeps_vertex_colours() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// For `tools/check-vrml-independent`: writes our VRML 2.0 output for the scene above, a
+/// For `tools/check/vrml-independent`: writes our VRML 2.0 output for the scene above, a
 /// hand-written file and any `DECIMATE_SAMPLE_INPUTS` (colon-separated) into
 /// `DECIMATE_SAMPLE_DIR`, each with a `.counts` file (`points triangles` per model).
 #[test]
-#[ignore = "run by tools/check-vrml-independent"]
+#[ignore = "run by tools/check/vrml-independent"]
 fn write_samples_for_independent_check() {
     let Ok(dir) = std::env::var("DECIMATE_SAMPLE_DIR") else {
         panic!("set DECIMATE_SAMPLE_DIR");

@@ -3,7 +3,7 @@
 //! by the binary, a two-shape coloured scene with a transform, and texture coordinates (a
 //! seamed grid, a textured sphere) as we wrote them.
 //!
-//! Needs `/usr/bin/python3` with VTK. CI installs it (`.ci/run`, `tools/setup`); without it
+//! Needs `/usr/bin/python3` with VTK. CI installs it (`.ci/run`, `tools/setup --test`); without it
 //! the test fails when `CI` is set and is skipped with a notice otherwise.
 
 use std::path::Path;

@@ -1,4 +1,4 @@
-//! The GNU parallel job script (tools/tile-parallel.sh) run for real: every tile a separate
+//! The GNU parallel job script (tools/cluster/tile-parallel.sh) run for real: every tile a separate
 //! `decimate tile run` process started by `parallel`, then merged; the same mesh as the
 //! one-command run. CI installs `parallel` (.ci/run).
 
@@ -10,7 +10,10 @@ fn gnu_parallel_job_array_equals_the_local_run() {
     let (input, _) = sphere_ply(tmp.path());
     let work = tmp.path().join("work");
     let out = tmp.path().join("parallel.ply");
-    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tools/tile-parallel.sh");
+    let script = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tools/cluster/tile-parallel.sh"
+    );
     let o = job_script(script, &input, &work, &out)
         .env("DECIMATE", env!("CARGO_BIN_EXE_decimate"))
         .env("JOBS", "2")
@@ -18,7 +21,7 @@ fn gnu_parallel_job_array_equals_the_local_run() {
         .expect("run bash");
     assert!(
         o.status.success(),
-        "tools/tile-parallel.sh failed (is GNU parallel installed?): {}{}",
+        "tools/cluster/tile-parallel.sh failed (is GNU parallel installed?): {}{}",
         String::from_utf8_lossy(&o.stdout),
         String::from_utf8_lossy(&o.stderr)
     );

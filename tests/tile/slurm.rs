@@ -1,5 +1,5 @@
-//! The Slurm job script (tools/tile-slurm.sh) through a real single-node Slurm started by
-//! the test (tools/slurm-local.sh: munged, slurmctld, slurmd under a temp folder): every
+//! The Slurm job script (tools/cluster/tile-slurm.sh) through a real single-node Slurm started by
+//! the test (tools/cluster/slurm-local.sh: munged, slurmctld, slurmd under a temp folder): every
 //! tile an array task, the merge a dependent job; the same mesh as the one-command run.
 //! CI installs slurm-wlm and munge (.ci/run) and must run it; elsewhere it skips loudly
 //! when they are missing.
@@ -11,8 +11,8 @@ use std::process::{Command, Output};
 
 use crate::common::{job_script, ok, one_command, s, sphere_ply};
 
-const START: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tools/slurm-local.sh");
-const JOBS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tools/tile-slurm.sh");
+const START: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tools/cluster/slurm-local.sh");
+const JOBS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tools/cluster/tile-slurm.sh");
 
 /// The local cluster's daemons, stopped when dropped: also when an assertion fails.
 struct Cluster {
@@ -27,7 +27,7 @@ impl Cluster {
         };
         assert!(
             o.status.success(),
-            "tools/slurm-local.sh start failed: {}\n{}",
+            "tools/cluster/slurm-local.sh start failed: {}\n{}",
             String::from_utf8_lossy(&o.stderr),
             cluster.logs()
         );
@@ -38,7 +38,7 @@ impl Cluster {
         self.dir.join("slurm.conf")
     }
 
-    /// Runs tools/tile-slurm.sh in `cwd` on this cluster, with `decimate` as the binary its
+    /// Runs tools/cluster/tile-slurm.sh in `cwd` on this cluster, with `decimate` as the binary its
     /// jobs run; WAIT=1: sbatch --wait on the merge job, which waits for the whole array.
     fn submit(
         &self,
@@ -78,7 +78,7 @@ impl Drop for Cluster {
         let o = run(Command::new("bash").args([START, "stop", s(&self.dir)]));
         if !o.status.success() {
             eprintln!(
-                "tools/slurm-local.sh stop failed: {}",
+                "tools/cluster/slurm-local.sh stop failed: {}",
                 String::from_utf8_lossy(&o.stderr)
             );
         }
@@ -108,7 +108,7 @@ fn slurm_installed() -> bool {
         missing.join(", ")
     );
     eprintln!(
-        "\n*** SKIPPED the Slurm test: {} not installed (run tools/setup) ***\n",
+        "\n*** SKIPPED the Slurm test: {} not installed (run tools/setup --test) ***\n",
         missing.join(", ")
     );
     false
@@ -138,7 +138,7 @@ fn slurm_job_array_equals_the_local_run() {
     );
     assert!(
         o.status.success(),
-        "tools/tile-slurm.sh failed: {said}\n{}",
+        "tools/cluster/tile-slurm.sh failed: {said}\n{}",
         cluster.logs()
     );
     assert!(said.contains("(4 tiles)"), "{said}");

@@ -1,5 +1,5 @@
 //! The report's test models (test001–test008) built in code, so tests can use them directly
-//! and `tools/gen_models.rs` can write them to `assets/`. Each is welded, counter-clockwise
+//! and `tools/dev/gen_models.rs` can write them to `assets/`. Each is welded, counter-clockwise
 //! seen from outside, with the vertex and triangle counts the report gives, and stands along
 //! +y (VRML's up), so any viewer shows it upright.
 

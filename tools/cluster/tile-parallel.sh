@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Tiled decimation with GNU parallel as the scheduler: plan, one `decimate tile run` process
 # per tile (JOBS at a time, DEFAULT: the number of cores), merge. See docs/cluster.md.
-# usage: tools/tile-parallel.sh IN WORKDIR OUT [plan options: --tiles N | --tile-triangles M]
+# usage: tools/cluster/tile-parallel.sh IN WORKDIR OUT [plan options: --tiles N | --tile-triangles M]
 #        (-p P | --keep-triangles T)
 # DECIMATE names the binary (DEFAULT: decimate on the PATH).
 set -euo pipefail

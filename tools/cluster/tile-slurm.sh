@@ -2,7 +2,7 @@
 # Tiled decimation as a Slurm job array: plan on the submitting node, one array task per
 # tile (`decimate tile run` reads SLURM_ARRAY_TASK_ID), merge once every task has succeeded
 # (--dependency=afterok; cancelled if a task fails). See docs/cluster.md.
-# usage: tools/tile-slurm.sh IN WORKDIR OUT [plan options] (-p P | --keep-triangles T)
+# usage: tools/cluster/tile-slurm.sh IN WORKDIR OUT [plan options] (-p P | --keep-triangles T)
 # WORKDIR must be on a file system every node sees. DECIMATE names the binary; extra sbatch
 # options (partition, account) go in SBATCH_OPTIONS, e.g. "--partition=cpu --mem=4G".
 # WAIT=1 returns only when the merge has finished, with its exit status (sbatch --wait).

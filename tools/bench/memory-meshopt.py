@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""meshoptimizer's run for tools/bench-memory: bench-memory-meshopt.py IN.ply OUT.ply TRIANGLES
+"""meshoptimizer's run for tools/bench/memory: memory-meshopt.py IN.ply OUT.ply TRIANGLES
 
 Reads a binary little-endian triangle PLY (float x y z, then `uchar int vertex_indices`:
-what tools/bench-memory makes) straight into numpy arrays, keeps about TRIANGLES triangles
+what tools/bench/memory makes) straight into numpy arrays, keeps about TRIANGLES triangles
 with meshopt_simplify (the `meshoptimizer` Python binding) and writes OUT.ply the same way,
 so that the process's peak memory is the library's and the two arrays it works on, not a
 mesh loader's.

@@ -9,10 +9,14 @@
 //! gen-models polygon N FILE                  one convex N-gon in an IndexedFaceSet (.wrl)
 //! gen-models star N FILE                     one star-shaped N-gon in an IndexedFaceSet (.wrl)
 //! gen-models nesting N FILE                  a triangle under N nested Separators (.wrl)
+//! gen-models subdivide IN OUT.ply LEVELS     every triangle of IN split 1→4 LEVELS times
 //! ```
 //!
-//! The last five are `tools/bench-scaling`'s inputs: each stresses one path that must stay
-//! near-linear (long borders, huge fans, one giant polygon, deep scene graphs).
+//! ribbon … nesting are `tools/bench/scaling`'s inputs: each stresses one path that must stay
+//! near-linear (long borders, huge fans, one giant polygon, deep scene graphs). `subdivide`
+//! makes the big meshes of `tools/bench/tiles` and `tools/bench/memory` (the Stanford dragon:
+//! 13.9M triangles at 2 levels, 55.8M at 3) as a binary PLY of positions and triangles only;
+//! LEVELS 0 just converts IN to that form.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -119,9 +123,73 @@ fn write_text(text: &str, path: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// `model` with every triangle split 1→4 at its edges' midpoints: each edge's midpoint once
+/// (edges sorted by their ends, numbered after the corners), then the triangles at the first,
+/// second and third corners and the middle ones. One sort of the edges: O(n log n).
+fn subdivide(model: &Model) -> Model {
+    let key = |a: u32, b: u32| (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
+    let mut edges: Vec<u64> = (model.triangles.iter())
+        .flat_map(|&[a, b, c]| [key(a, b), key(b, c), key(c, a)])
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    let n = model.positions.len() as u32;
+    let mut positions = model.positions.clone();
+    positions.extend(edges.iter().map(|&e| {
+        let (a, b) = (
+            model.positions[(e >> 32) as usize],
+            model.positions[e as u32 as usize],
+        );
+        ((a.as_dvec3() + b.as_dvec3()) * 0.5).as_vec3()
+    }));
+    // Every key is in `edges`, so the search finds it.
+    let mid = |a: u32, b: u32| n + edges.binary_search(&key(a, b)).unwrap_or(0) as u32;
+    let split: Vec<[u32; 3]> = (model.triangles.iter())
+        .map(|&[a, b, c]| [mid(a, b), mid(b, c), mid(c, a)])
+        .collect();
+    let mut triangles = Vec::with_capacity(4 * split.len());
+    let corners = model.triangles.iter().zip(&split);
+    triangles.extend(corners.clone().map(|(t, m)| [t[0], m[0], m[2]]));
+    triangles.extend(corners.clone().map(|(t, m)| [m[0], t[1], m[1]]));
+    triangles.extend(corners.map(|(t, m)| [m[2], m[1], t[2]]));
+    triangles.extend(split);
+    Model {
+        name: model.name.clone(),
+        transform: model.transform,
+        positions,
+        triangles,
+        ..Model::default()
+    }
+}
+
+/// `gen-models subdivide`: reads IN (any format `decimate` reads), splits every model's
+/// triangles `levels` times and writes OUT, positions and triangles only.
+fn subdivide_file(input: &Path, output: &Path, levels: u32) -> Result<(), String> {
+    let scene = io::read_scene(input).map_err(|e| e.to_string())?.scene;
+    let models = (scene.models.iter())
+        .map(|m| {
+            let mut m = Model {
+                name: m.name.clone(),
+                transform: m.transform,
+                positions: m.positions.clone(),
+                triangles: m.triangles.clone(),
+                ..Model::default()
+            };
+            for _ in 0..levels {
+                m = subdivide(&m);
+            }
+            m
+        })
+        .collect();
+    io::write_ply(&Scene { models }, output).map_err(|e| e.to_string())?;
+    println!("wrote {}", output.display());
+    Ok(())
+}
+
 fn run(args: &[String]) -> Result<(), String> {
     let usage = "usage: gen-models assets DIR | gen-models sphere RINGS SEGMENTS FILE | \
-                 gen-models ribbon|fan|polygon|star|nesting N FILE";
+                 gen-models ribbon|fan|polygon|star|nesting N FILE | \
+                 gen-models subdivide IN OUT.ply LEVELS";
     let count = |s: &str| {
         s.parse::<u32>()
             .map_err(|_| format!("not a count: '{s}'\n{usage}"))
@@ -140,6 +208,9 @@ fn run(args: &[String]) -> Result<(), String> {
             shapes::bumpy_sphere(count(rings)?, count(segments)?),
             Path::new(file),
         ),
+        [cmd, input, output, levels] if cmd == "subdivide" => {
+            subdivide_file(Path::new(input), Path::new(output), count(levels)?)
+        }
         [cmd, n, file] => {
             let (n, path) = (count(n)?, Path::new(file));
             match cmd.as_str() {

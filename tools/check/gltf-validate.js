@@ -1,20 +1,20 @@
 #!/usr/bin/env node
 // Validates glTF files (.gltf with its .bin and images, or .glb) with the Khronos glTF
-// validator (npm `gltf-validator`, installed into .cache/npm by tools/setup; another install
+// validator (npm `gltf-validator`, installed into .cache/npm by tools/setup --test; another install
 // is named by GLTF_VALIDATOR=DIR/node_modules/gltf-validator). Prints every error (and, with
 // -v, warnings), and exits 1 when any file has an error, 2 when it cannot run.
-// Usage: tools/gltf-validate.js [-v] FILE...
+// Usage: tools/check/gltf-validate.js [-v] FILE...
 'use strict';
 const fs = require('fs');
 const path = require('path');
 
 const where = process.env.GLTF_VALIDATOR ||
-  path.join(__dirname, '..', '.cache', 'npm', 'node_modules', 'gltf-validator');
+  path.join(__dirname, '..', '..', '.cache', 'npm', 'node_modules', 'gltf-validator');
 let validator;
 try {
   validator = require(where);
 } catch (e) {
-  console.error(`gltf-validate: cannot load gltf-validator from ${where} (run tools/setup): ${e.message}`);
+  console.error(`gltf-validate: cannot load gltf-validator from ${where} (run tools/setup --test): ${e.message}`);
   process.exit(2);
 }
 
@@ -22,7 +22,7 @@ const args = process.argv.slice(2);
 const verbose = args[0] === '-v';
 const files = verbose ? args.slice(1) : args;
 if (files.length === 0) {
-  console.error('usage: tools/gltf-validate.js [-v] FILE...');
+  console.error('usage: tools/check/gltf-validate.js [-v] FILE...');
   process.exit(2);
 }
 

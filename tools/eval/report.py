@@ -1,6 +1,6 @@
-"""Turns the raw numbers of tools/evaluate into results/evaluation.md and results/lod-error.png.
+"""Turns the raw numbers of tools/eval/evaluate into results/evaluation.md and results/lod-error.png.
 
-usage: evaluate-report.py RAW_DIR RESULTS_DIR "LOD MODELS" "TIMING MODELS"
+usage: report.py RAW_DIR RESULTS_DIR "LOD MODELS" "TIMING MODELS"
 
 Reads, per model and level, decimate's summary on standard error (vertex/triangle counts and
 its own timing) and metro's JSON (Cignoni, Rocchini, Scopigno 1998 distances against the
@@ -65,14 +65,14 @@ def main():
         if "\t" in line
     )
     out = ["# Evaluation: levels of detail, decimation time, metro against MeshLab", ""]
-    out.append("Regenerate with `tools/evaluate` (this file is written by it).")
+    out.append("Regenerate with `tools/eval/evaluate` (this file is written by it).")
     out.append("")
     out.append("| | |")
     out.append("|---|---|")
     for key, label in [("date", "date (UTC)"), ("cpu", "CPU"), ("nproc", "cores (nproc)"),
                        ("memory", "memory"), ("rustc", "compiler"), ("crate", "crate"),
                        ("commit", "git commit"), ("samples", "metro face samples per direction"),
-                       ("runtime", "runtime of tools/evaluate (s)")]:
+                       ("runtime", "runtime of tools/eval/evaluate (s)")]:
         out.append(f"| {label} | {machine.get(key, '?')} |")
     out.append("")
     out.append(
@@ -162,7 +162,7 @@ def main():
     if meshlab:
         out.append("## metro against MeshLab (pymeshlab `get_hausdorff_distance`)")
         out.append("")
-        out.append("Output of `tools/evaluate-hausdorff-vs-meshlab`:")
+        out.append("Output of `tools/eval/hausdorff-vs-meshlab`:")
         out.append("")
         out.append("```")
         out.append(meshlab.rstrip())

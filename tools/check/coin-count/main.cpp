@@ -4,7 +4,7 @@
 // the triangles SoCallbackAction generates leaving out text and NURBS shapes (which our
 // readers skip, and whose tessellation needs an OpenGL context), how many of them have zero
 // area (our readers drop those), and how many text and NURBS shapes were left out; or "FILE<TAB>unreadable" when Coin cannot read the file.
-// Built by tools/coin-count/build; tools/coin-table compares these counts with ours.
+// Built by tools/check/coin-count/build; tools/check/coin-table compares these counts with ours.
 
 #include <Inventor/SoDB.h>
 #include <Inventor/SoInput.h>

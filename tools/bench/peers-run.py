@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""One peer decimation for tools/bench-peers: bench-peers-run.py TOOL IN.ply OUT.ply TRIANGLES
+"""One peer decimation for tools/bench/peers: peers-run.py TOOL IN.ply OUT.ply TRIANGLES
 
 TOOL is meshlab (pymeshlab's quadric edge collapse), vtk (vtkQuadricDecimation), vtkpro
 (vtkDecimatePro, Schroeder's vertex removal, with its defaults) or meshoptimizer (meshopt_simplify through the `meshoptimizer` Python binding). Keeps about
