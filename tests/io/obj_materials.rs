@@ -8,6 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+use crate::support::shapes::Grid;
 use decimate_core::io::texture_path::rebase;
 use decimate_core::io::{read_scene, write_scene};
 
@@ -19,18 +20,14 @@ const IMAGE: &[u8] = b"\xff\xd8\xff\xe0 not really a JPEG";
 fn grid_obj(n: usize, mtllib: &str) -> String {
     let mut text = format!("mtllib {mtllib}\no scan\nusemtl skin\n");
     let at = |i: usize| i as f32 / n as f32;
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, y) = (at(i), at(j));
-            text += &format!("v {x} {y} {}\nvt {x} {y}\n", 0.1 * (3.0 * x).sin() * y);
-        }
+    let grid = Grid::square(n);
+    for (i, j) in grid.points() {
+        let (x, y) = (at(i), at(j));
+        text += &format!("v {x} {y} {}\nvt {x} {y}\n", 0.1 * (3.0 * x).sin() * y);
     }
-    let p = |i: usize, j: usize| j * (n + 1) + i + 1;
-    for j in 0..n {
-        for i in 0..n {
-            let [a, b, c, d] = [p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)];
-            text += &format!("f {a}/{a} {b}/{b} {c}/{c}\nf {a}/{a} {c}/{c} {d}/{d}\n");
-        }
+    for t in grid.triangles() {
+        let [a, b, c] = t.map(|p| p + 1);
+        text += &format!("f {a}/{a} {b}/{b} {c}/{c}\n");
     }
     text
 }

@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::support::binary::decimate;
+use crate::support::shapes::Grid;
 
 /// A fresh scratch folder for one test.
 fn scratch(name: &str) -> PathBuf {
@@ -19,18 +20,14 @@ fn scratch(name: &str) -> PathBuf {
 /// matters) and quads as `coordIndex` text.
 fn grid(n: usize) -> (String, String, String) {
     let (mut points, mut uvs, mut faces) = (String::new(), String::new(), String::new());
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
-            points += &format!("{x} {y} 0, ");
-            uvs += &format!("{} {}, ", 2.0 * x, 2.0 * y);
-        }
+    let grid = Grid::square(n);
+    for (i, j) in grid.points() {
+        let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
+        points += &format!("{x} {y} 0, ");
+        uvs += &format!("{} {}, ", 2.0 * x, 2.0 * y);
     }
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            faces += &format!("{a} {} {} {} -1, ", a + 1, a + n + 2, a + n + 1);
-        }
+    for (_, _, [a, b, c, d]) in grid.squares() {
+        faces += &format!("{a} {b} {c} {d} -1, ");
     }
     (points, uvs, faces)
 }

@@ -1,6 +1,7 @@
 //! The `metro` command line (Metro, Cignoni–Rocchini–Scopigno 1998): usage, and clear
 //! failures that name the file at fault.
 
+use crate::support::shapes::Grid;
 use std::process::Command;
 
 fn metro(args: &[&str]) -> (i32, String, String) {
@@ -112,24 +113,16 @@ fn same_seed_same_output_other_seed_other_output() {
 /// A 4×4 grid of unit squares facing +z as OBJ text, with triangle `flip` (if any) reversed.
 fn grid_obj(flip: Option<usize>) -> String {
     let mut s = String::new();
-    for j in 0..5 {
-        for i in 0..5 {
-            s += &format!("v {i} {j} 0\n");
-        }
+    let grid = Grid::square(4);
+    for (i, j) in grid.points() {
+        s += &format!("v {i} {j} 0\n");
     }
-    let mut k = 0;
-    for j in 0..4 {
-        for i in 0..4 {
-            let a = j * 5 + i + 1;
-            let c = a + 5;
-            for [x, y, z] in [[a, a + 1, c + 1], [a, c + 1, c]] {
-                if flip == Some(k) {
-                    s += &format!("f {x} {z} {y}\n");
-                } else {
-                    s += &format!("f {x} {y} {z}\n");
-                }
-                k += 1;
-            }
+    for (k, t) in grid.triangles().enumerate() {
+        let [x, y, z] = t.map(|p| p + 1);
+        if flip == Some(k) {
+            s += &format!("f {x} {z} {y}\n");
+        } else {
+            s += &format!("f {x} {y} {z}\n");
         }
     }
     s

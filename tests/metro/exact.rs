@@ -4,6 +4,7 @@
 
 use std::collections::HashMap;
 
+use crate::support::shapes::Grid;
 use decimate_core::mesh::{Model, Scene};
 use decimate_core::metro::bvh::closest_point_on_triangle;
 use decimate_core::metro::{compare, Comparison, Options, Surface};
@@ -12,23 +13,14 @@ use glam::{DVec3, Mat4, Vec3};
 /// A `w`×`h` rectangle in the plane through `origin` spanned by `u` and `v`, cut into
 /// `nu`×`nv` cells of two triangles each, facing `u × v`.
 fn grid(origin: DVec3, u: DVec3, v: DVec3, nu: u32, nv: u32) -> (Vec<DVec3>, Vec<[u32; 3]>) {
-    let mut p = Vec::new();
-    for j in 0..=nv {
-        for i in 0..=nu {
-            p.push(
-                origin + u * (f64::from(i) / f64::from(nu)) + v * (f64::from(j) / f64::from(nv)),
-            );
-        }
-    }
-    let mut t = Vec::new();
-    for j in 0..nv {
-        for i in 0..nu {
-            let a = j * (nu + 1) + i;
-            let c = a + nu + 1;
-            t.push([a, a + 1, c + 1]);
-            t.push([a, c + 1, c]);
-        }
-    }
+    let grid = Grid {
+        nu: nu as usize,
+        nv: nv as usize,
+    };
+    let p = (grid.points())
+        .map(|(i, j)| origin + u * (i as f64 / f64::from(nu)) + v * (j as f64 / f64::from(nv)))
+        .collect();
+    let t = grid.triangles().map(|t| t.map(|v| v as u32)).collect();
     (p, t)
 }
 

@@ -10,25 +10,18 @@ use decimate_core::metro::{compare, Options, Surface};
 use glam::DVec3;
 
 use crate::support::rng::Rng;
+use crate::support::shapes::Grid;
 
 /// An `n`×`n` grid of unit cells in the plane z = `z`, facing +z (or -z when `down`).
 fn sheet(n: u32, z: f64, down: bool) -> (Vec<DVec3>, Vec<[u32; 3]>) {
-    let mut p = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            p.push(DVec3::new(f64::from(i), f64::from(j), z));
-        }
-    }
-    let mut t = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            let c = a + n + 1;
-            for tri in [[a, a + 1, c + 1], [a, c + 1, c]] {
-                t.push(if down { [tri[0], tri[2], tri[1]] } else { tri });
-            }
-        }
-    }
+    let grid = Grid::square(n as usize);
+    let p = (grid.points())
+        .map(|(i, j)| DVec3::new(i as f64, j as f64, z))
+        .collect();
+    let t = (grid.triangles())
+        .map(|t| t.map(|v| v as u32))
+        .map(|tri| if down { [tri[0], tri[2], tri[1]] } else { tri })
+        .collect();
     (p, t)
 }
 

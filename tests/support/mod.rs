@@ -9,5 +9,6 @@ pub mod binary;
 pub mod inventor;
 pub mod metro;
 pub mod rng;
+pub mod shapes;
 pub mod shot;
 pub mod texture;

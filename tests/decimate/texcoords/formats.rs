@@ -5,6 +5,7 @@ use std::collections::HashMap;
 use std::process::Command;
 
 use super::{check_layout, check_seam, run, seam_vertices, Obj};
+use crate::support::shapes::Grid;
 
 /// The flat grid of [`grid_obj`] (`n` × `n` squares, the seam at x = 0.5, the right island
 /// shifted by 2 in u) as one VRML 2.0 or Inventor face set with per-corner texture indices
@@ -13,37 +14,25 @@ fn grid_scene(n: usize, inventor: bool) -> String {
     let at = |i: usize| i as f32 / n as f32;
     let (mut points, mut uvs, mut faces, mut uv_faces) =
         (String::new(), String::new(), String::new(), String::new());
-    for j in 0..=n {
-        for i in 0..=n {
-            points += &format!("{} {} 0, ", at(i), at(j));
-        }
+    let grid = Grid::square(n);
+    for (i, j) in grid.points() {
+        points += &format!("{} {} 0, ", at(i), at(j));
     }
     for island in 0..2 {
-        for j in 0..=n {
-            for i in 0..=n {
-                uvs += &format!("{} {}, ", at(i) + 2.0 * island as f32, at(j));
-            }
+        for (i, j) in grid.points() {
+            uvs += &format!("{} {}, ", at(i) + 2.0 * island as f32, at(j));
         }
     }
-    let point = |i: usize, j: usize| j * (n + 1) + i;
-    for j in 0..n {
-        for i in 0..n {
-            let shift = usize::from(i >= n / 2) * (n + 1) * (n + 1);
-            let quad = [
-                point(i, j),
-                point(i + 1, j),
-                point(i + 1, j + 1),
-                point(i, j + 1),
-            ];
-            faces += &format!("{} {} {} {} -1, ", quad[0], quad[1], quad[2], quad[3]);
-            uv_faces += &format!(
-                "{} {} {} {} -1, ",
-                quad[0] + shift,
-                quad[1] + shift,
-                quad[2] + shift,
-                quad[3] + shift
-            );
-        }
+    for (i, _, quad) in grid.squares() {
+        let shift = usize::from(i >= n / 2) * grid.point_count();
+        faces += &format!("{} {} {} {} -1, ", quad[0], quad[1], quad[2], quad[3]);
+        uv_faces += &format!(
+            "{} {} {} {} -1, ",
+            quad[0] + shift,
+            quad[1] + shift,
+            quad[2] + shift,
+            quad[3] + shift
+        );
     }
     if inventor {
         format!(

@@ -4,6 +4,7 @@
 //! sides pinned, so the surface never cracks along it). A PLY with per-vertex coordinates
 //! comes out of qem as a PLY with one `s t` pair per vertex.
 
+use crate::support::shapes::{split, Grid};
 use std::collections::HashMap;
 use std::process::Command;
 
@@ -64,35 +65,23 @@ fn read_obj(text: &str) -> Obj {
 /// of it map to a second island, `uv` shifted by 2 in u.
 fn grid_obj(n: usize, surface: impl Fn(f32, f32) -> [f32; 3]) -> String {
     let mut text = String::new();
+    let grid = Grid::square(n);
     let at = |i: usize| i as f32 / n as f32;
-    for j in 0..=n {
-        for i in 0..=n {
-            let [x, y, z] = surface(at(i), at(j));
-            text += &format!("v {x} {y} {z}\n");
-        }
+    for (i, j) in grid.points() {
+        let [x, y, z] = surface(at(i), at(j));
+        text += &format!("v {x} {y} {z}\n");
     }
     for island in 0..2 {
-        for j in 0..=n {
-            for i in 0..=n {
-                text += &format!("vt {} {}\n", at(i) + 2.0 * island as f32, at(j));
-            }
+        for (i, j) in grid.points() {
+            text += &format!("vt {} {}\n", at(i) + 2.0 * island as f32, at(j));
         }
     }
-    let point = |i: usize, j: usize| j * (n + 1) + i + 1;
-    for j in 0..n {
-        for i in 0..n {
-            let island = usize::from(i >= n / 2);
-            let corner = |i: usize, j: usize| {
-                let p = point(i, j);
-                format!("{p}/{}", p + island * (n + 1) * (n + 1))
-            };
-            let [a, b, c, d] = [
-                corner(i, j),
-                corner(i + 1, j),
-                corner(i + 1, j + 1),
-                corner(i, j + 1),
-            ];
-            text += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
+    for (i, _, square) in grid.squares() {
+        let island = usize::from(i >= n / 2);
+        let corner = |p: usize| format!("{}/{}", p + 1, p + 1 + island * grid.point_count());
+        for t in split(square) {
+            let [a, b, c] = t.map(corner);
+            text += &format!("f {a} {b} {c}\n");
         }
     }
     text
