@@ -12,6 +12,7 @@ mod closed_shapes;
 mod creases;
 mod folds;
 mod nonmanifold;
+mod null_edges;
 mod open_borders;
 mod open_scan;
 mod progressive;

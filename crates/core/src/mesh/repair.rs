@@ -1,13 +1,15 @@
 //! Repair of damaged input before decimation, with a count of everything changed: vertices
-//! welded within a tolerance (`--weld-tolerance`), triangles with a repeated corner or no
-//! area, duplicated triangles (the same three vertices, either way round), triangles
-//! facing against their neighbours across manifold edges (flipped to the majority of their
-//! connected surface), and vertices no triangle uses. Everything here is a sort or a walk
+//! welded within a tolerance (`--weld-tolerance`), null edges (two vertices at one point
+//! joined by an edge) collapsed, triangles with a repeated corner or no area, duplicated
+//! triangles (the same three vertices, either way round; a reversed copy kept where
+//! removing it would open a border in the surface), triangles facing against their
+//! neighbours across manifold edges (flipped to the majority of their connected surface),
+//! and vertices no triangle uses. Everything here is a sort or a walk
 //! over the triangles: O(n log n) at worst.
 
 use glam::DVec3;
 
-use super::{weld, Attribute, Model};
+use super::{union_find, weld, Attribute, Model};
 
 /// How close two vertices must be to merge, as `--weld-tolerance` gave it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,9 +37,12 @@ impl Tolerance {
 pub struct Repairs {
     /// Vertices merged into another within the weld tolerance.
     pub welded: usize,
+    /// Vertices merged into another at the same point across an edge (a null edge).
+    pub null_edges: usize,
     /// Triangles with a repeated corner or zero area (collinear corners), removed.
     pub degenerate: usize,
-    /// Triangles on the same three vertices as an earlier one, removed.
+    /// Triangles on the same three vertices as an earlier one, removed (a reversed copy only
+    /// where that opens no border).
     pub duplicates: usize,
     /// Triangles flipped to face the same way as their neighbours.
     pub reoriented: usize,
@@ -51,6 +56,7 @@ impl Repairs {
         self.welded += other.welded;
         self.degenerate += other.degenerate;
         self.duplicates += other.duplicates;
+        self.null_edges += other.null_edges;
         self.reoriented += other.reoriented;
         self.unreferenced += other.unreferenced;
     }
@@ -69,6 +75,12 @@ impl Repairs {
             parts.push(format!(
                 "{} welded within the tolerance",
                 plural(self.welded, "vertex", "vertices")
+            ));
+        }
+        if self.null_edges > 0 {
+            parts.push(format!(
+                "{} collapsed",
+                plural(self.null_edges, "null edge", "null edges")
             ));
         }
         if self.degenerate > 0 {
@@ -109,6 +121,7 @@ pub fn repair(model: &mut Model, tolerance: f64) -> Repairs {
         r.welded = weld::weld(model, tolerance as f32);
         r.degenerate += before - model.triangles.len();
     }
+    r.null_edges = collapse_null_edges(model);
     let keep = keep_proper_triangles(model, &mut r);
     retain_triangles(model, &keep);
     r.reoriented = orient_consistently(&mut model.triangles);
@@ -144,14 +157,143 @@ fn keep_proper_triangles(model: &Model, r: &mut Repairs) -> Vec<bool> {
         })
         .collect();
     keyed.sort_unstable();
-    for w in keyed.windows(2) {
-        if w[0].0 == w[1].0 {
-            // Sorted by index within a run of equal keys: the first in the file stays.
-            keep[w[1].1 as usize] = false;
-            r.duplicates += 1;
+    // Sorted by index within a run of equal keys: the first in the file stays. A copy the
+    // same way round is an error of the file and goes; a reversed one may be the other side
+    // of a doubled sheet, and goes only where that opens nothing.
+    let mut reversed = Vec::new();
+    let mut start = 0;
+    for i in 1..=keyed.len() {
+        if i < keyed.len() && keyed[i].0 == keyed[start].0 {
+            let (first, copy) = (keyed[start].1 as usize, keyed[i].1);
+            if same_way_round(model.triangles[first], model.triangles[copy as usize]) {
+                keep[copy as usize] = false;
+                r.duplicates += 1;
+            } else {
+                reversed.push(copy);
+            }
+        } else {
+            start = i;
         }
     }
+    r.duplicates += remove_reversed_copies(&model.triangles, &reversed, &mut keep);
     keep
+}
+
+/// Whether `b` is `a` rotated (the same corners in the same cyclic order).
+fn same_way_round(a: [u32; 3], b: [u32; 3]) -> bool {
+    b == a || b == [a[1], a[2], a[0]] || b == [a[2], a[0], a[1]]
+}
+
+/// Removes the reversed copies, a connected group of them at a time (copies sharing an
+/// edge), where removing the whole group leaves every edge on no triangle or on two or
+/// more; returns how many went. A doubled sheet (each triangle beside its reversed twin: a
+/// two-sided leaf, a fin of a scan) is a closed surface: deleting one side would open it,
+/// so both sides of it stay, whole.
+fn remove_reversed_copies(triangles: &[[u32; 3]], reversed: &[u32], keep: &mut [bool]) -> usize {
+    if reversed.is_empty() {
+        return 0;
+    }
+    let edges_of = |t: u32| {
+        let t = triangles[t as usize];
+        [0, 1, 2].map(|k| edge_key(t[k], t[(k + 1) % 3]))
+    };
+    let mut edges: Vec<u64> = (0..triangles.len() as u32)
+        .filter(|&t| keep[t as usize])
+        .flat_map(edges_of)
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    let slot = |e: u64| edges.partition_point(|&x| x < e);
+    let mut count = vec![0u32; edges.len()];
+    for t in (0..triangles.len() as u32).filter(|&t| keep[t as usize]) {
+        edges_of(t).into_iter().for_each(|e| count[slot(e)] += 1);
+    }
+    let mut removed = 0;
+    for group in groups_sharing_edges(reversed, &edges_of) {
+        let mut slots: Vec<usize> = group.iter().flat_map(|&t| edges_of(t).map(slot)).collect();
+        slots.sort_unstable();
+        let opens = slots.chunk_by(|a, b| a == b).any(|run| {
+            let left = count[run[0]] as usize - run.len();
+            left == 1
+        });
+        if opens {
+            continue;
+        }
+        slots.iter().for_each(|&i| count[i] -= 1);
+        group.iter().for_each(|&t| keep[t as usize] = false);
+        removed += group.len();
+    }
+    removed
+}
+
+/// `members` in groups joined through shared edges (union-find over an edge sort).
+fn groups_sharing_edges(members: &[u32], edges_of: &impl Fn(u32) -> [u64; 3]) -> Vec<Vec<u32>> {
+    let mut by_edge: Vec<(u64, u32)> = (0..members.len() as u32)
+        .flat_map(|i| edges_of(members[i as usize]).map(|e| (e, i)))
+        .collect();
+    by_edge.sort_unstable();
+    let mut parent = union_find::singletons(members.len());
+    for w in by_edge.windows(2) {
+        if w[0].0 == w[1].0 {
+            let (a, b) = (
+                union_find::root(&mut parent, w[0].1),
+                union_find::root(&mut parent, w[1].1),
+            );
+            parent[a.max(b) as usize] = a.min(b);
+        }
+    }
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    let mut group_of = vec![u32::MAX; members.len()];
+    for i in 0..members.len() as u32 {
+        let r = union_find::root(&mut parent, i) as usize;
+        if group_of[r] == u32::MAX {
+            group_of[r] = groups.len() as u32;
+            groups.push(Vec::new());
+        }
+        groups[group_of[r] as usize].push(members[i as usize]);
+    }
+    groups
+}
+
+/// Merges the two ends of every edge whose ends are at the same point (bit-equal
+/// positions), so that the triangles on it lose a corner and go, and the surface around
+/// stays closed; returns the vertices merged away. Without a weld, a null edge is the only
+/// link between the triangles on its two sides: deleting those triangles would cut a slit.
+fn collapse_null_edges(model: &mut Model) -> usize {
+    let n = model.positions.len();
+    let same = |a: u32, b: u32| {
+        a != b
+            && (a as usize) < n
+            && (b as usize) < n
+            && model.positions[a as usize] == model.positions[b as usize]
+    };
+    let mut parent: Option<Vec<u32>> = None;
+    for t in &model.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if same(a, b) {
+                let parent = parent.get_or_insert_with(|| union_find::singletons(n));
+                let (ra, rb) = (union_find::root(parent, a), union_find::root(parent, b));
+                // The smaller index stands for the set: the first in the file.
+                parent[ra.max(rb) as usize] = ra.min(rb);
+            }
+        }
+    }
+    let Some(mut parent) = parent else {
+        return 0;
+    };
+    let mut merged = 0;
+    for v in 0..n as u32 {
+        if union_find::root(&mut parent, v) != v {
+            merged += 1;
+        }
+    }
+    for t in &mut model.triangles {
+        for v in t.iter_mut().filter(|v| (**v as usize) < n) {
+            *v = union_find::root(&mut parent, *v);
+        }
+    }
+    merged
 }
 
 /// Keeps the triangles marked in `keep`, with their per-face attributes.
@@ -398,6 +540,7 @@ mod tests {
             r,
             Repairs {
                 welded: 0,
+                null_edges: 0,
                 degenerate: 2,
                 duplicates: 1,
                 reoriented: 2,
@@ -417,6 +560,67 @@ mod tests {
         assert!(line.contains("1 duplicate triangle removed"), "{line}");
         assert!(line.contains("2 triangles flipped"), "{line}");
         assert!(line.contains("2 unused vertices removed"), "{line}");
+    }
+
+    /// Edges used by exactly one triangle.
+    fn border_edges(m: &Model) -> usize {
+        let mut edges: Vec<u64> = (m.triangles.iter())
+            .flat_map(|t| [0, 1, 2].map(|k| edge_key(t[k], t[(k + 1) % 3])))
+            .collect();
+        edges.sort_unstable();
+        let mut border = 0;
+        let mut i = 0;
+        while i < edges.len() {
+            let j = i + edges[i..].iter().take_while(|&&e| e == edges[i]).count();
+            border += usize::from(j - i == 1);
+            i = j;
+        }
+        border
+    }
+
+    #[test]
+    fn a_null_edge_is_collapsed_and_the_surface_stays_closed() {
+        // Vertex 4 (+z) split in two at one point: triangles 0 and 1 keep it, 2 and 3 take
+        // its copy 6, and two zero-area triangles join them across the null edge 4–6.
+        let mut m = octahedron();
+        m.positions.push(Vec3::Z);
+        m.triangles[2] = [1, 3, 6];
+        m.triangles[3] = [3, 0, 6];
+        m.triangles.push([4, 1, 6]);
+        m.triangles.push([6, 0, 4]);
+        assert_eq!(border_edges(&m), 0);
+        let r = repair(&mut m, 0.0);
+        assert_eq!((r.null_edges, r.degenerate, r.unreferenced), (1, 2, 1));
+        assert_eq!((m.positions.len(), m.triangles.len()), (6, 8));
+        assert_eq!(border_edges(&m), 0);
+        assert!((volume6(&m) - 8.0).abs() < 1e-12, "{}", volume6(&m));
+        assert!(r
+            .summary()
+            .unwrap_or_default()
+            .contains("1 null edge collapsed"));
+    }
+
+    #[test]
+    fn a_doubled_sheet_keeps_both_sides_and_a_plain_copy_goes() {
+        // A square sheet seen from both sides: each triangle beside its reversed twin. It is
+        // closed (every edge on two triangles); removing one side would open all four rims.
+        let mut m = Model {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y],
+            triangles: vec![[0, 1, 2], [0, 2, 3], [0, 2, 1], [0, 3, 2]],
+            ..Model::default()
+        };
+        let r = repair(&mut m, 0.0);
+        assert_eq!(
+            (r.duplicates, m.triangles.len(), border_edges(&m)),
+            (0, 4, 0)
+        );
+        // A third copy of a triangle whose edges keep two triangles without it does go.
+        m.triangles.push([0, 1, 2]);
+        let r = repair(&mut m, 0.0);
+        assert_eq!(
+            (r.duplicates, m.triangles.len(), border_edges(&m)),
+            (1, 4, 0)
+        );
     }
 
     #[test]
