@@ -36,7 +36,7 @@ pub fn read_outcome(py: Python<'_>, path: &Path, cancel: &Cancel) -> PyResult<Re
 pub fn write_scene(py: Python<'_>, scene: &Scene, path: &Path, cancel: &Cancel) -> PyResult<()> {
     if io::Format::from_path(path).is_none() {
         return Err(PyValueError::new_err(format!(
-            "{}: unknown output format (use .wrl, .iv, .ply, .obj, .stl, .off, .gltf or .glb)",
+            "{}: unknown output format (use .wrl, .ply, .obj, .stl, .off, .gltf or .glb)",
             path.display()
         )));
     }

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use decimate_core::api::{self, Algorithm, ErrorBound, Model, Params, Report, Scene, Target};
 use decimate_core::decimate::{simplify_scene_cancellable, simplify_scene_progressive_cancellable};
 use decimate_core::io;
+use decimate_core::mesh::build::{build_scene_with, BuildOptions};
 use decimate_core::mesh::Attribute;
 use numpy::PyReadonlyArray2;
 use pyo3::exceptions::PyValueError;
@@ -114,6 +115,19 @@ pub fn report_dict<'py>(
     Ok(d)
 }
 
+/// What the `decimate` program does to a file's meshes before decimating them: merge
+/// bit-equal vertices (unless `weld` is false), remove triangles with no area and duplicate
+/// triangles, orient them alike, drop unused vertices. Returns what it changed, as warnings.
+fn prepare(scene: Scene, weld: bool) -> (Scene, Vec<String>) {
+    let options = BuildOptions {
+        weld,
+        weld_tolerance: None,
+    };
+    let (scene, repairs) = build_scene_with(scene, &options);
+    let warnings = repairs.summary().map(|s| s.trim_end().to_string());
+    (scene, warnings.into_iter().collect())
+}
+
 /// The mesh to decimate, with its optional per-vertex attributes, checked.
 fn model(
     vertices: &PyReadonlyArray2<'_, f32>,
@@ -157,7 +171,7 @@ fn model(
 /// Decimates one mesh given as arrays (see `decimate.simplify`, which checks and converts
 /// its arguments and calls this).
 #[pyfunction]
-#[pyo3(signature = (vertices, faces, goal, algorithm, keep_border, feature_angle, colors, uvs, normals, record, cancel))]
+#[pyo3(signature = (vertices, faces, goal, algorithm, keep_border, feature_angle, colors, uvs, normals, record, weld, cancel))]
 #[allow(clippy::too_many_arguments)]
 pub fn simplify<'py>(
     py: Python<'py>,
@@ -171,6 +185,7 @@ pub fn simplify<'py>(
     uvs: Option<PyReadonlyArray2<'py, f32>>,
     normals: Option<PyReadonlyArray2<'py, f32>>,
     record: bool,
+    weld: bool,
     cancel: Option<PyRef<'py, Cancel>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let goal = Goal {
@@ -194,16 +209,17 @@ pub fn simplify<'py>(
         feature_angle,
     )?;
     let cancel = cancel.map_or_else(decimate_core::cancel::Cancel::new, |c| c.0.clone());
-    let mut scene = Scene { models: vec![m] };
+    let scene = Scene { models: vec![m] };
     let flag = cancel.clone();
-    let (scene, outcome) = interruptible(py, &cancel, move || {
+    let (scene, outcome, repairs) = interruptible(py, &cancel, move || {
+        let (mut scene, repairs) = prepare(scene, weld);
         let outcome = if record {
             simplify_scene_progressive_cancellable(&mut scene, &params, &mut |_| {}, &flag)
                 .map(|(r, p)| (r, p.models.into_iter().next()))
         } else {
             simplify_scene_cancellable(&mut scene, &params, &mut |_| {}, &flag).map(|r| (r, None))
         };
-        (scene, outcome)
+        (scene, outcome, repairs)
     })?;
     let Some((report, progressive)) = outcome else {
         return Err(Cancelled::new_err("simplify was cancelled"));
@@ -221,7 +237,7 @@ pub fn simplify<'py>(
     if let Some(Attribute::PerVertex(v)) = m.normals {
         out.set_item("normals", vec3s(py, &v)?)?;
     }
-    out.set_item("report", report_dict(py, &report, &[])?)?;
+    out.set_item("report", report_dict(py, &report, &repairs)?)?;
     out.set_item("progressive", progressive.map(Progressive::new))?;
     Ok(out)
 }
@@ -254,7 +270,7 @@ pub fn simplify_file<'py>(
     }
     let cancel = cancel.map_or_else(decimate_core::cancel::Cancel::new, |c| c.0.clone());
     let outcome = scene::read_outcome(py, &src, &cancel)?;
-    let mut s = outcome.scene;
+    let s = outcome.scene;
     let params = params(
         goal,
         s.triangle_count(),
@@ -263,9 +279,10 @@ pub fn simplify_file<'py>(
         feature_angle,
     )?;
     let flag = cancel.clone();
-    let (s, report) = interruptible(py, &cancel, move || {
+    let (s, report, repairs) = interruptible(py, &cancel, move || {
+        let (mut s, repairs) = prepare(s, true);
         let r = simplify_scene_cancellable(&mut s, &params, &mut |_| {}, &flag);
-        (s, r)
+        (s, r, repairs)
     })?;
     let Some(report) = report else {
         return Err(Cancelled::new_err("simplify_file was cancelled"));
@@ -274,6 +291,7 @@ pub fn simplify_file<'py>(
     let folder = io::texture_path::folder_of;
     io::texture_path::rebase_textures(&mut s, folder(&src), folder(&dst));
     let mut warnings = outcome.warnings;
+    warnings.extend(repairs);
     warnings.extend(io::losses::losses_at(&s, &dst));
     scene::write_scene(py, &s, &dst, &cancel)?;
     report_dict(py, &report, &warnings)
