@@ -9,6 +9,7 @@ non-manifold edges; prints a Markdown table with the median time and the range.
 """
 import json
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -79,6 +80,7 @@ def main():
               f"| {nonmanifold_edges(r['faces'])} |")
     t = times["rust-api"]
     print(f"| Rust API (same arrays) | | | {statistics.median(t):.3f} ({min(t):.3f}–{max(t):.3f}) | | | | |")
+    shutil.rmtree(work, ignore_errors=True)
     if times.get("decimate"):
         print(f"\ndecimate.simplify / Rust API, medians: {statistics.median(times['decimate']) / statistics.median(t):.3f}")
 

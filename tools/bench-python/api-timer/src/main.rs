@@ -8,8 +8,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use decimate_core::api::{model_from_arrays, simplify_scene, Algorithm, Params, Scene, Target};
-use decimate_core::mesh::build::{build_scene_with, BuildOptions};
 use decimate_core::io::read_scene;
+use decimate_core::mesh::build::{build_scene_with, BuildOptions};
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().collect();
@@ -47,7 +47,12 @@ fn main() -> ExitCode {
         weld: true,
         weld_tolerance: None,
     };
-    let (mut scene, _) = build_scene_with(Scene { models: vec![model] }, &options);
+    let (mut scene, _) = build_scene_with(
+        Scene {
+            models: vec![model],
+        },
+        &options,
+    );
     simplify_scene(&mut scene, &params);
     let (v, t) = scene.models.first().map_or((Vec::new(), Vec::new()), |m| {
         let v: Vec<[f32; 3]> = m.positions.iter().map(|p| p.to_array()).collect();
