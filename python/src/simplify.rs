@@ -72,6 +72,7 @@ pub fn params(
 pub fn report_dict<'py>(
     py: Python<'py>,
     report: &Report,
+    target: Target,
     warnings: &[String],
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
@@ -106,6 +107,17 @@ pub fn report_dict<'py>(
         all.push(format!(
             "the feature angle was relaxed from {} to {angle} degrees to reach the target",
             report.feature_angle_deg
+        ));
+    }
+    let short = match target {
+        Target::KeepTriangles(k) => Some((sum(|m| m.triangles_after), k, "triangles")),
+        Target::KeepVertices(k) => Some((sum(|m| m.vertices_after), k, "vertices")),
+        _ => None,
+    };
+    if let Some((left, asked, what)) = short.filter(|&(left, asked, _)| left > asked + 1) {
+        all.push(format!(
+            "the target was not reached: {left} {what} left, {asked} asked (the error bound, \
+             the feature angle or the pieces' shapes held the rest)"
         ));
     }
     if report.models.iter().any(|m| m.dropped) {
@@ -237,7 +249,7 @@ pub fn simplify<'py>(
     if let Some(Attribute::PerVertex(v)) = m.normals {
         out.set_item("normals", vec3s(py, &v)?)?;
     }
-    out.set_item("report", report_dict(py, &report, &repairs)?)?;
+    out.set_item("report", report_dict(py, &report, params.target, &repairs)?)?;
     out.set_item("progressive", progressive.map(Progressive::new))?;
     Ok(out)
 }
@@ -294,5 +306,5 @@ pub fn simplify_file<'py>(
     warnings.extend(repairs);
     warnings.extend(io::losses::losses_at(&s, &dst));
     scene::write_scene(py, &s, &dst, &cancel)?;
-    report_dict(py, &report, &warnings)
+    report_dict(py, &report, params.target, &warnings)
 }

@@ -49,6 +49,13 @@ def test_flat_grid_with_its_border_kept_keeps_only_the_border():
     assert {(int(x), int(y)) for x, y, _ in out.vertices} == border
 
 
+def test_a_count_target_out_of_reach_is_a_warning():
+    v, f = grid(10)
+    out = decimate.simplify(v, f, keep_triangles=10, keep_border=True, algorithm="schroeder")
+    assert out.faces.shape[0] == 38
+    assert any("target was not reached: 38 triangles left, 10 asked" in w for w in out.report.warnings)
+
+
 def test_dtypes_come_back_as_given():
     v, f = icosphere(2)
     for vt, ft in [(np.float32, np.int32), (np.float64, np.int64), (np.float64, np.uint32)]:
