@@ -84,6 +84,26 @@ pub fn simplify(
     indices: &[u32],
     params: &Params,
 ) -> Result<(Mesh, Report), Error> {
+    let model = model_from_arrays(positions, indices)?;
+    let mut scene = Scene {
+        models: vec![model],
+    };
+    let report = simplify_scene(&mut scene, params);
+    let mesh = scene
+        .models
+        .first()
+        .map(|m| Mesh {
+            positions: m.positions.iter().map(|p| p.to_array()).collect(),
+            indices: m.triangles.iter().flatten().copied().collect(),
+        })
+        .unwrap_or_default();
+    Ok((mesh, report))
+}
+
+/// The one-model mesh of `positions` and `indices` (three per triangle), checked: a whole
+/// number of triangles, finite coordinates, every index naming a position. [`simplify`]
+/// starts here; bindings that add attributes or a cancel flag (the Python package) too.
+pub fn model_from_arrays(positions: &[[f32; 3]], indices: &[u32]) -> Result<Model, Error> {
     if !indices.len().is_multiple_of(3) {
         return Err(Error::InvalidMesh(format!(
             "{} indices: not a whole number of triangles",
@@ -104,7 +124,7 @@ pub fn simplify(
             "index {k} is {i}, but there are {n} positions"
         )));
     }
-    let model = Model {
+    Ok(Model {
         name: "mesh".into(),
         positions: positions.iter().map(|&p| Vec3::from(p)).collect(),
         triangles: indices
@@ -112,20 +132,7 @@ pub fn simplify(
             .map(|t| [t[0], t[1], t[2]])
             .collect(),
         ..Model::default()
-    };
-    let mut scene = Scene {
-        models: vec![model],
-    };
-    let report = simplify_scene(&mut scene, params);
-    let mesh = scene
-        .models
-        .first()
-        .map(|m| Mesh {
-            positions: m.positions.iter().map(|p| p.to_array()).collect(),
-            indices: m.triangles.iter().flatten().copied().collect(),
-        })
-        .unwrap_or_default();
-    Ok((mesh, report))
+    })
 }
 
 /// Decimates every model of `scene` in place (see [`crate::decimate::simplify_scene`]).
