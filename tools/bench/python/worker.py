@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""One timed call for tools/bench-python: worker.py TOOL IN.npz RATIO OUT.npz
+"""One timed call for tools/bench/python: worker.py TOOL IN.npz RATIO OUT.npz
 
 Loads the mesh's arrays (IN.npz: vertices float32 (n, 3), faces int32 (m, 3)), builds the
 tool's own mesh object, then times the decimation call alone (keeping RATIO of the

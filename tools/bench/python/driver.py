@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The table of tools/bench-python: driver.py MODEL RATIO ROUNDS API_TIMER TOOL...
+"""The table of tools/bench/python: driver.py MODEL RATIO ROUNDS API_TIMER TOOL...
 
 Reads MODEL's first mesh with decimate.read, then for ROUNDS rounds (the tools' order
 rotated each round) runs worker.py once per tool, and the Rust API's timer (API_TIMER, the
