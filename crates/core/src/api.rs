@@ -77,17 +77,21 @@ pub struct FileReport {
 }
 
 /// Decimates the mesh of `positions` and `indices` (three per triangle) as `params` says and
-/// returns the result as arrays, with the report. Unused positions are left out of the
-/// result. A mesh decimated below four vertices comes back empty (`report.models[0].dropped`).
+/// returns the result as arrays, with the report. The mesh is prepared as the `decimate`
+/// program prepares a file's (bit-equal positions merged, triangles with no area or
+/// repeated removed: [`crate::mesh::build`]), so the same arrays give the program's
+/// result. Unused positions are left out of the result. A mesh decimated below four
+/// vertices comes back empty (`report.models[0].dropped`).
 pub fn simplify(
     positions: &[[f32; 3]],
     indices: &[u32],
     params: &Params,
 ) -> Result<(Mesh, Report), Error> {
     let model = model_from_arrays(positions, indices)?;
-    let mut scene = Scene {
+    let scene = Scene {
         models: vec![model],
     };
+    let mut scene = crate::mesh::build::build_scene(scene, true);
     let report = simplify_scene(&mut scene, params);
     let mesh = scene
         .models
@@ -140,9 +144,10 @@ pub fn simplify_scene(scene: &mut Scene, params: &Params) -> Report {
     crate::decimate::simplify_scene(scene, params, &mut |_| {})
 }
 
-/// Reads `input`, decimates it as `params` says and writes it to `output`, in the format
-/// the output's extension names (texture names re-expressed for the output's folder, files
-/// replaced atomically). Refuses to write over the input.
+/// Reads `input`, prepares it as the `decimate` program does ([`crate::mesh::build`]),
+/// decimates it as `params` says and writes it to `output`, in the format the output's
+/// extension names (texture names re-expressed for the output's folder, files replaced
+/// atomically). Refuses to write over the input.
 pub fn simplify_file(input: &Path, output: &Path, params: &Params) -> Result<FileReport, Error> {
     if let (Ok(a), Ok(b)) = (input.canonicalize(), output.canonicalize()) {
         if a == b {
@@ -154,6 +159,7 @@ pub fn simplify_file(input: &Path, output: &Path, params: &Params) -> Result<Fil
         mut warnings,
         ..
     } = read_scene(input)?;
+    scene = crate::mesh::build::build_scene(scene, true);
     let report = simplify_scene(&mut scene, params);
     let folder = io::texture_path::folder_of;
     io::rebase_textures(&mut scene, folder(input), folder(output));
@@ -165,6 +171,45 @@ pub fn simplify_file(input: &Path, output: &Path, params: &Params) -> Result<Fil
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_triangle_soup_is_welded_as_the_program_welds_a_file() {
+        // The same sphere indexed, and as a soup (each triangle its own three positions).
+        let sphere = crate::mesh::shapes::uv_sphere(12, 24);
+        let positions: Vec<[f32; 3]> = sphere.positions.iter().map(|p| p.to_array()).collect();
+        let indices: Vec<u32> = sphere.triangles.iter().flatten().copied().collect();
+        let soup: Vec<[f32; 3]> = indices.iter().map(|&i| positions[i as usize]).collect();
+        let soup_indices: Vec<u32> = (0..soup.len() as u32).collect();
+        let params = Params {
+            target: Target::KeepTriangles(100),
+            algorithm: Algorithm::Qem,
+            ..Params::default()
+        };
+        let (indexed, _) = simplify(&positions, &indices, &params).expect("the sphere");
+        let (welded, report) = simplify(&soup, &soup_indices, &params).expect("the soup");
+        assert_eq!(report.models[0].vertices_before, sphere.positions.len());
+        assert_eq!(welded.indices.len(), 300);
+        // The same triangles, numbered in another order.
+        assert_eq!(
+            triangles_by_position(&welded),
+            triangles_by_position(&indexed)
+        );
+    }
+
+    /// Each triangle as its corners' bits, rotated to start at the least: comparable
+    /// whatever the vertices' numbering.
+    fn triangles_by_position(mesh: &Mesh) -> Vec<[[u32; 3]; 3]> {
+        let mut all: Vec<[[u32; 3]; 3]> = (mesh.indices.chunks_exact(3))
+            .map(|t| {
+                let mut c = [0, 1, 2].map(|k| mesh.positions[t[k] as usize].map(f32::to_bits));
+                let first = (0..3).min_by_key(|&k| c[k]).unwrap_or(0);
+                c.rotate_left(first);
+                c
+            })
+            .collect();
+        all.sort_unstable();
+        all
+    }
 
     #[test]
     fn arrays_that_are_not_a_mesh_are_refused_with_the_reason() {
