@@ -137,3 +137,62 @@ fn a_two_sided_sheet_keeps_both_sides_and_stays_closed() {
         );
     }
 }
+
+#[test]
+fn a_closed_box_with_a_two_sided_fin_comes_out_closed() {
+    // A 4×4×4 grid box (closed) and, standing on its top face's middle line, a fin of 4×2
+    // squares written once each way round: the fin's foot edges are on four triangles.
+    let mut text = String::new();
+    let mut points: Vec<[i32; 3]> = Vec::new();
+    let mut id = |p: [i32; 3], text: &mut String| match points.iter().position(|&q| q == p) {
+        Some(i) => i + 1,
+        None => {
+            points.push(p);
+            *text += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+            points.len()
+        }
+    };
+    let mut faces = String::new();
+    // The box's six faces, each a 4×4 grid, outward.
+    let faces_of: [([i32; 3], [i32; 3], [i32; 3]); 6] = [
+        ([0, 0, 0], [0, 1, 0], [1, 0, 0]),
+        ([0, 0, 4], [1, 0, 0], [0, 1, 0]),
+        ([0, 0, 0], [1, 0, 0], [0, 0, 1]),
+        ([0, 4, 0], [0, 0, 1], [1, 0, 0]),
+        ([0, 0, 0], [0, 0, 1], [0, 1, 0]),
+        ([4, 0, 0], [0, 1, 0], [0, 0, 1]),
+    ];
+    for (origin, u, v) in faces_of {
+        let at = |i: i32, j: i32| [0, 1, 2].map(|k| origin[k] + i * u[k] + j * v[k]);
+        for j in 0..4 {
+            for i in 0..4 {
+                let q = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+                let [a, b, c, d] = q.map(|p| id(p, &mut text));
+                faces += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
+            }
+        }
+    }
+    // The fin over x = 0..4 at y = 2, z = 4..6, both sides.
+    for j in 0..2 {
+        for i in 0..4 {
+            let q = [
+                [i, 2, 4 + j],
+                [i + 1, 2, 4 + j],
+                [i + 1, 2, 5 + j],
+                [i, 2, 5 + j],
+            ];
+            let [a, b, c, d] = q.map(|p| id(p, &mut text));
+            faces += &format!("f {a} {b} {c}\nf {a} {c} {d}\nf {a} {c} {b}\nf {a} {d} {c}\n");
+        }
+    }
+    let input = text + &faces;
+    assert_eq!(census(&input).3, 0, "the input is closed");
+    for algorithm in ["schroeder", "qem"] {
+        let (_, _, f, border) = census(&run(&input, "fin.obj", &["-a", algorithm, "-p", "60"]));
+        assert_eq!(
+            border, 0,
+            "{algorithm}: {f} triangles, the surface was opened"
+        );
+        assert!(f < 6 * 32 + 32, "{algorithm}: nothing decimated");
+    }
+}
