@@ -233,6 +233,11 @@ pub fn read_png(path: &Path) -> RgbaImage {
 pub fn assert_matches_golden(name: &str, actual: &RgbaImage) {
     let path = golden_path(name);
     if std::env::var_os("UPDATE_GOLDEN").is_some_and(|v| v == "1") {
+        // Under CI a golden rewritten is a comparison skipped: refuse.
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "UPDATE_GOLDEN=1 with CI set: goldens are compared in CI, never rewritten"
+        );
         shot::write_png(actual, &path).unwrap_or_else(|e| panic!("{e}"));
         eprintln!("updated {}", path.display());
         return;
