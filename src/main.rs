@@ -32,6 +32,9 @@ fn main() -> ExitCode {
         }
     };
 
+    // Before anything runs in parallel (the weld below): the pool of `--threads`.
+    decimate_core::threads::join_pool_of(args.threads);
+
     // Tiled: the input is streamed, never read whole.
     if args.tiles.is_some() {
         return tile_command::nogui_tiled(&args);

@@ -55,6 +55,7 @@ pub(super) fn finish(mut p: Pending) -> Result<Args, CliError> {
         shot: p.shot,
         tiles: p.tiles,
         memory: p.memory,
+        threads: p.threads,
     })
 }
 

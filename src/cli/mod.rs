@@ -56,6 +56,8 @@ pub struct Args {
     /// `--memory SIZE`: the budget of a tiled run, in bytes: how big `auto` tiles are, how
     /// many run at once, whether the merge re-tiles (`tile::schedule`).
     pub memory: Option<u64>,
+    /// `--threads N`: the pool's threads, the main one included (`threads::join_pool_of`).
+    pub threads: Option<usize>,
 }
 
 /// `decimate tile ...`: one step of tiled decimation (`tile`), for a scheduler's jobs.

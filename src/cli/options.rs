@@ -80,6 +80,7 @@ pub(super) struct Pending {
     pub shot: ShotOptions,
     pub tiles: Option<Tiles>,
     pub memory: Option<u64>,
+    pub threads: Option<usize>,
 }
 
 /// The option spelled `name`, if any row accepts it.
@@ -421,6 +422,20 @@ static OPTIONS: &[OptionSpec] = &[
         ],
         section: Section::NoGui,
         apply: Apply::Flag(|p| p.lenient = true),
+    },
+    OptionSpec {
+        names: &["--threads"],
+        shown: Some("--threads N"),
+        help: &[
+            "decimate on N threads, this one included; 1: no other thread",
+            "(DEFAULT: RAYON_NUM_THREADS, else one per core); the result is",
+            "the same for every N",
+        ],
+        section: Section::NoGui,
+        apply: Apply::Value(|p, n, v| {
+            p.threads = Some(positive(n, v)?);
+            Ok(())
+        }),
     },
     OptionSpec {
         names: &[],

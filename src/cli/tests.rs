@@ -383,3 +383,15 @@ fn every_option_the_usage_shows_is_accepted() {
     }
     assert!(checked >= 30, "only {checked} options found in the usage");
 }
+
+#[test]
+fn threads_is_a_count_of_at_least_one_and_defaults_to_the_pool() {
+    assert_eq!(run(&["m.wrl", "nogui", "-p", "90"]).threads, None);
+    let a = run(&["m.wrl", "nogui", "-p", "90", "--threads", "3"]);
+    assert_eq!(a.threads, Some(3));
+    let e = parse(["m.wrl", "nogui", "-p", "90", "--threads", "0"]);
+    assert_eq!(
+        e,
+        Err(CliError("--threads: expected at least 1, got 0".into()))
+    );
+}

@@ -5,4 +5,5 @@ mod support;
 
 mod assets;
 mod repair;
+mod threads;
 mod usage;

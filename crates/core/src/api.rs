@@ -1,7 +1,9 @@
 //! The library's entry point for programs: decimate a triangle mesh given as plain arrays
 //! ([`simplify`]), a [`Scene`] already in memory ([`simplify_scene`]), or a file into
 //! another file in any format the `decimate` program reads and writes ([`simplify_file`]:
-//! VRML 1.0/2.0, Open Inventor, PLY, OBJ, STL, OFF, glTF 2.0).
+//! VRML 1.0/2.0, Open Inventor, PLY, OBJ, STL, OFF, glTF 2.0). [`with_threads`] runs any of
+//! them on a given number of threads (one: no other thread); the result is the same for
+//! every number.
 //!
 //! ```
 //! use decimate_core::api::{simplify, Algorithm, Params, Target};
@@ -37,6 +39,7 @@ pub use crate::decimate::{Algorithm, ErrorBound, ModelReport, Params, Report, Ta
 use crate::io;
 pub use crate::io::{read_scene, write_scene, ReadError, WriteError};
 pub use crate::mesh::{Model, Scene};
+pub use crate::threads::with_threads;
 
 /// A triangle mesh as plain arrays: positions, and three indices into them per triangle
 /// (counter-clockwise seen from the front).
