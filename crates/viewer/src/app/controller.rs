@@ -65,6 +65,13 @@ pub struct ViewportController {
     job: Option<Running>,
     /// Samples per pixel asked for (`--msaa`, `M`): 1 is no anti-aliasing.
     pub msaa: u32,
+    /// Each viewport's id and the generation F3 last saved of it.
+    saved: Vec<(u64, u64)>,
+    /// Quitting was asked for with decimated viewports unsaved: the window shows the
+    /// question until it is answered (quit again, or Esc / n to stay).
+    pub confirm_quit: bool,
+    /// Pixels at the bottom of the window kept for the status line, below the viewports.
+    pub status_strip: u32,
 }
 
 impl ViewportController {
@@ -89,7 +96,36 @@ impl ViewportController {
             message: String::new(),
             job: None,
             msaa: crate::render::pipeline::DEFAULT_MSAA,
+            saved: Vec::new(),
+            confirm_quit: false,
+            status_strip: 0,
         }
+    }
+
+    /// The viewports (numbered from 1) that show a decimated scene F3 has not saved.
+    pub fn unsaved(&self) -> Vec<usize> {
+        let original = self.original_counts.vertices;
+        (self.viewports.iter().enumerate())
+            .filter(|(_, vp)| vp.vertex_count() < original)
+            .filter(|(_, vp)| !self.saved.contains(&(vp.id, vp.generation)))
+            .map(|(i, _)| i + 1)
+            .collect()
+    }
+
+    /// `q`, the menu's Quit or the window's close button: quits when nothing decimated is
+    /// unsaved or the question was asked already; else asks it (`confirm_quit`).
+    pub fn quit(&mut self) -> Effect {
+        let unsaved = self.unsaved();
+        if unsaved.is_empty() || self.confirm_quit {
+            return Effect::Quit;
+        }
+        self.confirm_quit = true;
+        self.message = format!(
+            "{} not saved: q or y quits, n or Esc stays (F3 saves)",
+            viewport_list(&unsaved)
+        );
+        eprintln!("decimate: {}", self.message);
+        Effect::None
     }
 
     /// Every viewport, and each one added later, draws with `options` (`--mode`).
@@ -155,9 +191,11 @@ impl ViewportController {
         self.rects_for(self.width, self.height)
     }
 
-    /// The viewports' rectangles in an area of `width` × `height` (the swapchain's extent).
+    /// The viewports' rectangles in a window of `width` × `height` (the swapchain's
+    /// extent): tiled over what the status strip leaves at the bottom.
     pub fn rects_for(&self, width: u32, height: u32) -> Vec<Rect> {
-        tiles(self.viewports.len(), width, height)
+        let strip = self.status_strip.min(height.saturating_sub(1));
+        tiles(self.viewports.len(), width, height - strip)
     }
 
     /// The mouse moved to `(x, y)`: the viewport under it becomes current.
@@ -563,7 +601,7 @@ impl ViewportController {
             Action::ToggleHelp => self.help ^= true,
             Action::Save => self.save(),
             Action::SavePicture => return Effect::SavePicture,
-            Action::Quit => return Effect::Quit,
+            Action::Quit => return self.quit(),
         }
         Effect::None
     }
@@ -607,6 +645,10 @@ impl ViewportController {
             return;
         };
         let path = target.path();
+        let id_generation = (
+            self.current_viewport().id,
+            self.current_viewport().generation,
+        );
         let to_dir = decimate_core::io::texture_path::folder_of(path);
         let scene =
             decimate_core::io::rebased(self.current_viewport().scene(), &self.input_dir, to_dir);
@@ -617,9 +659,28 @@ impl ViewportController {
                 self.save_path.display(),
                 path.display()
             ),
+            (Ok(()), SavePath::Numbered(_)) => {
+                format!(
+                    "saved viewport {n} as {} (kept the earlier saves)",
+                    path.display()
+                )
+            }
             (Err(e), _) => format!("cannot save: {e}"),
         };
+        if !self.message.starts_with("cannot") {
+            self.saved.retain(|(id, _)| *id != id_generation.0);
+            self.saved.push(id_generation);
+        }
         eprintln!("decimate: {}", self.message);
+    }
+}
+
+/// "viewport 2" or "viewports 1, 3", for the quit question.
+fn viewport_list(numbers: &[usize]) -> String {
+    let list: Vec<String> = numbers.iter().map(usize::to_string).collect();
+    match numbers.len() {
+        1 => format!("viewport {}", list[0]),
+        _ => format!("viewports {}", list.join(", ")),
     }
 }
 
@@ -1111,8 +1172,34 @@ mod tests {
         key(&mut c, Key::Char('h'));
         assert!(c.help);
         assert_eq!(key(&mut c, Key::Char('v')), Effect::AskVertexCount);
-        assert_eq!(key(&mut c, Key::Escape), Effect::Quit);
+        // Esc is no key of the controller: the window closes overlays and cancels with it.
+        assert_eq!(action_for_key(Key::Escape), None);
         assert_eq!(key(&mut c, Key::Char('q')), Effect::Quit);
+    }
+
+    #[test]
+    fn quitting_asks_while_a_decimated_viewport_is_unsaved() {
+        let mut c = controller();
+        key(&mut c, Key::Char('9'));
+        c.wait();
+        assert_eq!(c.unsaved(), vec![1]);
+        // The first q asks; the second (the answer) quits.
+        assert_eq!(key(&mut c, Key::Char('q')), Effect::None);
+        assert!(c.confirm_quit, "q quit with viewport 1 unsaved");
+        assert!(c.message.contains("viewport 1 not saved"), "{}", c.message);
+        assert_eq!(key(&mut c, Key::Char('q')), Effect::Quit);
+        // Once saved, q quits at once.
+        c.confirm_quit = false;
+        let dir = std::env::temp_dir().join(format!("decimate-quit-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        c.save_path = dir.join("saved.wrl");
+        key(&mut c, Key::F3);
+        assert_eq!(c.unsaved(), Vec::<usize>::new(), "{}", c.message);
+        assert_eq!(key(&mut c, Key::Char('q')), Effect::Quit);
+        // An added viewport shows the original: nothing to lose.
+        key(&mut c, Key::Char('a'));
+        assert_eq!(c.unsaved(), Vec::<usize>::new());
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

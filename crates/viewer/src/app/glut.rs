@@ -59,6 +59,10 @@ pub trait Callbacks {
     fn wheel(&mut self, steps: f32);
     /// Every raw event goes here first (for the UI layer); `true` means it was consumed.
     fn filter(&mut self, window: &Window, event: &WindowEvent) -> bool;
+    /// The window's close button: quit, or stay (to ask first).
+    fn close_requested(&mut self) -> Flow {
+        Flow::Quit
+    }
     /// A file was dropped onto the window.
     fn dropped(&mut self, _window: &Window, _path: std::path::PathBuf) {}
     /// When the window must be drawn again without any event (a status message expiring).
@@ -170,7 +174,7 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
         }
         let mut flow = Flow::Continue;
         match event {
-            WindowEvent::CloseRequested => flow = Flow::Quit,
+            WindowEvent::CloseRequested => flow = self.callbacks.close_requested(),
             WindowEvent::DroppedFile(path) => self.callbacks.dropped(&window, path),
             WindowEvent::Resized(size) => self.callbacks.reshape(size.width, size.height),
             WindowEvent::RedrawRequested => {

@@ -25,6 +25,7 @@ use super::counts::Counts;
 use super::error_map::{self, Legend};
 use super::labels::{self, HeadlessCaptions};
 use super::level_error::LevelError;
+use super::overlay::{self, Overlay};
 
 /// What can go wrong taking a shot.
 /// Options of the `shot` action.
@@ -47,6 +48,10 @@ pub struct ShotOptions {
     pub texture_dir: PathBuf,
     /// Samples per pixel for anti-aliasing (`--msaa`; 1: off), as many as the device offers.
     pub msaa: u32,
+    /// A status line in the window's strip below the viewports, as the viewer shows it.
+    pub status: Option<String>,
+    /// The viewer's help overlay over the picture.
+    pub help: bool,
 }
 
 impl Default for ShotOptions {
@@ -61,6 +66,8 @@ impl Default for ShotOptions {
             targets: Vec::new(),
             texture_dir: PathBuf::from("."),
             msaa: crate::render::pipeline::DEFAULT_MSAA,
+            status: None,
+            help: false,
         }
     }
 }
@@ -161,7 +168,13 @@ pub fn render(
         pipelines.texture_layout,
         texture_image::reader(&options.texture_dir),
     )?;
-    let rects = tiles(options.viewports as usize, options.width, options.height);
+    let ppp = overlay::text_scale(options.width, options.height);
+    let strip = (options.status.as_ref()).map_or(0, |_| overlay::status_strip(options.height, ppp));
+    let rects = tiles(
+        options.viewports as usize,
+        options.width,
+        options.height - strip,
+    );
     let shown = viewport_params(rects.len(), params, &options.targets);
     let mut made: Vec<(Params, Scene, Report)> = Vec::new();
     for p in shown.iter().flatten() {
@@ -214,19 +227,19 @@ pub fn render(
         captions.push((rect, d.map_or(&original_caption, |d| &d.caption).clone()));
     }
     let labelled = options.labels.unwrap_or(rects.len() > 1 || options.measure);
-    let image = if labelled || legend.is_some() {
-        let screen = egui::Rect::from_min_size(
-            egui::Pos2::ZERO,
-            egui::vec2(options.width as f32, options.height as f32),
-        );
-        let paint = |ctx: &egui::Context| {
-            if labelled {
-                labels::paint(ctx, &captions, 1.0);
-            }
-            if let Some(legend) = &legend {
-                error_map::paint_legend(ctx, legend, screen);
-            }
-        };
+    let heat: Vec<_> = (rects.iter().zip(&shown))
+        .filter(|(_, p)| p.is_some())
+        .map(|(r, _)| *r)
+        .collect();
+    let help = options.help.then(super::menu::key_help);
+    let painted = Overlay {
+        captions: if labelled { &captions } else { &[] },
+        legend: legend.map(|l| (l, heat.as_slice())),
+        status: (options.status.as_deref()).map(|s| (s, strip)),
+        help: help.as_deref(),
+    };
+    let image = if labelled || legend.is_some() || strip > 0 || help.is_some() {
+        let paint = |ctx: &egui::Context| overlay::paint(ctx, &painted);
         let mut overlay =
             HeadlessCaptions::with_painter(&context, &commands, target.extent, &paint)?;
         let mut record = |cmd| overlay.record(cmd);

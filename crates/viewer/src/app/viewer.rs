@@ -21,15 +21,17 @@ use crate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
 use crate::render::pipeline::Pipelines;
 use crate::render::swapchain::{Frame, Swapchain};
 use crate::render::texture::Textures;
+use crate::render::tiles::Rect;
 use crate::render::RenderError;
 use decimate_core::io::texture_image;
 
 use super::app_error::AppError;
 use super::controller::{Effect, ViewportController};
-use super::error_map::{self, FieldCache, Legend, Look};
+use super::error_map::{FieldCache, Legend, Look};
 use super::glut::{Button, Callbacks, Flow, Special};
 use super::labels::HeadlessCaptions;
 use super::menu::{action_for_key, key_help, Key, MenuEntry};
+use super::overlay::{self, Overlay};
 use super::save::{save_path, SavePath};
 use super::settle::Settle;
 use super::shot::write_png;
@@ -78,6 +80,8 @@ pub struct Viewer {
     /// The last frame was drawn single-sampled though multisampling is on: a sharp one is
     /// due when the view rests.
     drawn_moving: bool,
+    /// The window's scale factor (physical pixels per logical one).
+    scale_factor: f32,
 }
 
 /// Where F2 saves the window's picture.
@@ -86,9 +90,10 @@ const PICTURE: &str = "window.png";
 /// How long a message stays in the status line.
 const MESSAGE_LIFETIME: Duration = Duration::from_secs(6);
 
-/// While a job runs, a frame this often at least: the progress bar moves and the job's end
-/// is seen; see docs/design.md#viewer-jobs.
-const JOB_FRAME_INTERVAL: Duration = Duration::from_millis(100);
+/// While a job runs, a frame this often (and on input): the progress bar moves four times a
+/// second and the job's end is seen, while the job keeps the cores; see
+/// docs/design.md#viewer-jobs.
+const JOB_FRAME_INTERVAL: Duration = Duration::from_millis(250);
 
 /// With `DECIMATE_TRACE` set, the viewer prints each key it handles and each frame drawn
 /// while a job runs to stderr, with the milliseconds since it started: how the window test
@@ -123,6 +128,7 @@ impl Viewer {
             legend: None,
             settle: Settle::default(),
             drawn_moving: false,
+            scale_factor: 1.0,
         }
     }
 
@@ -149,6 +155,35 @@ impl Viewer {
                 Flow::Continue
             }
             Effect::Quit => Flow::Quit,
+        }
+    }
+
+    /// Esc: closes the popup or the field; else stops the job running (the viewport keeps
+    /// what it showed) or the heat-map's measurement; else closes the help. Never quits.
+    fn escape(&mut self) {
+        if self.popup_at.take().is_some() || self.field.take().is_some() {
+            return;
+        }
+        if self.controller.cancel_job() {
+            eprintln!("decimate: {}", self.controller.message);
+        } else if let Some(message) = self.fields.cancel() {
+            eprintln!("decimate: {message}");
+            self.controller.message = message;
+        } else {
+            self.controller.help = false;
+        }
+    }
+
+    /// A key while the quit question is shown: q or y quits, n or Esc stays, others wait.
+    fn answer_quit(&mut self, key: Key) -> Flow {
+        match key {
+            Key::Char('q' | 'y' | 'Y') => Flow::Quit,
+            Key::Char('n' | 'N') | Key::Escape => {
+                self.controller.confirm_quit = false;
+                self.controller.message = "not quitting".into();
+                Flow::Continue
+            }
+            _ => Flow::Continue,
         }
     }
 
@@ -192,21 +227,20 @@ impl Viewer {
             pipelines.samples,
         )?;
         let views = viewport_draws(&gpu.scenes, &self.controller, extent, Instant::now());
-        let captions: Vec<_> = (self.controller.rects_for(extent.width, extent.height))
-            .into_iter()
+        let rects = self.controller.rects_for(extent.width, extent.height);
+        let captions: Vec<_> = (rects.iter().copied())
             .zip(self.controller.viewports().iter().map(|vp| vp.caption()))
             .collect();
         let commands = &gpu.upload_commands;
-        let screen = egui::Rect::from_min_size(
-            egui::Pos2::ZERO,
-            egui::vec2(extent.width as f32, extent.height as f32),
-        );
-        let legend = self.legend;
+        let heat = heat_mapped_rects(&self.controller, &self.fields, self.legend.as_ref(), &rects);
+        let legend = self.legend.map(|l| (l, heat.as_slice()));
         let paint = |ctx: &egui::Context| {
-            super::labels::paint(ctx, &captions, 1.0);
-            if let Some(legend) = &legend {
-                error_map::paint_legend(ctx, legend, screen);
-            }
+            let captions = Overlay {
+                captions: &captions,
+                legend,
+                ..Overlay::default()
+            };
+            overlay::paint(ctx, &captions);
         };
         let mut overlay = HeadlessCaptions::with_painter(&gpu.context, commands, extent, &paint)?;
         let mut record = |cmd| overlay.record(cmd);
@@ -215,6 +249,12 @@ impl Viewer {
             .ok_or_else(|| RenderError::TooLarge("no picture was read back".into()))?;
         let path = target.path();
         Ok(match write_png(&image, path) {
+            Ok(()) if matches!(target, SavePath::Numbered(_)) => {
+                format!(
+                    "saved the window as {} (kept the earlier ones)",
+                    path.display()
+                )
+            }
             Ok(()) if matches!(target, SavePath::Instead(_)) => format!(
                 "{PICTURE} is an input file, not written over: saved the window as {}",
                 path.display()
@@ -345,7 +385,8 @@ impl Viewer {
         Ok(self.apply_ui(ui_result, window))
     }
 
-    /// Lays out this frame's UI: status line, level-of-detail slider, help, popup, field.
+    /// Lays out this frame's UI: status strip, captions, legends, level-of-detail slider,
+    /// help, popup, field, quit question.
     fn run_ui(&mut self, window: &Window) -> Result<UiResult, AppError> {
         let status = self.status();
         let lod = self.controller.current_viewport().lod().map(|l| {
@@ -353,13 +394,19 @@ impl Viewer {
             (lo, hi, l.target())
         });
         let help = self.controller.help.then_some(self.help_text.as_str());
-        let captions: Vec<_> = (self.controller.rects().into_iter())
+        let confirm = (self.controller.confirm_quit).then(|| {
+            let unsaved = self.controller.unsaved().len();
+            format!("{unsaved} decimated viewport(s) not saved (F3 saves one).")
+        });
+        let rects = self.controller.rects();
+        let captions: Vec<_> = (rects.iter().copied())
             .zip(self.controller.viewports().iter().map(|vp| vp.caption()))
             .collect();
+        let heat = heat_mapped_rects(&self.controller, &self.fields, self.legend.as_ref(), &rects);
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(UiResult::default());
         };
-        let scale = window.scale_factor() as f32;
+        let ppp = gpu.ui.pixels_per_point();
         gpu.ui.run(
             window,
             &gpu.context,
@@ -367,14 +414,17 @@ impl Viewer {
             UiState {
                 menu: &self.menu,
                 checked: &|a| self.controller.checked(a),
-                popup_at: self.popup_at.map(|p| egui::pos2(p.x / scale, p.y / scale)),
+                popup_at: self.popup_at.map(|p| egui::pos2(p.x / ppp, p.y / ppp)),
                 popup_just_opened: self.popup_just_opened,
                 field: self.field.as_mut(),
-                status: &status,
-                help,
+                overlay: Overlay {
+                    captions: &captions,
+                    legend: self.legend.map(|l| (l, heat.as_slice())),
+                    status: Some((&status, self.controller.status_strip)),
+                    help,
+                },
                 lod,
-                captions: &captions,
-                legend: self.legend,
+                confirm: confirm.as_deref(),
             },
         )
     }
@@ -426,7 +476,8 @@ impl Viewer {
             || ui_result.close_popup
             || ui_result.close_field
             || ui_result.vertex_count.is_some()
-            || ui_result.action.is_some();
+            || ui_result.action.is_some()
+            || ui_result.quit_answer.is_some();
         if let Some(n) = ui_result.lod_vertices {
             self.settle.moved(Instant::now());
             self.controller.set_lod_vertices(n, Instant::now());
@@ -451,11 +502,29 @@ impl Viewer {
             let effect = self.controller.dispatch(action);
             flow = self.run_effect(effect);
         }
+        match ui_result.quit_answer {
+            Some(true) => flow = Flow::Quit,
+            Some(false) => self.controller.confirm_quit = false,
+            None => {}
+        }
         if acted {
             window.request_redraw();
         }
         flow
     }
+}
+
+/// The rectangles of the viewports drawn heat-mapped (their legend goes in each).
+fn heat_mapped_rects(
+    controller: &ViewportController,
+    fields: &FieldCache,
+    legend: Option<&Legend>,
+    rects: &[Rect],
+) -> Vec<Rect> {
+    (rects.iter().zip(controller.viewports()))
+        .filter(|(_, vp)| matches!(fields.look(vp, legend), Look::Heat(_)))
+        .map(|(r, _)| *r)
+        .collect()
 }
 
 /// What each viewport draws this frame, for the viewports whose scene is on the GPU.
@@ -528,6 +597,7 @@ impl Callbacks for Viewer {
             .map_err(|e| AppError::Window(format!("no Vulkan surface support: {e}")))?;
         let context = Context::new(extensions, true, DevicePreference::Fastest)?;
         let size = window.inner_size();
+        self.scale_factor = window.scale_factor() as f32;
         let samples = context.capabilities.samples(self.controller.msaa);
         let swapchain = Swapchain::new(
             &context,
@@ -564,27 +634,20 @@ impl Callbacks for Viewer {
 
     fn reshape(&mut self, width: u32, height: u32) {
         self.size = (width.max(1), height.max(1));
+        let ppp = self.scale_factor * overlay::text_scale(self.size.0, self.size.1);
+        self.controller.status_strip = overlay::status_strip(self.size.1, ppp);
         self.controller.resize(self.size.0, self.size.1);
         self.resized = true;
     }
 
     fn keyboard(&mut self, key: Key) -> Flow {
         trace(format_args!("key {key:?}"));
-        if self.popup_at.is_some() && key == Key::Escape {
-            self.popup_at = None;
-            return Flow::Continue;
-        }
-        // Esc stops the job running, if any (the viewport keeps what it showed); else quits.
-        if key == Key::Escape && self.controller.cancel_job() {
-            eprintln!("decimate: {}", self.controller.message);
-            return Flow::Continue;
+        if self.controller.confirm_quit {
+            return self.answer_quit(key);
         }
         if key == Key::Escape {
-            if let Some(message) = self.fields.cancel() {
-                eprintln!("decimate: {message}");
-                self.controller.message = message;
-                return Flow::Continue;
-            }
+            self.escape();
+            return Flow::Continue;
         }
         // W / S walk in eye control; elsewhere they keep their menu meaning.
         let eye = self.controller.current_viewport().camera.navigation == Navigation::Eye;
@@ -608,6 +671,11 @@ impl Callbacks for Viewer {
             }
             None => Flow::Continue,
         }
+    }
+
+    fn close_requested(&mut self) -> Flow {
+        let effect = self.controller.quit();
+        self.run_effect(effect)
     }
 
     fn special(&mut self, key: Special) {
