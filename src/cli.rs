@@ -145,6 +145,7 @@ action-options for shot (offscreen render to PNG, no window; --mode and --crease
 also set what the viewer draws):
   -o filename           the PNG to write (DEFAULT: shot.png)
   --size WxH            image size (DEFAULT: 800x600)
+  --background R,G,B    the viewports' colour, each 0-255, or #rrggbb
   --viewports N         1-4 viewports: the original, then the decimated scene
   --mode LIST           comma-separated: triangles,edges,points,normals,vertex-normals,
                         flat,unlit,untextured,error (DEFAULT: triangles)
@@ -282,6 +283,7 @@ where
                 shot.width = w;
                 shot.height = h;
             }
+            "--background" => shot.background = Some(colour(&arg, &value(&arg)?)?),
             "--viewports" => {
                 let n: u32 = number(&arg, &value(&arg)?)?;
                 if !(1..=4).contains(&n) {
@@ -658,10 +660,10 @@ fn shot_targets(
         )));
     }
     shot.viewports = match viewports {
-        Some(n) if targets.len() > 1 && decimated > n.saturating_sub(1) => {
+        Some(n) if targets.len() > 1 && decimated != n.saturating_sub(1) => {
             return Err(CliError(format!(
                 "--viewports {n}: {decimated} targets need {} viewports (the first shows the \
-                 original)",
+                 original), one target per decimated viewport",
                 decimated + 1
             )))
         }
@@ -692,6 +694,26 @@ fn number<T: std::str::FromStr>(name: &str, s: &str) -> Result<T, CliError> {
 }
 
 /// A comma-separated list of numbers (`60,80,90`), at least one.
+/// `R,G,B` (each 0 to 255) or `#rrggbb`, as RGB from 0 to 1.
+fn colour(name: &str, s: &str) -> Result<[f32; 3], CliError> {
+    let bad = || {
+        CliError(format!(
+            "{name}: expected R,G,B (0-255 each) or #rrggbb, got '{s}'"
+        ))
+    };
+    let channels: Vec<u8> = match s.strip_prefix('#') {
+        Some(hex) if hex.len() == 6 && hex.is_ascii() => (0..3)
+            .map(|i| u8::from_str_radix(&hex[2 * i..2 * i + 2], 16).map_err(|_| bad()))
+            .collect::<Result<_, _>>()?,
+        Some(_) => return Err(bad()),
+        None => numbers::<u8>(name, s).map_err(|_| bad())?,
+    };
+    match channels[..] {
+        [r, g, b] => Ok([r, g, b].map(|c| f32::from(c) / 255.0)),
+        _ => Err(bad()),
+    }
+}
+
 fn numbers<T: std::str::FromStr>(name: &str, s: &str) -> Result<Vec<T>, CliError> {
     s.split(',').map(|item| number(name, item)).collect()
 }
@@ -1102,21 +1124,47 @@ mod tests {
             "--keep-triangles",
             "500,100",
             "--viewports",
-            "4",
+            "3",
         ]);
-        assert_eq!(a.shot.viewports, 4);
+        assert_eq!(a.shot.viewports, 3);
         assert_eq!(
             a.shot.targets,
             [500, 100].map(Target::KeepTriangles).to_vec()
         );
         let a = run(&["m.wrl", "shot", "-p", "60"]);
         assert_eq!((a.shot.viewports, a.shot.targets.len()), (1, 0));
+        let white = Some([1.0; 3]);
+        assert_eq!(
+            run(&["m.wrl", "shot", "--background", "255,255,255"])
+                .shot
+                .background,
+            white
+        );
+        assert_eq!(
+            run(&["m.wrl", "shot", "--background", "#ffffff"])
+                .shot
+                .background,
+            white
+        );
         for (args, says) in [
             (
                 &["m.wrl", "shot", "-p", "60,80,90", "--viewports", "3"][..],
                 "need 4 viewports",
             ),
+            (
+                &["m.wrl", "shot", "-p", "60,80", "--viewports", "4"][..],
+                "2 targets need 3 viewports",
+            ),
             (&["m.wrl", "shot", "-p", "10,20,30,40"], "at most 3"),
+            (&["m.wrl", "shot", "--background", "1,2"], "expected R,G,B"),
+            (
+                &["m.wrl", "shot", "--background", "#12345g"],
+                "expected R,G,B",
+            ),
+            (
+                &["m.wrl", "shot", "--background", "0,0,256"],
+                "expected R,G,B",
+            ),
             (
                 &["m.wrl", "shot", "-p", "60,180"],
                 "between 0 and 100, got 180",

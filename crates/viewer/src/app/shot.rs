@@ -52,6 +52,9 @@ pub struct ShotOptions {
     pub status: Option<String>,
     /// The viewer's help overlay over the picture.
     pub help: bool,
+    /// The viewports' background colour, RGB from 0 to 1 (`--background`); the viewer's own
+    /// when `None`.
+    pub background: Option<[f32; 3]>,
 }
 
 impl Default for ShotOptions {
@@ -68,6 +71,7 @@ impl Default for ShotOptions {
             msaa: crate::render::pipeline::DEFAULT_MSAA,
             status: None,
             help: false,
+            background: None,
         }
     }
 }
@@ -159,8 +163,11 @@ pub fn render(
     let context = Context::new(&[], false, device)?;
     let commands = Commands::new(&context)?;
     let pipelines = Pipelines::with_samples(&context, OFFSCREEN_FORMAT, options.msaa)?;
-    let target =
+    let mut target =
         OffscreenTarget::with_samples(&context, options.width, options.height, pipelines.samples)?;
+    if let Some([r, g, b]) = options.background {
+        target.background = [r, g, b, 1.0];
+    }
 
     let draw = options.modes;
     let mut textures = Textures::new(

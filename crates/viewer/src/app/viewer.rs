@@ -579,7 +579,15 @@ fn record_viewports(
         image::transition(device, cmd, frame.image, format, image::TO_COLOR_ATTACHMENT);
         images.to_attachments(device, cmd);
         let attachments = images.attachments(frame.view);
-        draw::begin_tiles(device, cmd, attachments, extent, &rects, highlight);
+        draw::begin_tiles(
+            device,
+            cmd,
+            attachments,
+            extent,
+            &rects,
+            highlight,
+            draw::BACKGROUND,
+        );
         draw::record(device, cmd, pipelines, views);
         device.cmd_end_rendering(cmd);
         draw::begin_overlay(device, cmd, frame.view, extent);
