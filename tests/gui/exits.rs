@@ -1,6 +1,6 @@
 //! Leaving the viewer loses nothing by accident: Esc closes the help overlay and never quits;
 //! q with a decimated viewport unsaved asks first (y answers); F3 twice writes two files,
-//! the second numbered, never over the first.
+//! the second numbered, never over the first; the start prints one line, not the usage.
 
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -40,6 +40,12 @@ fn esc_never_quits_q_asks_for_unsaved_work_and_f3_numbers_its_saves() {
         .args(["windowfocus", "--sync", &wid])
         .status();
     let key = |k: &str| run("xdotool", &["key", "--window", &wid, k]);
+    // The start prints a one-line hint, not the command line's usage.
+    let started = std::fs::read_to_string(&log).unwrap_or_default();
+    assert!(
+        !started.contains("action-options") && started.contains("h shows the keys"),
+        "the viewer's start printed:\n{started}"
+    );
 
     // h opens the help overlay; Esc closes it and the window stays.
     key("h");

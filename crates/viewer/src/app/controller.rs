@@ -520,7 +520,14 @@ impl ViewportController {
             Action::ToggleVertexNormals => options.vertex_normals ^= true,
             Action::ToggleLighting => options.lighting ^= true,
             Action::ToggleSmooth => options.smooth ^= true,
-            Action::ToggleTexture => options.textures ^= true,
+            Action::ToggleTexture => {
+                options.textures ^= true;
+                let textured = (self.original.models.iter())
+                    .any(|m| m.texture.is_some() && m.texcoords.is_some());
+                if !textured {
+                    self.message = "this model has no texture: T changes nothing".into();
+                }
+            }
             Action::ToggleErrorMap => options.error_map ^= true,
             Action::ToggleMsaa => {
                 self.msaa = if self.msaa > 1 {
@@ -624,6 +631,7 @@ impl ViewportController {
             Action::ToggleMsaa => self.msaa > 1,
             Action::ToggleLod => vp.lod().is_some(),
             Action::ToggleKeepBorder => vp.params.keep_border,
+            Action::ToggleAlgorithm => vp.params.algorithm == Algorithm::Qem,
             Action::ToggleLinkedCameras => self.linked,
             Action::ToggleHelp => self.help,
             _ => return None,
@@ -836,9 +844,7 @@ mod tests {
             let name = format!("{a:?}");
             assert_eq!(
                 c.checked(a).is_some(),
-                name.starts_with("Toggle")
-                    && name != "ToggleAlgorithm"
-                    && name != "ToggleNavigation",
+                name.starts_with("Toggle") && name != "ToggleNavigation",
                 "{name}"
             );
         }
@@ -1171,6 +1177,14 @@ mod tests {
         assert_eq!(c.current_viewport().camera, framed);
         key(&mut c, Key::Char('h'));
         assert!(c.help);
+        // T on a model with no texture says so, rather than doing nothing visible.
+        key(&mut c, Key::Char('T'));
+        assert!(c.message.contains("no texture"), "{}", c.message);
+        // The algorithm entry shows its state: checked for quadric edge collapse.
+        let qem = c.current_viewport().params.algorithm == Algorithm::Qem;
+        assert_eq!(c.checked(Action::ToggleAlgorithm), Some(qem));
+        key(&mut c, Key::Char('A'));
+        assert_eq!(c.checked(Action::ToggleAlgorithm), Some(!qem));
         assert_eq!(key(&mut c, Key::Char('v')), Effect::AskVertexCount);
         // Esc is no key of the controller: the window closes overlays and cancels with it.
         assert_eq!(action_for_key(Key::Escape), None);

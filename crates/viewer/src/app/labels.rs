@@ -53,7 +53,29 @@ pub fn algorithm_name(algorithm: Algorithm) -> &'static str {
 
 /// A caption: what the viewport shows on the first line, its counts on the second.
 pub fn caption(what: &str, vertices: usize, triangles: usize) -> String {
-    format!("{what}\n{vertices} vertices, {triangles} triangles")
+    format!("{what}\n{}", counts(vertices, triangles))
+}
+
+/// "871,414 vertices, 1,742,128 triangles": counts as captions and the status line show them.
+pub fn counts(vertices: usize, triangles: usize) -> String {
+    format!(
+        "{} vertices, {} triangles",
+        grouped(vertices),
+        grouped(triangles)
+    )
+}
+
+/// `n` with its digits in groups of three ("1,742,128"), as the vertex field accepts them.
+pub fn grouped(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::with_capacity(digits.len() + digits.len() / 3);
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }
 
 /// Paints `captions` (a viewport rectangle in pixels and its text) on the viewports' layer,
@@ -196,7 +218,12 @@ mod tests {
         );
         assert_eq!(
             caption("original", 602, 1200),
-            "original\n602 vertices, 1200 triangles"
+            "original\n602 vertices, 1,200 triangles"
         );
+        assert_eq!(grouped(0), "0");
+        assert_eq!(grouped(999), "999");
+        assert_eq!(grouped(1000), "1,000");
+        assert_eq!(grouped(1_742_128), "1,742,128");
+        assert_eq!(grouped(871_414), "871,414");
     }
 }

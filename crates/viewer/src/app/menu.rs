@@ -146,7 +146,7 @@ pub fn menu() -> Vec<MenuEntry> {
         Action::AskVertexCount,
     ));
     decimate.push(entry(
-        "Algorithm: vertex removal / quadric edge collapse",
+        "Quadric edge collapse (unchecked: vertex removal)",
         Some("A"),
         Action::ToggleAlgorithm,
     ));

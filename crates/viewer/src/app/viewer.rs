@@ -757,7 +757,7 @@ impl Callbacks for Viewer {
                 self.controller.open(scene, &path);
                 self.field = None;
                 self.popup_at = None;
-                window.set_title(&format!("decimate — {}", path.display()));
+                window.set_title(&format!("decimate - {}", path.display()));
                 if let Err(e) = self.reload_textures() {
                     self.controller.message = format!("{}: textures: {e}", path.display());
                 }
