@@ -128,3 +128,34 @@ fn the_legend_sits_inside_each_heat_mapped_viewport() {
     // The original (viewport 1) has none.
     assert!(!has(&rects[0], hot), "a legend on the original");
 }
+
+/// White text pixels (captions) in the picture.
+fn text_pixels(image: &RgbaImage) -> usize {
+    (image.pixels.chunks_exact(4))
+        .filter(|p| p[0] > 200 && p[1] > 200 && p[2] > 200)
+        .count()
+}
+
+#[test]
+fn captions_grow_with_the_picture() {
+    let shot = |width, height| {
+        let options = ShotOptions {
+            width,
+            height,
+            viewports: 2,
+            modes: modes("triangles"),
+            labels: Some(true),
+            msaa: 1,
+            ..ShotOptions::default()
+        };
+        render_with(&cube(10), &options, Some(&Params::default())).0
+    };
+    let (small, large) = (shot(640, 480), shot(1600, 1200));
+    // At 1600 × 1200 the text is 1200 / 720 times as tall and wide: its area about 2.8
+    // times; at one size for both it would be the same.
+    let ratio = text_pixels(&large) as f64 / text_pixels(&small) as f64;
+    assert!(
+        (2.0..4.0).contains(&ratio),
+        "caption text covers {ratio:.2} times as many pixels at 1600 × 1200 as at 640 × 480"
+    );
+}

@@ -485,18 +485,10 @@ impl ViewportController {
 
     /// Runs `action`; returns what the window must do about it.
     pub fn dispatch(&mut self, action: Action) -> Effect {
-        let options = &mut self.viewports[self.current].options;
         match action {
             Action::Decimate(event) => self.decimate(event),
             Action::AskVertexCount => return Effect::AskVertexCount,
-            Action::ToggleLod => {
-                let i = self.current;
-                if self.current_mut().lod_off() {
-                    self.message = format!("viewport {}: level-of-detail slider off", i + 1);
-                } else {
-                    self.start(Task::Lod, String::new());
-                }
-            }
+            Action::ToggleLod => self.toggle_lod(),
             Action::MeasureError => {
                 let generation = self.current_viewport().generation;
                 self.start(Task::Measure { generation }, String::new());
@@ -513,46 +505,8 @@ impl ViewportController {
                 self.current_mut().params.keep_border ^= true;
                 self.settings_changed();
             }
-            Action::ToggleTriangles => options.triangles ^= true,
-            Action::ToggleEdges => options.edges ^= true,
-            Action::TogglePoints => options.points ^= true,
-            Action::ToggleFaceNormals => options.face_normals ^= true,
-            Action::ToggleVertexNormals => options.vertex_normals ^= true,
-            Action::ToggleLighting => options.lighting ^= true,
-            Action::ToggleSmooth => options.smooth ^= true,
-            Action::ToggleTexture => {
-                options.textures ^= true;
-                let textured = (self.original.models.iter())
-                    .any(|m| m.texture.is_some() && m.texcoords.is_some());
-                if !textured {
-                    self.message = "this model has no texture: T changes nothing".into();
-                }
-            }
-            Action::ToggleErrorMap => options.error_map ^= true,
-            Action::ToggleMsaa => {
-                self.msaa = if self.msaa > 1 {
-                    1
-                } else {
-                    crate::render::pipeline::DEFAULT_MSAA
-                };
-                self.message = if self.msaa > 1 {
-                    format!(
-                        "anti-aliasing on ({}× MSAA where the device has it)",
-                        self.msaa
-                    )
-                } else {
-                    "anti-aliasing off".into()
-                };
-            }
-            Action::CreaseAngle(delta) => {
-                let n = self.current + 1;
-                self.message = match self.current_mut().change_crease(f32::from(delta)) {
-                    Some(d) => format!("viewport {n}: crease angle {d:.0}° (180: fully smooth)"),
-                    None => format!(
-                        "viewport {n}: the level-of-detail slider keeps the original's crease angle"
-                    ),
-                };
-            }
+            Action::ToggleMsaa => self.toggle_msaa(),
+            Action::CreaseAngle(delta) => self.change_crease(delta),
             Action::ToggleNavigation => {
                 let camera = &mut self.current_mut().camera;
                 let next = match camera.navigation {
@@ -566,51 +520,122 @@ impl ViewportController {
                 self.current_mut().camera.reset();
                 self.follow_current_camera();
             }
-            Action::ToggleLinkedCameras => {
-                self.linked ^= true;
-                self.follow_current_camera();
-                self.message = if self.linked {
-                    format!("cameras linked to viewport {}'s", self.current + 1)
-                } else {
-                    "each viewport has its own camera".into()
-                };
-            }
-            Action::AddViewport => {
-                if self.viewports.len() < MAX_VIEWPORTS {
-                    let id = self.next_id;
-                    self.next_id += 1;
-                    let mut vp =
-                        Viewport::new(id, self.original.clone(), self.original_counts, self.params);
-                    vp.options = self.draw_options;
-                    self.viewports.push(vp);
-                    self.current = self.viewports.len() - 1;
-                    if self.linked {
-                        // A new viewport joins the others' shared camera.
-                        self.viewports[self.current].camera = self.viewports[0].camera.clone();
-                    }
-                } else {
-                    self.message = format!("at most {MAX_VIEWPORTS} viewports");
-                }
-            }
-            Action::RemoveViewport => {
-                if self.viewports.len() > 1 {
-                    let gone = self.viewports.remove(self.current);
-                    // Its job, if it has one, works for nobody now.
-                    if self.job.as_ref().is_some_and(|r| r.viewport == gone.id) {
-                        self.drop_job();
-                    }
-                    self.current = self.current.min(self.viewports.len() - 1);
-                } else {
-                    self.message = "the last viewport stays".into();
-                }
-            }
+            Action::ToggleLinkedCameras => self.toggle_linked(),
+            Action::AddViewport => self.add_viewport(),
+            Action::RemoveViewport => self.remove_viewport(),
             Action::NextViewport => self.current = (self.current + 1) % self.viewports.len(),
             Action::ToggleHelp => self.help ^= true,
             Action::Save => self.save(),
             Action::SavePicture => return Effect::SavePicture,
             Action::Quit => return self.quit(),
+            toggle => self.toggle_draw_option(toggle),
         }
         Effect::None
+    }
+
+    /// The draw toggles of the current viewport (triangles, edges, … texture, heat-map).
+    fn toggle_draw_option(&mut self, action: Action) {
+        let options = &mut self.viewports[self.current].options;
+        match action {
+            Action::ToggleTriangles => options.triangles ^= true,
+            Action::ToggleEdges => options.edges ^= true,
+            Action::TogglePoints => options.points ^= true,
+            Action::ToggleFaceNormals => options.face_normals ^= true,
+            Action::ToggleVertexNormals => options.vertex_normals ^= true,
+            Action::ToggleLighting => options.lighting ^= true,
+            Action::ToggleSmooth => options.smooth ^= true,
+            Action::ToggleErrorMap => options.error_map ^= true,
+            Action::ToggleTexture => {
+                options.textures ^= true;
+                let textured = (self.original.models.iter())
+                    .any(|m| m.texture.is_some() && m.texcoords.is_some());
+                if !textured {
+                    self.message = "this model has no texture: T changes nothing".into();
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// `L`: the level-of-detail slider off (the level shown stays), or on (a job builds it).
+    fn toggle_lod(&mut self) {
+        let i = self.current;
+        if self.current_mut().lod_off() {
+            self.message = format!("viewport {}: level-of-detail slider off", i + 1);
+        } else {
+            self.start(Task::Lod, String::new());
+        }
+    }
+
+    /// `M`: multisampling on (as many samples as asked, where the device has them) or off.
+    fn toggle_msaa(&mut self) {
+        self.msaa = if self.msaa > 1 {
+            1
+        } else {
+            crate::render::pipeline::DEFAULT_MSAA
+        };
+        self.message = if self.msaa > 1 {
+            format!(
+                "anti-aliasing on ({}× MSAA where the device has it)",
+                self.msaa
+            )
+        } else {
+            "anti-aliasing off".into()
+        };
+    }
+
+    /// `[` / `]`: the current viewport's crease angle by `delta` degrees.
+    fn change_crease(&mut self, delta: i16) {
+        let n = self.current + 1;
+        self.message = match self.current_mut().change_crease(f32::from(delta)) {
+            Some(d) => format!("viewport {n}: crease angle {d:.0}° (180: fully smooth)"),
+            None => format!(
+                "viewport {n}: the level-of-detail slider keeps the original's crease angle"
+            ),
+        };
+    }
+
+    /// `c`: every viewport follows the current one's camera, or each keeps its own.
+    fn toggle_linked(&mut self) {
+        self.linked ^= true;
+        self.follow_current_camera();
+        self.message = if self.linked {
+            format!("cameras linked to viewport {}'s", self.current + 1)
+        } else {
+            "each viewport has its own camera".into()
+        };
+    }
+
+    /// `a`: a viewport of the original, made current, up to [`MAX_VIEWPORTS`].
+    fn add_viewport(&mut self) {
+        if self.viewports.len() >= MAX_VIEWPORTS {
+            self.message = format!("at most {MAX_VIEWPORTS} viewports");
+            return;
+        }
+        let id = self.next_id;
+        self.next_id += 1;
+        let mut vp = Viewport::new(id, self.original.clone(), self.original_counts, self.params);
+        vp.options = self.draw_options;
+        self.viewports.push(vp);
+        self.current = self.viewports.len() - 1;
+        if self.linked {
+            // A new viewport joins the others' shared camera.
+            self.viewports[self.current].camera = self.viewports[0].camera.clone();
+        }
+    }
+
+    /// `x`: the current viewport goes (its job with it); the last one stays.
+    fn remove_viewport(&mut self) {
+        if self.viewports.len() <= 1 {
+            self.message = "the last viewport stays".into();
+            return;
+        }
+        let gone = self.viewports.remove(self.current);
+        // Its job, if it has one, works for nobody now.
+        if self.job.as_ref().is_some_and(|r| r.viewport == gone.id) {
+            self.drop_job();
+        }
+        self.current = self.current.min(self.viewports.len() - 1);
     }
 
     /// Whether the toggle `action` is on for the current viewport (the popup's check marks);

@@ -122,6 +122,60 @@ impl<C: Callbacks> Glut<'_, C> {
         self.callbacks.destroy();
         event_loop.exit();
     }
+
+    /// A key went down: arrows to `special`, bound and printable keys to `keyboard`.
+    fn key_pressed(&mut self, key: &WinitKey) -> Flow {
+        let key = match key {
+            WinitKey::Named(NamedKey::F2) => Some(Key::F2),
+            WinitKey::Named(NamedKey::F3) => Some(Key::F3),
+            WinitKey::Named(NamedKey::Tab) => Some(Key::Tab),
+            WinitKey::Named(NamedKey::Escape) => Some(Key::Escape),
+            WinitKey::Named(arrow) => {
+                let special = match arrow {
+                    NamedKey::ArrowUp => Some(Special::Up),
+                    NamedKey::ArrowDown => Some(Special::Down),
+                    NamedKey::ArrowLeft => Some(Special::Left),
+                    NamedKey::ArrowRight => Some(Special::Right),
+                    _ => None,
+                };
+                if let Some(s) = special {
+                    self.callbacks.special(s);
+                }
+                None
+            }
+            WinitKey::Character(s) => s.chars().next().map(Key::Char),
+            _ => None,
+        };
+        match key {
+            Some(key) => self.callbacks.keyboard(key),
+            None => Flow::Continue,
+        }
+    }
+
+    /// A mouse button went down (`pressed`) or up at the cursor.
+    fn button(&mut self, pressed: bool, button: winit::event::MouseButton) -> Flow {
+        let button = match button {
+            // Shift + left stands for the middle button (panning) where there is none, as
+            // on a touchpad; its release goes with its press.
+            winit::event::MouseButton::Left => {
+                if pressed {
+                    self.left_is_middle = self.shift;
+                }
+                Some(if self.left_is_middle {
+                    Button::Middle
+                } else {
+                    Button::Left
+                })
+            }
+            winit::event::MouseButton::Right => Some(Button::Right),
+            winit::event::MouseButton::Middle => Some(Button::Middle),
+            _ => None,
+        };
+        match button {
+            Some(b) => (self.callbacks).mouse(b, pressed, self.cursor.x, self.cursor.y),
+            None => Flow::Continue,
+        }
+    }
 }
 
 impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
@@ -191,30 +245,7 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
                 return;
             }
             WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
-                let key = match &event.logical_key {
-                    WinitKey::Named(NamedKey::F2) => Some(Key::F2),
-                    WinitKey::Named(NamedKey::F3) => Some(Key::F3),
-                    WinitKey::Named(NamedKey::Tab) => Some(Key::Tab),
-                    WinitKey::Named(NamedKey::Escape) => Some(Key::Escape),
-                    WinitKey::Named(arrow) => {
-                        let special = match arrow {
-                            NamedKey::ArrowUp => Some(Special::Up),
-                            NamedKey::ArrowDown => Some(Special::Down),
-                            NamedKey::ArrowLeft => Some(Special::Left),
-                            NamedKey::ArrowRight => Some(Special::Right),
-                            _ => None,
-                        };
-                        if let Some(s) = special {
-                            self.callbacks.special(s);
-                        }
-                        None
-                    }
-                    WinitKey::Character(s) => s.chars().next().map(Key::Char),
-                    _ => None,
-                };
-                if let Some(key) = key {
-                    flow = self.callbacks.keyboard(key);
-                }
+                flow = self.key_pressed(&event.logical_key);
             }
             WindowEvent::CursorMoved { position, .. } => {
                 self.cursor = position;
@@ -224,29 +255,7 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
                 self.shift = modifiers.state().shift_key();
             }
             WindowEvent::MouseInput { state, button, .. } => {
-                let pressed = state == ElementState::Pressed;
-                let button = match button {
-                    // Shift + left stands for the middle button (panning) where there is
-                    // none, as on a touchpad; its release goes with its press.
-                    winit::event::MouseButton::Left => {
-                        if pressed {
-                            self.left_is_middle = self.shift;
-                        }
-                        Some(if self.left_is_middle {
-                            Button::Middle
-                        } else {
-                            Button::Left
-                        })
-                    }
-                    winit::event::MouseButton::Right => Some(Button::Right),
-                    winit::event::MouseButton::Middle => Some(Button::Middle),
-                    _ => None,
-                };
-                if let Some(b) = button {
-                    flow = self
-                        .callbacks
-                        .mouse(b, pressed, self.cursor.x, self.cursor.y);
-                }
+                flow = self.button(state == ElementState::Pressed, button);
             }
             WindowEvent::MouseWheel { delta, .. } => {
                 let steps = match delta {
