@@ -436,6 +436,13 @@ impl ViewportController {
         self.current_mut().set_lod_vertices(vertices, now);
     }
 
+    /// Viewport `index` (from 0) becomes the current one, when there is one.
+    pub fn select(&mut self, index: usize) {
+        if index < self.viewports.len() {
+            self.current = index;
+        }
+    }
+
     /// Advances every viewport's geomorph; true while one runs.
     pub fn tick(&mut self, now: std::time::Instant) -> bool {
         let mut running = false;

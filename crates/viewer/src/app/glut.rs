@@ -69,6 +69,10 @@ pub trait Callbacks {
     fn wake_at(&self) -> Option<std::time::Instant> {
         None
     }
+    /// Woken at `wake_at`'s time: whether a frame is due now (false: wait on).
+    fn due(&mut self) -> bool {
+        true
+    }
     /// The loop is ending: free GPU objects while the window still exists.
     fn destroy(&mut self);
 }
@@ -181,7 +185,9 @@ impl<C: Callbacks> Glut<'_, C> {
 impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
     fn new_events(&mut self, _event_loop: &ActiveEventLoop, cause: StartCause) {
         if let (StartCause::ResumeTimeReached { .. }, Some(window)) = (cause, &self.window) {
-            window.request_redraw();
+            if self.callbacks.due() {
+                window.request_redraw();
+            }
         }
     }
 

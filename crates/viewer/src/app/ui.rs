@@ -30,8 +30,9 @@ pub struct UiResult {
     pub close_field: bool,
     /// egui wants another frame soon (a popup being measured, hover animation).
     pub repaint: bool,
-    /// The level-of-detail slider was moved to this many vertices.
-    pub lod_vertices: Option<usize>,
+    /// The level-of-detail slider of a viewport (index from 0) was moved to this many
+    /// vertices.
+    pub lod_vertices: Option<(usize, usize)>,
     /// The quit question was answered: quit (`true`) or stay.
     pub quit_answer: Option<bool>,
 }
@@ -44,6 +45,18 @@ pub struct VertexField {
     pub error: Option<String>,
     /// The counts the field accepts, shown as its hint.
     pub hint: String,
+}
+
+/// A viewport's level-of-detail slider: inside the viewport, at its top-left corner.
+#[derive(Debug, Clone, Copy)]
+pub struct LodSlider {
+    /// The viewport, from 0.
+    pub viewport: usize,
+    /// The viewport's top-left corner, in points.
+    pub corner: egui::Pos2,
+    /// The least and most vertices, and the count it is at.
+    pub range: (usize, usize),
+    pub at: usize,
 }
 
 /// What the UI shows this frame.
@@ -59,9 +72,8 @@ pub struct UiState<'a> {
     pub field: Option<&'a mut VertexField>,
     /// Captions, legends, status line and help.
     pub overlay: Overlay<'a>,
-    /// The current viewport's level-of-detail slider, if it is on: least and most vertices,
-    /// and the count it is at.
-    pub lod: Option<(usize, usize, usize)>,
+    /// The level-of-detail slider of each viewport that has it on.
+    pub lods: &'a [LodSlider],
     /// The quit question, while it is asked.
     pub confirm: Option<&'a str>,
 }
@@ -152,27 +164,16 @@ impl UiLayer {
             popup_just_opened,
             mut field,
             overlay: painted,
-            lod,
+            lods,
             confirm,
         } = ui_state;
         let output = self.ctx.run_ui(input, |ui| {
             let ctx = ui.ctx().clone();
             overlay::paint(&ctx, &painted);
-            if let Some((lo, hi, at)) = lod {
-                egui::Area::new(egui::Id::new("level of detail"))
-                    .anchor(egui::Align2::LEFT_TOP, egui::vec2(6.0, 6.0))
-                    .show(&ctx, |ui| {
-                        egui::Frame::popup(ui.style()).show(ui, |ui| {
-                            ui.label("Level of detail (vertices)  [L: off]");
-                            let mut value = at;
-                            ui.spacing_mut().slider_width = 320.0;
-                            let slider = egui::Slider::new(&mut value, lo..=hi)
-                                .logarithmic(hi > 100 * lo.max(1));
-                            if ui.add(slider).changed() && value != at {
-                                result.lod_vertices = Some(value);
-                            }
-                        });
-                    });
+            for slider in lods {
+                if let Some(n) = lod_slider(&ctx, slider) {
+                    result.lod_vertices = Some((slider.viewport, n));
+                }
             }
             if let Some(pos) = popup_at {
                 let outcome = popup::show(&ctx, menu, checked, pos, popup_just_opened);
@@ -222,6 +223,32 @@ impl UiLayer {
         }
         Ok(())
     }
+}
+
+/// `slider` in its viewport's top-left corner; the count it was dragged to, if it moved.
+/// No number box beside it (typing there took the viewer's keys): the count is a label.
+fn lod_slider(ctx: &egui::Context, slider: &LodSlider) -> Option<usize> {
+    let (lo, hi) = slider.range;
+    let mut moved = None;
+    egui::Area::new(egui::Id::new(("level of detail", slider.viewport)))
+        .fixed_pos(slider.corner + egui::vec2(6.0, 6.0))
+        .show(ctx, |ui| {
+            egui::Frame::popup(ui.style()).show(ui, |ui| {
+                ui.label(format!(
+                    "Level of detail: {} vertices  [L: off]",
+                    super::labels::grouped(slider.at)
+                ));
+                let mut value = slider.at;
+                ui.spacing_mut().slider_width = 240.0;
+                let bar = egui::Slider::new(&mut value, lo..=hi)
+                    .show_value(false)
+                    .logarithmic(hi > 100 * lo.max(1));
+                if ui.add(bar).changed() && value != slider.at {
+                    moved = Some(value);
+                }
+            });
+        });
+    moved
 }
 
 /// The "decimate to N vertices" window: Enter or the button submits the text (the viewer

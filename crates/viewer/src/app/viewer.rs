@@ -35,7 +35,7 @@ use super::overlay::{self, Overlay};
 use super::save::{save_path, SavePath};
 use super::settle::Settle;
 use super::shot::write_png;
-use super::ui::{UiLayer, UiResult, UiState, VertexField};
+use super::ui::{LodSlider, UiLayer, UiResult, UiState, VertexField};
 
 /// GPU objects of the window; field order is drop order (UI and meshes before the context).
 struct Gpu {
@@ -82,6 +82,9 @@ pub struct Viewer {
     drawn_moving: bool,
     /// The window's scale factor (physical pixels per logical one).
     scale_factor: f32,
+    /// How long the last frame took to draw, and when it ended.
+    last_frame: Duration,
+    last_drawn: Instant,
 }
 
 /// Where F2 saves the window's picture.
@@ -90,10 +93,14 @@ const PICTURE: &str = "window.png";
 /// How long a message stays in the status line.
 const MESSAGE_LIFETIME: Duration = Duration::from_secs(6);
 
-/// While a job runs, a frame this often (and on input): the progress bar moves four times a
-/// second and the job's end is seen, while the job keeps the cores; see
-/// docs/design.md#viewer-jobs.
+/// While a job runs, a frame this often at most (and on input): the progress bar moves four
+/// times a second and the job's end is seen; see docs/design.md#viewer-jobs.
 const JOB_FRAME_INTERVAL: Duration = Duration::from_millis(250);
+
+/// While a job runs, the next progress frame waits this many times as long as the last
+/// frame took (a large model drawn in software takes a core for long): drawing takes at
+/// most about one part in six of the time, and the job keeps the cores.
+const JOB_FRAME_SHARE: u32 = 5;
 
 /// With `DECIMATE_TRACE` set, the viewer prints each key it handles and each frame drawn
 /// while a job runs to stderr, with the milliseconds since it started: how the window test
@@ -129,6 +136,8 @@ impl Viewer {
             settle: Settle::default(),
             drawn_moving: false,
             scale_factor: 1.0,
+            last_frame: Duration::ZERO,
+            last_drawn: Instant::now(),
         }
     }
 
@@ -156,6 +165,15 @@ impl Viewer {
             }
             Effect::Quit => Flow::Quit,
         }
+    }
+
+    /// Takes the job's result if it has ended (and says so); true then.
+    fn poll_job(&mut self) -> bool {
+        let ended = self.controller.poll();
+        if ended {
+            eprintln!("decimate: {}", self.controller.message);
+        }
+        ended
     }
 
     /// Esc: closes the popup or the field; else stops the job running (the viewport keeps
@@ -337,9 +355,7 @@ impl Viewer {
     fn draw_frame(&mut self, window: &Window) -> Result<Flow, AppError> {
         // Geomorphs advance with the clock; while one runs, frames keep coming.
         let now = Instant::now();
-        if self.controller.poll() {
-            eprintln!("decimate: {}", self.controller.message);
-        }
+        self.poll_job();
         let morphing = self.controller.tick(now);
         let moving = (self.settle).moving(self.dragging || self.panning || morphing, now);
         let Some(gpu) = self.gpu.as_mut() else {
@@ -375,9 +391,11 @@ impl Viewer {
             (Some(gpu), false) => gpu.pipelines.samples.as_raw(),
             _ => 1,
         };
+        self.last_frame = now.elapsed();
+        self.last_drawn = Instant::now();
         trace(format_args!(
             "frame in {} ms, {job}, {samples}x samples",
-            now.elapsed().as_millis()
+            self.last_frame.as_millis()
         ));
         if ui_result.repaint || morphing {
             window.request_redraw();
@@ -389,10 +407,6 @@ impl Viewer {
     /// help, popup, field, quit question.
     fn run_ui(&mut self, window: &Window) -> Result<UiResult, AppError> {
         let status = self.status();
-        let lod = self.controller.current_viewport().lod().map(|l| {
-            let (lo, hi) = l.range();
-            (lo, hi, l.target())
-        });
         let help = self.controller.help.then_some(self.help_text.as_str());
         let confirm = (self.controller.confirm_quit).then(|| {
             let unsaved = self.controller.unsaved().len();
@@ -407,6 +421,7 @@ impl Viewer {
             return Ok(UiResult::default());
         };
         let ppp = gpu.ui.pixels_per_point();
+        let lods = lod_sliders(&self.controller, &rects, ppp);
         gpu.ui.run(
             window,
             &gpu.context,
@@ -423,7 +438,7 @@ impl Viewer {
                     status: Some((&status, self.controller.status_strip)),
                     help,
                 },
-                lod,
+                lods: &lods,
                 confirm: confirm.as_deref(),
             },
         )
@@ -478,8 +493,9 @@ impl Viewer {
             || ui_result.vertex_count.is_some()
             || ui_result.action.is_some()
             || ui_result.quit_answer.is_some();
-        if let Some(n) = ui_result.lod_vertices {
+        if let Some((viewport, n)) = ui_result.lod_vertices {
             self.settle.moved(Instant::now());
+            self.controller.select(viewport);
             self.controller.set_lod_vertices(n, Instant::now());
         }
         if ui_result.close_popup || ui_result.action.is_some() {
@@ -512,6 +528,36 @@ impl Viewer {
         }
         flow
     }
+}
+
+impl Viewer {
+    /// A decimation, progressive mesh, measurement or heat-map field is being computed.
+    fn busy(&self) -> bool {
+        self.controller.busy() || self.fields.busy()
+    }
+
+    /// When the sharp frame is due once the view rests, after single-sampled ones (a button
+    /// held still waits for its release, which draws a frame).
+    fn rest_at(&self) -> Option<Instant> {
+        let held = self.dragging || self.panning;
+        (self.settle.rests_at()).filter(|_| self.drawn_moving && !held)
+    }
+}
+
+/// The level-of-detail slider of each viewport that has it on, at its top-left corner
+/// (`rects` in pixels, `ppp` of them to a point).
+fn lod_sliders(controller: &ViewportController, rects: &[Rect], ppp: f32) -> Vec<LodSlider> {
+    (rects.iter().zip(controller.viewports()).enumerate())
+        .filter_map(|(i, (rect, vp))| {
+            let lod = vp.lod()?;
+            Some(LodSlider {
+                viewport: i,
+                corner: overlay::points(rect, ppp).min,
+                range: lod.range(),
+                at: lod.target(),
+            })
+        })
+        .collect()
 }
 
 /// The rectangles of the viewports drawn heat-mapped (their legend goes in each).
@@ -650,6 +696,9 @@ impl Callbacks for Viewer {
 
     fn keyboard(&mut self, key: Key) -> Flow {
         trace(format_args!("key {key:?}"));
+        // A key acts on the latest state: a job that has ended is taken first (F3 then saves
+        // its result, not what the last frame showed).
+        self.poll_job();
         if self.controller.confirm_quit {
             return self.answer_quit(key);
         }
@@ -769,16 +818,25 @@ impl Callbacks for Viewer {
 
     fn wake_at(&self) -> Option<Instant> {
         let message = self.message.as_ref().map(|(_, until)| *until);
-        let job = (self.controller.busy() || self.fields.busy())
-            .then(|| Instant::now() + JOB_FRAME_INTERVAL);
-        // The sharp frame once the view rests, after single-sampled ones (a button held still
-        // waits for its release, which draws a frame).
-        let held = self.dragging || self.panning;
-        let rest = self
-            .settle
-            .rests_at()
-            .filter(|_| self.drawn_moving && !held);
-        message.into_iter().chain(job).chain(rest).min()
+        // While a job runs the loop wakes this often to see whether it ended; `due` says
+        // whether a frame is drawn.
+        let job = self.busy().then(|| Instant::now() + JOB_FRAME_INTERVAL);
+        message.into_iter().chain(job).chain(self.rest_at()).min()
+    }
+
+    fn due(&mut self) -> bool {
+        let now = Instant::now();
+        let message_ends = self
+            .message
+            .as_ref()
+            .is_some_and(|(_, until)| *until <= now);
+        if !self.busy() || message_ends || self.rest_at().is_some_and(|at| at <= now) {
+            return true;
+        }
+        // The job's end is drawn at once; its progress with frames apart by at least
+        // JOB_FRAME_SHARE times the time one takes.
+        let wait = JOB_FRAME_INTERVAL.max(self.last_frame * JOB_FRAME_SHARE);
+        self.poll_job() || self.last_drawn + wait <= now
     }
 
     fn destroy(&mut self) {
