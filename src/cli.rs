@@ -693,7 +693,6 @@ fn number<T: std::str::FromStr>(name: &str, s: &str) -> Result<T, CliError> {
         .map_err(|_| CliError(format!("{name}: expected a number, got '{s}'")))
 }
 
-/// A comma-separated list of numbers (`60,80,90`), at least one.
 /// `R,G,B` (each 0 to 255) or `#rrggbb`, as RGB from 0 to 1.
 fn colour(name: &str, s: &str) -> Result<[f32; 3], CliError> {
     let bad = || {
@@ -714,6 +713,7 @@ fn colour(name: &str, s: &str) -> Result<[f32; 3], CliError> {
     }
 }
 
+/// A comma-separated list of numbers (`60,80,90`), at least one.
 fn numbers<T: std::str::FromStr>(name: &str, s: &str) -> Result<Vec<T>, CliError> {
     s.split(',').map(|item| number(name, item)).collect()
 }
