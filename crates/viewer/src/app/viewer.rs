@@ -285,6 +285,20 @@ impl Viewer {
     /// The status line, one line: the last message while it is fresh, else the current
     /// viewport's state.
     fn status(&mut self) -> String {
+        // Messages age while a job's progress is shown too: an expired one must not keep
+        // asking for frames (`due`).
+        let now = Instant::now();
+        let message = std::mem::take(&mut self.controller.message);
+        if !message.is_empty() {
+            self.message = Some((message, now + MESSAGE_LIFETIME));
+        }
+        if self
+            .message
+            .as_ref()
+            .is_some_and(|(_, until)| *until <= now)
+        {
+            self.message = None;
+        }
         if let Some(job) = self
             .controller
             .job_status()
@@ -292,16 +306,8 @@ impl Viewer {
         {
             return job;
         }
-        let now = Instant::now();
-        let message = std::mem::take(&mut self.controller.message);
-        if !message.is_empty() {
-            self.message = Some((message, now + MESSAGE_LIFETIME));
-        }
-        if let Some((message, until)) = &self.message {
-            if now < *until {
-                return message.clone();
-            }
-            self.message = None;
+        if let Some((message, _)) = &self.message {
+            return message.clone();
         }
         let vp = self.controller.current_viewport();
         format!(
@@ -397,7 +403,11 @@ impl Viewer {
             "frame in {} ms, {job}, {samples}x samples",
             self.last_frame.as_millis()
         ));
-        if ui_result.repaint || morphing {
+        // egui asks for a frame after any input it saw; while a job runs that is honoured
+        // only when something of egui's is open (popup, field, question) and may animate.
+        let ui_open =
+            self.popup_at.is_some() || self.field.is_some() || self.controller.confirm_quit;
+        if (ui_result.repaint && (ui_open || !self.busy())) || morphing {
             window.request_redraw();
         }
         Ok(self.apply_ui(ui_result, window))
