@@ -25,8 +25,8 @@ pub fn run(mut scene: Scene, args: &Args) -> ExitCode {
 /// The viewer: steps (4) to (6) of the original's start-up.
 fn run_gui(scene: Scene, args: &Args) -> ExitCode {
     if !args.quiet {
-        // As the original did: the usage, then the keys, on the console at start.
-        eprint!("{}\n{}", crate::cli::usage(), menu::key_help());
+        // One line, not the ~100 of the usage: the window's own help has the keys.
+        eprintln!("decimate: h shows the keys, the right mouse button the menu, q quits");
     }
     // (4) Build the popup menu: one list of entries, shared by the popup and the keyboard.
     let entries = menu::menu();
@@ -39,7 +39,8 @@ fn run_gui(scene: Scene, args: &Args) -> ExitCode {
     controller.msaa = args.shot.msaa;
     let mut viewer = viewer::Viewer::new(controller, entries);
     // (6) Hand control to the main loop.
-    let title = format!("decimate — {}", args.input.display());
+    // ASCII only: a window manager reading the Latin-1 title property shows no mojibake.
+    let title = format!("decimate - {}", args.input.display());
     match glut::main_loop(&title, &mut viewer) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -202,10 +202,10 @@ fn shot_targets(
         )));
     }
     shot.viewports = match viewports {
-        Some(n) if targets.len() > 1 && decimated > n.saturating_sub(1) => {
+        Some(n) if targets.len() > 1 && decimated != n.saturating_sub(1) => {
             return Err(CliError(format!(
                 "--viewports {n}: {decimated} targets need {} viewports (the first shows the \
-                 original)",
+                 original), one target per decimated viewport",
                 decimated + 1
             )))
         }

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::sync::LazyLock;
 
 use super::values::{
-    bytes, draw_modes, error_bound, number, numbers, positive, set_target, size, tolerance,
+    bytes, colour, draw_modes, error_bound, number, numbers, positive, set_target, size, tolerance,
 };
 use super::CliError;
 use decimate_core::decimate::{Algorithm, Params, Target};
@@ -450,6 +450,16 @@ static OPTIONS: &[OptionSpec] = &[
         help: &["image size (DEFAULT: 800x600)"],
         section: Section::Shot,
         apply: Apply::Value(image_size),
+    },
+    OptionSpec {
+        names: &["--background"],
+        shown: Some("--background R,G,B"),
+        help: &["the viewports' colour, each 0-255, or #rrggbb"],
+        section: Section::Shot,
+        apply: Apply::Value(|p, n, v| {
+            p.shot.background = Some(colour(n, v)?);
+            Ok(())
+        }),
     },
     OptionSpec {
         names: &["--viewports"],

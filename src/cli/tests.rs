@@ -325,21 +325,47 @@ fn a_list_of_targets_gives_each_decimated_viewport_its_own() {
         "--keep-triangles",
         "500,100",
         "--viewports",
-        "4",
+        "3",
     ]);
-    assert_eq!(a.shot.viewports, 4);
+    assert_eq!(a.shot.viewports, 3);
     assert_eq!(
         a.shot.targets,
         [500, 100].map(Target::KeepTriangles).to_vec()
     );
     let a = run(&["m.wrl", "shot", "-p", "60"]);
     assert_eq!((a.shot.viewports, a.shot.targets.len()), (1, 0));
+    let white = Some([1.0; 3]);
+    assert_eq!(
+        run(&["m.wrl", "shot", "--background", "255,255,255"])
+            .shot
+            .background,
+        white
+    );
+    assert_eq!(
+        run(&["m.wrl", "shot", "--background", "#ffffff"])
+            .shot
+            .background,
+        white
+    );
     for (args, says) in [
         (
             &["m.wrl", "shot", "-p", "60,80,90", "--viewports", "3"][..],
             "need 4 viewports",
         ),
+        (
+            &["m.wrl", "shot", "-p", "60,80", "--viewports", "4"][..],
+            "2 targets need 3 viewports",
+        ),
         (&["m.wrl", "shot", "-p", "10,20,30,40"], "at most 3"),
+        (&["m.wrl", "shot", "--background", "1,2"], "expected R,G,B"),
+        (
+            &["m.wrl", "shot", "--background", "#12345g"],
+            "expected R,G,B",
+        ),
+        (
+            &["m.wrl", "shot", "--background", "0,0,256"],
+            "expected R,G,B",
+        ),
         (
             &["m.wrl", "shot", "-p", "60,180"],
             "between 0 and 100, got 180",

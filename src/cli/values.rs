@@ -59,6 +59,26 @@ pub(super) fn number<T: std::str::FromStr>(name: &str, s: &str) -> Result<T, Cli
         .map_err(|_| CliError(format!("{name}: expected a number, got '{s}'")))
 }
 
+/// `R,G,B` (each 0 to 255) or `#rrggbb`, as RGB from 0 to 1.
+pub(super) fn colour(name: &str, s: &str) -> Result<[f32; 3], CliError> {
+    let bad = || {
+        CliError(format!(
+            "{name}: expected R,G,B (0-255 each) or #rrggbb, got '{s}'"
+        ))
+    };
+    let channels: Vec<u8> = match s.strip_prefix('#') {
+        Some(hex) if hex.len() == 6 && hex.is_ascii() => (0..3)
+            .map(|i| u8::from_str_radix(&hex[2 * i..2 * i + 2], 16).map_err(|_| bad()))
+            .collect::<Result<_, _>>()?,
+        Some(_) => return Err(bad()),
+        None => numbers::<u8>(name, s).map_err(|_| bad())?,
+    };
+    match channels[..] {
+        [r, g, b] => Ok([r, g, b].map(|c| f32::from(c) / 255.0)),
+        _ => Err(bad()),
+    }
+}
+
 /// A comma-separated list of numbers (`60,80,90`), at least one.
 pub(super) fn numbers<T: std::str::FromStr>(name: &str, s: &str) -> Result<Vec<T>, CliError> {
     s.split(',').map(|item| number(name, item)).collect()

@@ -2,6 +2,8 @@
 //! test runs alone, not beside the screenshot tests, as `cargo test` runs crates one by one.
 
 mod busy;
+mod exits;
+mod lod;
 mod settle;
 mod xvfb;
 

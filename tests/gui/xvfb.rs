@@ -172,7 +172,7 @@ pub(crate) fn scratch(name: &str) -> PathBuf {
 }
 
 /// A 2×2×2 cube of 10×10 quads a face (test004's mesh), 602 vertices.
-fn write_cube(path: &Path) {
+pub(crate) fn write_cube(path: &Path) {
     let model = decimate_core::mesh::shapes::cube(10, 2.0);
     assert_eq!(model.positions.len(), 602);
     let scene = decimate_core::mesh::Scene {

@@ -6,6 +6,7 @@ mod support;
 
 mod anisotropy;
 mod error_map;
+mod layout;
 mod menu;
 mod modes;
 mod msaa;

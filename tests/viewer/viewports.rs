@@ -164,3 +164,38 @@ fn measured_captions_add_each_levels_metro_error() {
     );
     assert_matches_golden("test006_measured", &measured);
 }
+
+#[test]
+fn three_viewports_leave_no_empty_quadrant_and_the_background_is_asked_for() {
+    let options = ShotOptions {
+        width: 480,
+        height: HEIGHT,
+        viewports: 3,
+        modes: modes("triangles"),
+        labels: Some(true),
+        msaa: 1,
+        targets: [60.0, 90.0].map(Target::RemovePercent).to_vec(),
+        background: Some([1.0, 1.0, 1.0]),
+        ..ShotOptions::default()
+    };
+    let (image, reports) = render_with(&cube(10), &options, Some(&Params::default()));
+    assert_eq!(reports.len(), 2);
+    // Each quadrant of the picture shows some of a model (no black or empty quarter).
+    let (hw, hh) = (image.width / 2, image.height / 2);
+    let white = [255, 255, 255, 255];
+    for (x, y) in [(0, 0), (hw, 0), (0, hh), (hw, hh)] {
+        let drawn = (y..y + hh)
+            .flat_map(|py| (x..x + hw).map(move |px| (px, py)))
+            .filter(|&(px, py)| !close(pixel(&image, px, py), white, 6))
+            .count();
+        assert!(
+            drawn * 20 > (hw * hh) as usize,
+            "the quadrant at ({x}, {y}) is nearly empty: {drawn} pixels drawn"
+        );
+    }
+    // The corners show the background asked for.
+    for (x, y) in [(0, 0), (image.width - 1, 0)] {
+        assert!(close(pixel(&image, x, y), white, 2), "corner ({x}, {y})");
+    }
+    assert_matches_golden("cube10_3viewports_white", &image);
+}

@@ -65,6 +65,13 @@ pub struct ViewportController {
     job: Option<Running>,
     /// Samples per pixel asked for (`--msaa`, `M`): 1 is no anti-aliasing.
     pub msaa: u32,
+    /// Each viewport's id and the generation F3 last saved of it.
+    saved: Vec<(u64, u64)>,
+    /// Quitting was asked for with decimated viewports unsaved: the window shows the
+    /// question until it is answered (quit again, or Esc / n to stay).
+    pub confirm_quit: bool,
+    /// Pixels at the bottom of the window kept for the status line, below the viewports.
+    pub status_strip: u32,
 }
 
 impl ViewportController {
@@ -89,7 +96,36 @@ impl ViewportController {
             message: String::new(),
             job: None,
             msaa: crate::render::pipeline::DEFAULT_MSAA,
+            saved: Vec::new(),
+            confirm_quit: false,
+            status_strip: 0,
         }
+    }
+
+    /// The viewports (numbered from 1) that show a decimated scene F3 has not saved.
+    pub fn unsaved(&self) -> Vec<usize> {
+        let original = self.original_counts.vertices;
+        (self.viewports.iter().enumerate())
+            .filter(|(_, vp)| vp.vertex_count() < original)
+            .filter(|(_, vp)| !self.saved.contains(&(vp.id, vp.generation)))
+            .map(|(i, _)| i + 1)
+            .collect()
+    }
+
+    /// `q`, the menu's Quit or the window's close button: quits when nothing decimated is
+    /// unsaved or the question was asked already; else asks it (`confirm_quit`).
+    pub fn quit(&mut self) -> Effect {
+        let unsaved = self.unsaved();
+        if unsaved.is_empty() || self.confirm_quit {
+            return Effect::Quit;
+        }
+        self.confirm_quit = true;
+        self.message = format!(
+            "{} not saved: q or y quits, n or Esc stays (F3 saves)",
+            viewport_list(&unsaved)
+        );
+        eprintln!("decimate: {}", self.message);
+        Effect::None
     }
 
     /// Every viewport, and each one added later, draws with `options` (`--mode`).
@@ -155,9 +191,11 @@ impl ViewportController {
         self.rects_for(self.width, self.height)
     }
 
-    /// The viewports' rectangles in an area of `width` × `height` (the swapchain's extent).
+    /// The viewports' rectangles in a window of `width` × `height` (the swapchain's
+    /// extent): tiled over what the status strip leaves at the bottom.
     pub fn rects_for(&self, width: u32, height: u32) -> Vec<Rect> {
-        tiles(self.viewports.len(), width, height)
+        let strip = self.status_strip.min(height.saturating_sub(1));
+        tiles(self.viewports.len(), width, height - strip)
     }
 
     /// The mouse moved to `(x, y)`: the viewport under it becomes current.
@@ -398,6 +436,13 @@ impl ViewportController {
         self.current_mut().set_lod_vertices(vertices, now);
     }
 
+    /// Viewport `index` (from 0) becomes the current one, when there is one.
+    pub fn select(&mut self, index: usize) {
+        if index < self.viewports.len() {
+            self.current = index;
+        }
+    }
+
     /// Advances every viewport's geomorph; true while one runs.
     pub fn tick(&mut self, now: std::time::Instant) -> bool {
         let mut running = false;
@@ -447,18 +492,10 @@ impl ViewportController {
 
     /// Runs `action`; returns what the window must do about it.
     pub fn dispatch(&mut self, action: Action) -> Effect {
-        let options = &mut self.viewports[self.current].options;
         match action {
             Action::Decimate(event) => self.decimate(event),
             Action::AskVertexCount => return Effect::AskVertexCount,
-            Action::ToggleLod => {
-                let i = self.current;
-                if self.current_mut().lod_off() {
-                    self.message = format!("viewport {}: level-of-detail slider off", i + 1);
-                } else {
-                    self.start(Task::Lod, String::new());
-                }
-            }
+            Action::ToggleLod => self.toggle_lod(),
             Action::MeasureError => {
                 let generation = self.current_viewport().generation;
                 self.start(Task::Measure { generation }, String::new());
@@ -475,39 +512,8 @@ impl ViewportController {
                 self.current_mut().params.keep_border ^= true;
                 self.settings_changed();
             }
-            Action::ToggleTriangles => options.triangles ^= true,
-            Action::ToggleEdges => options.edges ^= true,
-            Action::TogglePoints => options.points ^= true,
-            Action::ToggleFaceNormals => options.face_normals ^= true,
-            Action::ToggleVertexNormals => options.vertex_normals ^= true,
-            Action::ToggleLighting => options.lighting ^= true,
-            Action::ToggleSmooth => options.smooth ^= true,
-            Action::ToggleTexture => options.textures ^= true,
-            Action::ToggleErrorMap => options.error_map ^= true,
-            Action::ToggleMsaa => {
-                self.msaa = if self.msaa > 1 {
-                    1
-                } else {
-                    crate::render::pipeline::DEFAULT_MSAA
-                };
-                self.message = if self.msaa > 1 {
-                    format!(
-                        "anti-aliasing on ({}× MSAA where the device has it)",
-                        self.msaa
-                    )
-                } else {
-                    "anti-aliasing off".into()
-                };
-            }
-            Action::CreaseAngle(delta) => {
-                let n = self.current + 1;
-                self.message = match self.current_mut().change_crease(f32::from(delta)) {
-                    Some(d) => format!("viewport {n}: crease angle {d:.0}° (180: fully smooth)"),
-                    None => format!(
-                        "viewport {n}: the level-of-detail slider keeps the original's crease angle"
-                    ),
-                };
-            }
+            Action::ToggleMsaa => self.toggle_msaa(),
+            Action::CreaseAngle(delta) => self.change_crease(delta),
             Action::ToggleNavigation => {
                 let camera = &mut self.current_mut().camera;
                 let next = match camera.navigation {
@@ -521,51 +527,122 @@ impl ViewportController {
                 self.current_mut().camera.reset();
                 self.follow_current_camera();
             }
-            Action::ToggleLinkedCameras => {
-                self.linked ^= true;
-                self.follow_current_camera();
-                self.message = if self.linked {
-                    format!("cameras linked to viewport {}'s", self.current + 1)
-                } else {
-                    "each viewport has its own camera".into()
-                };
-            }
-            Action::AddViewport => {
-                if self.viewports.len() < MAX_VIEWPORTS {
-                    let id = self.next_id;
-                    self.next_id += 1;
-                    let mut vp =
-                        Viewport::new(id, self.original.clone(), self.original_counts, self.params);
-                    vp.options = self.draw_options;
-                    self.viewports.push(vp);
-                    self.current = self.viewports.len() - 1;
-                    if self.linked {
-                        // A new viewport joins the others' shared camera.
-                        self.viewports[self.current].camera = self.viewports[0].camera.clone();
-                    }
-                } else {
-                    self.message = format!("at most {MAX_VIEWPORTS} viewports");
-                }
-            }
-            Action::RemoveViewport => {
-                if self.viewports.len() > 1 {
-                    let gone = self.viewports.remove(self.current);
-                    // Its job, if it has one, works for nobody now.
-                    if self.job.as_ref().is_some_and(|r| r.viewport == gone.id) {
-                        self.drop_job();
-                    }
-                    self.current = self.current.min(self.viewports.len() - 1);
-                } else {
-                    self.message = "the last viewport stays".into();
-                }
-            }
+            Action::ToggleLinkedCameras => self.toggle_linked(),
+            Action::AddViewport => self.add_viewport(),
+            Action::RemoveViewport => self.remove_viewport(),
             Action::NextViewport => self.current = (self.current + 1) % self.viewports.len(),
             Action::ToggleHelp => self.help ^= true,
             Action::Save => self.save(),
             Action::SavePicture => return Effect::SavePicture,
-            Action::Quit => return Effect::Quit,
+            Action::Quit => return self.quit(),
+            toggle => self.toggle_draw_option(toggle),
         }
         Effect::None
+    }
+
+    /// The draw toggles of the current viewport (triangles, edges, … texture, heat-map).
+    fn toggle_draw_option(&mut self, action: Action) {
+        let options = &mut self.viewports[self.current].options;
+        match action {
+            Action::ToggleTriangles => options.triangles ^= true,
+            Action::ToggleEdges => options.edges ^= true,
+            Action::TogglePoints => options.points ^= true,
+            Action::ToggleFaceNormals => options.face_normals ^= true,
+            Action::ToggleVertexNormals => options.vertex_normals ^= true,
+            Action::ToggleLighting => options.lighting ^= true,
+            Action::ToggleSmooth => options.smooth ^= true,
+            Action::ToggleErrorMap => options.error_map ^= true,
+            Action::ToggleTexture => {
+                options.textures ^= true;
+                let textured = (self.original.models.iter())
+                    .any(|m| m.texture.is_some() && m.texcoords.is_some());
+                if !textured {
+                    self.message = "this model has no texture: T changes nothing".into();
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// `L`: the level-of-detail slider off (the level shown stays), or on (a job builds it).
+    fn toggle_lod(&mut self) {
+        let i = self.current;
+        if self.current_mut().lod_off() {
+            self.message = format!("viewport {}: level-of-detail slider off", i + 1);
+        } else {
+            self.start(Task::Lod, String::new());
+        }
+    }
+
+    /// `M`: multisampling on (as many samples as asked, where the device has them) or off.
+    fn toggle_msaa(&mut self) {
+        self.msaa = if self.msaa > 1 {
+            1
+        } else {
+            crate::render::pipeline::DEFAULT_MSAA
+        };
+        self.message = if self.msaa > 1 {
+            format!(
+                "anti-aliasing on ({}× MSAA where the device has it)",
+                self.msaa
+            )
+        } else {
+            "anti-aliasing off".into()
+        };
+    }
+
+    /// `[` / `]`: the current viewport's crease angle by `delta` degrees.
+    fn change_crease(&mut self, delta: i16) {
+        let n = self.current + 1;
+        self.message = match self.current_mut().change_crease(f32::from(delta)) {
+            Some(d) => format!("viewport {n}: crease angle {d:.0}° (180: fully smooth)"),
+            None => format!(
+                "viewport {n}: the level-of-detail slider keeps the original's crease angle"
+            ),
+        };
+    }
+
+    /// `c`: every viewport follows the current one's camera, or each keeps its own.
+    fn toggle_linked(&mut self) {
+        self.linked ^= true;
+        self.follow_current_camera();
+        self.message = if self.linked {
+            format!("cameras linked to viewport {}'s", self.current + 1)
+        } else {
+            "each viewport has its own camera".into()
+        };
+    }
+
+    /// `a`: a viewport of the original, made current, up to [`MAX_VIEWPORTS`].
+    fn add_viewport(&mut self) {
+        if self.viewports.len() >= MAX_VIEWPORTS {
+            self.message = format!("at most {MAX_VIEWPORTS} viewports");
+            return;
+        }
+        let id = self.next_id;
+        self.next_id += 1;
+        let mut vp = Viewport::new(id, self.original.clone(), self.original_counts, self.params);
+        vp.options = self.draw_options;
+        self.viewports.push(vp);
+        self.current = self.viewports.len() - 1;
+        if self.linked {
+            // A new viewport joins the others' shared camera.
+            self.viewports[self.current].camera = self.viewports[0].camera.clone();
+        }
+    }
+
+    /// `x`: the current viewport goes (its job with it); the last one stays.
+    fn remove_viewport(&mut self) {
+        if self.viewports.len() <= 1 {
+            self.message = "the last viewport stays".into();
+            return;
+        }
+        let gone = self.viewports.remove(self.current);
+        // Its job, if it has one, works for nobody now.
+        if self.job.as_ref().is_some_and(|r| r.viewport == gone.id) {
+            self.drop_job();
+        }
+        self.current = self.current.min(self.viewports.len() - 1);
     }
 
     /// Whether the toggle `action` is on for the current viewport (the popup's check marks);
@@ -586,6 +663,7 @@ impl ViewportController {
             Action::ToggleMsaa => self.msaa > 1,
             Action::ToggleLod => vp.lod().is_some(),
             Action::ToggleKeepBorder => vp.params.keep_border,
+            Action::ToggleAlgorithm => vp.params.algorithm == Algorithm::Qem,
             Action::ToggleLinkedCameras => self.linked,
             Action::ToggleHelp => self.help,
             _ => return None,
@@ -607,6 +685,10 @@ impl ViewportController {
             return;
         };
         let path = target.path();
+        let id_generation = (
+            self.current_viewport().id,
+            self.current_viewport().generation,
+        );
         let to_dir = decimate_core::io::texture_path::folder_of(path);
         let scene =
             decimate_core::io::rebased(self.current_viewport().scene(), &self.input_dir, to_dir);
@@ -617,9 +699,28 @@ impl ViewportController {
                 self.save_path.display(),
                 path.display()
             ),
+            (Ok(()), SavePath::Numbered(_)) => {
+                format!(
+                    "saved viewport {n} as {} (kept the earlier saves)",
+                    path.display()
+                )
+            }
             (Err(e), _) => format!("cannot save: {e}"),
         };
+        if !self.message.starts_with("cannot") {
+            self.saved.retain(|(id, _)| *id != id_generation.0);
+            self.saved.push(id_generation);
+        }
         eprintln!("decimate: {}", self.message);
+    }
+}
+
+/// "viewport 2" or "viewports 1, 3", for the quit question.
+fn viewport_list(numbers: &[usize]) -> String {
+    let list: Vec<String> = numbers.iter().map(usize::to_string).collect();
+    match numbers.len() {
+        1 => format!("viewport {}", list[0]),
+        _ => format!("viewports {}", list.join(", ")),
     }
 }
 
@@ -775,9 +876,7 @@ mod tests {
             let name = format!("{a:?}");
             assert_eq!(
                 c.checked(a).is_some(),
-                name.starts_with("Toggle")
-                    && name != "ToggleAlgorithm"
-                    && name != "ToggleNavigation",
+                name.starts_with("Toggle") && name != "ToggleNavigation",
                 "{name}"
             );
         }
@@ -1110,9 +1209,43 @@ mod tests {
         assert_eq!(c.current_viewport().camera, framed);
         key(&mut c, Key::Char('h'));
         assert!(c.help);
+        // T on a model with no texture says so, rather than doing nothing visible.
+        key(&mut c, Key::Char('T'));
+        assert!(c.message.contains("no texture"), "{}", c.message);
+        // The algorithm entry shows its state: checked for quadric edge collapse.
+        let qem = c.current_viewport().params.algorithm == Algorithm::Qem;
+        assert_eq!(c.checked(Action::ToggleAlgorithm), Some(qem));
+        key(&mut c, Key::Char('A'));
+        assert_eq!(c.checked(Action::ToggleAlgorithm), Some(!qem));
         assert_eq!(key(&mut c, Key::Char('v')), Effect::AskVertexCount);
-        assert_eq!(key(&mut c, Key::Escape), Effect::Quit);
+        // Esc is no key of the controller: the window closes overlays and cancels with it.
+        assert_eq!(action_for_key(Key::Escape), None);
         assert_eq!(key(&mut c, Key::Char('q')), Effect::Quit);
+    }
+
+    #[test]
+    fn quitting_asks_while_a_decimated_viewport_is_unsaved() {
+        let mut c = controller();
+        key(&mut c, Key::Char('9'));
+        c.wait();
+        assert_eq!(c.unsaved(), vec![1]);
+        // The first q asks; the second (the answer) quits.
+        assert_eq!(key(&mut c, Key::Char('q')), Effect::None);
+        assert!(c.confirm_quit, "q quit with viewport 1 unsaved");
+        assert!(c.message.contains("viewport 1 not saved"), "{}", c.message);
+        assert_eq!(key(&mut c, Key::Char('q')), Effect::Quit);
+        // Once saved, q quits at once.
+        c.confirm_quit = false;
+        let dir = std::env::temp_dir().join(format!("decimate-quit-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        c.save_path = dir.join("saved.wrl");
+        key(&mut c, Key::F3);
+        assert_eq!(c.unsaved(), Vec::<usize>::new(), "{}", c.message);
+        assert_eq!(key(&mut c, Key::Char('q')), Effect::Quit);
+        // An added viewport shows the original: nothing to lose.
+        key(&mut c, Key::Char('a'));
+        assert_eq!(c.unsaved(), Vec::<usize>::new());
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

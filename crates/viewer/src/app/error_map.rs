@@ -12,21 +12,25 @@ use super::jobs;
 use super::viewport::Viewport;
 use super::worker::{Job, Poll};
 
-/// The colour ramp, cold to hot: blue, cyan, green, yellow, red (equal steps), the order
-/// MeshLab's quality mapping and most heat-maps use.
-const RAMP: [[f32; 3]; 5] = [
-    [0.15, 0.30, 0.95],
-    [0.10, 0.80, 0.90],
-    [0.20, 0.80, 0.20],
-    [0.95, 0.85, 0.10],
-    [0.90, 0.10, 0.10],
+/// The colour ramp, small to large: viridis (dark purple, blue, teal, green, yellow) in nine
+/// equal steps — perceptually uniform, readable in grey and by colour-blind eyes.
+const RAMP: [[f32; 3]; 9] = [
+    [0.267, 0.004, 0.329],
+    [0.278, 0.173, 0.478],
+    [0.2314, 0.3176, 0.5451],
+    [0.173, 0.443, 0.557],
+    [0.129, 0.565, 0.553],
+    [0.153, 0.678, 0.506],
+    [0.361, 0.784, 0.388],
+    [0.667, 0.863, 0.196],
+    [0.992, 0.906, 0.145],
 ];
 
 /// The original's colour in the heat-map mode: grey, so that no ramp colour appears on it.
 pub const NEUTRAL: [f32; 3] = [0.62, 0.62, 0.62];
 
-/// Legend bar size in points, and its gap from the picture's edges.
-const BAR: (f32, f32) = (150.0, 10.0);
+/// Legend bar size in points, and its gap from the viewport's edges.
+const BAR: (f32, f32) = (170.0, 10.0);
 const MARGIN: f32 = 8.0;
 
 /// The colour of `t` in 0..=1 on the ramp (clamped).
@@ -99,6 +103,19 @@ impl Legend {
             0.0
         };
         format!("{} ({percent:.2} %)", significant(distance))
+    }
+}
+
+/// A tick's value: three significant digits at most, no trailing zeros ("0.05", "0.1").
+fn tick_words(x: f64) -> String {
+    let words = significant(x);
+    if words.contains('.') {
+        words
+            .trim_end_matches('0')
+            .trim_end_matches('.')
+            .to_string()
+    } else {
+        words
     }
 }
 
@@ -272,30 +289,46 @@ impl FieldCache {
     }
 }
 
-/// Paints `legend` at the top right of `screen` (points): a title, the ramp as a bar, and
-/// its ends and middle in model units and percent of the diagonal.
-pub fn paint_legend(ctx: &egui::Context, legend: &Legend, screen: egui::Rect) {
-    let layer = egui::LayerId::new(egui::Order::Middle, egui::Id::new("error legend"));
-    let painter = ctx.layer_painter(layer);
+/// Tick values for a scale from 0 to `top`: 0 and multiples of the largest 1, 2, 2.5 or 5
+/// × 10^k step that still gives three ticks (so three or four in all).
+pub fn ticks(top: f64) -> Vec<f64> {
+    if !(top > 0.0 && top.is_finite()) {
+        return vec![0.0];
+    }
+    let mut power = 10f64.powf((top / 2.0).log10().floor());
+    let mut step = power;
+    for _ in 0..2 {
+        for m in [1.0, 2.0, 2.5, 5.0] {
+            if m * power <= top / 2.0 {
+                step = m * power;
+            }
+        }
+        power *= 10.0;
+    }
+    let count = (top / step + 1e-9).floor() as usize;
+    (0..=count).map(|i| i as f64 * step).collect()
+}
+
+/// Paints `legend` at the top-right corner of `viewport` (a heat-mapped viewport, in points,
+/// clipped to it): the units, the ramp with three or four ticks in model units, and the
+/// hot end and largest distance in model units and percent of the diagonal.
+pub fn paint_legend(painter: &egui::Painter, legend: &Legend, viewport: egui::Rect) {
+    let painter = painter.with_clip_rect(viewport);
     let font = egui::FontId::proportional(11.0);
     let text = egui::Color32::from_gray(235);
-    let title = format!("distance to the original, max {}", legend.words(legend.max));
-    let title = painter.layout_no_wrap(title, font.clone(), text);
-    let zero = painter.layout_no_wrap("0".into(), font.clone(), text);
-    let end = if legend.top < legend.max {
-        format!("≥ {}", legend.words(legend.top))
-    } else {
-        legend.words(legend.top)
-    };
-    let top = painter.layout_no_wrap(end, font.clone(), text);
+    let lay = |s: String| painter.layout_no_wrap(s, font.clone(), text);
+    let title = lay("error: model units (% of bbox diagonal)".into());
+    let end = if legend.top < legend.max { "≥ " } else { "" };
+    let summary = lay(format!(
+        "top {end}{}, max {}",
+        legend.words(legend.top),
+        legend.words(legend.max)
+    ));
     let line = title.size().y;
-    let width = BAR
-        .0
-        .max(title.size().x)
-        .max(zero.size().x + top.size().x + 12.0);
-    let height = line + 4.0 + BAR.1 + 4.0 + line;
+    let width = BAR.0.max(title.size().x).max(summary.size().x);
+    let height = line + 4.0 + BAR.1 + 2.0 + line + 2.0 + line;
     let frame = egui::Rect::from_min_size(
-        egui::pos2(screen.max.x - MARGIN - width, screen.min.y + MARGIN),
+        egui::pos2(viewport.max.x - MARGIN - width, viewport.min.y + MARGIN),
         egui::vec2(width, height),
     );
     painter.rect_filled(frame.expand(4.0), 3.0, egui::Color32::from_black_alpha(170));
@@ -304,6 +337,23 @@ pub fn paint_legend(ctx: &egui::Context, legend: &Legend, screen: egui::Rect) {
         egui::pos2(frame.min.x, frame.min.y + line + 4.0),
         egui::vec2(width, BAR.1),
     );
+    painter.add(egui::Shape::mesh(ramp_mesh(bar)));
+    let tick_y = bar.max.y + 2.0;
+    for value in ticks(legend.top) {
+        let x = bar.min.x + legend.position(value).clamp(0.0, 1.0) * bar.width();
+        painter.line_segment(
+            [egui::pos2(x, bar.min.y), egui::pos2(x, bar.max.y + 2.0)],
+            egui::Stroke::new(1.0, text),
+        );
+        let label = lay(tick_words(value));
+        let left = (x - label.size().x / 2.0).clamp(bar.min.x, bar.max.x - label.size().x);
+        painter.galley(egui::pos2(left, tick_y), label, text);
+    }
+    painter.galley(egui::pos2(frame.min.x, tick_y + line + 2.0), summary, text);
+}
+
+/// The ramp as a horizontal strip filling `bar`, cold on the left.
+fn ramp_mesh(bar: egui::Rect) -> egui::Mesh {
     let mut mesh = egui::Mesh::default();
     let steps = 32;
     for i in 0..=steps {
@@ -319,11 +369,7 @@ pub fn paint_legend(ctx: &egui::Context, legend: &Legend, screen: egui::Rect) {
             mesh.add_triangle(k - 1, k + 1, k);
         }
     }
-    painter.add(egui::Shape::mesh(mesh));
-    // 0 under the bar's left end, the maximum under its right end.
-    let below = bar.max.y + 4.0;
-    painter.galley(egui::pos2(bar.min.x, below), zero, text);
-    painter.galley(egui::pos2(bar.max.x - top.size().x, below), top, text);
+    mesh
 }
 
 #[cfg(test)]
@@ -331,14 +377,37 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_ramp_runs_from_blue_to_red() {
+    fn the_ramp_runs_from_dark_purple_to_yellow_getting_lighter() {
         assert_eq!(ramp(0.0), RAMP[0]);
-        assert_eq!(ramp(1.0), RAMP[4]);
-        assert_eq!(ramp(7.0), RAMP[4]);
+        assert_eq!(ramp(1.0), RAMP[8]);
+        assert_eq!(ramp(7.0), RAMP[8]);
         assert_eq!(ramp(-1.0), RAMP[0]);
-        assert_eq!(ramp(0.5), RAMP[2]);
-        let mid = ramp(0.125);
-        assert!(mid[2] > mid[0], "an eighth is still cold: {mid:?}");
+        assert_eq!(ramp(0.5), RAMP[4]);
+        // Perceptual: lightness rises all the way (a rainbow's does not).
+        let luma = |c: [f32; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+        for i in 1..=64 {
+            let (a, b) = (ramp((i - 1) as f32 / 64.0), ramp(i as f32 / 64.0));
+            assert!(luma(b) > luma(a), "lightness falls at {i}/64");
+        }
+    }
+
+    #[test]
+    fn three_or_four_round_ticks_from_zero() {
+        assert_eq!(ticks(1.0), vec![0.0, 0.5, 1.0]);
+        assert_eq!(ticks(0.0123).len(), 3);
+        for top in [0.0007, 0.0123, 0.458, 0.582, 1.0, 3.7, 99.0, 1234.5] {
+            let t = ticks(top);
+            assert!((3..=5).contains(&t.len()), "{top}: {t:?}");
+            assert_eq!(t[0], 0.0);
+            assert!(
+                *t.last().unwrap_or(&f64::MAX) <= top * (1.0 + 1e-9),
+                "{top}: {t:?}"
+            );
+        }
+        assert_eq!(ticks(0.0), vec![0.0]);
+        assert_eq!(tick_words(0.05), "0.05");
+        assert_eq!(tick_words(0.1), "0.1");
+        assert_eq!(tick_words(250.0), "250");
     }
 
     #[test]

@@ -59,11 +59,19 @@ pub trait Callbacks {
     fn wheel(&mut self, steps: f32);
     /// Every raw event goes here first (for the UI layer); `true` means it was consumed.
     fn filter(&mut self, window: &Window, event: &WindowEvent) -> bool;
+    /// The window's close button: quit, or stay (to ask first).
+    fn close_requested(&mut self) -> Flow {
+        Flow::Quit
+    }
     /// A file was dropped onto the window.
     fn dropped(&mut self, _window: &Window, _path: std::path::PathBuf) {}
     /// When the window must be drawn again without any event (a status message expiring).
     fn wake_at(&self) -> Option<std::time::Instant> {
         None
+    }
+    /// Woken at `wake_at`'s time: whether a frame is due now (false: wait on).
+    fn due(&mut self) -> bool {
+        true
     }
     /// The loop is ending: free GPU objects while the window still exists.
     fn destroy(&mut self);
@@ -118,12 +126,68 @@ impl<C: Callbacks> Glut<'_, C> {
         self.callbacks.destroy();
         event_loop.exit();
     }
+
+    /// A key went down: arrows to `special`, bound and printable keys to `keyboard`.
+    fn key_pressed(&mut self, key: &WinitKey) -> Flow {
+        let key = match key {
+            WinitKey::Named(NamedKey::F2) => Some(Key::F2),
+            WinitKey::Named(NamedKey::F3) => Some(Key::F3),
+            WinitKey::Named(NamedKey::Tab) => Some(Key::Tab),
+            WinitKey::Named(NamedKey::Escape) => Some(Key::Escape),
+            WinitKey::Named(arrow) => {
+                let special = match arrow {
+                    NamedKey::ArrowUp => Some(Special::Up),
+                    NamedKey::ArrowDown => Some(Special::Down),
+                    NamedKey::ArrowLeft => Some(Special::Left),
+                    NamedKey::ArrowRight => Some(Special::Right),
+                    _ => None,
+                };
+                if let Some(s) = special {
+                    self.callbacks.special(s);
+                }
+                None
+            }
+            WinitKey::Character(s) => s.chars().next().map(Key::Char),
+            _ => None,
+        };
+        match key {
+            Some(key) => self.callbacks.keyboard(key),
+            None => Flow::Continue,
+        }
+    }
+
+    /// A mouse button went down (`pressed`) or up at the cursor.
+    fn button(&mut self, pressed: bool, button: winit::event::MouseButton) -> Flow {
+        let button = match button {
+            // Shift + left stands for the middle button (panning) where there is none, as
+            // on a touchpad; its release goes with its press.
+            winit::event::MouseButton::Left => {
+                if pressed {
+                    self.left_is_middle = self.shift;
+                }
+                Some(if self.left_is_middle {
+                    Button::Middle
+                } else {
+                    Button::Left
+                })
+            }
+            winit::event::MouseButton::Right => Some(Button::Right),
+            winit::event::MouseButton::Middle => Some(Button::Middle),
+            _ => None,
+        };
+        match button {
+            Some(b) => (self.callbacks).mouse(b, pressed, self.cursor.x, self.cursor.y),
+            None => Flow::Continue,
+        }
+    }
 }
 
 impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
     fn new_events(&mut self, _event_loop: &ActiveEventLoop, cause: StartCause) {
         if let (StartCause::ResumeTimeReached { .. }, Some(window)) = (cause, &self.window) {
-            window.request_redraw();
+            if self.callbacks.due() {
+                window.request_redraw();
+            }
         }
     }
 
@@ -170,7 +234,7 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
         }
         let mut flow = Flow::Continue;
         match event {
-            WindowEvent::CloseRequested => flow = Flow::Quit,
+            WindowEvent::CloseRequested => flow = self.callbacks.close_requested(),
             WindowEvent::DroppedFile(path) => self.callbacks.dropped(&window, path),
             WindowEvent::Resized(size) => self.callbacks.reshape(size.width, size.height),
             WindowEvent::RedrawRequested => {
@@ -187,30 +251,7 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
                 return;
             }
             WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
-                let key = match &event.logical_key {
-                    WinitKey::Named(NamedKey::F2) => Some(Key::F2),
-                    WinitKey::Named(NamedKey::F3) => Some(Key::F3),
-                    WinitKey::Named(NamedKey::Tab) => Some(Key::Tab),
-                    WinitKey::Named(NamedKey::Escape) => Some(Key::Escape),
-                    WinitKey::Named(arrow) => {
-                        let special = match arrow {
-                            NamedKey::ArrowUp => Some(Special::Up),
-                            NamedKey::ArrowDown => Some(Special::Down),
-                            NamedKey::ArrowLeft => Some(Special::Left),
-                            NamedKey::ArrowRight => Some(Special::Right),
-                            _ => None,
-                        };
-                        if let Some(s) = special {
-                            self.callbacks.special(s);
-                        }
-                        None
-                    }
-                    WinitKey::Character(s) => s.chars().next().map(Key::Char),
-                    _ => None,
-                };
-                if let Some(key) = key {
-                    flow = self.callbacks.keyboard(key);
-                }
+                flow = self.key_pressed(&event.logical_key);
             }
             WindowEvent::CursorMoved { position, .. } => {
                 self.cursor = position;
@@ -220,29 +261,7 @@ impl<C: Callbacks> ApplicationHandler for Glut<'_, C> {
                 self.shift = modifiers.state().shift_key();
             }
             WindowEvent::MouseInput { state, button, .. } => {
-                let pressed = state == ElementState::Pressed;
-                let button = match button {
-                    // Shift + left stands for the middle button (panning) where there is
-                    // none, as on a touchpad; its release goes with its press.
-                    winit::event::MouseButton::Left => {
-                        if pressed {
-                            self.left_is_middle = self.shift;
-                        }
-                        Some(if self.left_is_middle {
-                            Button::Middle
-                        } else {
-                            Button::Left
-                        })
-                    }
-                    winit::event::MouseButton::Right => Some(Button::Right),
-                    winit::event::MouseButton::Middle => Some(Button::Middle),
-                    _ => None,
-                };
-                if let Some(b) = button {
-                    flow = self
-                        .callbacks
-                        .mouse(b, pressed, self.cursor.x, self.cursor.y);
-                }
+                flow = self.button(state == ElementState::Pressed, button);
             }
             WindowEvent::MouseWheel { delta, .. } => {
                 let steps = match delta {

@@ -1,5 +1,5 @@
 //! Viewport captions: what each viewport shows — "original" or its target, with vertices,
-//! triangles and the algorithm — painted with egui at the viewport's bottom-right corner.
+//! triangles and the algorithm — painted with egui at the viewport's bottom-right corner (`overlay` lays out the rest).
 //! The same words and painter serve the window and `shot`, where a headless egui context
 //! ([`HeadlessCaptions`]) paints them into the offscreen picture.
 
@@ -53,19 +53,43 @@ pub fn algorithm_name(algorithm: Algorithm) -> &'static str {
 
 /// A caption: what the viewport shows on the first line, its counts on the second.
 pub fn caption(what: &str, vertices: usize, triangles: usize) -> String {
-    format!("{what}\n{vertices} vertices, {triangles} triangles")
+    format!("{what}\n{}", counts(vertices, triangles))
 }
 
-/// Paints `captions` (a viewport rectangle in physical pixels and its text) over everything
-/// else of the frame but the popup, at `pixels_per_point`.
-pub fn paint(ctx: &egui::Context, captions: &[(Rect, String)], pixels_per_point: f32) {
-    let layer = egui::LayerId::new(egui::Order::Middle, egui::Id::new("viewport captions"));
-    let painter = ctx.layer_painter(layer);
+/// "871,414 vertices, 1,742,128 triangles": counts as captions and the status line show them.
+pub fn counts(vertices: usize, triangles: usize) -> String {
+    format!(
+        "{} vertices, {} triangles",
+        grouped(vertices),
+        grouped(triangles)
+    )
+}
+
+/// `n` with its digits in groups of three ("1,742,128"), as the vertex field accepts them.
+pub fn grouped(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::with_capacity(digits.len() + digits.len() / 3);
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// Paints `captions` (a viewport rectangle in pixels and its text) on the viewports' layer,
+/// under every window and menu, at the context's pixels per point.
+pub fn paint(ctx: &egui::Context, captions: &[(Rect, String)]) {
+    let painter = ctx.layer_painter(super::overlay::base_layer());
+    paint_on(&painter, captions, ctx.pixels_per_point());
+}
+
+/// Paints `captions` with `painter`, each at its viewport's bottom-right corner, clipped to
+/// it; rectangles in pixels, `pixels_per_point` of them to a point.
+pub fn paint_on(painter: &egui::Painter, captions: &[(Rect, String)], pixels_per_point: f32) {
     for (rect, text) in captions {
-        let tile = egui::Rect::from_min_size(
-            egui::pos2(rect.x as f32, rect.y as f32) / pixels_per_point,
-            egui::vec2(rect.width as f32, rect.height as f32) / pixels_per_point,
-        );
+        let tile = super::overlay::points(rect, pixels_per_point);
         let layout = |size: f32| {
             painter.layout_no_wrap(
                 text.clone(),
@@ -93,6 +117,7 @@ pub struct HeadlessCaptions {
     renderer: Renderer<GpuAllocator>,
     primitives: Vec<egui::ClippedPrimitive>,
     extent: vk::Extent2D,
+    pixels_per_point: f32,
 }
 
 impl HeadlessCaptions {
@@ -104,11 +129,11 @@ impl HeadlessCaptions {
         extent: vk::Extent2D,
         captions: &[(Rect, String)],
     ) -> Result<Self, RenderError> {
-        Self::with_painter(context, commands, extent, &|ctx| paint(ctx, captions, 1.0))
+        Self::with_painter(context, commands, extent, &|ctx| paint(ctx, captions))
     }
 
     /// As [`Self::new`], with whatever `paint_all` paints (captions, a legend) over a picture
-    /// of `extent` at one pixel per point.
+    /// of `extent`, its text as large as `overlay::text_scale` says.
     pub fn with_painter(
         context: &Arc<Context>,
         commands: &Commands,
@@ -131,13 +156,14 @@ impl HeadlessCaptions {
         )
         .map_err(overlay)?;
         let ctx = egui::Context::default();
-        let size = egui::vec2(extent.width as f32, extent.height as f32);
+        let ppp = super::overlay::text_scale(extent.width, extent.height);
+        let size = egui::vec2(extent.width as f32, extent.height as f32) / ppp;
         let mut input = egui::RawInput {
             screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, size)),
             ..egui::RawInput::default()
         };
         if let Some(root) = input.viewports.get_mut(&egui::ViewportId::ROOT) {
-            root.native_pixels_per_point = Some(1.0);
+            root.native_pixels_per_point = Some(ppp);
         }
         let output = ctx.run_ui(input, |ui| paint_all(ui.ctx()));
         let mut textures = output.textures_delta;
@@ -156,13 +182,14 @@ impl HeadlessCaptions {
             renderer,
             primitives,
             extent,
+            pixels_per_point: output.pixels_per_point,
         })
     }
 
     /// Records the captions into `cmd`, inside a colour-only pass over the picture.
     pub fn record(&mut self, cmd: vk::CommandBuffer) -> Result<(), RenderError> {
         self.renderer
-            .cmd_draw(cmd, self.extent, 1.0, &self.primitives)
+            .cmd_draw(cmd, self.extent, self.pixels_per_point, &self.primitives)
             .map_err(|e| RenderError::Overlay(e.to_string()))
     }
 }
@@ -191,7 +218,12 @@ mod tests {
         );
         assert_eq!(
             caption("original", 602, 1200),
-            "original\n602 vertices, 1200 triangles"
+            "original\n602 vertices, 1,200 triangles"
         );
+        assert_eq!(grouped(0), "0");
+        assert_eq!(grouped(999), "999");
+        assert_eq!(grouped(1000), "1,000");
+        assert_eq!(grouped(1_742_128), "1,742,128");
+        assert_eq!(grouped(871_414), "871,414");
     }
 }

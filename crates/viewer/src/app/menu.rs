@@ -146,7 +146,7 @@ pub fn menu() -> Vec<MenuEntry> {
         Action::AskVertexCount,
     ));
     decimate.push(entry(
-        "Algorithm: vertex removal / quadric edge collapse",
+        "Quadric edge collapse (unchecked: vertex removal)",
         Some("A"),
         Action::ToggleAlgorithm,
     ));
@@ -224,7 +224,8 @@ pub fn action_for_key(key: Key) -> Option<Action> {
         Key::F2 => Action::SavePicture,
         Key::F3 => Action::Save,
         Key::Tab => Action::NextViewport,
-        Key::Escape => Action::Quit,
+        // Esc closes what is open and cancels jobs (the window's business); it never quits.
+        Key::Escape => return None,
         Key::Char(c) => {
             if let Some(&(_, _, p)) = PERCENT_KEYS.iter().find(|(k, _, _)| *k == c) {
                 return Some(percent(p));
@@ -342,7 +343,7 @@ mod tests {
     #[test]
     fn fixed_keys() {
         assert_eq!(action_for_key(Key::F3), Some(Action::Save));
-        assert_eq!(action_for_key(Key::Escape), Some(Action::Quit));
+        assert_eq!(action_for_key(Key::Escape), None, "Esc never quits");
         assert_eq!(action_for_key(Key::Char('q')), Some(Action::Quit));
         assert_eq!(
             action_for_key(Key::Char('n')),

@@ -13,6 +13,7 @@ pub mod level_error;
 pub mod lod;
 pub mod menu;
 pub mod menu_layout;
+pub mod overlay;
 pub mod popup;
 pub mod save;
 pub mod settle;

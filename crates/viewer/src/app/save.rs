@@ -1,12 +1,13 @@
-//! Where the viewer saves: the path asked for (`out.wrl`), unless that path is one of the files
-//! the scene was read from — then the first free `out-1.wrl`, `out-2.wrl`… beside it. The
-//! viewer never writes over an input; it has no `--overwrite`.
+//! Where the viewer saves: the path asked for (`out.wrl`), unless a file is there already (an
+//! earlier save, or one of the files the scene was read from) — then the first free
+//! `out-1.wrl`, `out-2.wrl`… beside it. The viewer never writes over a file; it has no
+//! `--overwrite`.
 
 use std::path::{Path, PathBuf};
 
-/// How many numbered alternatives are tried before giving up (each input file can block one
-/// name only, so a handful of inputs never comes near it).
-const MAX_ALTERNATIVES: u32 = 1000;
+/// How many numbered alternatives are tried before giving up (a folder holding this many
+/// saves already is the user's to tidy).
+const MAX_ALTERNATIVES: u32 = 10_000;
 
 /// Where a save asked to go to `wanted` will go.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -15,21 +16,24 @@ pub enum SavePath {
     AsAsked(PathBuf),
     /// `wanted` is an input file: write to this numbered sibling instead.
     Instead(PathBuf),
+    /// `wanted` exists (an earlier save): write to this numbered sibling, the first free one.
+    Numbered(PathBuf),
 }
 
 impl SavePath {
     pub fn path(&self) -> &Path {
         match self {
-            Self::AsAsked(p) | Self::Instead(p) => p,
+            Self::AsAsked(p) | Self::Instead(p) | Self::Numbered(p) => p,
         }
     }
 }
 
-/// The path a save to `wanted` uses, given the `inputs` that must never be written over;
-/// `None` when every alternative is an input too.
+/// The path a save to `wanted` uses: no existing file, and never one of `inputs`; `None`
+/// when every alternative is taken.
 pub fn save_path(wanted: &Path, inputs: &[PathBuf]) -> Option<SavePath> {
     let is_input = |p: &Path| inputs.iter().any(|i| same_file(i, p));
-    if !is_input(wanted) {
+    let taken = |p: &Path| is_input(p) || p.exists();
+    if !taken(wanted) {
         return Some(SavePath::AsAsked(wanted.to_path_buf()));
     }
     let stem = wanted
@@ -41,8 +45,11 @@ pub fn save_path(wanted: &Path, inputs: &[PathBuf]) -> Option<SavePath> {
         .unwrap_or_default();
     (1..=MAX_ALTERNATIVES)
         .map(|k| wanted.with_file_name(format!("{stem}-{k}{extension}")))
-        .find(|p| !is_input(p))
-        .map(SavePath::Instead)
+        .find(|p| !taken(p))
+        .map(|p| match is_input(wanted) {
+            true => SavePath::Instead(p),
+            false => SavePath::Numbered(p),
+        })
 }
 
 /// True when both paths name the same existing file (a path that does not exist yet can be
@@ -75,11 +82,17 @@ mod tests {
             save_path(&wanted, std::slice::from_ref(&input)),
             Some(SavePath::AsAsked(wanted.clone()))
         );
-        // An earlier save (not an input) is replaced, as F3 always did.
+        // An earlier save stays: the next one is numbered, then the next free number.
         std::fs::write(&wanted, "old").unwrap_or_else(|e| panic!("{e}"));
+        let first = dir.join("out-1.wrl");
+        assert_eq!(
+            save_path(&wanted, std::slice::from_ref(&input)),
+            Some(SavePath::Numbered(first.clone()))
+        );
+        std::fs::write(&first, "old").unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(
             save_path(&wanted, &[input]),
-            Some(SavePath::AsAsked(wanted))
+            Some(SavePath::Numbered(dir.join("out-2.wrl")))
         );
         let _ = std::fs::remove_dir_all(&dir);
     }
@@ -89,15 +102,14 @@ mod tests {
         let dir = scratch("taken");
         let input = dir.join("out.wrl");
         let second = dir.join("out-1.wrl");
-        for f in [&input, &second] {
-            std::fs::write(f, "#VRML V2.0 utf8\n").unwrap_or_else(|e| panic!("{e}"));
-        }
+        std::fs::write(&input, "#VRML V2.0 utf8\n").unwrap_or_else(|e| panic!("{e}"));
         // Reached by another spelling of the same file.
         let wanted = dir.join(".").join("out.wrl");
         assert_eq!(
             save_path(&wanted, std::slice::from_ref(&input)),
             Some(SavePath::Instead(dir.join(".").join("out-1.wrl")))
         );
+        std::fs::write(&second, "#VRML V2.0 utf8\n").unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(
             save_path(&wanted, &[input, second]),
             Some(SavePath::Instead(dir.join(".").join("out-2.wrl")))

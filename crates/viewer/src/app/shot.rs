@@ -25,6 +25,7 @@ use super::counts::Counts;
 use super::error_map::{self, Legend};
 use super::labels::{self, HeadlessCaptions};
 use super::level_error::LevelError;
+use super::overlay::{self, Overlay};
 
 /// What can go wrong taking a shot.
 /// Options of the `shot` action.
@@ -47,6 +48,13 @@ pub struct ShotOptions {
     pub texture_dir: PathBuf,
     /// Samples per pixel for anti-aliasing (`--msaa`; 1: off), as many as the device offers.
     pub msaa: u32,
+    /// A status line in the window's strip below the viewports, as the viewer shows it.
+    pub status: Option<String>,
+    /// The viewer's help overlay over the picture.
+    pub help: bool,
+    /// The viewports' background colour, RGB from 0 to 1 (`--background`); the viewer's own
+    /// when `None`.
+    pub background: Option<[f32; 3]>,
 }
 
 impl Default for ShotOptions {
@@ -61,6 +69,9 @@ impl Default for ShotOptions {
             targets: Vec::new(),
             texture_dir: PathBuf::from("."),
             msaa: crate::render::pipeline::DEFAULT_MSAA,
+            status: None,
+            help: false,
+            background: None,
         }
     }
 }
@@ -151,9 +162,7 @@ pub fn render(
 ) -> Result<(RgbaImage, Vec<Report>), RenderError> {
     let context = Context::new(&[], false, device)?;
     let commands = Commands::new(&context)?;
-    let pipelines = Pipelines::with_samples(&context, OFFSCREEN_FORMAT, options.msaa)?;
-    let target =
-        OffscreenTarget::with_samples(&context, options.width, options.height, pipelines.samples)?;
+    let (pipelines, target) = offscreen(&context, options)?;
 
     let draw = options.modes;
     let mut textures = Textures::new(
@@ -161,17 +170,9 @@ pub fn render(
         pipelines.texture_layout,
         texture_image::reader(&options.texture_dir),
     )?;
-    let rects = tiles(options.viewports as usize, options.width, options.height);
+    let (rects, strip) = layout(options);
     let shown = viewport_params(rects.len(), params, &options.targets);
-    let mut made: Vec<(Params, Scene, Report)> = Vec::new();
-    for p in shown.iter().flatten() {
-        if made.iter().any(|(q, _, _)| q == p) {
-            continue;
-        }
-        let mut copy = scene.clone();
-        let report = simplify_scene(&mut copy, p, &mut |_| {});
-        made.push((*p, copy, report));
-    }
+    let made = decimate_each(scene, &shown);
     let copies = made.iter().map(|(_, copy, _)| copy.clone()).collect();
     let (neutral, drawn, legend) = heat_mapped(scene, copies, draw.error_map);
     let original = GpuScene::upload(
@@ -181,61 +182,155 @@ pub fn render(
         neutral.as_ref().unwrap_or(scene),
         draw.layers(),
     )?;
-    let mut decimated: Vec<Decimated> = Vec::new();
-    for ((p, copy, report), shown_copy) in made.into_iter().zip(&drawn) {
-        let caption = decimated_caption(scene, &copy, &p, options.measure);
-        decimated.push(Decimated {
-            params: p,
-            gpu: GpuScene::upload(
-                &context,
-                &commands,
-                &mut textures,
-                shown_copy,
-                draw.layers(),
-            )?,
-            report,
-            caption,
-        });
-    }
+    let uploader = Uploader {
+        context: &context,
+        commands: &commands,
+        layers: draw.layers(),
+    };
+    let decimated = uploader.decimated(&mut textures, scene, made, &drawn, options.measure)?;
     let counts = Counts::of(scene);
     let original_caption = labels::caption("original", counts.vertices, counts.triangles);
     let camera = Camera::framing(original.bounds);
-    let mut views = Vec::with_capacity(rects.len());
-    let mut captions = Vec::with_capacity(rects.len());
-    for (&rect, p) in rects.iter().zip(&shown) {
-        let d = p.and_then(|p| decimated.iter().find(|d| d.params == p));
-        views.push(ViewportDraw {
-            rect,
-            scene: d.map_or(&original, |d| &d.gpu),
-            camera: &camera,
-            options: draw,
-            morph: 1.0,
-        });
-        captions.push((rect, d.map_or(&original_caption, |d| &d.caption).clone()));
-    }
+    let (views, captions): (Vec<_>, Vec<_>) = (rects.iter().zip(&shown))
+        .map(|(&rect, p)| {
+            let d = p.and_then(|p| decimated.iter().find(|d| d.params == p));
+            let view = ViewportDraw {
+                rect,
+                scene: d.map_or(&original, |d| &d.gpu),
+                camera: &camera,
+                options: draw,
+                morph: 1.0,
+            };
+            (
+                view,
+                (rect, d.map_or(&original_caption, |d| &d.caption).clone()),
+            )
+        })
+        .unzip();
     let labelled = options.labels.unwrap_or(rects.len() > 1 || options.measure);
-    let image = if labelled || legend.is_some() {
-        let screen = egui::Rect::from_min_size(
-            egui::Pos2::ZERO,
-            egui::vec2(options.width as f32, options.height as f32),
-        );
-        let paint = |ctx: &egui::Context| {
-            if labelled {
-                labels::paint(ctx, &captions, 1.0);
-            }
-            if let Some(legend) = &legend {
-                error_map::paint_legend(ctx, legend, screen);
-            }
-        };
-        let mut overlay =
-            HeadlessCaptions::with_painter(&context, &commands, target.extent, &paint)?;
-        let mut record = |cmd| overlay.record(cmd);
-        target.render_with_overlay(&commands, &pipelines, &views, true, Some(&mut record))?
-    } else {
-        target.render(&commands, &pipelines, &views, true)?
+    let heat: Vec<_> = (rects.iter().zip(&shown))
+        .filter(|(_, p)| p.is_some())
+        .map(|(r, _)| *r)
+        .collect();
+    let help = options.help.then(super::menu::key_help);
+    let painted = Overlay {
+        captions: if labelled { &captions } else { &[] },
+        legend: legend.map(|l| (l, heat.as_slice())),
+        status: (options.status.as_deref()).map(|s| (s, strip)),
+        help: help.as_deref(),
     };
-    let image = image.ok_or_else(|| RenderError::TooLarge("no picture was read back".into()))?;
+    let painting = labelled || legend.is_some() || strip > 0 || help.is_some();
+    let image = draw_and_read(
+        &context,
+        &commands,
+        &pipelines,
+        &target,
+        &views,
+        painting.then_some(&painted),
+    )?;
     Ok((image, decimated.into_iter().map(|d| d.report).collect()))
+}
+
+/// The pipelines and the picture `options` ask for (size, samples, background).
+fn offscreen(
+    context: &std::sync::Arc<Context>,
+    options: &ShotOptions,
+) -> Result<(Pipelines, OffscreenTarget), RenderError> {
+    let pipelines = Pipelines::with_samples(context, OFFSCREEN_FORMAT, options.msaa)?;
+    let mut target =
+        OffscreenTarget::with_samples(context, options.width, options.height, pipelines.samples)?;
+    if let Some([r, g, b]) = options.background {
+        target.background = [r, g, b, 1.0];
+    }
+    Ok((pipelines, target))
+}
+
+/// What uploads a shot's scenes.
+struct Uploader<'a> {
+    context: &'a std::sync::Arc<Context>,
+    commands: &'a Commands,
+    layers: crate::render::mesh_data::Layers,
+}
+
+impl Uploader<'_> {
+    /// The decimated copies `made` of `original` on the GPU, each drawn as `drawn` says (its
+    /// heat-mapped version, or itself), captioned (with `measure`, with its metro error).
+    fn decimated(
+        &self,
+        textures: &mut Textures,
+        original: &Scene,
+        made: Vec<(Params, Scene, Report)>,
+        drawn: &[Scene],
+        measure: bool,
+    ) -> Result<Vec<Decimated>, RenderError> {
+        let mut decimated = Vec::with_capacity(made.len());
+        for ((params, copy, report), shown_copy) in made.into_iter().zip(drawn) {
+            let caption = decimated_caption(original, &copy, &params, measure);
+            let gpu = GpuScene::upload(
+                self.context,
+                self.commands,
+                textures,
+                shown_copy,
+                self.layers,
+            )?;
+            decimated.push(Decimated {
+                params,
+                gpu,
+                report,
+                caption,
+            });
+        }
+        Ok(decimated)
+    }
+}
+
+/// The viewports' rectangles, tiled over what the status strip (when there is a status
+/// line) leaves, and the strip's height.
+fn layout(options: &ShotOptions) -> (Vec<crate::render::tiles::Rect>, u32) {
+    let ppp = overlay::text_scale(options.width, options.height);
+    let strip = (options.status.as_ref()).map_or(0, |_| overlay::status_strip(options.height, ppp));
+    let rects = tiles(
+        options.viewports as usize,
+        options.width,
+        options.height - strip,
+    );
+    (rects, strip)
+}
+
+/// `scene` decimated once for each distinct parameter set of `shown`, with the reports.
+fn decimate_each(scene: &Scene, shown: &[Option<Params>]) -> Vec<(Params, Scene, Report)> {
+    let mut made: Vec<(Params, Scene, Report)> = Vec::new();
+    for p in shown.iter().flatten() {
+        if made.iter().any(|(q, _, _)| q == p) {
+            continue;
+        }
+        let mut copy = scene.clone();
+        let report = simplify_scene(&mut copy, p, &mut |_| {});
+        made.push((*p, copy, report));
+    }
+    made
+}
+
+/// Draws `views` into `target`, with `painted` over them when given, and reads it back.
+fn draw_and_read(
+    context: &std::sync::Arc<Context>,
+    commands: &Commands,
+    pipelines: &Pipelines,
+    target: &OffscreenTarget,
+    views: &[ViewportDraw<'_>],
+    painted: Option<&Overlay<'_>>,
+) -> Result<RgbaImage, RenderError> {
+    let image = match painted {
+        Some(painted) => {
+            let paint = |ctx: &egui::Context| overlay::paint(ctx, painted);
+            let mut overlay =
+                HeadlessCaptions::with_painter(context, commands, target.extent, &paint)?;
+            let mut record = |cmd| overlay.record(cmd);
+            target.render_with_overlay(commands, pipelines, views, true, Some(&mut record))?
+        }
+        None => target.render(commands, pipelines, views, true)?,
+    };
+    image.ok_or_else(|| RenderError::TooLarge("no picture was read back".into()))
 }
 
 /// The caption of `level`, `original` decimated with `params`: its target and algorithm,

@@ -1,5 +1,6 @@
 //! `UiLayer`: egui over the Vulkan window — the right-click popup menu (`popup`, built from
-//! the menu data), the "decimate to N vertices" text field, the status line and the help overlay.
+//! the menu data), the "decimate to N vertices" text field, the quit question, and what
+//! `overlay` paints (status strip, captions, legends, help).
 //! Drawn in its own colour-only rendering pass after the viewports.
 
 use std::sync::Arc;
@@ -12,12 +13,9 @@ use winit::window::Window;
 use crate::render::commands::Commands;
 use crate::render::context::Context;
 
-use crate::render::tiles::Rect;
-
 use super::app_error::AppError;
-use super::error_map::{self, Legend};
-use super::labels;
 use super::menu::{Action, MenuEntry};
+use super::overlay::{self, Overlay};
 use super::popup;
 
 /// What the user did in the UI this frame.
@@ -32,8 +30,11 @@ pub struct UiResult {
     pub close_field: bool,
     /// egui wants another frame soon (a popup being measured, hover animation).
     pub repaint: bool,
-    /// The level-of-detail slider was moved to this many vertices.
-    pub lod_vertices: Option<usize>,
+    /// The level-of-detail slider of a viewport (index from 0) was moved to this many
+    /// vertices.
+    pub lod_vertices: Option<(usize, usize)>,
+    /// The quit question was answered: quit (`true`) or stay.
+    pub quit_answer: Option<bool>,
 }
 
 /// The "decimate to N vertices" field while it is open.
@@ -44,6 +45,18 @@ pub struct VertexField {
     pub error: Option<String>,
     /// The counts the field accepts, shown as its hint.
     pub hint: String,
+}
+
+/// A viewport's level-of-detail slider: inside the viewport, at its top-left corner.
+#[derive(Debug, Clone, Copy)]
+pub struct LodSlider {
+    /// The viewport, from 0.
+    pub viewport: usize,
+    /// The viewport's top-left corner, in points.
+    pub corner: egui::Pos2,
+    /// The least and most vertices, and the count it is at.
+    pub range: (usize, usize),
+    pub at: usize,
 }
 
 /// What the UI shows this frame.
@@ -57,15 +70,12 @@ pub struct UiState<'a> {
     pub popup_just_opened: bool,
     /// The vertex-count field, if it is open.
     pub field: Option<&'a mut VertexField>,
-    pub status: &'a str,
-    pub help: Option<&'a str>,
-    /// The current viewport's level-of-detail slider, if it is on: least and most vertices,
-    /// and the count it is at.
-    pub lod: Option<(usize, usize, usize)>,
-    /// Each viewport's rectangle (physical pixels) and caption.
-    pub captions: &'a [(Rect, String)],
-    /// The error heat-map's legend, while a viewport shows it.
-    pub legend: Option<Legend>,
+    /// Captions, legends, status line and help.
+    pub overlay: Overlay<'a>,
+    /// The level-of-detail slider of each viewport that has it on.
+    pub lods: &'a [LodSlider],
+    /// The quit question, while it is asked.
+    pub confirm: Option<&'a str>,
 }
 
 /// egui context, winit glue and Vulkan renderer.
@@ -124,6 +134,11 @@ impl UiLayer {
         self.state.on_window_event(window, event).consumed
     }
 
+    /// Physical pixels per egui point: the window's scale factor times the text zoom.
+    pub fn pixels_per_point(&self) -> f32 {
+        self.ctx.pixels_per_point()
+    }
+
     /// True when egui wants the pointer (over the popup or the field).
     pub fn wants_pointer(&self) -> bool {
         self.ctx.egui_wants_pointer_input() || self.ctx.is_pointer_over_egui()
@@ -137,6 +152,9 @@ impl UiLayer {
         commands: &Commands,
         ui_state: UiState<'_>,
     ) -> Result<UiResult, AppError> {
+        let size = window.inner_size();
+        self.ctx
+            .set_zoom_factor(overlay::text_scale(size.width, size.height));
         let input = self.state.take_egui_input(window);
         let mut result = UiResult::default();
         let UiState {
@@ -145,49 +163,17 @@ impl UiLayer {
             popup_at,
             popup_just_opened,
             mut field,
-            status,
-            help,
-            lod,
-            captions,
-            legend,
+            overlay: painted,
+            lods,
+            confirm,
         } = ui_state;
-        let scale = window.scale_factor() as f32;
         let output = self.ctx.run_ui(input, |ui| {
             let ctx = ui.ctx().clone();
-            labels::paint(&ctx, captions, scale);
-            if let Some(legend) = &legend {
-                error_map::paint_legend(&ctx, legend, ctx.content_rect());
-            }
-            egui::Area::new(egui::Id::new("status"))
-                .anchor(egui::Align2::LEFT_BOTTOM, egui::vec2(6.0, -6.0))
-                .show(&ctx, |ui| {
-                    egui::Frame::popup(ui.style()).show(ui, |ui| {
-                        ui.add(egui::Label::new(status).wrap_mode(egui::TextWrapMode::Extend))
-                    });
-                });
-            if let Some((lo, hi, at)) = lod {
-                egui::Area::new(egui::Id::new("level of detail"))
-                    .anchor(egui::Align2::LEFT_TOP, egui::vec2(6.0, 6.0))
-                    .show(&ctx, |ui| {
-                        egui::Frame::popup(ui.style()).show(ui, |ui| {
-                            ui.label("Level of detail (vertices)  [L: off]");
-                            let mut value = at;
-                            ui.spacing_mut().slider_width = 320.0;
-                            let slider = egui::Slider::new(&mut value, lo..=hi)
-                                .logarithmic(hi > 100 * lo.max(1));
-                            if ui.add(slider).changed() && value != at {
-                                result.lod_vertices = Some(value);
-                            }
-                        });
-                    });
-            }
-            if let Some(text) = help {
-                egui::Area::new(egui::Id::new("help"))
-                    .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-6.0, 6.0))
-                    .show(&ctx, |ui| {
-                        egui::Frame::popup(ui.style())
-                            .show(ui, |ui| ui.label(egui::RichText::new(text).monospace()));
-                    });
+            overlay::paint(&ctx, &painted);
+            for slider in lods {
+                if let Some(n) = lod_slider(&ctx, slider) {
+                    result.lod_vertices = Some((slider.viewport, n));
+                }
             }
             if let Some(pos) = popup_at {
                 let outcome = popup::show(&ctx, menu, checked, pos, popup_just_opened);
@@ -196,6 +182,9 @@ impl UiLayer {
             }
             if let Some(field) = field.as_deref_mut() {
                 vertex_field(&ctx, field, &mut result);
+            }
+            if let Some(question) = confirm {
+                result.quit_answer = quit_question(&ctx, question);
             }
         });
         result.repaint = output
@@ -236,10 +225,37 @@ impl UiLayer {
     }
 }
 
+/// `slider` in its viewport's top-left corner; the count it was dragged to, if it moved.
+/// No number box beside it (typing there took the viewer's keys): the count is a label.
+fn lod_slider(ctx: &egui::Context, slider: &LodSlider) -> Option<usize> {
+    let (lo, hi) = slider.range;
+    let mut moved = None;
+    egui::Area::new(egui::Id::new(("level of detail", slider.viewport)))
+        .fixed_pos(slider.corner + egui::vec2(6.0, 6.0))
+        .show(ctx, |ui| {
+            egui::Frame::popup(ui.style()).show(ui, |ui| {
+                ui.label(format!(
+                    "Level of detail: {} vertices  [L: off]",
+                    super::labels::grouped(slider.at)
+                ));
+                let mut value = slider.at;
+                ui.spacing_mut().slider_width = 240.0;
+                let bar = egui::Slider::new(&mut value, lo..=hi)
+                    .show_value(false)
+                    .logarithmic(hi > 100 * lo.max(1));
+                if ui.add(bar).changed() && value != slider.at {
+                    moved = Some(value);
+                }
+            });
+        });
+    moved
+}
+
 /// The "decimate to N vertices" window: Enter or the button submits the text (the viewer
 /// checks it and either closes the field or shows why not), Escape or Cancel closes it.
 fn vertex_field(ctx: &egui::Context, field: &mut VertexField, result: &mut UiResult) {
     egui::Window::new("Decimate to N vertices")
+        .order(egui::Order::Foreground)
         .collapsible(false)
         .resizable(false)
         .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
@@ -269,4 +285,27 @@ fn vertex_field(ctx: &egui::Context, field: &mut VertexField, result: &mut UiRes
                 }
             });
         });
+}
+
+/// The quit question over everything: "Quit" (or q / y) quits, "Stay" (or n / Esc) stays;
+/// the keys reach the viewer, which answers for them.
+fn quit_question(ctx: &egui::Context, question: &str) -> Option<bool> {
+    let mut answer = None;
+    egui::Window::new("Quit?")
+        .collapsible(false)
+        .resizable(false)
+        .order(egui::Order::Foreground)
+        .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
+        .show(ctx, |ui| {
+            ui.label(question);
+            ui.horizontal(|ui| {
+                if ui.button("Quit (y)").clicked() {
+                    answer = Some(true);
+                }
+                if ui.button("Stay (n)").clicked() {
+                    answer = Some(false);
+                }
+            });
+        });
+    answer
 }

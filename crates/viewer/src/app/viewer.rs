@@ -21,19 +21,21 @@ use crate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
 use crate::render::pipeline::Pipelines;
 use crate::render::swapchain::{Frame, Swapchain};
 use crate::render::texture::Textures;
+use crate::render::tiles::Rect;
 use crate::render::RenderError;
 use decimate_core::io::texture_image;
 
 use super::app_error::AppError;
 use super::controller::{Effect, ViewportController};
-use super::error_map::{self, FieldCache, Legend, Look};
+use super::error_map::{FieldCache, Legend, Look};
 use super::glut::{Button, Callbacks, Flow, Special};
 use super::labels::HeadlessCaptions;
 use super::menu::{action_for_key, key_help, Key, MenuEntry};
+use super::overlay::{self, Overlay};
 use super::save::{save_path, SavePath};
 use super::settle::Settle;
 use super::shot::write_png;
-use super::ui::{UiLayer, UiResult, UiState, VertexField};
+use super::ui::{LodSlider, UiLayer, UiResult, UiState, VertexField};
 
 /// GPU objects of the window; field order is drop order (UI and meshes before the context).
 struct Gpu {
@@ -78,6 +80,11 @@ pub struct Viewer {
     /// The last frame was drawn single-sampled though multisampling is on: a sharp one is
     /// due when the view rests.
     drawn_moving: bool,
+    /// The window's scale factor (physical pixels per logical one).
+    scale_factor: f32,
+    /// How long the last frame took to draw, and when it ended.
+    last_frame: Duration,
+    last_drawn: Instant,
 }
 
 /// Where F2 saves the window's picture.
@@ -86,9 +93,14 @@ const PICTURE: &str = "window.png";
 /// How long a message stays in the status line.
 const MESSAGE_LIFETIME: Duration = Duration::from_secs(6);
 
-/// While a job runs, a frame this often at least: the progress bar moves and the job's end
-/// is seen; see docs/design.md#viewer-jobs.
-const JOB_FRAME_INTERVAL: Duration = Duration::from_millis(100);
+/// While a job runs, a frame this often at most (and on input): the progress bar moves four
+/// times a second and the job's end is seen; see docs/design.md#viewer-jobs.
+const JOB_FRAME_INTERVAL: Duration = Duration::from_millis(250);
+
+/// While a job runs, the next progress frame waits this many times as long as the last
+/// frame took (a large model drawn in software takes a core for long): drawing takes at
+/// most about one part in six of the time, and the job keeps the cores.
+const JOB_FRAME_SHARE: u32 = 5;
 
 /// With `DECIMATE_TRACE` set, the viewer prints each key it handles and each frame drawn
 /// while a job runs to stderr, with the milliseconds since it started: how the window test
@@ -123,6 +135,9 @@ impl Viewer {
             legend: None,
             settle: Settle::default(),
             drawn_moving: false,
+            scale_factor: 1.0,
+            last_frame: Duration::ZERO,
+            last_drawn: Instant::now(),
         }
     }
 
@@ -149,6 +164,44 @@ impl Viewer {
                 Flow::Continue
             }
             Effect::Quit => Flow::Quit,
+        }
+    }
+
+    /// Takes the job's result if it has ended (and says so); true then.
+    fn poll_job(&mut self) -> bool {
+        let ended = self.controller.poll();
+        if ended {
+            eprintln!("decimate: {}", self.controller.message);
+        }
+        ended
+    }
+
+    /// Esc: closes the popup or the field; else stops the job running (the viewport keeps
+    /// what it showed) or the heat-map's measurement; else closes the help. Never quits.
+    fn escape(&mut self) {
+        if self.popup_at.take().is_some() || self.field.take().is_some() {
+            return;
+        }
+        if self.controller.cancel_job() {
+            eprintln!("decimate: {}", self.controller.message);
+        } else if let Some(message) = self.fields.cancel() {
+            eprintln!("decimate: {message}");
+            self.controller.message = message;
+        } else {
+            self.controller.help = false;
+        }
+    }
+
+    /// A key while the quit question is shown: q or y quits, n or Esc stays, others wait.
+    fn answer_quit(&mut self, key: Key) -> Flow {
+        match key {
+            Key::Char('q' | 'y' | 'Y') => Flow::Quit,
+            Key::Char('n' | 'N') | Key::Escape => {
+                self.controller.confirm_quit = false;
+                self.controller.message = "not quitting".into();
+                Flow::Continue
+            }
+            _ => Flow::Continue,
         }
     }
 
@@ -192,21 +245,20 @@ impl Viewer {
             pipelines.samples,
         )?;
         let views = viewport_draws(&gpu.scenes, &self.controller, extent, Instant::now());
-        let captions: Vec<_> = (self.controller.rects_for(extent.width, extent.height))
-            .into_iter()
+        let rects = self.controller.rects_for(extent.width, extent.height);
+        let captions: Vec<_> = (rects.iter().copied())
             .zip(self.controller.viewports().iter().map(|vp| vp.caption()))
             .collect();
         let commands = &gpu.upload_commands;
-        let screen = egui::Rect::from_min_size(
-            egui::Pos2::ZERO,
-            egui::vec2(extent.width as f32, extent.height as f32),
-        );
-        let legend = self.legend;
+        let heat = heat_mapped_rects(&self.controller, &self.fields, self.legend.as_ref(), &rects);
+        let legend = self.legend.map(|l| (l, heat.as_slice()));
         let paint = |ctx: &egui::Context| {
-            super::labels::paint(ctx, &captions, 1.0);
-            if let Some(legend) = &legend {
-                error_map::paint_legend(ctx, legend, screen);
-            }
+            let captions = Overlay {
+                captions: &captions,
+                legend,
+                ..Overlay::default()
+            };
+            overlay::paint(ctx, &captions);
         };
         let mut overlay = HeadlessCaptions::with_painter(&gpu.context, commands, extent, &paint)?;
         let mut record = |cmd| overlay.record(cmd);
@@ -215,6 +267,12 @@ impl Viewer {
             .ok_or_else(|| RenderError::TooLarge("no picture was read back".into()))?;
         let path = target.path();
         Ok(match write_png(&image, path) {
+            Ok(()) if matches!(target, SavePath::Numbered(_)) => {
+                format!(
+                    "saved the window as {} (kept the earlier ones)",
+                    path.display()
+                )
+            }
             Ok(()) if matches!(target, SavePath::Instead(_)) => format!(
                 "{PICTURE} is an input file, not written over: saved the window as {}",
                 path.display()
@@ -227,6 +285,20 @@ impl Viewer {
     /// The status line, one line: the last message while it is fresh, else the current
     /// viewport's state.
     fn status(&mut self) -> String {
+        // Messages age while a job's progress is shown too: an expired one must not keep
+        // asking for frames (`due`).
+        let now = Instant::now();
+        let message = std::mem::take(&mut self.controller.message);
+        if !message.is_empty() {
+            self.message = Some((message, now + MESSAGE_LIFETIME));
+        }
+        if self
+            .message
+            .as_ref()
+            .is_some_and(|(_, until)| *until <= now)
+        {
+            self.message = None;
+        }
         if let Some(job) = self
             .controller
             .job_status()
@@ -234,16 +306,8 @@ impl Viewer {
         {
             return job;
         }
-        let now = Instant::now();
-        let message = std::mem::take(&mut self.controller.message);
-        if !message.is_empty() {
-            self.message = Some((message, now + MESSAGE_LIFETIME));
-        }
-        if let Some((message, until)) = &self.message {
-            if now < *until {
-                return message.clone();
-            }
-            self.message = None;
+        if let Some((message, _)) = &self.message {
+            return message.clone();
         }
         let vp = self.controller.current_viewport();
         format!(
@@ -297,9 +361,7 @@ impl Viewer {
     fn draw_frame(&mut self, window: &Window) -> Result<Flow, AppError> {
         // Geomorphs advance with the clock; while one runs, frames keep coming.
         let now = Instant::now();
-        if self.controller.poll() {
-            eprintln!("decimate: {}", self.controller.message);
-        }
+        self.poll_job();
         let morphing = self.controller.tick(now);
         let moving = (self.settle).moving(self.dragging || self.panning || morphing, now);
         let Some(gpu) = self.gpu.as_mut() else {
@@ -335,31 +397,41 @@ impl Viewer {
             (Some(gpu), false) => gpu.pipelines.samples.as_raw(),
             _ => 1,
         };
+        self.last_frame = now.elapsed();
+        self.last_drawn = Instant::now();
         trace(format_args!(
             "frame in {} ms, {job}, {samples}x samples",
-            now.elapsed().as_millis()
+            self.last_frame.as_millis()
         ));
-        if ui_result.repaint || morphing {
+        // egui asks for a frame after any input it saw; while a job runs that is honoured
+        // only when something of egui's is open (popup, field, question) and may animate.
+        let ui_open =
+            self.popup_at.is_some() || self.field.is_some() || self.controller.confirm_quit;
+        if (ui_result.repaint && (ui_open || !self.busy())) || morphing {
             window.request_redraw();
         }
         Ok(self.apply_ui(ui_result, window))
     }
 
-    /// Lays out this frame's UI: status line, level-of-detail slider, help, popup, field.
+    /// Lays out this frame's UI: status strip, captions, legends, level-of-detail slider,
+    /// help, popup, field, quit question.
     fn run_ui(&mut self, window: &Window) -> Result<UiResult, AppError> {
         let status = self.status();
-        let lod = self.controller.current_viewport().lod().map(|l| {
-            let (lo, hi) = l.range();
-            (lo, hi, l.target())
-        });
         let help = self.controller.help.then_some(self.help_text.as_str());
-        let captions: Vec<_> = (self.controller.rects().into_iter())
+        let confirm = (self.controller.confirm_quit).then(|| {
+            let unsaved = self.controller.unsaved().len();
+            format!("{unsaved} decimated viewport(s) not saved (F3 saves one).")
+        });
+        let rects = self.controller.rects();
+        let captions: Vec<_> = (rects.iter().copied())
             .zip(self.controller.viewports().iter().map(|vp| vp.caption()))
             .collect();
+        let heat = heat_mapped_rects(&self.controller, &self.fields, self.legend.as_ref(), &rects);
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(UiResult::default());
         };
-        let scale = window.scale_factor() as f32;
+        let ppp = gpu.ui.pixels_per_point();
+        let lods = lod_sliders(&self.controller, &rects, ppp);
         gpu.ui.run(
             window,
             &gpu.context,
@@ -367,14 +439,17 @@ impl Viewer {
             UiState {
                 menu: &self.menu,
                 checked: &|a| self.controller.checked(a),
-                popup_at: self.popup_at.map(|p| egui::pos2(p.x / scale, p.y / scale)),
+                popup_at: self.popup_at.map(|p| egui::pos2(p.x / ppp, p.y / ppp)),
                 popup_just_opened: self.popup_just_opened,
                 field: self.field.as_mut(),
-                status: &status,
-                help,
-                lod,
-                captions: &captions,
-                legend: self.legend,
+                overlay: Overlay {
+                    captions: &captions,
+                    legend: self.legend.map(|l| (l, heat.as_slice())),
+                    status: Some((&status, self.controller.status_strip)),
+                    help,
+                },
+                lods: &lods,
+                confirm: confirm.as_deref(),
             },
         )
     }
@@ -426,9 +501,11 @@ impl Viewer {
             || ui_result.close_popup
             || ui_result.close_field
             || ui_result.vertex_count.is_some()
-            || ui_result.action.is_some();
-        if let Some(n) = ui_result.lod_vertices {
+            || ui_result.action.is_some()
+            || ui_result.quit_answer.is_some();
+        if let Some((viewport, n)) = ui_result.lod_vertices {
             self.settle.moved(Instant::now());
+            self.controller.select(viewport);
             self.controller.set_lod_vertices(n, Instant::now());
         }
         if ui_result.close_popup || ui_result.action.is_some() {
@@ -451,11 +528,59 @@ impl Viewer {
             let effect = self.controller.dispatch(action);
             flow = self.run_effect(effect);
         }
+        match ui_result.quit_answer {
+            Some(true) => flow = Flow::Quit,
+            Some(false) => self.controller.confirm_quit = false,
+            None => {}
+        }
         if acted {
             window.request_redraw();
         }
         flow
     }
+}
+
+impl Viewer {
+    /// A decimation, progressive mesh, measurement or heat-map field is being computed.
+    fn busy(&self) -> bool {
+        self.controller.busy() || self.fields.busy()
+    }
+
+    /// When the sharp frame is due once the view rests, after single-sampled ones (a button
+    /// held still waits for its release, which draws a frame).
+    fn rest_at(&self) -> Option<Instant> {
+        let held = self.dragging || self.panning;
+        (self.settle.rests_at()).filter(|_| self.drawn_moving && !held)
+    }
+}
+
+/// The level-of-detail slider of each viewport that has it on, at its top-left corner
+/// (`rects` in pixels, `ppp` of them to a point).
+fn lod_sliders(controller: &ViewportController, rects: &[Rect], ppp: f32) -> Vec<LodSlider> {
+    (rects.iter().zip(controller.viewports()).enumerate())
+        .filter_map(|(i, (rect, vp))| {
+            let lod = vp.lod()?;
+            Some(LodSlider {
+                viewport: i,
+                corner: overlay::points(rect, ppp).min,
+                range: lod.range(),
+                at: lod.target(),
+            })
+        })
+        .collect()
+}
+
+/// The rectangles of the viewports drawn heat-mapped (their legend goes in each).
+fn heat_mapped_rects(
+    controller: &ViewportController,
+    fields: &FieldCache,
+    legend: Option<&Legend>,
+    rects: &[Rect],
+) -> Vec<Rect> {
+    (rects.iter().zip(controller.viewports()))
+        .filter(|(_, vp)| matches!(fields.look(vp, legend), Look::Heat(_)))
+        .map(|(r, _)| *r)
+        .collect()
 }
 
 /// What each viewport draws this frame, for the viewports whose scene is on the GPU.
@@ -510,7 +635,15 @@ fn record_viewports(
         image::transition(device, cmd, frame.image, format, image::TO_COLOR_ATTACHMENT);
         images.to_attachments(device, cmd);
         let attachments = images.attachments(frame.view);
-        draw::begin_tiles(device, cmd, attachments, extent, &rects, highlight);
+        draw::begin_tiles(
+            device,
+            cmd,
+            attachments,
+            extent,
+            &rects,
+            highlight,
+            draw::BACKGROUND,
+        );
         draw::record(device, cmd, pipelines, views);
         device.cmd_end_rendering(cmd);
         draw::begin_overlay(device, cmd, frame.view, extent);
@@ -528,6 +661,7 @@ impl Callbacks for Viewer {
             .map_err(|e| AppError::Window(format!("no Vulkan surface support: {e}")))?;
         let context = Context::new(extensions, true, DevicePreference::Fastest)?;
         let size = window.inner_size();
+        self.scale_factor = window.scale_factor() as f32;
         let samples = context.capabilities.samples(self.controller.msaa);
         let swapchain = Swapchain::new(
             &context,
@@ -564,27 +698,23 @@ impl Callbacks for Viewer {
 
     fn reshape(&mut self, width: u32, height: u32) {
         self.size = (width.max(1), height.max(1));
+        let ppp = self.scale_factor * overlay::text_scale(self.size.0, self.size.1);
+        self.controller.status_strip = overlay::status_strip(self.size.1, ppp);
         self.controller.resize(self.size.0, self.size.1);
         self.resized = true;
     }
 
     fn keyboard(&mut self, key: Key) -> Flow {
         trace(format_args!("key {key:?}"));
-        if self.popup_at.is_some() && key == Key::Escape {
-            self.popup_at = None;
-            return Flow::Continue;
-        }
-        // Esc stops the job running, if any (the viewport keeps what it showed); else quits.
-        if key == Key::Escape && self.controller.cancel_job() {
-            eprintln!("decimate: {}", self.controller.message);
-            return Flow::Continue;
+        // A key acts on the latest state: a job that has ended is taken first (F3 then saves
+        // its result, not what the last frame showed).
+        self.poll_job();
+        if self.controller.confirm_quit {
+            return self.answer_quit(key);
         }
         if key == Key::Escape {
-            if let Some(message) = self.fields.cancel() {
-                eprintln!("decimate: {message}");
-                self.controller.message = message;
-                return Flow::Continue;
-            }
+            self.escape();
+            return Flow::Continue;
         }
         // W / S walk in eye control; elsewhere they keep their menu meaning.
         let eye = self.controller.current_viewport().camera.navigation == Navigation::Eye;
@@ -608,6 +738,11 @@ impl Callbacks for Viewer {
             }
             None => Flow::Continue,
         }
+    }
+
+    fn close_requested(&mut self) -> Flow {
+        let effect = self.controller.quit();
+        self.run_effect(effect)
     }
 
     fn special(&mut self, key: Special) {
@@ -681,7 +816,7 @@ impl Callbacks for Viewer {
                 self.controller.open(scene, &path);
                 self.field = None;
                 self.popup_at = None;
-                window.set_title(&format!("decimate — {}", path.display()));
+                window.set_title(&format!("decimate - {}", path.display()));
                 if let Err(e) = self.reload_textures() {
                     self.controller.message = format!("{}: textures: {e}", path.display());
                 }
@@ -693,16 +828,25 @@ impl Callbacks for Viewer {
 
     fn wake_at(&self) -> Option<Instant> {
         let message = self.message.as_ref().map(|(_, until)| *until);
-        let job = (self.controller.busy() || self.fields.busy())
-            .then(|| Instant::now() + JOB_FRAME_INTERVAL);
-        // The sharp frame once the view rests, after single-sampled ones (a button held still
-        // waits for its release, which draws a frame).
-        let held = self.dragging || self.panning;
-        let rest = self
-            .settle
-            .rests_at()
-            .filter(|_| self.drawn_moving && !held);
-        message.into_iter().chain(job).chain(rest).min()
+        // While a job runs the loop wakes this often to see whether it ended; `due` says
+        // whether a frame is drawn.
+        let job = self.busy().then(|| Instant::now() + JOB_FRAME_INTERVAL);
+        message.into_iter().chain(job).chain(self.rest_at()).min()
+    }
+
+    fn due(&mut self) -> bool {
+        let now = Instant::now();
+        let message_ends = self
+            .message
+            .as_ref()
+            .is_some_and(|(_, until)| *until <= now);
+        if !self.busy() || message_ends || self.rest_at().is_some_and(|at| at <= now) {
+            return true;
+        }
+        // The job's end is drawn at once; its progress with frames apart by at least
+        // JOB_FRAME_SHARE times the time one takes.
+        let wait = JOB_FRAME_INTERVAL.max(self.last_frame * JOB_FRAME_SHARE);
+        self.poll_job() || self.last_drawn + wait <= now
     }
 
     fn destroy(&mut self) {

@@ -39,6 +39,9 @@ pub struct Viewport {
     pub last: Option<(DecimateEvent, Report)>,
     /// Algorithm, feature angle, error bound and border setting for decimate events.
     pub params: Params,
+    /// The algorithm that made the decimation shown: `params` may name another already, the
+    /// new one's job still running.
+    shown_algorithm: Algorithm,
     /// The level-of-detail slider, when it is on.
     lod: Option<LodView>,
     /// The crease angle set with `[` / `]`, in degrees; `None`: each model's own.
@@ -60,6 +63,7 @@ impl Viewport {
             camera,
             generation: 0,
             last: None,
+            shown_algorithm: params.algorithm,
             params,
             lod: None,
             crease_deg: None,
@@ -155,6 +159,7 @@ impl Viewport {
         self.lod = None;
         self.generation += 1;
         self.last = Some((event, report));
+        self.shown_algorithm = self.params.algorithm;
     }
 
     /// Notes `error`, measured on the scene shown at `generation`; false (nothing noted) when
@@ -249,7 +254,7 @@ impl Viewport {
             format!(
                 "{} ({})",
                 labels::target_words(target_of(*event), self.params.max_error),
-                labels::algorithm_name(self.params.algorithm)
+                labels::algorithm_name(self.shown_algorithm)
             )
         } else {
             "original".to_string()
@@ -264,18 +269,14 @@ impl Viewport {
 
     /// The status line: counts, last decimation time, "fully decimated".
     pub fn status(&self) -> String {
-        let mut s = format!(
-            "{} vertices, {} triangles",
-            self.vertex_count(),
-            self.triangle_count()
-        );
+        let mut s = labels::counts(self.vertex_count(), self.triangle_count());
         if let Some(lod) = &self.lod {
             s.push_str(&format!(
                 ", level of detail (qem, built in {:.3} s)",
                 lod.build_seconds
             ));
         } else if let Some((_, r)) = &self.last {
-            let by = match self.params.algorithm {
+            let by = match self.shown_algorithm {
                 Algorithm::Schroeder => "schroeder",
                 Algorithm::Qem => "qem",
             };

@@ -48,14 +48,9 @@ where
     let (send, result) = mpsc::channel();
     let (shared, flag) = (progress.clone(), cancel.clone());
     let body = move || {
-        lower_priority();
         let mut report = |fraction: f32| shared.store(fraction.to_bits(), Ordering::Relaxed);
         let run = || work(&mut report, &flag);
-        let out = match rayon::ThreadPoolBuilder::new()
-            .use_current_thread()
-            .start_handler(|_| lower_priority())
-            .build()
-        {
+        let out = match rayon::ThreadPoolBuilder::new().use_current_thread().build() {
             Ok(pool) => pool.install(run),
             // No pool of its own: the job runs on the global one.
             Err(_) => run(),
@@ -78,26 +73,6 @@ where
         eprintln!("decimate: cannot start a worker thread: {e}");
     }
     job
-}
-
-/// How much nicer than the window a job's threads are (Linux nice values, 0 to 19): when
-/// the cores are busy, a frame or a key goes first; see docs/design.md#viewer-jobs.
-const JOB_NICE: i32 = 10;
-
-/// Makes the calling thread [`JOB_NICE`] nicer (Linux keeps a nice value per thread);
-/// nothing where that fails or on other systems.
-fn lower_priority() {
-    #[cfg(target_os = "linux")]
-    {
-        // SAFETY: gettid, getpriority and setpriority only read their integer arguments;
-        // raising one's own thread's nice value needs no privilege, and a failure changes
-        // nothing.
-        unsafe {
-            let tid = libc::gettid() as libc::id_t;
-            let now = libc::getpriority(libc::PRIO_PROCESS, tid);
-            libc::setpriority(libc::PRIO_PROCESS, tid, (now + JOB_NICE).min(19));
-        }
-    }
 }
 
 impl<T> Job<T> {
@@ -141,11 +116,15 @@ impl<T> Job<T> {
 
     /// The status line's words while the job runs: what, a bar, the share done, how to stop.
     pub fn status(&self) -> String {
+        let fraction = self.progress();
+        // Until the first progress report the job prepares (welding, ranking, building its
+        // queue): said so, rather than a bar stuck at 0 % that reads as a hang.
+        let phase = if fraction > 0.0 { "" } else { " preparing…" };
         format!(
-            "{} {} {:.0} % ({:.1} s) — Esc cancels",
+            "{} {} {:.0} %{phase} ({:.1} s) — Esc cancels",
             self.what,
-            bar(self.progress()),
-            100.0 * self.progress(),
+            bar(fraction),
+            100.0 * fraction,
             self.elapsed().as_secs_f64()
         )
     }
@@ -215,9 +194,9 @@ mod tests {
 
     #[cfg(target_os = "linux")]
     #[test]
-    fn a_jobs_threads_are_nicer_than_the_window() {
+    fn a_jobs_threads_run_at_the_windows_priority() {
         use rayon::prelude::*;
-        // SAFETY: as in `lower_priority`: integer arguments only.
+        // SAFETY: gettid and getpriority only read their integer arguments.
         let nice =
             || unsafe { libc::getpriority(libc::PRIO_PROCESS, libc::gettid() as libc::id_t) };
         let window = nice();
@@ -228,10 +207,8 @@ mod tests {
         let Poll::Done((own, workers)) = job.wait() else {
             panic!("the job did not end");
         };
-        let expected = (window + JOB_NICE).min(19);
-        assert_eq!(own, expected);
-        assert!(workers.iter().all(|&n| n == expected), "{workers:?}");
-        assert_eq!(nice(), window, "the calling thread keeps its own");
+        assert_eq!(own, window, "the job's thread is nicer than the window");
+        assert!(workers.iter().all(|&n| n == window), "{workers:?}");
     }
 
     #[test]

@@ -164,41 +164,8 @@ impl<'a> Uploader<'a> {
         let Some(base) = levels.first() else {
             return Err(RenderError::BadLevels(format!("image {name:?}: no levels")));
         };
-        for (i, level) in levels.iter().enumerate() {
-            let side = |full: u32| full.checked_shr(i as u32).unwrap_or(0).max(1);
-            let (w, h) = (side(base.width), side(base.height));
-            if (level.width, level.height) != (w, h)
-                || level.pixels.len() != w as usize * h as usize * 4
-            {
-                return Err(RenderError::BadLevels(format!(
-                    "image {name:?}: level {i} is {} × {} ({} bytes), not {w} × {h} RGBA",
-                    level.width,
-                    level.height,
-                    level.pixels.len()
-                )));
-            }
-        }
-        let mut bytes = Vec::with_capacity(levels.iter().map(|l| l.pixels.len()).sum());
-        let mut regions = Vec::with_capacity(levels.len());
-        for (level, image) in levels.iter().enumerate() {
-            regions.push(
-                vk::BufferImageCopy::default()
-                    // RGBA8 texels: every offset is a multiple of the texel size, 4.
-                    .buffer_offset(bytes.len() as vk::DeviceSize)
-                    .image_subresource(
-                        vk::ImageSubresourceLayers::default()
-                            .aspect_mask(vk::ImageAspectFlags::COLOR)
-                            .mip_level(level as u32)
-                            .layer_count(1),
-                    )
-                    .image_extent(vk::Extent3D {
-                        width: image.width,
-                        height: image.height,
-                        depth: 1,
-                    }),
-            );
-            bytes.extend_from_slice(&image.pixels);
-        }
+        check_levels(name, levels)?;
+        let (bytes, regions) = packed_levels(levels);
         let staging = Buffer::with_data(
             self.context,
             name,
@@ -256,4 +223,54 @@ impl<'a> Uploader<'a> {
         };
         self.commands.submit_and_wait()
     }
+}
+/// Checks that `levels` is a mip chain: level `i` is the base halved `i` times (at least
+/// 1), with width × height RGBA texels.
+fn check_levels(name: &str, levels: &[decimate_core::mesh::rgba_image::RgbaImage]) -> Result<()> {
+    let Some(base) = levels.first() else {
+        return Err(RenderError::BadLevels(format!("image {name:?}: no levels")));
+    };
+    for (i, level) in levels.iter().enumerate() {
+        let side = |full: u32| full.checked_shr(i as u32).unwrap_or(0).max(1);
+        let (w, h) = (side(base.width), side(base.height));
+        if (level.width, level.height) != (w, h)
+            || level.pixels.len() != w as usize * h as usize * 4
+        {
+            return Err(RenderError::BadLevels(format!(
+                "image {name:?}: level {i} is {} × {} ({} bytes), not {w} × {h} RGBA",
+                level.width,
+                level.height,
+                level.pixels.len()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Every level's texels one after the other, and the copy region of each.
+fn packed_levels(
+    levels: &[decimate_core::mesh::rgba_image::RgbaImage],
+) -> (Vec<u8>, Vec<vk::BufferImageCopy>) {
+    let mut bytes = Vec::with_capacity(levels.iter().map(|l| l.pixels.len()).sum());
+    let mut regions = Vec::with_capacity(levels.len());
+    for (level, image) in levels.iter().enumerate() {
+        regions.push(
+            vk::BufferImageCopy::default()
+                // RGBA8 texels: every offset is a multiple of the texel size, 4.
+                .buffer_offset(bytes.len() as vk::DeviceSize)
+                .image_subresource(
+                    vk::ImageSubresourceLayers::default()
+                        .aspect_mask(vk::ImageAspectFlags::COLOR)
+                        .mip_level(level as u32)
+                        .layer_count(1),
+                )
+                .image_extent(vk::Extent3D {
+                    width: image.width,
+                    height: image.height,
+                    depth: 1,
+                }),
+        );
+        bytes.extend_from_slice(&image.pixels);
+    }
+    (bytes, regions)
 }

@@ -152,45 +152,14 @@ impl Context {
             .device_name_as_c_str()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_else(|_| "unnamed device".into());
-        let capabilities = Capabilities {
-            large_points: features.large_points == vk::TRUE,
-            max_point_size: properties.limits.point_size_range[1],
-            wide_lines: features.wide_lines == vk::TRUE,
-            max_line_width: properties.limits.line_width_range[1],
-            max_anisotropy: (features.sampler_anisotropy == vk::TRUE).then(|| {
-                properties
-                    .limits
-                    .max_sampler_anisotropy
-                    .clamp(1.0, MAX_ANISOTROPY)
-            }),
-            sample_counts: (properties.limits.framebuffer_color_sample_counts
-                & properties.limits.framebuffer_depth_sample_counts)
-                | vk::SampleCountFlags::TYPE_1,
-        };
-
-        let enabled = vk::PhysicalDeviceFeatures::default()
-            .large_points(capabilities.large_points)
-            .wide_lines(capabilities.wide_lines)
-            .sampler_anisotropy(capabilities.max_anisotropy.is_some());
-        let mut features13 = vk::PhysicalDeviceVulkan13Features::default()
-            .dynamic_rendering(true)
-            .synchronization2(true);
-        let priorities = [1.0];
-        let queue_infos = [vk::DeviceQueueCreateInfo::default()
-            .queue_family_index(queue_family)
-            .queue_priorities(&priorities)];
-        let mut extensions = Vec::new();
-        if want_swapchain {
-            extensions.push(ash::khr::swapchain::NAME.as_ptr());
-        }
-        let device_info = vk::DeviceCreateInfo::default()
-            .queue_create_infos(&queue_infos)
-            .enabled_extension_names(&extensions)
-            .enabled_features(&enabled)
-            .push_next(&mut features13);
-        // SAFETY: the device was checked for Vulkan 1.3 dynamic rendering and synchronization2;
-        // every pointer in the create info outlives the call.
-        let device = unsafe { instance.create_device(physical_device, &device_info, None)? };
+        let capabilities = Capabilities::of(&properties, &features);
+        let device = create_device(
+            &instance,
+            physical_device,
+            queue_family,
+            &capabilities,
+            want_swapchain,
+        )?;
         // SAFETY: queue 0 of this family was requested above.
         let queue = unsafe { device.get_device_queue(queue_family, 0) };
 
@@ -392,4 +361,60 @@ fn suitability(
         _ => 4,
     };
     Ok((rank, family as u32))
+}
+
+impl Capabilities {
+    /// What the device with `properties` and `features` can do, as the renderer uses it.
+    fn of(
+        properties: &vk::PhysicalDeviceProperties,
+        features: &vk::PhysicalDeviceFeatures,
+    ) -> Self {
+        let limits = &properties.limits;
+        Self {
+            large_points: features.large_points == vk::TRUE,
+            max_point_size: limits.point_size_range[1],
+            wide_lines: features.wide_lines == vk::TRUE,
+            max_line_width: limits.line_width_range[1],
+            max_anisotropy: (features.sampler_anisotropy == vk::TRUE)
+                .then(|| limits.max_sampler_anisotropy.clamp(1.0, MAX_ANISOTROPY)),
+            sample_counts: (limits.framebuffer_color_sample_counts
+                & limits.framebuffer_depth_sample_counts)
+                | vk::SampleCountFlags::TYPE_1,
+        }
+    }
+}
+
+/// The logical device on `physical_device`: one queue of `queue_family`, dynamic rendering
+/// and synchronization2, the optional features `capabilities` found, and the swapchain
+/// extension when `want_swapchain`.
+fn create_device(
+    instance: &ash::Instance,
+    physical_device: vk::PhysicalDevice,
+    queue_family: u32,
+    capabilities: &Capabilities,
+    want_swapchain: bool,
+) -> Result<ash::Device> {
+    let enabled = vk::PhysicalDeviceFeatures::default()
+        .large_points(capabilities.large_points)
+        .wide_lines(capabilities.wide_lines)
+        .sampler_anisotropy(capabilities.max_anisotropy.is_some());
+    let mut features13 = vk::PhysicalDeviceVulkan13Features::default()
+        .dynamic_rendering(true)
+        .synchronization2(true);
+    let priorities = [1.0];
+    let queue_infos = [vk::DeviceQueueCreateInfo::default()
+        .queue_family_index(queue_family)
+        .queue_priorities(&priorities)];
+    let mut extensions = Vec::new();
+    if want_swapchain {
+        extensions.push(ash::khr::swapchain::NAME.as_ptr());
+    }
+    let device_info = vk::DeviceCreateInfo::default()
+        .queue_create_infos(&queue_infos)
+        .enabled_extension_names(&extensions)
+        .enabled_features(&enabled)
+        .push_next(&mut features13);
+    // SAFETY: the device was checked for Vulkan 1.3 dynamic rendering and synchronization2;
+    // every pointer in the create info outlives the call.
+    Ok(unsafe { instance.create_device(physical_device, &device_info, None)? })
 }

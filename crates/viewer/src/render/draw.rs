@@ -238,6 +238,7 @@ pub unsafe fn begin_tiles(
     extent: vk::Extent2D,
     rects: &[Rect],
     highlighted: Option<usize>,
+    background: [f32; 4],
 ) {
     let whole = Rect {
         x: 0,
@@ -246,17 +247,17 @@ pub unsafe fn begin_tiles(
         height: extent.height,
     };
     let one_full_tile = rects == [whole] && highlighted.is_none();
-    let load = if one_full_tile { BACKGROUND } else { SEPARATOR };
+    let load = if one_full_tile { background } else { SEPARATOR };
     // SAFETY: guaranteed by the caller; the pass begun here is the one the tiles clear.
     unsafe {
         begin_rendering(device, cmd, target, extent, load);
         if !one_full_tile {
-            clear_tiles(device, cmd, rects, highlighted);
+            clear_tiles(device, cmd, rects, highlighted, background);
         }
     }
 }
 
-/// Clears each viewport to the background (and the `highlighted` one's border to the
+/// Clears each viewport to `background` (and the `highlighted` one's border to the
 /// highlight colour).
 ///
 /// # Safety
@@ -267,6 +268,7 @@ unsafe fn clear_tiles(
     cmd: vk::CommandBuffer,
     rects: &[Rect],
     highlighted: Option<usize>,
+    background: [f32; 4],
 ) {
     let clear = |rect: vk::Rect2D, color: [f32; 4]| {
         if rect.extent.width == 0 || rect.extent.height == 0 {
@@ -300,9 +302,9 @@ unsafe fn clear_tiles(
     for (i, &r) in rects.iter().enumerate() {
         if highlighted == Some(i) {
             clear(to_vk(r, 0), HIGHLIGHT);
-            clear(to_vk(r, 2), BACKGROUND);
+            clear(to_vk(r, 2), background);
         } else {
-            clear(to_vk(r, 0), BACKGROUND);
+            clear(to_vk(r, 0), background);
         }
     }
 }

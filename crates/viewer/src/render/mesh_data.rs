@@ -121,78 +121,24 @@ impl MeshData {
             incident: welded_incident.as_ref().unwrap_or(&incident),
             id: weld.as_deref(),
         };
-        let file_normals = match &model.normals {
-            Some(Attribute::PerVertex(n)) if n.len() == model.positions.len() => Some(n),
-            _ => None,
-        };
-        // Face normals serve the vertex normals and the crease test; neither needs them when
-        // the file gave per-vertex normals.
-        let face = if file_normals.is_some() {
-            Vec::new()
-        } else {
-            face_normals(model)
-        };
-        let normals = match file_normals {
-            Some(n) => n.par_iter().map(|v| v.normalize_or_zero()).collect(),
-            None => welded.spread(gathered_normals(&face, welded.incident)),
-        };
+        let (face, normals) = surface_normals(model, &welded);
         let creases = Creases::new(model, &welded, &face);
-        let face_colors = match &model.colors {
-            Some(Attribute::PerFace(c)) if c.len() == model.triangles.len() => Some(c),
-            _ => None,
+        let corners = Corners {
+            model,
+            normals: &normals,
+            creases: &creases,
+            face_colors: match &model.colors {
+                Some(Attribute::PerFace(c)) if c.len() == model.triangles.len() => Some(c),
+                _ => None,
+            },
+            vertex_colors: match &model.colors {
+                Some(Attribute::PerVertex(c)) if c.len() == model.positions.len() => Some(c),
+                _ => None,
+            },
+            texcoords: (model.texcoords.as_deref()).filter(|t| t.len() == model.positions.len()),
+            morph_from,
         };
-        let vertex_colors = match &model.colors {
-            Some(Attribute::PerVertex(c)) if c.len() == model.positions.len() => Some(c),
-            _ => None,
-        };
-        let texcoords = model
-            .texcoords
-            .as_deref()
-            .filter(|t| t.len() == model.positions.len());
-        let color_of_vertex = |v: usize| to_rgba8(vertex_colors.map_or(model.diffuse, |c| c[v]));
-
-        let mut data = Self {
-            vertices: Vec::with_capacity(model.positions.len()),
-            triangles: Vec::with_capacity(3 * model.triangles.len()),
-            ..Self::default()
-        };
-        // `render_index[v]`: the render vertex that stands for model vertex `v` in point
-        // lists (its first, when corners have their own).
-        let mut render_index = vec![u32::MAX; model.positions.len()];
-        // The render vertex shared by every corner of `v` that needs no vertex of its own.
-        let mut shared = vec![u32::MAX; model.positions.len()];
-        for (t, tri) in model.triangles.iter().enumerate() {
-            for &v in tri {
-                let vi = v as usize;
-                let own_corner = face_colors.is_some() || creases.is_creased(vi);
-                let index = if !own_corner && shared[vi] != u32::MAX {
-                    shared[vi]
-                } else {
-                    let index = data.vertices.len() as u32;
-                    let normal = if creases.is_creased(vi) {
-                        creases.corner_normal(t, vi)
-                    } else {
-                        normals[vi]
-                    };
-                    data.vertices.push(Vertex {
-                        position: model.positions[vi].to_array(),
-                        normal: normal.to_array(),
-                        color: face_colors.map_or_else(|| color_of_vertex(vi), |c| to_rgba8(c[t])),
-                        morph_from: morph_from.map_or(model.positions[vi], |m| m[vi]).to_array(),
-                        uv: texcoords.map_or([0.0; 2], |t| t[vi]),
-                    });
-                    if !own_corner {
-                        shared[vi] = index;
-                    }
-                    index
-                };
-                data.triangles.push(index);
-                if render_index[vi] == u32::MAX {
-                    render_index[vi] = index;
-                }
-            }
-        }
-
+        let (mut data, render_index) = corners.triangles();
         if layers.points {
             data.points = render_index
                 .iter()
@@ -226,6 +172,94 @@ impl MeshData {
         data.face_normals = face_normals;
         data.vertex_normals = vertex_normals;
         data
+    }
+}
+
+/// The face normals (empty when the file gave per-vertex normals: neither the vertex normals
+/// nor the crease test then needs them) and the vertex normals of `model`.
+fn surface_normals(model: &Model, welded: &Welded<'_>) -> (Vec<Vec3>, Vec<Vec3>) {
+    let file_normals = match &model.normals {
+        Some(Attribute::PerVertex(n)) if n.len() == model.positions.len() => Some(n),
+        _ => None,
+    };
+    let face = if file_normals.is_some() {
+        Vec::new()
+    } else {
+        face_normals(model)
+    };
+    let normals = match file_normals {
+        Some(n) => n.par_iter().map(|v| v.normalize_or_zero()).collect(),
+        None => welded.spread(gathered_normals(&face, welded.incident)),
+    };
+    (face, normals)
+}
+
+/// What a triangle corner's render vertex is made of.
+struct Corners<'a> {
+    model: &'a Model,
+    normals: &'a [Vec3],
+    creases: &'a Creases<'a>,
+    face_colors: Option<&'a Vec<[f32; 3]>>,
+    vertex_colors: Option<&'a Vec<[f32; 3]>>,
+    texcoords: Option<&'a [[f32; 2]]>,
+    morph_from: Option<&'a [Vec3]>,
+}
+
+impl Corners<'_> {
+    /// The render vertices and the triangle list; and for each model vertex the render
+    /// vertex that stands for it in point lists (its first, when corners have their own;
+    /// `u32::MAX` when no triangle uses it).
+    fn triangles(&self) -> (MeshData, Vec<u32>) {
+        let model = self.model;
+        let mut data = MeshData {
+            vertices: Vec::with_capacity(model.positions.len()),
+            triangles: Vec::with_capacity(3 * model.triangles.len()),
+            ..MeshData::default()
+        };
+        let mut render_index = vec![u32::MAX; model.positions.len()];
+        // The render vertex shared by every corner of `v` that needs no vertex of its own.
+        let mut shared = vec![u32::MAX; model.positions.len()];
+        for (t, tri) in model.triangles.iter().enumerate() {
+            for &v in tri {
+                let vi = v as usize;
+                let own_corner = self.face_colors.is_some() || self.creases.is_creased(vi);
+                let index = if !own_corner && shared[vi] != u32::MAX {
+                    shared[vi]
+                } else {
+                    let index = data.vertices.len() as u32;
+                    data.vertices.push(self.vertex(t, vi));
+                    if !own_corner {
+                        shared[vi] = index;
+                    }
+                    index
+                };
+                data.triangles.push(index);
+                if render_index[vi] == u32::MAX {
+                    render_index[vi] = index;
+                }
+            }
+        }
+        (data, render_index)
+    }
+
+    /// The render vertex of model vertex `vi` as a corner of triangle `t`.
+    fn vertex(&self, t: usize, vi: usize) -> Vertex {
+        let model = self.model;
+        let normal = if self.creases.is_creased(vi) {
+            self.creases.corner_normal(t, vi)
+        } else {
+            self.normals[vi]
+        };
+        let color_of_vertex = || to_rgba8(self.vertex_colors.map_or(model.diffuse, |c| c[vi]));
+        Vertex {
+            position: model.positions[vi].to_array(),
+            normal: normal.to_array(),
+            color: self
+                .face_colors
+                .map_or_else(color_of_vertex, |c| to_rgba8(c[t])),
+            morph_from: (self.morph_from.map_or(model.positions[vi], |m| m[vi])).to_array(),
+            uv: self.texcoords.map_or([0.0; 2], |t| t[vi]),
+        }
     }
 }
 

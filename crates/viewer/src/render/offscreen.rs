@@ -29,6 +29,8 @@ pub struct OffscreenTarget {
     images: DrawImages,
     readback: Buffer,
     pub extent: vk::Extent2D,
+    /// What the viewports are cleared to (`draw::BACKGROUND` unless set).
+    pub background: [f32; 4],
 }
 
 impl OffscreenTarget {
@@ -73,6 +75,7 @@ impl OffscreenTarget {
             images,
             readback,
             extent,
+            background: draw::BACKGROUND,
         })
     }
 
@@ -120,7 +123,15 @@ impl OffscreenTarget {
             );
             self.images.to_attachments(device, cmd);
             let target = self.images.attachments(self.color.view);
-            draw::begin_tiles(device, cmd, target, self.extent, &rects, None);
+            draw::begin_tiles(
+                device,
+                cmd,
+                target,
+                self.extent,
+                &rects,
+                None,
+                self.background,
+            );
             draw::record(device, cmd, pipelines, views);
             device.cmd_end_rendering(cmd);
         }

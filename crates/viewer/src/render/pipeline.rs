@@ -241,67 +241,32 @@ impl Pipelines {
         vert: &ShaderModule,
         frag: &ShaderModule,
     ) -> Result<vk::Pipeline> {
-        let (shading, colour) = mode.shading();
-        let point_size = self.context.capabilities.point_size(POINT_SIZE);
-        // Specialization data: ids 0..=6 in the order the shaders declare them.
-        let mut data = Vec::with_capacity(24);
-        data.extend_from_slice(&mode.depth_nudge().to_ne_bytes());
-        data.extend_from_slice(&point_size.to_ne_bytes());
-        data.extend_from_slice(&shading.to_ne_bytes());
-        for c in colour {
-            data.extend_from_slice(&c.to_ne_bytes());
-        }
-        let round_points = vk::Bool32::from(mode == DrawMode::Points && point_size > 2.0);
-        data.extend_from_slice(&round_points.to_ne_bytes());
-        let entries: Vec<_> = (0..7u32)
-            .map(|id| {
-                vk::SpecializationMapEntry::default()
-                    .constant_id(id)
-                    .offset(id * 4)
-                    .size(4)
-            })
-            .collect();
+        let data = specialization_data(mode, self.context.capabilities.point_size(POINT_SIZE));
+        let entries = SPECIALIZATION_ENTRIES.map(|id| {
+            vk::SpecializationMapEntry::default()
+                .constant_id(id)
+                .offset(id * 4)
+                .size(4)
+        });
         let specialization = vk::SpecializationInfo::default()
             .map_entries(&entries)
             .data(&data);
+        let stage = |stage, module: &ShaderModule| {
+            vk::PipelineShaderStageCreateInfo::default()
+                .stage(stage)
+                .module(module.handle)
+                .name(c"main")
+                .specialization_info(&specialization)
+        };
         let stages = [
-            vk::PipelineShaderStageCreateInfo::default()
-                .stage(vk::ShaderStageFlags::VERTEX)
-                .module(vert.handle)
-                .name(c"main")
-                .specialization_info(&specialization),
-            vk::PipelineShaderStageCreateInfo::default()
-                .stage(vk::ShaderStageFlags::FRAGMENT)
-                .module(frag.handle)
-                .name(c"main")
-                .specialization_info(&specialization),
+            stage(vk::ShaderStageFlags::VERTEX, vert),
+            stage(vk::ShaderStageFlags::FRAGMENT, frag),
         ];
         let bindings = [vk::VertexInputBindingDescription::default()
             .binding(0)
             .stride(size_of::<Vertex>() as u32)
             .input_rate(vk::VertexInputRate::VERTEX)];
-        let attributes = [
-            vk::VertexInputAttributeDescription::default()
-                .location(0)
-                .format(vk::Format::R32G32B32_SFLOAT)
-                .offset(0),
-            vk::VertexInputAttributeDescription::default()
-                .location(1)
-                .format(vk::Format::R32G32B32_SFLOAT)
-                .offset(12),
-            vk::VertexInputAttributeDescription::default()
-                .location(2)
-                .format(vk::Format::R8G8B8A8_UNORM)
-                .offset(24),
-            vk::VertexInputAttributeDescription::default()
-                .location(3)
-                .format(vk::Format::R32G32B32_SFLOAT)
-                .offset(28),
-            vk::VertexInputAttributeDescription::default()
-                .location(4)
-                .format(vk::Format::R32G32_SFLOAT)
-                .offset(40),
-        ];
+        let attributes = vertex_attributes();
         let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
             .vertex_binding_descriptions(&bindings)
             .vertex_attribute_descriptions(&attributes);
@@ -310,18 +275,7 @@ impl Pipelines {
         let viewport = vk::PipelineViewportStateCreateInfo::default()
             .viewport_count(1)
             .scissor_count(1);
-        // Two-sided: open meshes show their back faces, lit by the flipped normal.
-        // Filled triangles are pushed back by their depth slope (polygon offset), so edges
-        // and points drawn over a surface seen at a grazing angle are not dashed by it.
-        let filled = mode.topology() == vk::PrimitiveTopology::TRIANGLE_LIST;
-        let rasterization = vk::PipelineRasterizationStateCreateInfo::default()
-            .polygon_mode(vk::PolygonMode::FILL)
-            .cull_mode(vk::CullModeFlags::NONE)
-            .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
-            .depth_bias_enable(filled)
-            .depth_bias_constant_factor(FILL_DEPTH_BIAS.0)
-            .depth_bias_slope_factor(FILL_DEPTH_BIAS.1)
-            .line_width(1.0);
+        let rasterization = rasterization(mode);
         let multisample =
             vk::PipelineMultisampleStateCreateInfo::default().rasterization_samples(self.samples);
         let depth = vk::PipelineDepthStencilStateCreateInfo::default()
@@ -357,6 +311,15 @@ impl Pipelines {
                 .device
                 .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
         };
+        self.first_or_destroy(pipelines)
+    }
+
+    /// The one pipeline of a batch of one, or the batch's error (with whatever it made
+    /// destroyed).
+    fn first_or_destroy(
+        &self,
+        pipelines: std::result::Result<Vec<vk::Pipeline>, (Vec<vk::Pipeline>, vk::Result)>,
+    ) -> Result<vk::Pipeline> {
         match pipelines {
             Ok(p) => Ok(p[0]),
             Err((created, e)) => {
@@ -368,6 +331,58 @@ impl Pipelines {
             }
         }
     }
+}
+
+/// The ids of the shaders' specialization constants, 4 bytes each.
+const SPECIALIZATION_ENTRIES: [u32; 7] = [0, 1, 2, 3, 4, 5, 6];
+
+/// The shaders' specialization constants for `mode`, ids 0..=6 in the order the shaders
+/// declare them: depth nudge, point size, shading, colour (3), round points.
+fn specialization_data(mode: DrawMode, point_size: f32) -> Vec<u8> {
+    let (shading, colour) = mode.shading();
+    let mut data = Vec::with_capacity(28);
+    data.extend_from_slice(&mode.depth_nudge().to_ne_bytes());
+    data.extend_from_slice(&point_size.to_ne_bytes());
+    data.extend_from_slice(&shading.to_ne_bytes());
+    for c in colour {
+        data.extend_from_slice(&c.to_ne_bytes());
+    }
+    let round_points = vk::Bool32::from(mode == DrawMode::Points && point_size > 2.0);
+    data.extend_from_slice(&round_points.to_ne_bytes());
+    data
+}
+
+/// `Vertex`'s fields as the vertex shader reads them: position, normal, colour (RGBA8),
+/// morph origin, texture coordinates.
+fn vertex_attributes() -> [vk::VertexInputAttributeDescription; 5] {
+    let attribute = |location: u32, format: vk::Format, offset: u32| {
+        vk::VertexInputAttributeDescription::default()
+            .location(location)
+            .format(format)
+            .offset(offset)
+    };
+    [
+        attribute(0, vk::Format::R32G32B32_SFLOAT, 0),
+        attribute(1, vk::Format::R32G32B32_SFLOAT, 12),
+        attribute(2, vk::Format::R8G8B8A8_UNORM, 24),
+        attribute(3, vk::Format::R32G32B32_SFLOAT, 28),
+        attribute(4, vk::Format::R32G32_SFLOAT, 40),
+    ]
+}
+
+/// Two-sided: open meshes show their back faces, lit by the flipped normal. Filled
+/// triangles are pushed back by their depth slope (polygon offset), so edges and points
+/// drawn over a surface seen at a grazing angle are not dashed by it.
+fn rasterization(mode: DrawMode) -> vk::PipelineRasterizationStateCreateInfo<'static> {
+    let filled = mode.topology() == vk::PrimitiveTopology::TRIANGLE_LIST;
+    vk::PipelineRasterizationStateCreateInfo::default()
+        .polygon_mode(vk::PolygonMode::FILL)
+        .cull_mode(vk::CullModeFlags::NONE)
+        .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
+        .depth_bias_enable(filled)
+        .depth_bias_constant_factor(FILL_DEPTH_BIAS.0)
+        .depth_bias_slope_factor(FILL_DEPTH_BIAS.1)
+        .line_width(1.0)
 }
 
 impl Drop for Pipelines {

@@ -127,23 +127,8 @@ impl Swapchain {
                     .get_physical_device_surface_formats(physical, self.surface)?,
             )
         };
-        // UNORM like the offscreen target, so the window and `shot` show the same colours.
-        let format = formats
-            .iter()
-            .find(|f| {
-                f.format == vk::Format::B8G8R8A8_UNORM || f.format == vk::Format::R8G8B8A8_UNORM
-            })
-            .or_else(|| formats.first())
-            .copied()
-            .ok_or_else(|| RenderError::Window("the surface offers no format".into()))?;
-        let extent = if caps.current_extent.width != u32::MAX {
-            caps.current_extent
-        } else {
-            vk::Extent2D {
-                width: width.clamp(caps.min_image_extent.width, caps.max_image_extent.width),
-                height: height.clamp(caps.min_image_extent.height, caps.max_image_extent.height),
-            }
-        };
+        let format = pick_format(&formats)?;
+        let extent = pick_extent(&caps, width, height);
         let mut count = caps.min_image_count + 1;
         if caps.max_image_count > 0 {
             count = count.min(caps.max_image_count);
@@ -175,12 +160,26 @@ impl Swapchain {
         }
         self.format = format.format;
         self.extent = extent;
+        self.create_views(format.format)?;
+        self.draw_images = Some(DrawImages::new(
+            &self.context,
+            "window",
+            format.format,
+            extent,
+            self.samples,
+        )?);
+        self.moving_images = self.single_images()?;
+        Ok(())
+    }
+
+    /// A view and a render-finished semaphore for each swapchain image.
+    fn create_views(&mut self, format: vk::Format) -> Result<()> {
         for &image in &self.images {
             let view_info = vk::ImageViewCreateInfo::default()
                 .image(image)
                 .view_type(vk::ImageViewType::TYPE_2D)
-                .format(format.format)
-                .subresource_range(super::image::subresource_range(format.format));
+                .format(format)
+                .subresource_range(super::image::subresource_range(format));
             // SAFETY: the image belongs to the live swapchain.
             let view = unsafe { self.context.device.create_image_view(&view_info, None)? };
             self.views.push(view);
@@ -192,14 +191,6 @@ impl Swapchain {
             };
             self.render_finished.push(semaphore);
         }
-        self.draw_images = Some(DrawImages::new(
-            &self.context,
-            "window",
-            format.format,
-            extent,
-            self.samples,
-        )?);
-        self.moving_images = self.single_images()?;
         Ok(())
     }
 
@@ -345,5 +336,26 @@ impl Drop for Swapchain {
             }
             self.surface_loader.destroy_surface(self.surface, None);
         }
+    }
+}
+/// UNORM like the offscreen target, so the window and `shot` show the same colours; else
+/// whatever the surface offers first.
+fn pick_format(formats: &[vk::SurfaceFormatKHR]) -> Result<vk::SurfaceFormatKHR> {
+    formats
+        .iter()
+        .find(|f| f.format == vk::Format::B8G8R8A8_UNORM || f.format == vk::Format::R8G8B8A8_UNORM)
+        .or_else(|| formats.first())
+        .copied()
+        .ok_or_else(|| RenderError::Window("the surface offers no format".into()))
+}
+
+/// The surface's own extent, or the window's `width` × `height` within its limits.
+fn pick_extent(caps: &vk::SurfaceCapabilitiesKHR, width: u32, height: u32) -> vk::Extent2D {
+    if caps.current_extent.width != u32::MAX {
+        return caps.current_extent;
+    }
+    vk::Extent2D {
+        width: width.clamp(caps.min_image_extent.width, caps.max_image_extent.width),
+        height: height.clamp(caps.min_image_extent.height, caps.max_image_extent.height),
     }
 }

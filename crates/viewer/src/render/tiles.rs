@@ -1,4 +1,5 @@
-//! Viewport tiling: 1 viewport fills the window, 2 sit side by side, 3 and 4 share a 2×2 grid
+//! Viewport tiling: 1 viewport fills the window, 2 and 3 sit side by side (equal sizes, so
+//! that decimations compare at one scale, and no empty quadrant), 4 share a 2×2 grid
 //! (reading order). Pure arithmetic, shared by the shot action and the viewer.
 
 /// A pixel rectangle inside the window or image.
@@ -37,6 +38,7 @@ pub fn tiles(count: usize, width: u32, height: u32) -> Vec<Rect> {
     let (cols, rows) = match count.clamp(1, 4) {
         1 => (1, 1),
         2 => (2, 1),
+        3 => (3, 1),
         _ => (2, 2),
     };
     let cell = |i: u32, n: u32, size: u32| {
@@ -109,7 +111,24 @@ mod tests {
                 height: 119
             }
         );
-        assert_eq!(tiles(3, 320, 240).len(), 3);
+    }
+
+    #[test]
+    fn every_count_covers_the_whole_area_but_the_gaps() {
+        for count in 1..=4 {
+            let rects = tiles(count, 320, 240);
+            assert_eq!(rects.len(), count);
+            let area: u32 = rects.iter().map(|r| r.width * r.height).sum();
+            // Gaps of GAP pixels between columns and rows only: no empty cell.
+            let (cols, rows) = [(1, 1), (2, 1), (3, 1), (2, 2)][count - 1];
+            let expected = (320 - GAP * (cols - 1)) * (240 - GAP * (rows - 1));
+            assert!(
+                area.abs_diff(expected) <= 2 * 240,
+                "{count} viewports cover {area} of {expected} pixels"
+            );
+        }
+        let three = tiles(3, 320, 240);
+        assert_eq!((three[2].x + three[2].width, three[2].height), (320, 240));
     }
 
     #[test]
