@@ -10,6 +10,7 @@ mod support;
 mod cancel;
 mod closed_shapes;
 mod creases;
+mod features;
 mod folds;
 mod nonmanifold;
 mod open_borders;

@@ -22,6 +22,9 @@ pub struct Limits {
     /// When no candidate is left before `remove`/`keep_triangles` is reached, raise the
     /// feature angle in `schroeder::RELAX_STEP_DEG` steps (up to 180°) and go on.
     pub relax_features: bool,
+    /// qem: feature vertices never leave their features (`Params::keep_features`;
+    /// vertex removal keeps them by never relaxing the feature angle).
+    pub keep_features: bool,
     /// qem: scale fold angles to the mesh's sampling before the feature test
     /// ([`super::Params::scale_folds`]).
     pub scale_folds: bool,

@@ -358,6 +358,7 @@ fn run(
             max_error,
             feature_angle_deg: params.feature_angle_deg,
             relax_features,
+            keep_features: params.keep_features,
             scale_folds: params.scale_folds,
             cancel: cancel.clone(),
         };

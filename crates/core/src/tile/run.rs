@@ -69,6 +69,7 @@ pub fn run_tile(dir: &Path, index: usize) -> Result<TileRun, TileError> {
             max_error: f64::INFINITY,
             feature_angle_deg: crate::decimate::Params::default().feature_angle_deg,
             relax_features: true,
+            keep_features: false,
             // A tile is a piece of the input: its own folds are not the input's.
             scale_folds: false,
             cancel: Default::default(),

@@ -61,6 +61,11 @@ pub(super) struct Collapser {
     /// lengths summed in `w`), carried through every collapse: the input surface that
     /// triangles are checked against (docs/design.md#qem-input-surface).
     input_surface: Vec<Vec4>,
+    /// Under `--keep-features`, every vertex's feature class (`features::classify`);
+    /// otherwise empty.
+    features: Vec<u32>,
+    /// The cosine of the feature angle.
+    cos_feature: f64,
 }
 
 impl Collapser {
@@ -79,6 +84,7 @@ impl Collapser {
         let conn = Connectivity::from_triangles(n, triangles);
         let (kinds, quadrics) = planes::kinds_and_quadrics(&conn, &positions, constraints);
         let costs = EdgeCosts::new(conn.triangles());
+        let cos_feature = constraints.cos_feature;
         Self {
             positions,
             costs,
@@ -99,7 +105,19 @@ impl Collapser {
             facing: Vec::new(),
             closed,
             input_surface,
+            features: Vec::new(),
+            cos_feature,
         }
+    }
+
+    /// Holds the features in place (`--keep-features`, see `features`): corners are
+    /// anchored, crease vertices go only along their crease. Call before [`Self::pin`],
+    /// which adds the corners to the vertices it pins. Returns the corners.
+    pub fn keep_features(&mut self) -> Vec<bool> {
+        self.features = super::features::classify(&self.conn, &self.positions, self.cos_feature);
+        (self.features.iter())
+            .map(|&f| f == super::features::CORNER)
+            .collect()
     }
 
     /// The state for the valid triangles of `model`, renumbered along a Morton curve as a
@@ -193,6 +211,8 @@ impl Collapser {
             copies: &self.copies,
             facing: &self.facing,
             input_surface: &mut self.input_surface,
+            features: &self.features,
+            cos_feature: self.cos_feature,
             closed: ClosedView::Whole(&mut self.closed),
             scratch: CollapseLists::default(),
         }
@@ -222,6 +242,7 @@ impl Collapser {
         let copies = &self.copies;
         let facing = &self.facing;
         let closed = &self.closed;
+        let (features, cos_feature) = (&self.features, self.cos_feature);
         let conns = self.conn.split(vertex_starts, slot_starts);
         conns
             .into_iter()
@@ -249,6 +270,8 @@ impl Collapser {
                     copies,
                     facing,
                     input_surface: input_surface.next()?,
+                    features,
+                    cos_feature,
                     closed: ClosedView::Part(closed, Default::default()),
                     scratch: CollapseLists::default(),
                 })

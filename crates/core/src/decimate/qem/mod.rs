@@ -11,6 +11,7 @@ mod collapse_passes;
 mod collapse_plan;
 mod collapser;
 mod edge_costs;
+mod features;
 mod junction_collapse;
 mod legality;
 mod part;
@@ -163,7 +164,13 @@ fn run(
         .filter(|t| t.len() == n as usize)
         .map(|t| order.iter().map(|&v| t[v as usize]).collect());
     d.weigh_texture();
-    d.pin(&order.iter().map(|&v| pinned(v)).collect::<Vec<_>>());
+    let mut anchored: Vec<bool> = order.iter().map(|&v| pinned(v)).collect();
+    if limits.keep_features {
+        for (a, corner) in anchored.iter_mut().zip(d.keep_features()) {
+            *a |= corner;
+        }
+    }
+    d.pin(&anchored);
     d.set_twins(pairs);
     d.recorder = recorder;
 
