@@ -375,8 +375,13 @@ mod tests {
 
     /// As [`grid`], the interior vertex 4 raised to `z`.
     fn grid_raised(z: f32) -> Collapser {
+        grid_lifted(|i| if i == 4 { z } else { 0.0 })
+    }
+
+    /// As [`grid`], each vertex `i` lifted to `z(i)`.
+    fn grid_lifted(z: impl Fn(u32) -> f32) -> Collapser {
         let positions = (0..9)
-            .map(|i| Vec3::new((i % 3) as f32, (i / 3) as f32, if i == 4 { z } else { 0.0 }))
+            .map(|i| Vec3::new((i % 3) as f32, (i / 3) as f32, z(i)))
             .collect();
         let triangles = [0, 1, 3, 4]
             .into_iter()
@@ -428,5 +433,34 @@ mod tests {
         // Flat, staying put is already the best: it does not move.
         let plan = grid().whole().plan(1, 4).expect("interior into boundary");
         assert_eq!((plan.remove, plan.keep, plan.position), (4, 1, stay));
+    }
+
+    #[test]
+    fn under_keep_features_a_crease_vertex_goes_only_along_its_crease() {
+        // Folded 90° along x = 1: vertex 4 is on the crease (two feature edges), 1 and 7
+        // end it on the border (one each: corners).
+        let mut d = grid_lifted(|i| -((i % 3) as f32 - 1.0).abs());
+        let corners = d.keep_features();
+        assert_eq!(
+            corners,
+            (0..9).map(|v| v == 1 || v == 7).collect::<Vec<_>>()
+        );
+        d.pin(&corners);
+        let part = d.whole();
+        assert_eq!(part.kind(1), Kind::Anchored);
+        // Off the crease: neither into a slope's vertex nor taking one in while moving.
+        assert!(
+            part.plan(3, 4).is_none(),
+            "the crease vertex into a slope's"
+        );
+        assert!(part.plan(0, 4).is_none());
+        let plan = part.plan(4, 1).expect("along the crease into its end");
+        assert_eq!((plan.remove, plan.keep), (4, 1));
+        assert_eq!(plan.position, DVec3::new(1.0, 0.0, 0.0));
+        // Without the flag the crease vertex may go into a slope's.
+        assert!(grid_lifted(|i| -((i % 3) as f32 - 1.0).abs())
+            .whole()
+            .plan(3, 4)
+            .is_some());
     }
 }
