@@ -23,5 +23,6 @@ mod schroeder;
 mod seams;
 mod stitches;
 mod texcoords;
+mod tiny;
 mod turned_from_input;
 mod untouched;

@@ -122,13 +122,14 @@ pub fn decimate_model(
     d.twins = twins;
     d.texcoords = texcoords;
 
-    // A triangle count asked for stops at four vertices, as qem does: a model under four is
-    // dropped from the scene (the original's rule, which `-p 100` keeps), and a plane's two
-    // triangles or a tetrahedron is as far as a count should take it.
+    // A count short of "all of them" stops at four vertices, as qem does: a model under
+    // four is dropped from the scene (the original's rule, which `-p 100` and an error
+    // bound alone keep), and a plane's two triangles or a tetrahedron is as far as `-p 50`
+    // or a triangle count should take it (a 5-vertex fin cut at `-p 50` came out empty).
     let used = (0..d.positions.len() as u32)
         .filter(|&v| !d.conn.incident(v).is_empty())
         .count();
-    let floor = if limits.keep_triangles > 0 {
+    let floor = if limits.keep_triangles > 0 || limits.remove < used {
         used.saturating_sub(MIN_VERTICES)
     } else {
         used
