@@ -436,64 +436,6 @@ fn per_vertex_normals_weigh_in_so_a_flat_sheet_keeps_its_shading() {
     assert!(error < 7.0, "mean shading error {error:.2}°");
 }
 
-/// A star-shaped outline (`points` tips at radius 1, notches at `inner`) filled by a
-/// polar grid of `rings` rings, its inside lifted by up to `rough`: planar-ish, with sharp
-/// outline corners.
-fn star(points: u32, inner: f32, rings: u32, rough: f32) -> Model {
-    let mut rng = crate::support::rng::Rng(7);
-    let around = 2 * points * 4;
-    let mut positions = vec![glam::Vec3::ZERO];
-    for r in 1..=rings {
-        for i in 0..around {
-            let a = i as f32 / around as f32 * std::f32::consts::TAU;
-            let k = (i % 8) as f32 / 4.0; // 0 at a tip, 1 at a notch
-            let outline = 1.0 + (inner - 1.0) * (1.0 - (k - 1.0).abs());
-            let s = r as f32 / rings as f32 * outline;
-            let z = if r < rings { rng.signed() * rough } else { 0.0 };
-            positions.push(glam::Vec3::new(s * a.cos(), s * a.sin(), z));
-        }
-    }
-    let at = |r: u32, i: u32| {
-        if r == 0 {
-            0
-        } else {
-            1 + (r - 1) * around + i % around
-        }
-    };
-    let mut triangles = Vec::new();
-    for i in 0..around {
-        triangles.push([0, at(1, i), at(1, i + 1)]);
-        for r in 1..rings {
-            let (a, b, c, d) = (at(r, i), at(r + 1, i), at(r + 1, i + 1), at(r, i + 1));
-            triangles.push([a, b, c]);
-            triangles.push([a, c, d]);
-        }
-    }
-    Model {
-        name: "star".into(),
-        positions,
-        triangles,
-        ..Model::default()
-    }
-}
-
-#[test]
-fn an_outline_cut_to_a_few_vertices_stays_inside_the_input_s_box() {
-    for (points, inner, rough) in [
-        (5, 0.4, 0.0),
-        (5, 0.4, 0.02),
-        (3, 0.2, 0.05),
-        (8, 0.6, 0.01),
-    ] {
-        let before = star(points, inner, 6, rough);
-        for keep in [5, 8, 12, 20] {
-            let (after, _) = run(before.clone(), qem(Target::KeepVertices(keep)));
-            let outside = crate::random::outside_input_box(&before, &after);
-            assert_eq!(outside, None, "star {points}/{inner}/{rough} at {keep}");
-        }
-    }
-}
-
 /// One OBJ face of `n` corners round a wavy circle: its triangulation gives vertices of
 /// high valence and long fans, where a split-off part's incident lists run full.
 fn huge_polygon_obj(n: u32) -> String {

@@ -66,8 +66,6 @@ pub(super) struct Collapser {
     features: Vec<u32>,
     /// The cosine of the feature angle.
     cos_feature: f64,
-    /// The input's bounding box (see `Part::place`).
-    input_box: [glam::DVec3; 2],
 }
 
 impl Collapser {
@@ -83,7 +81,6 @@ impl Collapser {
         let n = positions.len();
         let closed = ClosedVolumes::new(&positions, &triangles);
         let input_surface = input_surface(&positions, &triangles);
-        let input_box = bounding_box(&positions, &triangles);
         let conn = Connectivity::from_triangles(n, triangles);
         let (kinds, quadrics) = planes::kinds_and_quadrics(&conn, &positions, constraints);
         let costs = EdgeCosts::new(conn.triangles());
@@ -110,7 +107,6 @@ impl Collapser {
             input_surface,
             features: Vec::new(),
             cos_feature,
-            input_box,
         }
     }
 
@@ -217,7 +213,6 @@ impl Collapser {
             input_surface: &mut self.input_surface,
             features: &self.features,
             cos_feature: self.cos_feature,
-            input_box: self.input_box,
             closed: ClosedView::Whole(&mut self.closed),
             scratch: CollapseLists::default(),
         }
@@ -247,7 +242,7 @@ impl Collapser {
         let copies = &self.copies;
         let facing = &self.facing;
         let closed = &self.closed;
-        let (features, cos_feature, input_box) = (&self.features, self.cos_feature, self.input_box);
+        let (features, cos_feature) = (&self.features, self.cos_feature);
         let conns = self.conn.split(vertex_starts, slot_starts);
         conns
             .into_iter()
@@ -277,7 +272,6 @@ impl Collapser {
                     input_surface: input_surface.next()?,
                     features,
                     cos_feature,
-                    input_box,
                     closed: ClosedView::Part(closed, Default::default()),
                     scratch: CollapseLists::default(),
                 })
@@ -355,14 +349,6 @@ fn input_surface(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec4> {
         }
     }
     sums.iter().map(|s| s.as_vec4()).collect()
-}
-
-/// The bounding box of the triangles' corners (the origin's point when there is none).
-fn bounding_box(positions: &[Vec3], triangles: &[[u32; 3]]) -> [glam::DVec3; 2] {
-    let mut corners = triangles.iter().flatten().map(|&v| positions[v as usize]);
-    let first = corners.next().unwrap_or(Vec3::ZERO);
-    let (lo, hi) = corners.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p)));
-    [lo.as_dvec3(), hi.as_dvec3()]
 }
 
 /// A per-vertex attribute, when there is one, split at `starts` (see `split_mut`).

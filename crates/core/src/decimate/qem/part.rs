@@ -106,8 +106,6 @@ pub(super) struct Part<'a> {
     /// otherwise; see `features`), and the feature angle's cosine.
     pub features: &'a [u32],
     pub cos_feature: f64,
-    /// The input's bounding box: no vertex is placed outside it.
-    pub input_box: [DVec3; 2],
     /// Closed components' volumes (see `decimate::closed`).
     pub closed: ClosedView<'a>,
     pub scratch: CollapseLists,
@@ -627,17 +625,14 @@ impl Part<'_> {
             .all(|x| !s.ends.contains(x) && !first.contains(x))
     }
 
-    /// The quadric's minimum when it exists and stays within a box around the edge `pr`–`pk`
-    /// and within the input's bounding box; otherwise the best of the kept end, the removed
-    /// end and the midpoint.
+    /// The quadric's minimum when it exists and stays within a box around the edge `pr`–`pk`;
+    /// otherwise the best of the kept end, the removed end and the midpoint.
     #[inline(always)]
     fn place(&self, q: &Quadric, pr: DVec3, pk: DVec3) -> DVec3 {
         let margin = DVec3::splat(BOX_MARGIN * (pk - pr).length());
         let (lo, hi) = (pr.min(pk) - margin, pr.max(pk) + margin);
-        let [input_lo, input_hi] = self.input_box;
         if let Some(p) = q.minimum() {
-            let inside = |lo: DVec3, hi: DVec3| p.cmpge(lo).all() && p.cmple(hi).all();
-            if inside(lo, hi) && inside(input_lo, input_hi) {
+            if p.cmpge(lo).all() && p.cmple(hi).all() {
                 return p;
             }
         }
