@@ -231,10 +231,20 @@ impl ConnectivityPart<'_> {
     ) {
         renamed.clear();
         deleted.clear();
-        // Without a side table, `keep`'s list may only hold as many as it ends with: the
-        // edge's triangles leave it before the others join it (in fan order otherwise).
-        let tight = self.spilled.is_none()
-            && self.incidence[self.vertex(keep)].len as usize + fan.len() > INLINE;
+        // Without a side table, `keep`'s list can hold no more than `INLINE` even for a
+        // moment: where fan order would overfill it, the edge's triangles leave it before
+        // the others join it (fan order otherwise).
+        let tight = self.spilled.is_none() && {
+            let mut len = self.incidence[self.vertex(keep)].len as usize;
+            fan.iter().any(|f| {
+                if !f.touches(keep) {
+                    len += 1;
+                } else if self.alive[self.slot(f.t)] {
+                    len = len.saturating_sub(1);
+                }
+                len > INLINE
+            })
+        };
         if tight {
             for f in fan.iter().filter(|f| f.touches(keep)) {
                 self.kill_edge_triangle(f, remove, deleted);
