@@ -15,6 +15,7 @@ mod folds;
 mod nonmanifold;
 mod open_borders;
 mod open_scan;
+mod positions;
 mod progressive;
 mod qem;
 mod random;

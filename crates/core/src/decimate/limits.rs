@@ -11,8 +11,12 @@ pub const MIN_VERTICES: usize = 4;
 /// How far one model may be decimated.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Limits {
-    /// Most vertices to remove.
+    /// Most vertices to remove, counted as positions: a texture seam's two sides removed
+    /// together count once (`decimate::counts`).
     pub remove: usize,
+    /// The model's used vertices beyond the first at each position (texture-seam copies):
+    /// its used vertices less these are the positions the four-vertex floor counts.
+    pub seam_copies: usize,
     /// Stop once this many triangles or fewer are left.
     pub keep_triangles: usize,
     /// Never make a removal whose error exceeds this (model units).

@@ -68,6 +68,13 @@ impl Report {
                     plural(sheets.pockets, "closed pocket")
                 );
             }
+            if m.seam_copies_before + m.seam_copies_after > 0 {
+                state += &format!(
+                    "  ({} -> {} vertices with texture-seam copies)",
+                    m.vertices_before + m.seam_copies_before,
+                    m.vertices_after + m.seam_copies_after
+                );
+            }
             if m.feature_angle_deg > report.feature_angle_deg {
                 state += &format!(
                     "  (feature angle relaxed to {:.0} deg to reach the target)",

@@ -65,6 +65,7 @@ pub fn run_tile(dir: &Path, index: usize) -> Result<TileRun, TileError> {
             .count();
         let limits = Limits {
             remove: usize::MAX,
+            seam_copies: 0,
             keep_triangles: tile.target + band,
             max_error: f64::INFINITY,
             feature_angle_deg: crate::decimate::Params::default().feature_angle_deg,

@@ -176,11 +176,6 @@ impl Collapser {
         }
     }
 
-    /// True when some texture seam's sides collapse together (see [`Self::set_twins`]).
-    pub fn has_twins(&self) -> bool {
-        !self.twins.is_empty()
-    }
-
     /// Vertex count.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
