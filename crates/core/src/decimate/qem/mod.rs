@@ -112,19 +112,7 @@ fn run(
     // The decimation works on its own copies: the model's are freed meanwhile (with a
     // recorder, which starts from the model, they stay).
     let mut released = recorder.is_none() && layout::release(model, &loaded);
-    let per_vertex = |a: &Option<Attribute<[f32; 3]>>| match a {
-        Some(Attribute::PerVertex(c)) if c.len() == n as usize => {
-            Some(order.iter().map(|&v| c[v as usize]).collect::<Vec<_>>())
-        }
-        _ => None,
-    };
-    let colors = per_vertex(&model.colors);
-    let normals = match &model.normals {
-        Some(Attribute::PerVertex(v)) if v.len() == n as usize => {
-            Some(order.iter().map(|&i| v[i as usize].to_array()).collect())
-        }
-        _ => None,
-    };
+    let (colors, normals) = per_vertex_attributes(model, order);
 
     // 2. connect, 3. quadrics (one pass over the vertices' rings)
     let cos_feature = limits.feature_angle_deg.to_radians().cos();
@@ -193,4 +181,25 @@ fn run(
         d.restore(model, order, faces);
     }
     (outcome, None)
+}
+
+/// A per-vertex attribute in the internal order, when the model has it per vertex.
+type PerVertex = Option<Vec<[f32; 3]>>;
+
+/// The model's per-vertex colours and normals, in the internal order `order`.
+fn per_vertex_attributes(model: &Model, order: &[u32]) -> (PerVertex, PerVertex) {
+    let n = model.positions.len();
+    let colors = match &model.colors {
+        Some(Attribute::PerVertex(c)) if c.len() == n => {
+            Some(order.iter().map(|&v| c[v as usize]).collect::<Vec<_>>())
+        }
+        _ => None,
+    };
+    let normals = match &model.normals {
+        Some(Attribute::PerVertex(v)) if v.len() == n => {
+            Some(order.iter().map(|&i| v[i as usize].to_array()).collect())
+        }
+        _ => None,
+    };
+    (colors, normals)
 }

@@ -394,26 +394,7 @@ impl Part<'_> {
                 }
             }
         }
-        // Attributes: a colour step along the edge costs as if it moved the surface by that
-        // fraction of the edge (see the module doc); a normal step the same, weighted.
-        let (colors, normals) = (self.colors.as_deref(), self.normals.as_deref());
-        if colors.is_some() || normals.is_some() {
-            let step = |r: u32, k: u32| {
-                let (i, j) = (self.at(r), self.at(k));
-                let step2 = |a: Option<&[[f32; 3]]>| {
-                    a.map_or(0.0, |a| {
-                        let d = Vec3::from_array(a[i]) - Vec3::from_array(a[j]);
-                        f64::from(d.length_squared())
-                    })
-                };
-                step2(colors) + NORMAL_WEIGHT * step2(normals)
-            };
-            let mut d2 = step(remove, keep);
-            if let Some([r2, k2]) = twin {
-                d2 += step(r2, k2);
-            }
-            cost += q.area * d2 * (pk - pr).length_squared();
-        }
+        cost += self.attribute_cost([remove, keep], twin, q.area, (pk - pr).length_squared());
         Some(Plan {
             remove,
             keep,
@@ -424,6 +405,39 @@ impl Part<'_> {
             texcoords,
             junction: None,
         })
+    }
+
+    /// What the attribute steps along a collapse's edge (and its seam twin's) add to its
+    /// cost: a colour step costs as if it moved the surface by that fraction of the edge
+    /// (of the quadric's `area`, the edge `edge2` long squared; see the module doc), a
+    /// normal step the same, weighted. 0 without colours or normals.
+    #[inline(always)]
+    fn attribute_cost(
+        &self,
+        [remove, keep]: [u32; 2],
+        twin: Option<[u32; 2]>,
+        area: f64,
+        edge2: f64,
+    ) -> f64 {
+        let (colors, normals) = (self.colors.as_deref(), self.normals.as_deref());
+        if colors.is_none() && normals.is_none() {
+            return 0.0;
+        }
+        let step = |r: u32, k: u32| {
+            let (i, j) = (self.at(r), self.at(k));
+            let step2 = |a: Option<&[[f32; 3]]>| {
+                a.map_or(0.0, |a| {
+                    let d = Vec3::from_array(a[i]) - Vec3::from_array(a[j]);
+                    f64::from(d.length_squared())
+                })
+            };
+            step2(colors) + NORMAL_WEIGHT * step2(normals)
+        };
+        let mut d2 = step(remove, keep);
+        if let Some([r2, k2]) = twin {
+            d2 += step(r2, k2);
+        }
+        area * d2 * edge2
     }
 
     /// Which end of the edge `a`–`b` between two complex vertices goes, when three or more
