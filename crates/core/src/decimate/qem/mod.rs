@@ -112,7 +112,7 @@ fn run(
     // The decimation works on its own copies: the model's are freed meanwhile (with a
     // recorder, which starts from the model, they stay).
     let mut released = recorder.is_none() && layout::release(model, &loaded);
-    let (colors, normals) = per_vertex_attributes(model, order);
+    let (colors, normals) = per_vertex_attributes(model, n as usize, order);
 
     // 2. connect, 3. quadrics (one pass over the vertices' rings)
     let cos_feature = limits.feature_angle_deg.to_radians().cos();
@@ -186,9 +186,9 @@ fn run(
 /// A per-vertex attribute in the internal order, when the model has it per vertex.
 type PerVertex = Option<Vec<[f32; 3]>>;
 
-/// The model's per-vertex colours and normals, in the internal order `order`.
-fn per_vertex_attributes(model: &Model, order: &[u32]) -> (PerVertex, PerVertex) {
-    let n = model.positions.len();
+/// The model's per-vertex colours and normals (of its `n` vertices as loaded: its positions
+/// may be released by now), in the internal order `order`.
+fn per_vertex_attributes(model: &Model, n: usize, order: &[u32]) -> (PerVertex, PerVertex) {
     let colors = match &model.colors {
         Some(Attribute::PerVertex(c)) if c.len() == n => {
             Some(order.iter().map(|&v| c[v as usize]).collect::<Vec<_>>())
