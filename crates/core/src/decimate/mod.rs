@@ -504,7 +504,7 @@ fn run(
     let shared = stitches::shared_border_vertices(scene);
     let mut reports: Vec<ModelReport> = Vec::with_capacity(scene.models.len());
     let mut done = 0usize;
-    for i in 0..scene.models.len() {
+    for (i, shared) in shared.iter().enumerate().take(scene.models.len()) {
         let (before, rest) = scene.models.split_at_mut(i);
         let model = &mut rest[0];
         if cancel.requested() {
@@ -536,7 +536,7 @@ fn run(
             i,
             &plan,
             params,
-            &shared[i],
+            shared,
             cancel,
             record,
             &mut report_progress,
