@@ -12,7 +12,7 @@ pub const MIN_VERTICES: usize = 4;
 #[derive(Debug, Clone, PartialEq)]
 pub struct Limits {
     /// Most vertices to remove, counted as positions: a texture seam's two sides removed
-    /// together count once (`decimate::counts`).
+    /// together count once (`decimate::point_counts`).
     pub remove: usize,
     /// The model's used vertices beyond the first at each position (texture-seam copies):
     /// its used vertices less these are the positions the four-vertex floor counts.

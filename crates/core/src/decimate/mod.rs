@@ -5,12 +5,12 @@
 
 mod candidates;
 pub mod closed;
-mod counts;
 pub mod hanging_sheets;
 pub mod layout;
 pub mod levels;
 mod limits;
 mod lists;
+mod point_counts;
 pub mod qem;
 mod regions;
 pub mod schroeder;
@@ -97,7 +97,7 @@ impl Default for Params {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelReport {
     pub name: String,
-    /// Used positions: a texture seam's copies of one point count once (`counts`).
+    /// Used positions: a texture seam's copies of one point count once (`point_counts`).
     pub vertices_before: usize,
     pub triangles_before: usize,
     pub vertices_after: usize,
@@ -238,7 +238,7 @@ struct ScenePlan {
 
 impl ScenePlan {
     fn new(scene: &Scene, params: &Params, recording: bool) -> Self {
-        let seam_copies: Vec<usize> = scene.models.iter().map(counts::seam_copies).collect();
+        let seam_copies: Vec<usize> = scene.models.iter().map(point_counts::seam_copies).collect();
         let vertices: Vec<usize> = (scene.models.iter().zip(&seam_copies))
             .map(|(m, &c)| m.used_vertex_count() - c)
             .collect();
@@ -455,7 +455,7 @@ fn model_report(
     outcome: &Outcome,
     sheets: hanging_sheets::RemovedSheets,
 ) -> ModelReport {
-    let seam_copies_after = counts::seam_copies(model);
+    let seam_copies_after = point_counts::seam_copies(model);
     // Counted where the model has texture seams (a seam's sides go as one position);
     // otherwise what was removed, as the algorithms count it.
     let vertices_after = if model.texcoords.is_some() {
