@@ -17,7 +17,6 @@ fn qem(model: &Model, triangles: usize, feature_angle_deg: f64) -> Model {
         target: Target::KeepTriangles(triangles),
         algorithm: Algorithm::Qem,
         feature_angle_deg,
-        keep_features: true,
         ..Params::default()
     };
     simplify_scene(&mut scene, &params, &mut |_| {});

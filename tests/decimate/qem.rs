@@ -435,3 +435,48 @@ fn per_vertex_normals_weigh_in_so_a_flat_sheet_keeps_its_shading() {
     // Without the normals in the cost: 10.8° (shading gone: the mean tilt is about 9°).
     assert!(error < 7.0, "mean shading error {error:.2}°");
 }
+
+/// One OBJ face of `n` corners round a wavy circle: its triangulation gives vertices of
+/// high valence and long fans, where a split-off part's incident lists run full.
+fn huge_polygon_obj(n: u32) -> String {
+    let mut obj = String::new();
+    for i in 0..n {
+        let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+        let r = 1.0 + 0.1 * (7.0 * a).sin();
+        obj += &format!("v {:.7} {:.7} 0\n", r * a.cos(), r * a.sin());
+    }
+    obj += "f";
+    for i in 1..=n {
+        obj += &format!(" {i}");
+    }
+    obj + "\n"
+}
+
+#[test]
+fn a_polygon_of_a_hundred_thousand_corners_decimates() {
+    // A 45,000-corner face once ran past a minute at -p 90: a collapse in a split-off part
+    // overfilled the kept vertex's incident list for a moment (the edge's triangles left
+    // it after the others had joined) and the connectivity lost triangles.
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let path = dir.path().join("polygon.obj");
+    std::fs::write(&path, huge_polygon_obj(100_000)).expect("write the polygon");
+    let read = decimate_core::io::read_scene(&path).expect("the polygon reads");
+    let before = read.scene.models[0].clone();
+    assert_eq!(
+        (before.positions.len(), before.triangles.len()),
+        (100_000, 99_998)
+    );
+    let (after, report) = run(before.clone(), qem(Target::RemovePercent(90.0)));
+    assert_eq!(report.models[0].vertices_after, 10_000);
+    // A disk keeps its Euler characteristic: V - 2 triangles.
+    assert_eq!(
+        (after.positions.len(), after.triangles.len()),
+        (10_000, 9_998)
+    );
+    // One disk, its outline whole: every kept vertex on it (edges of one triangle), none
+    // shared by three triangles or flipped (the input's slivers may stay slivers).
+    let e = measure::edge_counts(&after);
+    assert_eq!((e.boundary, e.non_manifold, e.misoriented), (10_000, 0, 0));
+    assert_eq!(e.edges, 10_000 + 9_998 - 1, "Euler: V - E + F = 1");
+    assert!(after.positions.iter().all(|p| p.z == 0.0));
+}

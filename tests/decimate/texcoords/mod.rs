@@ -21,6 +21,15 @@ struct Obj {
     triangles: Vec<[(usize, usize); 3]>,
 }
 
+/// The distinct points among `positions` (-0 and 0 as one): what counts name vertices, a
+/// texture seam's copies of a point once.
+fn distinct_positions(positions: &[[f32; 3]]) -> usize {
+    (positions.iter())
+        .map(|p| p.map(|c| (c + 0.0).to_bits()))
+        .collect::<std::collections::HashSet<_>>()
+        .len()
+}
+
 fn read_obj(text: &str) -> Obj {
     let mut obj = Obj {
         positions: Vec::new(),

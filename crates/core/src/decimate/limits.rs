@@ -11,8 +11,12 @@ pub const MIN_VERTICES: usize = 4;
 /// How far one model may be decimated.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Limits {
-    /// Most vertices to remove.
+    /// Most vertices to remove, counted as positions: a texture seam's two sides removed
+    /// together count once (`decimate::point_counts`).
     pub remove: usize,
+    /// The model's used vertices beyond the first at each position (texture-seam copies):
+    /// its used vertices less these are the positions the four-vertex floor counts.
+    pub seam_copies: usize,
     /// Stop once this many triangles or fewer are left.
     pub keep_triangles: usize,
     /// Never make a removal whose error exceeds this (model units).
@@ -22,6 +26,9 @@ pub struct Limits {
     /// When no candidate is left before `remove`/`keep_triangles` is reached, raise the
     /// feature angle in `schroeder::RELAX_STEP_DEG` steps (up to 180°) and go on.
     pub relax_features: bool,
+    /// qem: feature vertices never leave their features (`Params::keep_features`;
+    /// vertex removal keeps them by never relaxing the feature angle).
+    pub keep_features: bool,
     /// qem: scale fold angles to the mesh's sampling before the feature test
     /// ([`super::Params::scale_folds`]).
     pub scale_folds: bool,

@@ -10,6 +10,7 @@ pub(crate) mod layout;
 pub mod levels;
 mod limits;
 mod lists;
+mod point_counts;
 pub(crate) mod qem;
 mod regions;
 pub(crate) mod schroeder;
@@ -96,10 +97,16 @@ impl Default for Params {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelReport {
     pub name: String,
+    /// Used positions: a texture seam's copies of one point count once (`point_counts`).
     pub vertices_before: usize,
     pub triangles_before: usize,
     pub vertices_after: usize,
     pub triangles_after: usize,
+    /// Used vertices beyond the first at each position of a textured model (its seams'
+    /// copies, one per extra side), before and after: the vertices a file holds are these
+    /// more than the positions.
+    pub seam_copies_before: usize,
+    pub seam_copies_after: usize,
     /// Largest error of any removal made, in model units.
     pub max_error: f64,
     /// Feature angle in force at the end: larger than asked when it was relaxed to reach a
@@ -213,114 +220,132 @@ pub fn simplify_scene_progressive_cancellable(
     (!cancel.requested()).then_some((report, ProgressiveScene { models }))
 }
 
-fn run(
-    scene: &mut Scene,
-    params: &Params,
-    progress: &mut dyn FnMut(f32),
-    cancel: &Cancel,
-    mut record: Option<&mut Vec<ProgressiveModel>>,
-) -> Report {
-    let start = Instant::now();
-    let vertices: Vec<usize> = scene.models.iter().map(|m| m.used_vertex_count()).collect();
-    let triangles: Vec<usize> = scene.models.iter().map(|m| m.triangles.len()).collect();
-    // A mesh several nodes place is decimated once, at its first instance, and copied
-    // meshes are left as read, except in a progressive record (every model has its own).
-    let source = match record {
-        None => first_instances(scene),
-        Some(_) => vec![None; scene.models.len()],
-    };
-    let copied: Vec<bool> = scene
-        .models
-        .iter()
-        .map(|m| record.is_none() && m.instance.as_ref().is_some_and(|i| i.copied))
-        .collect();
-    let decimated = |i: usize| source[i].is_none() && !copied[i];
-    let weight = |counts: &[usize]| -> Vec<usize> {
-        (0..counts.len())
-            .map(|i| if decimated(i) { counts[i] } else { 0 })
-            .collect()
-    };
-    let Shares {
-        removals,
-        keep_triangles,
-    } = Shares::of(params.target, &weight(&vertices), &weight(&triangles));
-    let relax_features = !params.keep_features
-        && match params.target {
-            Target::RemovePercent(p) => p < 100.0,
-            Target::RemoveVertices(_) | Target::KeepVertices(_) | Target::KeepTriangles(_) => true,
-            Target::ErrorOnly => false,
-        };
-    let planned: usize = removals
-        .iter()
-        .zip(weight(&vertices))
-        .map(|(&r, n)| r.min(n))
-        .sum::<usize>()
-        .max(1);
+/// What a run decides for the whole scene before any model is decimated.
+struct ScenePlan {
+    /// Per model: used positions (a texture seam's copies once), used vertices beyond them
+    /// (the copies), triangles.
+    vertices: Vec<usize>,
+    seam_copies: Vec<usize>,
+    triangles: Vec<usize>,
+    /// The earlier model whose result an instance takes, and models copied through.
+    source: Vec<Option<usize>>,
+    copied: Vec<bool>,
+    shares: Shares,
+    relax_features: bool,
+    /// Removals planned over the scene (at least 1), for the progress fraction.
+    planned: usize,
+}
 
-    // Pinned: texture seams and borders shared with another model (cracks otherwise), and
-    // with `keep_border` every open border.
-    let shared = stitches::shared_border_vertices(scene);
-    let mut reports: Vec<ModelReport> = Vec::with_capacity(scene.models.len());
-    let mut done = 0usize;
-    for i in 0..scene.models.len() {
-        let (before, rest) = scene.models.split_at_mut(i);
-        let model = &mut rest[0];
-        if cancel.requested() {
-            break;
-        }
-        if let Some(j) = source[i] {
-            *model = Model {
-                name: std::mem::take(&mut model.name),
-                transform: model.transform,
-                instance: model.instance.take(),
-                ..before[j].clone()
+impl ScenePlan {
+    fn new(scene: &Scene, params: &Params, recording: bool) -> Self {
+        let seam_copies: Vec<usize> = scene.models.iter().map(point_counts::seam_copies).collect();
+        let vertices: Vec<usize> = (scene.models.iter().zip(&seam_copies))
+            .map(|(m, &c)| m.used_vertex_count() - c)
+            .collect();
+        let triangles: Vec<usize> = scene.models.iter().map(|m| m.triangles.len()).collect();
+        // A mesh several nodes place is decimated once, at its first instance, and copied
+        // meshes are left as read, except in a progressive record (every model has its own).
+        let source = match recording {
+            false => first_instances(scene),
+            true => vec![None; scene.models.len()],
+        };
+        let copied: Vec<bool> = (scene.models.iter())
+            .map(|m| !recording && m.instance.as_ref().is_some_and(|i| i.copied))
+            .collect();
+        let weight = |counts: &[usize]| -> Vec<usize> {
+            (0..counts.len())
+                .map(|i| match source[i].is_none() && !copied[i] {
+                    true => counts[i],
+                    false => 0,
+                })
+                .collect()
+        };
+        let shares = Shares::of(params.target, &weight(&vertices), &weight(&triangles));
+        let relax_features = !params.keep_features
+            && match params.target {
+                Target::RemovePercent(p) => p < 100.0,
+                Target::RemoveVertices(_) | Target::KeepVertices(_) | Target::KeepTriangles(_) => {
+                    true
+                }
+                Target::ErrorOnly => false,
             };
-            let mut report = reports[j].clone();
-            report.name = model.name.clone();
-            report.instance_of = Some(j);
-            reports.push(report);
-            continue;
+        let planned = (shares.removals.iter().zip(weight(&vertices)))
+            .map(|(&r, n)| r.min(n))
+            .sum::<usize>()
+            .max(1);
+        Self {
+            vertices,
+            seam_copies,
+            triangles,
+            source,
+            copied,
+            shares,
+            relax_features,
+            planned,
         }
-        if copied[i] {
-            reports.push(ModelReport {
-                name: model.name.clone(),
-                vertices_before: vertices[i],
-                triangles_before: triangles[i],
-                vertices_after: vertices[i],
-                triangles_after: triangles[i],
-                max_error: 0.0,
-                feature_angle_deg: params.feature_angle_deg,
-                fully_decimated: false,
-                dropped: false,
-                pinned: 0,
-                non_manifold_kept: 0,
-                closed_kept: 0,
-                instance_of: None,
-                copied: true,
-                hanging_sheets: hanging_sheets::RemovedSheets::default(),
-            });
-            continue;
+    }
+
+    /// How many triangles model `i`'s result is expected to have, for the hanging sheets
+    /// smaller than its triangles (`None`: no count; `Some(None)`: an error bound alone);
+    /// `None` outside too when the run removes nothing.
+    fn result_triangles(&self, i: usize, max_error: f64) -> Option<Option<usize>> {
+        let (vertices, triangles) = (self.vertices[i], self.triangles[i]);
+        match (self.shares.keep_triangles[i], self.shares.removals[i]) {
+            (0, usize::MAX) => max_error.is_finite().then_some(None),
+            (0, 0) => None,
+            (0, r) => {
+                let kept = vertices.saturating_sub(r) as f64;
+                Some(Some(
+                    (triangles as f64 * kept / vertices.max(1) as f64) as usize,
+                ))
+            }
+            (k, _) => (k < triangles).then_some(Some(k)),
         }
-        // Both algorithms take a seam's two sides away together (`twins`); junctions of
-        // three or more sides, shared borders and (`keep_border`) open borders are pinned.
-        let border = if params.keep_border {
+    }
+
+    /// The report of model `i`, copied through unchanged.
+    fn copied_report(&self, i: usize, name: &str, params: &Params) -> ModelReport {
+        ModelReport {
+            name: name.to_string(),
+            vertices_before: self.vertices[i],
+            triangles_before: self.triangles[i],
+            vertices_after: self.vertices[i],
+            triangles_after: self.triangles[i],
+            seam_copies_before: self.seam_copies[i],
+            seam_copies_after: self.seam_copies[i],
+            max_error: 0.0,
+            feature_angle_deg: params.feature_angle_deg,
+            fully_decimated: false,
+            dropped: false,
+            pinned: 0,
+            non_manifold_kept: 0,
+            closed_kept: 0,
+            instance_of: None,
+            copied: true,
+            hanging_sheets: hanging_sheets::RemovedSheets::default(),
+        }
+    }
+}
+
+/// Where a model may not change: its pinned vertices and its texture seams' twins.
+struct Pins {
+    pins: Vec<bool>,
+    twins: Vec<u32>,
+}
+
+impl Pins {
+    /// Both algorithms take a seam's two sides away together (`twins`); junctions of three
+    /// or more sides, borders `shared` with another model (cracks otherwise) and
+    /// (`keep_border`) open borders are pinned.
+    fn of(model: &Model, shared: &[bool], keep_border: bool) -> Self {
+        let border = if keep_border {
             stitches::open_border_vertices(model)
         } else {
             Vec::new()
         };
-        let (shared, border) = (&shared[i], &border);
         let on_pinned_border = |v: u32| {
             let flag = |flags: &[bool]| flags.get(v as usize).copied().unwrap_or(false);
-            flag(shared) || flag(border)
-        };
-        let max_error = match params.max_error {
-            None => f64::INFINITY,
-            Some(ErrorBound::Absolute(e)) => e,
-            Some(ErrorBound::DiagonalFraction(f)) => {
-                f * model
-                    .bounds()
-                    .map_or(0.0, |(lo, hi)| (hi - lo).length() as f64)
-            }
+            flag(shared) || flag(&border)
         };
         let seams = seams::find(model);
         let mut twins = seams.twin;
@@ -336,103 +361,204 @@ fn run(
                 on_pinned_border(v) || (seams.on_seam[v as usize] && !paired)
             })
             .collect();
-        // qem: hanging sheets smaller than the result's triangles go first (`hanging_sheets`;
-        // the result estimated from the target). Only a run that removes something removes
-        // them (`-p 0` converts a file as is), never one recording a progressive mesh (it
-        // must refine back to the input).
-        let result_triangles = match (keep_triangles[i], removals[i]) {
-            (0, usize::MAX) => max_error.is_finite().then_some(None),
-            (0, 0) => None,
-            (0, r) => {
-                let kept = vertices[i].saturating_sub(r) as f64;
-                Some(Some(
-                    (triangles[i] as f64 * kept / vertices[i].max(1) as f64) as usize,
-                ))
-            }
-            (k, _) => (k < triangles[i]).then_some(Some(k)),
-        };
-        let mut sheets = hanging_sheets::RemovedSheets::default();
-        let limits = Limits {
-            remove: removals[i],
-            keep_triangles: keep_triangles[i],
-            max_error,
-            feature_angle_deg: params.feature_angle_deg,
-            relax_features,
-            scale_folds: params.scale_folds,
-            cancel: cancel.clone(),
-        };
-        let mut report_progress = |removed: usize| {
-            progress(((done + removed) as f32 / planned as f32).min(1.0));
-        };
-        let outcome = match (params.algorithm, record.as_deref_mut()) {
-            (_, Some(models)) => {
-                let (outcome, pm) = qem::decimate_model_progressive(
-                    model,
-                    &limits,
-                    &pins,
-                    &twins,
-                    &mut report_progress,
-                );
-                models.push(pm);
-                outcome
-            }
-            (Algorithm::Schroeder, None) => {
-                schroeder::decimate_model(model, &limits, &pins, &twins, &mut report_progress)
-            }
-            (Algorithm::Qem, None) => match result_triangles {
-                Some(result_triangles) => {
-                    let limit = hanging_sheets::SheetLimit {
-                        result_triangles,
-                        max_error,
-                    };
-                    // Seam sides and pinned vertices stay where they are.
-                    let fixed = |v: u32| {
-                        pins.get(v as usize).copied().unwrap_or(false)
-                            || twins.get(v as usize).is_some_and(|&w| w != u32::MAX)
-                    };
-                    let mut prune = |model: &mut Model| {
-                        sheets = hanging_sheets::remove_hanging_sheets(model, limit, &fixed);
-                        (sheets.triangles > 0).then_some(sheets.vertices)
-                    };
-                    qem::decimate_model_pruning(
-                        model,
-                        &limits,
-                        &pins,
-                        &twins,
-                        &mut report_progress,
-                        &mut prune,
-                    )
-                }
-                None => qem::decimate_model(model, &limits, &pins, &twins, &mut report_progress),
-            },
-        };
-        done += outcome.removed;
-        let vertices_after = (model.positions.len())
-            .min(vertices[i].saturating_sub(outcome.removed + sheets.vertices));
-        reports.push(ModelReport {
-            name: model.name.clone(),
-            vertices_before: vertices[i],
-            triangles_before: triangles[i],
-            vertices_after,
-            triangles_after: model.triangles.len(),
-            max_error: outcome.max_error.max(sheets.max_diagonal),
-            feature_angle_deg: outcome.feature_angle_deg,
-            fully_decimated: outcome.exhausted,
-            // As the original: only a removal can drop a model, never the input itself.
-            dropped: outcome.removed > 0 && vertices_after < MIN_VERTICES,
-            pinned: outcome.pinned,
-            non_manifold_kept: if outcome.exhausted {
-                crate::mesh::measure::non_manifold_vertices(model)
-            } else {
-                0
-            },
-            closed_kept: outcome.closed_kept,
-            instance_of: None,
-            copied: false,
-            hanging_sheets: sheets,
-        });
+        Self { pins, twins }
     }
-    // The original program's rule: a model left with fewer than four vertices is dropped.
+
+    /// Seam sides and pinned vertices: what hanging-sheet pruning leaves where it is.
+    fn fixed(&self, v: u32) -> bool {
+        self.pins.get(v as usize).copied().unwrap_or(false)
+            || self.twins.get(v as usize).is_some_and(|&w| w != u32::MAX)
+    }
+}
+
+/// `params.max_error` in model units for `model`.
+fn error_bound(params: &Params, model: &Model) -> f64 {
+    match params.max_error {
+        None => f64::INFINITY,
+        Some(ErrorBound::Absolute(e)) => e,
+        Some(ErrorBound::DiagonalFraction(f)) => {
+            f * model
+                .bounds()
+                .map_or(0.0, |(lo, hi)| (hi - lo).length() as f64)
+        }
+    }
+}
+
+/// Decimates model `i` of the scene with the algorithm `params` names (or records it,
+/// with `record`), and reports it.
+#[allow(clippy::too_many_arguments)]
+fn decimate_one(
+    model: &mut Model,
+    i: usize,
+    plan: &ScenePlan,
+    params: &Params,
+    shared: &[bool],
+    cancel: &Cancel,
+    record: Option<&mut Vec<ProgressiveModel>>,
+    progress: &mut dyn FnMut(usize),
+) -> ModelReport {
+    let Pins { pins, twins } = Pins::of(model, shared, params.keep_border);
+    let max_error = error_bound(params, model);
+    // qem: hanging sheets smaller than the result's triangles go first (`hanging_sheets`;
+    // the result estimated from the target). Only a run that removes something removes
+    // them (`-p 0` converts a file as is), never one recording a progressive mesh (it
+    // must refine back to the input).
+    let result_triangles = plan.result_triangles(i, max_error);
+    let mut sheets = hanging_sheets::RemovedSheets::default();
+    let limits = Limits {
+        remove: plan.shares.removals[i],
+        seam_copies: plan.seam_copies[i],
+        keep_triangles: plan.shares.keep_triangles[i],
+        max_error,
+        feature_angle_deg: params.feature_angle_deg,
+        relax_features: plan.relax_features,
+        keep_features: params.keep_features,
+        scale_folds: params.scale_folds,
+        cancel: cancel.clone(),
+    };
+    let outcome = match (params.algorithm, record) {
+        (_, Some(models)) => {
+            let (outcome, pm) =
+                qem::decimate_model_progressive(model, &limits, &pins, &twins, progress);
+            models.push(pm);
+            outcome
+        }
+        (Algorithm::Schroeder, None) => {
+            schroeder::decimate_model(model, &limits, &pins, &twins, progress)
+        }
+        (Algorithm::Qem, None) => match result_triangles {
+            Some(result_triangles) => {
+                let limit = hanging_sheets::SheetLimit {
+                    result_triangles,
+                    max_error,
+                };
+                let pinned = Pins { pins, twins };
+                let fixed = |v: u32| pinned.fixed(v);
+                let mut prune = |model: &mut Model| {
+                    sheets = hanging_sheets::remove_hanging_sheets(model, limit, &fixed);
+                    (sheets.triangles > 0).then_some(sheets.vertices)
+                };
+                let (pins, twins) = (&pinned.pins, &pinned.twins);
+                qem::decimate_model_pruning(model, &limits, pins, twins, progress, &mut prune)
+            }
+            None => qem::decimate_model(model, &limits, &pins, &twins, progress),
+        },
+    };
+    model_report(model, i, plan, &outcome, sheets)
+}
+
+/// The report of model `i` decimated with `outcome`.
+fn model_report(
+    model: &Model,
+    i: usize,
+    plan: &ScenePlan,
+    outcome: &Outcome,
+    sheets: hanging_sheets::RemovedSheets,
+) -> ModelReport {
+    let seam_copies_after = point_counts::seam_copies(model);
+    // Counted where the model has texture seams (a seam's sides go as one position);
+    // otherwise what was removed, as the algorithms count it.
+    let vertices_after = if model.texcoords.is_some() {
+        model.used_vertex_count() - seam_copies_after
+    } else {
+        (model.positions.len())
+            .min(plan.vertices[i].saturating_sub(outcome.removed + sheets.vertices))
+    };
+    ModelReport {
+        name: model.name.clone(),
+        vertices_before: plan.vertices[i],
+        triangles_before: plan.triangles[i],
+        vertices_after,
+        triangles_after: model.triangles.len(),
+        seam_copies_before: plan.seam_copies[i],
+        seam_copies_after,
+        max_error: outcome.max_error.max(sheets.max_diagonal),
+        feature_angle_deg: outcome.feature_angle_deg,
+        fully_decimated: outcome.exhausted,
+        // As the original: only a removal can drop a model, never the input itself.
+        dropped: outcome.removed > 0 && vertices_after < MIN_VERTICES,
+        pinned: outcome.pinned,
+        non_manifold_kept: if outcome.exhausted {
+            crate::mesh::measure::non_manifold_vertices(model)
+        } else {
+            0
+        },
+        closed_kept: outcome.closed_kept,
+        instance_of: None,
+        copied: false,
+        hanging_sheets: sheets,
+    }
+}
+
+fn run(
+    scene: &mut Scene,
+    params: &Params,
+    progress: &mut dyn FnMut(f32),
+    cancel: &Cancel,
+    mut record: Option<&mut Vec<ProgressiveModel>>,
+) -> Report {
+    let start = Instant::now();
+    let plan = ScenePlan::new(scene, params, record.is_some());
+    // Pinned: texture seams and borders shared with another model (cracks otherwise), and
+    // with `keep_border` every open border.
+    let shared = stitches::shared_border_vertices(scene);
+    let mut reports: Vec<ModelReport> = Vec::with_capacity(scene.models.len());
+    let mut done = 0usize;
+    for (i, shared) in shared.iter().enumerate().take(scene.models.len()) {
+        let (before, rest) = scene.models.split_at_mut(i);
+        let model = &mut rest[0];
+        if cancel.requested() {
+            break;
+        }
+        if let Some(j) = plan.source[i] {
+            *model = Model {
+                name: std::mem::take(&mut model.name),
+                transform: model.transform,
+                instance: model.instance.take(),
+                ..before[j].clone()
+            };
+            let mut report = reports[j].clone();
+            report.name = model.name.clone();
+            report.instance_of = Some(j);
+            reports.push(report);
+            continue;
+        }
+        if plan.copied[i] {
+            reports.push(plan.copied_report(i, &model.name, params));
+            continue;
+        }
+        let mut report_progress = |removed: usize| {
+            progress(((done + removed) as f32 / plan.planned as f32).min(1.0));
+        };
+        let record = record.as_deref_mut();
+        let report = decimate_one(
+            model,
+            i,
+            &plan,
+            params,
+            shared,
+            cancel,
+            record,
+            &mut report_progress,
+        );
+        done += report.vertices_before - report.vertices_after.min(report.vertices_before);
+        reports.push(report);
+    }
+    drop_small_models(scene, &mut reports, record);
+    Report {
+        models: reports,
+        seconds: start.elapsed().as_secs_f64(),
+        feature_angle_deg: params.feature_angle_deg,
+    }
+}
+
+/// The original program's rule: a model left with fewer than four vertices is dropped
+/// (from the progressive record too).
+fn drop_small_models(
+    scene: &mut Scene,
+    reports: &mut [ModelReport],
+    record: Option<&mut Vec<ProgressiveModel>>,
+) {
     let mut keep = reports.iter().map(|r| !r.dropped);
     scene.models.retain(|_| keep.next().unwrap_or(true));
     if let Some(models) = record {
@@ -442,11 +568,6 @@ fn run(
     for r in reports.iter_mut().filter(|r| r.dropped) {
         r.vertices_after = 0;
         r.triangles_after = 0;
-    }
-    Report {
-        models: reports,
-        seconds: start.elapsed().as_secs_f64(),
-        feature_angle_deg: params.feature_angle_deg,
     }
 }
 

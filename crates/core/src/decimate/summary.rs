@@ -1,7 +1,7 @@
 //! What a decimation run prints: the per-model table of counts and errors, and the column of
 //! counts that level rebuilding (`batch`) prints in the same layout.
 
-use super::Report;
+use super::{ModelReport, Report};
 
 /// A model's line of a summary up to its counts, (before, after) each; decimation and
 /// level rebuilding print the same columns.
@@ -20,60 +20,7 @@ impl Report {
         let (mut vb, mut tb, mut va, mut ta) = (0, 0, 0, 0);
         let mut instances = 0;
         for m in &report.models {
-            let mut state = if let Some(j) = m.instance_of {
-                let source = report.models.get(j).map_or("", |s| s.name.as_str());
-                format!("  instance of {source}: the same mesh, decimated once, counted once")
-            } else if m.copied {
-                "  copied through unchanged (skinned or morph targets)".to_string()
-            } else if m.dropped {
-                "  dropped (fewer than 4 vertices left)".to_string()
-            } else if m.fully_decimated {
-                let mut held = Vec::new();
-                if m.pinned > 0 {
-                    held.push(format!(
-                        "{} vertices are pinned on texture seams or borders",
-                        m.pinned
-                    ));
-                }
-                if m.non_manifold_kept > 0 {
-                    held.push(format!(
-                        "{} vertices on non-manifold edges of the input hold it back",
-                        m.non_manifold_kept
-                    ));
-                }
-                if m.closed_kept > 0 {
-                    held.push(format!(
-                        "{} vertices are kept so that a closed part does not turn inside out \
-                         or flat",
-                        m.closed_kept
-                    ));
-                }
-                if held.is_empty() {
-                    "  fully decimated".to_string()
-                } else {
-                    format!("  fully decimated ({})", held.join("; "))
-                }
-            } else {
-                String::new()
-            };
-            let sheets = &m.hanging_sheets;
-            if sheets.sheets > 0 {
-                let plural =
-                    |n: usize, one: &str| format!("{n} {one}{}", if n == 1 { "" } else { "s" });
-                state += &format!(
-                    "  ({} hanging on non-manifold edges, smaller than the result's triangles, \
-                     removed: {}, {} among them)",
-                    plural(sheets.sheets, "sheet"),
-                    plural(sheets.triangles, "triangle"),
-                    plural(sheets.pockets, "closed pocket")
-                );
-            }
-            if m.feature_angle_deg > report.feature_angle_deg {
-                state += &format!(
-                    "  (feature angle relaxed to {:.0} deg to reach the target)",
-                    m.feature_angle_deg
-                );
-            }
+            let state = state(report, m);
             s += &counts_column(
                 &m.name,
                 (m.vertices_before, m.vertices_after),
@@ -109,4 +56,69 @@ impl Report {
         }
         s
     }
+}
+
+/// What model `m`'s line of `report`'s summary says after its counts and error.
+fn state(report: &Report, m: &ModelReport) -> String {
+    let mut state = if let Some(j) = m.instance_of {
+        let source = report.models.get(j).map_or("", |s| s.name.as_str());
+        format!("  instance of {source}: the same mesh, decimated once, counted once")
+    } else if m.copied {
+        "  copied through unchanged (skinned or morph targets)".to_string()
+    } else if m.dropped {
+        "  dropped (fewer than 4 vertices left)".to_string()
+    } else if m.fully_decimated {
+        let mut held = Vec::new();
+        if m.pinned > 0 {
+            held.push(format!(
+                "{} vertices are pinned on texture seams or borders",
+                m.pinned
+            ));
+        }
+        if m.non_manifold_kept > 0 {
+            held.push(format!(
+                "{} vertices on non-manifold edges of the input hold it back",
+                m.non_manifold_kept
+            ));
+        }
+        if m.closed_kept > 0 {
+            held.push(format!(
+                "{} vertices are kept so that a closed part does not turn inside out \
+                 or flat",
+                m.closed_kept
+            ));
+        }
+        if held.is_empty() {
+            "  fully decimated".to_string()
+        } else {
+            format!("  fully decimated ({})", held.join("; "))
+        }
+    } else {
+        String::new()
+    };
+    let sheets = &m.hanging_sheets;
+    if sheets.sheets > 0 {
+        let plural = |n: usize, one: &str| format!("{n} {one}{}", if n == 1 { "" } else { "s" });
+        state += &format!(
+            "  ({} hanging on non-manifold edges, smaller than the result's triangles, \
+             removed: {}, {} among them)",
+            plural(sheets.sheets, "sheet"),
+            plural(sheets.triangles, "triangle"),
+            plural(sheets.pockets, "closed pocket")
+        );
+    }
+    if m.seam_copies_before + m.seam_copies_after > 0 {
+        state += &format!(
+            "  ({} -> {} vertices with texture-seam copies)",
+            m.vertices_before + m.seam_copies_before,
+            m.vertices_after + m.seam_copies_after
+        );
+    }
+    if m.feature_angle_deg > report.feature_angle_deg {
+        state += &format!(
+            "  (feature angle relaxed to {:.0} deg to reach the target)",
+            m.feature_angle_deg
+        );
+    }
+    state
 }

@@ -67,10 +67,12 @@ pub fn run_tile(dir: &Path, index: usize) -> Result<TileRun, TileError> {
             .count();
         let limits = Limits {
             remove: usize::MAX,
+            seam_copies: 0,
             keep_triangles: tile.target + band,
             max_error: f64::INFINITY,
             feature_angle_deg: crate::decimate::Params::default().feature_angle_deg,
             relax_features: true,
+            keep_features: false,
             // A tile is a piece of the input: its own folds are not the input's.
             scale_folds: false,
             cancel: Default::default(),

@@ -119,7 +119,7 @@ pub(super) fn collapse_in_passes(
         .into_par_iter()
         .filter(|&v| !d.conn.incident(v).is_empty())
         .count();
-    let removable = used.saturating_sub(MIN_VERTICES);
+    let removable = (used.saturating_sub(limits.seam_copies)).saturating_sub(MIN_VERTICES);
     let regions =
         [false, true].map(|shifted| Regions::new(d.vertex_count(), d.conn.triangles(), shifted));
     let mut skipped_for_error = false;
@@ -248,13 +248,9 @@ fn collapse_pass(
     let mut rest = candidates;
     while in_regions && !rest.is_empty() {
         let over = d.conn.triangle_count().saturating_sub(limit.keep_triangles);
-        // A seam collapse removes two vertices (and two triangles, one a side).
-        let per_collapse = if d.has_twins() { 2 } else { 1 };
-        let budget = (limit
-            .remove
-            .min(limit.removable)
+        // A seam collapse removes one position (two vertices) and two triangles, one a side.
+        let budget = (limit.remove.min(limit.removable))
             .saturating_sub(tally.removed)
-            / per_collapse)
             .min(over.div_ceil(2));
         let size = round_size(candidates.len(), rest.len(), budget);
         if size == 0 {
@@ -436,11 +432,9 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
         return Attempt::Skipped;
     }
     // No plan (the edge's shape changed since it was planned) counts as illegal, so that
-    // every candidate either goes, waits or is blocked: each pass progresses. A seam
-    // collapse with room for one vertex only counts so too: the count stops exactly.
-    let removes = plan.map_or(1, |p| {
-        1 + usize::from(p.twin.is_some()) + usize::from(drops)
-    });
+    // every candidate either goes, waits or is blocked: each pass progresses. Counts are
+    // of positions: a seam's two sides are one, a dropped junction copy none.
+    let removes = 1;
     let fits = plan.is_some() && room >= removes && !(drops && d.recorder.is_some());
     let legal =
         fits && welded && plan.is_some_and(|p| d.is_collapse_legal(&p) && twin_is_legal(d, &p));

@@ -61,6 +61,11 @@ pub(super) struct Collapser {
     /// lengths summed in `w`), carried through every collapse: the input surface that
     /// triangles are checked against (docs/design.md#qem-input-surface).
     input_surface: Vec<Vec4>,
+    /// Under `--keep-features`, every vertex's feature class (`features::classify`);
+    /// otherwise empty.
+    features: Vec<u32>,
+    /// The cosine of the feature angle.
+    cos_feature: f64,
 }
 
 impl Collapser {
@@ -79,6 +84,7 @@ impl Collapser {
         let conn = Connectivity::from_triangles(n, triangles);
         let (kinds, quadrics) = planes::kinds_and_quadrics(&conn, &positions, constraints);
         let costs = EdgeCosts::new(conn.triangles());
+        let cos_feature = constraints.cos_feature;
         Self {
             positions,
             costs,
@@ -99,7 +105,19 @@ impl Collapser {
             facing: Vec::new(),
             closed,
             input_surface,
+            features: Vec::new(),
+            cos_feature,
         }
+    }
+
+    /// Holds the features in place (`--keep-features`, see `features`): corners are
+    /// anchored, crease vertices go only along their crease. Call before [`Self::pin`],
+    /// which adds the corners to the vertices it pins. Returns the corners.
+    pub fn keep_features(&mut self) -> Vec<bool> {
+        self.features = super::features::classify(&self.conn, &self.positions, self.cos_feature);
+        (self.features.iter())
+            .map(|&f| f == super::features::CORNER)
+            .collect()
     }
 
     /// The state for the valid triangles of `model`, renumbered along a Morton curve as a
@@ -158,11 +176,6 @@ impl Collapser {
         }
     }
 
-    /// True when some texture seam's sides collapse together (see [`Self::set_twins`]).
-    pub fn has_twins(&self) -> bool {
-        !self.twins.is_empty()
-    }
-
     /// Vertex count.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
@@ -193,6 +206,8 @@ impl Collapser {
             copies: &self.copies,
             facing: &self.facing,
             input_surface: &mut self.input_surface,
+            features: &self.features,
+            cos_feature: self.cos_feature,
             closed: ClosedView::Whole(&mut self.closed),
             scratch: CollapseLists::default(),
         }
@@ -222,6 +237,7 @@ impl Collapser {
         let copies = &self.copies;
         let facing = &self.facing;
         let closed = &self.closed;
+        let (features, cos_feature) = (&self.features, self.cos_feature);
         let conns = self.conn.split(vertex_starts, slot_starts);
         conns
             .into_iter()
@@ -249,6 +265,8 @@ impl Collapser {
                     copies,
                     facing,
                     input_surface: input_surface.next()?,
+                    features,
+                    cos_feature,
                     closed: ClosedView::Part(closed, Default::default()),
                     scratch: CollapseLists::default(),
                 })
@@ -352,8 +370,13 @@ mod tests {
 
     /// As [`grid`], the interior vertex 4 raised to `z`.
     fn grid_raised(z: f32) -> Collapser {
+        grid_lifted(|i| if i == 4 { z } else { 0.0 })
+    }
+
+    /// As [`grid`], each vertex `i` lifted to `z(i)`.
+    fn grid_lifted(z: impl Fn(u32) -> f32) -> Collapser {
         let positions = (0..9)
-            .map(|i| Vec3::new((i % 3) as f32, (i / 3) as f32, if i == 4 { z } else { 0.0 }))
+            .map(|i| Vec3::new((i % 3) as f32, (i / 3) as f32, z(i)))
             .collect();
         let triangles = [0, 1, 3, 4]
             .into_iter()
@@ -405,5 +428,34 @@ mod tests {
         // Flat, staying put is already the best: it does not move.
         let plan = grid().whole().plan(1, 4).expect("interior into boundary");
         assert_eq!((plan.remove, plan.keep, plan.position), (4, 1, stay));
+    }
+
+    #[test]
+    fn under_keep_features_a_crease_vertex_goes_only_along_its_crease() {
+        // Folded 90° along x = 1: vertex 4 is on the crease (two feature edges), 1 and 7
+        // end it on the border (one each: corners).
+        let mut d = grid_lifted(|i| -((i % 3) as f32 - 1.0).abs());
+        let corners = d.keep_features();
+        assert_eq!(
+            corners,
+            (0..9).map(|v| v == 1 || v == 7).collect::<Vec<_>>()
+        );
+        d.pin(&corners);
+        let part = d.whole();
+        assert_eq!(part.kind(1), Kind::Anchored);
+        // Off the crease: neither into a slope's vertex nor taking one in while moving.
+        assert!(
+            part.plan(3, 4).is_none(),
+            "the crease vertex into a slope's"
+        );
+        assert!(part.plan(0, 4).is_none());
+        let plan = part.plan(4, 1).expect("along the crease into its end");
+        assert_eq!((plan.remove, plan.keep), (4, 1));
+        assert_eq!(plan.position, DVec3::new(1.0, 0.0, 0.0));
+        // Without the flag the crease vertex may go into a slope's.
+        assert!(grid_lifted(|i| -((i % 3) as f32 - 1.0).abs())
+            .whole()
+            .plan(3, 4)
+            .is_some());
     }
 }

@@ -11,6 +11,7 @@ mod collapse_passes;
 mod collapse_plan;
 mod collapser;
 mod edge_costs;
+mod features;
 mod junction_collapse;
 mod legality;
 mod part;
@@ -111,19 +112,7 @@ fn run(
     // The decimation works on its own copies: the model's are freed meanwhile (with a
     // recorder, which starts from the model, they stay).
     let mut released = recorder.is_none() && layout::release(model, &loaded);
-    let per_vertex = |a: &Option<Attribute<[f32; 3]>>| match a {
-        Some(Attribute::PerVertex(c)) if c.len() == n as usize => {
-            Some(order.iter().map(|&v| c[v as usize]).collect::<Vec<_>>())
-        }
-        _ => None,
-    };
-    let colors = per_vertex(&model.colors);
-    let normals = match &model.normals {
-        Some(Attribute::PerVertex(v)) if v.len() == n as usize => {
-            Some(order.iter().map(|&i| v[i as usize].to_array()).collect())
-        }
-        _ => None,
-    };
+    let (colors, normals) = per_vertex_attributes(model, n as usize, order);
 
     // 2. connect, 3. quadrics (one pass over the vertices' rings)
     let cos_feature = limits.feature_angle_deg.to_radians().cos();
@@ -163,7 +152,13 @@ fn run(
         .filter(|t| t.len() == n as usize)
         .map(|t| order.iter().map(|&v| t[v as usize]).collect());
     d.weigh_texture();
-    d.pin(&order.iter().map(|&v| pinned(v)).collect::<Vec<_>>());
+    let mut anchored: Vec<bool> = order.iter().map(|&v| pinned(v)).collect();
+    if limits.keep_features {
+        for (a, corner) in anchored.iter_mut().zip(d.keep_features()) {
+            *a |= corner;
+        }
+    }
+    d.pin(&anchored);
     d.set_twins(pairs);
     d.recorder = recorder;
 
@@ -186,4 +181,25 @@ fn run(
         d.restore(model, order, faces);
     }
     (outcome, None)
+}
+
+/// A per-vertex attribute in the internal order, when the model has it per vertex.
+type PerVertex = Option<Vec<[f32; 3]>>;
+
+/// The model's per-vertex colours and normals (of its `n` vertices as loaded: its positions
+/// may be released by now), in the internal order `order`.
+fn per_vertex_attributes(model: &Model, n: usize, order: &[u32]) -> (PerVertex, PerVertex) {
+    let colors = match &model.colors {
+        Some(Attribute::PerVertex(c)) if c.len() == n => {
+            Some(order.iter().map(|&v| c[v as usize]).collect::<Vec<_>>())
+        }
+        _ => None,
+    };
+    let normals = match &model.normals {
+        Some(Attribute::PerVertex(v)) if v.len() == n => {
+            Some(order.iter().map(|&i| v[i as usize].to_array()).collect())
+        }
+        _ => None,
+    };
+    (colors, normals)
 }

@@ -11,6 +11,7 @@ use glam::{DVec2, DVec3, Vec3};
 
 use super::collapse_plan::{others, Kind, Plan};
 use super::edge_costs::EdgeCosts;
+use super::features;
 use super::quadric::{Quadric, TextureQuadric};
 use crate::decimate::closed::ClosedView;
 use crate::mesh::progressive::{CollapseRecord, Recorder};
@@ -101,6 +102,10 @@ pub(super) struct Part<'a> {
     /// their lengths summed in `w` (see `Collapser`): a collapse's kept vertex takes both
     /// ends'.
     pub input_surface: &'a mut [glam::Vec4],
+    /// Feature classes under `--keep-features` (the whole mesh's, read only; empty
+    /// otherwise; see `features`), and the feature angle's cosine.
+    pub features: &'a [u32],
+    pub cos_feature: f64,
     /// Closed components' volumes (see `decimate::closed`).
     pub closed: ClosedView<'a>,
     pub scratch: CollapseLists,
@@ -328,6 +333,12 @@ impl Part<'_> {
         } else {
             self.seam_sides(remove, keep, free, along_boundary)?
         };
+        let swappable = ka == Kind::Interior && kb == Kind::Interior;
+        let (remove, keep, free, on_crease) = if self.features.is_empty() {
+            (remove, keep, free, false)
+        } else {
+            self.feature_rule(remove, keep, free, swappable, twin.is_some())?
+        };
         let mut q = self.quadrics[self.at(a)].sum(&self.quadrics[self.at(b)]);
         if let Some([r2, k2]) = twin {
             q.add(&self.quadrics[self.at(r2)]);
@@ -347,7 +358,9 @@ impl Part<'_> {
                 placed.add(&other.at_best_coordinates(TEXTURE_WEIGHT));
             }
         }
-        let position = if free {
+        let position = if on_crease {
+            along_crease(&placed, pr, pk)
+        } else if free {
             self.place(&placed, pr, pk)
         } else {
             pk
@@ -381,26 +394,7 @@ impl Part<'_> {
                 }
             }
         }
-        // Attributes: a colour step along the edge costs as if it moved the surface by that
-        // fraction of the edge (see the module doc); a normal step the same, weighted.
-        let (colors, normals) = (self.colors.as_deref(), self.normals.as_deref());
-        if colors.is_some() || normals.is_some() {
-            let step = |r: u32, k: u32| {
-                let (i, j) = (self.at(r), self.at(k));
-                let step2 = |a: Option<&[[f32; 3]]>| {
-                    a.map_or(0.0, |a| {
-                        let d = Vec3::from_array(a[i]) - Vec3::from_array(a[j]);
-                        f64::from(d.length_squared())
-                    })
-                };
-                step2(colors) + NORMAL_WEIGHT * step2(normals)
-            };
-            let mut d2 = step(remove, keep);
-            if let Some([r2, k2]) = twin {
-                d2 += step(r2, k2);
-            }
-            cost += q.area * d2 * (pk - pr).length_squared();
-        }
+        cost += self.attribute_cost([remove, keep], twin, q.area, (pk - pr).length_squared());
         Some(Plan {
             remove,
             keep,
@@ -411,6 +405,39 @@ impl Part<'_> {
             texcoords,
             junction: None,
         })
+    }
+
+    /// What the attribute steps along a collapse's edge (and its seam twin's) add to its
+    /// cost: a colour step costs as if it moved the surface by that fraction of the edge
+    /// (of the quadric's `area`, the edge `edge2` long squared; see the module doc), a
+    /// normal step the same, weighted. 0 without colours or normals.
+    #[inline(always)]
+    fn attribute_cost(
+        &self,
+        [remove, keep]: [u32; 2],
+        twin: Option<[u32; 2]>,
+        area: f64,
+        edge2: f64,
+    ) -> f64 {
+        let (colors, normals) = (self.colors.as_deref(), self.normals.as_deref());
+        if colors.is_none() && normals.is_none() {
+            return 0.0;
+        }
+        let step = |r: u32, k: u32| {
+            let (i, j) = (self.at(r), self.at(k));
+            let step2 = |a: Option<&[[f32; 3]]>| {
+                a.map_or(0.0, |a| {
+                    let d = Vec3::from_array(a[i]) - Vec3::from_array(a[j]);
+                    f64::from(d.length_squared())
+                })
+            };
+            step2(colors) + NORMAL_WEIGHT * step2(normals)
+        };
+        let mut d2 = step(remove, keep);
+        if let Some([r2, k2]) = twin {
+            d2 += step(r2, k2);
+        }
+        area * d2 * edge2
     }
 
     /// Which end of the edge `a`–`b` between two complex vertices goes, when three or more
@@ -426,6 +453,61 @@ impl Part<'_> {
         } else {
             (b, a, false, false)
         })
+    }
+
+    /// What `--keep-features` makes of the collapse `remove` → `keep` (`free`: the kept end
+    /// may move; `swappable`: either end may go; `seam`: a seam's two sides collapse):
+    /// `None` when it would move or remove a corner, take a crease vertex off its crease or
+    /// part a seam on a feature; otherwise the ends, whether the kept one moves, and whether
+    /// it moves along the crease (on the line between the ends).
+    fn feature_rule(
+        &self,
+        remove: u32,
+        keep: u32,
+        free: bool,
+        swappable: bool,
+        seam: bool,
+    ) -> Option<(u32, u32, bool, bool)> {
+        let class = |v: u32| {
+            self.features
+                .get(v as usize)
+                .copied()
+                .unwrap_or(features::NONE)
+        };
+        match (class(remove), class(keep)) {
+            (features::NONE, features::NONE) => Some((remove, keep, free, false)),
+            _ if seam => None,
+            // Into a feature vertex, which stays where it is.
+            (features::NONE, _) => Some((remove, keep, false, false)),
+            (features::CORNER, _) => None,
+            (_, features::NONE) => swappable.then_some((keep, remove, false, false)),
+            (_, features::CORNER) => self
+                .feature_edge(remove, keep)
+                .then_some((remove, keep, false, false)),
+            (r, k) => {
+                (r == k && self.feature_edge(remove, keep)).then_some((remove, keep, free, free))
+            }
+        }
+    }
+
+    /// True when `a`–`b` is an edge of two triangles whose normals turn by more than the
+    /// feature angle (false when a corner of them is not this part's).
+    fn feature_edge(&self, a: u32, b: u32) -> bool {
+        let mut normals = [DVec3::ZERO; 2];
+        let mut n = 0;
+        for &t in self.conn.incident(a) {
+            let tri = self.conn.triangle(t);
+            if !tri.contains(&b) {
+                continue;
+            }
+            if n == 2 || !tri.iter().all(|&x| self.owns(x)) {
+                return false;
+            }
+            let [p, q, r] = tri.map(|x| self.position(x));
+            normals[n] = (q - p).cross(r - p).normalize_or_zero();
+            n += 1;
+        }
+        n == 2 && features::folded(normals[0], normals[1], self.cos_feature)
     }
 
     /// `v`'s other side on a texture seam, when it has one.
@@ -706,6 +788,23 @@ impl Part<'_> {
         self.scratch.settled = settled;
         self.scratch.settle_ring = ring;
     }
+}
+
+/// The point of the segment `pk`–`pr` where `q` is least (a quadric is a parabola along a
+/// line: fitted through its ends and midpoint).
+fn along_crease(q: &Quadric, pr: DVec3, pk: DVec3) -> DVec3 {
+    let at = |t: f64| pk + t * (pr - pk);
+    let (f0, fh, f1) = (q.eval(at(0.0)), q.eval(at(0.5)), q.eval(at(1.0)));
+    let a = 2.0 * (f1 + f0 - 2.0 * fh);
+    let b = f1 - f0 - a;
+    let t = if a > 0.0 {
+        (-b / (2.0 * a)).clamp(0.0, 1.0)
+    } else if f1 < f0 {
+        1.0
+    } else {
+        0.0
+    };
+    at(t)
 }
 
 /// Where `p` projects on the edge from `pk` (0) to `pr` (1), clamped to the edge.

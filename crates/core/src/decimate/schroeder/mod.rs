@@ -122,13 +122,15 @@ pub fn decimate_model(
     d.twins = twins;
     d.texcoords = texcoords;
 
-    // A triangle count asked for stops at four vertices, as qem does: a model under four is
-    // dropped from the scene (the original's rule, which `-p 100` keeps), and a plane's two
-    // triangles or a tetrahedron is as far as a count should take it.
+    // A count short of "all of them" stops at four vertices, as qem does: a model under
+    // four is dropped from the scene (the original's rule, which `-p 100` and an error
+    // bound alone keep), and a plane's two triangles or a tetrahedron is as far as `-p 50`
+    // or a triangle count should take it (a 5-vertex fin cut at `-p 50` came out empty).
     let used = (0..d.positions.len() as u32)
         .filter(|&v| !d.conn.incident(v).is_empty())
-        .count();
-    let floor = if limits.keep_triangles > 0 {
+        .count()
+        .saturating_sub(limits.seam_copies);
+    let floor = if limits.keep_triangles > 0 || limits.remove < used {
         used.saturating_sub(MIN_VERTICES)
     } else {
         used
@@ -254,10 +256,6 @@ struct Decimator {
     batch: u32,
     /// Closed components' volumes: no removal turns one inside out or flattens it.
     closed: ClosedVolumes,
-    /// Junction copies removals left with no triangle (dropped: see `dropped_copies`), and
-    /// how many more vertices the count target lets go (a removal that drops one needs two).
-    dropped: usize,
-    room: usize,
     /// The pass ends one triangle over a triangle count, so that the next can take only
     /// border vertices (`removal_passes`).
     end_one_over: bool,
@@ -300,8 +298,6 @@ impl Decimator {
             changed: Vec::new(),
             touched_in: vec![0; n],
             batch: 1,
-            dropped: 0,
-            room: usize::MAX,
             end_one_over: false,
         }
     }
@@ -472,7 +468,6 @@ impl Decimator {
     /// ones in (reusing their slots, so per-face attributes of the region carry over), and
     /// `key` accumulated around the ring, whose vertices are re-ranked at the pass's end.
     fn apply(&mut self, v: u32, removal: Removal<'_>, key: f64) {
-        self.dropped += self.dropped_copies(v, removal);
         if let Some(c) = self.closed.component(v) {
             let change = self.volume_change(v, removal);
             self.closed.apply(c, change);
@@ -494,26 +489,6 @@ impl Decimator {
             *acc = acc.max(key);
             self.mark_changed(u);
         }
-    }
-
-    /// The junction copies that removing `v` as planned leaves with no triangle: pinned
-    /// corners of its triangles outside its ring (a ring closed at a junction leaves one
-    /// copy out, `Surface::close_at_junction`) that are in no other triangle.
-    fn dropped_copies(&self, v: u32, removal: Removal<'_>) -> usize {
-        let mut dropped = 0;
-        if self.copies.is_empty() {
-            return dropped;
-        }
-        for &t in removal.triangles {
-            for u in self.conn.triangle(t) {
-                let alone = u != v
-                    && self.pinned[u as usize]
-                    && !removal.ring.contains(&u)
-                    && (self.conn.incident(u).iter()).all(|s| removal.triangles.contains(s));
-                dropped += usize::from(alone);
-            }
-        }
-        dropped
     }
 
     /// Whether removing `v` as planned keeps its closed component (if any) on its side of
@@ -556,8 +531,7 @@ impl Decimator {
     fn try_remove(&mut self, v: u32, key: f64) -> bool {
         let mut planning = std::mem::take(&mut self.planning);
         let planned = self.surface().plan_removal(v, &mut planning).is_some()
-            && self.keeps_closed_volume(v, removal_of(&planning))
-            && self.dropped_copies(v, removal_of(&planning)) < self.room;
+            && self.keeps_closed_volume(v, removal_of(&planning));
         if planned {
             self.apply(v, removal_of(&planning), key);
         }

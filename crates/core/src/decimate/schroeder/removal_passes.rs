@@ -345,9 +345,6 @@ fn remove_planned(
         }
         let key = d.keys[v as usize];
         let planned = plans.tasks[task as usize].removal(entry as usize);
-        // A removal that drops a junction copy takes two vertices.
-        d.room = limits.remove.saturating_sub(outcome.removed);
-        let dropped_before = d.dropped;
         if let Some(w) = d.twin(v) {
             remove_twins(d, v, w, key, limits, outcome);
             continue;
@@ -359,10 +356,7 @@ fn remove_planned(
                 let stale = removal.ring.iter().any(|&u| d.touched_now(u));
                 if stale {
                     d.try_remove(v, key)
-                } else if fills
-                    && d.keeps_closed_volume(v, removal)
-                    && d.dropped_copies(v, removal) < d.room
-                {
+                } else if fills && d.keeps_closed_volume(v, removal) {
                     d.apply(v, removal, key);
                     true
                 } else {
@@ -372,7 +366,9 @@ fn remove_planned(
             None => d.try_remove(v, key),
         };
         if removed {
-            outcome.removed += 1 + (d.dropped - dropped_before);
+            // One position: a junction copy the removal leaves with no triangle is a copy
+            // of a point that stays.
+            outcome.removed += 1;
             outcome.max_error = outcome.max_error.max(key);
         } else {
             d.keys[v as usize] = f64::NAN; // kept until a neighbour goes
@@ -398,12 +394,12 @@ fn remove_twins(
     if d.ring_changed_now(w) {
         return; // its key is stale: both wait for the next pass
     }
-    // Two vertices and two triangles go: only while both counts allow it.
-    let room = limits.remove.saturating_sub(outcome.removed) >= 2
+    // One position (two vertices) and two triangles go: only while both counts allow it.
+    let room = limits.remove.saturating_sub(outcome.removed) >= 1
         && d.conn.triangle_count() >= limits.keep_triangles + 2;
     match room.then(|| d.try_remove_twins(v, w, key)).flatten() {
         Some(key) => {
-            outcome.removed += 2;
+            outcome.removed += 1;
             outcome.max_error = outcome.max_error.max(key);
         }
         None => {

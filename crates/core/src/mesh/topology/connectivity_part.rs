@@ -231,25 +231,34 @@ impl ConnectivityPart<'_> {
     ) {
         renamed.clear();
         deleted.clear();
-        for f in fan {
-            let i = self.slot(f.t);
-            if f.touches(keep) {
-                if !self.alive[i] {
-                    continue;
+        // Without a side table, `keep`'s list can hold no more than `INLINE` even for a
+        // moment: where fan order would overfill it, the edge's triangles leave it before
+        // the others join it (fan order otherwise).
+        let tight = self.spilled.is_none() && {
+            let mut len = self.incidence[self.vertex(keep)].len as usize;
+            fan.iter().any(|f| {
+                if !f.touches(keep) {
+                    len += 1;
+                } else if self.alive[self.slot(f.t)] {
+                    len = len.saturating_sub(1);
                 }
-                self.alive[i] = false;
-                let tri = self.triangles[i];
-                for v in tri {
-                    if v != remove {
-                        self.unlink(v, f.t);
-                    }
+                len > INLINE
+            })
+        };
+        if tight {
+            for f in fan.iter().filter(|f| f.touches(keep)) {
+                self.kill_edge_triangle(f, remove, deleted);
+            }
+            for f in fan.iter().filter(|f| !f.touches(keep)) {
+                self.rename_corner_to(f, keep, renamed);
+            }
+        } else {
+            for f in fan {
+                if f.touches(keep) {
+                    self.kill_edge_triangle(f, remove, deleted);
+                } else {
+                    self.rename_corner_to(f, keep, renamed);
                 }
-                self.removed.push(f.t);
-                deleted.push((f.t, tri));
-            } else {
-                self.triangles[i][f.corner as usize] = keep;
-                self.link(keep, f.t);
-                renamed.push(f.t);
             }
         }
         let r = self.vertex(remove);
@@ -259,6 +268,37 @@ impl ConnectivityPart<'_> {
             }
         }
         self.incidence[r].len = 0;
+    }
+
+    /// Kills the edge triangle `f` of a collapse removing `remove` (once: a doubled fan may
+    /// list it twice), into `deleted`.
+    fn kill_edge_triangle(
+        &mut self,
+        f: &FanTriangle,
+        remove: u32,
+        deleted: &mut Vec<(u32, [u32; 3])>,
+    ) {
+        let i = self.slot(f.t);
+        if !self.alive[i] {
+            return;
+        }
+        self.alive[i] = false;
+        let tri = self.triangles[i];
+        for v in tri {
+            if v != remove {
+                self.unlink(v, f.t);
+            }
+        }
+        self.removed.push(f.t);
+        deleted.push((f.t, tri));
+    }
+
+    /// Renames the removed end's corner of `f` to `keep`, into `renamed`.
+    fn rename_corner_to(&mut self, f: &FanTriangle, keep: u32, renamed: &mut Vec<u32>) {
+        let i = self.slot(f.t);
+        self.triangles[i][f.corner as usize] = keep;
+        self.link(keep, f.t);
+        renamed.push(f.t);
     }
 
     /// Replaces the live triangles in slots `old` by `fill` (no more of them), as removing
