@@ -27,6 +27,7 @@ pub mod ply;
 pub mod progressive_file;
 pub mod replace;
 mod shape_to_model;
+mod source;
 pub mod stl;
 pub mod stream;
 mod text;
@@ -271,15 +272,7 @@ fn parse_bytes_with(
         let outcome = match sniffed {
             Some(Format::Obj) => return obj::read_obj(&bytes).map_err(syntax),
             Some(Format::Off) => off::read_off(&bytes).map_err(syntax)?,
-            Some(Format::Stl) => stl::read_stl(&bytes).map_err(|e| match e {
-                stl::StlError::Line(e) => syntax(e),
-                stl::StlError::Header(message) => syntax(ParseError::new(1, message)),
-                stl::StlError::Record { record, message } => ReadError::Record {
-                    file: file.clone(),
-                    record,
-                    message,
-                },
-            })?,
+            Some(Format::Stl) => stl::read_stl(&bytes).map_err(|e| stl_error(path, e))?,
             _ => (Scene::default(), Vec::new()),
         };
         if sniffed.is_some() {
@@ -318,6 +311,28 @@ fn parse_bytes_with(
         )));
     };
     vrml::read_tree(&bytes, path, dialect, options).map_err(syntax)
+}
+
+/// An STL reader's error as a [`ReadError`] naming `file`.
+fn stl_error(file: &Path, e: stl::StlError) -> ReadError {
+    let file = file.to_path_buf();
+    match e {
+        stl::StlError::Line(e) => ReadError::Syntax {
+            file,
+            line: e.line,
+            message: e.message,
+        },
+        stl::StlError::Header(message) => ReadError::Syntax {
+            file,
+            line: 1,
+            message,
+        },
+        stl::StlError::Record { record, message } => ReadError::Record {
+            file,
+            record,
+            message,
+        },
+    }
 }
 
 /// Writes `scene` to `path` in the format its extension names: `.ply`, `.obj`, `.stl`, `.off`,
