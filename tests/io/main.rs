@@ -23,3 +23,4 @@ mod roundtrip;
 mod speed;
 mod texture_wrap;
 mod vrml_independent;
+mod warnings;

@@ -35,6 +35,7 @@ pub mod texture_image;
 pub mod texture_path;
 pub mod triangulate;
 mod vrml;
+pub mod warning;
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -49,6 +50,7 @@ pub use ply::write_ply;
 pub use stl::write_stl;
 pub use texture_path::{rebase_textures, rebased};
 pub use vrml::write_vrml2_to;
+pub use warning::{Warning, WarningKind};
 
 /// What went wrong reading a scene: always names the file, and the line where there is one.
 #[derive(Debug, thiserror::Error)]
@@ -96,19 +98,13 @@ pub struct WriteError {
 #[derive(Debug, Clone, Default)]
 pub struct ReadOutcome {
     pub scene: Scene,
-    pub warnings: Vec<String>,
+    /// Typed (kind, file, line, count); [`warning::grouped`] orders them for printing.
+    pub warnings: Vec<Warning>,
     /// Set when the file is a progressive mesh (`FILE.pm`); `scene` is then its full meshes.
     pub progressive: Option<ProgressiveScene>,
     /// The material libraries an OBJ names (`mtllib`), as written, relative to its folder;
     /// [`read_scene`] has applied them, [`parse_bytes`] has not (it reads no other file).
     pub material_libraries: Vec<String>,
-}
-
-/// True when a reader's warning means part of the file was not read (a skipped node,
-/// shape, face or attribute): `-q` still prints those. Readers word such warnings with
-/// "skipped" or "ignored".
-pub fn means_lost_data(warning: &str) -> bool {
-    warning.contains("skipped") || warning.contains("ignored")
 }
 
 /// Most models one file may expand to (DEF/USE instancing can multiply them).
@@ -201,7 +197,21 @@ pub fn parse_str(text: &str, file_name: &str) -> Result<ReadOutcome, ReadError> 
     parse_bytes(text.as_bytes().to_vec(), Path::new(file_name))
 }
 
+/// Reads a scene from memory; every warning that names no file of its own names `path`.
 fn parse_bytes_with(
+    bytes: Vec<u8>,
+    path: &Path,
+    by_name: Option<Format>,
+    options: ReadOptions,
+) -> Result<ReadOutcome, ReadError> {
+    let mut outcome = parse_any(bytes, path, by_name, options)?;
+    for w in &mut outcome.warnings {
+        w.file.get_or_insert_with(|| path.to_path_buf());
+    }
+    Ok(outcome)
+}
+
+fn parse_any(
     mut bytes: Vec<u8>,
     path: &Path,
     by_name: Option<Format>,

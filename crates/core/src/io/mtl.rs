@@ -25,6 +25,7 @@
 //! model whose texture the OBJ maps (it has one texture coordinate pair per vertex), with
 //! `-clamp on` when the texture repeats along neither direction.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -48,7 +49,7 @@ pub struct Material {
 }
 
 /// Reads an MTL file's materials, in file order; `file` is named in the warnings.
-pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<String>) {
+pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<Warning>) {
     let f = file.display();
     let mut materials: Vec<Material> = Vec::new();
     let mut warnings = Vec::new();
@@ -61,7 +62,11 @@ pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<String>) {
         let rest = text.trim().get(key.len()..).unwrap_or("").trim();
         if key == "newmtl" {
             if rest.is_empty() {
-                warnings.push(format!("{f}:{line}: 'newmtl' without a name skipped"));
+                warnings.push(lost(
+                    file,
+                    line,
+                    format!("{f}:{line}: 'newmtl' without a name skipped"),
+                ));
             }
             materials.push(Material {
                 name: rest.to_string(),
@@ -82,8 +87,10 @@ pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<String>) {
         let Some(m) = materials.last_mut() else {
             if !outside_warned {
                 outside_warned = true;
-                warnings.push(format!(
-                    "{f}:{line}: '{key}' before any 'newmtl' skipped (it belongs to no material)"
+                warnings.push(lost(
+                    file,
+                    line,
+                    format!("{f}:{line}: '{key}' before any 'newmtl' skipped (it belongs to no material)"),
                 ));
             }
             continue;
@@ -94,17 +101,33 @@ pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<String>) {
             map_file(rest).map(|(t, clamp)| (m.texture, m.clamp) = (Some(t), clamp))
         };
         if let Err(why) = read {
-            warnings.push(format!("{f}:{line}: {key}: {why}; line skipped"));
+            warnings.push(lost(
+                file,
+                line,
+                format!("{f}:{line}: {key}: {why}; line skipped"),
+            ));
         }
     }
     materials.retain(|m| !m.name.is_empty());
     if !skipped_maps.is_empty() {
-        warnings.push(format!(
-            "{f}: texture maps other than map_Kd are not used ({})",
-            skipped_maps.join(", ")
-        ));
+        let mut w = Warning::new(
+            WarningKind::SkippedMaterial,
+            format!(
+                "{f}: texture maps other than map_Kd are not used ({})",
+                skipped_maps.join(", ")
+            ),
+        );
+        w.file = Some(file.to_path_buf());
+        warnings.push(w);
     }
     (materials, warnings)
+}
+
+/// A line of the MTL file `file` not applied.
+fn lost(file: &Path, line: usize, message: String) -> Warning {
+    let mut w = Warning::new(WarningKind::SkippedMaterial, message).at(line);
+    w.file = Some(file.to_path_buf());
+    w
 }
 
 /// `Kd`'s colour: `r g b`, or `r` alone for grey; `spectral` and `xyz` forms are refused.
@@ -223,11 +246,14 @@ pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) {
             let bytes = match std::fs::read(&path) {
                 Ok(b) => b,
                 Err(e) => {
-                    outcome.warnings.push(format!(
-                        "{}: cannot read its material library {}: {e}; its materials are not \
+                    outcome.warnings.push(Warning::new(
+                        WarningKind::SkippedMaterial,
+                        format!(
+                            "{}: cannot read its material library {}: {e}; its materials are not \
                          applied",
-                        obj.display(),
-                        path.display()
+                            obj.display(),
+                            path.display()
+                        ),
                     ));
                     continue;
                 }
@@ -269,10 +295,13 @@ pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) {
             let files: Vec<String> = loaded.iter().map(|p| p.display().to_string()).collect();
             format!("not defined in {}", files.join(", "))
         };
-        outcome.warnings.push(format!(
-            "{}: material {} {where_}; the default grey is used",
-            obj.display(),
-            quoted.join(", ")
+        outcome.warnings.push(Warning::new(
+            WarningKind::SkippedMaterial,
+            format!(
+                "{}: material {} {where_}; the default grey is used",
+                obj.display(),
+                quoted.join(", ")
+            ),
         ));
     }
 }

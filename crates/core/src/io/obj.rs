@@ -24,6 +24,7 @@
 //! diffuse colour other than the default, `FILE.mtl` is written beside `FILE.obj` (`mtl`),
 //! named by `mtllib`, and each model's `o` is followed by its `usemtl`.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -280,9 +281,13 @@ pub fn read_obj(bytes: &[u8]) -> PResult<ReadOutcome> {
             b"usemtl" => r.use_material(&text, line),
             b"mtllib" => match rest_of_line(&text) {
                 Some(lib) => r.libraries.push(lib),
-                None => r.warnings.push(format!(
-                    "OBJ 'mtllib' without a file name on line {line} skipped"
-                )),
+                None => r.warnings.push(
+                    Warning::new(
+                        WarningKind::SkippedMaterial,
+                        format!("OBJ 'mtllib' without a file name on line {line} skipped"),
+                    )
+                    .at(line),
+                ),
             },
             _ => r.skip(key, line),
         }
@@ -293,7 +298,7 @@ pub fn read_obj(bytes: &[u8]) -> PResult<ReadOutcome> {
 /// An OBJ file's statements read so far.
 #[derive(Default)]
 struct ObjReader {
-    warnings: Vec<String>,
+    warnings: Vec<Warning>,
     /// Statement keys (and other things) already warned about, to warn once.
     warned: HashSet<Vec<u8>>,
     coords: Vec<f32>,
@@ -369,10 +374,16 @@ impl ObjReader {
     fn use_material(&mut self, text: &[u8], line: usize) {
         let name = rest_of_line(text);
         if name.is_none() && self.warned.insert(b"usemtl without a name".to_vec()) {
-            self.warnings.push(format!(
-                "OBJ 'usemtl' without a material name on line {line}: the faces after \
-                 it have no material"
-            ));
+            self.warnings.push(
+                Warning::new(
+                    WarningKind::SkippedMaterial,
+                    format!(
+                        "OBJ 'usemtl' without a material name on line {line}: the faces after \
+                         it have no material"
+                    ),
+                )
+                .at(line),
+            );
         }
         if name != self.material {
             self.material = name;
@@ -384,11 +395,13 @@ impl ObjReader {
     fn skip(&mut self, key: &[u8], line: usize) {
         if self.warned.insert(key.to_vec()) {
             let k = shown(key);
-            self.warnings.push(match key {
+            let message = match key {
                 b"s" => "OBJ 's' (smoothing group) statements skipped".to_string(),
                 b"l" | b"p" => format!("OBJ '{k}' statements skipped (only faces are read)"),
                 _ => format!("unknown OBJ statement '{k}' skipped (first on line {line})"),
-            });
+            };
+            self.warnings
+                .push(Warning::new(WarningKind::SkippedNode, message).at(line));
         }
     }
 
@@ -409,10 +422,13 @@ impl ObjReader {
             let texcoords = if g.texcoords.iter().all(|&t| t == u32::MAX) {
                 None
             } else if g.texcoords.contains(&u32::MAX) {
-                warnings.push(format!(
-                    "{}: some face corners have texture coordinates ('v/vt') and some do not; \
-                     texture coordinates ignored",
-                    name
+                warnings.push(Warning::new(
+                    WarningKind::SkippedAttribute,
+                    format!(
+                        "{}: some face corners have texture coordinates ('v/vt') and some do \
+                         not; texture coordinates ignored",
+                        name
+                    ),
                 ));
                 None
             } else {

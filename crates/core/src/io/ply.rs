@@ -15,6 +15,7 @@
 //! colours (`red green blue`) and texture coordinates (`s t`) when every model has them, and
 //! `comment TextureFile NAME` when they all map the same image.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
@@ -413,7 +414,7 @@ type FaceHook<'a> = dyn FnMut(&[f32], &mut Vec<u32>, &mut Vec<u32>) -> Result<()
 
 /// Reads a PLY file into a scene of one model: header, then each element (vertices, faces,
 /// others skipped), then the model built from what they held.
-pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
+pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<Warning>)> {
     let Header {
         format,
         elements,
@@ -532,7 +533,7 @@ struct VertexSlots {
 }
 
 /// The vertex element's layout; a texture coordinate without its partner is warned about.
-fn vertex_slots(el: &Element, warnings: &mut Vec<String>) -> PResult<VertexSlots> {
+fn vertex_slots(el: &Element, warnings: &mut Vec<Warning>) -> PResult<VertexSlots> {
     let slot = |n: &str| {
         el.props
             .iter()
@@ -559,10 +560,16 @@ fn vertex_slots(el: &Element, warnings: &mut Vec<String>) -> PResult<VertexSlots
         for [u, v] in UV_NAMES {
             if let (Some(_), None) | (None, Some(_)) = (slot(u), slot(v)) {
                 let (has, lacks) = if slot(u).is_some() { (u, v) } else { (v, u) };
-                warnings.push(format!(
-                    "the vertex element has '{has}' but no '{lacks}'; \
-                     texture coordinates skipped"
-                ));
+                warnings.push(
+                    Warning::new(
+                        WarningKind::SkippedAttribute,
+                        format!(
+                            "the vertex element has '{has}' but no '{lacks}'; \
+                             texture coordinates skipped"
+                        ),
+                    )
+                    .at(el.line),
+                );
             }
         }
     }
@@ -581,7 +588,7 @@ fn read_vertices(
     body: &mut Body<impl Input>,
     file_len: usize,
     data: &mut Gathered,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> PResult<()> {
     body.start(el);
     let mut slots = vertex_slots(el, warnings)?;
@@ -661,7 +668,7 @@ fn read_faces(
     body: &mut Body<impl Input>,
     file_len: usize,
     data: &mut Gathered,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
     each_face: &mut FaceHook<'_>,
 ) -> PResult<()> {
     data.face_line = el.line;
@@ -723,11 +730,17 @@ fn read_faces(
             }
         }
         if corner_uv.is_some() && values != 2 * (corners.len() - first) {
-            warnings.push(format!(
-                "face {f} has {values} 'texcoord' values for {} corners \
-                 (expected u v per corner); texture coordinates skipped",
-                corners.len() - first
-            ));
+            warnings.push(
+                Warning::new(
+                    WarningKind::SkippedAttribute,
+                    format!(
+                        "face {f} has {values} 'texcoord' values for {} corners \
+                         (expected u v per corner); texture coordinates skipped",
+                        corners.len() - first
+                    ),
+                )
+                .at(body.line),
+            );
             *corner_uv = None;
         }
         ends.push(corners.len() as u32);
@@ -777,8 +790,8 @@ fn shared_corner_pairs(per_corner: &[f32], pairs: &mut Vec<f32>) -> Vec<u32> {
 fn finish(
     data: Gathered,
     texture: Option<String>,
-    mut warnings: Vec<String>,
-) -> PResult<(Scene, Vec<String>)> {
+    mut warnings: Vec<Warning>,
+) -> PResult<(Scene, Vec<Warning>)> {
     let Gathered {
         coords,
         rgb,
@@ -791,7 +804,10 @@ fn finish(
         positions_only: _,
     } = data;
     if ends.is_empty() {
-        warnings.push("the PLY file has no faces (a point cloud); nothing to decimate".into());
+        warnings.push(Warning::new(
+            WarningKind::Note,
+            "the PLY file has no faces (a point cloud); nothing to decimate",
+        ));
         return Ok((Scene::default(), warnings));
     }
     let colors = if rgb.is_empty() {

@@ -8,6 +8,7 @@
 //! at the vertex's first use in the file wins (documented behaviour, never an error).
 //! A polygon's per-face value goes to every triangle cut from it.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::HashMap;
 
 use glam::{Mat4, Vec3};
@@ -75,7 +76,7 @@ fn check_bind<'a>(
     bind: Bind<'a>,
     what: &str,
     spec_name: &str,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> Bind<'a> {
     let (values, index) = match &bind {
         Bind::None => return bind,
@@ -83,8 +84,11 @@ fn check_bind<'a>(
     };
     let count = (values.len() / 3) as u32;
     if let Some(bad) = index.iter().find(|&&i| i >= count) {
-        warnings.push(format!(
-            "{spec_name}: {what} index {bad} is out of range ({count} values); {what} ignored"
+        warnings.push(Warning::new(
+            WarningKind::SkippedAttribute,
+            format!(
+                "{spec_name}: {what} index {bad} is out of range ({count} values); {what} ignored"
+            ),
         ));
         return Bind::None;
     }
@@ -124,7 +128,7 @@ impl Remap {
 }
 
 /// Builds the model; out-of-range coordinate indices and non-finite used coordinates are errors.
-pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> {
+pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<Warning>) -> PResult<Model> {
     let ShapeSpec {
         name,
         transform,
@@ -270,9 +274,13 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         drop(local);
     }
     if degenerate > 0 {
-        warnings.push(format!(
-            "{name}: {degenerate} face(s) with fewer than 3 corners skipped"
-        ));
+        warnings.push(
+            Warning::new(
+                WarningKind::SkippedFaces,
+                format!("{name}: {degenerate} face(s) with fewer than 3 corners skipped"),
+            )
+            .times(degenerate),
+        );
     }
     if !ccw {
         for t in &mut triangles {
@@ -328,7 +336,7 @@ fn texcoords_fit(
     t: &TexCoords<'_>,
     corners: usize,
     name: &str,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> bool {
     let count = t.values.len() / 2;
     let problem = if t.index.len() < corners {
@@ -350,7 +358,10 @@ fn texcoords_fit(
     };
     match problem {
         Some(p) => {
-            warnings.push(format!("{name}: {p}; texture coordinates ignored"));
+            warnings.push(Warning::new(
+                WarningKind::SkippedAttribute,
+                format!("{name}: {p}; texture coordinates ignored"),
+            ));
             false
         }
         None => true,

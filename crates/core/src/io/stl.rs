@@ -9,6 +9,7 @@
 //! Write: binary little-endian, all models in one file, world positions, facet normals
 //! computed, an 80-byte header that does not start with "solid".
 
+use crate::io::warning::{Warning, WarningKind};
 use std::io::Write;
 use std::path::Path;
 
@@ -62,7 +63,7 @@ pub(crate) fn starts_with_solid(bytes: &[u8]) -> bool {
 }
 
 /// Reads an STL file, binary or ASCII.
-pub(crate) fn read_stl(bytes: &[u8]) -> Result<(Scene, Vec<String>), StlError> {
+pub(crate) fn read_stl(bytes: &[u8]) -> Result<(Scene, Vec<Warning>), StlError> {
     if is_binary(bytes) {
         return read_binary(bytes);
     }
@@ -97,7 +98,7 @@ fn model(
     name: String,
     coords: Vec<f32>,
     line: usize,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> Result<Model, ParseError> {
     let n = coords.len() / 3;
     let spec = ShapeSpec {
@@ -119,7 +120,7 @@ fn model(
     build(spec, warnings)
 }
 
-fn read_binary(bytes: &[u8]) -> Result<(Scene, Vec<String>), StlError> {
+fn read_binary(bytes: &[u8]) -> Result<(Scene, Vec<Warning>), StlError> {
     let mut warnings = Vec::new();
     let body = &bytes[84..];
     if body.is_empty() {
@@ -324,7 +325,7 @@ trait Solids {
         &mut self,
         name: String,
         line: usize,
-        warnings: &mut Vec<String>,
+        warnings: &mut Vec<Warning>,
     ) -> Result<(), ParseError>;
 }
 
@@ -344,7 +345,7 @@ impl Solids for Models {
         &mut self,
         name: String,
         line: usize,
-        warnings: &mut Vec<String>,
+        warnings: &mut Vec<Warning>,
     ) -> Result<(), ParseError> {
         let coords = std::mem::take(&mut self.coords);
         self.models.push(model(name, coords, line, warnings)?);
@@ -360,12 +361,12 @@ impl Solids for Streamed<'_> {
         (self.0)([[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]]);
     }
 
-    fn end_solid(&mut self, _: String, _: usize, _: &mut Vec<String>) -> Result<(), ParseError> {
+    fn end_solid(&mut self, _: String, _: usize, _: &mut Vec<Warning>) -> Result<(), ParseError> {
         Ok(())
     }
 }
 
-fn read_ascii(bytes: &[u8]) -> Result<(Scene, Vec<String>), ParseError> {
+fn read_ascii(bytes: &[u8]) -> Result<(Scene, Vec<Warning>), ParseError> {
     let mut warnings = Vec::new();
     let mut out = Models::default();
     parse_ascii(&mut Words::new(bytes), &mut out, &mut warnings)?;
@@ -376,7 +377,7 @@ fn read_ascii(bytes: &[u8]) -> Result<(Scene, Vec<String>), ParseError> {
 fn parse_ascii<I: Input>(
     w: &mut Words<I>,
     out: &mut impl Solids,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> Result<(), ParseError> {
     let mut total = 0usize;
     while let Some(word) = w.next()? {
@@ -391,9 +392,13 @@ fn parse_ascii<I: Input>(
         let mut facets = 0usize;
         loop {
             let Some(word) = w.next()? else {
-                warnings.push(format!(
-                    "the STL solid '{name}' (line {solid_line}) has no 'endsolid'"
-                ));
+                warnings.push(
+                    Warning::new(
+                        WarningKind::Note,
+                        format!("the STL solid '{name}' (line {solid_line}) has no 'endsolid'"),
+                    )
+                    .at(solid_line),
+                );
                 break;
             };
             if w.is(&word, b"endsolid") {
@@ -410,9 +415,13 @@ fn parse_ascii<I: Input>(
             facets += 1;
         }
         if facets == 0 {
-            warnings.push(format!(
-                "the STL solid '{name}' (line {solid_line}) has no facets"
-            ));
+            warnings.push(
+                Warning::new(
+                    WarningKind::Note,
+                    format!("the STL solid '{name}' (line {solid_line}) has no facets"),
+                )
+                .at(solid_line),
+            );
             continue;
         }
         total += facets;

@@ -20,6 +20,7 @@
 //! they name no texture (their factors stand alone; a texture would need its image carried
 //! too); every other extension the file uses is named in a warning, and left out.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 use serde_json::{json, Map, Value};
@@ -40,7 +41,7 @@ const CARRIED_EXTENSIONS: [&str; 2] = ["KHR_lights_punctual", "KHR_mesh_quantiza
 /// The fragment `gather` makes, and the warnings for what it leaves out.
 pub struct Gathered {
     pub copied: Option<CopiedThrough>,
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// The fragment for `meshes` (by index in `root`, copied whole), the points and lines
@@ -139,8 +140,11 @@ pub fn gather(
     for (k, material) in list("materials").iter().enumerate() {
         let (kept, lost_texture) = without_textures(material, &mut uses);
         if lost_texture && lined_materials.contains(&(k as u64)) {
-            warnings.push(format!(
-                "material {k}'s textures are left out of its points and lines primitives (copied through without them)"
+            warnings.push(Warning::new(
+                WarningKind::SkippedAttribute,
+                format!(
+                    "material {k}'s textures are left out of its points and lines primitives (copied through without them)"
+                ),
             ));
         }
         extras |= kept.get("extras").is_some();
@@ -197,9 +201,12 @@ pub fn gather(
     }
     let lost = uses.lost(list("extensionsUsed"));
     if !lost.is_empty() {
-        warnings.push(format!(
-            "glTF extensions left out of the output: {}",
-            lost.join(", ")
+        warnings.push(Warning::new(
+            WarningKind::SkippedAttribute,
+            format!(
+                "glTF extensions left out of the output: {}",
+                lost.join(", ")
+            ),
         ));
     }
     let anything = !(out_meshes.is_empty()

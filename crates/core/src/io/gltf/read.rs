@@ -15,6 +15,7 @@
 //! output unchanged (`copy_through`, with cameras, lights and `extras`); one warning names
 //! them.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::path::Path;
 use std::sync::Arc;
@@ -106,10 +107,20 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
             true => "are copied through unchanged to a glTF output, not decimated nor shown",
             false => "are left out: the scene holds triangles",
         };
-        warnings.push(format!(
-            "points and lines primitives {fate} ({}{more})",
-            shown.join(", ")
-        ));
+        let kind = match carried {
+            true => WarningKind::Note,
+            false => WarningKind::SkippedNode,
+        };
+        warnings.push(
+            Warning::new(
+                kind,
+                format!(
+                    "points and lines primitives {fate} ({}{more})",
+                    shown.join(", ")
+                ),
+            )
+            .times(lines.len()),
+        );
     }
     warnings.extend(carried_warnings);
     for mesh in document.meshes() {
@@ -117,18 +128,22 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         let Some(why) = copied.get(&m) else {
             continue;
         };
-        warnings.push(format!(
-            "mesh {m} '{name}' {why}: copied through unchanged to a glTF output, not decimated (shown {})",
-            match *why {
-                SKINNED => "in its rest pose",
-                _ => "in its base shape",
-            }
+        warnings.push(Warning::new(
+            WarningKind::Note,
+            format!(
+                "mesh {m} '{name}' {why}: copied through unchanged to a glTF output, not decimated (shown {})",
+                match *why {
+                    SKINNED => "in its rest pose",
+                    _ => "in its base shape",
+                }
+            ),
         ));
     }
     if document.animations().count() > 0 {
-        warnings.push(
-            "glTF animations are shown at rest; a glTF output carries them unchanged".to_string(),
-        );
+        warnings.push(Warning::new(
+            WarningKind::Note,
+            "glTF animations are shown at rest; a glTF output carries them unchanged",
+        ));
     }
     Ok(ReadOutcome {
         scene: Scene { models },
@@ -234,7 +249,7 @@ struct Reader<'b> {
     copied: &'b BTreeMap<usize, &'static str>,
     primitives: HashMap<(usize, usize), Option<Model>>,
     models: Vec<Model>,
-    warnings: Vec<String>,
+    warnings: Vec<Warning>,
     /// The kinds of warning given (one each), the points and lines primitives met (said
     /// in one warning), and the triangles placed so far.
     warned: HashSet<&'static str>,
@@ -246,9 +261,11 @@ struct Reader<'b> {
 }
 
 impl Reader<'_> {
+    /// A texture or attribute left out, said once per `key`.
     fn warn_once(&mut self, key: &'static str, message: String) {
         if self.warned.insert(key) {
-            self.warnings.push(message);
+            self.warnings
+                .push(Warning::new(WarningKind::SkippedAttribute, message));
         }
     }
 
@@ -511,7 +528,7 @@ fn node_tree(
     scene: &gltf::Scene<'_>,
     buffers: &Buffers,
     copied: &BTreeMap<usize, &'static str>,
-) -> Result<(NodeTree, Vec<String>), String> {
+) -> Result<(NodeTree, Vec<Warning>), String> {
     let nodes = document
         .nodes()
         .map(|n| Node {

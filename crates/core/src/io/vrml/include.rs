@@ -84,11 +84,11 @@ impl Parser<'_> {
             )
         })?;
         self.included_nodes += sub.nodes_parsed();
-        self.warnings.extend(
-            sub.warnings
-                .into_iter()
-                .map(|w| format!("{}: {w}", path.display())),
-        );
+        self.warnings.extend(sub.warnings.into_iter().map(|mut w| {
+            w.message = format!("{}: {}", path.display(), w.message);
+            w.file = Some(w.file.take().unwrap_or_else(|| path.to_path_buf()));
+            w
+        }));
         Ok(roots)
     }
 }

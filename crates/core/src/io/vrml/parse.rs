@@ -7,6 +7,7 @@
 //! not yet defined is an error. Nesting of known nodes is limited to [`MAX_DEPTH`].
 //! Semantics (state, transforms, shapes) live in `vrml1.rs` and `vrml2.rs`.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::{HashMap, HashSet};
 use std::path::PathBuf;
 use std::rc::Rc;
@@ -438,7 +439,7 @@ pub struct Parser<'a> {
     /// The files that include this one, outermost first, to refuse cycles (see `include`).
     pub including: Vec<PathBuf>,
     warned: HashSet<String>,
-    pub(super) warnings: Vec<String>,
+    pub(super) warnings: Vec<Warning>,
     /// Unknown fields of known nodes are warnings, not errors (`--lenient`).
     pub lenient: bool,
     /// Node kinds skipped as unknown, in order of first appearance: (kind, first line, count).
@@ -474,9 +475,9 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn warn_once(&mut self, key: &str, message: String) {
+    fn warn_once(&mut self, kind: WarningKind, line: usize, key: &str, message: String) {
         if self.warned.insert(key.to_string()) {
-            self.warnings.push(message);
+            self.warnings.push(Warning::new(kind, message).at(line));
         }
     }
 
@@ -526,9 +527,14 @@ impl<'a> Parser<'a> {
                 k if k.contains("Nurbs") => ("shape(s)", ": NURBS are not tessellated"),
                 _ => ("unsupported node(s)", ""),
             };
-            self.warnings.push(format!(
-                "{count} '{kind}' {noun} skipped, the first at line {line}{why}"
-            ));
+            self.warnings.push(
+                Warning::new(
+                    WarningKind::SkippedNode,
+                    format!("{count} '{kind}' {noun} skipped, the first at line {line}{why}"),
+                )
+                .at(line)
+                .times(count),
+            );
         }
         Ok(())
     }
@@ -605,6 +611,8 @@ impl<'a> Parser<'a> {
             b"PROTO" | b"EXTERNPROTO" if self.dialect == Dialect::Vrml2 => {
                 let what = self.lex.text(&t);
                 self.warn_once(
+                    WarningKind::SkippedNode,
+                    t.line,
                     &what,
                     format!(
                         "line {}: {what} declarations are not supported; skipped",
@@ -634,6 +642,8 @@ impl<'a> Parser<'a> {
             }
             b"ROUTE" if self.dialect == Dialect::Vrml2 => {
                 self.warn_once(
+                    WarningKind::SkippedNode,
+                    t.line,
                     "ROUTE",
                     format!("line {}: ROUTE statements are ignored", t.line),
                 );
@@ -759,6 +769,8 @@ impl<'a> Parser<'a> {
             if node.kind == "Texture2" && name == "image" {
                 // Only images in files are read: say so rather than lose the texture silently.
                 self.warn_once(
+                    WarningKind::SkippedAttribute,
+                    name_tok.line,
                     "Texture2 image",
                     format!(
                         "line {}: Texture2's inline 'image' ignored (only image files are read); its shapes are untextured",
@@ -896,6 +908,8 @@ impl<'a> Parser<'a> {
         }
         let key = format!("{}.{name}", node.kind);
         self.warn_once(
+            WarningKind::SkippedAttribute,
+            t.line,
             &key,
             format!("line {}: {message}; its value skipped", t.line),
         );

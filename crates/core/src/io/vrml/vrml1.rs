@@ -16,6 +16,7 @@
 //! with the translation in the last row. An error inside a `USE`d node names the USE's line
 //! and the DEF's.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::borrow::Cow;
 use std::rc::Rc;
 
@@ -117,7 +118,7 @@ pub fn compose(t: Vec3, r: Quat, s: Vec3, so: Quat, c: Vec3) -> Mat4 {
 }
 
 /// Traverses the top-level nodes (an implicit root Separator) into models.
-pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>, nodes: usize) -> PResult<Vec<Model>> {
+pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<Warning>, nodes: usize) -> PResult<Vec<Model>> {
     let mut ctx = Ctx::new(warnings, nodes);
     let mut state = State::default();
     for n in roots {
@@ -840,8 +841,13 @@ pub fn skip_empty(node: &Node, ctx: &mut Ctx<'_>) {
         "Extrusion" => "with fewer than 2 spine or cross-section points",
         _ => "of zero size or with no parts",
     };
-    ctx.warnings
-        .push(format!("line {}: '{}' {why} skipped", node.line, node.kind));
+    ctx.warnings.push(
+        Warning::new(
+            WarningKind::SkippedNode,
+            format!("line {}: '{}' {why} skipped", node.line, node.kind),
+        )
+        .at(node.line),
+    );
 }
 
 /// `Sphere`, `Cone` or `Cylinder`, tessellated at the state's complexity.

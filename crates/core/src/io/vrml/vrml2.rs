@@ -24,10 +24,11 @@ use super::texture_transform;
 use super::vrml1::{compose, rotation, skip_empty, vec3};
 use super::Ctx;
 use crate::io::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
+use crate::io::warning::Warning;
 use crate::mesh::Model;
 
 /// Walks the top-level nodes into models.
-pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>, nodes: usize) -> PResult<Vec<Model>> {
+pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<Warning>, nodes: usize) -> PResult<Vec<Model>> {
     let mut ctx = Ctx::new(warnings, nodes);
     for n in roots {
         traverse(n, Mat4::IDENTITY, &mut ctx)?;
