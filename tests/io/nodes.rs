@@ -394,7 +394,7 @@ fn file_nodes_include_other_files_relative_to_the_including_one() {
         "{e}"
     );
     assert!(e.contains("includes itself"), "{e}");
-    // Only regular files are read: a device could be endless.
+    // A path from the root is outside the model's folder: refused before it is opened.
     std::fs::write(
         dir.path().join("dev.iv"),
         "#Inventor V2.1 ascii\nFile { name \"/dev/zero\" }",
@@ -404,7 +404,7 @@ fn file_nodes_include_other_files_relative_to_the_including_one() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains(":2: included file /dev/zero is not a regular file"),
+        e.contains(":2: 'File' name '/dev/zero' is outside the model's folder"),
         "{e}"
     );
     // A missing file is named.

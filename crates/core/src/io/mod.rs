@@ -19,6 +19,7 @@
 
 pub mod data_uri;
 pub mod gltf;
+pub mod limits;
 pub mod losses;
 pub mod mtl;
 pub mod obj;
@@ -37,7 +38,6 @@ pub mod triangulate;
 mod vrml;
 pub mod warning;
 
-use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use crate::mesh::progressive::ProgressiveScene;
@@ -170,14 +170,15 @@ pub fn read_scene_with(path: &Path, options: ReadOptions) -> Result<ReadOutcome,
         file: path.to_path_buf(),
         source,
     };
-    let bytes = std::fs::read(path).map_err(io_err)?;
+    let bytes = limits::read_regular(path).map_err(io_err)?;
     let format = Format::from_path(path);
     // A glTF material's name is its own, not an OBJ's `usemtl`: no MTL library applies.
     let gltf = matches!(format, Some(Format::Gltf | Format::Glb)) || gltf::is_glb(&bytes);
     let mut outcome = parse_bytes_with(bytes, path, format, options)?;
     if !gltf {
-        mtl::apply_materials(&mut outcome, path);
+        mtl::apply_materials(&mut outcome, path)?;
     }
+    texture_path::drop_outside_textures(&mut outcome, path);
     Ok(outcome)
 }
 
@@ -212,23 +213,12 @@ fn parse_bytes_with(
 }
 
 fn parse_any(
-    mut bytes: Vec<u8>,
+    bytes: Vec<u8>,
     path: &Path,
     by_name: Option<Format>,
     options: ReadOptions,
 ) -> Result<ReadOutcome, ReadError> {
-    let file = path.to_path_buf();
-    if bytes.starts_with(&[0x1f, 0x8b]) {
-        let mut out = Vec::with_capacity(bytes.len() * 4);
-        flate2::read::MultiGzDecoder::new(&bytes[..])
-            .read_to_end(&mut out)
-            .map_err(|e| ReadError::Syntax {
-                file: file.clone(),
-                line: 1,
-                message: format!("the gzip stream is damaged or truncated: {e}"),
-            })?;
-        bytes = out;
-    }
+    let bytes = gunzip(bytes, path)?;
     if bytes.starts_with(&progressive_file::MAGIC) {
         let pm = progressive_file::parse_progressive(&bytes, path)?;
         let models = pm.models.iter().map(|m| m.original()).collect();
@@ -239,24 +229,14 @@ fn parse_any(
             material_libraries: Vec::new(),
         });
     }
-    let syntax = |e: ParseError| ReadError::Syntax {
-        file: file.clone(),
-        line: e.line,
-        message: e.message,
-    };
     let gltf_by_name = matches!(by_name, Some(Format::Gltf | Format::Glb));
     if gltf::is_glb(&bytes) || gltf_by_name {
         return gltf::read_gltf(&bytes, path);
     }
     let ply_by_name = by_name == Some(Format::Ply);
     if bytes.starts_with(b"ply") && matches!(bytes.get(3), Some(b'\n' | b'\r')) || ply_by_name {
-        let (scene, warnings) = ply::read_ply(&bytes).map_err(syntax)?;
-        return Ok(ReadOutcome {
-            scene,
-            warnings,
-            progressive: None,
-            material_libraries: Vec::new(),
-        });
+        let (scene, warnings) = ply::read_ply(&bytes).map_err(|e| syntax(path, e))?;
+        return Ok(outcome(scene, warnings));
     }
     let first_line_end = bytes
         .iter()
@@ -268,59 +248,107 @@ fn parse_any(
         .iter()
         .any(|h| header.starts_with(h));
     if !vrml_family {
-        let sniffed = by_name.filter(|&f| f != Format::Vrml2).or_else(|| {
-            if stl::is_binary(&bytes) || stl::starts_with_solid(&bytes) {
-                Some(Format::Stl)
-            } else if off::looks_like_off(&bytes) {
-                Some(Format::Off)
-            } else if obj::looks_like_obj(&bytes) {
-                Some(Format::Obj)
-            } else {
-                None
-            }
-        });
-        let outcome = match sniffed {
-            Some(Format::Obj) => return obj::read_obj(&bytes).map_err(syntax),
-            Some(Format::Off) => off::read_off(&bytes).map_err(syntax)?,
-            Some(Format::Stl) => stl::read_stl(&bytes).map_err(|e| stl_error(path, e))?,
-            _ => (Scene::default(), Vec::new()),
-        };
-        if sniffed.is_some() {
-            let (scene, warnings) = outcome;
-            return Ok(ReadOutcome {
-                scene,
-                warnings,
-                progressive: None,
-                material_libraries: Vec::new(),
-            });
+        if let Some(read) = parse_mesh_format(&bytes, path, by_name)? {
+            return Ok(read);
         }
     }
-    let dialect = if header.starts_with("#VRML V1.0 ascii") {
+    let dialect = vrml_dialect(header, &bytes, path)?;
+    vrml::read_tree(&bytes, path, dialect, options).map_err(|e| syntax(path, e))
+}
+
+/// A parse error at a line of `file`.
+fn syntax(file: &Path, e: ParseError) -> ReadError {
+    ReadError::Syntax {
+        file: file.to_path_buf(),
+        line: e.line,
+        message: e.message,
+    }
+}
+
+/// A scene read by one of the readers that take no options.
+fn outcome(scene: Scene, warnings: Vec<Warning>) -> ReadOutcome {
+    ReadOutcome {
+        scene,
+        warnings,
+        progressive: None,
+        material_libraries: Vec::new(),
+    }
+}
+
+/// The bytes decompressed when they are a gzip stream, as they are otherwise.
+fn gunzip(bytes: Vec<u8>, path: &Path) -> Result<Vec<u8>, ReadError> {
+    if !bytes.starts_with(&[0x1f, 0x8b]) {
+        return Ok(bytes);
+    }
+    limits::gunzip_limited(&bytes).map_err(|message| ReadError::Syntax {
+        file: path.to_path_buf(),
+        line: 1,
+        message,
+    })
+}
+
+/// An STL, OFF or OBJ file (by its name, else by its content); `None` when it is none of
+/// them.
+fn parse_mesh_format(
+    bytes: &[u8],
+    path: &Path,
+    by_name: Option<Format>,
+) -> Result<Option<ReadOutcome>, ReadError> {
+    let sniffed = by_name.filter(|&f| f != Format::Vrml2).or_else(|| {
+        if stl::is_binary(bytes) || stl::starts_with_solid(bytes) {
+            Some(Format::Stl)
+        } else if off::looks_like_off(bytes) {
+            Some(Format::Off)
+        } else if obj::looks_like_obj(bytes) {
+            Some(Format::Obj)
+        } else {
+            None
+        }
+    });
+    let (scene, warnings) = match sniffed {
+        Some(Format::Obj) => return obj::read_obj(bytes).map(Some).map_err(|e| syntax(path, e)),
+        Some(Format::Off) => off::read_off(bytes).map_err(|e| syntax(path, e))?,
+        Some(Format::Stl) => stl::read_stl(bytes).map_err(|e| stl_error(path, e))?,
+        Some(_) => (Scene::default(), Vec::new()),
+        None => return Ok(None),
+    };
+    Ok(Some(outcome(scene, warnings)))
+}
+
+/// The VRML family dialect the first line (`header`) names; an error naming what it found
+/// when it names none.
+fn vrml_dialect(header: &str, bytes: &[u8], path: &Path) -> Result<vrml::Dialect, ReadError> {
+    Ok(if header.starts_with("#VRML V1.0 ascii") {
         vrml::Dialect::Vrml1
     } else if header.starts_with("#VRML V2.0 utf8") {
         vrml::Dialect::Vrml2
     } else if header.starts_with("#Inventor") && header.contains("binary") {
         return Err(ReadError::Unsupported {
-            file,
+            file: path.to_path_buf(),
             message: "binary Inventor is not supported (convert it with ivcat)".into(),
         });
     } else if header.starts_with("#Inventor V2.") || header.starts_with("#Inventor V1.0 ascii") {
         vrml::Dialect::Vrml1
     } else if bytes.iter().all(|b| b.is_ascii_whitespace()) {
-        return Err(syntax(ParseError::new(
-            1,
-            "the file is empty: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header",
-        )));
+        return Err(syntax(
+            path,
+            ParseError::new(
+                1,
+                "the file is empty: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header",
+            ),
+        ));
     } else {
         let shown: String = header.chars().take(40).collect();
-        return Err(syntax(ParseError::new(
-            1,
-            format!(
-                "not a VRML, Open Inventor, PLY, OBJ, STL or OFF file: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header, found '{shown}'"
+        return Err(syntax(
+            path,
+            ParseError::new(
+                1,
+                format!(
+                    "not a VRML, Open Inventor, PLY, OBJ, STL or OFF file: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header, found '{shown}'"
+                ),
             ),
-        )));
-    };
-    vrml::read_tree(&bytes, path, dialect, options).map_err(syntax)
+        ));
+    })
 }
 
 /// An STL reader's error as a [`ReadError`] naming `file`.

@@ -32,7 +32,7 @@ use std::path::{Path, PathBuf};
 
 use super::text::Lines;
 use super::texture_path::{folder_of, rebase};
-use super::ReadOutcome;
+use super::{limits, ReadError, ReadOutcome};
 use crate::mesh::{Model, Scene};
 
 /// One material of an MTL file, as far as this program uses it.
@@ -232,19 +232,28 @@ fn library_files(obj_dir: &Path, lib: &str) -> Vec<String> {
 
 /// Loads the OBJ's material libraries (named relative to `obj`'s folder) and applies their
 /// materials to the models that use them; problems become warnings.
-pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) {
+pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) -> Result<(), ReadError> {
     let used = outcome.scene.models.iter().any(|m| m.material.is_some());
     if outcome.material_libraries.is_empty() && !used {
-        return;
+        return Ok(());
     }
     let obj_dir = folder_of(obj);
     let mut table: HashMap<String, Material> = HashMap::new();
     let mut loaded: Vec<PathBuf> = Vec::new();
     for lib in &outcome.material_libraries {
         for name in library_files(obj_dir, lib) {
-            let path = obj_dir.join(&name);
-            let bytes = match std::fs::read(&path) {
+            // A library outside the folder, a FIFO or a device, or one over the byte limit is
+            // refused: the file is hostile, not merely incomplete.
+            let refuse = |message: String| ReadError::Unsupported {
+                file: obj.to_path_buf(),
+                message: format!("mtllib {message}"),
+            };
+            let path = limits::resolve_reference(obj_dir, &name).map_err(refuse)?;
+            let bytes = match limits::read_regular(&path) {
                 Ok(b) => b,
+                Err(e) if e.kind() == std::io::ErrorKind::InvalidInput => {
+                    return Err(refuse(format!("{}: {e}", path.display())));
+                }
                 Err(e) => {
                     outcome.warnings.push(Warning::new(
                         WarningKind::SkippedMaterial,
@@ -268,14 +277,15 @@ pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) {
             loaded.push(path);
         }
     }
-    let mut unknown: Vec<&str> = Vec::new();
+    let mut unknown: Vec<String> = Vec::new();
+    let mut unknown_seen: HashSet<String> = HashSet::new();
     for model in &mut outcome.scene.models {
         let Some(name) = &model.material else {
             continue;
         };
         let Some(m) = table.get(name) else {
-            if !unknown.contains(&name.as_str()) {
-                unknown.push(name);
+            if unknown_seen.insert(name.clone()) {
+                unknown.push(name.clone());
             }
             continue;
         };
@@ -287,6 +297,12 @@ pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) {
             model.texture_repeat = [!m.clamp; 2];
         }
     }
+    warn_unknown(outcome, obj, &unknown, &loaded);
+    Ok(())
+}
+
+/// One warning naming the materials used but defined in no library read.
+fn warn_unknown(outcome: &mut ReadOutcome, obj: &Path, unknown: &[String], loaded: &[PathBuf]) {
     if !unknown.is_empty() {
         let quoted: Vec<String> = unknown.iter().map(|n| format!("'{n}'")).collect();
         let where_ = if loaded.is_empty() {

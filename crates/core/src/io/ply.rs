@@ -707,28 +707,7 @@ fn read_faces(
     for f in 0..el.count {
         body.record = f;
         let first = corners.len();
-        let mut values = 0;
-        for (k, p) in el.props.iter().enumerate() {
-            match p.list {
-                Some(ct) => {
-                    let n = body.index(ct, "a face's corner count")?;
-                    for _ in 0..n {
-                        if k == list {
-                            corners.push(body.index(p.ty, "a face's vertex index")?);
-                        } else if Some(k) == texture {
-                            let v = body.value(p.ty, "a face's texture coordinate")?;
-                            if let Some(c) = corner_uv {
-                                c.push(v as f32);
-                            }
-                            values += 1;
-                        } else {
-                            body.skip(p.ty, "a face list value")?;
-                        }
-                    }
-                }
-                None => body.skip(p.ty, "a face property")?,
-            }
-        }
+        let values = read_face(el, body, [Some(list), texture], corners, corner_uv)?;
         if corner_uv.is_some() && values != 2 * (corners.len() - first) {
             warnings.push(
                 Warning::new(
@@ -748,6 +727,40 @@ fn read_faces(
             .map_err(|m| ParseError::new(body.line, format!("face {f}: {m}")))?;
     }
     Ok(())
+}
+
+/// One face record: its corners onto `corners`, its texture coordinates onto `corner_uv`
+/// (while kept); the other properties skipped. `lists` are the slots of the corner list and
+/// the `texcoord` list. Returns how many texture coordinate values it had.
+fn read_face(
+    el: &Element,
+    body: &mut Body<impl Input>,
+    [list, texture]: [Option<usize>; 2],
+    corners: &mut Vec<u32>,
+    corner_uv: &mut Option<Vec<f32>>,
+) -> PResult<usize> {
+    let mut values = 0;
+    for (k, p) in el.props.iter().enumerate() {
+        let Some(ct) = p.list else {
+            body.skip(p.ty, "a face property")?;
+            continue;
+        };
+        let n = body.index(ct, "a face's corner count")?;
+        for _ in 0..n {
+            if Some(k) == list {
+                corners.push(body.index(p.ty, "a face's vertex index")?);
+            } else if Some(k) == texture {
+                let v = body.value(p.ty, "a face's texture coordinate")?;
+                if let Some(c) = corner_uv {
+                    c.push(v as f32);
+                }
+                values += 1;
+            } else {
+                body.skip(p.ty, "a face list value")?;
+            }
+        }
+    }
+    Ok(values)
 }
 
 /// Skips an element the reader does not use, value by value.
@@ -785,6 +798,19 @@ fn shared_corner_pairs(per_corner: &[f32], pairs: &mut Vec<f32>) -> Vec<u32> {
     index
 }
 
+/// Per-vertex values (flat, three per vertex) bound through each corner's vertex; none when
+/// the file has none.
+fn per_corner<'a>(values: &'a [f32], corners: &[u32]) -> Bind<'a> {
+    if values.is_empty() {
+        Bind::None
+    } else {
+        Bind::PerCorner {
+            values,
+            index: corners.to_vec(),
+        }
+    }
+}
+
 /// The model built from what the elements held; a file without faces is a point cloud and
 /// gives an empty scene, with a warning.
 fn finish(
@@ -810,22 +836,8 @@ fn finish(
         ));
         return Ok((Scene::default(), warnings));
     }
-    let colors = if rgb.is_empty() {
-        Bind::None
-    } else {
-        Bind::PerCorner {
-            values: &rgb,
-            index: corners.clone(),
-        }
-    };
-    let normals = if nxyz.is_empty() {
-        Bind::None
-    } else {
-        Bind::PerCorner {
-            values: &nxyz,
-            index: corners.clone(),
-        }
-    };
+    let colors = per_corner(&rgb, &corners);
+    let normals = per_corner(&nxyz, &corners);
     // Per-corner pairs win over per-vertex ones.
     let mut pairs: Vec<f32> = Vec::new();
     let texcoords = match corner_uv {

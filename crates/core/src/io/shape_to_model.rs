@@ -145,34 +145,132 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<Warning>) -> PResult<Model>
         line,
         index_field,
     } = spec;
-    let npoints = coords.len() / 3;
-    if let Some(&bad) = corners.iter().find(|&&c| c as usize >= npoints) {
-        return Err(ParseError::new(
+    check_corners(&corners, coords.len() / 3, line, index_field)?;
+    let colors = check_bind(colors, "colour", &name, warnings);
+    let normals = check_bind(normals, "normal", &name, warnings);
+    let texcoords = texcoords.filter(|t| texcoords_fit(t, corners.len(), &name, warnings));
+    let binds = Binds {
+        colors: &colors,
+        normals: &normals,
+        texcoords: texcoords.as_ref(),
+        diffuse,
+    };
+
+    // Each corner's point index is replaced by its vertex's, in place: no second array.
+    let mut local = corners;
+    let vertices = make_vertices(&mut local, coords, &binds, line, index_field)?;
+    // A shape of triangles only (most files) takes its triangles from the corners as they
+    // are; polygons are cut.
+    let only_triangles = (ends.iter().enumerate()).all(|(f, &end)| end as usize == 3 * (f + 1));
+    let mut faces = cut_faces(&local, &ends, &vertices.positions, &binds, only_triangles);
+    if only_triangles {
+        faces.triangles = into_triples(local);
+    } else {
+        drop(local);
+    }
+    let Faces {
+        mut triangles,
+        colors: fcolors,
+        normals: fnormals,
+        degenerate,
+    } = faces;
+    if degenerate > 0 {
+        warnings.push(
+            Warning::new(
+                WarningKind::SkippedFaces,
+                format!("{name}: {degenerate} face(s) with fewer than 3 corners skipped"),
+            )
+            .times(degenerate),
+        );
+    }
+    if !ccw {
+        for t in &mut triangles {
+            t.swap(1, 2);
+        }
+    }
+    let colors = attribute(&colors, fcolors, vertices.colors);
+    let normals = attribute(&normals, fnormals, vertices.normals);
+    Ok(Model {
+        name,
+        transform,
+        positions: vertices.positions,
+        triangles,
+        colors,
+        normals,
+        texcoords: texcoords.map(|_| vertices.texcoords),
+        texture: None,
+        texture_repeat: [true; 2],
+        material: None,
+        diffuse,
+        crease_angle,
+        solid,
+        instance: None,
+    })
+}
+
+/// Every corner indexes one of the `npoints` points.
+fn check_corners(corners: &[u32], npoints: usize, line: usize, index_field: &str) -> PResult<()> {
+    match corners.iter().find(|&&c| c as usize >= npoints) {
+        Some(&bad) => Err(ParseError::new(
             line,
             format!(
                 "index {bad} in '{index_field}' is out of range: the coordinates have {npoints} points"
             ),
-        ));
+        )),
+        None => Ok(()),
     }
-    let colors = check_bind(colors, "colour", &name, warnings);
-    let normals = check_bind(normals, "normal", &name, warnings);
-    let texcoords = texcoords.filter(|t| texcoords_fit(t, corners.len(), &name, warnings));
+}
 
-    let mut remap = if texcoords.is_some() || corners.len() * 4 < npoints {
-        Remap::Sparse(HashMap::with_capacity(corners.len()))
+/// The attribute a binding gives: the per-face values or the per-vertex ones.
+fn attribute<T>(bind: &Bind<'_>, per_face: Vec<T>, per_vertex: Vec<T>) -> Option<Attribute<T>> {
+    match bind {
+        Bind::None => None,
+        Bind::PerFace { .. } => Some(Attribute::PerFace(per_face)),
+        Bind::PerCorner { .. } => Some(Attribute::PerVertex(per_vertex)),
+    }
+}
+
+/// A shape's checked bindings, and the colour of corners and faces without one.
+struct Binds<'a, 'b> {
+    colors: &'a Bind<'b>,
+    normals: &'a Bind<'b>,
+    texcoords: Option<&'a TexCoords<'b>>,
+    diffuse: [f32; 3],
+}
+
+/// The vertices of a shape: positions and their per-corner attributes.
+struct Vertices {
+    positions: Vec<Vec3>,
+    colors: Vec<[f32; 3]>,
+    normals: Vec<Vec3>,
+    texcoords: Vec<[f32; 2]>,
+}
+
+/// One vertex per distinct point (per point and texture coordinate pair when there are
+/// texture coordinates); each corner's point index in `local` becomes its vertex's.
+fn make_vertices(
+    local: &mut [u32],
+    coords: &[f32],
+    binds: &Binds<'_, '_>,
+    line: usize,
+    index_field: &str,
+) -> PResult<Vertices> {
+    let npoints = coords.len() / 3;
+    let (colors, normals, texcoords, diffuse) =
+        (binds.colors, binds.normals, binds.texcoords, binds.diffuse);
+    let mut remap = if texcoords.is_some() || local.len() * 4 < npoints {
+        Remap::Sparse(HashMap::with_capacity(local.len()))
     } else {
         Remap::Dense(vec![u32::MAX; npoints])
     };
     let mut positions: Vec<Vec3> = Vec::new();
-    // Each corner's point index is replaced by its vertex's, in place: no second array.
-    let mut local = corners;
     let mut vcolors: Vec<[f32; 3]> = Vec::new();
     let mut vnormals: Vec<Vec3> = Vec::new();
     let mut vtexcoords: Vec<[f32; 2]> = Vec::new();
     for (k, corner) in local.iter_mut().enumerate() {
         let c = *corner;
         // With texture coordinates a vertex is a (point, coordinate pair) pair.
-        let key = match &texcoords {
+        let key = match texcoords {
             Some(t) => u64::from(c) | u64::from(t.index[k]) << 32,
             None => u64::from(c),
         };
@@ -187,7 +285,7 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<Warning>) -> PResult<Model>
                 ));
             }
             positions.push(p);
-            if let Bind::PerCorner { values, index } = &colors {
+            if let Bind::PerCorner { values, index } = colors {
                 vcolors.push(
                     index
                         .get(k)
@@ -195,14 +293,14 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<Warning>) -> PResult<Model>
                         .unwrap_or(diffuse),
                 );
             }
-            if let Bind::PerCorner { values, index } = &normals {
+            if let Bind::PerCorner { values, index } = normals {
                 let n = index
                     .get(k)
                     .and_then(|&i| value3(values, i))
                     .unwrap_or([0.0; 3]);
                 vnormals.push(Vec3::from(n));
             }
-            if let Some(t) = &texcoords {
+            if let Some(t) = texcoords {
                 let i = t.index[k] as usize * 2;
                 vtexcoords.push([t.values[i], t.values[i + 1]]);
             }
@@ -210,9 +308,33 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<Warning>) -> PResult<Model>
         *corner = v;
     }
 
-    // A shape of triangles only (most files) takes its triangles from the corners as they
-    // are; polygons are cut below.
-    let only_triangles = (ends.iter().enumerate()).all(|(f, &end)| end as usize == 3 * (f + 1));
+    Ok(Vertices {
+        positions,
+        colors: vcolors,
+        normals: vnormals,
+        texcoords: vtexcoords,
+    })
+}
+
+/// A shape's triangles (polygons cut by ear clipping), their per-face attributes, and how
+/// many faces had fewer than 3 corners.
+struct Faces {
+    triangles: Vec<[u32; 3]>,
+    colors: Vec<[f32; 3]>,
+    normals: Vec<Vec3>,
+    degenerate: usize,
+}
+
+/// Cuts the faces (`ends` over the corners' vertices `local`) into triangles; a shape of
+/// triangles only (`only_triangles`) leaves its triangles to the caller.
+fn cut_faces(
+    local: &[u32],
+    ends: &[u32],
+    positions: &[Vec3],
+    binds: &Binds<'_, '_>,
+    only_triangles: bool,
+) -> Faces {
+    let (colors, normals, diffuse) = (binds.colors, binds.normals, binds.diffuse);
     let mut triangles: Vec<[u32; 3]> = if only_triangles {
         Vec::new()
     } else {
@@ -252,14 +374,14 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<Warning>) -> PResult<Model>
         } else {
             triangles.len() - before
         };
-        if let Bind::PerFace { values, index } = &colors {
+        if let Bind::PerFace { values, index } = colors {
             let c = index
                 .get(f)
                 .and_then(|&i| value3(values, i))
                 .unwrap_or(diffuse);
             fcolors.extend(std::iter::repeat_n(c, made));
         }
-        if let Bind::PerFace { values, index } = &normals {
+        if let Bind::PerFace { values, index } = normals {
             let n = index
                 .get(f)
                 .and_then(|&i| value3(values, i))
@@ -268,51 +390,12 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<Warning>) -> PResult<Model>
         }
         start = end;
     }
-    if only_triangles {
-        triangles = into_triples(local);
-    } else {
-        drop(local);
-    }
-    if degenerate > 0 {
-        warnings.push(
-            Warning::new(
-                WarningKind::SkippedFaces,
-                format!("{name}: {degenerate} face(s) with fewer than 3 corners skipped"),
-            )
-            .times(degenerate),
-        );
-    }
-    if !ccw {
-        for t in &mut triangles {
-            t.swap(1, 2);
-        }
-    }
-    let colors = match colors {
-        Bind::None => None,
-        Bind::PerFace { .. } => Some(Attribute::PerFace(fcolors)),
-        Bind::PerCorner { .. } => Some(Attribute::PerVertex(vcolors)),
-    };
-    let normals = match normals {
-        Bind::None => None,
-        Bind::PerFace { .. } => Some(Attribute::PerFace(fnormals)),
-        Bind::PerCorner { .. } => Some(Attribute::PerVertex(vnormals)),
-    };
-    Ok(Model {
-        name,
-        transform,
-        positions,
+    Faces {
         triangles,
-        colors,
-        normals,
-        texcoords: texcoords.map(|_| vtexcoords),
-        texture: None,
-        texture_repeat: [true; 2],
-        material: None,
-        diffuse,
-        crease_angle,
-        solid,
-        instance: None,
-    })
+        colors: fcolors,
+        normals: fnormals,
+        degenerate,
+    }
 }
 
 /// Flat corner indices, three a triangle, as triangles: the same allocation when its size

@@ -8,7 +8,6 @@
 //! fanned into triangles from their first corner. Positions are read as `f32` (doubles are
 //! rounded once), so a position is the same bits wherever it is read again.
 
-use std::fs::File;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 
@@ -29,8 +28,9 @@ pub fn for_each_triangle(path: &Path, triangle: &mut dyn FnMut(Corners)) -> Resu
         file: path.to_path_buf(),
         source,
     };
-    let file = File::open(path).map_err(io_error)?;
-    let len = file.metadata().map_err(io_error)?.len();
+    // Only a regular file: a FIFO would block, a device never end. No byte limit: tiling
+    // is for files bigger than memory, and streams them.
+    let (file, len) = super::limits::open_regular(path).map_err(io_error)?;
     let mut r = BufReader::with_capacity(BUFFER, file);
     let head = r.fill_buf().map_err(io_error)?;
     let kind = if head.starts_with(b"ply") {

@@ -12,6 +12,13 @@ pub type AccessorResult<T> = Result<T, String>;
 /// The bytes of every buffer of the file, by buffer index.
 pub struct Buffers(pub Vec<Vec<u8>>);
 
+impl Buffers {
+    /// The bytes of all buffers together.
+    pub fn total_len(&self) -> usize {
+        self.0.iter().map(Vec::len).sum()
+    }
+}
+
 /// Where an accessor's elements lie: the bytes of its buffer view, the offset of the first
 /// element, the distance between elements, and each element's size.
 struct Layout<'a> {

@@ -26,7 +26,10 @@ impl Parser<'_> {
             .as_deref()
             .and_then(Path::parent)
             .unwrap_or(Path::new(""));
-        let path = folder.join(name);
+        let path = match crate::io::limits::resolve_reference(folder, name) {
+            Ok(path) => path,
+            Err(why) => return fail(format!("'File' name {why}")),
+        };
         let canonical = match path.canonicalize() {
             Ok(c) => c,
             Err(e) => return fail(format!("cannot read included file {}: {e}", path.display())),
@@ -50,7 +53,7 @@ impl Parser<'_> {
                 path.display()
             ));
         }
-        let bytes = match std::fs::read(&canonical) {
+        let bytes = match crate::io::limits::read_regular(&canonical) {
             Ok(b) => b,
             Err(e) => return fail(format!("cannot read included file {}: {e}", path.display())),
         };

@@ -152,21 +152,7 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
                 copy(node, state, Mat4::from_translation(offset), ctx)?;
             }
         }
-        "MultipleCopy" => {
-            let m = node.floats("matrix").unwrap_or(&[]);
-            if !m.len().is_multiple_of(16) {
-                return Err(ParseError::new(
-                    node.line_of("matrix"),
-                    format!(
-                        "expected 16 numbers per matrix in 'matrix', found {}",
-                        m.len()
-                    ),
-                ));
-            }
-            for one in m.chunks_exact(16) {
-                copy(node, state, Mat4::from_cols_slice(one), ctx)?;
-            }
-        }
+        "MultipleCopy" => multiple_copy(node, state, ctx)?,
         "TransformSeparator" => {
             let saved = state.transform;
             for c in &node.children {
@@ -180,25 +166,7 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
                 traverse(c, state, ctx)?;
             }
         }
-        "Switch" | "Blinker" => {
-            // -1 none, -2 the enclosing switch's choice, -3 all; the choice is inherited by
-            // switches below (Inventor's switch element).
-            let default = if node.kind == "Blinker" { 0 } else { -1 };
-            let mut which = node.int("whichChild").unwrap_or(default);
-            if which == -2 {
-                which = state.switch_choice;
-            }
-            state.switch_choice = which;
-            if which == -3 {
-                for c in &node.children {
-                    traverse(c, state, ctx)?;
-                }
-            } else if which >= 0 {
-                if let Some(c) = node.children.get(which as usize) {
-                    traverse(c, state, ctx)?;
-                }
-            }
-        }
+        "Switch" | "Blinker" => switch(node, state, ctx)?,
         "LOD" | "LevelOfDetail" => {
             // The most detailed level.
             if let Some(c) = node.children.first() {
@@ -215,6 +183,45 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
         "Sphere" | "Cone" | "Cylinder" => primitive(node, state, ctx)?,
         k if is_kit(k) => kit(node, state, ctx)?,
         _ => {}
+    }
+    Ok(())
+}
+
+/// A MultipleCopy: its children once per matrix of `matrix`.
+fn multiple_copy(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()> {
+    let m = node.floats("matrix").unwrap_or(&[]);
+    if !m.len().is_multiple_of(16) {
+        return Err(ParseError::new(
+            node.line_of("matrix"),
+            format!(
+                "expected 16 numbers per matrix in 'matrix', found {}",
+                m.len()
+            ),
+        ));
+    }
+    for one in m.chunks_exact(16) {
+        copy(node, state, Mat4::from_cols_slice(one), ctx)?;
+    }
+    Ok(())
+}
+
+/// A Switch or Blinker: -1 none, -2 the enclosing switch's choice, -3 all; the choice is
+/// inherited by switches below (Inventor's switch element).
+fn switch(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()> {
+    let default = if node.kind == "Blinker" { 0 } else { -1 };
+    let mut which = node.int("whichChild").unwrap_or(default);
+    if which == -2 {
+        which = state.switch_choice;
+    }
+    state.switch_choice = which;
+    if which == -3 {
+        for c in &node.children {
+            traverse(c, state, ctx)?;
+        }
+    } else if which >= 0 {
+        if let Some(c) = node.children.get(which as usize) {
+            traverse(c, state, ctx)?;
+        }
     }
     Ok(())
 }
