@@ -13,6 +13,7 @@ mod formats;
 mod gltf;
 mod gltf_carry;
 mod gltf_tree;
+mod hostile;
 mod inventor_data;
 mod nodes;
 mod obj_materials;

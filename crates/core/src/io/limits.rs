@@ -4,7 +4,7 @@
 //! decompression, and files a model names (glTF buffers and images, OBJ `mtllib`, VRML
 //! `Inline`/`File`, textures) only inside the model's folder.
 //!
-//! Defaults and overrides (documented in the README's "Limits" section):
+//! Defaults and overrides (this list is their documentation):
 //! - `DECIMATE_MAX_FILE_BYTES` (bytes, or with a `K`, `M` or `G` suffix): the byte limit,
 //!   [`DEFAULT_MAX_FILE_BYTES`] (1 GiB) when unset. Larger meshes are tiled (`--tiles`), which
 //!   streams them instead.

@@ -259,6 +259,15 @@ impl<I: Input> Body<I> {
         }
     }
 
+    /// Bytes left after the last element read (whitespace does not count in ASCII).
+    fn trailing(&self) -> usize {
+        let rest = &self.input.bytes()[self.pos.min(self.input.bytes().len())..];
+        match self.format {
+            Format::Ascii => rest.iter().filter(|b| !b.is_ascii_whitespace()).count(),
+            _ => rest.len(),
+        }
+    }
+
     fn skip(&mut self, ty: Ty, what: &str) -> PResult<()> {
         if self.format == Format::Ascii {
             self.token(what)?;
@@ -437,6 +446,19 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<Warning>)> {
             }
             _ => skip_element(el, &mut body)?,
         }
+    }
+    let extra = body.trailing();
+    if extra > 0 {
+        warnings.push(
+            Warning::new(
+                WarningKind::SkippedFaces,
+                format!(
+                    "the PLY body has {extra} more bytes after the elements its header counts \
+                     (faces beyond the header's count?); they were ignored"
+                ),
+            )
+            .at(body.line),
+        );
     }
     finish(data, texture, warnings)
 }

@@ -72,6 +72,20 @@ fn value3(values: &[f32], i: u32) -> Option<[f32; 3]> {
 
 /// Checks that every index of a binding is in range; a short array drops the attribute with a
 /// warning rather than failing the file.
+/// A model's name for messages: an unnamed one (a binary STL's empty header) is said so.
+fn label(name: &str) -> &str {
+    match name.trim() {
+        "" => "an unnamed model",
+        _ => name,
+    }
+}
+
+/// An index as the file wrote it: a negative one (read into 32 bits) is shown negative,
+/// not as 4294967295.
+fn signed(index: u32) -> i32 {
+    index as i32
+}
+
 fn check_bind<'a>(
     bind: Bind<'a>,
     what: &str,
@@ -87,7 +101,9 @@ fn check_bind<'a>(
         warnings.push(Warning::new(
             WarningKind::SkippedAttribute,
             format!(
-                "{spec_name}: {what} index {bad} is out of range ({count} values); {what} ignored"
+                "{}: {what} index {} is out of range ({count} values); {what} ignored",
+                label(spec_name),
+                signed(*bad)
             ),
         ));
         return Bind::None;
@@ -178,7 +194,10 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<Warning>) -> PResult<Model>
         warnings.push(
             Warning::new(
                 WarningKind::SkippedFaces,
-                format!("{name}: {degenerate} face(s) with fewer than 3 corners skipped"),
+                format!(
+                    "{}: {degenerate} face(s) with fewer than 3 corners skipped",
+                    label(&name)
+                ),
             )
             .times(degenerate),
         );
@@ -214,7 +233,8 @@ fn check_corners(corners: &[u32], npoints: usize, line: usize, index_field: &str
         Some(&bad) => Err(ParseError::new(
             line,
             format!(
-                "index {bad} in '{index_field}' is out of range: the coordinates have {npoints} points"
+                "index {} in '{index_field}' is out of range: the coordinates have {npoints} points",
+                signed(bad)
             ),
         )),
         None => Ok(()),
@@ -429,7 +449,8 @@ fn texcoords_fit(
         ))
     } else if let Some(bad) = t.index[..corners].iter().find(|&&i| i as usize >= count) {
         Some(format!(
-            "texture coordinate index {bad} is out of range ({count} pairs)"
+            "texture coordinate index {} is out of range ({count} pairs)",
+            signed(*bad)
         ))
     } else {
         t.index[..corners]
@@ -443,7 +464,7 @@ fn texcoords_fit(
         Some(p) => {
             warnings.push(Warning::new(
                 WarningKind::SkippedAttribute,
-                format!("{name}: {p}; texture coordinates ignored"),
+                format!("{}: {p}; texture coordinates ignored", label(name)),
             ));
             false
         }

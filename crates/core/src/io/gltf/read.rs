@@ -69,7 +69,11 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         lines: Vec::new(),
         triangles: 0,
         visits: 0,
-        max_triangles: limits::max_instanced_triangles(bytes.len() + buffers.total_len()),
+        // The file and the buffer files it loads (a GLB's own chunk counted once).
+        max_triangles: limits::max_instanced_triangles(
+            (bytes.len() + buffers.total_len())
+                .saturating_sub(gltf.blob.as_ref().map_or(0, Vec::len)),
+        ),
     };
     match scene {
         Some(scene) => {
