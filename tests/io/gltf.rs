@@ -513,7 +513,11 @@ fn damaged_gltf_files_fail_with_the_file_name_and_what_is_wrong() {
         "index 5 is 9, but there are 4 vertices",
     );
     let glb = d.glb();
-    fails(glb[..glb.len() - 40].to_vec(), "cut.glb", "binary glTF");
+    fails(
+        glb[..glb.len() - 40].to_vec(),
+        "cut.glb",
+        "byte 8: the GLB header says",
+    );
     fails(
         b"{ \"asset\": { \"version\": \"2.0\" },\n oops }".to_vec(),
         "text.gltf",

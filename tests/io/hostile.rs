@@ -38,6 +38,16 @@ fn decimate(dir: &Path, file: &str, env: &[(&str, &str)]) -> Output {
 /// A GLB of `nodes` and `scene_nodes` whose mesh 0 is a triangle list: three vertices and
 /// `triangles` × (0 1 2) as 16-bit indices.
 fn glb(nodes: Value, scene_nodes: Value, triangles: usize) -> Vec<u8> {
+    glb_with(nodes, scene_nodes, triangles, |_| {})
+}
+
+/// [`glb`] with its JSON changed by `edit` before it is packed.
+pub(crate) fn glb_with(
+    nodes: Value,
+    scene_nodes: Value,
+    triangles: usize,
+    edit: impl FnOnce(&mut Value),
+) -> Vec<u8> {
     let mut bin = Vec::new();
     for v in [0f32, 0., 0., 1., 0., 0., 0., 1., 0.] {
         bin.extend(v.to_le_bytes());
@@ -68,6 +78,8 @@ fn glb(nodes: Value, scene_nodes: Value, triangles: usize) -> Vec<u8> {
             { "bufferView": 1, "componentType": 5123, "count": triangles * 3, "type": "SCALAR" }
         ]
     });
+    let mut json = json;
+    edit(&mut json);
     let mut text = serde_json::to_vec(&json).unwrap();
     while !text.len().is_multiple_of(4) {
         text.push(b' ');

@@ -12,6 +12,7 @@ mod errors;
 mod formats;
 mod gltf;
 mod gltf_carry;
+mod gltf_rules;
 mod gltf_tree;
 mod hostile;
 mod inventor_data;

@@ -72,6 +72,18 @@ fn value3(values: &[f32], i: u32) -> Option<[f32; 3]> {
 
 /// Checks that every index of a binding is in range; a short array drops the attribute with a
 /// warning rather than failing the file.
+/// The warning for a shape's faces with fewer than 3 corners.
+fn degenerate_faces(name: &str, count: usize) -> Warning {
+    Warning::new(
+        WarningKind::SkippedFaces,
+        format!(
+            "{}: {count} face(s) with fewer than 3 corners skipped",
+            label(name)
+        ),
+    )
+    .times(count)
+}
+
 /// A model's name for messages: an unnamed one (a binary STL's empty header) is said so.
 fn label(name: &str) -> &str {
     match name.trim() {
@@ -191,16 +203,7 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<Warning>) -> PResult<Model>
         degenerate,
     } = faces;
     if degenerate > 0 {
-        warnings.push(
-            Warning::new(
-                WarningKind::SkippedFaces,
-                format!(
-                    "{}: {degenerate} face(s) with fewer than 3 corners skipped",
-                    label(&name)
-                ),
-            )
-            .times(degenerate),
-        );
+        warnings.push(degenerate_faces(&name, degenerate));
     }
     if !ccw {
         for t in &mut triangles {

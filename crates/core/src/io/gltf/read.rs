@@ -24,7 +24,7 @@ use glam::{Mat4, Quat, Vec3};
 use gltf::mesh::Mode;
 use gltf::Semantic;
 
-use super::accessor::{read_floats, read_floats_prefix, read_indices, Buffers};
+use super::accessor::{check_attribute, read_floats, read_floats_prefix, read_indices, Buffers};
 use crate::io::{data_uri, limits, texture_path, ReadError, ReadOutcome, MAX_MODELS};
 use crate::mesh::{Attribute, Instance, LocalTransform, Model, Node, NodeTree, Scene};
 
@@ -69,6 +69,9 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         lines: Vec::new(),
         triangles: 0,
         visits: 0,
+        quantized: document
+            .extensions_used()
+            .any(|e| e == "KHR_mesh_quantization"),
         // The file and the buffer files it loads (a GLB's own chunk counted once).
         max_triangles: limits::max_instanced_triangles(
             (bytes.len() + buffers.total_len())
@@ -108,8 +111,78 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
     })
 }
 
-/// The file's JSON (or GLB container) parsed, not yet checked.
+/// Checks a GLB container (glTF 2.0, 4.4): version 2, a total length equal to the file's,
+/// a JSON chunk first, then at most a BIN chunk, each inside the file; the error gives the
+/// byte offset of the field at fault.
+fn check_glb(bytes: &[u8]) -> Result<(), (usize, String)> {
+    let word = |at: usize| {
+        bytes
+            .get(at..at + 4)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize)
+    };
+    let (Some(version), Some(length)) = (word(4), word(8)) else {
+        return Err((
+            0,
+            format!(
+                "the 12-byte GLB header is cut short ({} bytes)",
+                bytes.len()
+            ),
+        ));
+    };
+    if version != 2 {
+        return Err((4, format!("GLB version {version}: only version 2 is read")));
+    }
+    if length != bytes.len() {
+        return Err((
+            8,
+            format!(
+                "the GLB header says {length} bytes, the file has {}",
+                bytes.len()
+            ),
+        ));
+    }
+    let mut at = 12;
+    let mut chunk = 0;
+    while at < bytes.len() {
+        let (Some(len), Some(kind)) = (word(at), word(at + 4)) else {
+            return Err((at, "a GLB chunk header is cut short".to_string()));
+        };
+        // The first chunk is the JSON; later ones are BIN or of types readers ignore.
+        if chunk == 0 && kind != 0x4E4F_534A {
+            return Err((
+                at + 4,
+                "the first GLB chunk is not the JSON chunk".to_string(),
+            ));
+        }
+        let end = at + 8 + len;
+        if end > bytes.len() || !len.is_multiple_of(4) {
+            return Err((
+                at,
+                format!(
+                    "GLB chunk {chunk} says {len} bytes: not a multiple of 4 or past the end \
+                     of the file ({} bytes)",
+                    bytes.len()
+                ),
+            ));
+        }
+        at = end;
+        chunk += 1;
+    }
+    if chunk == 0 {
+        return Err((12, "the GLB file has no JSON chunk".to_string()));
+    }
+    Ok(())
+}
+
+/// The file's JSON (or GLB container, its header checked) parsed, not yet validated.
 fn parse_document(bytes: &[u8], path: &Path) -> Result<gltf::Gltf, ReadError> {
+    if super::is_glb(bytes) {
+        check_glb(bytes).map_err(|(offset, message)| ReadError::Binary {
+            file: path.to_path_buf(),
+            offset,
+            message,
+        })?;
+    }
     let fail = |message: String| ReadError::Unsupported {
         file: path.to_path_buf(),
         message,
@@ -192,6 +265,12 @@ fn copied_warnings(
 fn validate(document: &gltf::Document) -> Result<(), String> {
     use gltf::json::validation::{Error, Validate};
     let root = document.as_json();
+    let version = &root.asset.version;
+    if !version.starts_with("2.") {
+        return Err(format!(
+            "asset.version: '{version}' is not 2.x: only glTF 2.0 files are read"
+        ));
+    }
     // gltf-json 1.4 looks up POSITION's accessor unchecked: check the indices first.
     let n = root.accessors.len();
     for (m, mesh) in root.meshes.iter().enumerate() {
@@ -335,6 +414,8 @@ struct Reader<'b> {
     /// Nodes visited so far, and the most triangles the scene may expand to.
     visits: usize,
     max_triangles: usize,
+    /// The file uses `KHR_mesh_quantization`: attributes may be integers.
+    quantized: bool,
 }
 
 impl Reader<'_> {
@@ -444,6 +525,18 @@ impl Reader<'_> {
         let Some(pos) = p.get(&Semantic::Positions) else {
             return Err("the primitive has no POSITION attribute".into());
         };
+        let path = |what: &str| {
+            format!(
+                "meshes[{}].primitives[{}].attributes.{what}",
+                mesh.index(),
+                p.index()
+            )
+        };
+        check_attribute(&pos, "POSITION", self.quantized, &path("POSITION"))?;
+        for (semantic, a) in p.attributes() {
+            let name = semantic.to_string();
+            check_attribute(&a, &name, self.quantized, &path(&name))?;
+        }
         let positions: Vec<Vec3> = read_floats::<3>(&pos, self.buffers)?
             .into_iter()
             .map(Vec3::from)
