@@ -15,11 +15,14 @@
 //! `texture_path` (texture names re-expressed for the folder a scene is written to:
 //! [`rebase_textures`], which every writer's caller applies first), `losses` (what an output
 //! format cannot hold, said before writing), `gltf` (glTF 2.0 `.gltf`/`.glb`, read and
-//! written) and `data_uri` (the `data:` URIs glTF embeds buffers and images in).
+//! written) and `data_uri` (the `data:` URIs glTF embeds buffers and images in), `source`
+//! (the bytes the PLY and STL parsers read, in memory or streamed, so tiling's `stream`
+//! reads run the same parsers), `warning` (readers' warnings, typed by kind) and
+//! `file_limits` (regular files only, byte limits, references kept in the model's folder).
 
 pub mod data_uri;
+pub mod file_limits;
 pub mod gltf;
-pub mod limits;
 pub mod losses;
 pub mod mtl;
 pub mod obj;
@@ -170,7 +173,7 @@ pub fn read_scene_with(path: &Path, options: ReadOptions) -> Result<ReadOutcome,
         file: path.to_path_buf(),
         source,
     };
-    let bytes = limits::read_regular(path).map_err(io_err)?;
+    let bytes = file_limits::read_regular(path).map_err(io_err)?;
     let format = Format::from_path(path);
     // A glTF material's name is its own, not an OBJ's `usemtl`: no MTL library applies.
     let gltf = matches!(format, Some(Format::Gltf | Format::Glb)) || gltf::is_glb(&bytes);
@@ -280,7 +283,7 @@ fn gunzip(bytes: Vec<u8>, path: &Path) -> Result<Vec<u8>, ReadError> {
     if !bytes.starts_with(&[0x1f, 0x8b]) {
         return Ok(bytes);
     }
-    limits::gunzip_limited(&bytes).map_err(|message| ReadError::Syntax {
+    file_limits::gunzip_limited(&bytes).map_err(|message| ReadError::Syntax {
         file: path.to_path_buf(),
         line: 1,
         message,

@@ -32,7 +32,7 @@ use std::path::{Path, PathBuf};
 
 use super::text::Lines;
 use super::texture_path::{folder_of, rebase};
-use super::{limits, ReadError, ReadOutcome};
+use super::{file_limits, ReadError, ReadOutcome};
 use crate::mesh::{Model, Scene};
 
 /// One material of an MTL file, as far as this program uses it.
@@ -248,8 +248,8 @@ pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) -> Result<(
                 file: obj.to_path_buf(),
                 message: format!("mtllib {message}"),
             };
-            let path = limits::resolve_reference(obj_dir, &name).map_err(refuse)?;
-            let bytes = match limits::read_regular(&path) {
+            let path = file_limits::resolve_reference(obj_dir, &name).map_err(refuse)?;
+            let bytes = match file_limits::read_regular(&path) {
                 Ok(b) => b,
                 Err(e) if e.kind() == std::io::ErrorKind::InvalidInput => {
                     return Err(refuse(format!("{}: {e}", path.display())));

@@ -30,7 +30,7 @@ pub fn for_each_triangle(path: &Path, triangle: &mut dyn FnMut(Corners)) -> Resu
     };
     // Only a regular file: a FIFO would block, a device never end. No byte limit: tiling
     // is for files bigger than memory, and streams them.
-    let (file, len) = super::limits::open_regular(path).map_err(io_error)?;
+    let (file, len) = super::file_limits::open_regular(path).map_err(io_error)?;
     let mut r = BufReader::with_capacity(BUFFER, file);
     let head = r.fill_buf().map_err(io_error)?;
     let kind = if head.starts_with(b"ply") {

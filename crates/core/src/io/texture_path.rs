@@ -28,7 +28,7 @@ pub fn folder_of(file: &Path) -> &Path {
 
 /// Drops (with one warning per name) the texture names of a scene read from `path` that
 /// leave its folder: a path from the root, `..` above the folder, a `file:` URI. A model may
-/// not make the program read files elsewhere unless `limits::outside_allowed`. `data:`
+/// not make the program read files elsewhere unless `file_limits::outside_allowed`. `data:`
 /// URIs and other URLs are kept (they are never read as files).
 pub(crate) fn drop_outside_textures(outcome: &mut super::ReadOutcome, path: &Path) {
     let folder = folder_of(path);
@@ -44,9 +44,9 @@ pub(crate) fn drop_outside_textures(outcome: &mut super::ReadOutcome, path: &Pat
             continue;
         }
         let plain = name.replace('\\', "/");
-        let refused = match super::limits::resolve_reference(folder, &plain) {
+        let refused = match super::file_limits::resolve_reference(folder, &plain) {
             Err(why) => Some(why),
-            Ok(_) if is_absolute(name) && !super::limits::outside_allowed() => Some(format!(
+            Ok(_) if is_absolute(name) && !super::file_limits::outside_allowed() => Some(format!(
                 "'{name}' is outside the model's folder: only files in it are read"
             )),
             Ok(_) => None,

@@ -25,7 +25,7 @@ use gltf::mesh::Mode;
 use gltf::Semantic;
 
 use super::accessor::{check_attribute, read_floats, read_floats_prefix, read_indices, Buffers};
-use crate::io::{data_uri, limits, texture_path, ReadError, ReadOutcome, MAX_MODELS};
+use crate::io::{data_uri, file_limits, texture_path, ReadError, ReadOutcome, MAX_MODELS};
 use crate::mesh::{Attribute, Instance, LocalTransform, Model, Node, NodeTree, Scene};
 
 /// Most node visits one file may take (a node listed as the child of several parents is
@@ -73,7 +73,7 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
             .extensions_used()
             .any(|e| e == "KHR_mesh_quantization"),
         // The file and the buffer files it loads (a GLB's own chunk counted once).
-        max_triangles: limits::max_instanced_triangles(
+        max_triangles: file_limits::max_instanced_triangles(
             (bytes.len() + buffers.total_len())
                 .saturating_sub(gltf.blob.as_ref().map_or(0, Vec::len)),
         ),
@@ -377,9 +377,9 @@ fn load_buffers(gltf: &gltf::Gltf, folder: &Path) -> Result<Buffers, String> {
                 Some(d) => d.map_err(|e| format!("buffer {i}: {e}"))?.bytes,
                 None => {
                     let name = String::from_utf8_lossy(&data_uri::percent_decode(uri)).into_owned();
-                    let file = limits::resolve_reference(folder, &name)
+                    let file = file_limits::resolve_reference(folder, &name)
                         .map_err(|e| format!("buffers[{i}].uri: {e}"))?;
-                    limits::read_regular(&file)
+                    file_limits::read_regular(&file)
                         .map_err(|e| format!("buffers[{i}].uri: {}: {e}", file.display()))?
                 }
             },
@@ -479,7 +479,7 @@ impl Reader<'_> {
                     "the scene expands to more than {MAX_MODELS} models or {} triangles \
                      (meshes used by many nodes?); {}",
                     self.max_triangles,
-                    limits::EXPANSION_HINT
+                    file_limits::EXPANSION_HINT
                 ));
             }
             let base = node_name

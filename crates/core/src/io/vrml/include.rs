@@ -26,7 +26,7 @@ impl Parser<'_> {
             .as_deref()
             .and_then(Path::parent)
             .unwrap_or(Path::new(""));
-        let path = match crate::io::limits::resolve_reference(folder, name) {
+        let path = match crate::io::file_limits::resolve_reference(folder, name) {
             Ok(path) => path,
             Err(why) => return fail(format!("'File' name {why}")),
         };
@@ -53,7 +53,7 @@ impl Parser<'_> {
                 path.display()
             ));
         }
-        let bytes = match crate::io::limits::read_regular(&canonical) {
+        let bytes = match crate::io::file_limits::read_regular(&canonical) {
             Ok(b) => b,
             Err(e) => return fail(format!("cannot read included file {}: {e}", path.display())),
         };
