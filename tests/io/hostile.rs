@@ -283,6 +283,17 @@ fn references_outside_the_models_folder_are_refused_unless_allowed() {
         std::fs::write(dir.join(name), gltf_with(uri)).unwrap();
         refused(&decimate(&dir, name, &[]), name, what);
     }
+    // An image URI is a file the viewer and a glTF output would read.
+    let mut doc: Value = serde_json::from_slice(&gltf_with("../up.bin")).unwrap();
+    doc["buffers"][0]["uri"] = json!("up.bin");
+    doc["images"] = json!([{ "uri": "file:///etc/passwd" }]);
+    std::fs::copy(root.path().join("up.bin"), dir.join("up.bin")).unwrap();
+    std::fs::write(dir.join("img.gltf"), serde_json::to_vec(&doc).unwrap()).unwrap();
+    refused(
+        &decimate(&dir, "img.gltf", &[]),
+        "img.gltf",
+        "images[0].uri",
+    );
     let allowed = decimate(&dir, "up.gltf", &[("DECIMATE_ALLOW_OUTSIDE", "1")]);
     assert!(
         allowed.status.success(),

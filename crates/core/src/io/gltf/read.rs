@@ -42,6 +42,7 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
     let gltf = parse_document(bytes, path)?;
     validate(&gltf.document).map_err(fail)?;
     check_hierarchy(&gltf.document).map_err(fail)?;
+    check_image_uris(&gltf.document, texture_path::folder_of(path)).map_err(fail)?;
     let folder = texture_path::folder_of(path);
     let buffers = load_buffers(&gltf, folder).map_err(fail)?;
     let document = &gltf.document;
@@ -298,6 +299,27 @@ fn validate(document: &gltf::Document) -> Result<(), String> {
         true => Ok(()),
         false => Err(describe(&gltf::Error::Validation(errors))),
     }
+}
+
+/// Refuses image URIs that name files outside the model's folder (a path from the root,
+/// `..` above it, a `file:` URI): the viewer and a glTF output would read them. `data:` URIs
+/// and other URLs are never read as files.
+fn check_image_uris(document: &gltf::Document, folder: &Path) -> Result<(), String> {
+    for image in document.images() {
+        let gltf::image::Source::Uri { uri, .. } = image.source() else {
+            continue;
+        };
+        let file_uri = uri
+            .get(..5)
+            .is_some_and(|s| s.eq_ignore_ascii_case("file:"));
+        if texture_path::has_url_scheme(uri) && !file_uri {
+            continue;
+        }
+        let name = String::from_utf8_lossy(&data_uri::percent_decode(uri)).into_owned();
+        file_limits::resolve_reference(folder, &name)
+            .map_err(|e| format!("images[{}].uri: {e}", image.index()))?;
+    }
+    Ok(())
 }
 
 /// Refuses a node hierarchy that is not a set of trees (glTF 2.0, 3.5.3): a node that is
