@@ -51,9 +51,9 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    // `-q` keeps the warnings that say data was lost.
-    for w in &outcome.warnings {
-        if !args.quiet || io::means_lost_data(w) {
+    // Grouped by kind; `-q` keeps the warnings that say data was lost.
+    for w in io::warning::grouped(&outcome.warnings) {
+        if !args.quiet || w.loses_data() {
             eprintln!("decimate: warning: {w}");
         }
     }

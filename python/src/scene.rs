@@ -52,7 +52,11 @@ pub fn read<'py>(py: Python<'py>, path: PathBuf) -> PyResult<(Bound<'py, PyList>
     for m in &outcome.scene.models {
         models.append(model_dict(py, m)?)?;
     }
-    Ok((models, outcome.warnings))
+    let warnings = decimate_core::io::warning::grouped(&outcome.warnings)
+        .into_iter()
+        .map(ToString::to_string)
+        .collect();
+    Ok((models, warnings))
 }
 
 /// Writes model dictionaries to `path` (see `decimate.write`).

@@ -302,7 +302,10 @@ pub fn simplify_file<'py>(
     let mut s = s;
     let folder = io::texture_path::folder_of;
     io::texture_path::rebase_textures(&mut s, folder(&src), folder(&dst));
-    let mut warnings = outcome.warnings;
+    let mut warnings: Vec<String> = io::warning::grouped(&outcome.warnings)
+        .into_iter()
+        .map(ToString::to_string)
+        .collect();
     warnings.extend(repairs);
     warnings.extend(io::losses::losses_at(&s, &dst));
     scene::write_scene(py, &s, &dst, &cancel)?;

@@ -102,7 +102,7 @@ fn number(v: &str, name: &str) -> Result<usize, String> {
 
 fn read(path: &str) -> Result<Surface, String> {
     let outcome = decimate_core::io::read_scene(Path::new(path)).map_err(|e| e.to_string())?;
-    for w in &outcome.warnings {
+    for w in decimate_core::io::warning::grouped(&outcome.warnings) {
         eprintln!("metro: {path}: warning: {w}");
     }
     let surface = Surface::from_scene(&outcome.scene);

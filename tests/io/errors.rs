@@ -253,9 +253,9 @@ fn bad_texture_coordinate_indices_drop_the_coordinates_with_a_warning() {
     assert_eq!(out.scene.models[0].triangles.len(), 1);
     assert_eq!(out.scene.models[0].texcoords, None);
     assert!(
-        out.warnings
-            .iter()
-            .any(|w| w.contains("texture coordinate index 5 is out of range")),
+        out.warnings.iter().any(|w| w
+            .message
+            .contains("texture coordinate index 5 is out of range")),
         "{:?}",
         out.warnings
     );

@@ -83,9 +83,11 @@ f 5/1/1 6/1 \\
     // texture coordinate (so it has none). Materials are read, not skipped: the last
     // `usemtl` before a face counts and carries over `o`; the library is handed back.
     assert_eq!(out.warnings.len(), 3, "{:?}", out.warnings);
-    assert!(out.warnings[2].starts_with("second: some face corners have texture"));
+    assert!(out.warnings[2]
+        .message
+        .starts_with("second: some face corners have texture"));
     assert_eq!(s.models[1].texcoords, None);
-    assert!(!out.warnings.iter().any(|w| w.contains("mtl")));
+    assert!(!out.warnings.iter().any(|w| w.message.contains("mtl")));
     let materials: Vec<Option<&str>> = s.models.iter().map(|m| m.material.as_deref()).collect();
     assert_eq!(materials, [Some("blue"), Some("blue")]);
     assert_eq!(out.material_libraries, ["scene.mtl"]);

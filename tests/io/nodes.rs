@@ -7,11 +7,18 @@
 use std::collections::HashMap;
 use std::f32::consts::{PI, TAU};
 
-use decimate_core::io::{parse_str, read_scene, read_scene_with, ReadOptions};
+use decimate_core::io::{
+    parse_str, read_scene, read_scene_with, ReadOptions, Warning, WarningKind,
+};
 use decimate_core::mesh::{Model, Scene};
 use glam::Vec3;
 
 use crate::support::binary::decimate;
+
+/// The warnings' sentences.
+fn messages(warnings: &[Warning]) -> Vec<&str> {
+    warnings.iter().map(|w| w.message.as_str()).collect()
+}
 
 fn read(src: &str) -> Scene {
     parse_str(src, "t.iv")
@@ -144,7 +151,7 @@ fn vrml1_cones_with_each_parts_mask() {
             let o = parse_str(&src, "t.wrl").unwrap();
             assert!(o.scene.models.is_empty(), "{mask}");
             assert_eq!(
-                o.warnings,
+                messages(&o.warnings),
                 ["line 2: 'Cone' of zero size or with no parts skipped"]
             );
             continue;
@@ -255,9 +262,10 @@ Shape { geometry ElevationGrid { xDimension 1 zDimension 4 height [ 0 0 0 0 ] } 
     .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(s.scene.models.len(), 1);
     assert_eq!(
-        s.warnings,
+        messages(&s.warnings),
         ["line 7: 'ElevationGrid' with fewer than 2 x 2 points skipped"]
     );
+    assert_eq!(s.warnings[0].line, Some(7));
     let m = &s.scene.models[0];
     assert_eq!((m.positions.len(), m.triangles.len()), (6, 4));
     let (lo, hi) = bounds(m);
@@ -386,7 +394,7 @@ fn file_nodes_include_other_files_relative_to_the_including_one() {
         "{e}"
     );
     assert!(e.contains("includes itself"), "{e}");
-    // Only regular files are read: a device could be endless.
+    // A path from the root is outside the model's folder: refused before it is opened.
     std::fs::write(
         dir.path().join("dev.iv"),
         "#Inventor V2.1 ascii\nFile { name \"/dev/zero\" }",
@@ -396,7 +404,7 @@ fn file_nodes_include_other_files_relative_to_the_including_one() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains(":2: included file /dev/zero is not a regular file"),
+        e.contains(":2: 'File' name '/dev/zero' is outside the model's folder"),
         "{e}"
     );
     // A missing file is named.
@@ -517,11 +525,22 @@ Separator { Text3 { string \"a\" } Cube { } Text3 { string \"b\" } NurbsSurface 
     assert_eq!(o.scene.models.len(), 1);
     assert_eq!(o.warnings.len(), 2, "{:?}", o.warnings);
     assert!(
-        o.warnings[0].starts_with("3 'Text3' shape(s) skipped, the first at line 2"),
+        o.warnings[0]
+            .message
+            .starts_with("3 'Text3' shape(s) skipped, the first at line 2"),
         "{:?}",
         o.warnings
     );
-    assert!(o.warnings[1].starts_with("1 'NurbsSurface' shape(s) skipped"));
+    // Typed: the kind, where the first one is, and how many.
+    let w = &o.warnings[0];
+    assert_eq!(
+        (w.kind, w.line, w.count),
+        (WarningKind::SkippedNode, Some(2), 3)
+    );
+    assert!(w.loses_data());
+    assert!(o.warnings[1]
+        .message
+        .starts_with("1 'NurbsSurface' shape(s) skipped"));
 }
 
 #[test]
@@ -571,7 +590,7 @@ fn an_unknown_field_is_an_error_naming_it_or_a_warning_when_lenient() {
     let o = read_scene_with(&path, ReadOptions { lenient: true }).unwrap();
     assert!(o.scene.models.is_empty());
     assert!(
-        o.warnings[0].contains("no field 'coordIndexx'"),
+        o.warnings[0].message.contains("no field 'coordIndexx'"),
         "{:?}",
         o.warnings
     );

@@ -358,7 +358,8 @@ Viewpoint { position 0 0 10 description \"home\" }
     let boxm = &s.models[2];
     assert_eq!((boxm.positions.len(), boxm.triangles.len()), (8, 12));
     assert!((volume(boxm) - 48.0).abs() < 1e-3);
-    let w = o.warnings.join("\n");
+    let w: Vec<String> = o.warnings.iter().map(|w| w.to_string()).collect();
+    let w = w.join("\n");
     for needle in ["PROTO", "EXTERNPROTO", "ROUTE", "Inline", "'Thing'"] {
         assert!(w.contains(needle), "no warning about {needle}: {w}");
     }
@@ -444,7 +445,7 @@ Separator {
         ]))
     );
     assert_eq!(o.warnings.len(), 1, "{:?}", o.warnings);
-    assert!(o.warnings[0].contains("Frobnicator"));
+    assert!(o.warnings[0].message.contains("Frobnicator"));
 }
 
 #[test]

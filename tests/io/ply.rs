@@ -346,7 +346,7 @@ fn broken_texture_coordinates_are_skipped_with_a_warning() {
         assert_eq!(out.scene.triangle_count(), 1);
         assert_eq!(out.scene.models[0].texcoords, None, "{want}");
         assert_eq!(out.warnings.len(), 1, "{:?}", out.warnings);
-        assert!(out.warnings[0].contains(want), "{:?}", out.warnings);
+        assert!(out.warnings[0].message.contains(want), "{:?}", out.warnings);
     }
     // A texture coordinate that is not a number is an error on its line.
     let src = format!("{head}property float s\nproperty float t\n{tri}end_header\n0 0 0 0 0\n1 0 0 x 0\n0 1 0 0 0\n3 0 1 2\n");

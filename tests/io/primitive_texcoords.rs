@@ -556,11 +556,11 @@ fn textures_the_reader_cannot_use_are_named_in_a_warning() {
         assert_eq!(out.scene.models.len(), 1, "{name}");
         assert!(out.scene.models[0].texcoords.is_none(), "{name}");
         assert!(
-            out.warnings.iter().any(|w| w.contains(expected)),
+            out.warnings.iter().any(|w| w.message.contains(expected)),
             "{name}: {:?}",
             out.warnings
         );
-        assert!(out.warnings.iter().any(|w| decimate_core::io::means_lost_data(w)));
+        assert!(out.warnings.iter().any(|w| w.loses_data()));
     }
 }
 

@@ -159,10 +159,14 @@ pub fn simplify_file(input: &Path, output: &Path, params: &Params) -> Result<Fil
     }
     let io::ReadOutcome {
         mut scene,
-        mut warnings,
+        warnings,
         ..
     } = read_scene(input)?;
     scene = crate::mesh::build::build_scene(scene, true);
+    let mut warnings: Vec<String> = io::warning::grouped(&warnings)
+        .into_iter()
+        .map(ToString::to_string)
+        .collect();
     let report = simplify_scene(&mut scene, params);
     let folder = io::texture_path::folder_of;
     io::rebase_textures(&mut scene, folder(input), folder(output));

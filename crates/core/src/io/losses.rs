@@ -65,31 +65,74 @@ pub fn losses(scene: &Scene, format: Option<Format>) -> Vec<String> {
         Format::Stl => "STL",
         Format::Off => "OFF",
     };
-    let models = &scene.models;
-    let count = |has: fn(&Model) -> bool| models.iter().filter(|m| has(m)).count();
-    let vertex_colored = count(|m| matches!(m.colors, Some(Attribute::PerVertex(_))));
-    let face_colored = count(|m| matches!(m.colors, Some(Attribute::PerFace(_))));
-    let textured = count(|m| m.texcoords.is_some());
-    let imaged = count(|m| m.texcoords.is_some() && m.texture.is_some());
-    let all = models.len();
-    // Whether the format keeps each, given how many models have it.
-    let one_list = matches!(format, Format::Ply | Format::Off);
-    let keeps_vertex_colors = match format {
-        Format::Obj => true,
-        Format::Ply | Format::Off => vertex_colored == all,
-        _ => false,
-    };
-    let keeps_texcoords = match format {
-        Format::Obj => true,
-        Format::Ply | Format::Off => textured == all,
-        _ => false,
-    };
-    let keeps_images = keeps_texcoords
-        && match format {
+    let counts = Counts::of(&scene.models);
+    let keeps = Keeps::of(scene, format, &counts);
+    let mut out = attribute_losses(name, format, &counts, &keeps);
+    if keeps.images {
+        out.extend(wrap_loss(name, format, &scene.models));
+    }
+    out
+}
+
+/// How many models have each attribute.
+struct Counts {
+    vertex_colored: usize,
+    face_colored: usize,
+    textured: usize,
+    imaged: usize,
+    all: usize,
+}
+
+impl Counts {
+    fn of(models: &[Model]) -> Self {
+        let count = |has: fn(&Model) -> bool| models.iter().filter(|m| has(m)).count();
+        Self {
+            vertex_colored: count(|m| matches!(m.colors, Some(Attribute::PerVertex(_)))),
+            face_colored: count(|m| matches!(m.colors, Some(Attribute::PerFace(_)))),
+            textured: count(|m| m.texcoords.is_some()),
+            imaged: count(|m| m.texcoords.is_some() && m.texture.is_some()),
+            all: models.len(),
+        }
+    }
+}
+
+/// Whether the format keeps each attribute, given how many models have it.
+struct Keeps {
+    vertex_colors: bool,
+    texcoords: bool,
+    images: bool,
+}
+
+impl Keeps {
+    fn of(scene: &Scene, format: Format, c: &Counts) -> Self {
+        let vertex_colors = match format {
             Format::Obj => true,
-            Format::Ply => super::ply::shared_texture(scene).is_some(),
+            Format::Ply | Format::Off => c.vertex_colored == c.all,
             _ => false,
         };
+        let texcoords = match format {
+            Format::Obj => true,
+            Format::Ply | Format::Off => c.textured == c.all,
+            _ => false,
+        };
+        let images = texcoords
+            && match format {
+                Format::Obj => true,
+                Format::Ply => super::ply::shared_texture(scene).is_some(),
+                _ => false,
+            };
+        Self {
+            vertex_colors,
+            texcoords,
+            images,
+        }
+    }
+}
+
+/// The colours, texture coordinates and image names the `name` output loses.
+fn attribute_losses(name: &str, format: Format, c: &Counts, keeps: &Keeps) -> Vec<String> {
+    let all = c.all;
+    let one_list = matches!(format, Format::Ply | Format::Off);
     let have = |n: usize| {
         if n == 1 {
             "1 model has them".to_string()
@@ -107,24 +150,24 @@ pub fn losses(scene: &Scene, format: Option<Format>) -> Vec<String> {
         }
     };
     let mut out = Vec::new();
-    if vertex_colored > 0 && !keeps_vertex_colors {
+    if c.vertex_colored > 0 && !keeps.vertex_colors {
         out.push(format!(
             "{name} output keeps no per-vertex colours{}",
-            why(vertex_colored)
+            why(c.vertex_colored)
         ));
     }
-    if face_colored > 0 {
+    if c.face_colored > 0 {
         out.push(format!(
             "{name} output keeps no per-face colours ({}; VRML 2.0 keeps them)",
-            have(face_colored)
+            have(c.face_colored)
         ));
     }
-    if textured > 0 && !keeps_texcoords {
+    if c.textured > 0 && !keeps.texcoords {
         out.push(format!(
             "{name} output keeps no texture coordinates{}",
-            why(textured)
+            why(c.textured)
         ));
-    } else if imaged > 0 && !keeps_images {
+    } else if c.imaged > 0 && !keeps.images {
         let reason = if format == Format::Ply {
             "; a PLY names one image for all models"
         } else {
@@ -132,11 +175,15 @@ pub fn losses(scene: &Scene, format: Option<Format>) -> Vec<String> {
         };
         out.push(format!(
             "{name} output does not name the texture image ({}{reason})",
-            have(imaged)
+            have(c.imaged)
         ));
     }
-    // A texture that does not repeat: OBJ's `-clamp` covers both directions at once, PLY
-    // says nothing of wrapping.
+    out
+}
+
+/// A texture that does not repeat: OBJ's `-clamp` covers both directions at once, PLY
+/// says nothing of wrapping.
+fn wrap_loss(name: &str, format: Format, models: &[Model]) -> Option<String> {
     let wrap_lost = models
         .iter()
         .filter(|m| m.texcoords.is_some() && m.texture.is_some())
@@ -145,18 +192,19 @@ pub fn losses(scene: &Scene, format: Option<Format>) -> Vec<String> {
             _ => m.texture_repeat != [true; 2],
         })
         .count();
-    if keeps_images && wrap_lost > 0 {
-        let reason = if format == Format::Obj {
-            "an MTL clamps a texture along both directions or neither"
-        } else {
-            "a PLY does not say how a texture wraps"
-        };
-        out.push(format!(
-            "{name} output writes the texture as repeating where the input clamps it \
-             ({wrap_lost} of {all} models; {reason})"
-        ));
+    if wrap_lost == 0 {
+        return None;
     }
-    out
+    let reason = if format == Format::Obj {
+        "an MTL clamps a texture along both directions or neither"
+    } else {
+        "a PLY does not say how a texture wraps"
+    };
+    Some(format!(
+        "{name} output writes the texture as repeating where the input clamps it \
+         ({wrap_lost} of {} models; {reason})",
+        models.len()
+    ))
 }
 
 #[cfg(test)]

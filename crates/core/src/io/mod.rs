@@ -15,9 +15,13 @@
 //! `texture_path` (texture names re-expressed for the folder a scene is written to:
 //! [`rebase_textures`], which every writer's caller applies first), `losses` (what an output
 //! format cannot hold, said before writing), `gltf` (glTF 2.0 `.gltf`/`.glb`, read and
-//! written) and `data_uri` (the `data:` URIs glTF embeds buffers and images in).
+//! written) and `data_uri` (the `data:` URIs glTF embeds buffers and images in), `source`
+//! (the bytes the PLY and STL parsers read, in memory or streamed, so tiling's `stream`
+//! reads run the same parsers), `warning` (readers' warnings, typed by kind) and
+//! `file_limits` (regular files only, byte limits, references kept in the model's folder).
 
 pub mod data_uri;
+pub mod file_limits;
 pub(crate) mod gltf;
 pub mod losses;
 pub(crate) mod mtl;
@@ -27,6 +31,7 @@ pub mod ply;
 pub mod progressive_file;
 pub mod replace;
 mod shape_to_model;
+mod source;
 pub mod stl;
 pub(crate) mod stream;
 mod text;
@@ -34,8 +39,8 @@ pub mod texture_image;
 pub mod texture_path;
 pub(crate) mod triangulate;
 mod vrml;
+pub mod warning;
 
-use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use crate::mesh::progressive::ProgressiveScene;
@@ -48,6 +53,7 @@ pub use ply::write_ply;
 pub use stl::write_stl;
 pub use texture_path::{rebase_textures, rebased};
 pub use vrml::write_vrml2_to;
+pub use warning::{Warning, WarningKind};
 
 /// What went wrong reading a scene: always names the file, and the line where there is one.
 #[derive(Debug, thiserror::Error)]
@@ -95,19 +101,13 @@ pub struct WriteError {
 #[derive(Debug, Clone, Default)]
 pub struct ReadOutcome {
     pub scene: Scene,
-    pub warnings: Vec<String>,
+    /// Typed (kind, file, line, count); [`warning::grouped`] orders them for printing.
+    pub warnings: Vec<Warning>,
     /// Set when the file is a progressive mesh (`FILE.pm`); `scene` is then its full meshes.
     pub progressive: Option<ProgressiveScene>,
     /// The material libraries an OBJ names (`mtllib`), as written, relative to its folder;
     /// [`read_scene`] has applied them, [`parse_bytes`] has not (it reads no other file).
     pub material_libraries: Vec<String>,
-}
-
-/// True when a reader's warning means part of the file was not read (a skipped node,
-/// shape, face or attribute): `-q` still prints those. Readers word such warnings with
-/// "skipped" or "ignored".
-pub fn means_lost_data(warning: &str) -> bool {
-    warning.contains("skipped") || warning.contains("ignored")
 }
 
 /// Most models one file may expand to (DEF/USE instancing can multiply them).
@@ -173,14 +173,15 @@ pub fn read_scene_with(path: &Path, options: ReadOptions) -> Result<ReadOutcome,
         file: path.to_path_buf(),
         source,
     };
-    let bytes = std::fs::read(path).map_err(io_err)?;
+    let bytes = file_limits::read_regular(path).map_err(io_err)?;
     let format = Format::from_path(path);
     // A glTF material's name is its own, not an OBJ's `usemtl`: no MTL library applies.
     let gltf = matches!(format, Some(Format::Gltf | Format::Glb)) || gltf::is_glb(&bytes);
     let mut outcome = parse_bytes_with(bytes, path, format, options)?;
     if !gltf {
-        mtl::apply_materials(&mut outcome, path);
+        mtl::apply_materials(&mut outcome, path)?;
     }
+    texture_path::drop_outside_textures(&mut outcome, path);
     Ok(outcome)
 }
 
@@ -200,24 +201,27 @@ pub fn parse_str(text: &str, file_name: &str) -> Result<ReadOutcome, ReadError> 
     parse_bytes(text.as_bytes().to_vec(), Path::new(file_name))
 }
 
+/// Reads a scene from memory; every warning that names no file of its own names `path`.
 fn parse_bytes_with(
-    mut bytes: Vec<u8>,
+    bytes: Vec<u8>,
     path: &Path,
     by_name: Option<Format>,
     options: ReadOptions,
 ) -> Result<ReadOutcome, ReadError> {
-    let file = path.to_path_buf();
-    if bytes.starts_with(&[0x1f, 0x8b]) {
-        let mut out = Vec::with_capacity(bytes.len() * 4);
-        flate2::read::MultiGzDecoder::new(&bytes[..])
-            .read_to_end(&mut out)
-            .map_err(|e| ReadError::Syntax {
-                file: file.clone(),
-                line: 1,
-                message: format!("the gzip stream is damaged or truncated: {e}"),
-            })?;
-        bytes = out;
+    let mut outcome = parse_any(bytes, path, by_name, options)?;
+    for w in &mut outcome.warnings {
+        w.file.get_or_insert_with(|| path.to_path_buf());
     }
+    Ok(outcome)
+}
+
+fn parse_any(
+    bytes: Vec<u8>,
+    path: &Path,
+    by_name: Option<Format>,
+    options: ReadOptions,
+) -> Result<ReadOutcome, ReadError> {
+    let bytes = gunzip(bytes, path)?;
     if bytes.starts_with(&progressive_file::MAGIC) {
         let pm = progressive_file::parse_progressive(&bytes, path)?;
         let models = pm.models.iter().map(|m| m.original()).collect();
@@ -228,24 +232,14 @@ fn parse_bytes_with(
             material_libraries: Vec::new(),
         });
     }
-    let syntax = |e: ParseError| ReadError::Syntax {
-        file: file.clone(),
-        line: e.line,
-        message: e.message,
-    };
     let gltf_by_name = matches!(by_name, Some(Format::Gltf | Format::Glb));
     if gltf::is_glb(&bytes) || gltf_by_name {
         return gltf::read_gltf(&bytes, path);
     }
     let ply_by_name = by_name == Some(Format::Ply);
     if bytes.starts_with(b"ply") && matches!(bytes.get(3), Some(b'\n' | b'\r')) || ply_by_name {
-        let (scene, warnings) = ply::read_ply(&bytes).map_err(syntax)?;
-        return Ok(ReadOutcome {
-            scene,
-            warnings,
-            progressive: None,
-            material_libraries: Vec::new(),
-        });
+        let (scene, warnings) = ply::read_ply(&bytes).map_err(|e| syntax(path, e))?;
+        return Ok(outcome(scene, warnings));
     }
     let first_line_end = bytes
         .iter()
@@ -257,67 +251,129 @@ fn parse_bytes_with(
         .iter()
         .any(|h| header.starts_with(h));
     if !vrml_family {
-        let sniffed = by_name.filter(|&f| f != Format::Vrml2).or_else(|| {
-            if stl::is_binary(&bytes) || stl::starts_with_solid(&bytes) {
-                Some(Format::Stl)
-            } else if off::looks_like_off(&bytes) {
-                Some(Format::Off)
-            } else if obj::looks_like_obj(&bytes) {
-                Some(Format::Obj)
-            } else {
-                None
-            }
-        });
-        let outcome = match sniffed {
-            Some(Format::Obj) => return obj::read_obj(&bytes).map_err(syntax),
-            Some(Format::Off) => off::read_off(&bytes).map_err(syntax)?,
-            Some(Format::Stl) => stl::read_stl(&bytes).map_err(|e| match e {
-                stl::StlError::Line(e) => syntax(e),
-                stl::StlError::Header(message) => syntax(ParseError::new(1, message)),
-                stl::StlError::Record { record, message } => ReadError::Record {
-                    file: file.clone(),
-                    record,
-                    message,
-                },
-            })?,
-            _ => (Scene::default(), Vec::new()),
-        };
-        if sniffed.is_some() {
-            let (scene, warnings) = outcome;
-            return Ok(ReadOutcome {
-                scene,
-                warnings,
-                progressive: None,
-                material_libraries: Vec::new(),
-            });
+        if let Some(read) = parse_mesh_format(&bytes, path, by_name)? {
+            return Ok(read);
         }
     }
-    let dialect = if header.starts_with("#VRML V1.0 ascii") {
+    let dialect = vrml_dialect(header, &bytes, path)?;
+    vrml::read_tree(&bytes, path, dialect, options).map_err(|e| syntax(path, e))
+}
+
+/// A parse error at a line of `file`.
+fn syntax(file: &Path, e: ParseError) -> ReadError {
+    ReadError::Syntax {
+        file: file.to_path_buf(),
+        line: e.line,
+        message: e.message,
+    }
+}
+
+/// A scene read by one of the readers that take no options.
+fn outcome(scene: Scene, warnings: Vec<Warning>) -> ReadOutcome {
+    ReadOutcome {
+        scene,
+        warnings,
+        progressive: None,
+        material_libraries: Vec::new(),
+    }
+}
+
+/// The bytes decompressed when they are a gzip stream, as they are otherwise.
+fn gunzip(bytes: Vec<u8>, path: &Path) -> Result<Vec<u8>, ReadError> {
+    if !bytes.starts_with(&[0x1f, 0x8b]) {
+        return Ok(bytes);
+    }
+    file_limits::gunzip_limited(&bytes).map_err(|message| ReadError::Syntax {
+        file: path.to_path_buf(),
+        line: 1,
+        message,
+    })
+}
+
+/// An STL, OFF or OBJ file (by its name, else by its content); `None` when it is none of
+/// them.
+fn parse_mesh_format(
+    bytes: &[u8],
+    path: &Path,
+    by_name: Option<Format>,
+) -> Result<Option<ReadOutcome>, ReadError> {
+    let sniffed = by_name.filter(|&f| f != Format::Vrml2).or_else(|| {
+        if stl::is_binary(bytes) || stl::starts_with_solid(bytes) {
+            Some(Format::Stl)
+        } else if off::looks_like_off(bytes) {
+            Some(Format::Off)
+        } else if obj::looks_like_obj(bytes) {
+            Some(Format::Obj)
+        } else {
+            None
+        }
+    });
+    let (scene, warnings) = match sniffed {
+        Some(Format::Obj) => return obj::read_obj(bytes).map(Some).map_err(|e| syntax(path, e)),
+        Some(Format::Off) => off::read_off(bytes).map_err(|e| syntax(path, e))?,
+        Some(Format::Stl) => stl::read_stl(bytes).map_err(|e| stl_error(path, e))?,
+        Some(_) => (Scene::default(), Vec::new()),
+        None => return Ok(None),
+    };
+    Ok(Some(outcome(scene, warnings)))
+}
+
+/// The VRML family dialect the first line (`header`) names; an error naming what it found
+/// when it names none.
+fn vrml_dialect(header: &str, bytes: &[u8], path: &Path) -> Result<vrml::Dialect, ReadError> {
+    Ok(if header.starts_with("#VRML V1.0 ascii") {
         vrml::Dialect::Vrml1
     } else if header.starts_with("#VRML V2.0 utf8") {
         vrml::Dialect::Vrml2
     } else if header.starts_with("#Inventor") && header.contains("binary") {
         return Err(ReadError::Unsupported {
-            file,
+            file: path.to_path_buf(),
             message: "binary Inventor is not supported (convert it with ivcat)".into(),
         });
     } else if header.starts_with("#Inventor V2.") || header.starts_with("#Inventor V1.0 ascii") {
         vrml::Dialect::Vrml1
     } else if bytes.iter().all(|b| b.is_ascii_whitespace()) {
-        return Err(syntax(ParseError::new(
-            1,
-            "the file is empty: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header",
-        )));
+        return Err(syntax(
+            path,
+            ParseError::new(
+                1,
+                "the file is empty: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header",
+            ),
+        ));
     } else {
         let shown: String = header.chars().take(40).collect();
-        return Err(syntax(ParseError::new(
-            1,
-            format!(
-                "not a VRML, Open Inventor, PLY, OBJ, STL or OFF file: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header, found '{shown}'"
+        return Err(syntax(
+            path,
+            ParseError::new(
+                1,
+                format!(
+                    "not a VRML, Open Inventor, PLY, OBJ, STL or OFF file: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header, found '{shown}'"
+                ),
             ),
-        )));
-    };
-    vrml::read_tree(&bytes, path, dialect, options).map_err(syntax)
+        ));
+    })
+}
+
+/// An STL reader's error as a [`ReadError`] naming `file`.
+fn stl_error(file: &Path, e: stl::StlError) -> ReadError {
+    let file = file.to_path_buf();
+    match e {
+        stl::StlError::Line(e) => ReadError::Syntax {
+            file,
+            line: e.line,
+            message: e.message,
+        },
+        stl::StlError::Header(message) => ReadError::Syntax {
+            file,
+            line: 1,
+            message,
+        },
+        stl::StlError::Record { record, message } => ReadError::Record {
+            file,
+            record,
+            message,
+        },
+    }
 }
 
 /// Writes `scene` to `path` in the format its extension names: `.ply`, `.obj`, `.stl`, `.off`,

@@ -25,13 +25,14 @@
 //! model whose texture the OBJ maps (it has one texture coordinate pair per vertex), with
 //! `-clamp on` when the texture repeats along neither direction.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::text::Lines;
 use super::texture_path::{folder_of, rebase};
-use super::ReadOutcome;
+use super::{file_limits, ReadError, ReadOutcome};
 use crate::mesh::{Model, Scene};
 
 /// One material of an MTL file, as far as this program uses it.
@@ -48,7 +49,7 @@ pub struct Material {
 }
 
 /// Reads an MTL file's materials, in file order; `file` is named in the warnings.
-pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<String>) {
+pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<Warning>) {
     let f = file.display();
     let mut materials: Vec<Material> = Vec::new();
     let mut warnings = Vec::new();
@@ -61,7 +62,11 @@ pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<String>) {
         let rest = text.trim().get(key.len()..).unwrap_or("").trim();
         if key == "newmtl" {
             if rest.is_empty() {
-                warnings.push(format!("{f}:{line}: 'newmtl' without a name skipped"));
+                warnings.push(lost(
+                    file,
+                    line,
+                    format!("{f}:{line}: 'newmtl' without a name skipped"),
+                ));
             }
             materials.push(Material {
                 name: rest.to_string(),
@@ -82,8 +87,10 @@ pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<String>) {
         let Some(m) = materials.last_mut() else {
             if !outside_warned {
                 outside_warned = true;
-                warnings.push(format!(
-                    "{f}:{line}: '{key}' before any 'newmtl' skipped (it belongs to no material)"
+                warnings.push(lost(
+                    file,
+                    line,
+                    format!("{f}:{line}: '{key}' before any 'newmtl' skipped (it belongs to no material)"),
                 ));
             }
             continue;
@@ -94,17 +101,33 @@ pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<String>) {
             map_file(rest).map(|(t, clamp)| (m.texture, m.clamp) = (Some(t), clamp))
         };
         if let Err(why) = read {
-            warnings.push(format!("{f}:{line}: {key}: {why}; line skipped"));
+            warnings.push(lost(
+                file,
+                line,
+                format!("{f}:{line}: {key}: {why}; line skipped"),
+            ));
         }
     }
     materials.retain(|m| !m.name.is_empty());
     if !skipped_maps.is_empty() {
-        warnings.push(format!(
-            "{f}: texture maps other than map_Kd are not used ({})",
-            skipped_maps.join(", ")
-        ));
+        let mut w = Warning::new(
+            WarningKind::SkippedMaterial,
+            format!(
+                "{f}: texture maps other than map_Kd are not used ({})",
+                skipped_maps.join(", ")
+            ),
+        );
+        w.file = Some(file.to_path_buf());
+        warnings.push(w);
     }
     (materials, warnings)
+}
+
+/// A line of the MTL file `file` not applied.
+fn lost(file: &Path, line: usize, message: String) -> Warning {
+    let mut w = Warning::new(WarningKind::SkippedMaterial, message).at(line);
+    w.file = Some(file.to_path_buf());
+    w
 }
 
 /// `Kd`'s colour: `r g b`, or `r` alone for grey; `spectral` and `xyz` forms are refused.
@@ -209,25 +232,37 @@ fn library_files(obj_dir: &Path, lib: &str) -> Vec<String> {
 
 /// Loads the OBJ's material libraries (named relative to `obj`'s folder) and applies their
 /// materials to the models that use them; problems become warnings.
-pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) {
+pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) -> Result<(), ReadError> {
     let used = outcome.scene.models.iter().any(|m| m.material.is_some());
     if outcome.material_libraries.is_empty() && !used {
-        return;
+        return Ok(());
     }
     let obj_dir = folder_of(obj);
     let mut table: HashMap<String, Material> = HashMap::new();
     let mut loaded: Vec<PathBuf> = Vec::new();
     for lib in &outcome.material_libraries {
         for name in library_files(obj_dir, lib) {
-            let path = obj_dir.join(&name);
-            let bytes = match std::fs::read(&path) {
+            // A library outside the folder, a FIFO or a device, or one over the byte limit is
+            // refused: the file is hostile, not merely incomplete.
+            let refuse = |message: String| ReadError::Unsupported {
+                file: obj.to_path_buf(),
+                message: format!("mtllib {message}"),
+            };
+            let path = file_limits::resolve_reference(obj_dir, &name).map_err(refuse)?;
+            let bytes = match file_limits::read_regular(&path) {
                 Ok(b) => b,
+                Err(e) if e.kind() == std::io::ErrorKind::InvalidInput => {
+                    return Err(refuse(format!("{}: {e}", path.display())));
+                }
                 Err(e) => {
-                    outcome.warnings.push(format!(
-                        "{}: cannot read its material library {}: {e}; its materials are not \
+                    outcome.warnings.push(Warning::new(
+                        WarningKind::SkippedMaterial,
+                        format!(
+                            "{}: cannot read its material library {}: {e}; its materials are not \
                          applied",
-                        obj.display(),
-                        path.display()
+                            obj.display(),
+                            path.display()
+                        ),
                     ));
                     continue;
                 }
@@ -242,14 +277,15 @@ pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) {
             loaded.push(path);
         }
     }
-    let mut unknown: Vec<&str> = Vec::new();
+    let mut unknown: Vec<String> = Vec::new();
+    let mut unknown_seen: HashSet<String> = HashSet::new();
     for model in &mut outcome.scene.models {
         let Some(name) = &model.material else {
             continue;
         };
         let Some(m) = table.get(name) else {
-            if !unknown.contains(&name.as_str()) {
-                unknown.push(name);
+            if unknown_seen.insert(name.clone()) {
+                unknown.push(name.clone());
             }
             continue;
         };
@@ -261,6 +297,12 @@ pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) {
             model.texture_repeat = [!m.clamp; 2];
         }
     }
+    warn_unknown(outcome, obj, &unknown, &loaded);
+    Ok(())
+}
+
+/// One warning naming the materials used but defined in no library read.
+fn warn_unknown(outcome: &mut ReadOutcome, obj: &Path, unknown: &[String], loaded: &[PathBuf]) {
     if !unknown.is_empty() {
         let quoted: Vec<String> = unknown.iter().map(|n| format!("'{n}'")).collect();
         let where_ = if loaded.is_empty() {
@@ -269,10 +311,13 @@ pub(crate) fn apply_materials(outcome: &mut ReadOutcome, obj: &Path) {
             let files: Vec<String> = loaded.iter().map(|p| p.display().to_string()).collect();
             format!("not defined in {}", files.join(", "))
         };
-        outcome.warnings.push(format!(
-            "{}: material {} {where_}; the default grey is used",
-            obj.display(),
-            quoted.join(", ")
+        outcome.warnings.push(Warning::new(
+            WarningKind::SkippedMaterial,
+            format!(
+                "{}: material {} {where_}; the default grey is used",
+                obj.display(),
+                quoted.join(", ")
+            ),
         ));
     }
 }

@@ -24,6 +24,7 @@
 //! diffuse colour other than the default, `FILE.mtl` is written beside `FILE.obj` (`mtl`),
 //! named by `mtllib`, and each model's `o` is followed by its `usemtl`.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -161,6 +162,98 @@ fn resolve(w: &[u8], count: usize, line: usize, what: &str) -> PResult<u32> {
         .map_err(|_| ParseError::new(line, format!("{what} index {i} is too large")))
 }
 
+/// The values of a `v` statement (`v x y z [w]` or `v x y z r g b`): the position, and the
+/// colour when it has one. Shared by the ordinary and the streaming reader.
+pub(super) fn vertex_values<'a>(
+    mut w: impl Iterator<Item = &'a [u8]>,
+    line: usize,
+) -> PResult<([f32; 3], Option<[f32; 3]>)> {
+    let x = number(w.next(), line, "a vertex's x")?;
+    let y = number(w.next(), line, "a vertex's y")?;
+    let z = number(w.next(), line, "a vertex's z")?;
+    let rest: [Option<&[u8]>; 5] = std::array::from_fn(|_| w.next());
+    let color = match rest {
+        [None, ..] | [Some(_), None, ..] => None,
+        [Some(r), Some(g), Some(b), None | Some(_), None] => Some([
+            number(Some(r), line, "a vertex's red")?,
+            number(Some(g), line, "a vertex's green")?,
+            number(Some(b), line, "a vertex's blue")?,
+        ]),
+        _ => {
+            return Err(ParseError::new(
+                line,
+                "a vertex has too many values (expected 'v x y z [w]' or 'v x y z r g b')",
+            ))
+        }
+    };
+    if let [Some(wv), None, ..] = rest {
+        number(Some(wv), line, "a vertex's w")?;
+    }
+    Ok(([x, y, z], color))
+}
+
+/// One face corner (`v`, `v/vt`, `v//vn` or `v/vt/vn`) checked against the `counts` of
+/// vertices, texture coordinates and normals defined so far: its vertex index and its
+/// texture coordinate index (`u32::MAX` when it has none). Shared by both readers.
+pub(super) fn face_corner(corner: &[u8], counts: [usize; 3], line: usize) -> PResult<(u32, u32)> {
+    let mut parts = corner.split(|&b| b == b'/');
+    let v = parts.next().unwrap_or(corner);
+    let v = resolve(v, counts[0], line, "vertex")?;
+    let t = match parts.next().filter(|t| !t.is_empty()) {
+        Some(t) => resolve(t, counts[1], line, "texture coordinate")?,
+        None => u32::MAX,
+    };
+    if let Some(n) = parts.next().filter(|n| !n.is_empty()) {
+        resolve(n, counts[2], line, "normal")?;
+    }
+    if parts.next().is_some() {
+        return Err(ParseError::new(
+            line,
+            format!(
+                "bad face corner '{}' (expected v, v/vt, v//vn or v/vt/vn)",
+                shown(corner)
+            ),
+        ));
+    }
+    Ok((v, t))
+}
+
+/// Tiling's read: hands each triangle of an OBJ (polygons fanned from their first corner) to
+/// `triangle` as its `f` line is read, holding only the positions. Lines (comments,
+/// continuations), `v` values and face corners are read by the ordinary reader's code.
+pub(super) fn stream_obj(
+    input: impl std::io::BufRead,
+    triangle: &mut dyn FnMut([[f32; 3]; 3]),
+) -> PResult<()> {
+    let mut positions: Vec<[f32; 3]> = Vec::new();
+    let (mut uv_count, mut normal_count) = (0usize, 0usize);
+    let mut face: Vec<[f32; 3]> = Vec::new();
+    for item in super::text::StreamedLines::new(input, true) {
+        let (line, text) = item?;
+        let mut w = words(&text);
+        match w.next() {
+            Some(b"v") => positions.push(vertex_values(w, line)?.0),
+            Some(b"vt") => uv_count += 1,
+            Some(b"vn") => normal_count += 1,
+            Some(b"f") => {
+                face.clear();
+                let counts = [positions.len(), uv_count, normal_count];
+                for corner in w {
+                    let (v, _) = face_corner(corner, counts, line)?;
+                    face.push(positions[v as usize]);
+                }
+                if face.len() >= 3 {
+                    for w in face[1..].windows(2) {
+                        triangle([face[0], w[0], w[1]]);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// Reads an OBJ file into one model per non-empty `o` / `g` group and material; the
 /// `mtllib` names come back in `material_libraries` (the caller knows where to look).
 pub fn read_obj(bytes: &[u8]) -> PResult<ReadOutcome> {
@@ -188,9 +281,13 @@ pub fn read_obj(bytes: &[u8]) -> PResult<ReadOutcome> {
             b"usemtl" => r.use_material(&text, line),
             b"mtllib" => match rest_of_line(&text) {
                 Some(lib) => r.libraries.push(lib),
-                None => r.warnings.push(format!(
-                    "OBJ 'mtllib' without a file name on line {line} skipped"
-                )),
+                None => r.warnings.push(
+                    Warning::new(
+                        WarningKind::SkippedMaterial,
+                        format!("OBJ 'mtllib' without a file name on line {line} skipped"),
+                    )
+                    .at(line),
+                ),
             },
             _ => r.skip(key, line),
         }
@@ -201,7 +298,7 @@ pub fn read_obj(bytes: &[u8]) -> PResult<ReadOutcome> {
 /// An OBJ file's statements read so far.
 #[derive(Default)]
 struct ObjReader {
-    warnings: Vec<String>,
+    warnings: Vec<Warning>,
     /// Statement keys (and other things) already warned about, to warn once.
     warned: HashSet<Vec<u8>>,
     coords: Vec<f32>,
@@ -221,28 +318,8 @@ struct ObjReader {
 
 impl ObjReader {
     /// `v x y z [w]` or `v x y z r g b`.
-    fn vertex<'a>(&mut self, mut w: impl Iterator<Item = &'a [u8]>, line: usize) -> PResult<()> {
-        let x = number(w.next(), line, "a vertex's x")?;
-        let y = number(w.next(), line, "a vertex's y")?;
-        let z = number(w.next(), line, "a vertex's z")?;
-        let rest: [Option<&[u8]>; 5] = std::array::from_fn(|_| w.next());
-        let color = match rest {
-            [None, ..] | [Some(_), None, ..] => None,
-            [Some(r), Some(g), Some(b), None | Some(_), None] => Some([
-                number(Some(r), line, "a vertex's red")?,
-                number(Some(g), line, "a vertex's green")?,
-                number(Some(b), line, "a vertex's blue")?,
-            ]),
-            _ => {
-                return Err(ParseError::new(
-                    line,
-                    "a vertex has too many values (expected 'v x y z [w]' or 'v x y z r g b')",
-                ))
-            }
-        };
-        if let [Some(wv), None, ..] = rest {
-            number(Some(wv), line, "a vertex's w")?;
-        }
+    fn vertex<'a>(&mut self, w: impl Iterator<Item = &'a [u8]>, line: usize) -> PResult<()> {
+        let ([x, y, z], color) = vertex_values(w, line)?;
         self.coords.extend([x, y, z]);
         match color {
             Some(c) => {
@@ -263,28 +340,11 @@ impl ObjReader {
         let (material, group) = (&self.material, &mut self.cur);
         let i = *self.part.get_or_insert_with(|| group.part(material, line));
         let cur = &mut group.parts[i];
-        let nverts = self.coords.len() / 3;
+        let counts = [self.coords.len() / 3, self.uv.len() / 2, self.normal_count];
         for corner in w {
-            let mut parts = corner.split(|&b| b == b'/');
-            let v = parts.next().unwrap_or(corner);
-            cur.corners.push(resolve(v, nverts, line, "vertex")?);
-            cur.texcoords
-                .push(match parts.next().filter(|t| !t.is_empty()) {
-                    Some(t) => resolve(t, self.uv.len() / 2, line, "texture coordinate")?,
-                    None => u32::MAX,
-                });
-            if let Some(n) = parts.next().filter(|n| !n.is_empty()) {
-                resolve(n, self.normal_count, line, "normal")?;
-            }
-            if parts.next().is_some() {
-                return Err(ParseError::new(
-                    line,
-                    format!(
-                        "bad face corner '{}' (expected v, v/vt, v//vn or v/vt/vn)",
-                        shown(corner)
-                    ),
-                ));
-            }
+            let (v, t) = face_corner(corner, counts, line)?;
+            cur.corners.push(v);
+            cur.texcoords.push(t);
         }
         cur.ends.push(cur.corners.len() as u32);
         Ok(())
@@ -314,10 +374,16 @@ impl ObjReader {
     fn use_material(&mut self, text: &[u8], line: usize) {
         let name = rest_of_line(text);
         if name.is_none() && self.warned.insert(b"usemtl without a name".to_vec()) {
-            self.warnings.push(format!(
-                "OBJ 'usemtl' without a material name on line {line}: the faces after \
-                 it have no material"
-            ));
+            self.warnings.push(
+                Warning::new(
+                    WarningKind::SkippedMaterial,
+                    format!(
+                        "OBJ 'usemtl' without a material name on line {line}: the faces after \
+                         it have no material"
+                    ),
+                )
+                .at(line),
+            );
         }
         if name != self.material {
             self.material = name;
@@ -329,11 +395,13 @@ impl ObjReader {
     fn skip(&mut self, key: &[u8], line: usize) {
         if self.warned.insert(key.to_vec()) {
             let k = shown(key);
-            self.warnings.push(match key {
+            let message = match key {
                 b"s" => "OBJ 's' (smoothing group) statements skipped".to_string(),
                 b"l" | b"p" => format!("OBJ '{k}' statements skipped (only faces are read)"),
                 _ => format!("unknown OBJ statement '{k}' skipped (first on line {line})"),
-            });
+            };
+            self.warnings
+                .push(Warning::new(WarningKind::SkippedNode, message).at(line));
         }
     }
 
@@ -354,10 +422,13 @@ impl ObjReader {
             let texcoords = if g.texcoords.iter().all(|&t| t == u32::MAX) {
                 None
             } else if g.texcoords.contains(&u32::MAX) {
-                warnings.push(format!(
-                    "{}: some face corners have texture coordinates ('v/vt') and some do not; \
-                     texture coordinates ignored",
-                    name
+                warnings.push(Warning::new(
+                    WarningKind::SkippedAttribute,
+                    format!(
+                        "{}: some face corners have texture coordinates ('v/vt') and some do \
+                         not; texture coordinates ignored",
+                        name
+                    ),
                 ));
                 None
             } else {
@@ -537,4 +608,21 @@ fn write_obj_with(
         base += m.positions.len() as u64;
     }
     w.flush()
+}
+
+#[cfg(test)]
+mod stream_tests {
+    use super::super::source::testing::{sorted_bits, sorted_triangles};
+    use super::*;
+
+    #[test]
+    fn the_stream_gives_the_ordinary_reads_triangles() {
+        let text = b"# a comment\nv 0 0 0\nv 1 0 0 \\\n\nv 1 1 0.5\nv 0 1 0.25 0.1 0.2 0.3\n\
+                     vt 0 0\nvn 0 0 1\nf 1/1/1 2 3\ng x\nf -4 -2 -1\nusemtl m\nf 2 3 4\n";
+        let read = read_obj(text).unwrap();
+        assert_eq!(read.scene.triangle_count(), 3);
+        let mut streamed = Vec::new();
+        stream_obj(&text[..], &mut |t| streamed.push(t)).unwrap();
+        assert_eq!(sorted_bits(streamed), sorted_triangles(&read.scene));
+    }
 }

@@ -13,6 +13,7 @@
 //! (`s t`, after the colour) when every model has texture coordinates (`STCOFF`, `STOFF`,
 //! `COFF`), all models in one file, world positions.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::io::Write;
 use std::path::Path;
 
@@ -149,7 +150,7 @@ struct Faces {
 
 /// Reads an OFF file into a scene of one model: header, vertex lines, face lines, then the
 /// model built from them.
-pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
+pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<Warning>)> {
     let mut warnings = Vec::new();
     let mut lines = Lines::new(bytes, false);
     let header = read_header(&mut lines, bytes.len())?;
@@ -157,9 +158,12 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
     let vertices = read_vertices(&mut lines, &header, &mut last)?;
     let faces = read_faces(&mut lines, &header, &mut last)?;
     if next_record(&mut lines).is_some() {
-        warnings.push(format!(
-            "the OFF file has more lines after its {} faces; they were ignored",
-            header.faces
+        warnings.push(Warning::new(
+            WarningKind::SkippedFaces,
+            format!(
+                "the OFF file has more lines after its {} faces; they were ignored",
+                header.faces
+            ),
         ));
     }
     finish(&header, vertices, faces, warnings)
@@ -406,8 +410,8 @@ fn finish(
     header: &Header<'_>,
     vertices: Vertices,
     faces: Faces,
-    mut warnings: Vec<String>,
-) -> PResult<(Scene, Vec<String>)> {
+    mut warnings: Vec<Warning>,
+) -> PResult<(Scene, Vec<Warning>)> {
     let (nv, nf) = (header.vertices, header.faces);
     let Vertices {
         coords,

@@ -15,6 +15,7 @@
 //! colours (`red green blue`) and texture coordinates (`s t`) when every model has them, and
 //! `comment TextureFile NAME` when they all map the same image.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
@@ -22,6 +23,7 @@ use std::path::Path;
 use glam::{Mat4, Vec3};
 
 use super::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
+use super::source::Input;
 use super::text::{PResult, ParseError};
 use super::WriteError;
 use crate::mesh::{Attribute, Scene};
@@ -33,9 +35,9 @@ enum Format {
     Big,
 }
 
-/// A PLY scalar type (also read by the streaming reader, `io::stream`).
+/// A PLY scalar type.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Ty {
+enum Ty {
     I8,
     U8,
     I16,
@@ -47,7 +49,7 @@ pub(super) enum Ty {
 }
 
 impl Ty {
-    pub(super) fn parse(s: &str) -> Option<Self> {
+    fn parse(s: &str) -> Option<Self> {
         Some(match s {
             "char" | "int8" => Self::I8,
             "uchar" | "uint8" => Self::U8,
@@ -61,37 +63,12 @@ impl Ty {
         })
     }
 
-    pub(super) fn size(self) -> usize {
+    fn size(self) -> usize {
         match self {
             Self::I8 | Self::U8 => 1,
             Self::I16 | Self::U16 => 2,
             Self::I32 | Self::U32 | Self::F32 => 4,
             Self::F64 => 8,
-        }
-    }
-
-    /// The value of the first `size()` bytes of `b`, in the file's byte order.
-    pub(super) fn decode(self, b: &[u8], big: bool) -> f64 {
-        macro_rules! num {
-            ($t:ty, $n:expr) => {{
-                let mut a = [0u8; $n];
-                a.copy_from_slice(&b[..$n]);
-                f64::from(if big {
-                    <$t>::from_be_bytes(a)
-                } else {
-                    <$t>::from_le_bytes(a)
-                })
-            }};
-        }
-        match self {
-            Self::I8 => f64::from(b[0] as i8),
-            Self::U8 => f64::from(b[0]),
-            Self::I16 => num!(i16, 2),
-            Self::U16 => num!(u16, 2),
-            Self::I32 => num!(i32, 4),
-            Self::U32 => num!(u32, 4),
-            Self::F32 => num!(f32, 4),
-            Self::F64 => num!(f64, 8),
         }
     }
 }
@@ -120,49 +97,109 @@ const UV_NAMES: [[&str; 2]; 4] = [
     ["texture_s", "texture_t"],
 ];
 
-/// Reads scalar values in one of the three encodings.
-struct Body<'a> {
+/// Reads scalar values in one of the three encodings, from a file in memory or streamed.
+struct Body<I> {
     format: Format,
-    bytes: &'a [u8],
+    input: I,
     pos: usize,
     /// Current line (ASCII) for messages.
     line: usize,
+    /// The element being read, its record and its count, for messages.
+    element: String,
+    record: usize,
+    records: usize,
 }
 
-impl<'a> Body<'a> {
+impl<I: Input> Body<I> {
+    fn new(format: Format, input: I, pos: usize, line: usize) -> Self {
+        Self {
+            format,
+            input,
+            pos,
+            line,
+            element: String::new(),
+            record: 0,
+            records: 0,
+        }
+    }
+
+    /// Starts reading element `el`'s records.
+    fn start(&mut self, el: &Element) {
+        self.element.clone_from(&el.name);
+        self.records = el.count;
+    }
+
     fn eof(&self, what: &str) -> ParseError {
         ParseError::new(
             self.line,
-            format!("unexpected end of file: the PLY body ends before {what}"),
+            format!(
+                "unexpected end of file: the PLY body ends inside {} {} of {} (expected {what})",
+                self.element, self.record, self.records
+            ),
         )
     }
 
-    fn token(&mut self, what: &str) -> PResult<&'a [u8]> {
-        let b = self.bytes;
-        while self.pos < b.len() && b[self.pos].is_ascii_whitespace() {
-            if b[self.pos] == b'\n' {
-                self.line += 1;
+    /// More bytes from the input, keeping those from `keep` on; false at the end.
+    fn more(&mut self, keep: usize) -> PResult<Option<usize>> {
+        self.input
+            .more(keep)
+            .map_err(|e| ParseError::new(self.line, format!("the file could not be read: {e}")))
+    }
+
+    /// Makes `n` bytes from the position available, or fails naming `what`.
+    fn ensure(&mut self, n: usize, what: &str) -> PResult<()> {
+        while self.pos + n > self.input.bytes().len() {
+            match self.more(self.pos)? {
+                Some(dropped) => self.pos -= dropped,
+                None => return Err(self.eof(what)),
             }
-            self.pos += 1;
         }
-        let start = self.pos;
-        while self.pos < b.len() && !b[self.pos].is_ascii_whitespace() {
-            self.pos += 1;
+        Ok(())
+    }
+
+    /// The next whitespace-separated token, as a range of `input.bytes()`.
+    fn token(&mut self, what: &str) -> PResult<std::ops::Range<usize>> {
+        loop {
+            let b = self.input.bytes();
+            while self.pos < b.len() && b[self.pos].is_ascii_whitespace() {
+                if b[self.pos] == b'\n' {
+                    self.line += 1;
+                }
+                self.pos += 1;
+            }
+            if self.pos < b.len() {
+                break;
+            }
+            match self.more(self.pos)? {
+                Some(dropped) => self.pos -= dropped,
+                None => return Err(self.eof(what)),
+            }
         }
-        if start == self.pos {
-            return Err(self.eof(what));
+        let mut start = self.pos;
+        loop {
+            let b = self.input.bytes();
+            while self.pos < b.len() && !b[self.pos].is_ascii_whitespace() {
+                self.pos += 1;
+            }
+            if self.pos < b.len() {
+                break;
+            }
+            match self.more(start)? {
+                Some(dropped) => {
+                    self.pos -= dropped;
+                    start -= dropped;
+                }
+                None => break,
+            }
         }
-        Ok(&b[start..self.pos])
+        Ok(start..self.pos)
     }
 
     fn raw<const N: usize>(&mut self, what: &str) -> PResult<[u8; N]> {
-        let s = self
-            .bytes
-            .get(self.pos..self.pos + N)
-            .ok_or_else(|| self.eof(what))?;
-        self.pos += N;
+        self.ensure(N, what)?;
         let mut a = [0u8; N];
-        a.copy_from_slice(s);
+        a.copy_from_slice(&self.input.bytes()[self.pos..self.pos + N]);
+        self.pos += N;
         if self.format == Format::Big {
             a.reverse();
         }
@@ -173,7 +210,7 @@ impl<'a> Body<'a> {
     fn value(&mut self, ty: Ty, what: &str) -> PResult<f64> {
         if self.format == Format::Ascii {
             let t = self.token(what)?;
-            return self.ascii_value(t, what);
+            return self.ascii_value(&self.input.bytes()[t], what);
         }
         Ok(match ty {
             Ty::I8 => i8::from_le_bytes(self.raw::<1>(what)?) as f64,
@@ -201,7 +238,8 @@ impl<'a> Body<'a> {
     /// An index or count: a non-negative integer.
     fn index(&mut self, ty: Ty, what: &str) -> PResult<u32> {
         let v = if self.format == Format::Ascii {
-            let t = self.token(what)?;
+            let r = self.token(what)?;
+            let t = &self.input.bytes()[r];
             // Nearly every index and count is plain decimal digits: read them without a
             // float parse (nine digits cannot overflow).
             if t.len() <= 9 && t.iter().all(u8::is_ascii_digit) {
@@ -221,14 +259,21 @@ impl<'a> Body<'a> {
         }
     }
 
+    /// Bytes left after the last element read (whitespace does not count in ASCII).
+    fn trailing(&self) -> usize {
+        let rest = &self.input.bytes()[self.pos.min(self.input.bytes().len())..];
+        match self.format {
+            Format::Ascii => rest.iter().filter(|b| !b.is_ascii_whitespace()).count(),
+            _ => rest.len(),
+        }
+    }
+
     fn skip(&mut self, ty: Ty, what: &str) -> PResult<()> {
         if self.format == Format::Ascii {
             self.token(what)?;
         } else {
+            self.ensure(ty.size(), what)?;
             self.pos += ty.size();
-            if self.pos > self.bytes.len() {
-                return Err(self.eof(what));
-            }
         }
         Ok(())
     }
@@ -368,11 +413,17 @@ struct Gathered {
     ends: Vec<u32>,
     /// The face element's header line, for errors about its indices.
     face_line: usize,
+    /// Streaming: positions only (no colours, normals or texture coordinates), and no room
+    /// reserved for faces, which are handed on one by one.
+    positions_only: bool,
 }
+
+/// Called after each face is read, with the positions, the corners and the face ends so far.
+type FaceHook<'a> = dyn FnMut(&[f32], &mut Vec<u32>, &mut Vec<u32>) -> Result<(), String> + 'a;
 
 /// Reads a PLY file into a scene of one model: header, then each element (vertices, faces,
 /// others skipped), then the model built from what they held.
-pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
+pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<Warning>)> {
     let Header {
         format,
         elements,
@@ -380,12 +431,7 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
         lines: header_lines,
         texture,
     } = parse_header(bytes)?;
-    let mut body = Body {
-        format,
-        bytes: &bytes[body_start..],
-        pos: 0,
-        line: header_lines + 1,
-    };
+    let mut body = Body::new(format, &bytes[body_start..], 0, header_lines + 1);
     let mut warnings = Vec::new();
     let mut data = Gathered {
         face_line: header_lines,
@@ -394,11 +440,109 @@ pub fn read_ply(bytes: &[u8]) -> PResult<(Scene, Vec<String>)> {
     for el in &elements {
         match el.name.as_str() {
             "vertex" => read_vertices(el, &mut body, bytes.len(), &mut data, &mut warnings)?,
-            "face" => read_faces(el, &mut body, bytes.len(), &mut data, &mut warnings)?,
+            "face" => {
+                let keep = &mut |_: &[f32], _: &mut Vec<u32>, _: &mut Vec<u32>| Ok(());
+                read_faces(el, &mut body, bytes.len(), &mut data, &mut warnings, keep)?
+            }
             _ => skip_element(el, &mut body)?,
         }
     }
+    let extra = body.trailing();
+    if extra > 0 {
+        warnings.push(
+            Warning::new(
+                WarningKind::SkippedFaces,
+                format!(
+                    "the PLY body has {extra} more bytes after the elements its header counts \
+                     (faces beyond the header's count?); they were ignored"
+                ),
+            )
+            .at(body.line),
+        );
+    }
     finish(data, texture, warnings)
+}
+
+/// Most bytes a PLY header may take: a file with no `end_header` in its first 16 MiB is not
+/// a PLY file a tool wrote.
+const MAX_HEADER: usize = 16 << 20;
+
+/// Reads the header from a streamed input, reading more until `end_header` comes.
+fn stream_header(input: &mut impl Input) -> PResult<Header> {
+    loop {
+        let err = match parse_header(input.bytes()) {
+            Ok(h) => return Ok(h),
+            Err(e) => e,
+        };
+        let short = err.message.starts_with("unexpected end of file");
+        if !short || input.bytes().len() > MAX_HEADER {
+            return Err(err);
+        }
+        let more = input
+            .more(0)
+            .map_err(|e| ParseError::new(err.line, format!("the file could not be read: {e}")))?;
+        if more.is_none() {
+            return Err(err);
+        }
+    }
+}
+
+/// Tiling's read: hands each triangle of a PLY file (polygons fanned from their first
+/// corner) to `triangle` as its face is read, holding only the vertex positions. The header,
+/// value decoding and element reading are the ordinary reader's; `file_len` bounds the
+/// counts the header announces.
+pub(super) fn stream_ply(
+    mut input: impl Input,
+    file_len: usize,
+    triangle: &mut dyn FnMut([[f32; 3]; 3]),
+) -> PResult<()> {
+    let header = stream_header(&mut input)?;
+    let mut body = Body::new(header.format, input, header.body_start, header.lines + 1);
+    let mut data = Gathered {
+        face_line: header.lines,
+        positions_only: true,
+        ..Gathered::default()
+    };
+    let mut unused = Vec::new();
+    let fan = &mut |coords: &[f32], corners: &mut Vec<u32>, ends: &mut Vec<u32>| {
+        fan_face(coords, corners, triangle)?;
+        corners.clear();
+        ends.clear();
+        Ok(())
+    };
+    for el in &header.elements {
+        match el.name.as_str() {
+            "vertex" => read_vertices(el, &mut body, file_len, &mut data, &mut unused)?,
+            "face" => read_faces(el, &mut body, file_len, &mut data, &mut unused, fan)?,
+            _ => skip_element(el, &mut body)?,
+        }
+    }
+    Ok(())
+}
+
+/// Fans one face (`corners`, vertex indices) into triangles from its first corner.
+fn fan_face(
+    coords: &[f32],
+    corners: &[u32],
+    triangle: &mut dyn FnMut([[f32; 3]; 3]),
+) -> Result<(), String> {
+    let n = coords.len() / 3;
+    let at = |v: u32| {
+        let i = v as usize;
+        coords
+            .get(3 * i..3 * i + 3)
+            .filter(|_| i < n)
+            .map(|p| [p[0], p[1], p[2]])
+            .ok_or_else(|| format!("vertex index {v} is out of range (the file has {n} vertices)"))
+    };
+    if corners.len() < 3 {
+        return Ok(());
+    }
+    let first = at(corners[0])?;
+    for w in corners[1..].windows(2) {
+        triangle([first, at(w[0])?, at(w[1])?]);
+    }
+    Ok(())
 }
 
 /// Where the vertex element's properties are: position, and colour, normal and texture
@@ -411,7 +555,7 @@ struct VertexSlots {
 }
 
 /// The vertex element's layout; a texture coordinate without its partner is warned about.
-fn vertex_slots(el: &Element, warnings: &mut Vec<String>) -> PResult<VertexSlots> {
+fn vertex_slots(el: &Element, warnings: &mut Vec<Warning>) -> PResult<VertexSlots> {
     let slot = |n: &str| {
         el.props
             .iter()
@@ -438,10 +582,16 @@ fn vertex_slots(el: &Element, warnings: &mut Vec<String>) -> PResult<VertexSlots
         for [u, v] in UV_NAMES {
             if let (Some(_), None) | (None, Some(_)) = (slot(u), slot(v)) {
                 let (has, lacks) = if slot(u).is_some() { (u, v) } else { (v, u) };
-                warnings.push(format!(
-                    "the vertex element has '{has}' but no '{lacks}'; \
-                     texture coordinates skipped"
-                ));
+                warnings.push(
+                    Warning::new(
+                        WarningKind::SkippedAttribute,
+                        format!(
+                            "the vertex element has '{has}' but no '{lacks}'; \
+                             texture coordinates skipped"
+                        ),
+                    )
+                    .at(el.line),
+                );
             }
         }
     }
@@ -457,23 +607,29 @@ fn vertex_slots(el: &Element, warnings: &mut Vec<String>) -> PResult<VertexSlots
 /// coordinates its layout has. `file_len` bounds the count the header announces.
 fn read_vertices(
     el: &Element,
-    body: &mut Body<'_>,
+    body: &mut Body<impl Input>,
     file_len: usize,
     data: &mut Gathered,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> PResult<()> {
+    body.start(el);
+    let mut slots = vertex_slots(el, warnings)?;
+    if data.positions_only {
+        (slots.color, slots.normal, slots.texture) = (None, None, None);
+    }
     let VertexSlots {
         position: [x, y, z],
         color,
         normal,
         texture,
-    } = vertex_slots(el, warnings)?;
+    } = slots;
     if el.count > file_len {
         return Err(body.eof("all the vertices the header announces"));
     }
     data.coords.reserve(el.count * 3);
     let mut vals = vec![0f64; el.props.len()];
-    for _ in 0..el.count {
+    for i in 0..el.count {
+        body.record = i;
         for (k, p) in el.props.iter().enumerate() {
             if let Some(ct) = p.list {
                 let n = body.index(ct, "a vertex list count")?;
@@ -531,12 +687,14 @@ fn read_vertices(
 /// (dropped, with a warning, at the first face whose list does not match its corners).
 fn read_faces(
     el: &Element,
-    body: &mut Body<'_>,
+    body: &mut Body<impl Input>,
     file_len: usize,
     data: &mut Gathered,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
+    each_face: &mut FaceHook<'_>,
 ) -> PResult<()> {
     data.face_line = el.line;
+    body.start(el);
     let list = el.props.iter().position(|p| {
         p.list.is_some() && matches!(p.name.as_str(), "vertex_indices" | "vertex_index")
     });
@@ -557,53 +715,81 @@ fn read_faces(
         return Err(body.eof("all the faces the header announces"));
     }
     let Gathered {
+        coords,
         corners,
         ends,
         corner_uv,
+        positions_only,
         ..
     } = data;
-    corners.reserve(el.count * 3);
-    ends.reserve(el.count);
+    if !*positions_only {
+        corners.reserve(el.count * 3);
+        ends.reserve(el.count);
+    }
     for f in 0..el.count {
+        body.record = f;
         let first = corners.len();
-        let mut values = 0;
-        for (k, p) in el.props.iter().enumerate() {
-            match p.list {
-                Some(ct) => {
-                    let n = body.index(ct, "a face's corner count")?;
-                    for _ in 0..n {
-                        if k == list {
-                            corners.push(body.index(p.ty, "a face's vertex index")?);
-                        } else if Some(k) == texture {
-                            let v = body.value(p.ty, "a face's texture coordinate")?;
-                            if let Some(c) = corner_uv {
-                                c.push(v as f32);
-                            }
-                            values += 1;
-                        } else {
-                            body.skip(p.ty, "a face list value")?;
-                        }
-                    }
-                }
-                None => body.skip(p.ty, "a face property")?,
-            }
-        }
+        let values = read_face(el, body, [Some(list), texture], corners, corner_uv)?;
         if corner_uv.is_some() && values != 2 * (corners.len() - first) {
-            warnings.push(format!(
-                "face {f} has {values} 'texcoord' values for {} corners \
-                 (expected u v per corner); texture coordinates skipped",
-                corners.len() - first
-            ));
+            warnings.push(
+                Warning::new(
+                    WarningKind::SkippedAttribute,
+                    format!(
+                        "face {f} has {values} 'texcoord' values for {} corners \
+                         (expected u v per corner); texture coordinates skipped",
+                        corners.len() - first
+                    ),
+                )
+                .at(body.line),
+            );
             *corner_uv = None;
         }
         ends.push(corners.len() as u32);
+        each_face(coords, corners, ends)
+            .map_err(|m| ParseError::new(body.line, format!("face {f}: {m}")))?;
     }
     Ok(())
 }
 
+/// One face record: its corners onto `corners`, its texture coordinates onto `corner_uv`
+/// (while kept); the other properties skipped. `lists` are the slots of the corner list and
+/// the `texcoord` list. Returns how many texture coordinate values it had.
+fn read_face(
+    el: &Element,
+    body: &mut Body<impl Input>,
+    [list, texture]: [Option<usize>; 2],
+    corners: &mut Vec<u32>,
+    corner_uv: &mut Option<Vec<f32>>,
+) -> PResult<usize> {
+    let mut values = 0;
+    for (k, p) in el.props.iter().enumerate() {
+        let Some(ct) = p.list else {
+            body.skip(p.ty, "a face property")?;
+            continue;
+        };
+        let n = body.index(ct, "a face's corner count")?;
+        for _ in 0..n {
+            if Some(k) == list {
+                corners.push(body.index(p.ty, "a face's vertex index")?);
+            } else if Some(k) == texture {
+                let v = body.value(p.ty, "a face's texture coordinate")?;
+                if let Some(c) = corner_uv {
+                    c.push(v as f32);
+                }
+                values += 1;
+            } else {
+                body.skip(p.ty, "a face list value")?;
+            }
+        }
+    }
+    Ok(values)
+}
+
 /// Skips an element the reader does not use, value by value.
-fn skip_element(el: &Element, body: &mut Body<'_>) -> PResult<()> {
-    for _ in 0..el.count {
+fn skip_element(el: &Element, body: &mut Body<impl Input>) -> PResult<()> {
+    body.start(el);
+    for i in 0..el.count {
+        body.record = i;
         for p in &el.props {
             if let Some(ct) = p.list {
                 let n = body.index(ct, "a list count")?;
@@ -634,13 +820,26 @@ fn shared_corner_pairs(per_corner: &[f32], pairs: &mut Vec<f32>) -> Vec<u32> {
     index
 }
 
+/// Per-vertex values (flat, three per vertex) bound through each corner's vertex; none when
+/// the file has none.
+fn per_corner<'a>(values: &'a [f32], corners: &[u32]) -> Bind<'a> {
+    if values.is_empty() {
+        Bind::None
+    } else {
+        Bind::PerCorner {
+            values,
+            index: corners.to_vec(),
+        }
+    }
+}
+
 /// The model built from what the elements held; a file without faces is a point cloud and
 /// gives an empty scene, with a warning.
 fn finish(
     data: Gathered,
     texture: Option<String>,
-    mut warnings: Vec<String>,
-) -> PResult<(Scene, Vec<String>)> {
+    mut warnings: Vec<Warning>,
+) -> PResult<(Scene, Vec<Warning>)> {
     let Gathered {
         coords,
         rgb,
@@ -650,27 +849,17 @@ fn finish(
         corners,
         ends,
         face_line,
+        positions_only: _,
     } = data;
     if ends.is_empty() {
-        warnings.push("the PLY file has no faces (a point cloud); nothing to decimate".into());
+        warnings.push(Warning::new(
+            WarningKind::Note,
+            "the PLY file has no faces (a point cloud); nothing to decimate",
+        ));
         return Ok((Scene::default(), warnings));
     }
-    let colors = if rgb.is_empty() {
-        Bind::None
-    } else {
-        Bind::PerCorner {
-            values: &rgb,
-            index: corners.clone(),
-        }
-    };
-    let normals = if nxyz.is_empty() {
-        Bind::None
-    } else {
-        Bind::PerCorner {
-            values: &nxyz,
-            index: corners.clone(),
-        }
-    };
+    let colors = per_corner(&rgb, &corners);
+    let normals = per_corner(&nxyz, &corners);
     // Per-corner pairs win over per-vertex ones.
     let mut pairs: Vec<f32> = Vec::new();
     let texcoords = match corner_uv {
@@ -791,4 +980,101 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         base += m.positions.len() as u32;
     }
     w.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::source::testing::{sorted_bits, sorted_triangles, OneByte};
+    use super::super::source::Streamed;
+    use super::*;
+
+    /// A PLY of `n` × `n` grid squares as triangles, with a colour and an extra element.
+    fn grid(format: &str, n: usize) -> Vec<u8> {
+        let mut v = Vec::new();
+        let mut f = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                v.push([i as f32 * 0.5, j as f32 * 0.25, (i * j) as f32 * 0.125]);
+            }
+        }
+        for j in 0..n {
+            for i in 0..n {
+                let a = (j * (n + 1) + i) as u32;
+                f.push([a, a + 1, a + n as u32 + 2]);
+                f.push([a, a + n as u32 + 2, a + n as u32 + 1]);
+            }
+        }
+        let mut out = format!(
+            "ply\nformat {format} 1.0\nelement vertex {}\nproperty float x\nproperty float y\n\
+             property float z\nproperty uchar red\nelement face {}\n\
+             property list uchar int vertex_indices\nelement extra 1\nproperty short k\n\
+             end_header\n",
+            v.len(),
+            f.len()
+        )
+        .into_bytes();
+        let big = format == "binary_big_endian";
+        let num = |out: &mut Vec<u8>, x: f32| {
+            out.extend(if big {
+                x.to_be_bytes()
+            } else {
+                x.to_le_bytes()
+            })
+        };
+        for p in &v {
+            if format == "ascii" {
+                out.extend(format!("{} {} {} 7\n", p[0], p[1], p[2]).bytes());
+            } else {
+                p.iter().for_each(|&x| num(&mut out, x));
+                out.push(7);
+            }
+        }
+        for t in &f {
+            if format == "ascii" {
+                out.extend(format!("3 {} {} {}\n", t[0], t[1], t[2]).bytes());
+            } else {
+                out.push(3);
+                for &i in t {
+                    out.extend(if big {
+                        i.to_be_bytes()
+                    } else {
+                        i.to_le_bytes()
+                    });
+                }
+            }
+        }
+        out.extend(if format == "ascii" {
+            &b"5\n"[..]
+        } else {
+            &[0, 5][..]
+        });
+        out
+    }
+
+    #[test]
+    fn the_stream_gives_the_ordinary_reads_triangles_in_every_encoding() {
+        for format in ["ascii", "binary_little_endian", "binary_big_endian"] {
+            let bytes = grid(format, 6);
+            let (scene, _) = read_ply(&bytes).unwrap();
+            assert_eq!(scene.triangle_count(), 72, "{format}");
+            let mut streamed = Vec::new();
+            stream_ply(Streamed::new(OneByte(&bytes)), bytes.len(), &mut |t| {
+                streamed.push(t)
+            })
+            .unwrap();
+            assert_eq!(sorted_bits(streamed), sorted_triangles(&scene), "{format}");
+        }
+    }
+
+    #[test]
+    fn a_stream_cut_short_names_the_element_and_record() {
+        let bytes = grid("binary_little_endian", 2);
+        let cut = &bytes[..bytes.len() - 40];
+        let e = stream_ply(Streamed::new(OneByte(cut)), cut.len(), &mut |_| {}).unwrap_err();
+        assert!(
+            e.message.contains("ends inside face 5 of 8"),
+            "{}",
+            e.message
+        );
+    }
 }

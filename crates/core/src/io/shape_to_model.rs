@@ -8,6 +8,7 @@
 //! at the vertex's first use in the file wins (documented behaviour, never an error).
 //! A polygon's per-face value goes to every triangle cut from it.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::HashMap;
 
 use glam::{Mat4, Vec3};
@@ -71,11 +72,37 @@ fn value3(values: &[f32], i: u32) -> Option<[f32; 3]> {
 
 /// Checks that every index of a binding is in range; a short array drops the attribute with a
 /// warning rather than failing the file.
+/// The warning for a shape's faces with fewer than 3 corners.
+fn degenerate_faces(name: &str, count: usize) -> Warning {
+    Warning::new(
+        WarningKind::SkippedFaces,
+        format!(
+            "{}: {count} face(s) with fewer than 3 corners skipped",
+            label(name)
+        ),
+    )
+    .times(count)
+}
+
+/// A model's name for messages: an unnamed one (a binary STL's empty header) is said so.
+fn label(name: &str) -> &str {
+    match name.trim() {
+        "" => "an unnamed model",
+        _ => name,
+    }
+}
+
+/// An index as the file wrote it: a negative one (read into 32 bits) is shown negative,
+/// not as 4294967295.
+fn signed(index: u32) -> i32 {
+    index as i32
+}
+
 fn check_bind<'a>(
     bind: Bind<'a>,
     what: &str,
     spec_name: &str,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> Bind<'a> {
     let (values, index) = match &bind {
         Bind::None => return bind,
@@ -83,8 +110,13 @@ fn check_bind<'a>(
     };
     let count = (values.len() / 3) as u32;
     if let Some(bad) = index.iter().find(|&&i| i >= count) {
-        warnings.push(format!(
-            "{spec_name}: {what} index {bad} is out of range ({count} values); {what} ignored"
+        warnings.push(Warning::new(
+            WarningKind::SkippedAttribute,
+            format!(
+                "{}: {what} index {} is out of range ({count} values); {what} ignored",
+                label(spec_name),
+                signed(*bad)
+            ),
         ));
         return Bind::None;
     }
@@ -124,7 +156,7 @@ impl Remap {
 }
 
 /// Builds the model; out-of-range coordinate indices and non-finite used coordinates are errors.
-pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> {
+pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<Warning>) -> PResult<Model> {
     let ShapeSpec {
         name,
         transform,
@@ -141,34 +173,127 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         line,
         index_field,
     } = spec;
-    let npoints = coords.len() / 3;
-    if let Some(&bad) = corners.iter().find(|&&c| c as usize >= npoints) {
-        return Err(ParseError::new(
-            line,
-            format!(
-                "index {bad} in '{index_field}' is out of range: the coordinates have {npoints} points"
-            ),
-        ));
-    }
+    check_corners(&corners, coords.len() / 3, line, index_field)?;
     let colors = check_bind(colors, "colour", &name, warnings);
     let normals = check_bind(normals, "normal", &name, warnings);
     let texcoords = texcoords.filter(|t| texcoords_fit(t, corners.len(), &name, warnings));
+    let binds = Binds {
+        colors: &colors,
+        normals: &normals,
+        texcoords: texcoords.as_ref(),
+        diffuse,
+    };
 
-    let mut remap = if texcoords.is_some() || corners.len() * 4 < npoints {
-        Remap::Sparse(HashMap::with_capacity(corners.len()))
+    // Each corner's point index is replaced by its vertex's, in place: no second array.
+    let mut local = corners;
+    let vertices = make_vertices(&mut local, coords, &binds, line, index_field)?;
+    // A shape of triangles only (most files) takes its triangles from the corners as they
+    // are; polygons are cut.
+    let only_triangles = (ends.iter().enumerate()).all(|(f, &end)| end as usize == 3 * (f + 1));
+    let mut faces = cut_faces(&local, &ends, &vertices.positions, &binds, only_triangles);
+    if only_triangles {
+        faces.triangles = into_triples(local);
+    } else {
+        drop(local);
+    }
+    let Faces {
+        mut triangles,
+        colors: fcolors,
+        normals: fnormals,
+        degenerate,
+    } = faces;
+    if degenerate > 0 {
+        warnings.push(degenerate_faces(&name, degenerate));
+    }
+    if !ccw {
+        for t in &mut triangles {
+            t.swap(1, 2);
+        }
+    }
+    let colors = attribute(&colors, fcolors, vertices.colors);
+    let normals = attribute(&normals, fnormals, vertices.normals);
+    Ok(Model {
+        name,
+        transform,
+        positions: vertices.positions,
+        triangles,
+        colors,
+        normals,
+        texcoords: texcoords.map(|_| vertices.texcoords),
+        texture: None,
+        texture_repeat: [true; 2],
+        material: None,
+        diffuse,
+        crease_angle,
+        solid,
+        instance: None,
+    })
+}
+
+/// Every corner indexes one of the `npoints` points.
+fn check_corners(corners: &[u32], npoints: usize, line: usize, index_field: &str) -> PResult<()> {
+    match corners.iter().find(|&&c| c as usize >= npoints) {
+        Some(&bad) => Err(ParseError::new(
+            line,
+            format!(
+                "index {} in '{index_field}' is out of range: the coordinates have {npoints} points",
+                signed(bad)
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The attribute a binding gives: the per-face values or the per-vertex ones.
+fn attribute<T>(bind: &Bind<'_>, per_face: Vec<T>, per_vertex: Vec<T>) -> Option<Attribute<T>> {
+    match bind {
+        Bind::None => None,
+        Bind::PerFace { .. } => Some(Attribute::PerFace(per_face)),
+        Bind::PerCorner { .. } => Some(Attribute::PerVertex(per_vertex)),
+    }
+}
+
+/// A shape's checked bindings, and the colour of corners and faces without one.
+struct Binds<'a, 'b> {
+    colors: &'a Bind<'b>,
+    normals: &'a Bind<'b>,
+    texcoords: Option<&'a TexCoords<'b>>,
+    diffuse: [f32; 3],
+}
+
+/// The vertices of a shape: positions and their per-corner attributes.
+struct Vertices {
+    positions: Vec<Vec3>,
+    colors: Vec<[f32; 3]>,
+    normals: Vec<Vec3>,
+    texcoords: Vec<[f32; 2]>,
+}
+
+/// One vertex per distinct point (per point and texture coordinate pair when there are
+/// texture coordinates); each corner's point index in `local` becomes its vertex's.
+fn make_vertices(
+    local: &mut [u32],
+    coords: &[f32],
+    binds: &Binds<'_, '_>,
+    line: usize,
+    index_field: &str,
+) -> PResult<Vertices> {
+    let npoints = coords.len() / 3;
+    let (colors, normals, texcoords, diffuse) =
+        (binds.colors, binds.normals, binds.texcoords, binds.diffuse);
+    let mut remap = if texcoords.is_some() || local.len() * 4 < npoints {
+        Remap::Sparse(HashMap::with_capacity(local.len()))
     } else {
         Remap::Dense(vec![u32::MAX; npoints])
     };
     let mut positions: Vec<Vec3> = Vec::new();
-    // Each corner's point index is replaced by its vertex's, in place: no second array.
-    let mut local = corners;
     let mut vcolors: Vec<[f32; 3]> = Vec::new();
     let mut vnormals: Vec<Vec3> = Vec::new();
     let mut vtexcoords: Vec<[f32; 2]> = Vec::new();
     for (k, corner) in local.iter_mut().enumerate() {
         let c = *corner;
         // With texture coordinates a vertex is a (point, coordinate pair) pair.
-        let key = match &texcoords {
+        let key = match texcoords {
             Some(t) => u64::from(c) | u64::from(t.index[k]) << 32,
             None => u64::from(c),
         };
@@ -183,7 +308,7 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
                 ));
             }
             positions.push(p);
-            if let Bind::PerCorner { values, index } = &colors {
+            if let Bind::PerCorner { values, index } = colors {
                 vcolors.push(
                     index
                         .get(k)
@@ -191,14 +316,14 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
                         .unwrap_or(diffuse),
                 );
             }
-            if let Bind::PerCorner { values, index } = &normals {
+            if let Bind::PerCorner { values, index } = normals {
                 let n = index
                     .get(k)
                     .and_then(|&i| value3(values, i))
                     .unwrap_or([0.0; 3]);
                 vnormals.push(Vec3::from(n));
             }
-            if let Some(t) = &texcoords {
+            if let Some(t) = texcoords {
                 let i = t.index[k] as usize * 2;
                 vtexcoords.push([t.values[i], t.values[i + 1]]);
             }
@@ -206,9 +331,33 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         *corner = v;
     }
 
-    // A shape of triangles only (most files) takes its triangles from the corners as they
-    // are; polygons are cut below.
-    let only_triangles = (ends.iter().enumerate()).all(|(f, &end)| end as usize == 3 * (f + 1));
+    Ok(Vertices {
+        positions,
+        colors: vcolors,
+        normals: vnormals,
+        texcoords: vtexcoords,
+    })
+}
+
+/// A shape's triangles (polygons cut by ear clipping), their per-face attributes, and how
+/// many faces had fewer than 3 corners.
+struct Faces {
+    triangles: Vec<[u32; 3]>,
+    colors: Vec<[f32; 3]>,
+    normals: Vec<Vec3>,
+    degenerate: usize,
+}
+
+/// Cuts the faces (`ends` over the corners' vertices `local`) into triangles; a shape of
+/// triangles only (`only_triangles`) leaves its triangles to the caller.
+fn cut_faces(
+    local: &[u32],
+    ends: &[u32],
+    positions: &[Vec3],
+    binds: &Binds<'_, '_>,
+    only_triangles: bool,
+) -> Faces {
+    let (colors, normals, diffuse) = (binds.colors, binds.normals, binds.diffuse);
     let mut triangles: Vec<[u32; 3]> = if only_triangles {
         Vec::new()
     } else {
@@ -248,14 +397,14 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         } else {
             triangles.len() - before
         };
-        if let Bind::PerFace { values, index } = &colors {
+        if let Bind::PerFace { values, index } = colors {
             let c = index
                 .get(f)
                 .and_then(|&i| value3(values, i))
                 .unwrap_or(diffuse);
             fcolors.extend(std::iter::repeat_n(c, made));
         }
-        if let Bind::PerFace { values, index } = &normals {
+        if let Bind::PerFace { values, index } = normals {
             let n = index
                 .get(f)
                 .and_then(|&i| value3(values, i))
@@ -264,47 +413,12 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<String>) -> PResult<Model> 
         }
         start = end;
     }
-    if only_triangles {
-        triangles = into_triples(local);
-    } else {
-        drop(local);
-    }
-    if degenerate > 0 {
-        warnings.push(format!(
-            "{name}: {degenerate} face(s) with fewer than 3 corners skipped"
-        ));
-    }
-    if !ccw {
-        for t in &mut triangles {
-            t.swap(1, 2);
-        }
-    }
-    let colors = match colors {
-        Bind::None => None,
-        Bind::PerFace { .. } => Some(Attribute::PerFace(fcolors)),
-        Bind::PerCorner { .. } => Some(Attribute::PerVertex(vcolors)),
-    };
-    let normals = match normals {
-        Bind::None => None,
-        Bind::PerFace { .. } => Some(Attribute::PerFace(fnormals)),
-        Bind::PerCorner { .. } => Some(Attribute::PerVertex(vnormals)),
-    };
-    Ok(Model {
-        name,
-        transform,
-        positions,
+    Faces {
         triangles,
-        colors,
-        normals,
-        texcoords: texcoords.map(|_| vtexcoords),
-        texture: None,
-        texture_repeat: [true; 2],
-        material: None,
-        diffuse,
-        crease_angle,
-        solid,
-        instance: None,
-    })
+        colors: fcolors,
+        normals: fnormals,
+        degenerate,
+    }
 }
 
 /// Flat corner indices, three a triangle, as triangles: the same allocation when its size
@@ -328,7 +442,7 @@ fn texcoords_fit(
     t: &TexCoords<'_>,
     corners: usize,
     name: &str,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> bool {
     let count = t.values.len() / 2;
     let problem = if t.index.len() < corners {
@@ -338,7 +452,8 @@ fn texcoords_fit(
         ))
     } else if let Some(bad) = t.index[..corners].iter().find(|&&i| i as usize >= count) {
         Some(format!(
-            "texture coordinate index {bad} is out of range ({count} pairs)"
+            "texture coordinate index {} is out of range ({count} pairs)",
+            signed(*bad)
         ))
     } else {
         t.index[..corners]
@@ -350,7 +465,10 @@ fn texcoords_fit(
     };
     match problem {
         Some(p) => {
-            warnings.push(format!("{name}: {p}; texture coordinates ignored"));
+            warnings.push(Warning::new(
+                WarningKind::SkippedAttribute,
+                format!("{}: {p}; texture coordinates ignored", label(name)),
+            ));
             false
         }
         None => true,

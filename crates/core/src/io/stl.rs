@@ -9,12 +9,14 @@
 //! Write: binary little-endian, all models in one file, world positions, facet normals
 //! computed, an 80-byte header that does not start with "solid".
 
+use crate::io::warning::{Warning, WarningKind};
 use std::io::Write;
 use std::path::Path;
 
 use glam::{Mat4, Vec3};
 
 use super::shape_to_model::{build, Bind, ShapeSpec};
+use super::source::Input;
 use super::text::shown;
 use super::text::ParseError;
 use super::WriteError;
@@ -61,7 +63,7 @@ pub(crate) fn starts_with_solid(bytes: &[u8]) -> bool {
 }
 
 /// Reads an STL file, binary or ASCII.
-pub(crate) fn read_stl(bytes: &[u8]) -> Result<(Scene, Vec<String>), StlError> {
+pub(crate) fn read_stl(bytes: &[u8]) -> Result<(Scene, Vec<Warning>), StlError> {
     if is_binary(bytes) {
         return read_binary(bytes);
     }
@@ -96,7 +98,7 @@ fn model(
     name: String,
     coords: Vec<f32>,
     line: usize,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> Result<Model, ParseError> {
     let n = coords.len() / 3;
     let spec = ShapeSpec {
@@ -118,7 +120,7 @@ fn model(
     build(spec, warnings)
 }
 
-fn read_binary(bytes: &[u8]) -> Result<(Scene, Vec<String>), StlError> {
+fn read_binary(bytes: &[u8]) -> Result<(Scene, Vec<Warning>), StlError> {
     let mut warnings = Vec::new();
     let body = &bytes[84..];
     if body.is_empty() {
@@ -128,17 +130,11 @@ fn read_binary(bytes: &[u8]) -> Result<(Scene, Vec<String>), StlError> {
     }
     let mut coords = Vec::with_capacity(body.len() / 50 * 9);
     for (r, rec) in body.chunks_exact(50).enumerate() {
-        for k in 3..12 {
-            let b = &rec[k * 4..k * 4 + 4];
-            let v = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
-            if !v.is_finite() {
-                return Err(StlError::Record {
-                    record: r + 1,
-                    message: format!("a vertex coordinate is not finite ({v})"),
-                });
-            }
-            coords.push(v);
-        }
+        let corners = record_corners(rec).map_err(|message| StlError::Record {
+            record: r + 1,
+            message,
+        })?;
+        coords.extend(corners);
     }
     let name = String::from_utf8_lossy(&bytes[..80])
         .trim_matches(|c: char| c == '\0' || c.is_whitespace())
@@ -151,9 +147,80 @@ fn read_binary(bytes: &[u8]) -> Result<(Scene, Vec<String>), StlError> {
     Ok((Scene { models: vec![m] }, warnings))
 }
 
-/// Words of an ASCII STL with line numbers.
-struct Words<'a> {
-    bytes: &'a [u8],
+/// The three corners of a 50-byte binary record (after its normal), all finite.
+fn record_corners(rec: &[u8]) -> Result<[f32; 9], String> {
+    let mut out = [0f32; 9];
+    for (k, o) in out.iter_mut().enumerate() {
+        let b = &rec[12 + k * 4..16 + k * 4];
+        let v = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        if !v.is_finite() {
+            return Err(format!("a vertex coordinate is not finite ({v})"));
+        }
+        *o = v;
+    }
+    Ok(out)
+}
+
+/// Tiling's read: hands each facet of an STL file to `triangle` as it is read, holding
+/// nothing. Binary or ASCII is told as the ordinary reader tells it (the size the header's
+/// count implies, else the `solid` keyword), and both are parsed by its code.
+pub(super) fn stream_stl(
+    mut input: impl Input,
+    file_len: u64,
+    triangle: &mut dyn FnMut([[f32; 3]; 3]),
+) -> Result<(), StlError> {
+    while input.bytes().len() < 84 {
+        if input.more(0).map_err(read_failed)?.is_none() {
+            break;
+        }
+    }
+    let head = input.bytes();
+    let binary = binary_count(head).is_some_and(|n| 84 + 50 * n as u64 == file_len);
+    if !binary {
+        if !starts_with_solid(head) {
+            return Err(StlError::Header(
+                "not an STL file: its size does not match a binary STL's count and it does not start with 'solid'"
+                    .into(),
+            ));
+        }
+        let mut w = Words::new(input);
+        let mut out = Streamed(triangle);
+        return parse_ascii(&mut w, &mut out, &mut Vec::new()).map_err(StlError::Line);
+    }
+    let count = binary_count(head).unwrap_or(0) as usize;
+    let mut pos = 84;
+    for r in 0..count {
+        while input.bytes().len() < pos + 50 {
+            match input.more(pos).map_err(read_failed)? {
+                Some(dropped) => pos -= dropped,
+                None => {
+                    return Err(StlError::Record {
+                        record: r + 1,
+                        message: format!(
+                            "the file ends before the {count} triangles its header counts"
+                        ),
+                    })
+                }
+            }
+        }
+        let c =
+            record_corners(&input.bytes()[pos..pos + 50]).map_err(|message| StlError::Record {
+                record: r + 1,
+                message,
+            })?;
+        triangle([[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]]);
+        pos += 50;
+    }
+    Ok(())
+}
+
+fn read_failed(e: std::io::Error) -> StlError {
+    StlError::Header(format!("the file could not be read: {e}"))
+}
+
+/// Words of an ASCII STL with line numbers, from a file in memory or streamed.
+struct Words<I> {
+    input: I,
     pos: usize,
     /// Line of the scanning position.
     at: usize,
@@ -161,49 +228,81 @@ struct Words<'a> {
     line: usize,
 }
 
-impl<'a> Words<'a> {
-    fn skip_blanks(&mut self) {
-        while let Some(&b) = self.bytes.get(self.pos) {
-            if !b.is_ascii_whitespace() {
-                break;
-            }
-            if b == b'\n' {
-                self.at += 1;
-            }
-            self.pos += 1;
+impl<I: Input> Words<I> {
+    fn new(input: I) -> Self {
+        Self {
+            input,
+            pos: 0,
+            at: 1,
+            line: 1,
         }
     }
 
-    fn next(&mut self) -> Option<&'a [u8]> {
-        self.skip_blanks();
-        let start = self.pos;
-        while self.pos < self.bytes.len() && !self.bytes[self.pos].is_ascii_whitespace() {
-            self.pos += 1;
+    /// More bytes, keeping those from `keep` on (positions move down); false at the end.
+    fn more(&mut self, keep: &mut usize) -> Result<bool, ParseError> {
+        let more = self
+            .input
+            .more(*keep)
+            .map_err(|e| ParseError::new(self.at, format!("the file could not be read: {e}")))?;
+        if let Some(dropped) = more {
+            self.pos -= dropped;
+            *keep -= dropped;
         }
+        Ok(more.is_some())
+    }
+
+    /// Moves on while `take` holds for the next byte, counting lines; returns where it began.
+    fn scan(&mut self, take: impl Fn(u8) -> bool) -> Result<usize, ParseError> {
+        let mut start = self.pos;
+        loop {
+            let b = self.input.bytes();
+            while self.pos < b.len() && take(b[self.pos]) {
+                if b[self.pos] == b'\n' {
+                    self.at += 1;
+                }
+                self.pos += 1;
+            }
+            if self.pos < b.len() || !self.more(&mut start)? {
+                return Ok(start);
+            }
+        }
+    }
+
+    /// The next word, as a range of `input.bytes()`.
+    fn next(&mut self) -> Result<Option<std::ops::Range<usize>>, ParseError> {
+        self.scan(|b| b.is_ascii_whitespace())?;
+        let start = self.scan(|b| !b.is_ascii_whitespace())?;
         if self.pos == start {
-            return None;
+            return Ok(None);
         }
         self.line = self.at;
-        Some(&self.bytes[start..self.pos])
+        Ok(Some(start..self.pos))
+    }
+
+    fn is(&self, r: &std::ops::Range<usize>, word: &[u8]) -> bool {
+        self.input.bytes()[r.clone()].eq_ignore_ascii_case(word)
+    }
+
+    fn shown(&self, r: std::ops::Range<usize>) -> String {
+        shown(&self.input.bytes()[r])
     }
 
     /// The rest of the current line, trimmed (solid names).
-    fn rest_of_line(&mut self) -> String {
-        let start = self.pos;
-        while self.pos < self.bytes.len() && self.bytes[self.pos] != b'\n' {
-            self.pos += 1;
-        }
-        String::from_utf8_lossy(&self.bytes[start..self.pos])
-            .trim()
-            .to_string()
+    fn rest_of_line(&mut self) -> Result<String, ParseError> {
+        let start = self.scan(|b| b != b'\n')?;
+        Ok(
+            String::from_utf8_lossy(&self.input.bytes()[start..self.pos])
+                .trim()
+                .to_string(),
+        )
     }
 
     fn expect(&mut self, word: &str) -> Result<(), ParseError> {
-        match self.next() {
-            Some(w) if w.eq_ignore_ascii_case(word.as_bytes()) => Ok(()),
-            Some(w) => Err(ParseError::new(
+        match self.next()? {
+            Some(r) if self.is(&r, word.as_bytes()) => Ok(()),
+            Some(r) => Err(ParseError::new(
                 self.line,
-                format!("expected '{word}', found '{}'", shown(w)),
+                format!("expected '{word}', found '{}'", self.shown(r)),
             )),
             None => Err(ParseError::new(
                 self.line,
@@ -213,105 +312,181 @@ impl<'a> Words<'a> {
     }
 
     fn number(&mut self, what: &str) -> Result<f32, ParseError> {
-        let w = self.next();
-        super::text::number(w, self.line, what)
+        let r = self.next()?;
+        super::text::number(r.map(|r| &self.input.bytes()[r]), self.line, what)
     }
 }
 
-fn read_ascii(bytes: &[u8]) -> Result<(Scene, Vec<String>), ParseError> {
+/// Where an ASCII STL's facets go: the ordinary read's models, or tiling's callback.
+trait Solids {
+    fn facet(&mut self, corners: [f32; 9]);
+    /// The end of a solid with facets, named `name`, starting on `line`.
+    fn end_solid(
+        &mut self,
+        name: String,
+        line: usize,
+        warnings: &mut Vec<Warning>,
+    ) -> Result<(), ParseError>;
+}
+
+/// The ordinary read: one model per solid.
+#[derive(Default)]
+struct Models {
+    coords: Vec<f32>,
+    models: Vec<Model>,
+}
+
+impl Solids for Models {
+    fn facet(&mut self, corners: [f32; 9]) {
+        self.coords.extend(corners);
+    }
+
+    fn end_solid(
+        &mut self,
+        name: String,
+        line: usize,
+        warnings: &mut Vec<Warning>,
+    ) -> Result<(), ParseError> {
+        let coords = std::mem::take(&mut self.coords);
+        self.models.push(model(name, coords, line, warnings)?);
+        Ok(())
+    }
+}
+
+/// Tiling's read: each facet handed on.
+struct Streamed<'a>(&'a mut dyn FnMut([[f32; 3]; 3]));
+
+impl Solids for Streamed<'_> {
+    fn facet(&mut self, c: [f32; 9]) {
+        (self.0)([[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]]);
+    }
+
+    fn end_solid(&mut self, _: String, _: usize, _: &mut Vec<Warning>) -> Result<(), ParseError> {
+        Ok(())
+    }
+}
+
+fn read_ascii(bytes: &[u8]) -> Result<(Scene, Vec<Warning>), ParseError> {
     let mut warnings = Vec::new();
-    let mut models = Vec::new();
-    let mut w = Words {
-        bytes,
-        pos: 0,
-        at: 1,
-        line: 1,
-    };
-    while let Some(word) = w.next() {
-        if !word.eq_ignore_ascii_case(b"solid") {
+    let mut out = Models::default();
+    parse_ascii(&mut Words::new(bytes), &mut out, &mut warnings)?;
+    Ok((Scene { models: out.models }, warnings))
+}
+
+/// Reads every `solid … endsolid` of an ASCII STL into `out`.
+fn parse_ascii<I: Input>(
+    w: &mut Words<I>,
+    out: &mut impl Solids,
+    warnings: &mut Vec<Warning>,
+) -> Result<(), ParseError> {
+    let mut total = 0usize;
+    while let Some(word) = w.next()? {
+        if !w.is(&word, b"solid") {
             return Err(ParseError::new(
                 w.line,
-                format!("expected 'solid', found '{}'", shown(word)),
+                format!("expected 'solid', found '{}'", w.shown(word)),
             ));
         }
         let solid_line = w.line;
-        let name = w.rest_of_line();
-        let mut coords: Vec<f32> = Vec::new();
+        let name = w.rest_of_line()?;
+        let mut facets = 0usize;
         loop {
-            let Some(word) = w.next() else {
-                warnings.push(format!(
-                    "the STL solid '{name}' (line {solid_line}) has no 'endsolid'"
-                ));
+            let Some(word) = w.next()? else {
+                warnings.push(
+                    Warning::new(
+                        WarningKind::Note,
+                        format!("the STL solid '{name}' (line {solid_line}) has no 'endsolid'"),
+                    )
+                    .at(solid_line),
+                );
                 break;
             };
-            if word.eq_ignore_ascii_case(b"endsolid") {
-                w.rest_of_line();
+            if w.is(&word, b"endsolid") {
+                w.rest_of_line()?;
                 break;
             }
-            if !word.eq_ignore_ascii_case(b"facet") {
+            if !w.is(&word, b"facet") {
                 return Err(ParseError::new(
                     w.line,
-                    format!("expected 'facet' or 'endsolid', found '{}'", shown(word)),
+                    format!("expected 'facet' or 'endsolid', found '{}'", w.shown(word)),
                 ));
             }
-            w.expect("normal")?;
-            for what in [
-                "the facet normal's x",
-                "the facet normal's y",
-                "the facet normal's z",
-            ] {
-                w.number(what)?;
-            }
-            w.expect("outer")?;
-            w.expect("loop")?;
-            let facet_line = w.line;
-            let mut corners = 0;
-            loop {
-                match w.next() {
-                    Some(v) if v.eq_ignore_ascii_case(b"vertex") => {
-                        coords.push(w.number("a vertex's x")?);
-                        coords.push(w.number("a vertex's y")?);
-                        coords.push(w.number("a vertex's z")?);
-                        corners += 1;
-                    }
-                    Some(v) if v.eq_ignore_ascii_case(b"endloop") => break,
-                    Some(v) => {
-                        return Err(ParseError::new(
-                            w.line,
-                            format!("expected 'vertex' or 'endloop', found '{}'", shown(v)),
-                        ))
-                    }
-                    None => {
-                        return Err(ParseError::new(
-                            w.line,
-                            "unexpected end of file inside a facet: expected 'endloop'",
-                        ))
-                    }
-                }
-            }
-            if corners != 3 {
-                return Err(ParseError::new(
-                    facet_line,
-                    format!("a facet has {corners} vertices (STL facets are triangles)"),
-                ));
-            }
-            w.expect("endfacet")?;
+            out.facet(read_facet(w)?);
+            facets += 1;
         }
-        if coords.is_empty() {
-            warnings.push(format!(
-                "the STL solid '{name}' (line {solid_line}) has no facets"
-            ));
+        if facets == 0 {
+            warnings.push(
+                Warning::new(
+                    WarningKind::Note,
+                    format!("the STL solid '{name}' (line {solid_line}) has no facets"),
+                )
+                .at(solid_line),
+            );
             continue;
         }
-        models.push(model(name, coords, solid_line, &mut warnings)?);
+        total += facets;
+        out.end_solid(name, solid_line, warnings)?;
     }
-    if models.is_empty() {
+    if total == 0 {
         return Err(ParseError::new(
             w.line,
             "the STL file has no facets: nothing to read",
         ));
     }
-    Ok((Scene { models }, warnings))
+    Ok(())
+}
+
+/// One facet after its `facet` keyword: normal, `outer loop`, three vertices, `endloop`,
+/// `endfacet`.
+fn read_facet<I: Input>(w: &mut Words<I>) -> Result<[f32; 9], ParseError> {
+    w.expect("normal")?;
+    for what in [
+        "the facet normal's x",
+        "the facet normal's y",
+        "the facet normal's z",
+    ] {
+        w.number(what)?;
+    }
+    w.expect("outer")?;
+    w.expect("loop")?;
+    let facet_line = w.line;
+    let mut corners = 0;
+    let mut out = [0f32; 9];
+    loop {
+        match w.next()? {
+            Some(v) if w.is(&v, b"vertex") => {
+                for k in 0..3 {
+                    let what = ["a vertex's x", "a vertex's y", "a vertex's z"][k];
+                    let value = w.number(what)?;
+                    if let Some(o) = out.get_mut(3 * corners + k) {
+                        *o = value;
+                    }
+                }
+                corners += 1;
+            }
+            Some(v) if w.is(&v, b"endloop") => break,
+            Some(v) => {
+                return Err(ParseError::new(
+                    w.line,
+                    format!("expected 'vertex' or 'endloop', found '{}'", w.shown(v)),
+                ))
+            }
+            None => {
+                return Err(ParseError::new(
+                    w.line,
+                    "unexpected end of file inside a facet: expected 'endloop'",
+                ))
+            }
+        }
+    }
+    if corners != 3 {
+        return Err(ParseError::new(
+            facet_line,
+            format!("a facet has {corners} vertices (STL facets are triangles)"),
+        ));
+    }
+    w.expect("endfacet")?;
+    Ok(out)
 }
 
 /// Writes all models as one binary little-endian STL, via a temporary file and a rename.
@@ -360,5 +535,43 @@ mod tests {
         assert!(starts_with_solid(b"  solid cube\n"));
         assert!(starts_with_solid(b"solid"));
         assert!(!starts_with_solid(b"solidworks binary"));
+    }
+}
+
+#[cfg(test)]
+mod stream_tests {
+    use super::super::source::testing::{sorted_bits, sorted_triangles, OneByte};
+    use super::super::source::Streamed;
+    use super::*;
+
+    #[test]
+    fn the_stream_gives_the_ordinary_reads_facets_ascii_and_binary() {
+        let facet = |x: f32| {
+            format!(
+                "facet normal 0 0 1\nouter loop\nvertex {x} 0 0\nvertex 1 {x} 0\n\
+                 vertex 0 1 {x}\nendloop\nendfacet\n"
+            )
+        };
+        let ascii = format!(
+            "solid a\n{}{}endsolid a\nsolid b\n{}endsolid b\n",
+            facet(0.5),
+            facet(1.5),
+            facet(2.5)
+        );
+        let mut binary = Vec::new();
+        let (read, _) = read_stl(ascii.as_bytes()).unwrap();
+        write_stl_to(&mut binary, &read).unwrap();
+        for bytes in [ascii.as_bytes(), &binary[..]] {
+            let (read, _) = read_stl(bytes).unwrap();
+            assert_eq!(read.triangle_count(), 3);
+            let mut streamed = Vec::new();
+            stream_stl(
+                Streamed::new(OneByte(bytes)),
+                bytes.len() as u64,
+                &mut |t| streamed.push(t),
+            )
+            .unwrap();
+            assert_eq!(sorted_bits(streamed), sorted_triangles(&read));
+        }
     }
 }

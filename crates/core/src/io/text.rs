@@ -121,26 +121,101 @@ impl<'a> Iterator for Lines<'a> {
         if !self.continuation || trim_end(first).last() != Some(&b'\\') {
             return Some((start, Cow::Borrowed(first)));
         }
-        let mut joined = Vec::new();
-        let mut cur = first;
-        loop {
-            let t = trim_end(cur);
-            match t.split_last() {
-                Some((b'\\', body)) => {
-                    joined.extend_from_slice(body);
-                    joined.push(b' ');
-                    match self.physical() {
-                        Some(next) => cur = next,
-                        None => break,
-                    }
-                }
-                _ => {
-                    joined.extend_from_slice(cur);
-                    break;
+        Some((start, Cow::Owned(join_continued(first, || self.physical()))))
+    }
+}
+
+/// A line ending in `\` (`first`) joined with the physical lines `next` gives after it, each
+/// `\` becoming a space, up to the first line that does not end in one.
+fn join_continued<T: AsRef<[u8]>>(first: T, mut next: impl FnMut() -> Option<T>) -> Vec<u8> {
+    let mut joined = Vec::new();
+    let mut cur = first;
+    loop {
+        let t = trim_end(cur.as_ref());
+        match t.split_last() {
+            Some((b'\\', body)) => {
+                joined.extend_from_slice(body);
+                joined.push(b' ');
+                match next() {
+                    Some(n) => cur = n,
+                    None => break,
                 }
             }
+            _ => {
+                joined.extend_from_slice(cur.as_ref());
+                break;
+            }
         }
-        Some((start, Cow::Owned(joined)))
+    }
+    joined
+}
+
+/// [`Lines`] of a file streamed through a buffer (tiling's OBJ read): the same comments and
+/// continuations, each line owned.
+pub(crate) struct StreamedLines<R> {
+    input: R,
+    line: usize,
+    continuation: bool,
+    failed: bool,
+}
+
+impl<R: std::io::BufRead> StreamedLines<R> {
+    pub(crate) fn new(input: R, continuation: bool) -> Self {
+        Self {
+            input,
+            line: 0,
+            continuation,
+            failed: false,
+        }
+    }
+
+    fn physical(&mut self) -> std::io::Result<Option<Vec<u8>>> {
+        let mut text = Vec::new();
+        if self.input.read_until(b'\n', &mut text)? == 0 {
+            return Ok(None);
+        }
+        self.line += 1;
+        if text.last() == Some(&b'\n') {
+            text.pop();
+        }
+        if let Some(hash) = text.iter().position(|&b| b == b'#') {
+            text.truncate(hash);
+        }
+        Ok(Some(text))
+    }
+
+    fn failure(&mut self, e: std::io::Error) -> ParseError {
+        self.failed = true;
+        ParseError::new(self.line + 1, format!("the file could not be read: {e}"))
+    }
+}
+
+impl<R: std::io::BufRead> Iterator for StreamedLines<R> {
+    type Item = PResult<(usize, Vec<u8>)>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.failed {
+            return None;
+        }
+        let first = match self.physical() {
+            Ok(first) => first?,
+            Err(e) => return Some(Err(self.failure(e))),
+        };
+        let start = self.line;
+        if !self.continuation || trim_end(&first).last() != Some(&b'\\') {
+            return Some(Ok((start, first)));
+        }
+        let mut error = None;
+        let joined = join_continued(first, || {
+            self.physical().unwrap_or_else(|e| {
+                error = Some(e);
+                None
+            })
+        });
+        match error {
+            Some(e) => Some(Err(self.failure(e))),
+            None => Some(Ok((start, joined))),
+        }
     }
 }
 

@@ -12,6 +12,7 @@
 //! exist). [`rebase_textures`] and [`rebased`] apply it to every model of a scene; every
 //! place that writes a scene read from another folder calls one of them.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::borrow::Cow;
 use std::path::{Component, Path, PathBuf};
 
@@ -22,6 +23,43 @@ pub fn folder_of(file: &Path) -> &Path {
     match file.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
+    }
+}
+
+/// Drops (with one warning per name) the texture names of a scene read from `path` that
+/// leave its folder: a path from the root, `..` above the folder, a `file:` URI. A model may
+/// not make the program read files elsewhere unless `file_limits::outside_allowed`. `data:`
+/// URIs and other URLs are kept (they are never read as files).
+pub(crate) fn drop_outside_textures(outcome: &mut super::ReadOutcome, path: &Path) {
+    let folder = folder_of(path);
+    let mut said = std::collections::HashSet::new();
+    for m in &mut outcome.scene.models {
+        let Some(name) = m.texture.as_deref() else {
+            continue;
+        };
+        let file_uri = name
+            .get(..5)
+            .is_some_and(|s| s.eq_ignore_ascii_case("file:"));
+        if has_url_scheme(name) && !file_uri {
+            continue;
+        }
+        let plain = name.replace('\\', "/");
+        let refused = match super::file_limits::resolve_reference(folder, &plain) {
+            Err(why) => Some(why),
+            Ok(_) if is_absolute(name) && !super::file_limits::outside_allowed() => Some(format!(
+                "'{name}' is outside the model's folder: only files in it are read"
+            )),
+            Ok(_) => None,
+        };
+        if let Some(why) = refused {
+            if said.insert(name.to_string()) {
+                outcome.warnings.push(Warning::new(
+                    WarningKind::SkippedAttribute,
+                    format!("texture {why}; its models are drawn untextured"),
+                ));
+            }
+            m.texture = None;
+        }
     }
 }
 

@@ -20,6 +20,7 @@
 //! they name no texture (their factors stand alone; a texture would need its image carried
 //! too); every other extension the file uses is named in a warning, and left out.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 use serde_json::{json, Map, Value};
@@ -40,7 +41,7 @@ const CARRIED_EXTENSIONS: [&str; 2] = ["KHR_lights_punctual", "KHR_mesh_quantiza
 /// The fragment `gather` makes, and the warnings for what it leaves out.
 pub struct Gathered {
     pub copied: Option<CopiedThrough>,
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// The fragment for `meshes` (by index in `root`, copied whole), the points and lines
@@ -62,12 +63,192 @@ pub fn gather(
         accessor_of: HashMap::new(),
         view_of: HashMap::new(),
     };
-    let mut carries = Vec::new();
     let mut extras = false;
+    let (out_meshes, morphed) = copied_meshes(list("meshes"), meshes, &mut g)?;
+    // Points and lines, of the meshes the scene's nodes place.
+    let (placing, lined_meshes) = lined(root, scene);
+    let (primitives, lined_materials) =
+        lined_primitives(list("meshes"), &lined_meshes, &mut g, &mut extras)?;
+    let lined_nodes = placed_by(placing, &lined_meshes);
+    let mesh_fields = mesh_fields(list("meshes"), &mut extras);
+    let mut uses = ExtensionUses::default();
+    let (materials, mut warnings) =
+        materials(list("materials"), &lined_materials, &mut uses, &mut extras);
+    let (out_skins, out_animations) = skins_and_animations(root, &mut g)?;
+    let nodes = node_fields(list("nodes"), &mut extras);
+    let (cameras, lights) = cameras_and_lights(root);
+    let asset = pick(&root["asset"], &["copyright", "extras"]);
+    let scene_fields = match scene {
+        Some(s) => pick(&list("scenes")[s], &["name", "extras"]),
+        None => Map::new(),
+    };
+    extras |= asset.contains_key("extras") || scene_fields.contains_key("extras");
+    let carries: Vec<&str> = [
+        ("skins", !out_skins.is_empty()),
+        ("morph targets", morphed),
+        ("animations", !out_animations.is_empty()),
+        ("cameras", !cameras.is_empty()),
+        ("lights", !lights.is_empty()),
+        ("points and lines primitives", !lined_nodes.is_empty()),
+        ("extras", extras),
+    ]
+    .into_iter()
+    .filter_map(|(kind, has)| has.then_some(kind))
+    .collect();
+    warnings.extend(lost_extensions(&uses, list("extensionsUsed")));
+    let required = list("extensionsRequired")
+        .iter()
+        .filter(|e| e.as_str() == Some("KHR_mesh_quantization"))
+        .cloned()
+        .collect();
+    let pieces = Pieces {
+        meshes: out_meshes,
+        primitives,
+        mesh_fields,
+        materials,
+        skins: out_skins,
+        animations: out_animations,
+        cameras,
+        lights,
+        nodes,
+        lined_nodes,
+        asset,
+        scene: scene_fields,
+        required,
+        carries,
+    };
+    Ok(Gathered {
+        copied: pieces.into_copied(g),
+        warnings,
+    })
+}
+
+/// The nodes (of `placing`, node and mesh pairs) that place one of `meshes`.
+fn placed_by(placing: Vec<(usize, usize)>, meshes: &BTreeSet<usize>) -> Vec<usize> {
+    placing
+        .into_iter()
+        .filter(|(_, m)| meshes.contains(m))
+        .map(|(n, _)| n)
+        .collect()
+}
+
+/// What the fragment holds, gathered piece by piece.
+struct Pieces<'a> {
+    meshes: Map<String, Value>,
+    primitives: Map<String, Value>,
+    mesh_fields: Map<String, Value>,
+    materials: Map<String, Value>,
+    skins: Vec<Value>,
+    animations: Vec<Value>,
+    cameras: Vec<Value>,
+    lights: Vec<Value>,
+    nodes: BTreeMap<String, Value>,
+    lined_nodes: Vec<usize>,
+    asset: Map<String, Value>,
+    scene: Map<String, Value>,
+    required: Vec<Value>,
+    carries: Vec<&'a str>,
+}
+
+impl Pieces<'_> {
+    /// The fragment with the accessors, views and data `g` gathered; `None` when the file
+    /// has nothing a `Scene` does not hold.
+    fn into_copied(self, g: Gatherer<'_>) -> Option<CopiedThrough> {
+        let anything = !(self.meshes.is_empty()
+            && self.carries.is_empty()
+            && self.mesh_fields.is_empty()
+            && self.materials.is_empty()
+            && self.nodes.is_empty()
+            && self.asset.is_empty()
+            && self.scene.is_empty());
+        if !anything {
+            return None;
+        }
+        let fragment = json!({
+            "accessors": g.accessors,
+            "bufferViews": g.views,
+            "meshes": self.meshes,
+            "primitives": self.primitives,
+            "mesh_fields": self.mesh_fields,
+            "materials": self.materials,
+            "skins": self.skins,
+            "animations": self.animations,
+            "cameras": self.cameras,
+            "lights": self.lights,
+            "nodes": self.nodes,
+            "lined_nodes": self.lined_nodes,
+            "asset": self.asset,
+            "scene": self.scene,
+            "extensionsRequired": self.required,
+            "carries": self.carries,
+        });
+        Some(CopiedThrough {
+            format: FORMAT,
+            json: fragment.to_string(),
+            data: g.data,
+        })
+    }
+}
+
+/// The skins and animations, their accessors remapped.
+fn skins_and_animations(
+    root: &Value,
+    g: &mut Gatherer<'_>,
+) -> Result<(Vec<Value>, Vec<Value>), String> {
+    let list = |key: &str| root[key].as_array().map(Vec::as_slice).unwrap_or(&[]);
+    let mut out_skins = list("skins").to_vec();
+    for skin in &mut out_skins {
+        g.remap_field(skin, "inverseBindMatrices")?;
+    }
+    let mut out_animations = list("animations").to_vec();
+    for animation in &mut out_animations {
+        for sampler in animation["samplers"].as_array_mut().into_iter().flatten() {
+            g.remap_field(sampler, "input")?;
+            g.remap_field(sampler, "output")?;
+        }
+    }
+    Ok((out_skins, out_animations))
+}
+
+/// The cameras and `KHR_lights_punctual` lights, without extensions.
+fn cameras_and_lights(root: &Value) -> (Vec<Value>, Vec<Value>) {
+    let cameras = root["cameras"].as_array().map(Vec::as_slice).unwrap_or(&[]);
+    let cameras: Vec<Value> = cameras.iter().map(without_extensions).collect();
+    let lights: Vec<Value> = root
+        .pointer("/extensions/KHR_lights_punctual/lights")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .map(without_extensions)
+        .collect();
+    (cameras, lights)
+}
+
+/// A warning naming the extensions the file uses that the output leaves out.
+fn lost_extensions(uses: &ExtensionUses, used: &[Value]) -> Option<Warning> {
+    let lost = uses.lost(used);
+    (!lost.is_empty()).then(|| {
+        Warning::new(
+            WarningKind::SkippedAttribute,
+            format!(
+                "glTF extensions left out of the output: {}",
+                lost.join(", ")
+            ),
+        )
+    })
+}
+
+/// The meshes copied through whole (skinned or morphed), without their materials and
+/// extensions, their accessors remapped; and whether any has morph targets.
+fn copied_meshes(
+    all: &[Value],
+    meshes: &BTreeSet<usize>,
+    g: &mut Gatherer<'_>,
+) -> Result<(Map<String, Value>, bool), String> {
     let mut out_meshes = Map::new();
     let mut morphed = false;
     for &m in meshes {
-        let mut mesh = list("meshes")
+        let mut mesh = all
             .get(m)
             .cloned()
             .ok_or_else(|| format!("mesh {m} is missing"))?;
@@ -85,13 +266,22 @@ pub fn gather(
         }
         out_meshes.insert(m.to_string(), mesh);
     }
-    // Points and lines, of the meshes the scene's nodes place.
-    let (placing, lined_meshes) = lined(root, scene);
+    Ok((out_meshes, morphed))
+}
+
+/// The points and lines primitives of `lined_meshes`, by mesh and index, their accessors
+/// remapped; and the materials they use.
+fn lined_primitives(
+    all: &[Value],
+    lined_meshes: &BTreeSet<usize>,
+    g: &mut Gatherer<'_>,
+    extras: &mut bool,
+) -> Result<(Map<String, Value>, BTreeSet<u64>), String> {
     let mut primitives = Map::new();
     let mut lined_materials = BTreeSet::new();
-    for &m in &lined_meshes {
+    for &m in lined_meshes {
         let mut carried = Map::new();
-        for (i, p) in list("meshes")[m]["primitives"]
+        for (i, p) in all[m]["primitives"]
             .as_array()
             .into_iter()
             .flatten()
@@ -106,20 +296,20 @@ pub fn gather(
             }
             g.primitive(&mut p)?;
             lined_materials.extend(p.get("material").and_then(Value::as_u64));
-            extras |= p.get("extras").is_some();
+            *extras |= p.get("extras").is_some();
             carried.insert(i.to_string(), p);
         }
         primitives.insert(m.to_string(), Value::Object(carried));
     }
-    let lined_nodes: Vec<usize> = placing
-        .into_iter()
-        .filter(|(_, m)| lined_meshes.contains(m))
-        .map(|(n, _)| n)
-        .collect();
+    Ok((primitives, lined_materials))
+}
+
+/// Every mesh's name, extras and its primitives' materials, by mesh.
+fn mesh_fields(all: &[Value], extras: &mut bool) -> Map<String, Value> {
     let mut mesh_fields = Map::new();
-    for (m, mesh) in list("meshes").iter().enumerate() {
+    for (m, mesh) in all.iter().enumerate() {
         let mut fields = pick(mesh, &["name", "extras"]);
-        extras |= fields.contains_key("extras");
+        *extras |= fields.contains_key("extras");
         let materials: Vec<Value> = mesh["primitives"]
             .as_array()
             .into_iter()
@@ -133,34 +323,41 @@ pub fn gather(
             mesh_fields.insert(m.to_string(), Value::Object(fields));
         }
     }
-    let mut uses = ExtensionUses::default();
+    mesh_fields
+}
+
+/// Every material without its textures (said in a warning when points and lines
+/// primitives used them), by index.
+fn materials(
+    all: &[Value],
+    lined_materials: &BTreeSet<u64>,
+    uses: &mut ExtensionUses,
+    extras: &mut bool,
+) -> (Map<String, Value>, Vec<Warning>) {
     let mut warnings = Vec::new();
     let mut materials = Map::new();
-    for (k, material) in list("materials").iter().enumerate() {
-        let (kept, lost_texture) = without_textures(material, &mut uses);
+    for (k, material) in all.iter().enumerate() {
+        let (kept, lost_texture) = without_textures(material, uses);
         if lost_texture && lined_materials.contains(&(k as u64)) {
-            warnings.push(format!(
+            warnings.push(Warning::new(
+            WarningKind::SkippedAttribute,
+            format!(
                 "material {k}'s textures are left out of its points and lines primitives (copied through without them)"
-            ));
+            ),
+        ));
         }
-        extras |= kept.get("extras").is_some();
+        *extras |= kept.get("extras").is_some();
         materials.insert(k.to_string(), kept);
     }
-    let mut out_skins = list("skins").to_vec();
-    for skin in &mut out_skins {
-        g.remap_field(skin, "inverseBindMatrices")?;
-    }
-    let mut out_animations = list("animations").to_vec();
-    for animation in &mut out_animations {
-        for sampler in animation["samplers"].as_array_mut().into_iter().flatten() {
-            g.remap_field(sampler, "input")?;
-            g.remap_field(sampler, "output")?;
-        }
-    }
+    (materials, warnings)
+}
+
+/// The node fields a `Scene` does not hold (skin, weights, camera, extras, light), by node.
+fn node_fields(all: &[Value], extras: &mut bool) -> BTreeMap<String, Value> {
     let mut nodes = BTreeMap::new();
-    for (i, node) in list("nodes").iter().enumerate() {
+    for (i, node) in all.iter().enumerate() {
         let mut fields = pick(node, &["skin", "weights", "camera", "extras"]);
-        extras |= fields.contains_key("extras");
+        *extras |= fields.contains_key("extras");
         if let Some(light) = node.pointer("/extensions/KHR_lights_punctual") {
             fields.insert("extensions".into(), json!({ "KHR_lights_punctual": light }));
         }
@@ -168,83 +365,7 @@ pub fn gather(
             nodes.insert(i.to_string(), Value::Object(fields));
         }
     }
-    let cameras: Vec<Value> = list("cameras").iter().map(without_extensions).collect();
-    let lights: Vec<Value> = root
-        .pointer("/extensions/KHR_lights_punctual/lights")
-        .and_then(Value::as_array)
-        .into_iter()
-        .flatten()
-        .map(without_extensions)
-        .collect();
-    let asset = pick(&root["asset"], &["copyright", "extras"]);
-    let scene_fields = match scene {
-        Some(s) => pick(&list("scenes")[s], &["name", "extras"]),
-        None => Map::new(),
-    };
-    extras |= asset.contains_key("extras") || scene_fields.contains_key("extras");
-    for (kind, has) in [
-        ("skins", !out_skins.is_empty()),
-        ("morph targets", morphed),
-        ("animations", !out_animations.is_empty()),
-        ("cameras", !cameras.is_empty()),
-        ("lights", !lights.is_empty()),
-        ("points and lines primitives", !lined_nodes.is_empty()),
-        ("extras", extras),
-    ] {
-        if has {
-            carries.push(kind);
-        }
-    }
-    let lost = uses.lost(list("extensionsUsed"));
-    if !lost.is_empty() {
-        warnings.push(format!(
-            "glTF extensions left out of the output: {}",
-            lost.join(", ")
-        ));
-    }
-    let anything = !(out_meshes.is_empty()
-        && carries.is_empty()
-        && mesh_fields.is_empty()
-        && materials.is_empty()
-        && nodes.is_empty()
-        && asset.is_empty()
-        && scene_fields.is_empty());
-    if !anything {
-        return Ok(Gathered {
-            copied: None,
-            warnings,
-        });
-    }
-    let required: Vec<&Value> = list("extensionsRequired")
-        .iter()
-        .filter(|e| e.as_str() == Some("KHR_mesh_quantization"))
-        .collect();
-    let fragment = json!({
-        "accessors": g.accessors,
-        "bufferViews": g.views,
-        "meshes": out_meshes,
-        "primitives": primitives,
-        "mesh_fields": mesh_fields,
-        "materials": materials,
-        "skins": out_skins,
-        "animations": out_animations,
-        "cameras": cameras,
-        "lights": lights,
-        "nodes": nodes,
-        "lined_nodes": lined_nodes,
-        "asset": asset,
-        "scene": scene_fields,
-        "extensionsRequired": required,
-        "carries": carries,
-    });
-    Ok(Gathered {
-        copied: Some(CopiedThrough {
-            format: FORMAT,
-            json: fragment.to_string(),
-            data: g.data,
-        }),
-        warnings,
-    })
+    nodes
 }
 
 /// What of a source a glTF fragment carries that other formats leave out ("skins",

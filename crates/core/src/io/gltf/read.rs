@@ -15,6 +15,7 @@
 //! output unchanged (`copy_through`, with cameras, lights and `extras`); one warning names
 //! them.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::path::Path;
 use std::sync::Arc;
@@ -23,8 +24,8 @@ use glam::{Mat4, Quat, Vec3};
 use gltf::mesh::Mode;
 use gltf::Semantic;
 
-use super::accessor::{read_floats, read_floats_prefix, read_indices, Buffers};
-use crate::io::{data_uri, texture_path, ReadError, ReadOutcome, MAX_MODELS, MAX_TRIANGLES};
+use super::accessor::{check_attribute, read_floats, read_floats_prefix, read_indices, Buffers};
+use crate::io::{data_uri, file_limits, texture_path, ReadError, ReadOutcome, MAX_MODELS};
 use crate::mesh::{Attribute, Instance, LocalTransform, Model, Node, NodeTree, Scene};
 
 /// Most node visits one file may take (a node listed as the child of several parents is
@@ -38,15 +39,10 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         file: path.to_path_buf(),
         message,
     };
-    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| match e {
-        gltf::Error::Deserialize(j) => ReadError::Syntax {
-            file: path.to_path_buf(),
-            line: j.line().max(1),
-            message: format!("not valid glTF JSON: {j}"),
-        },
-        e => fail(describe(&e)),
-    })?;
+    let gltf = parse_document(bytes, path)?;
     validate(&gltf.document).map_err(fail)?;
+    check_hierarchy(&gltf.document).map_err(fail)?;
+    check_image_uris(&gltf.document, texture_path::folder_of(path)).map_err(fail)?;
     let folder = texture_path::folder_of(path);
     let buffers = load_buffers(&gltf, folder).map_err(fail)?;
     let document = &gltf.document;
@@ -74,12 +70,19 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         lines: Vec::new(),
         triangles: 0,
         visits: 0,
-        node_count: gltf.document.nodes().count(),
+        quantized: document
+            .extensions_used()
+            .any(|e| e == "KHR_mesh_quantization"),
+        // The file and the buffer files it loads (a GLB's own chunk counted once).
+        max_triangles: file_limits::max_instanced_triangles(
+            (bytes.len() + buffers.total_len())
+                .saturating_sub(gltf.blob.as_ref().map_or(0, Vec::len)),
+        ),
     };
     match scene {
         Some(scene) => {
             for node in scene.nodes() {
-                reader.node(&node, Mat4::IDENTITY, 0).map_err(fail)?;
+                reader.node(&node).map_err(fail)?;
             }
         }
         // No scene: every mesh once, where it stands.
@@ -96,46 +99,164 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         lines,
         ..
     } = reader;
-    if !lines.is_empty() {
-        let shown: Vec<&str> = lines.iter().take(3).map(String::as_str).collect();
-        let more = match lines.len() {
-            n if n > 3 => format!(" and {} more", n - 3),
-            _ => String::new(),
-        };
-        let fate = match carried {
-            true => "are copied through unchanged to a glTF output, not decimated nor shown",
-            false => "are left out: the scene holds triangles",
-        };
-        warnings.push(format!(
-            "points and lines primitives {fate} ({}{more})",
-            shown.join(", ")
-        ));
+    if let Some(w) = lines_warning(&lines, carried) {
+        warnings.push(w);
     }
     warnings.extend(carried_warnings);
-    for mesh in document.meshes() {
-        let (m, name) = (mesh.index(), mesh.name().unwrap_or(""));
-        let Some(why) = copied.get(&m) else {
-            continue;
-        };
-        warnings.push(format!(
-            "mesh {m} '{name}' {why}: copied through unchanged to a glTF output, not decimated (shown {})",
-            match *why {
-                SKINNED => "in its rest pose",
-                _ => "in its base shape",
-            }
-        ));
-    }
-    if document.animations().count() > 0 {
-        warnings.push(
-            "glTF animations are shown at rest; a glTF output carries them unchanged".to_string(),
-        );
-    }
+    copied_warnings(document, &copied, &mut warnings);
     Ok(ReadOutcome {
         scene: Scene { models },
         warnings,
         progressive: None,
         material_libraries: Vec::new(),
     })
+}
+
+/// Checks a GLB container (glTF 2.0, 4.4): version 2, a total length equal to the file's,
+/// a JSON chunk first, then at most a BIN chunk, each inside the file; the error gives the
+/// byte offset of the field at fault.
+fn check_glb(bytes: &[u8]) -> Result<(), (usize, String)> {
+    let word = |at: usize| {
+        bytes
+            .get(at..at + 4)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize)
+    };
+    let (Some(version), Some(length)) = (word(4), word(8)) else {
+        return Err((
+            0,
+            format!(
+                "the 12-byte GLB header is cut short ({} bytes)",
+                bytes.len()
+            ),
+        ));
+    };
+    if version != 2 {
+        return Err((4, format!("GLB version {version}: only version 2 is read")));
+    }
+    if length != bytes.len() {
+        return Err((
+            8,
+            format!(
+                "the GLB header says {length} bytes, the file has {}",
+                bytes.len()
+            ),
+        ));
+    }
+    let mut at = 12;
+    let mut chunk = 0;
+    while at < bytes.len() {
+        let (Some(len), Some(kind)) = (word(at), word(at + 4)) else {
+            return Err((at, "a GLB chunk header is cut short".to_string()));
+        };
+        // The first chunk is the JSON; later ones are BIN or of types readers ignore.
+        if chunk == 0 && kind != 0x4E4F_534A {
+            return Err((
+                at + 4,
+                "the first GLB chunk is not the JSON chunk".to_string(),
+            ));
+        }
+        let end = at + 8 + len;
+        if end > bytes.len() || !len.is_multiple_of(4) {
+            return Err((
+                at,
+                format!(
+                    "GLB chunk {chunk} says {len} bytes: not a multiple of 4 or past the end \
+                     of the file ({} bytes)",
+                    bytes.len()
+                ),
+            ));
+        }
+        at = end;
+        chunk += 1;
+    }
+    if chunk == 0 {
+        return Err((12, "the GLB file has no JSON chunk".to_string()));
+    }
+    Ok(())
+}
+
+/// The file's JSON (or GLB container, its header checked) parsed, not yet validated.
+fn parse_document(bytes: &[u8], path: &Path) -> Result<gltf::Gltf, ReadError> {
+    if super::is_glb(bytes) {
+        check_glb(bytes).map_err(|(offset, message)| ReadError::Binary {
+            file: path.to_path_buf(),
+            offset,
+            message,
+        })?;
+    }
+    let fail = |message: String| ReadError::Unsupported {
+        file: path.to_path_buf(),
+        message,
+    };
+    gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| match e {
+        gltf::Error::Deserialize(j) => ReadError::Syntax {
+            file: path.to_path_buf(),
+            line: j.line().max(1),
+            message: format!("not valid glTF JSON: {j}"),
+        },
+        e => fail(describe(&e)),
+    })
+}
+
+/// One warning for all the points and lines primitives met (`lines`): copied through to a
+/// glTF output when the scene keeps its tree (`carried`), left out otherwise.
+fn lines_warning(lines: &[String], carried: bool) -> Option<Warning> {
+    if lines.is_empty() {
+        return None;
+    }
+    let shown: Vec<&str> = lines.iter().take(3).map(String::as_str).collect();
+    let more = match lines.len() {
+        n if n > 3 => format!(" and {} more", n - 3),
+        _ => String::new(),
+    };
+    let fate = match carried {
+        true => "are copied through unchanged to a glTF output, not decimated nor shown",
+        false => "are left out: the scene holds triangles",
+    };
+    let kind = match carried {
+        true => WarningKind::Note,
+        false => WarningKind::SkippedNode,
+    };
+    Some(
+        Warning::new(
+            kind,
+            format!(
+                "points and lines primitives {fate} ({}{more})",
+                shown.join(", ")
+            ),
+        )
+        .times(lines.len()),
+    )
+}
+
+/// A note for each mesh copied through (skinned or morphed), and one for animations.
+fn copied_warnings(
+    document: &gltf::Document,
+    copied: &BTreeMap<usize, &'static str>,
+    warnings: &mut Vec<Warning>,
+) {
+    for mesh in document.meshes() {
+        let (m, name) = (mesh.index(), mesh.name().unwrap_or(""));
+        let Some(why) = copied.get(&m) else {
+            continue;
+        };
+        warnings.push(Warning::new(
+            WarningKind::Note,
+            format!(
+                "mesh {m} '{name}' {why}: copied through unchanged to a glTF output, not decimated (shown {})",
+                match *why {
+                    SKINNED => "in its rest pose",
+                    _ => "in its base shape",
+                }
+            ),
+        ));
+    }
+    if document.animations().count() > 0 {
+        warnings.push(Warning::new(
+            WarningKind::Note,
+            "glTF animations are shown at rest; a glTF output carries them unchanged",
+        ));
+    }
 }
 
 /// The gltf crate's checks (every index in range, required fields present), less two it
@@ -145,6 +266,12 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
 fn validate(document: &gltf::Document) -> Result<(), String> {
     use gltf::json::validation::{Error, Validate};
     let root = document.as_json();
+    let version = &root.asset.version;
+    if !version.starts_with("2.") {
+        return Err(format!(
+            "asset.version: '{version}' is not 2.x: only glTF 2.0 files are read"
+        ));
+    }
     // gltf-json 1.4 looks up POSITION's accessor unchecked: check the indices first.
     let n = root.accessors.len();
     for (m, mesh) in root.meshes.iter().enumerate() {
@@ -172,6 +299,71 @@ fn validate(document: &gltf::Document) -> Result<(), String> {
         true => Ok(()),
         false => Err(describe(&gltf::Error::Validation(errors))),
     }
+}
+
+/// Refuses image URIs that name files outside the model's folder (a path from the root,
+/// `..` above it, a `file:` URI): the viewer and a glTF output would read them. `data:` URIs
+/// and other URLs are never read as files.
+fn check_image_uris(document: &gltf::Document, folder: &Path) -> Result<(), String> {
+    for image in document.images() {
+        let gltf::image::Source::Uri { uri, .. } = image.source() else {
+            continue;
+        };
+        let file_uri = uri
+            .get(..5)
+            .is_some_and(|s| s.eq_ignore_ascii_case("file:"));
+        if texture_path::has_url_scheme(uri) && !file_uri {
+            continue;
+        }
+        let name = String::from_utf8_lossy(&data_uri::percent_decode(uri)).into_owned();
+        file_limits::resolve_reference(folder, &name)
+            .map_err(|e| format!("images[{}].uri: {e}", image.index()))?;
+    }
+    Ok(())
+}
+
+/// Refuses a node hierarchy that is not a set of trees (glTF 2.0, 3.5.3): a node that is
+/// the child of two nodes (or listed twice by one), or a node that is its own ancestor. A
+/// node graph that shares children could expand exponentially (2^24 instances from 24
+/// levels); a cycle never ends.
+fn check_hierarchy(document: &gltf::Document) -> Result<(), String> {
+    const NONE: usize = usize::MAX;
+    let mut parent = vec![NONE; document.nodes().count()];
+    for node in document.nodes() {
+        for child in node.children() {
+            let c = child.index();
+            if parent[c] != NONE {
+                return Err(format!(
+                    "nodes[{c}] is a child of nodes[{}] and of nodes[{}]: a glTF node has one \
+                     parent at most",
+                    parent[c],
+                    node.index()
+                ));
+            }
+            parent[c] = node.index();
+        }
+    }
+    // Up each node's parents until a node already done: one on the path means a cycle.
+    let (todo, on_path, done) = (0u8, 1u8, 2u8);
+    let mut state = vec![todo; parent.len()];
+    let mut path = Vec::new();
+    for start in 0..parent.len() {
+        let mut v = start;
+        while v != NONE && state[v] == todo {
+            state[v] = on_path;
+            path.push(v);
+            v = parent[v];
+        }
+        if v != NONE && state[v] == on_path {
+            return Err(format!(
+                "nodes[{v}] is its own ancestor: the node hierarchy has a cycle"
+            ));
+        }
+        for p in path.drain(..) {
+            state[p] = done;
+        }
+    }
+    Ok(())
 }
 
 /// A gltf crate error said for a user: validation errors list what is wrong and where.
@@ -207,9 +399,10 @@ fn load_buffers(gltf: &gltf::Gltf, folder: &Path) -> Result<Buffers, String> {
                 Some(d) => d.map_err(|e| format!("buffer {i}: {e}"))?.bytes,
                 None => {
                     let name = String::from_utf8_lossy(&data_uri::percent_decode(uri)).into_owned();
-                    let file = folder.join(&name);
-                    std::fs::read(&file)
-                        .map_err(|e| format!("buffer {i}: {}: {e}", file.display()))?
+                    let file = file_limits::resolve_reference(folder, &name)
+                        .map_err(|e| format!("buffers[{i}].uri: {e}"))?;
+                    file_limits::read_regular(&file)
+                        .map_err(|e| format!("buffers[{i}].uri: {}: {e}", file.display()))?
                 }
             },
         };
@@ -234,44 +427,50 @@ struct Reader<'b> {
     copied: &'b BTreeMap<usize, &'static str>,
     primitives: HashMap<(usize, usize), Option<Model>>,
     models: Vec<Model>,
-    warnings: Vec<String>,
+    warnings: Vec<Warning>,
     /// The kinds of warning given (one each), the points and lines primitives met (said
     /// in one warning), and the triangles placed so far.
     warned: HashSet<&'static str>,
     lines: Vec<String>,
     triangles: usize,
-    /// Nodes visited so far, and the file's node count (a sound hierarchy's deepest path).
+    /// Nodes visited so far, and the most triangles the scene may expand to.
     visits: usize,
-    node_count: usize,
+    max_triangles: usize,
+    /// The file uses `KHR_mesh_quantization`: attributes may be integers.
+    quantized: bool,
 }
 
 impl Reader<'_> {
+    /// A texture or attribute left out, said once per `key`.
     fn warn_once(&mut self, key: &'static str, message: String) {
         if self.warned.insert(key) {
-            self.warnings.push(message);
+            self.warnings
+                .push(Warning::new(WarningKind::SkippedAttribute, message));
         }
     }
 
-    fn node(&mut self, node: &gltf::Node<'_>, parent: Mat4, depth: usize) -> Result<(), String> {
-        self.visits += 1;
-        if self.visits > MAX_NODE_VISITS {
-            return Err(format!(
-                "the node hierarchy expands to more than {MAX_NODE_VISITS} nodes (a node with several parents?)"
-            ));
-        }
-        // A path longer than the node count repeats a node: the hierarchy has a cycle.
-        if depth > self.node_count {
-            return Err(format!("node {} is its own ancestor", node.index()));
-        }
-        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
-        if !world.is_finite() {
-            return Err(format!("node {}'s transform is not finite", node.index()));
-        }
-        if let Some(mesh) = node.mesh() {
-            self.mesh(&mesh, world, Some(node))?;
-        }
-        for child in node.children() {
-            self.node(&child, world, depth + 1)?;
+    /// Places `root` and every node below it, depth first in file order: a node's mesh,
+    /// then its children's. Iterative, so a hierarchy 100,000 deep takes no stack; the
+    /// hierarchy is a set of trees (`check_hierarchy`), so each node is met once.
+    fn node(&mut self, root: &gltf::Node<'_>) -> Result<(), String> {
+        let mut stack = vec![(root.clone(), Mat4::IDENTITY)];
+        while let Some((node, parent)) = stack.pop() {
+            self.visits += 1;
+            if self.visits > MAX_NODE_VISITS {
+                return Err(format!(
+                    "the scenes place more than {MAX_NODE_VISITS} nodes (roots listed by several scenes?)"
+                ));
+            }
+            let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+            if !world.is_finite() {
+                return Err(format!("node {}'s transform is not finite", node.index()));
+            }
+            if let Some(mesh) = node.mesh() {
+                self.mesh(&mesh, world, Some(&node))?;
+            }
+            let first = stack.len();
+            stack.extend(node.children().map(|c| (c, world)));
+            stack[first..].reverse();
         }
         Ok(())
     }
@@ -297,9 +496,12 @@ impl Reader<'_> {
                 continue;
             };
             self.triangles += local.triangles.len();
-            if self.models.len() >= MAX_MODELS || self.triangles > MAX_TRIANGLES {
+            if self.models.len() >= MAX_MODELS || self.triangles > self.max_triangles {
                 return Err(format!(
-                    "the scene expands to more than {MAX_MODELS} models or {MAX_TRIANGLES} triangles (meshes used by many nodes?)"
+                    "the scene expands to more than {MAX_MODELS} models or {} triangles \
+                     (meshes used by many nodes?); {}",
+                    self.max_triangles,
+                    file_limits::EXPANSION_HINT
                 ));
             }
             let base = node_name
@@ -345,6 +547,18 @@ impl Reader<'_> {
         let Some(pos) = p.get(&Semantic::Positions) else {
             return Err("the primitive has no POSITION attribute".into());
         };
+        let path = |what: &str| {
+            format!(
+                "meshes[{}].primitives[{}].attributes.{what}",
+                mesh.index(),
+                p.index()
+            )
+        };
+        check_attribute(&pos, "POSITION", self.quantized, &path("POSITION"))?;
+        for (semantic, a) in p.attributes() {
+            let name = semantic.to_string();
+            check_attribute(&a, &name, self.quantized, &path(&name))?;
+        }
         let positions: Vec<Vec3> = read_floats::<3>(&pos, self.buffers)?
             .into_iter()
             .map(Vec3::from)
@@ -353,19 +567,7 @@ impl Reader<'_> {
             return Err(format!("POSITION {k} is not a finite number"));
         }
         let n = positions.len();
-        let corners = match p.indices() {
-            Some(a) => {
-                let idx = read_indices(&a, self.buffers)?;
-                if let Some((k, &i)) = idx.iter().enumerate().find(|(_, &i)| i as usize >= n) {
-                    return Err(format!(
-                        "index {k} is {i}, but there are {n} vertices (accessor {})",
-                        a.index()
-                    ));
-                }
-                idx
-            }
-            None => (0..n as u32).collect(),
-        };
+        let corners = read_corners(p, n, self.buffers)?;
         // Points and lines, checked above, go to a glTF output as they are (`copy_through`).
         if let Some(kind) = points_or_lines(mode) {
             self.lines.push(format!(
@@ -376,42 +578,12 @@ impl Reader<'_> {
             return Ok(None);
         }
         let triangles = assemble(mode, &corners);
-        let same_count = |what: &str, len: usize| {
-            if len == n {
-                Ok(())
-            } else {
-                Err(format!("{what} has {len} values for {n} vertices"))
-            }
-        };
         let mut model = Model {
             positions,
             triangles,
             ..Model::default()
         };
-        if let Some(a) = p.get(&Semantic::Normals) {
-            let normals = read_floats::<3>(&a, self.buffers)?;
-            same_count("NORMAL", normals.len())?;
-            all_finite("NORMAL", &normals)?;
-            model.normals = Some(Attribute::PerVertex(
-                normals.into_iter().map(Vec3::from).collect(),
-            ));
-        }
-        if let Some(a) = p.get(&Semantic::TexCoords(0)) {
-            let uv = read_floats::<2>(&a, self.buffers)?;
-            same_count("TEXCOORD_0", uv.len())?;
-            all_finite("TEXCOORD_0", &uv)?;
-            model.texcoords = Some(uv.into_iter().map(|[u, v]| [u, 1.0 - v]).collect());
-        }
-        if let Some(a) = p.get(&Semantic::Colors(0)) {
-            let c = read_floats_prefix::<3>(&a, self.buffers)?;
-            same_count("COLOR_0", c.len())?;
-            all_finite("COLOR_0", &c)?;
-            let c = c
-                .into_iter()
-                .map(|c| c.map(|x| x.clamp(0.0, 1.0)))
-                .collect();
-            model.colors = Some(Attribute::PerVertex(c));
-        }
+        read_attributes(p, self.buffers, &mut model)?;
         self.material(&p.material(), &mut model);
         if !model.diffuse.iter().all(|c| c.is_finite()) {
             return Err("the material's baseColorFactor is not finite".into());
@@ -502,6 +674,64 @@ fn copied_meshes(document: &gltf::Document) -> BTreeMap<usize, &'static str> {
 }
 
 /// Every node of the file at its index (name, local transform as given, children, mesh),
+/// A primitive's corners: its indices, each checked against the `n` vertices, or the
+/// vertices in order.
+fn read_corners(p: &gltf::Primitive<'_>, n: usize, buffers: &Buffers) -> Result<Vec<u32>, String> {
+    let Some(a) = p.indices() else {
+        return Ok((0..n as u32).collect());
+    };
+    let idx = read_indices(&a, buffers)?;
+    if let Some((k, &i)) = idx.iter().enumerate().find(|(_, &i)| i as usize >= n) {
+        return Err(format!(
+            "index {k} is {i}, but there are {n} vertices (accessor {})",
+            a.index()
+        ));
+    }
+    Ok(idx)
+}
+
+/// A primitive's normals, first texture coordinates and first colours, one per vertex of
+/// `model`, all finite.
+fn read_attributes(
+    p: &gltf::Primitive<'_>,
+    buffers: &Buffers,
+    model: &mut Model,
+) -> Result<(), String> {
+    let n = model.positions.len();
+    let same_count = |what: &str, len: usize| {
+        if len == n {
+            Ok(())
+        } else {
+            Err(format!("{what} has {len} values for {n} vertices"))
+        }
+    };
+    if let Some(a) = p.get(&Semantic::Normals) {
+        let normals = read_floats::<3>(&a, buffers)?;
+        same_count("NORMAL", normals.len())?;
+        all_finite("NORMAL", &normals)?;
+        model.normals = Some(Attribute::PerVertex(
+            normals.into_iter().map(Vec3::from).collect(),
+        ));
+    }
+    if let Some(a) = p.get(&Semantic::TexCoords(0)) {
+        let uv = read_floats::<2>(&a, buffers)?;
+        same_count("TEXCOORD_0", uv.len())?;
+        all_finite("TEXCOORD_0", &uv)?;
+        model.texcoords = Some(uv.into_iter().map(|[u, v]| [u, 1.0 - v]).collect());
+    }
+    if let Some(a) = p.get(&Semantic::Colors(0)) {
+        let c = read_floats_prefix::<3>(&a, buffers)?;
+        same_count("COLOR_0", c.len())?;
+        all_finite("COLOR_0", &c)?;
+        let c = c
+            .into_iter()
+            .map(|c| c.map(|x| x.clamp(0.0, 1.0)))
+            .collect();
+        model.colors = Some(Attribute::PerVertex(c));
+    }
+    Ok(())
+}
+
 /// `scene`'s roots, and the copy-through fragment (the `copied` meshes and all else a
 /// `Scene` does not hold, read from the file's JSON `bytes`); the warnings for what even a
 /// glTF output leaves out.
@@ -511,7 +741,7 @@ fn node_tree(
     scene: &gltf::Scene<'_>,
     buffers: &Buffers,
     copied: &BTreeMap<usize, &'static str>,
-) -> Result<(NodeTree, Vec<String>), String> {
+) -> Result<(NodeTree, Vec<Warning>), String> {
     let nodes = document
         .nodes()
         .map(|n| Node {

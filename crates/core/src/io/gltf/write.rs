@@ -445,35 +445,61 @@ impl<'s> Builder<'s> {
                 (m, self.material(m, from))
             })
             .collect();
+        let key = parts_key(source, &with_materials);
+        if let Some(mesh) = self.held_mesh(key, &with_materials) {
+            return Some(mesh);
+        }
+        let mut mesh = self.mesh_json(source, &parts, &with_materials, spliced);
+        if let Some(s) = spliced {
+            self.add_lines(&mut mesh, &parts, lines, s);
+            for (key, v) in s.mesh_fields(source) {
+                mesh[key.as_str()] = v;
+            }
+        }
+        self.meshes.push(mesh);
+        let index = self.meshes.len() - 1;
+        self.source_mesh_of
+            .entry(key)
+            .or_default()
+            .push((index, with_materials));
+        Some(index)
+    }
+
+    /// The mesh written before for the same source and the same models, if any.
+    fn held_mesh(&self, key: (usize, u64), with_materials: &Parts<'s>) -> Option<usize> {
         let same = |a: &[(&Model, usize)], b: &[(&Model, usize)]| {
             a.len() == b.len()
                 && a.iter()
                     .zip(b)
                     .all(|((x, i), (y, j))| i == j && same_geometry(x, y))
         };
-        let mut h = std::collections::hash_map::DefaultHasher::new();
-        for &(m, material) in &with_materials {
-            geometry_hash(m, material).hash(&mut h);
-        }
-        let key = (source, h.finish());
-        if let Some(list) = self.source_mesh_of.get(&key) {
-            if let Some((mesh, _)) = list.iter().find(|(_, held)| same(held, &with_materials)) {
-                return Some(*mesh);
-            }
-        }
+        let list = self.source_mesh_of.get(&key)?;
+        let (mesh, _) = list.iter().find(|(_, held)| same(held, with_materials))?;
+        Some(*mesh)
+    }
+
+    /// A new mesh's JSON for `parts` (by source primitive): the source's primitives copied
+    /// through when every model is a copied one, else primitives written from the models.
+    fn mesh_json(
+        &mut self,
+        source: usize,
+        parts: &[(usize, &'s Model)],
+        with_materials: &Parts<'s>,
+        spliced: Option<&Spliced>,
+    ) -> Value {
         let copied = parts
             .iter()
             .all(|(_, m)| m.instance.as_ref().is_some_and(|i| i.copied));
         let verbatim = spliced
             .filter(|_| copied && !parts.is_empty())
             .and_then(|s| s.mesh(source));
-        let mut mesh = match verbatim {
+        match verbatim {
             Some(mut mesh) => {
                 // The source's primitives that were read, each with its model's material.
                 let prims = mesh["primitives"].as_array().cloned().unwrap_or_default();
                 let kept: Vec<Value> = parts
                     .iter()
-                    .zip(&with_materials)
+                    .zip(with_materials)
                     .filter_map(|(&(p, _), &(_, material))| {
                         let mut prim = prims.get(p)?.clone();
                         prim["material"] = json!(material);
@@ -490,20 +516,7 @@ impl<'s> Builder<'s> {
                     .collect();
                 json!({ "primitives": prims })
             }
-        };
-        if let Some(s) = spliced {
-            self.add_lines(&mut mesh, &parts, lines, s);
-            for (key, v) in s.mesh_fields(source) {
-                mesh[key.as_str()] = v;
-            }
         }
-        self.meshes.push(mesh);
-        let index = self.meshes.len() - 1;
-        self.source_mesh_of
-            .entry(key)
-            .or_default()
-            .push((index, with_materials));
-        Some(index)
     }
 
     /// Puts the source's points and lines primitives `lines` into `mesh` at their places
@@ -836,4 +849,14 @@ fn same_geometry(a: &Model, b: &Model) -> bool {
         && a.normals == b.normals
         && a.texcoords == b.texcoords
         && a.colors == b.colors
+}
+
+/// The key meshes written for a source are held under: the source and a hash of the
+/// models' geometry and materials.
+fn parts_key(source: usize, with_materials: &Parts<'_>) -> (usize, u64) {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    for &(m, material) in with_materials {
+        geometry_hash(m, material).hash(&mut h);
+    }
+    (source, h.finish())
 }

@@ -26,7 +26,10 @@ impl Parser<'_> {
             .as_deref()
             .and_then(Path::parent)
             .unwrap_or(Path::new(""));
-        let path = folder.join(name);
+        let path = match crate::io::file_limits::resolve_reference(folder, name) {
+            Ok(path) => path,
+            Err(why) => return fail(format!("'File' name {why}")),
+        };
         let canonical = match path.canonicalize() {
             Ok(c) => c,
             Err(e) => return fail(format!("cannot read included file {}: {e}", path.display())),
@@ -50,7 +53,7 @@ impl Parser<'_> {
                 path.display()
             ));
         }
-        let bytes = match std::fs::read(&canonical) {
+        let bytes = match crate::io::file_limits::read_regular(&canonical) {
             Ok(b) => b,
             Err(e) => return fail(format!("cannot read included file {}: {e}", path.display())),
         };
@@ -84,11 +87,11 @@ impl Parser<'_> {
             )
         })?;
         self.included_nodes += sub.nodes_parsed();
-        self.warnings.extend(
-            sub.warnings
-                .into_iter()
-                .map(|w| format!("{}: {w}", path.display())),
-        );
+        self.warnings.extend(sub.warnings.into_iter().map(|mut w| {
+            w.message = format!("{}: {}", path.display(), w.message);
+            w.file = Some(w.file.take().unwrap_or_else(|| path.to_path_buf()));
+            w
+        }));
         Ok(roots)
     }
 }

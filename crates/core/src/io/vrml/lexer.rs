@@ -134,24 +134,9 @@ impl<'a> Lexer<'a> {
     }
 
     fn scan(&mut self) -> PResult<Token> {
+        self.skip_blanks();
         let src = self.src;
         let n = src.len();
-        // Skip whitespace and comments.
-        loop {
-            while self.pos < n && is_space(src[self.pos]) {
-                if ends_line(src, self.pos) {
-                    self.line += 1;
-                }
-                self.pos += 1;
-            }
-            if self.pos < n && src[self.pos] == b'#' {
-                while self.pos < n && !matches!(src[self.pos], b'\n' | b'\r') {
-                    self.pos += 1;
-                }
-                continue;
-            }
-            break;
-        }
         let start = self.pos;
         let line = self.line;
         let tok = |kind, end| Token {
@@ -174,59 +159,105 @@ impl<'a> Lexer<'a> {
             b'|' => Some(Tok::Pipe),
             _ => None,
         };
-        if let Some(kind) = single {
-            self.pos += 1;
-            return Ok(tok(kind, start + 1));
-        }
-        if b == b'"' {
-            let mut p = start + 1;
-            loop {
-                if p >= n {
-                    return Err(ParseError::new(
-                        line,
-                        "unterminated string: expected a closing '\"' before the end of the file",
-                    ));
+        let (kind, end) = if let Some(kind) = single {
+            (kind, start + 1)
+        } else if b == b'"' {
+            (Tok::Str, self.string_end(start)?)
+        } else if let Some(end) = self.number_end(start) {
+            (Tok::Number, end)
+        } else {
+            (Tok::Word, self.word_end(start)?)
+        };
+        self.pos = end;
+        Ok(tok(kind, end))
+    }
+
+    /// Moves past whitespace and `#` comments, counting lines.
+    #[inline]
+    fn skip_blanks(&mut self) {
+        let src = self.src;
+        let n = src.len();
+        loop {
+            while self.pos < n && is_space(src[self.pos]) {
+                if ends_line(src, self.pos) {
+                    self.line += 1;
                 }
-                match src[p] {
-                    b'"' => break,
-                    b'\\' => p += 2,
-                    _ => {
-                        if ends_line(src, p) {
-                            self.line += 1;
-                        }
-                        p += 1
+                self.pos += 1;
+            }
+            if self.pos < n && src[self.pos] == b'#' {
+                while self.pos < n && !matches!(src[self.pos], b'\n' | b'\r') {
+                    self.pos += 1;
+                }
+                continue;
+            }
+            break;
+        }
+    }
+
+    /// The end (past the closing quote) of the string opening at `start`; its line breaks
+    /// are counted.
+    fn string_end(&mut self, start: usize) -> PResult<usize> {
+        let src = self.src;
+        let line = self.line;
+        let mut p = start + 1;
+        loop {
+            if p >= src.len() {
+                return Err(ParseError::new(
+                    line,
+                    "unterminated string: expected a closing '\"' before the end of the file",
+                ));
+            }
+            match src[p] {
+                b'"' => return Ok(p + 1),
+                b'\\' => p += 2,
+                _ => {
+                    if ends_line(src, p) {
+                        self.line += 1;
                     }
+                    p += 1
                 }
             }
-            self.pos = p + 1;
-            return Ok(tok(Tok::Str, p + 1));
         }
+    }
+
+    /// The end of the number starting at `start`, if one does (decimal or `0x` hex).
+    #[inline]
+    fn number_end(&self, start: usize) -> Option<usize> {
+        let src = self.src;
+        let n = src.len();
+        let b = src[start];
         let next = |i: usize| src.get(i).copied().unwrap_or(0);
         let number_start = b.is_ascii_digit()
             || (matches!(b, b'+' | b'-' | b'.') && next(start + 1).is_ascii_digit())
             || (matches!(b, b'+' | b'-')
                 && next(start + 1) == b'.'
                 && next(start + 2).is_ascii_digit());
-        if number_start {
-            let mut p = start;
-            if b == b'0' && matches!(next(start + 1), b'x' | b'X') {
-                p += 2;
-                while p < n && src[p].is_ascii_hexdigit() {
-                    p += 1;
-                }
-            } else {
-                while p < n && matches!(src[p], b'0'..=b'9' | b'.' | b'e' | b'E' | b'+' | b'-') {
-                    p += 1;
-                }
-            }
-            self.pos = p;
-            return Ok(tok(Tok::Number, p));
+        if !number_start {
+            return None;
         }
         let mut p = start;
-        while p < n && !is_special(src[p]) {
+        if b == b'0' && matches!(next(start + 1), b'x' | b'X') {
+            p += 2;
+            while p < n && src[p].is_ascii_hexdigit() {
+                p += 1;
+            }
+        } else {
+            while p < n && matches!(src[p], b'0'..=b'9' | b'.' | b'e' | b'E' | b'+' | b'-') {
+                p += 1;
+            }
+        }
+        Some(p)
+    }
+
+    /// The end of the word starting at `start`; a control byte in it is an error.
+    #[inline]
+    fn word_end(&self, start: usize) -> PResult<usize> {
+        let src = self.src;
+        let mut p = start;
+        while p < src.len() && !is_special(src[p]) {
             if is_control(src[p]) {
                 return Err(ParseError::new(
-                    line,
+                    self.line,
                     format!(
                         "control byte 0x{:02x} outside a string: the file is damaged or is not text",
                         src[p]
@@ -235,8 +266,7 @@ impl<'a> Lexer<'a> {
             }
             p += 1;
         }
-        self.pos = p;
-        Ok(tok(Tok::Word, p))
+        Ok(p)
     }
 }
 

@@ -18,6 +18,7 @@ mod vrml1;
 mod vrml2;
 mod vrml2_writer;
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::HashSet;
 
 pub(crate) use parse::Dialect;
@@ -86,9 +87,10 @@ impl Budget {
         Ok(())
     }
 
-    pub(crate) fn warn_once(&mut self, warnings: &mut Vec<String>, key: &str, message: String) {
+    /// A node skipped, said once per `key`.
+    pub(crate) fn warn_once(&mut self, warnings: &mut Vec<Warning>, key: &str, message: String) {
         if self.warned.insert(key.to_string()) {
-            warnings.push(message);
+            warnings.push(Warning::new(WarningKind::SkippedNode, message));
         }
     }
 }
@@ -97,7 +99,7 @@ impl Budget {
 /// models made so far, the warnings, and the expansion budget.
 pub(crate) struct Ctx<'w> {
     pub(crate) models: Vec<crate::mesh::Model>,
-    pub(crate) warnings: &'w mut Vec<String>,
+    pub(crate) warnings: &'w mut Vec<Warning>,
     pub(crate) budget: Budget,
 }
 
@@ -107,7 +109,7 @@ const MIN_VISITS: u64 = 4_000_000;
 
 impl<'w> Ctx<'w> {
     /// A walk of a tree of `nodes` parsed nodes.
-    pub(crate) fn new(warnings: &'w mut Vec<String>, nodes: usize) -> Self {
+    pub(crate) fn new(warnings: &'w mut Vec<Warning>, nodes: usize) -> Self {
         let budget = Budget {
             max_visits: (nodes as u64)
                 .saturating_mul(VISITS_PER_NODE)

@@ -7,6 +7,7 @@
 //! not yet defined is an error. Nesting of known nodes is limited to [`MAX_DEPTH`].
 //! Semantics (state, transforms, shapes) live in `vrml1.rs` and `vrml2.rs`.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::collections::{HashMap, HashSet};
 use std::path::PathBuf;
 use std::rc::Rc;
@@ -163,107 +164,115 @@ pub enum FieldKind {
 
 /// The typed fields the readers use; `None` means skip by structure.
 pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind> {
-    use FieldKind::*;
     match dialect {
-        Dialect::Vrml1 => Some(match (node, field) {
-            ("Coordinate3", "point") => Floats,
-            ("Normal", "vector") => Floats,
-            ("Material", "diffuseColor") => Floats,
-            ("BaseColor", "rgb") => Floats,
-            ("MaterialBinding" | "NormalBinding" | "TextureCoordinateBinding", "value") => Word,
-            ("ShapeHints", "vertexOrdering" | "shapeType" | "faceType" | "hints") => Word,
-            ("ShapeHints", "creaseAngle") => Floats,
-            (
-                "Transform",
-                "translation" | "rotation" | "scaleFactor" | "scaleOrientation" | "center",
-            ) => Floats,
-            ("Translation", "translation") => Floats,
-            ("Rotation" | "Rotor" | "Pendulum", "rotation") => Floats,
-            ("Scale", "scaleFactor") => Floats,
-            ("RotationXYZ", "axis") => Word,
-            ("RotationXYZ", "angle") => Floats,
-            ("MatrixTransform", "matrix") => Floats,
-            ("Switch" | "Blinker", "whichChild") => Ints,
-            (
-                "IndexedFaceSet" | "IndexedTriangleStripSet" | "IndexedTriangleMesh",
-                "coordIndex" | "materialIndex" | "normalIndex" | "textureCoordIndex",
-            ) => Ints,
-            ("TextureCoordinate2", "point") => Floats,
-            ("FaceSet" | "TriangleStripSet", "startIndex" | "numVertices") => Ints,
-            ("QuadMesh", "startIndex" | "verticesPerColumn" | "verticesPerRow") => Ints,
-            (
-                "IndexedFaceSet"
-                | "IndexedTriangleStripSet"
-                | "IndexedTriangleMesh"
-                | "FaceSet"
-                | "TriangleStripSet"
-                | "QuadMesh",
-                "vertexProperty",
-            ) => Node,
-            ("VertexProperty", "vertex" | "normal" | "texCoord") => Floats,
-            ("VertexProperty", "orderedRGBA") => Ints,
-            ("VertexProperty", "materialBinding" | "normalBinding") => Word,
-            ("Cube", "width" | "height" | "depth") => Floats,
-            ("Sphere", "radius") => Floats,
-            ("Cone", "bottomRadius" | "height") => Floats,
-            ("Cylinder", "radius" | "height") => Floats,
-            ("Cone" | "Cylinder", "parts") => Word,
-            ("Complexity", "value") => Floats,
-            ("Complexity", "type") => Word,
-            ("File", "name") => Strings,
-            ("Array", "numElements1" | "numElements2" | "numElements3") => Ints,
-            ("Array", "separation1" | "separation2" | "separation3") => Floats,
-            ("Array", "origin") => Word,
-            ("MultipleCopy", "matrix") => Floats,
-            ("Texture2", "filename") => Strings,
-            ("Texture2", "wrapS" | "wrapT") => Word,
-            ("Texture2Transform", "translation" | "rotation" | "scaleFactor" | "center") => Floats,
-            ("ResetTransform", "whatToReset") => Word,
-            _ => return None,
-        }),
-        Dialect::Vrml2 => Some(match (node, field) {
-            ("Transform", "translation" | "rotation" | "scale" | "scaleOrientation" | "center") => {
-                Floats
-            }
-            ("Transform" | "Group" | "Collision" | "Anchor" | "Billboard", "children") => Nodes,
-            ("Switch", "choice") => Nodes,
-            ("Switch", "whichChoice") => Ints,
-            ("LOD", "level") => Nodes,
-            ("Shape", "appearance" | "geometry") => Node,
-            ("Appearance", "material" | "texture" | "textureTransform") => Node,
-            ("TextureTransform", "center" | "rotation" | "scale" | "translation") => Floats,
-            ("ImageTexture", "url") => Strings,
-            ("ImageTexture", "repeatS" | "repeatT") => Bool,
-            ("Material", "diffuseColor") => Floats,
-            ("IndexedFaceSet", "coord" | "color" | "normal" | "texCoord") => Node,
-            ("IndexedFaceSet", "coordIndex" | "colorIndex" | "normalIndex" | "texCoordIndex") => {
-                Ints
-            }
-            (
-                "IndexedFaceSet",
-                "colorPerVertex" | "normalPerVertex" | "ccw" | "solid" | "convex",
-            ) => Bool,
-            ("IndexedFaceSet", "creaseAngle") => Floats,
-            ("Coordinate", "point") => Floats,
-            ("Color", "color") => Floats,
-            ("Normal", "vector") => Floats,
-            ("TextureCoordinate", "point") => Floats,
-            ("Box", "size") => Floats,
-            ("Sphere", "radius") => Floats,
-            ("Cone", "bottomRadius" | "height") => Floats,
-            ("Cone", "side" | "bottom") => Bool,
-            ("Cylinder", "radius" | "height") => Floats,
-            ("Cylinder", "side" | "top" | "bottom") => Bool,
-            ("Extrusion", "crossSection" | "orientation" | "scale" | "spine") => Floats,
-            ("Extrusion", "creaseAngle") => Floats,
-            ("Extrusion", "beginCap" | "endCap" | "ccw" | "convex" | "solid") => Bool,
-            ("ElevationGrid", "color" | "normal" | "texCoord") => Node,
-            ("ElevationGrid", "height" | "xSpacing" | "zSpacing" | "creaseAngle") => Floats,
-            ("ElevationGrid", "xDimension" | "zDimension") => Ints,
-            ("ElevationGrid", "ccw" | "solid" | "colorPerVertex" | "normalPerVertex") => Bool,
-            _ => return None,
-        }),
+        Dialect::Vrml1 => vrml1_field_kind(node, field),
+        Dialect::Vrml2 => vrml2_field_kind(node, field),
     }
+}
+
+/// [`field_kind`] for VRML 1.0 and Open Inventor.
+fn vrml1_field_kind(node: &str, field: &str) -> Option<FieldKind> {
+    use FieldKind::*;
+    Some(match (node, field) {
+        ("Coordinate3", "point") => Floats,
+        ("Normal", "vector") => Floats,
+        ("Material", "diffuseColor") => Floats,
+        ("BaseColor", "rgb") => Floats,
+        ("MaterialBinding" | "NormalBinding" | "TextureCoordinateBinding", "value") => Word,
+        ("ShapeHints", "vertexOrdering" | "shapeType" | "faceType" | "hints") => Word,
+        ("ShapeHints", "creaseAngle") => Floats,
+        (
+            "Transform",
+            "translation" | "rotation" | "scaleFactor" | "scaleOrientation" | "center",
+        ) => Floats,
+        ("Translation", "translation") => Floats,
+        ("Rotation" | "Rotor" | "Pendulum", "rotation") => Floats,
+        ("Scale", "scaleFactor") => Floats,
+        ("RotationXYZ", "axis") => Word,
+        ("RotationXYZ", "angle") => Floats,
+        ("MatrixTransform", "matrix") => Floats,
+        ("Switch" | "Blinker", "whichChild") => Ints,
+        (
+            "IndexedFaceSet" | "IndexedTriangleStripSet" | "IndexedTriangleMesh",
+            "coordIndex" | "materialIndex" | "normalIndex" | "textureCoordIndex",
+        ) => Ints,
+        ("TextureCoordinate2", "point") => Floats,
+        ("FaceSet" | "TriangleStripSet", "startIndex" | "numVertices") => Ints,
+        ("QuadMesh", "startIndex" | "verticesPerColumn" | "verticesPerRow") => Ints,
+        (
+            "IndexedFaceSet"
+            | "IndexedTriangleStripSet"
+            | "IndexedTriangleMesh"
+            | "FaceSet"
+            | "TriangleStripSet"
+            | "QuadMesh",
+            "vertexProperty",
+        ) => Node,
+        ("VertexProperty", "vertex" | "normal" | "texCoord") => Floats,
+        ("VertexProperty", "orderedRGBA") => Ints,
+        ("VertexProperty", "materialBinding" | "normalBinding") => Word,
+        ("Cube", "width" | "height" | "depth") => Floats,
+        ("Sphere", "radius") => Floats,
+        ("Cone", "bottomRadius" | "height") => Floats,
+        ("Cylinder", "radius" | "height") => Floats,
+        ("Cone" | "Cylinder", "parts") => Word,
+        ("Complexity", "value") => Floats,
+        ("Complexity", "type") => Word,
+        ("File", "name") => Strings,
+        ("Array", "numElements1" | "numElements2" | "numElements3") => Ints,
+        ("Array", "separation1" | "separation2" | "separation3") => Floats,
+        ("Array", "origin") => Word,
+        ("MultipleCopy", "matrix") => Floats,
+        ("Texture2", "filename") => Strings,
+        ("Texture2", "wrapS" | "wrapT") => Word,
+        ("Texture2Transform", "translation" | "rotation" | "scaleFactor" | "center") => Floats,
+        ("ResetTransform", "whatToReset") => Word,
+        _ => return None,
+    })
+}
+
+/// [`field_kind`] for VRML 2.0.
+fn vrml2_field_kind(node: &str, field: &str) -> Option<FieldKind> {
+    use FieldKind::*;
+    Some(match (node, field) {
+        ("Transform", "translation" | "rotation" | "scale" | "scaleOrientation" | "center") => {
+            Floats
+        }
+        ("Transform" | "Group" | "Collision" | "Anchor" | "Billboard", "children") => Nodes,
+        ("Switch", "choice") => Nodes,
+        ("Switch", "whichChoice") => Ints,
+        ("LOD", "level") => Nodes,
+        ("Shape", "appearance" | "geometry") => Node,
+        ("Appearance", "material" | "texture" | "textureTransform") => Node,
+        ("TextureTransform", "center" | "rotation" | "scale" | "translation") => Floats,
+        ("ImageTexture", "url") => Strings,
+        ("ImageTexture", "repeatS" | "repeatT") => Bool,
+        ("Material", "diffuseColor") => Floats,
+        ("IndexedFaceSet", "coord" | "color" | "normal" | "texCoord") => Node,
+        ("IndexedFaceSet", "coordIndex" | "colorIndex" | "normalIndex" | "texCoordIndex") => Ints,
+        ("IndexedFaceSet", "colorPerVertex" | "normalPerVertex" | "ccw" | "solid" | "convex") => {
+            Bool
+        }
+        ("IndexedFaceSet", "creaseAngle") => Floats,
+        ("Coordinate", "point") => Floats,
+        ("Color", "color") => Floats,
+        ("Normal", "vector") => Floats,
+        ("TextureCoordinate", "point") => Floats,
+        ("Box", "size") => Floats,
+        ("Sphere", "radius") => Floats,
+        ("Cone", "bottomRadius" | "height") => Floats,
+        ("Cone", "side" | "bottom") => Bool,
+        ("Cylinder", "radius" | "height") => Floats,
+        ("Cylinder", "side" | "top" | "bottom") => Bool,
+        ("Extrusion", "crossSection" | "orientation" | "scale" | "spine") => Floats,
+        ("Extrusion", "creaseAngle") => Floats,
+        ("Extrusion", "beginCap" | "endCap" | "ccw" | "convex" | "solid") => Bool,
+        ("ElevationGrid", "color" | "normal" | "texCoord") => Node,
+        ("ElevationGrid", "height" | "xSpacing" | "zSpacing" | "creaseAngle") => Floats,
+        ("ElevationGrid", "xDimension" | "zDimension") => Ints,
+        ("ElevationGrid", "ccw" | "solid" | "colorPerVertex" | "normalPerVertex") => Bool,
+        _ => return None,
+    })
 }
 
 /// Inventor node kits (and the draggers and manipulators, which are kits): their parts are
@@ -276,86 +285,87 @@ pub fn is_kit(kind: &str) -> bool {
         || kind == "NodeKitListPart"
 }
 
+/// VRML 1.0 / Open Inventor node kinds whose fields are parsed.
+const VRML1_KNOWN: [&str; 45] = [
+    "Separator",
+    "TransformSeparator",
+    "Group",
+    "Switch",
+    "Blinker",
+    "LOD",
+    "LevelOfDetail",
+    "Selection",
+    "Annotation",
+    "WWWAnchor",
+    "Array",
+    "MultipleCopy",
+    "Transform",
+    "MatrixTransform",
+    "Translation",
+    "Rotation",
+    "Rotor",
+    "Pendulum",
+    "Scale",
+    "RotationXYZ",
+    "ResetTransform",
+    "Coordinate3",
+    "Normal",
+    "TextureCoordinate2",
+    "Texture2",
+    "Texture2Transform",
+    "Material",
+    "BaseColor",
+    "MaterialBinding",
+    "NormalBinding",
+    "TextureCoordinateBinding",
+    "ShapeHints",
+    "IndexedFaceSet",
+    "IndexedTriangleStripSet",
+    "FaceSet",
+    "TriangleStripSet",
+    "QuadMesh",
+    "VertexProperty",
+    "Cube",
+    "Sphere",
+    "Cone",
+    "Cylinder",
+    "Complexity",
+    "IndexedTriangleMesh",
+    "File",
+];
+
+/// VRML 2.0 node kinds whose fields are parsed.
+const VRML2_KNOWN: [&str; 23] = [
+    "Transform",
+    "Group",
+    "Collision",
+    "Anchor",
+    "Billboard",
+    "Switch",
+    "LOD",
+    "Shape",
+    "Appearance",
+    "Material",
+    "IndexedFaceSet",
+    "Coordinate",
+    "Color",
+    "Normal",
+    "TextureCoordinate",
+    "ImageTexture",
+    "TextureTransform",
+    "Box",
+    "Sphere",
+    "Cone",
+    "Cylinder",
+    "ElevationGrid",
+    "Extrusion",
+];
+
 /// Node kinds whose fields are parsed (the rest are skipped by structure).
 fn is_known(dialect: Dialect, kind: &str) -> bool {
-    if dialect == Dialect::Vrml1 && is_kit(kind) {
-        return true;
-    }
     match dialect {
-        Dialect::Vrml1 => matches!(
-            kind,
-            "Separator"
-                | "TransformSeparator"
-                | "Group"
-                | "Switch"
-                | "Blinker"
-                | "LOD"
-                | "LevelOfDetail"
-                | "Selection"
-                | "Annotation"
-                | "WWWAnchor"
-                | "Array"
-                | "MultipleCopy"
-                | "Transform"
-                | "MatrixTransform"
-                | "Translation"
-                | "Rotation"
-                | "Rotor"
-                | "Pendulum"
-                | "Scale"
-                | "RotationXYZ"
-                | "ResetTransform"
-                | "Coordinate3"
-                | "Normal"
-                | "TextureCoordinate2"
-                | "Texture2"
-                | "Texture2Transform"
-                | "Material"
-                | "BaseColor"
-                | "MaterialBinding"
-                | "NormalBinding"
-                | "TextureCoordinateBinding"
-                | "ShapeHints"
-                | "IndexedFaceSet"
-                | "IndexedTriangleStripSet"
-                | "FaceSet"
-                | "TriangleStripSet"
-                | "QuadMesh"
-                | "VertexProperty"
-                | "Cube"
-                | "Sphere"
-                | "Cone"
-                | "Cylinder"
-                | "Complexity"
-                | "IndexedTriangleMesh"
-                | "File"
-        ),
-        Dialect::Vrml2 => matches!(
-            kind,
-            "Transform"
-                | "Group"
-                | "Collision"
-                | "Anchor"
-                | "Billboard"
-                | "Switch"
-                | "LOD"
-                | "Shape"
-                | "Appearance"
-                | "Material"
-                | "IndexedFaceSet"
-                | "Coordinate"
-                | "Color"
-                | "Normal"
-                | "TextureCoordinate"
-                | "ImageTexture"
-                | "TextureTransform"
-                | "Box"
-                | "Sphere"
-                | "Cone"
-                | "Cylinder"
-                | "ElevationGrid"
-                | "Extrusion"
-        ),
+        Dialect::Vrml1 => is_kit(kind) || VRML1_KNOWN.contains(&kind),
+        Dialect::Vrml2 => VRML2_KNOWN.contains(&kind),
     }
 }
 
@@ -438,7 +448,7 @@ pub struct Parser<'a> {
     /// The files that include this one, outermost first, to refuse cycles (see `include`).
     pub including: Vec<PathBuf>,
     warned: HashSet<String>,
-    pub(super) warnings: Vec<String>,
+    pub(super) warnings: Vec<Warning>,
     /// Unknown fields of known nodes are warnings, not errors (`--lenient`).
     pub lenient: bool,
     /// Node kinds skipped as unknown, in order of first appearance: (kind, first line, count).
@@ -474,9 +484,9 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn warn_once(&mut self, key: &str, message: String) {
+    fn warn_once(&mut self, kind: WarningKind, line: usize, key: &str, message: String) {
         if self.warned.insert(key.to_string()) {
-            self.warnings.push(message);
+            self.warnings.push(Warning::new(kind, message).at(line));
         }
     }
 
@@ -526,9 +536,14 @@ impl<'a> Parser<'a> {
                 k if k.contains("Nurbs") => ("shape(s)", ": NURBS are not tessellated"),
                 _ => ("unsupported node(s)", ""),
             };
-            self.warnings.push(format!(
-                "{count} '{kind}' {noun} skipped, the first at line {line}{why}"
-            ));
+            self.warnings.push(
+                Warning::new(
+                    WarningKind::SkippedNode,
+                    format!("{count} '{kind}' {noun} skipped, the first at line {line}{why}"),
+                )
+                .at(line)
+                .times(count),
+            );
         }
         Ok(())
     }
@@ -565,88 +580,102 @@ impl<'a> Parser<'a> {
         }
         let word = self.lex.bytes(&t);
         match word {
-            b"DEF" => {
-                let name_tok = self.lex.next()?;
-                if !is_name(&name_tok) {
-                    return Err(self.unexpected(&name_tok, "a name after 'DEF'"));
-                }
-                let name = self.lex.text(&name_tok);
-                let kind_tok = self.lex.next()?;
-                if kind_tok.kind != Tok::Word {
-                    return Err(
-                        self.unexpected(&kind_tok, &format!("a node name after 'DEF {name}'"))
-                    );
-                }
-                let node = self.parse_node_body(kind_tok, Some(name.clone()))?;
-                self.defs.insert(name, node.clone());
-                Ok(Some(node))
-            }
-            b"USE" => {
-                let name_tok = self.lex.next()?;
-                if !is_name(&name_tok) {
-                    return Err(self.unexpected(&name_tok, "a name after 'USE'"));
-                }
-                let name = self.lex.text(&name_tok);
-                match self.defs.get(&name) {
-                    Some(n) => Ok(Some(Rc::new(Node {
-                        kind: USE_KIND.into(),
-                        def: Some(name),
-                        line: name_tok.line,
-                        fields: Vec::new(),
-                        children: vec![n.clone()],
-                        skipped: n.skipped,
-                    }))),
-                    None => Err(ParseError::new(
-                        name_tok.line,
-                        format!("USE of undefined name '{name}' (no DEF {name} before it)"),
-                    )),
-                }
-            }
-            b"PROTO" | b"EXTERNPROTO" if self.dialect == Dialect::Vrml2 => {
-                let what = self.lex.text(&t);
-                self.warn_once(
-                    &what,
-                    format!(
-                        "line {}: {what} declarations are not supported; skipped",
-                        t.line
-                    ),
-                );
-                let name_tok = self.lex.next()?;
-                if name_tok.kind != Tok::Word {
-                    return Err(self.unexpected(&name_tok, &format!("a name after '{what}'")));
-                }
-                let open = self.lex.next()?;
-                if open.kind != Tok::LBracket {
-                    return Err(self.unexpected(&open, "'[' to start the interface"));
-                }
-                self.skip_balanced(open)?;
-                if what == "PROTO" {
-                    let body = self.lex.next()?;
-                    if body.kind != Tok::LBrace {
-                        return Err(self.unexpected(&body, "'{' to start the PROTO body"));
-                    }
-                    self.skip_balanced(body)?;
-                } else {
-                    self.skip_value()?;
-                }
-                // A later instance of the prototype is an unknown node, skipped by structure.
-                Ok(None)
-            }
-            b"ROUTE" if self.dialect == Dialect::Vrml2 => {
-                self.warn_once(
-                    "ROUTE",
-                    format!("line {}: ROUTE statements are ignored", t.line),
-                );
-                for expected in ["a source after 'ROUTE'", "'TO'", "a destination after 'TO'"] {
-                    let w = self.lex.next()?;
-                    if w.kind != Tok::Word {
-                        return Err(self.unexpected(&w, expected));
-                    }
-                }
-                Ok(None)
-            }
+            b"DEF" => self.parse_def().map(Some),
+            b"USE" => self.parse_use().map(Some),
+            b"PROTO" | b"EXTERNPROTO" if self.dialect == Dialect::Vrml2 => self.skip_proto(t),
+            b"ROUTE" if self.dialect == Dialect::Vrml2 => self.skip_route(t),
             _ => Ok(Some(self.parse_node_body(t, None)?)),
         }
+    }
+
+    /// `DEF name Node { … }`, after `DEF`: the node, remembered by its name.
+    fn parse_def(&mut self) -> PResult<Rc<Node>> {
+        let name_tok = self.lex.next()?;
+        if !is_name(&name_tok) {
+            return Err(self.unexpected(&name_tok, "a name after 'DEF'"));
+        }
+        let name = self.lex.text(&name_tok);
+        let kind_tok = self.lex.next()?;
+        if kind_tok.kind != Tok::Word {
+            return Err(self.unexpected(&kind_tok, &format!("a node name after 'DEF {name}'")));
+        }
+        let node = self.parse_node_body(kind_tok, Some(name.clone()))?;
+        self.defs.insert(name, node.clone());
+        Ok(node)
+    }
+
+    /// `USE name`, after `USE`: a node standing for the DEF's.
+    fn parse_use(&mut self) -> PResult<Rc<Node>> {
+        let name_tok = self.lex.next()?;
+        if !is_name(&name_tok) {
+            return Err(self.unexpected(&name_tok, "a name after 'USE'"));
+        }
+        let name = self.lex.text(&name_tok);
+        match self.defs.get(&name) {
+            Some(n) => Ok(Rc::new(Node {
+                kind: USE_KIND.into(),
+                def: Some(name),
+                line: name_tok.line,
+                fields: Vec::new(),
+                children: vec![n.clone()],
+                skipped: n.skipped,
+            })),
+            None => Err(ParseError::new(
+                name_tok.line,
+                format!("USE of undefined name '{name}' (no DEF {name} before it)"),
+            )),
+        }
+    }
+
+    /// `PROTO` / `EXTERNPROTO` (token `t`): skipped, with a warning once.
+    fn skip_proto(&mut self, t: Token) -> PResult<Option<Rc<Node>>> {
+        let what = self.lex.text(&t);
+        self.warn_once(
+            WarningKind::SkippedNode,
+            t.line,
+            &what,
+            format!(
+                "line {}: {what} declarations are not supported; skipped",
+                t.line
+            ),
+        );
+        let name_tok = self.lex.next()?;
+        if name_tok.kind != Tok::Word {
+            return Err(self.unexpected(&name_tok, &format!("a name after '{what}'")));
+        }
+        let open = self.lex.next()?;
+        if open.kind != Tok::LBracket {
+            return Err(self.unexpected(&open, "'[' to start the interface"));
+        }
+        self.skip_balanced(open)?;
+        if what == "PROTO" {
+            let body = self.lex.next()?;
+            if body.kind != Tok::LBrace {
+                return Err(self.unexpected(&body, "'{' to start the PROTO body"));
+            }
+            self.skip_balanced(body)?;
+        } else {
+            self.skip_value()?;
+        }
+        // A later instance of the prototype is an unknown node, skipped by structure.
+        Ok(None)
+    }
+
+    /// `ROUTE a TO b` (token `t`): skipped, with a warning once.
+    fn skip_route(&mut self, t: Token) -> PResult<Option<Rc<Node>>> {
+        self.warn_once(
+            WarningKind::SkippedNode,
+            t.line,
+            "ROUTE",
+            format!("line {}: ROUTE statements are ignored", t.line),
+        );
+        for expected in ["a source after 'ROUTE'", "'TO'", "a destination after 'TO'"] {
+            let w = self.lex.next()?;
+            if w.kind != Tok::Word {
+                return Err(self.unexpected(&w, expected));
+            }
+        }
+        Ok(None)
     }
 
     /// Parses `{ ... }` after a node's kind name.
@@ -657,20 +686,7 @@ impl<'a> Parser<'a> {
             return Err(self.unexpected(&open, &format!("'{{' after '{kind}'")));
         }
         if !is_known(self.dialect, &kind) {
-            if is_ignorable(self.dialect, &kind) {
-                self.recognised += 1;
-            } else {
-                self.count_unknown(&kind, kind_tok.line);
-            }
-            self.skip_balanced(open)?;
-            return Ok(Rc::new(Node {
-                kind,
-                def,
-                line: kind_tok.line,
-                fields: Vec::new(),
-                children: Vec::new(),
-                skipped: true,
-            }));
+            return self.skip_node(kind, def, kind_tok.line, open);
         }
         self.recognised += 1;
         self.depth += 1;
@@ -688,12 +704,47 @@ impl<'a> Parser<'a> {
             children: Vec::new(),
             skipped: false,
         };
+        self.parse_members(&mut node)?;
+        self.depth -= 1;
+        if node.kind == "File" {
+            node.children = self.include(&node)?;
+        }
+        Ok(Rc::new(node))
+    }
+
+    /// A node of a kind whose fields are not parsed, after its `{` (`open`): skipped by
+    /// structure, counted as unknown unless it is one that carries nothing a mesh needs.
+    fn skip_node(
+        &mut self,
+        kind: String,
+        def: Option<String>,
+        line: usize,
+        open: Token,
+    ) -> PResult<Rc<Node>> {
+        if is_ignorable(self.dialect, &kind) {
+            self.recognised += 1;
+        } else {
+            self.count_unknown(&kind, line);
+        }
+        self.skip_balanced(open)?;
+        Ok(Rc::new(Node {
+            kind,
+            def,
+            line,
+            fields: Vec::new(),
+            children: Vec::new(),
+            skipped: true,
+        }))
+    }
+
+    /// A known node's fields and children, up to its closing `}`.
+    fn parse_members(&mut self, node: &mut Node) -> PResult<()> {
         loop {
             let t = self.lex.peek()?;
             match t.kind {
                 Tok::RBrace => {
                     self.lex.next()?;
-                    break;
+                    return Ok(());
                 }
                 Tok::Eof => {
                     return Err(ParseError::new(
@@ -704,33 +755,7 @@ impl<'a> Parser<'a> {
                         ),
                     ))
                 }
-                Tok::Word => {
-                    let v1 = self.dialect == Dialect::Vrml1;
-                    if v1 && (self.is_word(&t, b"DEF") || self.is_word(&t, b"USE")) {
-                        if let Some(c) = self.parse_statement()? {
-                            node.children.push(c);
-                        }
-                        continue;
-                    }
-                    if !v1
-                        && (self.is_word(&t, b"ROUTE")
-                            || self.is_word(&t, b"PROTO")
-                            || self.is_word(&t, b"EXTERNPROTO"))
-                    {
-                        self.parse_statement()?;
-                        continue;
-                    }
-                    self.lex.next()?;
-                    if self.is_word(&t, b"~") {
-                        continue;
-                    }
-                    if v1 && self.lex.peek()?.kind == Tok::LBrace {
-                        let child = self.parse_node_body(t, None)?;
-                        node.children.push(child);
-                        continue;
-                    }
-                    self.parse_field(&mut node, t)?;
-                }
+                Tok::Word => self.parse_member(node, t)?,
                 _ => {
                     self.lex.next()?;
                     return Err(
@@ -739,35 +764,43 @@ impl<'a> Parser<'a> {
                 }
             }
         }
-        self.depth -= 1;
-        if node.kind == "File" {
-            node.children = self.include(&node)?;
+    }
+
+    /// One member starting with the word `t` (peeked): a field, a VRML 1.0 child node
+    /// (plain, DEF or USE), or a VRML 2.0 statement inside a node.
+    fn parse_member(&mut self, node: &mut Node, t: Token) -> PResult<()> {
+        let v1 = self.dialect == Dialect::Vrml1;
+        if v1 && (self.is_word(&t, b"DEF") || self.is_word(&t, b"USE")) {
+            if let Some(c) = self.parse_statement()? {
+                node.children.push(c);
+            }
+            return Ok(());
         }
-        Ok(Rc::new(node))
+        if !v1
+            && (self.is_word(&t, b"ROUTE")
+                || self.is_word(&t, b"PROTO")
+                || self.is_word(&t, b"EXTERNPROTO"))
+        {
+            self.parse_statement()?;
+            return Ok(());
+        }
+        self.lex.next()?;
+        if self.is_word(&t, b"~") {
+            return Ok(());
+        }
+        if v1 && self.lex.peek()?.kind == Tok::LBrace {
+            let child = self.parse_node_body(t, None)?;
+            node.children.push(child);
+            return Ok(());
+        }
+        self.parse_field(node, t)
     }
 
     /// Parses the value of field `name_tok` (already consumed) into `node`.
     fn parse_field(&mut self, node: &mut Node, name_tok: Token) -> PResult<()> {
         let name = self.lex.text(&name_tok);
         let Some(kind) = field_kind(self.dialect, &node.kind, &name) else {
-            if is_kit(&node.kind) {
-                return self.parse_kit_field(node, name);
-            }
-            if !fields::is_field_of(self.dialect, &node.kind, &name) {
-                self.unknown_field(node, &name_tok, &name)?;
-            }
-            if node.kind == "Texture2" && name == "image" {
-                // Only images in files are read: say so rather than lose the texture silently.
-                self.warn_once(
-                    "Texture2 image",
-                    format!(
-                        "line {}: Texture2's inline 'image' ignored (only image files are read); its shapes are untextured",
-                        name_tok.line
-                    ),
-                );
-            }
-            // VRML 2.0 "IS" in PROTO bodies never reaches here (bodies are skipped).
-            return self.skip_value();
+            return self.skip_untyped_field(node, &name_tok, name);
         };
         let first = self.lex.peek()?;
         if self.is_word(&first, b"~") {
@@ -784,64 +817,11 @@ impl<'a> Parser<'a> {
             FieldKind::Ints => {
                 Value::Ints(self.parse_numbers(&name, "an integer", Self::int_of)?)
             }
-            FieldKind::Bool => {
-                let t = self.lex.next()?;
-                let b = self.lex.bytes(&t);
-                match (t.kind, b) {
-                    (Tok::Word, b"TRUE") | (Tok::Number, b"1") => Value::Bool(true),
-                    (Tok::Word, b"FALSE") | (Tok::Number, b"0") => Value::Bool(false),
-                    _ => return Err(self.unexpected(&t, &format!("TRUE or FALSE for '{name}'"))),
-                }
-            }
+            FieldKind::Bool => self.parse_bool(&name)?,
             FieldKind::Word => Value::Word(self.parse_word(&name)?),
             FieldKind::Strings => Value::Strings(self.parse_strings(&name)?),
-            FieldKind::Node => {
-                let t = self.lex.peek()?;
-                if self.is_word(&t, b"NULL") {
-                    self.lex.next()?;
-                    Value::Node(None)
-                } else if t.kind == Tok::Word {
-                    Value::Node(self.parse_statement()?)
-                } else {
-                    self.lex.next()?;
-                    return Err(self.unexpected(&t, &format!("a node or NULL for '{name}'")));
-                }
-            }
-            FieldKind::Nodes => {
-                let t = self.lex.peek()?;
-                let mut nodes = Vec::new();
-                if t.kind == Tok::LBracket {
-                    self.lex.next()?;
-                    loop {
-                        let t = self.lex.peek()?;
-                        match t.kind {
-                            Tok::RBracket => {
-                                self.lex.next()?;
-                                break;
-                            }
-                            Tok::Word => {
-                                if let Some(n) = self.parse_statement()? {
-                                    nodes.push(n);
-                                }
-                            }
-                            _ => {
-                                self.lex.next()?;
-                                return Err(
-                                    self.unexpected(&t, &format!("a node or ']' in '{name}'"))
-                                );
-                            }
-                        }
-                    }
-                } else if t.kind == Tok::Word {
-                    if let Some(n) = self.parse_statement()? {
-                        nodes.push(n);
-                    }
-                } else {
-                    self.lex.next()?;
-                    return Err(self.unexpected(&t, &format!("'[' or a node for '{name}'")));
-                }
-                Value::Nodes(nodes)
-            }
+            FieldKind::Node => self.parse_node_value(&name)?,
+            FieldKind::Nodes => self.parse_nodes_value(&name)?,
         };
         node.fields.retain(|f| f.name != name);
         // Inventor marks ignored fields with a trailing `~`: the value does not apply.
@@ -852,6 +832,96 @@ impl<'a> Parser<'a> {
         }
         node.fields.push(Field { name, line, value });
         Ok(())
+    }
+
+    /// A field the readers do not use (`name`, token `name_tok`): a kit's part is parsed,
+    /// anything else is checked against the node's field list and skipped by structure.
+    fn skip_untyped_field(
+        &mut self,
+        node: &mut Node,
+        name_tok: &Token,
+        name: String,
+    ) -> PResult<()> {
+        if is_kit(&node.kind) {
+            return self.parse_kit_field(node, name);
+        }
+        if !fields::is_field_of(self.dialect, &node.kind, &name) {
+            self.unknown_field(node, name_tok, &name)?;
+        }
+        if node.kind == "Texture2" && name == "image" {
+            // Only images in files are read: say so rather than lose the texture silently.
+            self.warn_once(
+                WarningKind::SkippedAttribute,
+                name_tok.line,
+                "Texture2 image",
+                format!(
+                    "line {}: Texture2's inline 'image' ignored (only image files are read); its shapes are untextured",
+                    name_tok.line
+                ),
+            );
+        }
+        // VRML 2.0 "IS" in PROTO bodies never reaches here (bodies are skipped).
+        self.skip_value()
+    }
+
+    /// An SFBool: `TRUE` / `FALSE` (or 1 / 0).
+    fn parse_bool(&mut self, name: &str) -> PResult<Value> {
+        let t = self.lex.next()?;
+        let b = self.lex.bytes(&t);
+        match (t.kind, b) {
+            (Tok::Word, b"TRUE") | (Tok::Number, b"1") => Ok(Value::Bool(true)),
+            (Tok::Word, b"FALSE") | (Tok::Number, b"0") => Ok(Value::Bool(false)),
+            _ => Err(self.unexpected(&t, &format!("TRUE or FALSE for '{name}'"))),
+        }
+    }
+
+    /// An SFNode: a node or `NULL`.
+    fn parse_node_value(&mut self, name: &str) -> PResult<Value> {
+        let t = self.lex.peek()?;
+        if self.is_word(&t, b"NULL") {
+            self.lex.next()?;
+            Ok(Value::Node(None))
+        } else if t.kind == Tok::Word {
+            Ok(Value::Node(self.parse_statement()?))
+        } else {
+            self.lex.next()?;
+            Err(self.unexpected(&t, &format!("a node or NULL for '{name}'")))
+        }
+    }
+
+    /// An MFNode: `[ nodes ]` or a single node.
+    fn parse_nodes_value(&mut self, name: &str) -> PResult<Value> {
+        let t = self.lex.peek()?;
+        let mut nodes = Vec::new();
+        if t.kind == Tok::LBracket {
+            self.lex.next()?;
+            loop {
+                let t = self.lex.peek()?;
+                match t.kind {
+                    Tok::RBracket => {
+                        self.lex.next()?;
+                        break;
+                    }
+                    Tok::Word => {
+                        if let Some(n) = self.parse_statement()? {
+                            nodes.push(n);
+                        }
+                    }
+                    _ => {
+                        self.lex.next()?;
+                        return Err(self.unexpected(&t, &format!("a node or ']' in '{name}'")));
+                    }
+                }
+            }
+        } else if t.kind == Tok::Word {
+            if let Some(n) = self.parse_statement()? {
+                nodes.push(n);
+            }
+        } else {
+            self.lex.next()?;
+            return Err(self.unexpected(&t, &format!("'[' or a node for '{name}'")));
+        }
+        Ok(Value::Nodes(nodes))
     }
 
     /// A field of a node kit: a part (a node, `DEF`/`USE`, or `NULL`) kept as an SFNode
@@ -896,6 +966,8 @@ impl<'a> Parser<'a> {
         }
         let key = format!("{}.{name}", node.kind);
         self.warn_once(
+            WarningKind::SkippedAttribute,
+            t.line,
             &key,
             format!("line {}: {message}; its value skipped", t.line),
         );

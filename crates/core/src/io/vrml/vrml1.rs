@@ -16,6 +16,7 @@
 //! with the translation in the last row. An error inside a `USE`d node names the USE's line
 //! and the DEF's.
 
+use crate::io::warning::{Warning, WarningKind};
 use std::borrow::Cow;
 use std::rc::Rc;
 
@@ -117,7 +118,7 @@ pub fn compose(t: Vec3, r: Quat, s: Vec3, so: Quat, c: Vec3) -> Mat4 {
 }
 
 /// Traverses the top-level nodes (an implicit root Separator) into models.
-pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>, nodes: usize) -> PResult<Vec<Model>> {
+pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<Warning>, nodes: usize) -> PResult<Vec<Model>> {
     let mut ctx = Ctx::new(warnings, nodes);
     let mut state = State::default();
     for n in roots {
@@ -151,21 +152,7 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
                 copy(node, state, Mat4::from_translation(offset), ctx)?;
             }
         }
-        "MultipleCopy" => {
-            let m = node.floats("matrix").unwrap_or(&[]);
-            if !m.len().is_multiple_of(16) {
-                return Err(ParseError::new(
-                    node.line_of("matrix"),
-                    format!(
-                        "expected 16 numbers per matrix in 'matrix', found {}",
-                        m.len()
-                    ),
-                ));
-            }
-            for one in m.chunks_exact(16) {
-                copy(node, state, Mat4::from_cols_slice(one), ctx)?;
-            }
-        }
+        "MultipleCopy" => multiple_copy(node, state, ctx)?,
         "TransformSeparator" => {
             let saved = state.transform;
             for c in &node.children {
@@ -179,25 +166,7 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
                 traverse(c, state, ctx)?;
             }
         }
-        "Switch" | "Blinker" => {
-            // -1 none, -2 the enclosing switch's choice, -3 all; the choice is inherited by
-            // switches below (Inventor's switch element).
-            let default = if node.kind == "Blinker" { 0 } else { -1 };
-            let mut which = node.int("whichChild").unwrap_or(default);
-            if which == -2 {
-                which = state.switch_choice;
-            }
-            state.switch_choice = which;
-            if which == -3 {
-                for c in &node.children {
-                    traverse(c, state, ctx)?;
-                }
-            } else if which >= 0 {
-                if let Some(c) = node.children.get(which as usize) {
-                    traverse(c, state, ctx)?;
-                }
-            }
-        }
+        "Switch" | "Blinker" => switch(node, state, ctx)?,
         "LOD" | "LevelOfDetail" => {
             // The most detailed level.
             if let Some(c) = node.children.first() {
@@ -214,6 +183,45 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
         "Sphere" | "Cone" | "Cylinder" => primitive(node, state, ctx)?,
         k if is_kit(k) => kit(node, state, ctx)?,
         _ => {}
+    }
+    Ok(())
+}
+
+/// A MultipleCopy: its children once per matrix of `matrix`.
+fn multiple_copy(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()> {
+    let m = node.floats("matrix").unwrap_or(&[]);
+    if !m.len().is_multiple_of(16) {
+        return Err(ParseError::new(
+            node.line_of("matrix"),
+            format!(
+                "expected 16 numbers per matrix in 'matrix', found {}",
+                m.len()
+            ),
+        ));
+    }
+    for one in m.chunks_exact(16) {
+        copy(node, state, Mat4::from_cols_slice(one), ctx)?;
+    }
+    Ok(())
+}
+
+/// A Switch or Blinker: -1 none, -2 the enclosing switch's choice, -3 all; the choice is
+/// inherited by switches below (Inventor's switch element).
+fn switch(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()> {
+    let default = if node.kind == "Blinker" { 0 } else { -1 };
+    let mut which = node.int("whichChild").unwrap_or(default);
+    if which == -2 {
+        which = state.switch_choice;
+    }
+    state.switch_choice = which;
+    if which == -3 {
+        for c in &node.children {
+            traverse(c, state, ctx)?;
+        }
+    } else if which >= 0 {
+        if let Some(c) = node.children.get(which as usize) {
+            traverse(c, state, ctx)?;
+        }
     }
     Ok(())
 }
@@ -840,8 +848,13 @@ pub fn skip_empty(node: &Node, ctx: &mut Ctx<'_>) {
         "Extrusion" => "with fewer than 2 spine or cross-section points",
         _ => "of zero size or with no parts",
     };
-    ctx.warnings
-        .push(format!("line {}: '{}' {why} skipped", node.line, node.kind));
+    ctx.warnings.push(
+        Warning::new(
+            WarningKind::SkippedNode,
+            format!("line {}: '{}' {why} skipped", node.line, node.kind),
+        )
+        .at(node.line),
+    );
 }
 
 /// `Sphere`, `Cone` or `Cylinder`, tessellated at the state's complexity.

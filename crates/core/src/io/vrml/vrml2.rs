@@ -24,10 +24,11 @@ use super::texture_transform;
 use super::vrml1::{compose, rotation, skip_empty, vec3};
 use super::Ctx;
 use crate::io::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
+use crate::io::warning::Warning;
 use crate::mesh::Model;
 
 /// Walks the top-level nodes into models.
-pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<String>, nodes: usize) -> PResult<Vec<Model>> {
+pub fn read(roots: &[Rc<Node>], warnings: &mut Vec<Warning>, nodes: usize) -> PResult<Vec<Model>> {
     let mut ctx = Ctx::new(warnings, nodes);
     for n in roots {
         traverse(n, Mat4::IDENTITY, &mut ctx)?;
@@ -119,108 +120,15 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
     let textured = texture.is_some();
     let texture_repeat =
         ["repeatS", "repeatT"].map(|field| image.and_then(|t| t.boolean(field)).unwrap_or(true));
-    let boxed;
-    // Texture coordinates a Box or an Extrusion makes.
-    let made_uv;
-    let tess;
-    let grid;
-    let spec = match geometry.kind.as_str() {
-        "IndexedFaceSet" => indexed_face_set(geometry, name, transform, diffuse)?,
-        "Box" => {
-            let half = vec3(geometry.floats("size"), Vec3::splat(2.0)) * 0.5;
-            boxed = primitives::box_coords(half, textured);
-            made_uv = if textured {
-                primitives::box_texcoords()
-            } else {
-                Vec::new()
-            };
-            let corners = primitives::box_quads(textured);
-            ShapeSpec {
-                name,
-                transform,
-                coords: &boxed,
-                texcoords: textured.then(|| TexCoords {
-                    values: &made_uv,
-                    index: corners.clone(),
-                }),
-                corners,
-                ends: (1..=6).map(|i| i * 4).collect(),
-                colors: Bind::None,
-                normals: Bind::None,
-                ccw: true,
-                solid: true,
-                crease_angle: None,
-                diffuse,
-                line: geometry.line,
-                index_field: "Box",
-            }
-        }
-        "ElevationGrid" => {
-            let (points, geo) = elevation_grid(geometry)?;
-            if geo.ends.is_empty() {
-                skip_empty(geometry, ctx);
-                return Ok(());
-            }
-            grid = points;
-            grid_spec(geometry, name, transform, diffuse, &grid, geo)
-        }
-        "Extrusion" => {
-            let swept = extrusion::extrude(geometry, textured)?;
-            if swept.ends.is_empty() {
-                skip_empty(geometry, ctx);
-                return Ok(());
-            }
-            grid = swept.points;
-            made_uv = swept.texcoords;
-            ShapeSpec {
-                name,
-                transform,
-                coords: &grid,
-                corners: swept.corners,
-                ends: swept.ends,
-                colors: Bind::None,
-                normals: Bind::None,
-                texcoords: textured.then(|| TexCoords {
-                    values: &made_uv,
-                    index: swept.texcoord_index,
-                }),
-                ccw: geometry.boolean("ccw").unwrap_or(true),
-                solid: geometry.boolean("solid").unwrap_or(true),
-                crease_angle: geometry.float("creaseAngle"),
-                diffuse,
-                line: geometry.line,
-                index_field: "spine",
-            }
-        }
-        "Sphere" | "Cone" | "Cylinder" => {
-            tess = primitive(geometry, textured);
-            if tess.triangles.is_empty() {
-                skip_empty(geometry, ctx);
-                return Ok(());
-            }
-            primitives::shape_spec(
-                name,
-                transform,
-                &tess,
-                tess.to_geo(),
-                Bind::None,
-                diffuse,
-                geometry.line,
-            )
-        }
-        other => {
-            ctx.budget.warn_once(
-                ctx.warnings,
-                other,
-                format!(
-                    "line {}: geometry '{other}' is not converted to triangles; skipped",
-                    geometry.line
-                ),
-            );
-            return Ok(());
-        }
+    let look = Look {
+        name,
+        transform,
+        diffuse,
+        textured,
     };
-    let mut model = build(spec, ctx.warnings)?;
+    let Some(mut model) = geometry_model(geometry, look, ctx)? else {
+        return Ok(());
+    };
     if textured && model.texcoords.is_none() {
         match geometry.kind.as_str() {
             "IndexedFaceSet" => default_texcoords::bounding_box(&mut model),
@@ -247,6 +155,146 @@ fn shape_geometry(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResul
     ctx.budget.spend(model.triangles.len(), node.line)?;
     ctx.models.push(model);
     Ok(())
+}
+
+/// What a Shape gives its geometry's model: name, placement, colour, and whether it has a
+/// texture (primitives then make their texture coordinates).
+struct Look {
+    name: String,
+    transform: Mat4,
+    diffuse: [f32; 3],
+    textured: bool,
+}
+
+/// The model of a Shape's `geometry` node; `None` when it is empty or of a kind not
+/// converted to triangles (said in a warning).
+fn geometry_model(geometry: &Rc<Node>, look: Look, ctx: &mut Ctx<'_>) -> PResult<Option<Model>> {
+    let Look {
+        name,
+        transform,
+        diffuse,
+        textured,
+    } = look;
+    let spec = match geometry.kind.as_str() {
+        "IndexedFaceSet" => indexed_face_set(geometry, name, transform, diffuse)?,
+        "Box" => return box_model(geometry, name, transform, diffuse, textured, ctx).map(Some),
+        "ElevationGrid" => {
+            let (points, geo) = elevation_grid(geometry)?;
+            if geo.ends.is_empty() {
+                skip_empty(geometry, ctx);
+                return Ok(None);
+            }
+            let spec = grid_spec(geometry, name, transform, diffuse, &points, geo);
+            return build(spec, ctx.warnings).map(Some);
+        }
+        "Extrusion" => {
+            return extrusion_model(geometry, name, transform, diffuse, textured, ctx);
+        }
+        "Sphere" | "Cone" | "Cylinder" => {
+            let tess = primitive(geometry, textured);
+            if tess.triangles.is_empty() {
+                skip_empty(geometry, ctx);
+                return Ok(None);
+            }
+            let spec = primitives::shape_spec(
+                name,
+                transform,
+                &tess,
+                tess.to_geo(),
+                Bind::None,
+                diffuse,
+                geometry.line,
+            );
+            return build(spec, ctx.warnings).map(Some);
+        }
+        other => {
+            ctx.budget.warn_once(
+                ctx.warnings,
+                other,
+                format!(
+                    "line {}: geometry '{other}' is not converted to triangles; skipped",
+                    geometry.line
+                ),
+            );
+            return Ok(None);
+        }
+    };
+    build(spec, ctx.warnings).map(Some)
+}
+
+/// A Box: six quads, with the specification's texture coordinates under a texture.
+fn box_model(
+    geometry: &Rc<Node>,
+    name: String,
+    transform: Mat4,
+    diffuse: [f32; 3],
+    textured: bool,
+    ctx: &mut Ctx<'_>,
+) -> PResult<Model> {
+    let half = vec3(geometry.floats("size"), Vec3::splat(2.0)) * 0.5;
+    let boxed = primitives::box_coords(half, textured);
+    let made_uv = if textured {
+        primitives::box_texcoords()
+    } else {
+        Vec::new()
+    };
+    let corners = primitives::box_quads(textured);
+    let spec = ShapeSpec {
+        name,
+        transform,
+        coords: &boxed,
+        texcoords: textured.then(|| TexCoords {
+            values: &made_uv,
+            index: corners.clone(),
+        }),
+        corners,
+        ends: (1..=6).map(|i| i * 4).collect(),
+        colors: Bind::None,
+        normals: Bind::None,
+        ccw: true,
+        solid: true,
+        crease_angle: None,
+        diffuse,
+        line: geometry.line,
+        index_field: "Box",
+    };
+    build(spec, ctx.warnings)
+}
+
+/// An Extrusion swept along its spine; `None` when it sweeps nothing.
+fn extrusion_model(
+    geometry: &Rc<Node>,
+    name: String,
+    transform: Mat4,
+    diffuse: [f32; 3],
+    textured: bool,
+    ctx: &mut Ctx<'_>,
+) -> PResult<Option<Model>> {
+    let swept = extrusion::extrude(geometry, textured)?;
+    if swept.ends.is_empty() {
+        skip_empty(geometry, ctx);
+        return Ok(None);
+    }
+    let spec = ShapeSpec {
+        name,
+        transform,
+        coords: &swept.points,
+        corners: swept.corners,
+        ends: swept.ends,
+        colors: Bind::None,
+        normals: Bind::None,
+        texcoords: textured.then(|| TexCoords {
+            values: &swept.texcoords,
+            index: swept.texcoord_index,
+        }),
+        ccw: geometry.boolean("ccw").unwrap_or(true),
+        solid: geometry.boolean("solid").unwrap_or(true),
+        crease_angle: geometry.float("creaseAngle"),
+        diffuse,
+        line: geometry.line,
+        index_field: "spine",
+    };
+    build(spec, ctx.warnings).map(Some)
 }
 
 /// A `Sphere`, `Cone` or `Cylinder` at Coin's default complexity, with the parts its

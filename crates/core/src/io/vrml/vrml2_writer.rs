@@ -101,28 +101,11 @@ fn write_model(w: &mut impl Write, m: &Model, names: &mut HashSet<String>) -> io
     } else {
         None
     };
-    let normal_matrix = bake.map(|t| Mat3::from_mat4(t).inverse().transpose());
-    let flip = bake.is_some_and(|t| t.determinant() < 0.0);
 
     writeln!(w)?;
     writeln!(w, "Transform {{")?;
-    if let Some((t, r, s)) = parts {
-        if t != Vec3::ZERO {
-            w.write_all(b"  translation ")?;
-            vec(w, t)?;
-            writeln!(w)?;
-        }
-        let (axis, angle) = r.to_axis_angle();
-        if angle != 0.0 && axis.is_finite() {
-            w.write_all(b"  rotation ")?;
-            vec(w, axis)?;
-            writeln!(w, " {angle}")?;
-        }
-        if s != Vec3::ONE {
-            w.write_all(b"  scale ")?;
-            vec(w, s)?;
-            writeln!(w)?;
-        }
+    if let Some(parts) = parts {
+        write_transform(w, parts)?;
     }
     writeln!(w, "  children [")?;
     if is_valid_vrml_name(&m.name) && names.insert(m.name.clone()) {
@@ -130,6 +113,48 @@ fn write_model(w: &mut impl Write, m: &Model, names: &mut HashSet<String>) -> io
     } else {
         writeln!(w, "    Shape {{")?;
     }
+    write_appearance(w, m)?;
+    writeln!(w, "      geometry IndexedFaceSet {{")?;
+    writeln!(w, "        ccw TRUE")?;
+    writeln!(
+        w,
+        "        solid {}",
+        if m.solid { "TRUE" } else { "FALSE" }
+    )?;
+    if let Some(a) = m.crease_angle {
+        writeln!(w, "        creaseAngle {a}")?;
+    }
+    write_coordinates(w, m, bake)?;
+    write_attributes(w, m, bake)?;
+    writeln!(w, "      }}")?;
+    writeln!(w, "    }}")?;
+    writeln!(w, "  ]")?;
+    writeln!(w, "}}")
+}
+
+/// The Transform's fields that differ from the identity.
+fn write_transform(w: &mut impl Write, (t, r, s): (Vec3, Quat, Vec3)) -> io::Result<()> {
+    if t != Vec3::ZERO {
+        w.write_all(b"  translation ")?;
+        vec(w, t)?;
+        writeln!(w)?;
+    }
+    let (axis, angle) = r.to_axis_angle();
+    if angle != 0.0 && axis.is_finite() {
+        w.write_all(b"  rotation ")?;
+        vec(w, axis)?;
+        writeln!(w, " {angle}")?;
+    }
+    if s != Vec3::ONE {
+        w.write_all(b"  scale ")?;
+        vec(w, s)?;
+        writeln!(w)?;
+    }
+    Ok(())
+}
+
+/// The Appearance: diffuse colour, and the texture with its wrapping.
+fn write_appearance(w: &mut impl Write, m: &Model) -> io::Result<()> {
     let [r, g, b] = m.diffuse;
     write!(
         w,
@@ -146,16 +171,12 @@ fn write_model(w: &mut impl Write, m: &Model, names: &mut HashSet<String>) -> io
         write!(w, " }}")?;
     }
     writeln!(w, " }}")?;
-    writeln!(w, "      geometry IndexedFaceSet {{")?;
-    writeln!(w, "        ccw TRUE")?;
-    writeln!(
-        w,
-        "        solid {}",
-        if m.solid { "TRUE" } else { "FALSE" }
-    )?;
-    if let Some(a) = m.crease_angle {
-        writeln!(w, "        creaseAngle {a}")?;
-    }
+    Ok(())
+}
+
+/// The points (baked into world space when `bake` is set) and the triangles.
+fn write_coordinates(w: &mut impl Write, m: &Model, bake: Option<Mat4>) -> io::Result<()> {
+    let flip = bake.is_some_and(|t| t.determinant() < 0.0);
     w.write_all(b"        coord Coordinate { point ")?;
     match bake {
         Some(t) => write_list(w, &m.positions, |w, p| vec(w, t.transform_point3(p)))?,
@@ -167,6 +188,12 @@ fn write_model(w: &mut impl Write, m: &Model, names: &mut HashSet<String>) -> io
         writeln!(w, "          {a}, {b}, {c}, -1,")?;
     }
     w.write_all(b"        ]\n")?;
+    Ok(())
+}
+
+/// Colours, texture coordinates and normals (turned into world space when `bake` is set).
+fn write_attributes(w: &mut impl Write, m: &Model, bake: Option<Mat4>) -> io::Result<()> {
+    let normal_matrix = bake.map(|t| Mat3::from_mat4(t).inverse().transpose());
     if let Some(colors) = &m.colors {
         w.write_all(b"        color Color { color ")?;
         write_list(w, colors.values(), |w, [r, g, b]| write!(w, "{r} {g} {b}"))?;
@@ -204,8 +231,5 @@ fn write_model(w: &mut impl Write, m: &Model, names: &mut HashSet<String>) -> io
             if per_vertex { "TRUE" } else { "FALSE" }
         )?;
     }
-    writeln!(w, "      }}")?;
-    writeln!(w, "    }}")?;
-    writeln!(w, "  ]")?;
-    writeln!(w, "}}")
+    Ok(())
 }
