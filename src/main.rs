@@ -41,34 +41,9 @@ fn main() -> ExitCode {
     }
 
     // (2) Parse the VRML / Open Inventor file.
-    let options = io::ReadOptions {
-        lenient: args.lenient,
-    };
-    let outcome = match io::read_scene_with(&args.input, options) {
-        Ok(outcome) => outcome,
-        Err(e) => {
-            eprintln!("decimate: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
-    // Grouped by kind; `-q` keeps the warnings that say data was lost.
-    for w in io::warning::grouped(&outcome.warnings) {
-        if !args.quiet || w.loses_data() {
-            eprintln!("decimate: warning: {w}");
-        }
-    }
-    if outcome.scene.triangle_count() == 0 {
-        eprintln!(
-            "decimate: {}: no triangles: the file has no shape this program reads{}",
-            args.input.display(),
-            if outcome.warnings.is_empty() {
-                ""
-            } else {
-                " (see the warnings above)"
-            }
-        );
+    let Some(outcome) = parse_scene(&args) else {
         return ExitCode::FAILURE;
-    }
+    };
 
     // (3) Build the models: weld duplicated vertices, fill in what the file lacks.
     let options = mesh::build::BuildOptions {
@@ -92,4 +67,37 @@ fn main() -> ExitCode {
         // (4) menus, (5) callbacks, (6) main loop: the viewer.
         Action::Gui | Action::Shot => viewer_start::run(scene, &args),
     }
+}
+
+/// Step (2): the scene file read, its warnings printed grouped by kind (`-q` keeps those
+/// that say data was lost); `None`, with the reason printed, when it gives no triangle.
+fn parse_scene(args: &cli::Args) -> Option<io::ReadOutcome> {
+    let options = io::ReadOptions {
+        lenient: args.lenient,
+    };
+    let outcome = match io::read_scene_with(&args.input, options) {
+        Ok(outcome) => outcome,
+        Err(e) => {
+            eprintln!("decimate: {e}");
+            return None;
+        }
+    };
+    for w in io::warning::grouped(&outcome.warnings) {
+        if !args.quiet || w.loses_data() {
+            eprintln!("decimate: warning: {w}");
+        }
+    }
+    if outcome.scene.triangle_count() == 0 {
+        eprintln!(
+            "decimate: {}: no triangles: the file has no shape this program reads{}",
+            args.input.display(),
+            if outcome.warnings.is_empty() {
+                ""
+            } else {
+                " (see the warnings above)"
+            }
+        );
+        return None;
+    }
+    Some(outcome)
 }

@@ -79,41 +79,12 @@ pub fn remove_hanging_sheets(
     if model.triangles.len() < 5 || model.triangles.iter().flatten().any(|&v| v as usize >= n) {
         return RemovedSheets::default();
     }
-    // Copies of a point (the sides of a texture seam or of a normal crease, kept apart by
-    // their attributes when the file was welded) are one vertex here: a seam does not cut a
-    // sheet, and a part sharing only copies still hangs.
-    let split = model.texcoords.is_some()
-        || matches!(model.normals, Some(Attribute::PerVertex(_)))
-        || matches!(model.colors, Some(Attribute::PerVertex(_)));
-    let corners: Cow<'_, [[u32; 3]]> = if split {
-        let point = weld::point_ids(&model.positions);
-        let at = |t: &[u32; 3]| t.map(|v| point[v as usize]);
-        Cow::Owned(model.triangles.iter().map(at).collect())
-    } else {
-        Cow::Borrowed(&model.triangles)
-    };
+    let corners = point_corners(model);
     let edges = Edges::of(&corners, n);
     let (sheet_of, count) = sheets(model.triangles.len(), &edges);
-
-    // Whether a second sheet uses each vertex (its first sheet noted as it is met): only a
-    // sheet with such a vertex hangs, and a mesh without one has none that does.
-    let mut first = vec![u32::MAX; n];
-    let mut shared = vec![false; n];
-    for (tri, &s) in corners.iter().zip(&sheet_of) {
-        for &v in tri {
-            let f = &mut first[v as usize];
-            if *f == u32::MAX {
-                *f = s;
-            } else if *f != s {
-                shared[v as usize] = true;
-            }
-        }
-    }
-    drop(first);
-    if !shared.iter().any(|&s| s) {
+    let Some(shared) = shared_vertices(&corners, &sheet_of, n) else {
         return RemovedSheets::default();
-    }
-
+    };
     let mut sheet = vec![
         Sheet {
             closed: true,
@@ -128,28 +99,11 @@ pub fn remove_hanging_sheets(
     ];
     mark_open_sheets(&edges, &sheet_of, &mut sheet);
     drop(edges);
-    let mut total_area = 0.0;
-    let p = |v: u32| model.positions[v as usize].as_dvec3();
-    for ((tri, corners), &s) in model.triangles.iter().zip(corners.iter()).zip(&sheet_of) {
-        let [a, b, c] = tri.map(p);
-        let area = (b - a).cross(c - a).length() / 2.0;
-        total_area += area;
-        let st = &mut sheet[s as usize];
-        st.area += area;
-        for q in [a, b, c] {
-            st.lo = st.lo.min(q);
-            st.hi = st.hi.max(q);
-        }
-        st.touches |= corners.iter().any(|&v| shared[v as usize]);
-        st.pinned |= tri.iter().any(|&v| pinned(v));
-    }
-
+    let total_area = measure_sheets(model, &corners, &sheet_of, &shared, pinned, &mut sheet);
     let max_area = limit
         .result_triangles
         .map_or(f64::INFINITY, |k| total_area / k.max(1) as f64);
-    let diagonal2 = |s: &Sheet| (s.hi - s.lo).length_squared();
-    let goes: Vec<bool> = sheet
-        .iter()
+    let goes: Vec<bool> = (sheet.iter())
         .map(|s| {
             s.touches
                 && (s.closed || s.rim)
@@ -163,7 +117,85 @@ pub fn remove_hanging_sheets(
     if !goes.iter().any(|&g| g) || removed_area > MAX_AREA_SHARE * total_area {
         return RemovedSheets::default();
     }
-    let gone = || (0..count).filter(|&s| goes[s]).map(|s| &sheet[s]);
+    remove_sheets(model, &sheet, &sheet_of, &goes)
+}
+
+/// The square of a sheet's bounding-box diagonal.
+fn diagonal2(s: &Sheet) -> f64 {
+    (s.hi - s.lo).length_squared()
+}
+
+/// The triangles' corners as points: copies of a point (the sides of a texture seam or of a
+/// normal crease, kept apart by their attributes when the file was welded) are one vertex
+/// here, so a seam does not cut a sheet, and a part sharing only copies still hangs.
+fn point_corners(model: &Model) -> Cow<'_, [[u32; 3]]> {
+    let split = model.texcoords.is_some()
+        || matches!(model.normals, Some(Attribute::PerVertex(_)))
+        || matches!(model.colors, Some(Attribute::PerVertex(_)));
+    if split {
+        let point = weld::point_ids(&model.positions);
+        let at = |t: &[u32; 3]| t.map(|v| point[v as usize]);
+        Cow::Owned(model.triangles.iter().map(at).collect())
+    } else {
+        Cow::Borrowed(&model.triangles)
+    }
+}
+
+/// Whether a second sheet uses each vertex (its first sheet noted as it is met): only a
+/// sheet with such a vertex hangs; `None` when no vertex is shared, so none hangs.
+fn shared_vertices(corners: &[[u32; 3]], sheet_of: &[u32], n: usize) -> Option<Vec<bool>> {
+    let mut first = vec![u32::MAX; n];
+    let mut shared = vec![false; n];
+    for (tri, &s) in corners.iter().zip(sheet_of) {
+        for &v in tri {
+            let f = &mut first[v as usize];
+            if *f == u32::MAX {
+                *f = s;
+            } else if *f != s {
+                shared[v as usize] = true;
+            }
+        }
+    }
+    shared.iter().any(|&s| s).then_some(shared)
+}
+
+/// Each sheet's area, box, whether it touches a shared vertex and whether it holds a pinned
+/// one; returns the model's total area.
+fn measure_sheets(
+    model: &Model,
+    corners: &[[u32; 3]],
+    sheet_of: &[u32],
+    shared: &[bool],
+    pinned: &dyn Fn(u32) -> bool,
+    sheet: &mut [Sheet],
+) -> f64 {
+    let mut total_area = 0.0;
+    let p = |v: u32| model.positions[v as usize].as_dvec3();
+    for ((tri, corners), &s) in model.triangles.iter().zip(corners.iter()).zip(sheet_of) {
+        let [a, b, c] = tri.map(p);
+        let area = (b - a).cross(c - a).length() / 2.0;
+        total_area += area;
+        let st = &mut sheet[s as usize];
+        st.area += area;
+        for q in [a, b, c] {
+            st.lo = st.lo.min(q);
+            st.hi = st.hi.max(q);
+        }
+        st.touches |= corners.iter().any(|&v| shared[v as usize]);
+        st.pinned |= tri.iter().any(|&v| pinned(v));
+    }
+    total_area
+}
+
+/// Removes the triangles of the sheets that go; counts what went.
+fn remove_sheets(
+    model: &mut Model,
+    sheet: &[Sheet],
+    sheet_of: &[u32],
+    goes: &[bool],
+) -> RemovedSheets {
+    let n = model.positions.len();
+    let gone = || (0..sheet.len()).filter(|&s| goes[s]).map(|s| &sheet[s]);
     let keep: Vec<bool> = sheet_of.iter().map(|&s| !goes[s as usize]).collect();
     let removed = RemovedSheets {
         sheets: gone().count(),

@@ -414,21 +414,7 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
         return Attempt::Elsewhere;
     }
     if let Some(p) = plan.filter(|p| stored(p.cost) > bounds.threshold) {
-        // An end took a collapse in this pass: re-planned at its end. On a seam it may have
-        // been the other side's end, which re-plans that side's edges only: both ends look
-        // again (the other end may have been dropped from the pass as a duplicate).
-        if p.twin.is_some() {
-            for x in [v, w] {
-                let i = d.at(x);
-                d.flags[i] |= RERANK;
-            }
-        }
-        // Otherwise the cost changed with no collapse at either end (a complex end made
-        // manifold, see `Part::settle_complex`): `v` re-plans, or the next pass is this one.
-        let (iv, iw) = (d.at(v), d.at(w));
-        if (d.flags[iv] | d.flags[iw]) & REPLAN == 0 {
-            d.flags[iv] |= REPLAN;
-        }
+        wait_over_threshold(d, v, w, &p);
         return Attempt::Skipped;
     }
     // No plan (the edge's shape changed since it was planned) counts as illegal, so that
@@ -441,20 +427,50 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
     let Some(plan) = plan.filter(|p| legal && p.error2 <= bounds.bound2) else {
         // The cost weighs area and colour, not just the error: an edge over the bound is
         // skipped like an illegal one, until its neighbourhood changes.
-        let twin = plan.and_then(|p| p.twin);
-        for (x, y) in [(v, w)].into_iter().chain(twin.map(|[a, b]| (a, b))) {
-            d.block_edge(x, y);
-            let (ix, iy) = (d.at(x), d.at(y));
-            d.flags[ix] |= RERANK;
-            d.flags[iy] |= RERANK;
-        }
+        block(d, v, w, plan.and_then(|p| p.twin));
         return if legal {
             Attempt::OverBound
         } else {
             Attempt::Skipped
         };
     };
-    collapse_and_flag(d, &plan);
+    collapse_with_sides(d, &plan);
+    Attempt::Collapsed(removes, plan.error2)
+}
+
+/// A candidate whose edge now costs over the pass's threshold waits. An end took a collapse
+/// in this pass: re-planned at its end. On a seam it may have been the other side's end,
+/// which re-plans that side's edges only: both ends look again (the other end may have been
+/// dropped from the pass as a duplicate).
+fn wait_over_threshold(d: &mut Part<'_>, v: u32, w: u32, p: &Plan) {
+    if p.twin.is_some() {
+        for x in [v, w] {
+            let i = d.at(x);
+            d.flags[i] |= RERANK;
+        }
+    }
+    // Otherwise the cost changed with no collapse at either end (a complex end made
+    // manifold, see `Part::settle_complex`): `v` re-plans, or the next pass is this one.
+    let (iv, iw) = (d.at(v), d.at(w));
+    if (d.flags[iv] | d.flags[iw]) & REPLAN == 0 {
+        d.flags[iv] |= REPLAN;
+    }
+}
+
+/// Blocks edge `v`–`w` (and its seam twin) until its neighbourhood changes.
+fn block(d: &mut Part<'_>, v: u32, w: u32, twin: Option<[u32; 2]>) {
+    for (x, y) in [(v, w)].into_iter().chain(twin.map(|[a, b]| (a, b))) {
+        d.block_edge(x, y);
+        let (ix, iy) = (d.at(x), d.at(y));
+        d.flags[ix] |= RERANK;
+        d.flags[iy] |= RERANK;
+    }
+}
+
+/// Collapses `plan` (and its seam twin on the other side), flagging for re-planning what
+/// the collapse made dearer.
+fn collapse_with_sides(d: &mut Part<'_>, plan: &Plan) {
+    collapse_and_flag(d, plan);
     if let Some(twin) = plan.other_side() {
         d.swap_sides();
         collapse_and_flag(d, &twin);
@@ -479,7 +495,6 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
         let i = d.at(c);
         d.flags[i] |= REPLAN;
     }
-    Attempt::Collapsed(removes, plan.error2)
 }
 
 /// Whether `Part::plan` decides an edge between vertices of these kinds without counting

@@ -309,25 +309,7 @@ impl Part<'_> {
     #[inline(always)]
     pub fn plan(&self, a: u32, b: u32) -> Option<Plan> {
         let (ka, kb) = (self.kind(a), self.kind(b));
-        let along_boundary = |(remove, keep, free)| {
-            (self.edge_triangles(remove, keep) == 1).then_some((remove, keep, free, true))
-        };
-        let (remove, keep, free, along_boundary) = match (ka, kb) {
-            (Kind::Fixed, _)
-            | (_, Kind::Fixed)
-            | (Kind::Anchored, Kind::Anchored)
-            | (Kind::Anchored, Kind::Complex)
-            | (Kind::Complex, Kind::Anchored) => return None,
-            (Kind::Interior, Kind::Interior) => (a, b, true, false),
-            (Kind::Interior, Kind::Boundary) => (a, b, self.twin(b).is_none(), false),
-            (Kind::Boundary, Kind::Interior) => (b, a, self.twin(a).is_none(), false),
-            (Kind::Interior, Kind::Anchored | Kind::Complex) => (a, b, false, false),
-            (Kind::Anchored | Kind::Complex, Kind::Interior) => (b, a, false, false),
-            (Kind::Boundary, Kind::Boundary) => along_boundary((a, b, true))?,
-            (Kind::Boundary, Kind::Anchored | Kind::Complex) => along_boundary((a, b, false))?,
-            (Kind::Anchored | Kind::Complex, Kind::Boundary) => along_boundary((b, a, false))?,
-            (Kind::Complex, Kind::Complex) => self.along_non_manifold_edge(a, b)?,
-        };
+        let (remove, keep, free, along_boundary) = self.roles(a, b, ka, kb)?;
         let (remove, keep, twin) = if self.twins.is_empty() {
             (remove, keep, None)
         } else {
@@ -378,20 +360,9 @@ impl Part<'_> {
             if ka == Kind::Interior && kb == Kind::Interior {
                 let best = side.best_coordinates(position) / self.texture_scale;
                 texcoords = Some(best.as_vec2().to_array());
-            } else if let Some(t) = self.texcoords.as_deref() {
-                // On an outline of the texture (a boundary, a seam's side) or staying put,
-                // the kept vertex's coordinates are interpolated along the edge, as
-                // `collapse` does without a plan's: they stay on the outline, exactly where
-                // it is straight. Priced as such.
-                let s = f64::from(fraction(position, pr, pk));
-                let along = |r: u32, k: u32| {
-                    let [r, k] = [r, k].map(|v| DVec2::from(t[self.at(v)].map(f64::from)));
-                    (k + s * (r - k)) * self.texture_scale
-                };
-                cost += TEXTURE_WEIGHT * side.excess(position, along(remove, keep));
-                if let (Some(other), Some([r2, k2])) = (other, twin) {
-                    cost += TEXTURE_WEIGHT * other.excess(position, along(r2, k2));
-                }
+            } else {
+                let ends = ([remove, keep], twin, pr, pk);
+                self.add_outline_texture_cost(&mut cost, position, ends, side, other.as_ref());
             }
         }
         cost += self.attribute_cost([remove, keep], twin, q.area, (pk - pr).length_squared());
@@ -405,6 +376,59 @@ impl Part<'_> {
             texcoords,
             junction: None,
         })
+    }
+
+    /// Which end of `a`–`b` (of kinds `ka`, `kb`) goes into which, whether the kept end may
+    /// move, and whether the edge runs along a boundary; `None` when neither may go (the
+    /// table of [`Self::plan`]).
+    #[inline(always)]
+    fn roles(&self, a: u32, b: u32, ka: Kind, kb: Kind) -> Option<(u32, u32, bool, bool)> {
+        let along_boundary = |(remove, keep, free)| {
+            (self.edge_triangles(remove, keep) == 1).then_some((remove, keep, free, true))
+        };
+        Some(match (ka, kb) {
+            (Kind::Fixed, _)
+            | (_, Kind::Fixed)
+            | (Kind::Anchored, Kind::Anchored)
+            | (Kind::Anchored, Kind::Complex)
+            | (Kind::Complex, Kind::Anchored) => return None,
+            (Kind::Interior, Kind::Interior) => (a, b, true, false),
+            (Kind::Interior, Kind::Boundary) => (a, b, self.twin(b).is_none(), false),
+            (Kind::Boundary, Kind::Interior) => (b, a, self.twin(a).is_none(), false),
+            (Kind::Interior, Kind::Anchored | Kind::Complex) => (a, b, false, false),
+            (Kind::Anchored | Kind::Complex, Kind::Interior) => (b, a, false, false),
+            (Kind::Boundary, Kind::Boundary) => along_boundary((a, b, true))?,
+            (Kind::Boundary, Kind::Anchored | Kind::Complex) => along_boundary((a, b, false))?,
+            (Kind::Anchored | Kind::Complex, Kind::Boundary) => along_boundary((b, a, false))?,
+            (Kind::Complex, Kind::Complex) => self.along_non_manifold_edge(a, b)?,
+        })
+    }
+
+    /// The texture's excess cost when the kept vertex sits on an outline of the texture (a
+    /// boundary, a seam's side) or stays put: its coordinates are interpolated along the
+    /// edge, as `collapse` does without a plan's, so they stay on the outline, exactly where
+    /// it is straight. Priced as such, on each side of a seam; nothing without coordinates.
+    #[inline(always)]
+    fn add_outline_texture_cost(
+        &self,
+        cost: &mut f64,
+        position: DVec3,
+        ([remove, keep], twin, pr, pk): ([u32; 2], Option<[u32; 2]>, DVec3, DVec3),
+        side: &TextureQuadric,
+        other: Option<&TextureQuadric>,
+    ) {
+        let Some(t) = self.texcoords.as_deref() else {
+            return;
+        };
+        let s = f64::from(fraction(position, pr, pk));
+        let along = |r: u32, k: u32| {
+            let [r, k] = [r, k].map(|v| DVec2::from(t[self.at(v)].map(f64::from)));
+            (k + s * (r - k)) * self.texture_scale
+        };
+        *cost += TEXTURE_WEIGHT * side.excess(position, along(remove, keep));
+        if let (Some(other), Some([r2, k2])) = (other, twin) {
+            *cost += TEXTURE_WEIGHT * other.excess(position, along(r2, k2));
+        }
     }
 
     /// What the attribute steps along a collapse's edge (and its seam twin's) add to its

@@ -88,11 +88,8 @@ pub fn decimate_model(
 ) -> Outcome {
     // 1. load
     let (mut loaded, positions, triangles) = load(model);
-    let pinned: Vec<bool> = loaded
-        .order
-        .iter()
-        .map(|&v| pins.get(v as usize).copied().unwrap_or(false))
-        .collect();
+    let pin = |&v: &u32| pins.get(v as usize).copied().unwrap_or(false);
+    let pinned: Vec<bool> = loaded.order.iter().map(pin).collect();
     let twins = loaded.pairs(twins);
     let texcoords = model
         .texcoords
@@ -122,23 +119,7 @@ pub fn decimate_model(
     d.twins = twins;
     d.texcoords = texcoords;
 
-    // A count short of "all of them" stops at four vertices, as qem does: a model under
-    // four is dropped from the scene (the original's rule, which `-p 100` and an error
-    // bound alone keep), and a plane's two triangles or a tetrahedron is as far as `-p 50`
-    // or a triangle count should take it (a 5-vertex fin cut at `-p 50` came out empty).
-    let used = (0..d.positions.len() as u32)
-        .filter(|&v| !d.conn.incident(v).is_empty())
-        .count()
-        .saturating_sub(limits.seam_copies);
-    let floor = if limits.keep_triangles > 0 || limits.remove < used {
-        used.saturating_sub(MIN_VERTICES)
-    } else {
-        used
-    };
-    let floored = Limits {
-        remove: limits.remove.min(floor),
-        ..limits.clone()
-    };
+    let (floor, floored) = floored_limits(&d, limits);
 
     // 3. classify and rank
     let mut outcome = Outcome {
@@ -175,6 +156,28 @@ pub fn decimate_model(
         layout::restore(model, &d.positions, &d.conn, &loaded.order, &loaded.faces);
     }
     outcome
+}
+
+/// The most vertices a count may remove, and `limits` with it. A count short of "all of
+/// them" stops at four vertices, as qem does: a model under four is dropped from the scene
+/// (the original's rule, which `-p 100` and an error bound alone keep), and a plane's two
+/// triangles or a tetrahedron is as far as `-p 50` or a triangle count should take it (a
+/// 5-vertex fin cut at `-p 50` came out empty).
+fn floored_limits(d: &Decimator, limits: &Limits) -> (usize, Limits) {
+    let used = (0..d.positions.len() as u32)
+        .filter(|&v| !d.conn.incident(v).is_empty())
+        .count()
+        .saturating_sub(limits.seam_copies);
+    let floor = if limits.keep_triangles > 0 || limits.remove < used {
+        used.saturating_sub(MIN_VERTICES)
+    } else {
+        used
+    };
+    let floored = Limits {
+        remove: limits.remove.min(floor),
+        ..limits.clone()
+    };
+    (floor, floored)
 }
 
 /// `model` as the decimation works on it: renumbered along a Morton curve, triangles

@@ -459,19 +459,7 @@ impl<C: Adjacency> Surface<'_, C> {
         fill_input: &mut Vec<Vec3>,
         old_input: &mut Vec<DVec3>,
     ) -> bool {
-        let r = &p.ring.verts;
-        let k = r.len();
-        let closed = k == p.ring.triangles.len();
-        let is_ring_edge = |a: u32, b: u32| {
-            let (Some(i), Some(j)) = (
-                r.iter().position(|&x| x == a),
-                r.iter().position(|&x| x == b),
-            ) else {
-                return false;
-            };
-            let d = i.abs_diff(j);
-            d == 1 || (closed && d == k - 1)
-        };
+        let k = p.ring.verts.len();
         let crosses = &p.geometry.crosses;
         let slots = &p.ring.triangles;
         let mut start = 0;
@@ -515,27 +503,8 @@ impl<C: Adjacency> Surface<'_, C> {
                 if !self.faces_like_junction(cross, tri) {
                     return false;
                 }
-                // A diagonal of the hole is in two fill triangles, once each way: looked
-                // up once. (The edge closing an open ring and a crease's split edge, in
-                // one triangle, were looked up before the fill was made.)
-                for (x, y) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
-                    if x > y || is_ring_edge(x, y) {
-                        continue;
-                    }
-                    if self.conn.has_edge_avoiding(x, y, v) {
-                        return false;
-                    }
-                    // An open ring's closing edge lies on the outline: on a seam, the
-                    // other side's removal closes its hole with the same edge.
-                    let closing = !closed && is_ring_end(r, x) && is_ring_end(r, y);
-                    if !closing && self.joins_seam_sides(x, y) {
-                        return false;
-                    }
-                    // Welded, no other copies of the two may be joined already (at a
-                    // junction, its copies are joined to much of the ring).
-                    if !closing && self.joined_elsewhere(v, x, y) {
-                        return false;
-                    }
+                if !self.diagonals_allowed(v, tri, p) {
+                    return false;
                 }
             }
             share_input(
@@ -547,6 +516,47 @@ impl<C: Adjacency> Surface<'_, C> {
                 &mut fill_input[start..region.end],
             );
             start = region.end;
+        }
+        true
+    }
+
+    /// Whether fill triangle `tri`'s new edges (the hole's diagonals) may be made: none is
+    /// an edge already, joins a seam's two sides or joins copies joined elsewhere. A diagonal
+    /// is in two fill triangles, once each way: looked up once. (The edge closing an open
+    /// ring and a crease's split edge, in one triangle, were looked up before the fill was
+    /// made.)
+    fn diagonals_allowed(&self, v: u32, tri: &[u32; 3], p: &Planning) -> bool {
+        let r = &p.ring.verts;
+        let k = r.len();
+        let closed = k == p.ring.triangles.len();
+        let is_ring_edge = |a: u32, b: u32| {
+            let (Some(i), Some(j)) = (
+                r.iter().position(|&x| x == a),
+                r.iter().position(|&x| x == b),
+            ) else {
+                return false;
+            };
+            let d = i.abs_diff(j);
+            d == 1 || (closed && d == k - 1)
+        };
+        for (x, y) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
+            if x > y || is_ring_edge(x, y) {
+                continue;
+            }
+            if self.conn.has_edge_avoiding(x, y, v) {
+                return false;
+            }
+            // An open ring's closing edge lies on the outline: on a seam, the other side's
+            // removal closes its hole with the same edge.
+            let closing = !closed && is_ring_end(r, x) && is_ring_end(r, y);
+            if !closing && self.joins_seam_sides(x, y) {
+                return false;
+            }
+            // Welded, no other copies of the two may be joined already (at a junction, its
+            // copies are joined to much of the ring).
+            if !closing && self.joined_elsewhere(v, x, y) {
+                return false;
+            }
         }
         true
     }
