@@ -12,6 +12,7 @@
 //! module per algorithm behind [`decimate::simplify_scene`]); `metro` (surface distance);
 //! `tile` (tiled decimation) beside `api` (the entry point for programs).
 //! `alloc`, `threads`, `progress_bar` and `cancel` are process plumbing under all of them.
+#![deny(missing_docs)]
 #![warn(
     rust_2018_idioms,
     trivial_casts,

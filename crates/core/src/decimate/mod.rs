@@ -63,7 +63,9 @@ pub enum Algorithm {
 /// Everything a decimation run needs besides the scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Params {
+    /// How far to decimate.
     pub target: Target,
+    /// Never remove a vertex whose error would exceed this (`--max-error`).
     pub max_error: Option<ErrorBound>,
     /// Dihedral angle in degrees above which an edge is a feature edge.
     pub feature_angle_deg: f64,
@@ -72,6 +74,7 @@ pub struct Params {
     /// Never move or remove a vertex on a model's open border
     /// (`mesh::stitches::open_border_vertices`): pieces of one mesh decimated apart still fit.
     pub keep_border: bool,
+    /// Vertex removal or quadric edge collapse.
     pub algorithm: Algorithm,
     /// qem: scale every fold angle to how finely the mesh is sampled before the feature test
     /// (docs/design.md#qem-fold-scale). Off where the mesh given is not the input at its own
@@ -96,16 +99,21 @@ impl Default for Params {
 /// What happened to one model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelReport {
+    /// The model's name (from the file, or `shape N`).
     pub name: String,
     /// Used positions: a texture seam's copies of one point count once (`point_counts`).
     pub vertices_before: usize,
+    /// Triangles before.
     pub triangles_before: usize,
+    /// Used positions after, counted as `vertices_before`.
     pub vertices_after: usize,
+    /// Triangles after.
     pub triangles_after: usize,
     /// Used vertices beyond the first at each position of a textured model (its seams'
     /// copies, one per extra side), before and after: the vertices a file holds are these
     /// more than the positions.
     pub seam_copies_before: usize,
+    /// The same after.
     pub seam_copies_after: usize,
     /// Largest error of any removal made, in model units.
     pub max_error: f64,
@@ -140,7 +148,9 @@ pub struct ModelReport {
 /// What a decimation run did, model by model.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Report {
+    /// One report per model, in scene order.
     pub models: Vec<ModelReport>,
+    /// Seconds the run took.
     pub seconds: f64,
     /// The feature angle asked for (a model's own may have been relaxed beyond it).
     pub feature_angle_deg: f64,

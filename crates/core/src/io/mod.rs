@@ -58,32 +58,51 @@ pub use warning::{Warning, WarningKind};
 /// What went wrong reading a scene: always names the file, and the line where there is one.
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
+    /// The file could not be opened or read.
     #[error("{file}: {source}")]
     Io {
+        /// The file.
         file: PathBuf,
+        /// What the system said.
         #[source]
         source: std::io::Error,
     },
+    /// The text is not what the format allows at this line.
     #[error("{file}:{line}: {message}")]
     Syntax {
+        /// The file.
         file: PathBuf,
+        /// The line, counted from 1.
         line: usize,
+        /// What is wrong there.
         message: String,
     },
+    /// The file is of a kind or variant this program does not read.
     #[error("{file}: {message}")]
-    Unsupported { file: PathBuf, message: String },
+    Unsupported {
+        /// The file.
+        file: PathBuf,
+        /// What it is, and what to do about it.
+        message: String,
+    },
     /// A binary file's fixed-size record (binary STL), counted from 1.
     #[error("{file}: record {record}: {message}")]
     Record {
+        /// The file.
         file: PathBuf,
+        /// The record, counted from 1.
         record: usize,
+        /// What is wrong with it.
         message: String,
     },
-    /// A binary file's byte offset (a progressive mesh), counted from 0.
+    /// A binary file's byte offset (a progressive mesh, a GLB), counted from 0.
     #[error("{file}: byte {offset}: {message}")]
     Binary {
+        /// The file.
         file: PathBuf,
+        /// The byte offset, counted from 0.
         offset: usize,
+        /// What is wrong there.
         message: String,
     },
 }
@@ -92,7 +111,9 @@ pub enum ReadError {
 #[derive(Debug, thiserror::Error)]
 #[error("{file}: {source}")]
 pub struct WriteError {
+    /// The file that could not be written.
     pub file: PathBuf,
+    /// What the system said.
     #[source]
     pub source: std::io::Error,
 }
@@ -100,6 +121,7 @@ pub struct WriteError {
 /// A parsed scene and the warnings met on the way (one per kind of skipped node, etc.).
 #[derive(Debug, Clone, Default)]
 pub struct ReadOutcome {
+    /// The models read, in file order.
     pub scene: Scene,
     /// Typed (kind, file, line, count); [`warning::grouped`] orders them for printing.
     pub warnings: Vec<Warning>,
@@ -118,13 +140,19 @@ pub const MAX_TRIANGLES: usize = 200_000_000;
 /// A file format, as far as the file name's extension tells.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
+    /// VRML 2.0 (`.wrl`, `.vrml`).
     Vrml2,
+    /// PLY (`.ply`).
     Ply,
+    /// Wavefront OBJ (`.obj`), with its MTL.
     Obj,
+    /// STL (`.stl`).
     Stl,
+    /// OFF (`.off`).
     Off,
     /// glTF 2.0 as JSON (`.gltf`) or binary (`.glb`); both are read from either extension.
     Gltf,
+    /// glTF 2.0 binary (`.glb`).
     Glb,
 }
 

@@ -32,6 +32,7 @@ impl WarningKind {
 /// One warning of a reader.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Warning {
+    /// What kind of warning: whether it means data was lost, and how it is grouped.
     pub kind: WarningKind,
     /// The file it is about when known (an included file, a material library); the file
     /// being read otherwise.
