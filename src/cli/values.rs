@@ -15,32 +15,14 @@ pub(super) fn positive(name: &str, s: &str) -> Result<usize, CliError> {
     }
 }
 
-/// A size in bytes, with an optional K, M, G or T suffix (powers of 1024).
+/// A size in bytes, with an optional K, M, G or T suffix (powers of 1024), read as the
+/// readers' limits read theirs (`io::file_limits::parse_size`).
 pub(super) fn bytes(name: &str, s: &str) -> Result<u64, CliError> {
-    let t = s.trim();
-    let (digits, unit) = match t.char_indices().last() {
-        Some((i, c)) if c.is_ascii_alphabetic() => (&t[..i], c.to_ascii_uppercase()),
-        _ => (t, 'B'),
-    };
-    let shift = match unit {
-        'B' => 0,
-        'K' => 10,
-        'M' => 20,
-        'G' => 30,
-        'T' => 40,
-        _ => {
-            return Err(CliError(format!(
-                "{name}: expected a size such as 2G, got '{s}'"
-            )))
-        }
-    };
-    let v: f64 = number(name, digits)?;
-    if !(v.is_finite() && v > 0.0) {
-        return Err(CliError(format!(
-            "{name}: expected a positive size, got '{s}'"
-        )));
-    }
-    Ok((v * f64::from(1u32 << 10).powi(shift / 10)) as u64)
+    decimate_core::io::file_limits::parse_size(s).ok_or_else(|| {
+        CliError(format!(
+            "{name}: expected a positive size such as 2G or 512M, got '{s}'"
+        ))
+    })
 }
 
 pub(super) fn set_target(slot: &mut Option<Target>, t: Target) -> Result<(), CliError> {

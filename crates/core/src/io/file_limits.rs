@@ -52,12 +52,14 @@ pub fn max_instanced_triangles(file_bytes: usize) -> usize {
 pub fn max_file_bytes() -> u64 {
     std::env::var(MAX_FILE_BYTES_VAR)
         .ok()
-        .and_then(|v| parse_bytes(&v))
+        .and_then(|v| parse_size(&v))
         .unwrap_or(DEFAULT_MAX_FILE_BYTES)
 }
 
-/// `123`, `64K`, `512M`, `2G` (powers of 1024) as bytes.
-fn parse_bytes(text: &str) -> Option<u64> {
+/// A size such as `123`, `64K`, `1.5M`, `2G` or `1T` (powers of 1024) in bytes; `None`
+/// unless it is a positive, finite number with one of those suffixes or none. The
+/// command line's `--memory` reads sizes the same way.
+pub fn parse_size(text: &str) -> Option<u64> {
     let t = text.trim();
     let (digits, unit) = match t.char_indices().last()? {
         (i, c) if c.is_ascii_alphabetic() => (&t[..i], c.to_ascii_uppercase()),
@@ -68,9 +70,11 @@ fn parse_bytes(text: &str) -> Option<u64> {
         'K' => 10,
         'M' => 20,
         'G' => 30,
+        'T' => 40,
         _ => return None,
     };
-    digits.trim().parse::<u64>().ok()?.checked_mul(1 << shift)
+    let v: f64 = digits.trim().parse().ok()?;
+    (v.is_finite() && v > 0.0).then(|| (v * f64::from(1u32 << 10).powi(shift / 10)) as u64)
 }
 
 /// True when references may leave the model's folder.
@@ -213,11 +217,14 @@ mod tests {
 
     #[test]
     fn sizes_take_binary_suffixes() {
-        assert_eq!(parse_bytes("123"), Some(123));
-        assert_eq!(parse_bytes("64k"), Some(64 << 10));
-        assert_eq!(parse_bytes("2G"), Some(2 << 30));
-        assert_eq!(parse_bytes("x"), None);
-        assert_eq!(parse_bytes("5T"), None);
+        assert_eq!(parse_size("123"), Some(123));
+        assert_eq!(parse_size("64k"), Some(64 << 10));
+        assert_eq!(parse_size("2G"), Some(2 << 30));
+        assert_eq!(parse_size("1.5M"), Some(3 << 19));
+        assert_eq!(parse_size("5T"), Some(5 << 40));
+        assert_eq!(parse_size("x"), None);
+        assert_eq!(parse_size("0"), None);
+        assert_eq!(parse_size("5P"), None);
     }
 
     #[test]
