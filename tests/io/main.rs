@@ -14,6 +14,7 @@ mod gltf;
 mod gltf_carry;
 mod gltf_rules;
 mod gltf_tree;
+mod gltf_write;
 mod hostile;
 mod inventor_data;
 mod nodes;
