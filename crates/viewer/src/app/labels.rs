@@ -81,7 +81,7 @@ pub fn grouped(n: usize) -> String {
 /// Paints `captions` (a viewport rectangle in pixels and its text) on the viewports' layer,
 /// under every window and menu, at the context's pixels per point.
 pub fn paint(ctx: &egui::Context, captions: &[(Rect, String)]) {
-    let painter = ctx.layer_painter(super::overlay::base_layer());
+    let painter = ctx.layer_painter(super::text_layout::base_layer());
     paint_on(&painter, captions, ctx.pixels_per_point());
 }
 
@@ -89,7 +89,7 @@ pub fn paint(ctx: &egui::Context, captions: &[(Rect, String)]) {
 /// it; rectangles in pixels, `pixels_per_point` of them to a point.
 pub fn paint_on(painter: &egui::Painter, captions: &[(Rect, String)], pixels_per_point: f32) {
     for (rect, text) in captions {
-        let tile = super::overlay::points(rect, pixels_per_point);
+        let tile = super::text_layout::points(rect, pixels_per_point);
         let layout = |size: f32| {
             painter.layout_no_wrap(
                 text.clone(),
@@ -133,7 +133,7 @@ impl HeadlessCaptions {
     }
 
     /// As [`Self::new`], with whatever `paint_all` paints (captions, a legend) over a picture
-    /// of `extent`, its text as large as `overlay::text_scale` says.
+    /// of `extent`, its text as large as `text_layout::text_scale` says.
     pub fn with_painter(
         context: &Arc<Context>,
         commands: &Commands,
@@ -156,7 +156,7 @@ impl HeadlessCaptions {
         )
         .map_err(overlay)?;
         let ctx = egui::Context::default();
-        let ppp = super::overlay::text_scale(extent.width, extent.height);
+        let ppp = super::text_layout::text_scale(extent.width, extent.height);
         let size = egui::vec2(extent.width as f32, extent.height as f32) / ppp;
         let mut input = egui::RawInput {
             screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, size)),

@@ -18,6 +18,7 @@ pub mod popup;
 pub mod save;
 pub mod settle;
 pub mod shot;
+pub mod text_layout;
 pub mod ui;
 pub mod viewer;
 pub mod viewport;

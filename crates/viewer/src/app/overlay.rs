@@ -4,6 +4,7 @@
 //! each heat-mapped viewport, and the help overlay above all of them. Text grows with the
 //! picture (`text_scale`), so it stays readable on a large window or shot.
 
+pub use super::text_layout::{base_layer, points, text_scale};
 use crate::render::tiles::Rect;
 
 use super::error_map::{self, Legend};
@@ -11,18 +12,6 @@ use super::labels;
 
 /// Height of the status strip, in points.
 pub const STATUS_POINTS: f32 = 22.0;
-
-/// The shared layer of everything painted on the viewports (captions, legends, status):
-/// under every window, menu and dialog egui draws.
-pub fn base_layer() -> egui::LayerId {
-    egui::LayerId::new(egui::Order::Background, egui::Id::new("viewport text"))
-}
-
-/// How much larger than at 720 pixels text is drawn on a `width` × `height` picture: 1 up
-/// to 720 pixels on the shorter side, proportionally above (at most 3).
-pub fn text_scale(width: u32, height: u32) -> f32 {
-    (width.min(height) as f32 / 720.0).clamp(1.0, 3.0)
-}
 
 /// The status strip's height in pixels at `pixels_per_point`, at most a third of `height`.
 pub fn status_strip(height: u32, pixels_per_point: f32) -> u32 {
@@ -88,14 +77,6 @@ fn paint_help(painter: &egui::Painter, screen: egui::Rect, text: &str) {
         galley,
         egui::Color32::WHITE,
     );
-}
-
-/// `rect` (pixels) in points.
-pub fn points(rect: &Rect, pixels_per_point: f32) -> egui::Rect {
-    egui::Rect::from_min_size(
-        egui::pos2(rect.x as f32, rect.y as f32) / pixels_per_point,
-        egui::vec2(rect.width as f32, rect.height as f32) / pixels_per_point,
-    )
 }
 
 /// The status line on a dark strip `height` points high along the bottom of `screen`,
