@@ -1422,11 +1422,10 @@ mod tests {
         c.input_dir = input_dir;
         c.save_path = out_dir.join("out.wrl");
         key(&mut c, Key::F3);
-        let saved = decimate_core::io::read_scene(&c.save_path).unwrap_or_else(|e| panic!("{e}"));
-        assert_eq!(
-            saved.scene.models[0].texture.as_deref(),
-            Some("../scan/maps/skin.jpg")
-        );
+        // Read as text: a reader keeps references inside the model's folder, so it would
+        // drop this one (io::file_limits); what matters is where the file points.
+        let saved = std::fs::read_to_string(&c.save_path).unwrap_or_else(|e| panic!("{e}"));
+        assert!(saved.contains("\"../scan/maps/skin.jpg\""), "{saved}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }
