@@ -172,9 +172,15 @@ fn empty_and_foreign_files() {
     assert!(msg.contains("empty"), "{msg}");
     let (_, msg) = fail("hello world\n");
     assert!(
-        msg.contains("not a VRML") && msg.contains("hello world"),
+        msg.contains("not a VRML") && msg.contains("glTF") && msg.contains("hello world"),
         "{msg}"
     );
+    // A binary start is shown escaped, not echoed as raw bytes.
+    let e = parse_bytes(b"\x7fELF\x02\x01\x01\0\0\0".to_vec(), Path::new("a.bin"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("\\u{7f}ELF\\u{2}"), "{e}");
+    assert!(!e.chars().any(|c| c.is_control() && c != '\n'), "{e}");
     // STL is read now (tests/io/formats.rs): a cut-off ASCII solid names its last line.
     let (line, msg) = fail("solid cube\n facet normal 0 0 1\n");
     assert_eq!(line, Some(2), "{msg}");

@@ -369,13 +369,18 @@ fn vrml_dialect(header: &str, bytes: &[u8], path: &Path) -> Result<vrml::Dialect
             ),
         ));
     } else {
-        let shown: String = header.chars().take(40).collect();
+        // Control and non-ASCII bytes shown escaped: a binary file's start, not noise.
+        let shown: String = header
+            .chars()
+            .take(40)
+            .flat_map(char::escape_default)
+            .collect();
         return Err(syntax(
             path,
             ParseError::new(
                 1,
                 format!(
-                    "not a VRML, Open Inventor, PLY, OBJ, STL or OFF file: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header, found '{shown}'"
+                    "not a VRML, Open Inventor, PLY, OBJ, STL, OFF or glTF file: expected a '#VRML V1.0 ascii', '#VRML V2.0 utf8' or '#Inventor V2.1 ascii' header, found '{shown}'"
                 ),
             ),
         ));
