@@ -195,23 +195,9 @@ fn monotone_along(
     if !increasing || !decreasing {
         return false;
     }
-    // Merge the chains into one sweep order; a vertex is on the upper chain when its index
-    // is past `last` going forward from `first`.
-    order.clear();
-    let (mut lo, mut up) = (1, 1);
-    order.push(first as u32);
-    while lo < lower || up < n - lower {
-        let l = (first + lo) % n;
-        let u = (first + n - up) % n;
-        if up >= n - lower || (lo < lower && before(at(l), at(u))) {
-            order.push(l as u32);
-            lo += 1;
-        } else {
-            order.push(u as u32);
-            up += 1;
-        }
-    }
-    order.push(last as u32);
+    // A vertex is on the upper chain when its index is past `last` going forward from
+    // `first`.
+    merge_chains(n, (first, last, lower), |l, u| before(at(l), at(u)), order);
     let upper = |i: u32| (i as usize + n - first) % n > lower;
     let mut emit = |a: u32, b: u32, c: u32| {
         let t = if cross(flat[a as usize], flat[b as usize], flat[c as usize]) < 0.0 {
@@ -252,6 +238,32 @@ fn monotone_along(
         emit(end, w[0], w[1]);
     }
     true
+}
+
+/// Merges a monotone polygon's lower chain (`first` forward to `last`, `lower` edges) and
+/// upper chain (on back to `first`) into one sweep order in `order`; `before(l, u)` says
+/// whether corner `l` comes before corner `u` along the sweep.
+fn merge_chains(
+    n: usize,
+    (first, last, lower): (usize, usize, usize),
+    before: impl Fn(usize, usize) -> bool,
+    order: &mut Vec<u32>,
+) {
+    order.clear();
+    let (mut lo, mut up) = (1, 1);
+    order.push(first as u32);
+    while lo < lower || up < n - lower {
+        let l = (first + lo) % n;
+        let u = (first + n - up) % n;
+        if up >= n - lower || (lo < lower && before(l, u)) {
+            order.push(l as u32);
+            lo += 1;
+        } else {
+            order.push(u as u32);
+            up += 1;
+        }
+    }
+    order.push(last as u32);
 }
 
 /// Ear clipping of `scratch.flat` (wound positively) over a doubly linked ring of corners.

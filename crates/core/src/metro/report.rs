@@ -12,6 +12,38 @@ use super::{Comparison, DirectionStats, SurfaceInfo};
 /// A human-readable report; `names` are the two inputs as the user gave them.
 pub fn table(c: &Comparison, names: [&str; 2]) -> String {
     let mut s = String::new();
+    surfaces_table(&mut s, c, names);
+    distances_table(&mut s, c);
+    hausdorff_lines(&mut s, c);
+    if let Some(f) = &c.folds {
+        let _ = writeln!(s);
+        let _ = writeln!(
+            s,
+            "folded triangles of B over A: {} ({:.4} % of B's area); degenerate: {}",
+            f.triangles,
+            100.0 * f.area_fraction,
+            f.degenerate
+        );
+        let _ = writeln!(
+            s,
+            "   {} triangles checked with {} samples",
+            f.checked, f.samples
+        );
+        if let Some(p) = f.largest_at {
+            let _ = writeln!(
+                s,
+                "   the largest at ({}, {}, {})",
+                num(p.x),
+                num(p.y),
+                num(p.z)
+            );
+        }
+    }
+    s
+}
+
+/// The two surfaces, the diagonal and the samples taken.
+fn surfaces_table(s: &mut String, c: &Comparison, names: [&str; 2]) {
     for (label, name, info) in [("A", names[0], &c.a), ("B", names[1], &c.b)] {
         let _ = writeln!(s, "{label}: {name}");
         let _ = writeln!(
@@ -48,6 +80,11 @@ pub fn table(c: &Comparison, names: [&str; 2]) -> String {
         sample_text(&c.b_to_a),
         c.seed
     );
+}
+
+/// The distances both ways and symmetric: max, mean and RMS with their share of the
+/// diagonal.
+fn distances_table(s: &mut String, c: &Comparison) {
     let _ = writeln!(s);
     let _ = writeln!(
         s,
@@ -64,11 +101,15 @@ pub fn table(c: &Comparison, names: [&str; 2]) -> String {
             cell(rms)
         );
     };
-    row(&mut s, "A->B", c.a_to_b.max, c.a_to_b.mean, c.a_to_b.rms);
-    row(&mut s, "B->A", c.b_to_a.max, c.b_to_a.mean, c.b_to_a.rms);
+    row(s, "A->B", c.a_to_b.max, c.a_to_b.mean, c.a_to_b.rms);
+    row(s, "B->A", c.b_to_a.max, c.b_to_a.mean, c.b_to_a.rms);
     let sym = c.symmetric();
-    row(&mut s, "symmetric", sym.max, sym.mean, sym.rms);
+    row(s, "symmetric", sym.max, sym.mean, sym.rms);
     let _ = writeln!(s);
+}
+
+/// The Hausdorff distance and where it is reached.
+fn hausdorff_lines(s: &mut String, c: &Comparison) {
     let _ = writeln!(
         s,
         "Hausdorff distance: {} ({:.4} % of the diagonal)",
@@ -88,31 +129,6 @@ pub fn table(c: &Comparison, names: [&str; 2]) -> String {
         num(farthest.1.y),
         num(farthest.1.z)
     );
-    if let Some(f) = &c.folds {
-        let _ = writeln!(s);
-        let _ = writeln!(
-            s,
-            "folded triangles of B over A: {} ({:.4} % of B's area); degenerate: {}",
-            f.triangles,
-            100.0 * f.area_fraction,
-            f.degenerate
-        );
-        let _ = writeln!(
-            s,
-            "   {} triangles checked with {} samples",
-            f.checked, f.samples
-        );
-        if let Some(p) = f.largest_at {
-            let _ = writeln!(
-                s,
-                "   the largest at ({}, {}, {})",
-                num(p.x),
-                num(p.y),
-                num(p.z)
-            );
-        }
-    }
-    s
 }
 
 fn num(v: f64) -> String {
