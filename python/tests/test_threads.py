@@ -80,7 +80,10 @@ def test_cancel_from_another_thread(big):
 
 
 SCRIPT = """
-import sys, time
+import signal, sys, time
+# A process started in the background by a non-interactive shell (as CI may run the suite)
+# inherits SIGINT ignored, and Python then installs no handler: install Python's own.
+signal.signal(signal.SIGINT, signal.default_int_handler)
 sys.path.insert(0, {tests!r})
 import decimate
 from conftest import icosphere
