@@ -28,6 +28,25 @@ pub struct Goal {
     pub max_error: Option<f64>,
 }
 
+/// The keywords as Python passes them: (ratio, keep_triangles, keep_vertices, max_error).
+impl From<(Option<f64>, Option<usize>, Option<usize>, Option<f64>)> for Goal {
+    fn from(
+        (ratio, keep_triangles, keep_vertices, max_error): (
+            Option<f64>,
+            Option<usize>,
+            Option<usize>,
+            Option<f64>,
+        ),
+    ) -> Self {
+        Self {
+            ratio,
+            keep_triangles,
+            keep_vertices,
+            max_error,
+        }
+    }
+}
+
 impl Goal {
     /// The core's target for a mesh of `triangles` triangles: `ratio` is the fraction of
     /// triangles kept (rounded to the nearest count), as in trimesh and Open3D.
@@ -200,12 +219,7 @@ pub fn simplify<'py>(
     weld: bool,
     cancel: Option<PyRef<'py, Cancel>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let goal = Goal {
-        ratio: goal.0,
-        keep_triangles: goal.1,
-        keep_vertices: goal.2,
-        max_error: goal.3,
-    };
+    let goal = Goal::from(goal);
     let m = model(
         &vertices,
         &faces,
@@ -269,12 +283,7 @@ pub fn simplify_file<'py>(
     feature_angle: f64,
     cancel: Option<PyRef<'py, Cancel>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let goal = Goal {
-        ratio: goal.0,
-        keep_triangles: goal.1,
-        keep_vertices: goal.2,
-        max_error: goal.3,
-    };
+    let goal = Goal::from(goal);
     if let (Ok(a), Ok(b)) = (src.canonicalize(), dst.canonicalize()) {
         if a == b {
             return Err(PyValueError::new_err(api::Error::SameFile(dst).to_string()));
