@@ -2,7 +2,10 @@
 """One peer decimation for tools/bench/peers: peers-run.py TOOL IN.ply OUT.ply TRIANGLES
 
 TOOL is meshlab (pymeshlab's quadric edge collapse), vtk (vtkQuadricDecimation), vtkpro
-(vtkDecimatePro, Schroeder's vertex removal, with its defaults) or meshoptimizer (meshopt_simplify through the `meshoptimizer` Python binding). Keeps about
+(vtkDecimatePro, Schroeder's vertex removal, with its defaults), meshoptimizer
+(meshopt_simplify through the `meshoptimizer` Python binding), fastsimp (the
+`fast-simplification` package, Fast Quadric Mesh Simplification) or open3d
+(simplify_quadric_decimation). Keeps about
 TRIANGLES triangles, writes OUT.ply and prints the seconds the decimation call alone took.
 """
 import sys
@@ -69,6 +72,50 @@ def meshoptimizer(src, dst, triangles):
     out_set = pymeshlab.MeshSet()
     out_set.add_mesh(kept)
     out_set.save_current_mesh(dst)
+    return seconds
+
+
+def _read_arrays(src):
+    import numpy as np
+    import pymeshlab
+
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(src)
+    m = ms.current_mesh()
+    return np.asarray(m.vertex_matrix(), dtype=np.float64), np.asarray(m.face_matrix(), dtype=np.int64)
+
+
+def _write_arrays(dst, points, faces):
+    import numpy as np
+    import pymeshlab
+
+    out_set = pymeshlab.MeshSet()
+    out_set.add_mesh(pymeshlab.Mesh(np.asarray(points, dtype=np.float64), np.asarray(faces, dtype=np.int32)))
+    out_set.save_current_mesh(dst)
+
+
+def fastsimp(src, dst, triangles):
+    import fast_simplification
+
+    points, faces = _read_arrays(src)
+    start = time.perf_counter()
+    out_points, out_faces = fast_simplification.simplify(
+        points.astype("float32"), faces.astype("int32"), target_count=triangles
+    )
+    seconds = time.perf_counter() - start
+    _write_arrays(dst, out_points, out_faces)
+    return seconds
+
+
+def open3d(src, dst, triangles):
+    import open3d as o3d
+
+    points, faces = _read_arrays(src)
+    mesh = o3d.geometry.TriangleMesh(o3d.utility.Vector3dVector(points), o3d.utility.Vector3iVector(faces))
+    start = time.perf_counter()
+    kept = mesh.simplify_quadric_decimation(target_number_of_triangles=triangles)
+    seconds = time.perf_counter() - start
+    _write_arrays(dst, kept.vertices, kept.triangles)
     return seconds
 
 
