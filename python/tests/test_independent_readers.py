@@ -1,0 +1,353 @@
+"""Every format `decimate` writes, read back by readers that are not ours: trimesh and VTK
+for PLY, OFF, OBJ and STL, VTK's VRML importer for VRML 2.0, the Khronos validator and a
+glTF accessor reader written here for glTF and GLB, and a `.pm` replay written here from
+the layout the format's documentation gives (crates/core/src/io/progressive_file.rs).
+
+What is compared is geometry, not counts: the set of points (our text writers print the
+shortest round-trip form of each float32, so points are exact where no transform is
+applied) and the triangles as triples of points, up to rotation of their corners (the
+winding counts) and in any order, against the in-memory result of `decimate.simplify`.
+
+A reader that is not installed is skipped with its reason; under CI (`CI` set) it must be
+there, unless tools/test found no wheel for it (DECIMATE_TEST_UNAVAILABLE)."""
+
+import importlib
+import json
+import os
+import struct
+import subprocess
+from collections import Counter
+
+import numpy as np
+import pytest
+
+import decimate
+from conftest import REPO, icosphere
+
+# Formats `decimate` writes (docs: `decimate --help`, `-o filename`).
+FORMATS = ["ply", "off", "obj", "stl", "wrl", "gltf", "glb"]
+# Which independent readers read which format.
+READERS = {
+    "ply": ["trimesh", "vtk"],
+    "off": ["trimesh"],
+    "obj": ["trimesh", "vtk"],
+    "stl": ["trimesh", "vtk"],
+    "wrl": ["vtk"],
+    "gltf": ["accessors", "trimesh"],
+    "glb": ["accessors", "trimesh"],
+}
+# The library each reader needs, as tools/test names it in DECIMATE_TEST_UNAVAILABLE.
+PACKAGE = {"trimesh": "trimesh", "vtk": "pyvista"}
+
+
+def need(module, package):
+    try:
+        return importlib.import_module(module)
+    except ImportError as e:
+        unavailable = os.environ.get("DECIMATE_TEST_UNAVAILABLE", "").split(",")
+        if os.environ.get("CI") and package not in unavailable:
+            pytest.fail(f"{module} is not installed in the test venv: {e}")
+        pytest.skip(f"{module} is not installed: {e}")
+
+
+# --- comparison -----------------------------------------------------------------------
+
+
+class PointIndex:
+    """The reference's distinct points, found again within `tol` by a grid of cells `tol`
+    wide (each lookup checks the 27 cells around a point: linear in the points)."""
+
+    def __init__(self, points, tol):
+        self.points = np.unique(np.asarray(points, dtype=np.float64), axis=0)
+        self.tol = tol
+        self.cell = max(tol, 1e-30)
+        self.grid = {}
+        for i, p in enumerate(self.points):
+            self.grid.setdefault(self.key(p), []).append(i)
+
+    def key(self, p):
+        return tuple(int(k) for k in np.floor(p / self.cell))
+
+    def find(self, p):
+        """The id of the reference point within `tol` of `p`, or None."""
+        kx, ky, kz = self.key(p)
+        best, best_d = None, self.tol
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                for dz in (-1, 0, 1):
+                    for i in self.grid.get((kx + dx, ky + dy, kz + dz), ()):
+                        d = np.abs(self.points[i] - p).max()
+                        if d <= best_d:
+                            best, best_d = i, d
+        return best
+
+
+def rotated(t):
+    """A triangle's corner ids rotated so the smallest comes first; the winding stays."""
+    k = t.index(min(t))
+    return tuple(t[k:] + t[:k])
+
+
+def assert_same_mesh(what, points, triangles, want_points, want_triangles, tol):
+    """`points`/`triangles` (what a reader saw, world coordinates) are the reference's
+    points and triangles: the same set of points within `tol` (max norm) and the same
+    multiset of triangles as point triples with the same winding."""
+    index = PointIndex(want_points, tol)
+    want_ids = [index.find(p) for p in np.asarray(want_points, dtype=np.float64)]
+    got_ids = [index.find(p) for p in np.asarray(points, dtype=np.float64)]
+    missing = [tuple(p) for p, i in zip(points, got_ids) if i is None]
+    assert not missing, f"{what}: {len(missing)} points that are not ours, e.g. {missing[:3]}"
+    assert set(got_ids) == set(want_ids), (
+        f"{what}: {len(set(want_ids) - set(got_ids))} of our {len(set(want_ids))} points "
+        "are not in the file")
+    got = Counter(rotated([got_ids[c] for c in t]) for t in np.asarray(triangles).tolist())
+    want = Counter(rotated([want_ids[c] for c in t]) for t in np.asarray(want_triangles).tolist())
+    assert sum(got.values()) == sum(want.values()), (
+        f"{what}: {sum(got.values())} triangles, we wrote {sum(want.values())}")
+    extra, lost = got - want, want - got
+    assert not extra and not lost, (
+        f"{what}: {sum(extra.values())} triangles differ, e.g. read {list(extra)[:2]}, "
+        f"written {list(lost)[:2]}")
+
+
+# --- the independent readers ----------------------------------------------------------
+
+
+def read_trimesh(path):
+    trimesh = need("trimesh", "trimesh")
+    mesh = trimesh.load(str(path), force="mesh", process=False)
+    return np.asarray(mesh.vertices), np.asarray(mesh.faces)
+
+
+def _vtk_triangles(vtk, pd, matrix=None):
+    """Points (world coordinates through `matrix`) and triangles of VTK polygon data."""
+    tri = vtk.vtkTriangleFilter()
+    tri.SetInputData(pd)
+    tri.Update()
+    out = tri.GetOutput()
+    pts = np.array([out.GetPoint(i) for i in range(out.GetNumberOfPoints())], dtype=np.float64)
+    pts = pts.reshape(-1, 3)
+    if matrix is not None:
+        m = np.array([[matrix.GetElement(r, c) for c in range(4)] for r in range(4)])
+        pts = pts @ m[:3, :3].T + m[:3, 3]
+    ids = vtk.vtkIdList()
+    polys = out.GetPolys()
+    polys.InitTraversal()
+    faces = []
+    while polys.GetNextCell(ids):
+        faces.append([ids.GetId(k) for k in range(ids.GetNumberOfIds())])
+    return pts, np.array(faces, dtype=np.int64).reshape(-1, 3)
+
+
+def read_vtk(path):
+    need("pyvista", "pyvista")
+    import vtk
+
+    vtk.vtkObject.GlobalWarningDisplayOff()
+    ext = path.suffix.lower()
+    if ext == ".wrl":
+        imp = vtk.vtkVRMLImporter()
+        imp.SetFileName(str(path))
+        imp.Update()
+        actors = imp.GetRenderer().GetActors()
+        actors.InitTraversal()
+        parts = []
+        for _ in range(actors.GetNumberOfItems()):
+            actor = actors.GetNextActor()
+            parts.append(_vtk_triangles(vtk, actor.GetMapper().GetInput(), actor.GetMatrix()))
+        assert parts, f"VTK found no shape in {path}"
+        return _concatenate(parts)
+    reader = {".ply": vtk.vtkPLYReader, ".obj": vtk.vtkOBJReader, ".stl": vtk.vtkSTLReader}[ext]()
+    reader.SetFileName(str(path))
+    if ext == ".stl":
+        reader.MergingOff()
+    reader.Update()
+    return _vtk_triangles(vtk, reader.GetOutput())
+
+
+def _concatenate(parts):
+    points, faces, base = [], [], 0
+    for p, f in parts:
+        points.append(p)
+        faces.append(f + base)
+        base += len(p)
+    return np.concatenate(points), np.concatenate(faces)
+
+
+GLTF_COMPONENTS = {5121: "<u1", 5123: "<u2", 5125: "<u4", 5126: "<f4"}
+GLTF_WIDTH = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
+
+
+def _gltf_document(path):
+    """The JSON and the binary chunk (GLB) or None."""
+    data = path.read_bytes()
+    if data[:4] != b"glTF":
+        return json.loads(data), None
+    magic, version, length = struct.unpack_from("<4sII", data, 0)
+    assert version == 2 and length == len(data), f"{path}: GLB header"
+    pos, doc, bin_chunk = 12, None, None
+    while pos < length:
+        size, kind = struct.unpack_from("<II", data, pos)
+        chunk = data[pos + 8: pos + 8 + size]
+        if kind == 0x4E4F534A:
+            doc = json.loads(chunk)
+        elif kind == 0x004E4942:
+            bin_chunk = chunk
+        pos += 8 + size
+    return doc, bin_chunk
+
+
+def _gltf_accessor(doc, buffers, index):
+    a = doc["accessors"][index]
+    assert "sparse" not in a, "our writer writes no sparse accessor"
+    view = doc["bufferViews"][a["bufferView"]]
+    dtype = np.dtype(GLTF_COMPONENTS[a["componentType"]])
+    width = GLTF_WIDTH[a["type"]]
+    start = view.get("byteOffset", 0) + a.get("byteOffset", 0)
+    stride = view.get("byteStride", dtype.itemsize * width)
+    raw = buffers[view["buffer"]]
+    rows = [np.frombuffer(raw, dtype, width, start + k * stride) for k in range(a["count"])]
+    return np.array(rows).reshape(a["count"], width)
+
+
+def _node_matrix(node):
+    if "matrix" in node:
+        return np.array(node["matrix"], dtype=np.float64).reshape(4, 4).T
+    x, y, z, w = node.get("rotation", [0, 0, 0, 1])
+    r = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    m = np.eye(4)
+    m[:3, :3] = r * np.array(node.get("scale", [1, 1, 1]))
+    m[:3, 3] = node.get("translation", [0, 0, 0])
+    return m
+
+
+def read_gltf_accessors(path):
+    """Our own reading of a glTF 2.0 file: the default scene's node tree, each triangle
+    primitive's POSITION and indices accessors, positions taken to world space. A node
+    whose world transform mirrors (negative determinant) shows its triangles' clockwise
+    side (glTF 2.0, 3.7.2.1): they are reversed here to be counter-clockwise."""
+    doc, bin_chunk = _gltf_document(path)
+    assert doc["asset"]["version"] == "2.0"
+    buffers = []
+    for b in doc["buffers"]:
+        data = bin_chunk if "uri" not in b else (path.parent / b["uri"]).read_bytes()
+        assert len(data) >= b["byteLength"], f"{path}: buffer shorter than its byteLength"
+        buffers.append(data)
+    parts = []
+    stack = [(n, np.eye(4)) for n in doc["scenes"][doc.get("scene", 0)]["nodes"]]
+    while stack:
+        n, parent = stack.pop()
+        node = doc["nodes"][n]
+        world = parent @ _node_matrix(node)
+        stack += [(c, world) for c in node.get("children", [])]
+        if "mesh" not in node:
+            continue
+        for prim in doc["meshes"][node["mesh"]]["primitives"]:
+            assert prim.get("mode", 4) == 4, "triangles"
+            p = _gltf_accessor(doc, buffers, prim["attributes"]["POSITION"]).astype(np.float64)
+            f = _gltf_accessor(doc, buffers, prim["indices"]).reshape(-1, 3).astype(np.int64)
+            if np.linalg.det(world[:3, :3]) < 0:
+                f = f[:, [0, 2, 1]]
+            parts.append((p @ world[:3, :3].T + world[:3, 3], f))
+    return _concatenate(parts)
+
+
+def validate_gltf(path):
+    """The Khronos validator (tools/check/gltf-validate.js) finds no error in `path`."""
+    script = REPO / "tools" / "check" / "gltf-validate.js"
+    try:
+        o = subprocess.run(["node", str(script), str(path)], capture_output=True, text=True)
+    except OSError as e:
+        if os.environ.get("CI"):
+            pytest.fail(f"node cannot run: {e}")
+        pytest.skip(f"node cannot run: {e}")
+    if o.returncode == 2:
+        if os.environ.get("CI"):
+            pytest.fail(f"the glTF validator cannot run: {o.stderr}")
+        pytest.skip(f"the glTF validator cannot run (tools/setup --test): {o.stderr}")
+    assert o.returncode == 0, f"gltf-validator on {path.name}:\n{o.stdout}{o.stderr}"
+
+
+def read_with(reader, path):
+    if reader == "trimesh":
+        return read_trimesh(path)
+    if reader == "vtk":
+        return read_vtk(path)
+    validate_gltf(path)
+    return read_gltf_accessors(path)
+
+
+def cases():
+    return [pytest.param(fmt, r, id=f"{fmt}-{r}") for fmt in FORMATS for r in READERS[fmt]]
+
+
+# --- the tests ------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def bunny_decimated(bunny):
+    """The bunny as qem leaves it at 700 triangles, in memory."""
+    m = decimate.read(bunny)[0]
+    out = decimate.simplify(m.vertices, m.faces, keep_triangles=700, algorithm="qem")
+    assert out.faces.shape == (700, 3)
+    return out.vertices, out.faces
+
+
+@pytest.mark.parametrize("fmt,reader", cases())
+def test_the_command_lines_output_is_the_decimated_mesh(fmt, reader, cli, bunny,
+                                                        bunny_decimated, tmp_path):
+    out = tmp_path / f"bunny.{fmt}"
+    subprocess.run([cli, str(bunny), "nogui", "-a", "qem", "--keep-triangles", "700", "-q",
+                    "-o", str(out)], check=True)
+    points, triangles = read_with(reader, out)
+    want_v, want_f = bunny_decimated
+    # Every float32 is written exactly (binary, or its shortest round-trip text): exact
+    # once read back as float32.
+    points = np.asarray(points, dtype=np.float32)
+    assert_same_mesh(f"{out.name} by {reader}", points, triangles, want_v, want_f, tol=0.0)
+
+
+def two_model_scene():
+    """Two spheres: the first moved, turned and scaled, the second mirrored (its triangles
+    must be written reversed to face outwards), each with per-vertex colours."""
+    v1, f1 = icosphere(2)
+    v2, f2 = icosphere(1)
+    a = decimate.simplify(v1, f1, keep_triangles=120)
+    b = decimate.simplify(v2, f2, keep_triangles=60)
+    turn = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    t1 = np.eye(4, dtype=np.float32)
+    t1[:3, :3] = 2.0 * turn
+    t1[:3, 3] = [3.0, -1.0, 0.5]
+    t2 = np.eye(4, dtype=np.float32)
+    t2[0, 0] = -1.0
+    t2[:3, 3] = [-4.0, 0.0, 0.0]
+    models = []
+    for (r, t, name) in [(a, t1, "moved"), (b, t2, "mirrored")]:
+        colors = np.clip(np.abs(r.vertices), 0, 1).astype(np.float32)
+        models.append(decimate.Model(vertices=r.vertices, faces=r.faces.astype(np.uint32),
+                                     transform=t, colors=colors, name=name))
+    return models
+
+
+def world(model):
+    """A model's points in world space and its triangles facing outwards."""
+    t = model.transform.astype(np.float64)
+    p = model.vertices.astype(np.float64) @ t[:3, :3].T + t[:3, 3]
+    f = np.asarray(model.faces, dtype=np.int64)
+    if np.linalg.det(t[:3, :3]) < 0:
+        f = f[:, [0, 2, 1]]
+    return p, f
+
+
+@pytest.mark.parametrize("fmt,reader", cases())
+def test_two_transformed_models_are_written_where_they_stand(fmt, reader, tmp_path):
+    models = two_model_scene()
+    path = tmp_path / f"scene.{fmt}"
+    decimate.write(models, path)
+    points, triangles = read_with(reader, path)
+    want_v, want_f = _concatenate([world(m) for m in models])
+    # Transforms are applied in float32 by us (formats that store world positions) or by
+    # the reader: a few units in the last place of a model about 5 across.
+    assert_same_mesh(f"{path.name} by {reader}", points, triangles, want_v, want_f, tol=1e-5)
