@@ -351,3 +351,133 @@ def test_two_transformed_models_are_written_where_they_stand(fmt, reader, tmp_pa
     # Transforms are applied in float32 by us (formats that store world positions) or by
     # the reader: a few units in the last place of a model about 5 across.
     assert_same_mesh(f"{path.name} by {reader}", points, triangles, want_v, want_f, tol=1e-5)
+
+
+# --- the progressive file, replayed from its documented layout ------------------------
+
+
+class _Bytes:
+    """A cursor over little-endian bytes, as the `.pm` layout lays them out."""
+
+    def __init__(self, data):
+        self.data, self.pos = data, 0
+
+    def take(self, fmt):
+        values = struct.unpack_from("<" + fmt, self.data, self.pos)
+        self.pos += struct.calcsize("<" + fmt)
+        return values
+
+    def u32(self):
+        return self.take("I")[0]
+
+    def u8(self):
+        return self.take("B")[0]
+
+    def skip_string(self):
+        n = self.u32()
+        self.pos += n
+
+    def reals(self, n):
+        return np.array(self.take(f"{n}f"), dtype=np.float32)
+
+
+def read_pm(path):
+    """Each model of a `.pm` file (layout version 1) as a dict: its transform, base
+    positions and triangles, and its splits (keep, keep's fine position, the new position,
+    renamed face ids, added faces). Attributes are read past, not kept."""
+    b = _Bytes(path.read_bytes())
+    assert b.data[:8] == b"DECIMPM\0"
+    b.pos = 8
+    assert b.u32() == 1
+    models = []
+    for _ in range(b.u32()):
+        b.skip_string()  # name
+        transform = b.reals(16).reshape(4, 4).T  # column-major
+        b.reals(3)  # diffuse
+        b.u8(), b.reals(1), b.u8()  # crease flag and angle, solid
+        attrs = b.u8()
+        for bit in (16, 32):  # image name, material name
+            if attrs & bit:
+                b.skip_string()
+        n_v, n_f = b.u32(), b.u32()
+        positions = b.reals(3 * n_v).reshape(n_v, 3)
+        per_vertex = 3 * bool(attrs & 1) + 3 * bool(attrs & 4) + 2 * bool(attrs & 8)
+        b.reals(per_vertex * n_v)
+        faces = np.array(b.take(f"{3 * n_f}I"), dtype=np.int64).reshape(n_f, 3)
+        b.reals(3 * n_f * bool(attrs & 2))
+        splits = []
+        for _ in range(b.u32()):
+            keep = b.u32()
+            b.reals(3)  # keep's coarse position
+            fine, new = b.reals(3), b.reals(3)
+            b.reals(per_vertex * 3)
+            renamed = b.take(f"{b.u32()}I")
+            n_added = b.u8()
+            added = np.array(b.take(f"{3 * n_added}I"), dtype=np.int64).reshape(n_added, 3)
+            b.reals(3 * n_added * bool(attrs & 2))
+            splits.append((keep, fine, new, renamed, added))
+        b.pos += 4 * (n_v + len(splits))  # original vertex ids
+        b.pos += 4 * (n_f + sum(len(s[4]) for s in splits))  # original face ids
+        models.append({"transform": transform, "positions": positions, "faces": faces,
+                       "splits": splits})
+    assert b.pos == len(b.data), f"{path}: {len(b.data) - b.pos} bytes after the last model"
+    return models
+
+
+def replay(model, n_vertices):
+    """The level with `n_vertices` vertices: the base refined by its first splits, each
+    adding vertex V + i, moving `keep` and giving the renamed faces' `keep` corner to it."""
+    positions = [p for p in model["positions"]]
+    faces = [list(f) for f in model["faces"]]
+    for keep, fine, new, renamed, added in model["splits"][: n_vertices - len(positions)]:
+        positions[keep] = fine
+        positions.append(new)
+        for face in renamed:
+            faces[face] = [len(positions) - 1 if c == keep else c for c in faces[face]]
+        faces += [list(f) for f in added]
+    return np.array(positions), np.array(faces, dtype=np.int64)
+
+
+def test_the_progressive_file_replayed_gives_the_levels_qem_decimates_to(cli, bunny, tmp_path):
+    pm = tmp_path / "bunny.pm"
+    base = tmp_path / "base.ply"
+    subprocess.run([cli, str(bunny), "nogui", "-a", "qem", "-p", "90", "--progressive", str(pm),
+                    "-q", "-o", str(base)], check=True)
+    [model] = read_pm(pm)
+    assert np.array_equal(model["transform"], np.eye(4))
+    n_base = len(model["positions"])
+    assert n_base == 184 and len(model["faces"]) == 364  # 1839 vertices, 90 % removed
+    # The base is the decimated output; all splits give the input back.
+    for n, path in [(n_base, base), (n_base + len(model["splits"]), bunny)]:
+        v, f = replay(model, n)
+        points, triangles = read_trimesh(path)
+        assert_same_mesh(f"{path.name} against the replay to {n}", np.float32(points), triangles,
+                         v, f, tol=0.0)
+    # Levels between: what qem leaves when asked for that many vertices.
+    for n in (200, 500, 1000):
+        out = tmp_path / f"level{n}.ply"
+        subprocess.run([cli, str(bunny), "nogui", "-a", "qem", "--keep-vertices", str(n), "-q",
+                        "-o", str(out)], check=True)
+        v, f = replay(model, n)
+        points, triangles = read_trimesh(out)
+        assert_same_mesh(f"{out.name} against the replay", np.float32(points), triangles, v, f,
+                         tol=0.0)
+
+
+def test_a_coloured_models_progressive_file_replays_to_its_output_and_its_input(cli, tmp_path):
+    # Colours add per-vertex and per-split records that the replay must read past.
+    v, f = icosphere(3)
+    colors = np.clip(np.abs(v), 0, 1).astype(np.float32)
+    src = tmp_path / "ball.ply"
+    decimate.write([decimate.Model(vertices=v, faces=f.astype(np.uint32), colors=colors)], src)
+    pm, out = tmp_path / "ball.pm", tmp_path / "out.ply"
+    subprocess.run([cli, str(src), "nogui", "-p", "80", "--progressive", str(pm), "-q", "-o",
+                    str(out)], check=True)
+    [model] = read_pm(pm)
+    n_base = len(model["positions"])
+    assert n_base == 642 - round(0.8 * 642)
+    for n, path in [(n_base, out), (642, src)]:
+        got_v, got_f = replay(model, n)
+        points, triangles = read_trimesh(path)
+        assert_same_mesh(f"{path.name} against the replay to {n}", np.float32(points), triangles,
+                         got_v, got_f, tol=0.0)
