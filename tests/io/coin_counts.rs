@@ -84,7 +84,11 @@ fn counts() -> Vec<(String, usize, usize)> {
 #[test]
 fn every_scene_coin_reads_gives_at_least_95_percent_of_coins_triangles() {
     let counts = counts();
-    assert!(counts.len() >= 90, "only {} scenes in the reference", counts.len());
+    assert!(
+        counts.len() >= 90,
+        "only {} scenes in the reference",
+        counts.len()
+    );
     let short: Vec<String> = counts
         .iter()
         .filter(|(_, coin, ours)| (*ours as f64) < 0.95 * *coin as f64)
@@ -125,7 +129,9 @@ fn every_scene_gives_coins_count_exactly_but_the_known_differences() {
             None => *coin,
         };
         if *ours != want {
-            wrong.push(format!("{scene}: ours {ours}, expected {want} (Coin {coin})"));
+            wrong.push(format!(
+                "{scene}: ours {ours}, expected {want} (Coin {coin})"
+            ));
         }
     }
     for (scene, _, _) in DIFFERENT {
