@@ -36,6 +36,10 @@ READERS = {
     "gltf": ["accessors", "trimesh"],
     "glb": ["accessors", "trimesh"],
 }
+# The readers that read per-vertex colours of the formats that hold them (trimesh reads no
+# OFF colour; VTK's VRML importer turns them into a lookup table).
+COLOURS = {("ply", "trimesh"), ("ply", "vtk"), ("obj", "trimesh"), ("obj", "vtk"),
+           ("gltf", "accessors"), ("glb", "accessors")}
 # The library each reader needs, as tools/test names it in DECIMATE_TEST_UNAVAILABLE.
 PACKAGE = {"trimesh": "trimesh", "vtk": "pyvista"}
 
@@ -88,10 +92,12 @@ def rotated(t):
     return tuple(t[k:] + t[:k])
 
 
-def assert_same_mesh(what, points, triangles, want_points, want_triangles, tol):
+def assert_same_mesh(what, points, triangles, want_points, want_triangles, tol, colors=None,
+                     want_colors=None):
     """`points`/`triangles` (what a reader saw, world coordinates) are the reference's
     points and triangles: the same set of points within `tol` (max norm) and the same
-    multiset of triangles as point triples with the same winding."""
+    multiset of triangles as point triples with the same winding. With `colors` (0..1 per
+    point), each point's colour is its reference point's within one step of 255."""
     index = PointIndex(want_points, tol)
     want_ids = [index.find(p) for p in np.asarray(want_points, dtype=np.float64)]
     got_ids = [index.find(p) for p in np.asarray(points, dtype=np.float64)]
@@ -108,6 +114,12 @@ def assert_same_mesh(what, points, triangles, want_points, want_triangles, tol):
     assert not extra and not lost, (
         f"{what}: {sum(extra.values())} triangles differ, e.g. read {list(extra)[:2]}, "
         f"written {list(lost)[:2]}")
+    if want_colors is not None:
+        assert colors is not None, f"{what}: the reader found no colours"
+        want = {i: c for i, c in zip(want_ids, np.asarray(want_colors, dtype=np.float64))}
+        off = [(k, tuple(c), tuple(want[i])) for k, (i, c) in enumerate(zip(got_ids, colors))
+               if np.abs(want[i] - c).max() > 1.01 / 255]
+        assert not off, f"{what}: {len(off)} points have another colour, e.g. {off[:2]}"
 
 
 # --- the independent readers ----------------------------------------------------------
@@ -116,7 +128,10 @@ def assert_same_mesh(what, points, triangles, want_points, want_triangles, tol):
 def read_trimesh(path):
     trimesh = need("trimesh", "trimesh")
     mesh = trimesh.load(str(path), force="mesh", process=False)
-    return np.asarray(mesh.vertices), np.asarray(mesh.faces)
+    colors = None
+    if mesh.visual.kind == "vertex":
+        colors = np.asarray(mesh.visual.vertex_colors, dtype=np.float64)[:, :3] / 255
+    return np.asarray(mesh.vertices), np.asarray(mesh.faces), colors
 
 
 def _vtk_triangles(vtk, pd, matrix=None):
@@ -136,7 +151,12 @@ def _vtk_triangles(vtk, pd, matrix=None):
     faces = []
     while polys.GetNextCell(ids):
         faces.append([ids.GetId(k) for k in range(ids.GetNumberOfIds())])
-    return pts, np.array(faces, dtype=np.int64).reshape(-1, 3)
+    scalars = out.GetPointData().GetScalars()
+    colors = None
+    if scalars is not None and scalars.GetNumberOfComponents() in (3, 4):
+        colors = np.array([scalars.GetTuple(i)[:3] for i in range(out.GetNumberOfPoints())])
+        colors = colors.reshape(-1, 3) / 255
+    return pts, np.array(faces, dtype=np.int64).reshape(-1, 3), colors
 
 
 def read_vtk(path):
@@ -166,12 +186,16 @@ def read_vtk(path):
 
 
 def _concatenate(parts):
-    points, faces, base = [], [], 0
-    for p, f in parts:
+    """One mesh of (points, triangles, colours or None) parts; colours only if all have them."""
+    points, faces, colors, base = [], [], [], 0
+    for p, f, c in parts:
         points.append(p)
         faces.append(f + base)
+        colors.append(c)
         base += len(p)
-    return np.concatenate(points), np.concatenate(faces)
+    colored = all(c is not None for c in colors)
+    return (np.concatenate(points), np.concatenate(faces),
+            np.concatenate(colors) if colored else None)
 
 
 GLTF_COMPONENTS = {5121: "<u1", 5123: "<u2", 5125: "<u4", 5126: "<f4"}
@@ -207,7 +231,10 @@ def _gltf_accessor(doc, buffers, index):
     stride = view.get("byteStride", dtype.itemsize * width)
     raw = buffers[view["buffer"]]
     rows = [np.frombuffer(raw, dtype, width, start + k * stride) for k in range(a["count"])]
-    return np.array(rows).reshape(a["count"], width)
+    values = np.array(rows).reshape(a["count"], width)
+    if a.get("normalized"):
+        return values / np.iinfo(dtype).max
+    return values
 
 
 def _node_matrix(node):
@@ -250,7 +277,9 @@ def read_gltf_accessors(path):
             f = _gltf_accessor(doc, buffers, prim["indices"]).reshape(-1, 3).astype(np.int64)
             if np.linalg.det(world[:3, :3]) < 0:
                 f = f[:, [0, 2, 1]]
-            parts.append((p @ world[:3, :3].T + world[:3, 3], f))
+            c = prim["attributes"].get("COLOR_0")
+            c = None if c is None else _gltf_accessor(doc, buffers, c)[:, :3]
+            parts.append((p @ world[:3, :3].T + world[:3, 3], f, c))
     return _concatenate(parts)
 
 
@@ -301,7 +330,7 @@ def test_the_command_lines_output_is_the_decimated_mesh(fmt, reader, cli, bunny,
     out = tmp_path / f"bunny.{fmt}"
     subprocess.run([cli, str(bunny), "nogui", "-a", "qem", "--keep-triangles", "700", "-q",
                     "-o", str(out)], check=True)
-    points, triangles = read_with(reader, out)
+    points, triangles, _ = read_with(reader, out)
     want_v, want_f = bunny_decimated
     # Every float32 is written exactly (binary, or its shortest round-trip text): exact
     # once read back as float32.
@@ -332,13 +361,13 @@ def two_model_scene():
 
 
 def world(model):
-    """A model's points in world space and its triangles facing outwards."""
+    """A model's points in world space, its triangles facing outwards and its colours."""
     t = model.transform.astype(np.float64)
     p = model.vertices.astype(np.float64) @ t[:3, :3].T + t[:3, 3]
     f = np.asarray(model.faces, dtype=np.int64)
     if np.linalg.det(t[:3, :3]) < 0:
         f = f[:, [0, 2, 1]]
-    return p, f
+    return p, f, model.colors
 
 
 @pytest.mark.parametrize("fmt,reader", cases())
@@ -346,11 +375,12 @@ def test_two_transformed_models_are_written_where_they_stand(fmt, reader, tmp_pa
     models = two_model_scene()
     path = tmp_path / f"scene.{fmt}"
     decimate.write(models, path)
-    points, triangles = read_with(reader, path)
-    want_v, want_f = _concatenate([world(m) for m in models])
+    points, triangles, colors = read_with(reader, path)
+    want_v, want_f, want_c = _concatenate([world(m) for m in models])
     # Transforms are applied in float32 by us (formats that store world positions) or by
     # the reader: a few units in the last place of a model about 5 across.
-    assert_same_mesh(f"{path.name} by {reader}", points, triangles, want_v, want_f, tol=1e-5)
+    assert_same_mesh(f"{path.name} by {reader}", points, triangles, want_v, want_f, tol=1e-5,
+                     colors=colors, want_colors=want_c if (fmt, reader) in COLOURS else None)
 
 
 # --- the progressive file, replayed from its documented layout ------------------------
@@ -450,7 +480,7 @@ def test_the_progressive_file_replayed_gives_the_levels_qem_decimates_to(cli, bu
     # The base is the decimated output; all splits give the input back.
     for n, path in [(n_base, base), (n_base + len(model["splits"]), bunny)]:
         v, f = replay(model, n)
-        points, triangles = read_trimesh(path)
+        points, triangles, _ = read_trimesh(path)
         assert_same_mesh(f"{path.name} against the replay to {n}", np.float32(points), triangles,
                          v, f, tol=0.0)
     # Levels between: what qem leaves when asked for that many vertices.
@@ -459,7 +489,7 @@ def test_the_progressive_file_replayed_gives_the_levels_qem_decimates_to(cli, bu
         subprocess.run([cli, str(bunny), "nogui", "-a", "qem", "--keep-vertices", str(n), "-q",
                         "-o", str(out)], check=True)
         v, f = replay(model, n)
-        points, triangles = read_trimesh(out)
+        points, triangles, _ = read_trimesh(out)
         assert_same_mesh(f"{out.name} against the replay", np.float32(points), triangles, v, f,
                          tol=0.0)
 
@@ -478,6 +508,6 @@ def test_a_coloured_models_progressive_file_replays_to_its_output_and_its_input(
     assert n_base == 642 - round(0.8 * 642)
     for n, path in [(n_base, out), (642, src)]:
         got_v, got_f = replay(model, n)
-        points, triangles = read_trimesh(path)
+        points, triangles, _ = read_trimesh(path)
         assert_same_mesh(f"{path.name} against the replay to {n}", np.float32(points), triangles,
                          got_v, got_f, tol=0.0)
