@@ -383,6 +383,50 @@ def test_two_transformed_models_are_written_where_they_stand(fmt, reader, tmp_pa
                      colors=colors, want_colors=want_c if (fmt, reader) in COLOURS else None)
 
 
+
+def read_off(path):
+    """Our OFF output, parsed here: `[C]OFF`, a comment, counts, `x y z [r g b a]` per
+    vertex, `3 a b c` per triangle."""
+    lines = [l.split() for l in path.read_text().splitlines() if l and not l.startswith("#")]
+    assert lines[0][0] in ("OFF", "COFF"), lines[0]
+    n_v, n_f = int(lines[1][0]), int(lines[1][1])
+    rows = lines[2: 2 + n_v]
+    points = np.array([[float(x) for x in r[:3]] for r in rows])
+    colors = np.array([[float(x) for x in r[3:6]] for r in rows]) if lines[0][0] == "COFF" else None
+    faces = lines[2 + n_v: 2 + n_v + n_f]
+    assert all(f[0] == "3" for f in faces)
+    return points, np.array([[int(x) for x in f[1:4]] for f in faces], dtype=np.int64), colors
+
+
+@pytest.fixture(scope="module")
+def scene_decimated(cli, tmp_path_factory):
+    """The two-model scene as VRML 2.0, decimated by the command line to 50 %, and its OFF
+    output as we read it here."""
+    d = tmp_path_factory.mktemp("scene")
+    src = d / "in.wrl"
+    decimate.write(two_model_scene(), src)
+    run = lambda out: subprocess.run([cli, str(src), "nogui", "-p", "50", "-q", "-o", str(out)],
+                                     check=True)
+    run(d / "out.off")
+    return run, read_off(d / "out.off")
+
+
+@pytest.mark.parametrize("fmt,reader", cases())
+def test_every_format_of_a_two_model_decimation_gives_the_same_mesh(fmt, reader,
+                                                                    scene_decimated, tmp_path):
+    # Through the command line, where a multi-model scene is decimated and written: each
+    # format against the OFF output (which the OFF case itself, and VRML through VTK, tie
+    # to the independent readers).
+    run, (want_v, want_f, want_c) = scene_decimated
+    # 62 + 32 vertices less half leave 47; two closed spheres have 2V - 4 triangles each.
+    assert (len(want_v), len(want_f)) == (47, 2 * 47 - 8) and want_c is not None
+    out = tmp_path / f"out.{fmt}"
+    run(out)
+    points, triangles, colors = read_with(reader, out)
+    assert_same_mesh(f"{out.name} by {reader}", points, triangles, want_v, want_f, tol=1e-5,
+                     colors=colors, want_colors=want_c if (fmt, reader) in COLOURS else None)
+
+
 # --- the progressive file, replayed from its documented layout ------------------------
 
 
