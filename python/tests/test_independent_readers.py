@@ -6,7 +6,10 @@ the layout the format's documentation gives (crates/core/src/io/progressive_file
 What is compared is geometry, not counts: the set of points (our text writers print the
 shortest round-trip form of each float32, so points are exact where no transform is
 applied) and the triangles as triples of points, up to rotation of their corners (the
-winding counts) and in any order, against the in-memory result of `decimate.simplify`.
+winding counts) and in any order, and per-vertex colours where the reader reads them. The
+reference is the in-memory result of `decimate.simplify`, or for the command line's own
+multi-model decimation its OFF output parsed here; a `.pm` level is compared with what the
+command line decimates to.
 
 A reader that is not installed is skipped with its reason; under CI (`CI` set) it must be
 there, unless tools/test found no wheel for it (DECIMATE_TEST_UNAVAILABLE)."""
@@ -40,11 +43,11 @@ READERS = {
 # OFF colour; VTK's VRML importer turns them into a lookup table).
 COLOURS = {("ply", "trimesh"), ("ply", "vtk"), ("obj", "trimesh"), ("obj", "vtk"),
            ("gltf", "accessors"), ("glb", "accessors")}
-# The library each reader needs, as tools/test names it in DECIMATE_TEST_UNAVAILABLE.
-PACKAGE = {"trimesh": "trimesh", "vtk": "pyvista"}
 
 
 def need(module, package):
+    """`module`, or a skip; under CI a failure unless tools/test found no wheel for
+    `package` (named as DECIMATE_TEST_UNAVAILABLE names it)."""
     try:
         return importlib.import_module(module)
     except ImportError as e:
