@@ -40,9 +40,9 @@ READERS = {
     "glb": ["accessors", "trimesh"],
 }
 # The readers that read per-vertex colours of the formats that hold them (trimesh reads no
-# OFF colour; VTK's VRML importer turns them into a lookup table).
+# OFF colour).
 COLOURS = {("ply", "trimesh"), ("ply", "vtk"), ("obj", "trimesh"), ("obj", "vtk"),
-           ("gltf", "accessors"), ("glb", "accessors")}
+           ("wrl", "vtk"), ("gltf", "accessors"), ("glb", "accessors")}
 
 
 def need(module, package):
@@ -137,8 +137,9 @@ def read_trimesh(path):
     return np.asarray(mesh.vertices), np.asarray(mesh.faces), colors
 
 
-def _vtk_triangles(vtk, pd, matrix=None):
-    """Points (world coordinates through `matrix`) and triangles of VTK polygon data."""
+def _vtk_triangles(vtk, pd, matrix=None, lut=None):
+    """Points (world coordinates through `matrix`), triangles and colours of VTK polygon
+    data: RGB point scalars, or one scalar a point that `lut` maps (the VRML importer's)."""
     tri = vtk.vtkTriangleFilter()
     tri.SetInputData(pd)
     tri.Update()
@@ -159,6 +160,10 @@ def _vtk_triangles(vtk, pd, matrix=None):
     if scalars is not None and scalars.GetNumberOfComponents() in (3, 4):
         colors = np.array([scalars.GetTuple(i)[:3] for i in range(out.GetNumberOfPoints())])
         colors = colors.reshape(-1, 3) / 255
+    elif scalars is not None and lut is not None:
+        colors = np.zeros((out.GetNumberOfPoints(), 3))
+        for i, rgb in enumerate(colors):
+            lut.GetColor(scalars.GetTuple1(i), rgb)
     return pts, np.array(faces, dtype=np.int64).reshape(-1, 3), colors
 
 
@@ -177,7 +182,9 @@ def read_vtk(path):
         parts = []
         for _ in range(actors.GetNumberOfItems()):
             actor = actors.GetNextActor()
-            parts.append(_vtk_triangles(vtk, actor.GetMapper().GetInput(), actor.GetMatrix()))
+            mapper = actor.GetMapper()
+            parts.append(_vtk_triangles(vtk, mapper.GetInput(), actor.GetMatrix(),
+                                        mapper.GetLookupTable()))
         assert parts, f"VTK found no shape in {path}"
         return _concatenate(parts)
     reader = {".ply": vtk.vtkPLYReader, ".obj": vtk.vtkOBJReader, ".stl": vtk.vtkSTLReader}[ext]()
