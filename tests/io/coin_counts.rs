@@ -1,5 +1,6 @@
 //! Every scene of Debian's `inventor-data` that Coin reads gives us at least 95 % of the
-//! triangles Coin makes of it (text, NURBS and zero-area triangles left out, which we skip).
+//! triangles Coin makes of it (text, NURBS and zero-area triangles left out, which we skip),
+//! and exactly Coin's count but on six scenes listed with the count they give.
 //!
 //! The reference, tests/data/coin_counts.tsv, is Coin 4.0's count written by
 //! `tools/check/coin-table --reference` (Coin's `SoCallbackAction` through tools/check/coin-count): it
@@ -51,8 +52,8 @@ fn ascii_tree(dst: &Path) {
     }
 }
 
-#[test]
-fn every_scene_coin_reads_gives_at_least_95_percent_of_coins_triangles() {
+/// Each reference scene with Coin's triangle count and ours.
+fn counts() -> Vec<(String, usize, usize)> {
     assert!(
         Path::new(MODELS).is_dir(),
         "{MODELS} is missing; {}",
@@ -64,8 +65,7 @@ fn every_scene_coin_reads_gives_at_least_95_percent_of_coins_triangles() {
     .unwrap();
     let dir = tempfile::tempdir().unwrap();
     ascii_tree(dir.path());
-    let mut checked = 0;
-    let mut short = Vec::new();
+    let mut counts = Vec::new();
     for line in reference.lines().filter(|l| !l.starts_with('#')) {
         let (scene, coin) = line.split_once('\t').expect("scene<TAB>count");
         let coin: usize = coin.parse().unwrap();
@@ -76,14 +76,70 @@ fn every_scene_coin_reads_gives_at_least_95_percent_of_coins_triangles() {
             Err(_) if coin == 0 => 0,
             Err(e) => panic!("{scene}: {e}"),
         };
-        if (ours as f64) < 0.95 * coin as f64 {
-            short.push(format!("{scene}: ours {ours}, Coin {coin}"));
-        }
-        checked += 1;
+        counts.push((scene.to_string(), coin, ours));
     }
-    assert!(checked >= 90, "only {checked} scenes in the reference");
+    counts
+}
+
+#[test]
+fn every_scene_coin_reads_gives_at_least_95_percent_of_coins_triangles() {
+    let counts = counts();
+    assert!(
+        counts.len() >= 90,
+        "only {} scenes in the reference",
+        counts.len()
+    );
+    let short: Vec<String> = counts
+        .iter()
+        .filter(|(_, coin, ours)| (*ours as f64) < 0.95 * *coin as f64)
+        .map(|(scene, coin, ours)| format!("{scene}: ours {ours}, Coin {coin}"))
+        .collect();
     assert!(
         short.is_empty(),
         "under 95 % of Coin's triangles: {short:#?}"
     );
+}
+
+/// The scenes where our count is not Coin's: (scene, Coin's count, ours). Every other
+/// scene of the reference must give Coin's count exactly, and these exactly what they give
+/// now, so that a change either way is seen.
+const DIFFERENT: [(&str, usize, usize); 6] = [
+    // Coin makes 1,715 triangles of its 2,672 quads; its own VRML 2.0 conversion gives
+    // 5,336 (docs/design.md, "Against Coin on inventor-data").
+    ("buildings/Barcelona.iv", 1715, 5335),
+    // Faces listed twice: Coin draws both, our repair keeps one (the summary says "22
+    // duplicate triangles removed"; the 767's "4").
+    ("household/plant.iv", 1284, 1262),
+    ("vehicles/767.iv", 1691, 1687),
+    // Not yet explained: more triangles than Coin's of non-zero area.
+    ("furniture/table.iv", 3600, 3680),
+    ("machines/compressor.iv", 147, 148),
+    ("sgi/indigo.iv", 10174, 10178),
+];
+
+#[test]
+fn every_scene_gives_coins_count_exactly_but_the_known_differences() {
+    let counts = counts();
+    let mut wrong = Vec::new();
+    for (scene, coin, ours) in &counts {
+        let want = match DIFFERENT.iter().find(|(s, _, _)| s == scene) {
+            Some(&(_, known_coin, known_ours)) => {
+                assert_eq!(*coin, known_coin, "{scene}: the reference changed");
+                known_ours
+            }
+            None => *coin,
+        };
+        if *ours != want {
+            wrong.push(format!(
+                "{scene}: ours {ours}, expected {want} (Coin {coin})"
+            ));
+        }
+    }
+    for (scene, _, _) in DIFFERENT {
+        assert!(
+            counts.iter().any(|(s, _, _)| s == scene),
+            "{scene} is not in the reference"
+        );
+    }
+    assert!(wrong.is_empty(), "triangle counts changed: {wrong:#?}");
 }

@@ -106,7 +106,7 @@ fn the_report_figure_captions_each_viewport_with_its_own_target() {
     assert_eq!(left.len(), 3);
     for (kept, p) in left.iter().zip([60.0, 80.0, 90.0]) {
         let asked = n - (n as f64 * p / 100.0).round() as usize;
-        assert!(kept.abs_diff(asked) <= 2, "{p} %: {kept} of {n} left");
+        assert_eq!(*kept, asked, "{p} %: {kept} of {n} left");
     }
     // Captions are on by default with four viewports; without them the picture differs only
     // in each tile's bottom-right corner, where its caption sits.
