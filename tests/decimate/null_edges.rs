@@ -196,3 +196,73 @@ fn a_closed_box_with_a_two_sided_fin_comes_out_closed() {
         assert!(f < 6 * 32 + 32, "{algorithm}: nothing decimated");
     }
 }
+
+#[test]
+fn qem_keeps_loose_doubled_specks_beside_a_sphere() {
+    // A closed lat-long sphere of radius 1 and, floating 0.5 off it, three specks: a square
+    // of two triangles written once each way round (a scan's loose doubled flake). Deleting a
+    // speck whole makes its distance to the sphere the result's error.
+    let (rings, segments) = (12, 24);
+    let mut text = String::new();
+    let pole = |z: f64| format!("v 0 0 {z}\n");
+    text += &pole(1.0);
+    for r in 1..rings {
+        let theta = std::f64::consts::PI * r as f64 / rings as f64;
+        for s in 0..segments {
+            let phi = std::f64::consts::TAU * s as f64 / segments as f64;
+            let [x, y, z] = [
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            ];
+            text += &format!("v {x:.6} {y:.6} {z:.6}\n");
+        }
+    }
+    text += &pole(-1.0);
+    let south = 1 + (rings - 1) * segments + 1;
+    let id = |r: usize, s: usize| 2 + (r - 1) * segments + s % segments;
+    let mut faces = String::new();
+    for s in 0..segments {
+        faces += &format!("f 1 {} {}\n", id(1, s), id(1, s + 1));
+        faces += &format!("f {south} {} {}\n", id(rings - 1, s + 1), id(rings - 1, s));
+        for r in 1..rings - 1 {
+            let [a, b, c, d] = [id(r, s), id(r + 1, s), id(r + 1, s + 1), id(r, s + 1)];
+            faces += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
+        }
+    }
+    let centres = [[1.5, 0.0, 0.0], [0.0, -1.5, 0.0], [0.0, 0.0, 1.5]];
+    for (k, c) in centres.iter().enumerate() {
+        let first = south + 1 + 4 * k;
+        for [dx, dy] in [[0.0, 0.0], [0.05, 0.0], [0.05, 0.05], [0.0, 0.05]] {
+            text += &format!("v {} {} {}\n", c[0] + dx, c[1] + dy, c[2]);
+        }
+        let [a, b, c, d] = [first, first + 1, first + 2, first + 3];
+        faces += &format!("f {a} {b} {c}\nf {a} {c} {d}\nf {a} {c} {b}\nf {a} {d} {c}\n");
+    }
+    let input = text + &faces;
+    assert_eq!(census(&input).3, 0, "the input is closed");
+    let output = run(&input, "specks.obj", &["-a", "qem", "-p", "80"]);
+    let points: Vec<[f64; 3]> = output
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let v: Vec<f64> = l
+                .split_whitespace()
+                .filter_map(|x| x.parse().ok())
+                .collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect();
+    let (_, _, f, border) = census(&output);
+    assert!(
+        f < (2 * (rings - 1) * segments) / 2,
+        "nothing decimated: {f} triangles"
+    );
+    assert_eq!(border, 0, "the result was opened");
+    for c in centres {
+        let near = points
+            .iter()
+            .any(|p| (0..3).all(|i| (p[i] - c[i]).abs() < 0.1));
+        assert!(near, "the speck at {c:?} was deleted");
+    }
+}

@@ -113,11 +113,50 @@ pub fn remove_hanging_sheets(
                 && diagonal2(s) <= limit.max_error * limit.max_error
         })
         .collect();
+    let goes = keep_whole_parts(&corners, &sheet_of, (n, count), goes);
     let removed_area: f64 = (0..count).filter(|&s| goes[s]).map(|s| sheet[s].area).sum();
     if !goes.iter().any(|&g| g) || removed_area > MAX_AREA_SHARE * total_area {
         return RemovedSheets::default();
     }
     remove_sheets(model, &sheet, &sheet_of, &goes)
+}
+
+/// `goes` less the sheets of every part (sheets joined through shared vertices) where all
+/// would go: such a part — a loose doubled flake, sheets hanging only on each other — hangs
+/// on nothing, and deleting it whole would make its distance to the rest the result's error.
+/// `sizes` are the vertices' and the sheets' counts.
+fn keep_whole_parts(
+    corners: &[[u32; 3]],
+    sheet_of: &[u32],
+    (n, count): (usize, usize),
+    mut goes: Vec<bool>,
+) -> Vec<bool> {
+    let mut parent = union_find::singletons(count);
+    let mut first = vec![u32::MAX; n];
+    for (tri, &s) in corners.iter().zip(sheet_of) {
+        for &v in tri {
+            let f = &mut first[v as usize];
+            if *f == u32::MAX {
+                *f = s;
+            }
+            let f = *f;
+            let (a, b) = (
+                union_find::root(&mut parent, f),
+                union_find::root(&mut parent, s),
+            );
+            parent[a.max(b) as usize] = a.min(b);
+        }
+    }
+    let mut part_stays = vec![false; count];
+    for s in 0..count as u32 {
+        let root = union_find::root(&mut parent, s) as usize;
+        part_stays[root] |= !goes[s as usize];
+    }
+    for s in 0..count as u32 {
+        let root = union_find::root(&mut parent, s) as usize;
+        goes[s as usize] &= part_stays[root];
+    }
+    goes
 }
 
 /// The square of a sheet's bounding-box diagonal.

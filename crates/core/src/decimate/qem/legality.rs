@@ -25,10 +25,19 @@ impl Part<'_> {
     /// Whether the planned collapse of the edge [`Part::gather`] read last is legal.
     pub fn is_collapse_legal(&mut self, plan: &Plan) -> bool {
         self.link_condition_holds(plan)
+            && self.leaves_a_triangle(plan)
             && self.no_duplicate_triangle(plan)
             && self.no_triangle_flips_or_degenerates(plan)
             && self.no_texture_flips(plan)
             && self.keeps_closed_volume(plan)
+    }
+
+    /// The collapse leaves a triangle at the kept end: when every triangle of both ends lies
+    /// on the edge (a doubled triangle, the last of a loose speck), collapsing it would delete
+    /// that piece of surface whole, and its distance to the rest becomes the result's error.
+    fn leaves_a_triangle(&self, plan: &Plan) -> bool {
+        let (fan_r, fan_k) = self.fans(plan);
+        fan_r.iter().any(|f| !f.touches(plan.keep)) || fan_k.iter().any(|f| !f.touches(plan.remove))
     }
 
     /// On a closed component, the collapse keeps the component's volume on its side of
