@@ -104,7 +104,7 @@ impl Collapser {
         cos_feature: f64,
     ) -> Self {
         let n = positions.len();
-        let closed = ClosedVolumes::new(&positions, conn.triangles());
+        let closed = ClosedVolumes::connected(&positions, &conn);
         let input_surface = input_surface(&positions, conn.triangles());
         let costs = EdgeCosts::new(conn.triangles());
         Self {
