@@ -11,8 +11,10 @@ tool reads the same triangles. Each round runs every tool once, in an order rota
 each round; a call prints its seconds (the call alone: the mesh is read before the clock
 starts), the triangles it kept, the process's peak resident memory and the CPU seconds of
 the call (all threads: on a busy machine steadier than the clock). ROUNDS (5),
-KEEP (percent of the triangles kept, 10) and THREADS (ours, "1 2") come from the
-environment. Prints one markdown table per model.
+KEEP (percent of the triangles kept, 10), THREADS (ours, "1 2"), PEERS (the Python tools,
+"meshoptimizer fast-simplification"; meshoptimizer always runs: the ratios are to it) and
+BASELINE (another build of the example, e.g. an earlier commit's, run beside ours under
+the name BASELINE_NAME) come from the environment. Prints one markdown table per model.
 """
 import os
 import resource
@@ -110,13 +112,18 @@ def run_once(command, env):
 def bench(example, name, src, keep, rounds, threads):
     here = os.path.abspath(__file__)
     quiet = dict(os.environ, OMP_NUM_THREADS="1")
-    tools = [("meshoptimizer", 1, [sys.executable, here, "--call", "meshoptimizer", src,
-                                   str(keep)], quiet),
-             ("fast-simplification", 1, [sys.executable, here, "--call",
-                                         "fast-simplification", src, str(keep)], quiet)]
+    peers = os.environ.get("PEERS", "meshoptimizer fast-simplification").split()
+    peers = ["meshoptimizer"] + [p for p in peers if p != "meshoptimizer"]
+    tools = [(p, 1, [sys.executable, here, "--call", p, src, str(keep)], quiet) for p in peers]
+    # BASELINE: another build of the example (an earlier commit's), run beside ours.
+    builds = [("qem", example)]
+    if os.environ.get("BASELINE"):
+        builds.append(("qem " + os.environ.get("BASELINE_NAME", "baseline"),
+                       os.environ["BASELINE"]))
     for n in threads:
         env = dict(os.environ, RAYON_NUM_THREADS=str(n))
-        tools.append(("qem", n, [example, src, str(keep), str(n)], env))
+        for label, binary in builds:
+            tools.append((label, n, [binary, src, str(keep), str(n)], env))
     results = {i: [] for i in range(len(tools))}
     for r in range(rounds):
         order = list(range(len(tools)))

@@ -12,9 +12,10 @@
 use std::collections::HashMap;
 
 use glam::{DVec3, Vec3};
-use rayon::slice::ParallelSliceMut;
+use rayon::prelude::*;
 
 use crate::mesh::seams;
+use crate::mesh::topology::{corner_of, Connectivity};
 use crate::mesh::union_find;
 
 /// A closed shape keeps at least this share of its starting volume: the largest
@@ -71,6 +72,34 @@ impl ClosedVolumes {
         Self::welded(positions, triangles, &weld)
     }
 
+    /// As [`Self::new`] for the triangles `conn` connects (its slots, none removed yet),
+    /// judging each edge from its ends' fans instead of sorting every edge: the same
+    /// components and volumes. Triangles with a repeated or missing corner take the sort.
+    pub fn connected(positions: &[Vec3], conn: &Connectivity) -> Self {
+        let (n, triangles) = (positions.len(), conn.triangles());
+        let plain = |t: &[u32; 3]| {
+            t.iter().all(|&v| (v as usize) < n) && t[0] != t[1] && t[1] != t[2] && t[2] != t[0]
+        };
+        if n > MAX_VERTICES || !triangles.par_iter().all(plain) {
+            return Self::new(positions, triangles);
+        }
+        let mut parent = components(n, triangles, |v| v);
+        let unclosed: Vec<u32> = (0..n as u32)
+            .into_par_iter()
+            .with_min_len(1 << 12)
+            .map_init(Vec::new, |keys, v| {
+                (!fan_runs_each_edge_both_ways(conn, v, keys)).then_some(v)
+            })
+            .flatten_iter()
+            .collect();
+        let mut open = vec![false; n];
+        for v in unclosed {
+            let root = union_find::root(&mut parent, v);
+            open[root as usize] = true;
+        }
+        Self::summed(positions, triangles, |v| v, &mut parent, &open)
+    }
+
     /// The closed components with vertex `v` standing for `weld[v]` in the topology (itself
     /// when `weld` is empty); positions are each vertex's own.
     fn welded(positions: &[Vec3], triangles: &[[u32; 3]], weld: &[u32]) -> Self {
@@ -80,15 +109,7 @@ impl ClosedVolumes {
         }
         let valid = |t: &[u32; 3]| t.iter().all(|&v| (v as usize) < n);
         let one = |v: u32| weld.get(v as usize).copied().unwrap_or(v);
-        // Components of the vertices, by union-find.
-        let mut parent = union_find::singletons(n);
-        for t in triangles.iter().filter(|t| valid(t)) {
-            let a = union_find::root(&mut parent, one(t[0]));
-            for &v in &t[1..] {
-                let b = union_find::root(&mut parent, one(v));
-                parent[b as usize] = a;
-            }
-        }
+        let mut parent = components(n, triangles, one);
         // A component is closed when every directed edge appears once and so does its
         // reverse: sort the edges, each with its direction beside it, and check that each
         // edge is run exactly once each way.
@@ -119,13 +140,27 @@ impl ClosedVolumes {
                 open[root as usize] = true;
             }
         }
-        // Number the closed components and sum their volumes about their first vertex.
+        Self::summed(positions, triangles, one, &mut parent, &open)
+    }
+
+    /// The closed components' volumes, from the union-find `parent` of the vertices (each
+    /// standing for `one(v)`) and the roots of the `open` ones, summed about each
+    /// component's first vertex.
+    fn summed(
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+        one: impl Fn(u32) -> u32,
+        parent: &mut [u32],
+        open: &[bool],
+    ) -> Self {
+        let n = positions.len();
+        let valid = |t: &[u32; 3]| t.iter().all(|&v| (v as usize) < n);
         let mut id = vec![NONE; n];
         let mut component = vec![NONE; n];
         let mut origin = Vec::new();
         let mut volume6 = Vec::new();
         for t in triangles.iter().filter(|t| valid(t)) {
-            let root = union_find::root(&mut parent, one(t[0]));
+            let root = union_find::root(parent, one(t[0]));
             if open[root as usize] {
                 continue;
             }
@@ -184,6 +219,35 @@ impl ClosedVolumes {
     pub fn volume6(&self, c: u32) -> f64 {
         self.volume6[c as usize]
     }
+}
+
+/// The components of the vertices of the valid `triangles` (each vertex standing for
+/// `one(v)`), as a union-find parent array.
+fn components(n: usize, triangles: &[[u32; 3]], one: impl Fn(u32) -> u32) -> Vec<u32> {
+    let mut parent = union_find::singletons(n);
+    let valid = |t: &[u32; 3]| t.iter().all(|&v| (v as usize) < n);
+    for t in triangles.iter().filter(|t| valid(t)) {
+        let a = union_find::root(&mut parent, one(t[0]));
+        for &v in &t[1..] {
+            let b = union_find::root(&mut parent, one(v));
+            parent[b as usize] = a;
+        }
+    }
+    parent
+}
+
+/// Whether every edge of `v`'s fan is run by exactly one of its triangles each way (`keys`:
+/// scratch): each neighbour's edge out of `v` and back, sorted by neighbour, must pair up.
+fn fan_runs_each_edge_both_ways(conn: &Connectivity, v: u32, keys: &mut Vec<u64>) -> bool {
+    keys.clear();
+    for &t in conn.incident(v) {
+        let (_, next, prev) = corner_of(conn.triangle(t), v);
+        keys.push(u64::from(next) << 1);
+        keys.push(u64::from(prev) << 1 | 1);
+    }
+    keys.sort_unstable();
+    keys.chunks_exact(2)
+        .all(|pair| pair[0] & 1 == 0 && pair[1] == pair[0] | 1)
 }
 
 /// A part working on one core keeps its closed components this many times their floor
@@ -285,6 +349,58 @@ mod tests {
         assert!(c.allows(0, 3.0, 1.0));
         let open = ClosedVolumes::new(&p, &t[2..]);
         assert_eq!(open.component(0), None);
+    }
+
+    #[test]
+    fn reading_closedness_off_the_fans_finds_what_sorting_the_edges_finds() {
+        // Two boxes apart (one closed, then one open, flipped, with a fin, with a
+        // triangle doubled, with a degenerate one) beside a closed sphere.
+        let (p, t) = box_mesh();
+        let sphere = shapes::uv_sphere(6, 8);
+        let flip = |mut t: Vec<[u32; 3]>| {
+            t[3].swap(1, 2);
+            t
+        };
+        let fin = |mut t: Vec<[u32; 3]>| {
+            // A third triangle on the first one's first edge, to a corner off it.
+            let apex = (0..8).find(|v| !t[0].contains(v)).unwrap_or(7);
+            t.push([t[0][1], t[0][0], apex]);
+            t
+        };
+        let doubled = |mut t: Vec<[u32; 3]>| {
+            t.push(t[5]);
+            t
+        };
+        let degenerate = |mut t: Vec<[u32; 3]>| {
+            // On the first triangle's first edge, which it runs a second time.
+            t.push([t[0][0], t[0][0], t[0][1]]);
+            t
+        };
+        let second: [Vec<[u32; 3]>; 6] = [
+            t.clone(),
+            t[2..].to_vec(),
+            flip(t.clone()),
+            fin(t.clone()),
+            doubled(t.clone()),
+            degenerate(t.clone()),
+        ];
+        for (case, second) in second.into_iter().enumerate() {
+            let mut positions = p.clone();
+            let mut triangles = t.clone();
+            let base = positions.len() as u32;
+            positions.extend(p.iter().map(|q| *q + Vec3::splat(3.0)));
+            triangles.extend(second.iter().map(|tri| tri.map(|v| v + base)));
+            let base = positions.len() as u32;
+            positions.extend(sphere.positions.iter().map(|q| *q - Vec3::splat(3.0)));
+            triangles.extend(sphere.triangles.iter().map(|tri| tri.map(|v| v + base)));
+            let sorted = ClosedVolumes::new(&positions, &triangles);
+            let conn = Connectivity::new(positions.len(), &triangles);
+            let fans = ClosedVolumes::connected(&positions, &conn);
+            assert_eq!(fans.component, sorted.component, "case {case}");
+            assert_eq!(fans.volume6, sorted.volume6, "case {case}");
+            let closed = usize::from(case == 0) + 2;
+            assert_eq!(sorted.volume6.len(), closed, "case {case}");
+        }
     }
 
     #[test]

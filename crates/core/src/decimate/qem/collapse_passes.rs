@@ -631,7 +631,7 @@ fn collapse_and_flag(d: &mut Part<'_>, plan: &Plan) {
         }
     }
     if let Some(c) = d.closed.component(plan.remove) {
-        let change = d.volume_change(plan);
+        let change = d.checked_volume_change(plan);
         d.closed.apply(c, change);
     }
     d.collapse(plan);

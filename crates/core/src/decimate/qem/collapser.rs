@@ -9,6 +9,7 @@ use glam::{Vec3, Vec4};
 use super::collapse_plan::Kind;
 use super::edge_costs::EdgeCosts;
 use super::part::{CollapseLists, Part};
+#[cfg(test)]
 use super::planes::{self, Constraints};
 use super::quadric::Quadric;
 use super::texture_quadrics::{texture_quadrics, TextureQuadrics};
@@ -71,6 +72,7 @@ pub(super) struct Collapser {
 impl Collapser {
     /// The state for `triangles` over `positions`: connectivity, every vertex's kind and
     /// starting quadric (`planes`, with the edges `constraints` says are constrained).
+    #[cfg(test)]
     pub fn new(
         positions: Vec<Vec3>,
         triangles: Vec<[u32; 3]>,
@@ -78,13 +80,33 @@ impl Collapser {
         normals: Option<Vec<[f32; 3]>>,
         constraints: Constraints<'_>,
     ) -> Self {
+        let conn = Connectivity::from_triangles(positions.len(), triangles);
+        let start = planes::kinds_and_quadrics(&conn, &positions, constraints);
+        Self::connected(
+            positions,
+            conn,
+            start,
+            colors,
+            normals,
+            constraints.cos_feature,
+        )
+    }
+
+    /// As [`Self::new`], from the connectivity and the kinds and quadrics
+    /// (`planes::kinds_and_quadrics`) worked out already; `cos_feature` is the cosine of
+    /// the feature angle.
+    pub fn connected(
+        positions: Vec<Vec3>,
+        conn: Connectivity,
+        (kinds, quadrics): (Vec<Kind>, Vec<Quadric>),
+        colors: Option<Vec<[f32; 3]>>,
+        normals: Option<Vec<[f32; 3]>>,
+        cos_feature: f64,
+    ) -> Self {
         let n = positions.len();
-        let closed = ClosedVolumes::new(&positions, &triangles);
-        let input_surface = input_surface(&positions, &triangles);
-        let conn = Connectivity::from_triangles(n, triangles);
-        let (kinds, quadrics) = planes::kinds_and_quadrics(&conn, &positions, constraints);
+        let closed = ClosedVolumes::connected(&positions, &conn);
+        let input_surface = input_surface(&positions, conn.triangles());
         let costs = EdgeCosts::new(conn.triangles());
-        let cos_feature = constraints.cos_feature;
         Self {
             positions,
             costs,

@@ -43,10 +43,25 @@ impl Part<'_> {
     /// On a closed component, the collapse keeps the component's volume on its side of
     /// zero and above its floor: the per-triangle flip test lets each triangle turn by up to
     /// a right angle, which on a small closed shape can carry it through itself.
-    fn keeps_closed_volume(&self, plan: &Plan) -> bool {
-        self.closed
-            .component(plan.remove)
-            .is_none_or(|c| self.closed.allows(c, self.volume_change(plan)))
+    /// The change is kept for the collapse that follows ([`Self::checked_volume_change`]).
+    fn keeps_closed_volume(&mut self, plan: &Plan) -> bool {
+        let Some(c) = self.closed.component(plan.remove) else {
+            return true;
+        };
+        let change = self.volume_change(plan);
+        self.scratch.volume_change = Some(([plan.remove, plan.keep], plan.position, change));
+        self.closed.allows(c, change)
+    }
+
+    /// [`Self::volume_change`] of `plan`, as the legality check just worked it out when it
+    /// was the last collapse checked (the other side of a seam collapse may have been).
+    pub fn checked_volume_change(&mut self, plan: &Plan) -> f64 {
+        match self.scratch.volume_change.take() {
+            Some((ends, at, change)) if ends == [plan.remove, plan.keep] && at == plan.position => {
+                change
+            }
+            _ => self.volume_change(plan),
+        }
     }
 
     /// Six times the change of signed volume the planned collapse makes: the removed end's

@@ -26,6 +26,7 @@ use rayon::prelude::*;
 use super::layout;
 use super::{Limits, Outcome};
 use crate::mesh::progressive::{ProgressiveModel, Recorder};
+use crate::mesh::topology::Connectivity;
 use crate::mesh::{Attribute, Model};
 use collapse_plan::Kind;
 use collapser::Collapser;
@@ -131,13 +132,16 @@ fn run(
         scale_folds: limits.scale_folds,
         seam: &seam,
     };
-    let mut d = Collapser::new(positions, triangles, colors, normals, constraints);
-    if let Some(prune) = prune.filter(|_| d.kinds.contains(&Kind::Complex)) {
+    // Kinds first: a mesh that gets pruned starts again, and would throw the rest of the
+    // setup (closed volumes, input surface, cost cache) away.
+    let conn = Connectivity::from_triangles(positions.len(), triangles);
+    let start = planes::kinds_and_quadrics(&conn, &positions, constraints);
+    if let Some(prune) = prune.filter(|_| start.0.contains(&Kind::Complex)) {
         if released {
-            d.restore(model, order, faces);
+            layout::restore(model, &positions, &conn, order, faces);
         }
         if let Some(unused) = prune(model) {
-            drop(d);
+            drop((conn, start));
             let limits = Limits {
                 remove: limits.remove.saturating_sub(unused),
                 ..limits.clone()
@@ -146,6 +150,7 @@ fn run(
         }
         released = layout::release(model, &loaded);
     }
+    let mut d = Collapser::connected(positions, conn, start, colors, normals, cos_feature);
     d.texcoords = model
         .texcoords
         .as_ref()

@@ -51,6 +51,10 @@ pub(super) struct CollapseLists {
     /// the ring it read them with.
     pub settled: Vec<u32>,
     settle_ring: Ring,
+    /// The volume change the last legality check of a collapse on a closed component
+    /// worked out: the collapse's ends, the kept end's new position and six times the
+    /// change, for the collapse itself to take.
+    pub volume_change: Option<([u32; 2], DVec3, f64)>,
 }
 
 impl CollapseLists {

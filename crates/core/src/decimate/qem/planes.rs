@@ -267,6 +267,17 @@ impl FoldScale {
         })
     }
 
+    /// The scaled cosine of a fold whose cosine is `cos`, when that is below `cos_feature`
+    /// (a feature edge). Scaling only narrows a fold, so one within the feature angle by
+    /// more than rounding stays within it: most edges need no `acos` and `cos`.
+    fn feature_cos(self, cos: f64, cos_feature: f64) -> Option<f64> {
+        if cos > cos_feature + 1e-9 {
+            return None;
+        }
+        let scaled = self.cos(cos);
+        (scaled < cos_feature).then_some(scaled)
+    }
+
     /// The cosine of a fold whose cosine is `cos`, scaled.
     fn cos(self, cos: f64) -> f64 {
         if self.0 >= 1.0 {
@@ -410,8 +421,7 @@ fn ring_quadric(
                     continue;
                 };
                 let n2 = normal(o).unwrap_or(DVec3::ZERO);
-                let cos = folds.cos(n.dot(n2));
-                if cos < constraints.cos_feature {
+                if let Some(cos) = folds.feature_cos(n.dot(n2), constraints.cos_feature) {
                     let weight = FEATURE_WEIGHT * (1.0 - cos).powi(6);
                     constrain(run(i), n, weight);
                     constrain(run(i), n2, weight);
@@ -513,6 +523,28 @@ mod tests {
         let cos = FoldScale(s).cos(0.0);
         assert!((cos - deg(90.0 / 16.0).cos()).abs() < 1e-12);
         assert_eq!(FoldScale(1.0).cos(0.3), 0.3, "untouched when fine");
+    }
+
+    #[test]
+    fn the_feature_test_skips_the_scaled_cosine_only_where_it_cannot_change_the_answer() {
+        // Every fold, scale and feature angle, near the threshold too: the quick answer is
+        // the scaled cosine's own.
+        for scale in [1.0, 0.9, 1.0 / 16.0, 1e-3] {
+            let folds = FoldScale(scale);
+            for feature_deg in [0.0, 10.0, 30.0, 60.0, 89.0, 179.0] {
+                let cos_feature: f64 = f64::to_radians(feature_deg).cos();
+                let near = (-20..=20).map(|k| cos_feature + f64::from(k) * 1e-10);
+                for cos in (-100..=100).map(|k| f64::from(k) / 100.0).chain(near) {
+                    let scaled = folds.cos(cos);
+                    let expected = (scaled < cos_feature).then_some(scaled);
+                    assert_eq!(
+                        folds.feature_cos(cos, cos_feature),
+                        expected,
+                        "cos {cos}, scale {scale}, feature angle {feature_deg}°"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
