@@ -11,13 +11,16 @@ use ash::vk;
 use glam::Vec2;
 use winit::window::Window;
 
+use crate::render::camera::Camera;
 use crate::render::camera::Navigation;
 use crate::render::commands::Commands;
 use crate::render::context::{Context, DevicePreference};
+use crate::render::draw::DrawOptions;
 use crate::render::draw::{self, ViewportDraw};
 use crate::render::gpu_mesh::GpuScene;
 use crate::render::image::{self, Transition};
 use crate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
+use crate::render::picture_cache::PictureCache;
 use crate::render::pipeline::Pipelines;
 use crate::render::swapchain::{Frame, Swapchain};
 use crate::render::texture::Textures;
@@ -42,6 +45,8 @@ struct Gpu {
     ui: UiLayer,
     /// Each viewport's scene: its id, generation and look (own colours or heat-mapped).
     scenes: Vec<(u64, (u64, Look), GpuScene)>,
+    /// The viewports as last drawn at rest, drawn back while a job runs.
+    picture: PictureCache<SceneKey>,
     /// Uploaded once per name, shared by every viewport's scenes; dropped before the
     /// pipelines, whose set layout its sets were made with.
     textures: Textures,
@@ -85,6 +90,22 @@ pub struct Viewer {
     /// How long the last frame took to draw, and when it ended.
     last_frame: Duration,
     last_drawn: Instant,
+    /// The last frame drew the kept picture instead of the viewports.
+    drawn_kept: bool,
+}
+
+/// One viewport's id, scene uploaded (generation and look), rectangle, camera, draw modes
+/// and geomorph factor (as bits).
+type ViewKey = (u64, Option<(u64, Look)>, Rect, Camera, DrawOptions, u32);
+
+/// What decides how the viewports look: a kept picture drawn for the same key can stand
+/// for drawing them again.
+#[derive(PartialEq)]
+struct SceneKey {
+    views: Vec<ViewKey>,
+    highlight: Option<usize>,
+    single: bool,
+    samples: vk::SampleCountFlags,
 }
 
 /// Where F2 saves the window's picture.
@@ -138,6 +159,7 @@ impl Viewer {
             scale_factor: 1.0,
             last_frame: Duration::ZERO,
             last_drawn: Instant::now(),
+            drawn_kept: false,
         }
     }
 
@@ -399,8 +421,13 @@ impl Viewer {
         };
         self.last_frame = now.elapsed();
         self.last_drawn = Instant::now();
+        let kept = if self.drawn_kept {
+            ", kept picture"
+        } else {
+            ""
+        };
         trace(format_args!(
-            "frame in {} ms, {job}, {samples}x samples",
+            "frame in {} ms, {job}, {samples}x samples{kept}",
             self.last_frame.as_millis()
         ));
         // egui asks for a frame after any input it saw; while a job runs that is honoured
@@ -457,6 +484,7 @@ impl Viewer {
     /// Draws the viewports and the UI into the next swapchain image and presents it; false
     /// when the swapchain is out of date (nothing was drawn or not shown).
     fn present(&mut self, now: Instant, moving: bool) -> Result<bool, AppError> {
+        let busy = self.busy();
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(true);
         };
@@ -470,8 +498,43 @@ impl Viewer {
         let extent = gpu.swapchain.extent;
         let views = viewport_draws(&gpu.scenes, &self.controller, extent, now);
         let highlight = (views.len() > 1).then_some(self.controller.current());
+        let key = SceneKey {
+            views: scene_keys(&gpu.scenes, &self.controller, extent, now),
+            highlight,
+            single,
+            samples: gpu.pipelines.samples,
+        };
         let cmd = gpu.frame_commands.begin()?;
-        record_viewports(gpu, cmd, &frame, &views, highlight, single)?;
+        let device = &gpu.context.device;
+        // While a job runs the viewports change only with the camera or the job's end: the
+        // picture kept of them is drawn back instead of every triangle (a large model drawn
+        // in software takes seconds, taken from the job).
+        // SAFETY: `cmd` is recording, outside any pass; the swapchain image stays alive until
+        // the frame's fence is waited for.
+        self.drawn_kept = busy
+            && gpu.swapchain.restorable
+            && gpu.picture.holds(&key)
+            && unsafe { gpu.picture.restore(device, cmd, frame.image) };
+        if !self.drawn_kept {
+            record_viewports(gpu, cmd, &frame, &views, highlight, single)?;
+            drop(views);
+            if gpu.swapchain.restorable && !single {
+                // SAFETY: as above; the kept picture is remade only after a resize, which
+                // waited for the device.
+                unsafe {
+                    (gpu.picture).capture(
+                        &gpu.context,
+                        cmd,
+                        frame.image,
+                        gpu.swapchain.format,
+                        extent,
+                        key,
+                    )?;
+                }
+            }
+        }
+        // SAFETY: `cmd` is recording outside a pass; the image is a colour attachment now.
+        unsafe { draw::begin_overlay(&gpu.context.device, cmd, frame.view, extent) };
         gpu.ui.draw(cmd, extent)?;
         let to_present = Transition {
             old: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
@@ -607,9 +670,32 @@ fn viewport_draws<'a>(
         .collect()
 }
 
+/// Each viewport's [`ViewKey`] this frame.
+fn scene_keys(
+    scenes: &[(u64, (u64, Look), GpuScene)],
+    controller: &ViewportController,
+    extent: vk::Extent2D,
+    now: Instant,
+) -> Vec<ViewKey> {
+    let rects = controller.rects_for(extent.width, extent.height);
+    (rects.into_iter().zip(controller.viewports()))
+        .map(|(rect, vp)| {
+            let look = (scenes.iter().find(|(id, _, _)| *id == vp.id)).map(|(_, k, _)| *k);
+            let morph = vp.lod().map_or(1.0, |l| l.morph_factor(now));
+            (
+                vp.id,
+                look,
+                rect,
+                vp.camera.clone(),
+                vp.options,
+                morph.to_bits(),
+            )
+        })
+        .collect()
+}
+
 /// Records the viewports' pass into `cmd` (tiles, highlight of the current one, models),
-/// single-sampled when `single`, then opens the colour-only overlay pass the UI is drawn in;
-/// the caller ends it.
+/// single-sampled when `single`; the image is left a colour attachment.
 fn record_viewports(
     gpu: &Gpu,
     cmd: vk::CommandBuffer,
@@ -646,7 +732,6 @@ fn record_viewports(
         );
         draw::record(device, cmd, pipelines, views);
         device.cmd_end_rendering(cmd);
-        draw::begin_overlay(device, cmd, frame.view, extent);
     }
     Ok(())
 }
@@ -681,6 +766,7 @@ impl Callbacks for Viewer {
         self.gpu = Some(Gpu {
             ui,
             scenes: Vec::new(),
+            picture: PictureCache::default(),
             textures,
             pipelines,
             moving_pipelines,
