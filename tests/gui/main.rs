@@ -3,6 +3,7 @@
 
 mod busy;
 mod exits;
+mod job_speed;
 mod lod;
 mod settle;
 mod xvfb;
