@@ -243,9 +243,12 @@ impl Viewer {
         Ok(())
     }
 
-    /// F2: the viewports and their captions as drawn now, rendered again offscreen and
-    /// written to `window.png` (never over an input; through a temporary file).
+    /// F2: what the window shows — viewports, captions, legends and the status line —
+    /// rendered again offscreen and written to `window.png` (never over an input; through a
+    /// temporary file).
     fn save_picture(&mut self) -> Result<String, AppError> {
+        let status = self.status();
+        let strip = self.controller.status_strip;
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok("no window to picture yet".into());
         };
@@ -278,6 +281,7 @@ impl Viewer {
             let captions = Overlay {
                 captions: &captions,
                 legend,
+                status: Some((&status, strip)),
                 ..Overlay::default()
             };
             overlay::paint(ctx, &captions);
