@@ -1024,12 +1024,14 @@ mod tests {
         key(&mut c, Key::Char('d'));
         let caption = c.current_viewport().caption();
         assert!(
-            caption.ends_with("error: mean 0 = 0.00 %, max 0 = 0.00 % of the diagonal"),
+            caption.ends_with(
+                "max distance to the input: 0 model units (0.00 % of the diagonal), mean 0"
+            ),
             "the original against itself: {caption}"
         );
         key(&mut c, Key::Char('8'));
         assert!(
-            !c.current_viewport().caption().contains("error"),
+            !c.current_viewport().caption().contains("distance"),
             "a new level, not measured"
         );
         key(&mut c, Key::Char('d'));
