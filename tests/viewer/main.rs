@@ -7,6 +7,7 @@ mod support;
 mod anisotropy;
 mod error_map;
 mod layout;
+mod measure_summary;
 mod menu;
 mod modes;
 mod msaa;
