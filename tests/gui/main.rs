@@ -2,6 +2,7 @@
 //! test runs alone, not beside the screenshot tests, as `cargo test` runs crates one by one.
 
 mod busy;
+mod dialogs;
 mod exits;
 mod job_speed;
 mod lod;

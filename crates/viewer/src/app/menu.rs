@@ -62,6 +62,11 @@ pub enum Action {
     Save,
     /// Save a picture of the window's viewports as `window.png`.
     SavePicture,
+    /// The Open… dialog: another model instead.
+    Open,
+    /// The Save as… dialog: the current viewport's scene, named, in the format its
+    /// extension names.
+    SaveAs,
     Quit,
 }
 
@@ -207,6 +212,8 @@ pub fn menu() -> Vec<MenuEntry> {
                 entry("Next viewport", Some("Tab"), Action::NextViewport),
             ],
         ),
+        entry("Open…", Some("o"), Action::Open),
+        entry("Save as…", Some("O"), Action::SaveAs),
         entry("Save as out.wrl", Some("F3"), Action::Save),
         entry(
             "Save a picture as window.png",
@@ -254,6 +261,8 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'd' => Action::MeasureError,
                 'A' => Action::ToggleAlgorithm,
                 'b' => Action::ToggleKeepBorder,
+                'o' => Action::Open,
+                'O' => Action::SaveAs,
                 'q' => Action::Quit,
                 _ => return None,
             }
@@ -384,6 +393,8 @@ mod tests {
             Action::ToggleHelp,
             Action::Save,
             Action::SavePicture,
+            Action::Open,
+            Action::SaveAs,
             Action::Quit,
         ] {
             assert!(all.contains(&a), "{a:?} is missing from the menu");

@@ -6,6 +6,7 @@ pub mod app_error;
 pub mod controller;
 pub mod counts;
 pub mod error_map;
+pub mod file_dialog;
 pub mod glut;
 pub mod jobs;
 pub mod labels;

@@ -14,6 +14,7 @@ use crate::render::commands::Commands;
 use crate::render::context::Context;
 
 use super::app_error::AppError;
+use super::file_dialog::{self, DialogOutcome, FileDialog};
 use super::menu::{Action, MenuEntry};
 use super::overlay::{self, Overlay};
 use super::popup;
@@ -35,6 +36,8 @@ pub struct UiResult {
     pub lod_vertices: Option<(usize, usize)>,
     /// The quit question was answered: quit (`true`) or stay.
     pub quit_answer: Option<bool>,
+    /// The Open… or Save as… dialog was answered.
+    pub dialog: Option<DialogOutcome>,
 }
 
 /// The "decimate to N vertices" field while it is open.
@@ -76,6 +79,8 @@ pub struct UiState<'a> {
     pub lods: &'a [LodSlider],
     /// The quit question, while it is asked.
     pub confirm: Option<&'a str>,
+    /// The Open… or Save as… dialog, while it is shown.
+    pub dialog: Option<&'a mut FileDialog>,
 }
 
 /// egui context, winit glue and Vulkan renderer.
@@ -166,6 +171,7 @@ impl UiLayer {
             overlay: painted,
             lods,
             confirm,
+            mut dialog,
         } = ui_state;
         let output = self.ctx.run_ui(input, |ui| {
             let ctx = ui.ctx().clone();
@@ -182,6 +188,9 @@ impl UiLayer {
             }
             if let Some(field) = field.as_deref_mut() {
                 vertex_field(&ctx, field, &mut result);
+            }
+            if let Some(dialog) = dialog.as_deref_mut() {
+                result.dialog = file_dialog::show(&ctx, dialog);
             }
             if let Some(question) = confirm {
                 result.quit_answer = quit_question(&ctx, question);

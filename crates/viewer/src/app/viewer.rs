@@ -31,6 +31,7 @@ use decimate_core::io::texture_image;
 use super::app_error::AppError;
 use super::controller::{Effect, ViewportController};
 use super::error_map::{FieldCache, Legend, Look};
+use super::file_dialog::{DialogOutcome, FileDialog};
 use super::glut::{Button, Callbacks, Flow, Special};
 use super::labels::HeadlessCaptions;
 use super::menu::{action_for_key, key_help, Key, MenuEntry};
@@ -74,6 +75,8 @@ pub struct Viewer {
     popup_at: Option<egui::Pos2>,
     popup_just_opened: bool,
     field: Option<VertexField>,
+    /// The Open… or Save as… dialog, while it is shown.
+    dialog: Option<FileDialog>,
     help_text: String,
     /// The last message of the status line and when it expires.
     message: Option<(String, Instant)>,
@@ -150,6 +153,7 @@ impl Viewer {
             popup_at: None,
             popup_just_opened: false,
             field: None,
+            dialog: None,
             help_text: key_help(),
             message: None,
             fields: FieldCache::default(),
@@ -185,6 +189,12 @@ impl Viewer {
                 self.controller.message = message;
                 Flow::Continue
             }
+            Effect::Dialog(kind) => {
+                let (folder, name) = self.controller.dialog_start(kind);
+                self.dialog = Some(FileDialog::new(kind, &folder, &name));
+                self.popup_at = None;
+                Flow::Continue
+            }
             Effect::Quit => Flow::Quit,
         }
     }
@@ -202,6 +212,9 @@ impl Viewer {
     /// what it showed) or the heat-map's measurement; else closes the help. Never quits.
     fn escape(&mut self) {
         if self.popup_at.take().is_some() || self.field.take().is_some() {
+            return;
+        }
+        if self.dialog.take().is_some() {
             return;
         }
         if self.controller.cancel_job() {
@@ -436,8 +449,10 @@ impl Viewer {
         ));
         // egui asks for a frame after any input it saw; while a job runs that is honoured
         // only when something of egui's is open (popup, field, question) and may animate.
-        let ui_open =
-            self.popup_at.is_some() || self.field.is_some() || self.controller.confirm_quit;
+        let ui_open = self.popup_at.is_some()
+            || self.field.is_some()
+            || self.dialog.is_some()
+            || self.controller.confirm_quit;
         if (ui_result.repaint && (ui_open || !self.busy())) || morphing {
             window.request_redraw();
         }
@@ -481,6 +496,7 @@ impl Viewer {
                 },
                 lods: &lods,
                 confirm: confirm.as_deref(),
+                dialog: self.dialog.as_mut(),
             },
         )
     }
@@ -569,7 +585,8 @@ impl Viewer {
             || ui_result.close_field
             || ui_result.vertex_count.is_some()
             || ui_result.action.is_some()
-            || ui_result.quit_answer.is_some();
+            || ui_result.quit_answer.is_some()
+            || ui_result.dialog.is_some();
         if let Some((viewport, n)) = ui_result.lod_vertices {
             self.settle.moved(Instant::now());
             self.controller.select(viewport);
@@ -594,6 +611,22 @@ impl Viewer {
         if let Some(action) = ui_result.action {
             let effect = self.controller.dispatch(action);
             flow = self.run_effect(effect);
+        }
+        if let Some(news) = self.dialog.as_mut().and_then(FileDialog::take_news) {
+            eprintln!("decimate: {news}");
+            self.controller.message = news;
+        }
+        match ui_result.dialog {
+            Some(DialogOutcome::Open(path)) => {
+                self.dialog = None;
+                self.open_file(window, path);
+            }
+            Some(DialogOutcome::Save(path)) => {
+                self.dialog = None;
+                self.controller.save_as(&path);
+            }
+            Some(DialogOutcome::Cancel) => self.dialog = None,
+            None => {}
         }
         match ui_result.quit_answer {
             Some(true) => flow = Flow::Quit,
@@ -806,6 +839,10 @@ impl Callbacks for Viewer {
             self.escape();
             return Flow::Continue;
         }
+        if self.dialog.is_some() {
+            // The dialog's name field takes the keys.
+            return Flow::Continue;
+        }
         // W / S walk in eye control; elsewhere they keep their menu meaning.
         let eye = self.controller.current_viewport().camera.navigation == Navigation::Eye;
         match key {
@@ -895,25 +932,12 @@ impl Callbacks for Viewer {
         };
         let consumed = gpu.ui.on_event(window, event);
         // While the popup or the field is open, egui owns the pointer and keyboard it uses.
-        let ui_open = self.popup_at.is_some() || self.field.is_some();
+        let ui_open = self.popup_at.is_some() || self.field.is_some() || self.dialog.is_some();
         consumed && (ui_open || gpu.ui.wants_pointer())
     }
 
     fn dropped(&mut self, window: &Window, path: PathBuf) {
-        match decimate_core::io::read_scene(&path) {
-            Ok(outcome) => {
-                let scene = decimate_core::mesh::build::build_scene(outcome.scene, true);
-                self.controller.open(scene, &path);
-                self.field = None;
-                self.popup_at = None;
-                window.set_title(&format!("decimate - {}", path.display()));
-                if let Err(e) = self.reload_textures() {
-                    self.controller.message = format!("{}: textures: {e}", path.display());
-                }
-            }
-            Err(e) => self.controller.message = format!("cannot open {e}"),
-        }
-        eprintln!("decimate: {}", self.controller.message);
+        self.open_file(window, path);
     }
 
     fn wake_at(&self) -> Option<Instant> {
@@ -958,4 +982,25 @@ fn single_sampled(
         return Ok(None);
     }
     Ok(Some(Pipelines::with_samples(context, format, 1)?))
+}
+
+impl Viewer {
+    /// Shows the model in `path` instead (a file dropped on the window or chosen in Open…);
+    /// a file that cannot be read leaves the model shown, and the status line says why.
+    fn open_file(&mut self, window: &Window, path: PathBuf) {
+        match decimate_core::io::read_scene(&path) {
+            Ok(outcome) => {
+                let scene = decimate_core::mesh::build::build_scene(outcome.scene, true);
+                self.controller.open(scene, &path);
+                self.field = None;
+                self.popup_at = None;
+                window.set_title(&format!("decimate - {}", path.display()));
+                if let Err(e) = self.reload_textures() {
+                    self.controller.message = format!("{}: textures: {e}", path.display());
+                }
+            }
+            Err(e) => self.controller.message = format!("cannot open {e}"),
+        }
+        eprintln!("decimate: {}", self.controller.message);
+    }
 }
