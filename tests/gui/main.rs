@@ -6,6 +6,7 @@ mod dialogs;
 mod exits;
 mod job_speed;
 mod lod;
+mod panel;
 mod settle;
 mod xvfb;
 

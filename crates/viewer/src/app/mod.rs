@@ -15,6 +15,7 @@ pub mod lod;
 pub mod menu;
 pub mod menu_layout;
 pub mod overlay;
+pub mod panel;
 pub mod popup;
 pub mod save;
 pub mod settle;

@@ -17,6 +17,7 @@ use super::app_error::AppError;
 use super::file_dialog::{self, DialogOutcome, FileDialog};
 use super::menu::{Action, MenuEntry};
 use super::overlay::{self, Overlay};
+use super::panel::{self, ViewportPanel};
 use super::popup;
 
 /// What the user did in the UI this frame.
@@ -38,6 +39,8 @@ pub struct UiResult {
     pub quit_answer: Option<bool>,
     /// The Open… or Save as… dialog was answered.
     pub dialog: Option<DialogOutcome>,
+    /// A viewport's panel was used: the viewport (from 0) and the action.
+    pub panel_action: Option<(usize, Action)>,
 }
 
 /// The "decimate to N vertices" field while it is open.
@@ -81,6 +84,8 @@ pub struct UiState<'a> {
     pub confirm: Option<&'a str>,
     /// The Open… or Save as… dialog, while it is shown.
     pub dialog: Option<&'a mut FileDialog>,
+    /// Each viewport's panel.
+    pub panels: &'a [ViewportPanel],
 }
 
 /// egui context, winit glue and Vulkan renderer.
@@ -172,10 +177,16 @@ impl UiLayer {
             lods,
             confirm,
             mut dialog,
+            panels,
         } = ui_state;
         let output = self.ctx.run_ui(input, |ui| {
             let ctx = ui.ctx().clone();
             overlay::paint(&ctx, &painted);
+            for p in panels {
+                if let Some(chosen) = panel::show(&ctx, p) {
+                    result.panel_action = Some(chosen);
+                }
+            }
             for slider in lods {
                 if let Some(n) = lod_slider(&ctx, slider) {
                     result.lod_vertices = Some((slider.viewport, n));

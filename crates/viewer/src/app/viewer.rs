@@ -36,6 +36,7 @@ use super::glut::{Button, Callbacks, Flow, Special};
 use super::labels::HeadlessCaptions;
 use super::menu::{action_for_key, key_help, Key, MenuEntry};
 use super::overlay::{self, Overlay};
+use super::panel::{ViewportPanel, BELOW_LOD_SLIDER};
 use super::save::{save_path, SavePath};
 use super::settle::Settle;
 use super::shot::write_png;
@@ -478,6 +479,7 @@ impl Viewer {
         };
         let ppp = gpu.ui.pixels_per_point();
         let lods = lod_sliders(&self.controller, &rects, ppp);
+        let panels = viewport_panels(&self.controller, &rects, ppp);
         gpu.ui.run(
             window,
             &gpu.context,
@@ -497,6 +499,7 @@ impl Viewer {
                 lods: &lods,
                 confirm: confirm.as_deref(),
                 dialog: self.dialog.as_mut(),
+                panels: &panels,
             },
         )
     }
@@ -586,7 +589,8 @@ impl Viewer {
             || ui_result.vertex_count.is_some()
             || ui_result.action.is_some()
             || ui_result.quit_answer.is_some()
-            || ui_result.dialog.is_some();
+            || ui_result.dialog.is_some()
+            || ui_result.panel_action.is_some();
         if let Some((viewport, n)) = ui_result.lod_vertices {
             self.settle.moved(Instant::now());
             self.controller.select(viewport);
@@ -607,6 +611,15 @@ impl Viewer {
                     }
                 }
             }
+        }
+        if let Some((viewport, action)) = ui_result.panel_action {
+            trace(format_args!(
+                "panel of viewport {}: {action:?}",
+                viewport + 1
+            ));
+            self.controller.select(viewport);
+            let effect = self.controller.dispatch(action);
+            flow = self.run_effect(effect);
         }
         if let Some(action) = ui_result.action {
             let effect = self.controller.dispatch(action);
@@ -666,6 +679,29 @@ fn lod_sliders(controller: &ViewportController, rects: &[Rect], ppp: f32) -> Vec
                 range: lod.range(),
                 at: lod.target(),
             })
+        })
+        .collect()
+}
+
+/// Each viewport's panel, at its top-left corner (below its level-of-detail slider when
+/// that is shown; `rects` in pixels, `ppp` of them to a point).
+fn viewport_panels(
+    controller: &ViewportController,
+    rects: &[Rect],
+    ppp: f32,
+) -> Vec<ViewportPanel> {
+    (rects.iter().zip(controller.viewports()).enumerate())
+        .map(|(i, (rect, vp))| {
+            let lod = vp.lod().is_some();
+            let below = if lod { BELOW_LOD_SLIDER } else { 0.0 };
+            ViewportPanel {
+                viewport: i,
+                id: vp.id,
+                corner: overlay::points(rect, ppp).min + egui::vec2(0.0, below),
+                qem: vp.params.algorithm == decimate_core::decimate::Algorithm::Qem,
+                keep_border: vp.params.keep_border,
+                lod,
+            }
         })
         .collect()
 }
