@@ -212,6 +212,19 @@ pub fn menu() -> Vec<MenuEntry> {
                 entry("Next viewport", Some("Tab"), Action::NextViewport),
             ],
         ),
+    ]
+    .into_iter()
+    .chain(file_entries())
+    .chain([
+        entry("Help", Some("h"), Action::ToggleHelp),
+        entry("Quit", Some("q"), Action::Quit),
+    ])
+    .collect()
+}
+
+/// The menu's file entries: open, save as, save, picture.
+fn file_entries() -> [MenuEntry; 4] {
+    [
         entry("Open…", Some("o"), Action::Open),
         entry("Save as…", Some("O"), Action::SaveAs),
         entry("Save as out.wrl", Some("F3"), Action::Save),
@@ -220,8 +233,6 @@ pub fn menu() -> Vec<MenuEntry> {
             Some("F2"),
             Action::SavePicture,
         ),
-        entry("Help", Some("h"), Action::ToggleHelp),
-        entry("Quit", Some("q"), Action::Quit),
     ]
 }
 

@@ -195,12 +195,7 @@ pub fn render_measured(
     let (rects, strip) = layout(options);
     let shown = viewport_params(rects.len(), params, &options.targets);
     let made = decimate_each(scene, &shown);
-    let measured: Vec<Measured> = (made.iter())
-        .map(|(_, copy, _)| match options.measure || draw.error_map {
-            true => LevelError::measure(scene, copy).map(Some),
-            false => Ok(None),
-        })
-        .collect();
+    let measured = measure_each(scene, &made, options.measure || draw.error_map);
     let copies = made.iter().map(|(_, copy, _)| copy.clone()).collect();
     let (neutral, drawn, legend) = heat_mapped(scene, copies, draw.error_map, &measured);
     let original = GpuScene::upload(
@@ -215,13 +210,7 @@ pub fn render_measured(
         commands: &commands,
         layers: draw.layers(),
     };
-    let captioned = (made.into_iter().zip(&measured))
-        .map(|((params, copy, report), m)| {
-            let error = options.measure.then_some(m);
-            let caption = caption_of(&copy, &params, error);
-            (params, caption, report)
-        })
-        .collect();
+    let captioned = captioned(made, &measured, options.measure);
     let decimated = uploader.decimated(&mut textures, captioned, &drawn)?;
     let counts = Counts::of(scene);
     let original_caption = labels::caption("original", counts.vertices, counts.triangles);
@@ -268,6 +257,30 @@ pub fn render_measured(
         decimated.into_iter().map(|d| d.report).collect(),
         measured,
     ))
+}
+
+/// Each decimated copy in `made` measured against `scene` when `wanted` (see [`Measured`]).
+fn measure_each(scene: &Scene, made: &[(Params, Scene, Report)], wanted: bool) -> Vec<Measured> {
+    (made.iter())
+        .map(|(_, copy, _)| match wanted {
+            true => LevelError::measure(scene, copy).map(Some),
+            false => Ok(None),
+        })
+        .collect()
+}
+
+/// Each copy's params, caption (with its `measured` line when `measure`) and report.
+fn captioned(
+    made: Vec<(Params, Scene, Report)>,
+    measured: &[Measured],
+    measure: bool,
+) -> Vec<(Params, String, Report)> {
+    (made.into_iter().zip(measured))
+        .map(|((params, copy, report), m)| {
+            let caption = caption_of(&copy, &params, measure.then_some(m));
+            (params, caption, report)
+        })
+        .collect()
 }
 
 /// The pipelines and the picture `options` ask for (size, samples, background).
