@@ -177,6 +177,9 @@ pub enum Look {
     Heat(u64),
 }
 
+/// A heat-mapped viewport's error field and metro's maximum distance (the legend's `max`).
+type Measured = (ErrorField, f64);
+
 /// The window's error fields, one per heat-mapped viewport, measured once per scene it shows
 /// (viewport id and generation) by a worker job, one at a time: a frame never waits for
 /// one, and a viewport is drawn in the neutral grey until its field arrives.
@@ -185,7 +188,7 @@ pub struct FieldCache {
     /// Viewport id, generation, field, and metro's maximum distance (the legend's `max`).
     fields: Vec<(u64, u64, ErrorField, f64)>,
     /// The field being measured: viewport id, generation, job.
-    pending: Option<(u64, u64, Job<(ErrorField, f64)>)>,
+    pending: Option<(u64, u64, Job<Measured>)>,
     /// The scene whose measurement was cancelled or failed: not measured again until it
     /// changes (or `E` is pressed again).
     stopped: Option<(u64, u64)>,
