@@ -52,7 +52,8 @@ fn run_gui(scene: Scene, args: &Args) -> ExitCode {
 
 fn run_shot(scene: &Scene, args: &Args) -> ExitCode {
     let params = args.target_given.then_some(&args.params);
-    let (image, report) = match shot::render(scene, &args.shot, params, Default::default()) {
+    let rendered = shot::render_measured(scene, &args.shot, params, Default::default());
+    let (image, report, measured) = match rendered {
         Ok(r) => r,
         Err(e) => {
             eprintln!("decimate: cannot render: {e}");
@@ -60,8 +61,15 @@ fn run_shot(scene: &Scene, args: &Args) -> ExitCode {
         }
     };
     if !args.quiet {
-        for report in &report {
+        // Each copy's summary, then (when measured) the distance its caption and the
+        // heat-map legend show: metro's, not the decimator's own bound in the summary.
+        for (report, measured) in report.iter().zip(&measured) {
             eprint!("{}", report.summary());
+            match measured {
+                Ok(Some(error)) => eprintln!("{}", error.words()),
+                Ok(None) => {}
+                Err(e) => eprintln!("cannot measure: {e}"),
+            }
         }
     }
     if let Err(e) = shot::write_png(&image, &args.output) {

@@ -109,3 +109,21 @@ fn a_decimated_model_is_written_back_from_the_decimators_copies() {
         assert_eq!(colors.len(), output.triangles.len());
     }
 }
+
+#[test]
+fn a_zero_target_keeps_the_feature_angle_asked() {
+    // test001's five vertices are all on features: a count target would relax the angle
+    // to reach it, but `-p 0` asks for nothing, so the report says nothing was relaxed.
+    let input = shapes::test001();
+    let mut scene = Scene {
+        models: vec![input.clone()],
+    };
+    let params = Params {
+        target: Target::RemovePercent(0.0),
+        algorithm: Algorithm::Schroeder,
+        ..Params::default()
+    };
+    let report = simplify_scene(&mut scene, &params, &mut |_| {});
+    assert_eq!(report.models[0].feature_angle_deg, params.feature_angle_deg);
+    assert_eq!(scene.models[0], input);
+}

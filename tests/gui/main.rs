@@ -2,8 +2,11 @@
 //! test runs alone, not beside the screenshot tests, as `cargo test` runs crates one by one.
 
 mod busy;
+mod dialogs;
 mod exits;
+mod job_speed;
 mod lod;
+mod panel;
 mod settle;
 mod xvfb;
 

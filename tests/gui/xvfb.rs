@@ -436,6 +436,17 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
         drawn * 20 > (info.width * info.height) as usize,
         "window.png shows little but background: {drawn} pixels"
     );
+    // The status line is in the picture, as in the window: light text in the bottom strip.
+    let row = 4 * info.width as usize;
+    let strip = &pixels[pixels.len() - 20 * row..];
+    let text = strip
+        .chunks(4)
+        .filter(|p| p[..3].iter().all(|&c| c > 150))
+        .count();
+    assert!(
+        text > 50,
+        "window.png's status strip is empty: {text} light pixels in its bottom 20 rows"
+    );
 
     // v opens "Decimate to N vertices": a word is refused and the field stays open (else the
     // digits typed next would be decimate keys), Enter submits 100, F3 saves exactly that.

@@ -9,6 +9,7 @@ mod anisotropy;
 mod decimated;
 mod error_map;
 mod layout;
+mod measure_summary;
 mod menu;
 mod modes;
 mod msaa;

@@ -421,7 +421,8 @@ fn decimate_one(
         keep_triangles: plan.shares.keep_triangles[i],
         max_error,
         feature_angle_deg: params.feature_angle_deg,
-        relax_features: plan.relax_features,
+        // Nothing to remove (`-p 0`): nothing to relax the feature angle for.
+        relax_features: plan.relax_features && plan.shares.removals[i] > 0,
         keep_features: params.keep_features,
         scale_folds: params.scale_folds,
         cancel: cancel.clone(),

@@ -33,6 +33,8 @@ pub enum Effect {
     AskVertexCount,
     /// Save a picture of the viewports (the window draws it).
     SavePicture,
+    /// Show the Open… or Save as… dialog (the window draws it).
+    Dialog(super::file_dialog::DialogKind),
     Quit,
 }
 
@@ -534,6 +536,8 @@ impl ViewportController {
             Action::ToggleHelp => self.help ^= true,
             Action::Save => self.save(),
             Action::SavePicture => return Effect::SavePicture,
+            Action::Open => return Effect::Dialog(super::file_dialog::DialogKind::Open),
+            Action::SaveAs => return Effect::Dialog(super::file_dialog::DialogKind::SaveAs),
             Action::Quit => return self.quit(),
             toggle => self.toggle_draw_option(toggle),
         }
@@ -713,6 +717,54 @@ impl ViewportController {
         }
         eprintln!("decimate: {}", self.message);
     }
+}
+
+impl ViewportController {
+    /// Save as…: the current viewport's scene written to `path` in the format its extension
+    /// names, texture names rebased for its folder, through a temporary file; never over an
+    /// input file. The dialog asked before a file that exists is replaced.
+    pub fn save_as(&mut self, path: &std::path::Path) {
+        self.current_mut().settle();
+        let n = self.current + 1;
+        let is_input =
+            |p: &std::path::Path| (self.inputs.iter()).any(|i| i == p || same_file(i, p));
+        if is_input(path) {
+            self.message = format!("{} is an input file: not written over", path.display());
+            eprintln!("decimate: {}", self.message);
+            return;
+        }
+        let id = self.current_viewport().id;
+        let generation = self.current_viewport().generation;
+        let to_dir = decimate_core::io::texture_path::folder_of(path);
+        let scene =
+            decimate_core::io::rebased(self.current_viewport().scene(), &self.input_dir, to_dir);
+        self.message = match decimate_core::io::write_scene(&scene, path) {
+            Ok(()) => {
+                self.saved.retain(|(saved, _)| *saved != id);
+                self.saved.push((id, generation));
+                format!("saved viewport {n} as {}", path.display())
+            }
+            Err(e) => format!("cannot save: {e}"),
+        };
+        eprintln!("decimate: {}", self.message);
+    }
+
+    /// The folder Save as… and Open… start in, and the name Save as… suggests.
+    pub fn dialog_start(&self, kind: super::file_dialog::DialogKind) -> (PathBuf, String) {
+        match kind {
+            super::file_dialog::DialogKind::Open => (self.input_dir.clone(), String::new()),
+            super::file_dialog::DialogKind::SaveAs => {
+                let folder = decimate_core::io::texture_path::folder_of(&self.save_path);
+                let name = self.save_path.file_name().unwrap_or_default();
+                (folder.to_path_buf(), name.to_string_lossy().into_owned())
+            }
+        }
+    }
+}
+
+/// Whether `a` and `b` name the same file (both exist and resolve to one path).
+fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
 }
 
 /// "viewport 2" or "viewports 1, 3", for the quit question.
@@ -1024,12 +1076,14 @@ mod tests {
         key(&mut c, Key::Char('d'));
         let caption = c.current_viewport().caption();
         assert!(
-            caption.ends_with("error: mean 0 = 0.00 %, max 0 = 0.00 % of the diagonal"),
+            caption.ends_with(
+                "max distance to the input: 0 model units (0.00 % of the diagonal), mean 0"
+            ),
             "the original against itself: {caption}"
         );
         key(&mut c, Key::Char('8'));
         assert!(
-            !c.current_viewport().caption().contains("error"),
+            !c.current_viewport().caption().contains("distance"),
             "a new level, not measured"
         );
         key(&mut c, Key::Char('d'));

@@ -52,7 +52,8 @@ pub fn ramp(t: f32) -> [f32; 3] {
 pub const RAMP_PERCENTILE: f64 = 0.99;
 
 /// What the ramp spans: 0 to `top` model units (the hot end: that far or farther), `max`
-/// being the largest distance, and `diagonal` the original's bounding-box diagonal.
+/// being the largest distance to the input (metro's, as `d` and `--measure` say it), and
+/// `diagonal` the original's bounding-box diagonal.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Legend {
     pub top: f64,
@@ -84,6 +85,20 @@ impl Legend {
             legend.top = legend.max;
         }
         legend
+    }
+
+    /// This legend with `max` as its largest distance (metro's maximum, measured apart from
+    /// the field's vertex distances); the ramp keeps its hot end, at most `max`.
+    pub fn with_max(self, max: f64) -> Self {
+        Self {
+            top: if max > 0.0 {
+                self.top.min(max)
+            } else {
+                self.top
+            },
+            max,
+            ..self
+        }
     }
 
     /// Where `distance` falls on the ramp (0: none; a scene without error is all cold).
@@ -162,14 +177,18 @@ pub enum Look {
     Heat(u64),
 }
 
+/// A heat-mapped viewport's error field and metro's maximum distance (the legend's `max`).
+type Measured = (ErrorField, f64);
+
 /// The window's error fields, one per heat-mapped viewport, measured once per scene it shows
 /// (viewport id and generation) by a worker job, one at a time: a frame never waits for
 /// one, and a viewport is drawn in the neutral grey until its field arrives.
 #[derive(Default)]
 pub struct FieldCache {
-    fields: Vec<(u64, u64, ErrorField)>,
+    /// Viewport id, generation, field, and metro's maximum distance (the legend's `max`).
+    fields: Vec<(u64, u64, ErrorField, f64)>,
     /// The field being measured: viewport id, generation, job.
-    pending: Option<(u64, u64, Job<ErrorField>)>,
+    pending: Option<(u64, u64, Job<Measured>)>,
     /// The scene whose measurement was cancelled or failed: not measured again until it
     /// changes (or `E` is pressed again).
     stopped: Option<(u64, u64)>,
@@ -195,7 +214,7 @@ impl FieldCache {
             (viewports.iter().filter(mapped)).any(|v| v.id == id && v.generation == generation)
         };
         self.fields
-            .retain(|(id, generation, _)| wanted(*id, *generation));
+            .retain(|(id, generation, _, _)| wanted(*id, *generation));
         if self
             .stopped
             .is_some_and(|(id, generation)| !wanted(id, generation))
@@ -211,8 +230,8 @@ impl FieldCache {
             } else {
                 match job.poll() {
                     Poll::Running => {}
-                    Poll::Done(field) => {
-                        self.fields.push((id, generation, field));
+                    Poll::Done((field, max)) => {
+                        self.fields.push((id, generation, field, max));
                         self.pending = None;
                     }
                     Poll::Failed(e) => {
@@ -227,7 +246,7 @@ impl FieldCache {
         if self.pending.is_none() && resting {
             let next = viewports.iter().enumerate().find(|(_, vp)| {
                 mapped(vp)
-                    && !self.fields.iter().any(|(id, _, _)| *id == vp.id)
+                    && !self.fields.iter().any(|(id, _, _, _)| *id == vp.id)
                     && self.stopped != Some((vp.id, vp.generation))
             });
             if let Some((n, vp)) = next {
@@ -237,8 +256,10 @@ impl FieldCache {
             }
         }
         let any = viewports.iter().any(|vp| vp.options.error_map);
-        (any && !self.fields.is_empty())
-            .then(|| Legend::spanning(self.fields.iter().map(|(_, _, f)| f)))
+        (any && !self.fields.is_empty()).then(|| {
+            let legend = Legend::spanning(self.fields.iter().map(|(_, _, f, _)| f));
+            legend.with_max(self.fields.iter().map(|f| f.3).fold(0.0, f64::max))
+        })
     }
 
     /// The status line's words while a field is measured.
@@ -263,7 +284,7 @@ impl FieldCache {
     /// How `vp` is drawn, with `legend` from [`Self::update`]: heat-mapped once its field
     /// has arrived, grey until then.
     pub fn look(&self, vp: &Viewport, legend: Option<&Legend>) -> Look {
-        let has_field = self.fields.iter().any(|(id, _, _)| *id == vp.id);
+        let has_field = self.fields.iter().any(|(id, _, _, _)| *id == vp.id);
         match (vp.options.error_map, legend) {
             (true, Some(legend)) if decimated(vp) && has_field => Look::Heat(legend.top.to_bits()),
             (true, _) => Look::Neutral,
@@ -278,9 +299,9 @@ impl FieldCache {
         look: Look,
         legend: Option<&Legend>,
     ) -> Cow<'a, Scene> {
-        let field = self.fields.iter().find(|(id, _, _)| *id == vp.id);
+        let field = self.fields.iter().find(|(id, _, _, _)| *id == vp.id);
         match (look, field, legend) {
-            (Look::Heat(_), Some((_, _, field)), Some(legend)) => {
+            (Look::Heat(_), Some((_, _, field, _)), Some(legend)) => {
                 Cow::Owned(heat_scene(vp.scene(), field, legend))
             }
             (Look::Neutral | Look::Heat(_), _, _) => Cow::Owned(neutral_scene(vp.scene())),
@@ -317,7 +338,7 @@ pub fn paint_legend(painter: &egui::Painter, legend: &Legend, viewport: egui::Re
     let font = egui::FontId::proportional(11.0);
     let text = egui::Color32::from_gray(235);
     let lay = |s: String| painter.layout_no_wrap(s, font.clone(), text);
-    let title = lay("error: model units (% of bbox diagonal)".into());
+    let title = lay("distance to the input: model units (% of bbox diagonal)".into());
     let end = if legend.top < legend.max { "≥ " } else { "" };
     let summary = lay(format!(
         "top {end}{}, max {}",
@@ -510,6 +531,43 @@ mod tests {
             heat.models[0].colors,
             Some(Attribute::PerVertex(ref c)) if c.len() == vp.scene().models[0].positions.len()
         ));
+    }
+
+    #[test]
+    fn d_the_legend_and_shots_measure_say_one_max_distance_to_the_input() {
+        use super::super::level_error::LevelError;
+        use super::super::menu::{action_for_key, Key};
+        let mut c = heat_mapped();
+        let mut fields = FieldCache::default();
+        fields.update(c.viewports(), true);
+        let legend = frames_until_legend(&mut fields, c.viewports());
+        if let Some(d) = action_for_key(Key::Char('d')) {
+            c.dispatch(d);
+        }
+        c.wait();
+        c.poll();
+        let vp = c.current_viewport();
+        let d = vp.error().copied();
+        let d = d.unwrap_or_else(|| panic!("d measured nothing: {}", c.message));
+        // shot --measure's caption and summary, and shot's legend, for the same level.
+        let level = vp.scene().clone();
+        let measured = LevelError::measure(vp.original(), &level);
+        let measured = measured.unwrap_or_else(|e| panic!("{e}"));
+        let (_, _, shot_legend) = super::super::shot::heat_mapped(
+            vp.original(),
+            vec![level],
+            true,
+            &[Ok(Some(measured))],
+        );
+        assert!(d.max > 0.0, "{d:?}");
+        assert_eq!(legend.max, d.max, "window legend against d");
+        assert_eq!(measured.max, d.max, "--measure against d");
+        assert_eq!(
+            shot_legend.map(|l| l.max),
+            Some(d.max),
+            "shot's legend against d"
+        );
+        assert!(legend.top <= legend.max, "{legend:?}");
     }
 
     #[test]

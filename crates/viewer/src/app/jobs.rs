@@ -80,10 +80,14 @@ pub fn measure(what: String, original: Arc<Scene>, shown: Scene) -> Job<Done> {
     })
 }
 
-/// Measures the heat-map's error field of `shown` against `original`; cancelled like
-/// [`measure`].
-pub fn field(what: String, original: Arc<Scene>, shown: Scene) -> Job<ErrorField> {
+/// Measures the heat-map's error field of `shown` against `original`, and the legend's
+/// maximum: metro's, as `d` and `shot --measure` say it (the field's largest vertex distance
+/// when metro cannot measure); cancelled like [`measure`].
+pub fn field(what: String, original: Arc<Scene>, shown: Scene) -> Job<(ErrorField, f64)> {
     spawn(what, move |_, cancel| {
-        error_field_cancellable(&original, &shown, cancel)
+        let field = error_field_cancellable(&original, &shown, cancel)?;
+        let measured = LevelError::measure_cancellable(&original, &shown, cancel);
+        let max = measured.map_or(field.max, |e| e.max);
+        (!cancel.requested()).then_some((field, max))
     })
 }

@@ -1,6 +1,7 @@
-//! The error of a decimated level against its original, as a caption says it: metro's
-//! symmetric mean and maximum (Hausdorff) distance, in model units and in percent of the
-//! original's bounding-box diagonal. Measured on request (`d` in the viewer, `--measure` in
+//! The error of a decimated level against its original — the one figure the viewer calls
+//! "max distance to the input", in its captions, its heat-map legend and `shot --measure`'s
+//! summary: metro's symmetric maximum (Hausdorff) distance, with its mean, in model units and
+//! in percent of the original's bounding-box diagonal. Measured on request (`d` in the viewer, `--measure` in
 //! `shot`): it samples both surfaces, which takes about as long as decimating them.
 
 use decimate_core::decimate::Cancel;
@@ -47,7 +48,7 @@ impl LevelError {
         })
     }
 
-    /// "error: mean 0.0012 = 0.05 %, max 0.011 = 0.48 % of the diagonal".
+    /// "max distance to the input: 0.011 model units (0.48 % of the diagonal), mean 0.0012".
     pub fn words(&self) -> String {
         let percent = |x: f64| {
             if self.diagonal > 0.0 {
@@ -57,11 +58,10 @@ impl LevelError {
             }
         };
         format!(
-            "error: mean {} = {:.2} %, max {} = {:.2} % of the diagonal",
-            significant(self.mean),
-            percent(self.mean),
+            "max distance to the input: {} model units ({:.2} % of the diagonal), mean {}",
             significant(self.max),
             percent(self.max),
+            significant(self.mean),
         )
     }
 }
@@ -109,7 +109,7 @@ mod tests {
         .words();
         assert_eq!(
             words,
-            "error: mean 0.00123 = 0.04 %, max 0.0456 = 1.52 % of the diagonal"
+            "max distance to the input: 0.0456 model units (1.52 % of the diagonal), mean 0.00123"
         );
         let empty = Scene { models: vec![] };
         let e = LevelError::measure(&original, &empty).unwrap_err();

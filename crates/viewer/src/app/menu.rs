@@ -62,6 +62,11 @@ pub enum Action {
     Save,
     /// Save a picture of the window's viewports as `window.png`.
     SavePicture,
+    /// The Open… dialog: another model instead.
+    Open,
+    /// The Save as… dialog: the current viewport's scene, named, in the format its
+    /// extension names.
+    SaveAs,
     Quit,
 }
 
@@ -207,14 +212,27 @@ pub fn menu() -> Vec<MenuEntry> {
                 entry("Next viewport", Some("Tab"), Action::NextViewport),
             ],
         ),
+    ]
+    .into_iter()
+    .chain(file_entries())
+    .chain([
+        entry("Help", Some("h"), Action::ToggleHelp),
+        entry("Quit", Some("q"), Action::Quit),
+    ])
+    .collect()
+}
+
+/// The menu's file entries: open, save as, save, picture.
+fn file_entries() -> [MenuEntry; 4] {
+    [
+        entry("Open…", Some("o"), Action::Open),
+        entry("Save as…", Some("O"), Action::SaveAs),
         entry("Save as out.wrl", Some("F3"), Action::Save),
         entry(
             "Save a picture as window.png",
             Some("F2"),
             Action::SavePicture,
         ),
-        entry("Help", Some("h"), Action::ToggleHelp),
-        entry("Quit", Some("q"), Action::Quit),
     ]
 }
 
@@ -254,6 +272,8 @@ pub fn action_for_key(key: Key) -> Option<Action> {
                 'd' => Action::MeasureError,
                 'A' => Action::ToggleAlgorithm,
                 'b' => Action::ToggleKeepBorder,
+                'o' => Action::Open,
+                'O' => Action::SaveAs,
                 'q' => Action::Quit,
                 _ => return None,
             }
@@ -384,6 +404,8 @@ mod tests {
             Action::ToggleHelp,
             Action::Save,
             Action::SavePicture,
+            Action::Open,
+            Action::SaveAs,
             Action::Quit,
         ] {
             assert!(all.contains(&a), "{a:?} is missing from the menu");

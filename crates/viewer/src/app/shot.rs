@@ -128,10 +128,12 @@ struct Decimated {
 
 /// The decimated copies to draw, in the heat-map's colours when `heat` (the legend spans
 /// every copy), with the original to draw beside them (neutral grey in the heat-map mode).
-fn heat_mapped(
+/// The legend's largest distance is metro's (`measured`, one per copy), as the captions say.
+pub(crate) fn heat_mapped(
     scene: &Scene,
     copies: Vec<Scene>,
     heat: bool,
+    measured: &[Measured],
 ) -> (Option<Scene>, Vec<Scene>, Option<Legend>) {
     if !heat {
         return (None, copies, None);
@@ -139,7 +141,11 @@ fn heat_mapped(
     let fields: Vec<_> = (copies.iter())
         .map(|copy| decimate_core::metro::field::error_field(scene, copy))
         .collect();
-    let legend = Legend::spanning(&fields);
+    let mut legend = Legend::spanning(&fields);
+    let maxes = measured.iter().filter_map(|m| m.as_ref().ok()?.as_ref());
+    if let Some(max) = maxes.map(|e| e.max).reduce(f64::max) {
+        legend = legend.with_max(max);
+    }
     let coloured = (copies.iter().zip(&fields))
         .map(|(copy, field)| error_map::heat_scene(copy, field, &legend))
         .collect();
@@ -149,6 +155,10 @@ fn heat_mapped(
         Some(legend),
     )
 }
+
+/// A decimated copy's metro error against the original, when measured (`--measure` or the
+/// heat-map): `Ok(None)` when not asked for, `Err` saying why it could not be measured.
+pub type Measured = Result<Option<LevelError>, String>;
 
 /// A picture of `scene` and, when `params` is given, of its decimated copies (see
 /// [`viewport_params`]); their reports in viewport order. Every viewport uses the same camera,
@@ -160,6 +170,18 @@ pub fn render(
     params: Option<&Params>,
     device: DevicePreference,
 ) -> Result<(RgbaImage, Vec<Report>), RenderError> {
+    let (image, reports, _) = render_measured(scene, options, params, device)?;
+    Ok((image, reports))
+}
+
+/// [`render`], with each decimated copy's metro error too (see [`Measured`]), in the order
+/// of the reports: the figure its caption and the legend show.
+pub fn render_measured(
+    scene: &Scene,
+    options: &ShotOptions,
+    params: Option<&Params>,
+    device: DevicePreference,
+) -> Result<(RgbaImage, Vec<Report>, Vec<Measured>), RenderError> {
     let context = Context::new(&[], false, device)?;
     let commands = Commands::new(&context)?;
     let (pipelines, target) = offscreen(&context, options)?;
@@ -173,8 +195,9 @@ pub fn render(
     let (rects, strip) = layout(options);
     let shown = viewport_params(rects.len(), params, &options.targets);
     let made = decimate_each(scene, &shown);
+    let measured = measure_each(scene, &made, options.measure || draw.error_map);
     let copies = made.iter().map(|(_, copy, _)| copy.clone()).collect();
-    let (neutral, drawn, legend) = heat_mapped(scene, copies, draw.error_map);
+    let (neutral, drawn, legend) = heat_mapped(scene, copies, draw.error_map, &measured);
     let original = GpuScene::upload(
         &context,
         &commands,
@@ -187,7 +210,8 @@ pub fn render(
         commands: &commands,
         layers: draw.layers(),
     };
-    let decimated = uploader.decimated(&mut textures, scene, made, &drawn, options.measure)?;
+    let captioned = captioned(made, &measured, options.measure);
+    let decimated = uploader.decimated(&mut textures, captioned, &drawn)?;
     let counts = Counts::of(scene);
     let original_caption = labels::caption("original", counts.vertices, counts.triangles);
     let camera = Camera::framing(original.bounds);
@@ -228,7 +252,35 @@ pub fn render(
         &views,
         painting.then_some(&painted),
     )?;
-    Ok((image, decimated.into_iter().map(|d| d.report).collect()))
+    Ok((
+        image,
+        decimated.into_iter().map(|d| d.report).collect(),
+        measured,
+    ))
+}
+
+/// Each decimated copy in `made` measured against `scene` when `wanted` (see [`Measured`]).
+fn measure_each(scene: &Scene, made: &[(Params, Scene, Report)], wanted: bool) -> Vec<Measured> {
+    (made.iter())
+        .map(|(_, copy, _)| match wanted {
+            true => LevelError::measure(scene, copy).map(Some),
+            false => Ok(None),
+        })
+        .collect()
+}
+
+/// Each copy's params, caption (with its `measured` line when `measure`) and report.
+fn captioned(
+    made: Vec<(Params, Scene, Report)>,
+    measured: &[Measured],
+    measure: bool,
+) -> Vec<(Params, String, Report)> {
+    (made.into_iter().zip(measured))
+        .map(|((params, copy, report), m)| {
+            let caption = caption_of(&copy, &params, measure.then_some(m));
+            (params, caption, report)
+        })
+        .collect()
 }
 
 /// The pipelines and the picture `options` ask for (size, samples, background).
@@ -253,19 +305,16 @@ struct Uploader<'a> {
 }
 
 impl Uploader<'_> {
-    /// The decimated copies `made` of `original` on the GPU, each drawn as `drawn` says (its
-    /// heat-mapped version, or itself), captioned (with `measure`, with its metro error).
+    /// The decimated copies on the GPU, each drawn as `drawn` says (its heat-mapped version,
+    /// or itself), with its params, caption and report.
     fn decimated(
         &self,
         textures: &mut Textures,
-        original: &Scene,
-        made: Vec<(Params, Scene, Report)>,
+        made: Vec<(Params, String, Report)>,
         drawn: &[Scene],
-        measure: bool,
     ) -> Result<Vec<Decimated>, RenderError> {
         let mut decimated = Vec::with_capacity(made.len());
-        for ((params, copy, report), shown_copy) in made.into_iter().zip(drawn) {
-            let caption = decimated_caption(original, &copy, &params, measure);
+        for ((params, caption, report), shown_copy) in made.into_iter().zip(drawn) {
             let gpu = GpuScene::upload(
                 self.context,
                 self.commands,
@@ -341,6 +390,12 @@ pub fn decimated_caption(
     params: &Params,
     measure: bool,
 ) -> String {
+    let measured = measure.then(|| LevelError::measure(original, level).map(Some));
+    caption_of(level, params, measured.as_ref())
+}
+
+/// The caption of `level` made with `params`, with `measured`'s line when given.
+fn caption_of(level: &Scene, params: &Params, measured: Option<&Measured>) -> String {
     let what = format!(
         "{} ({})",
         labels::target_words(params.target, params.max_error),
@@ -348,12 +403,10 @@ pub fn decimated_caption(
     );
     let counts = Counts::of(level);
     let mut caption = labels::caption(&what, counts.vertices, counts.triangles);
-    if measure {
-        caption.push('\n');
-        caption.push_str(&match LevelError::measure(original, level) {
-            Ok(error) => error.words(),
-            Err(e) => format!("cannot measure: {e}"),
-        });
+    match measured {
+        Some(Ok(Some(error))) => caption.push_str(&format!("\n{}", error.words())),
+        Some(Err(e)) => caption.push_str(&format!("\ncannot measure: {e}")),
+        Some(Ok(None)) | None => {}
     }
     caption
 }

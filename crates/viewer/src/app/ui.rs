@@ -14,8 +14,10 @@ use crate::render::commands::Commands;
 use crate::render::context::Context;
 
 use super::app_error::AppError;
+use super::file_dialog::{self, DialogOutcome, FileDialog};
 use super::menu::{Action, MenuEntry};
 use super::overlay::{self, Overlay};
+use super::panel::{self, ViewportPanel};
 use super::popup;
 
 /// What the user did in the UI this frame.
@@ -35,6 +37,10 @@ pub struct UiResult {
     pub lod_vertices: Option<(usize, usize)>,
     /// The quit question was answered: quit (`true`) or stay.
     pub quit_answer: Option<bool>,
+    /// The Open… or Save as… dialog was answered.
+    pub dialog: Option<DialogOutcome>,
+    /// A viewport's panel was used: the viewport (from 0) and the action.
+    pub panel_action: Option<(usize, Action)>,
 }
 
 /// The "decimate to N vertices" field while it is open.
@@ -76,6 +82,10 @@ pub struct UiState<'a> {
     pub lods: &'a [LodSlider],
     /// The quit question, while it is asked.
     pub confirm: Option<&'a str>,
+    /// The Open… or Save as… dialog, while it is shown.
+    pub dialog: Option<&'a mut FileDialog>,
+    /// Each viewport's panel.
+    pub panels: &'a [ViewportPanel],
 }
 
 /// egui context, winit glue and Vulkan renderer.
@@ -166,10 +176,17 @@ impl UiLayer {
             overlay: painted,
             lods,
             confirm,
+            mut dialog,
+            panels,
         } = ui_state;
         let output = self.ctx.run_ui(input, |ui| {
             let ctx = ui.ctx().clone();
             overlay::paint(&ctx, &painted);
+            for p in panels {
+                if let Some(chosen) = panel::show(&ctx, p) {
+                    result.panel_action = Some(chosen);
+                }
+            }
             for slider in lods {
                 if let Some(n) = lod_slider(&ctx, slider) {
                     result.lod_vertices = Some((slider.viewport, n));
@@ -182,6 +199,9 @@ impl UiLayer {
             }
             if let Some(field) = field.as_deref_mut() {
                 vertex_field(&ctx, field, &mut result);
+            }
+            if let Some(dialog) = dialog.as_deref_mut() {
+                result.dialog = file_dialog::show(&ctx, dialog);
             }
             if let Some(question) = confirm {
                 result.quit_answer = quit_question(&ctx, question);

@@ -11,13 +11,16 @@ use ash::vk;
 use glam::Vec2;
 use winit::window::Window;
 
+use crate::render::camera::Camera;
 use crate::render::camera::Navigation;
 use crate::render::commands::Commands;
 use crate::render::context::{Context, DevicePreference};
+use crate::render::draw::DrawOptions;
 use crate::render::draw::{self, ViewportDraw};
 use crate::render::gpu_mesh::GpuScene;
 use crate::render::image::{self, Transition};
 use crate::render::offscreen::{OffscreenTarget, OFFSCREEN_FORMAT};
+use crate::render::picture_cache::PictureCache;
 use crate::render::pipeline::Pipelines;
 use crate::render::swapchain::{Frame, Swapchain};
 use crate::render::texture::Textures;
@@ -28,10 +31,12 @@ use decimate_core::io::texture_image;
 use super::app_error::AppError;
 use super::controller::{Effect, ViewportController};
 use super::error_map::{FieldCache, Legend, Look};
+use super::file_dialog::{DialogOutcome, FileDialog};
 use super::glut::{Button, Callbacks, Flow, Special};
 use super::labels::HeadlessCaptions;
 use super::menu::{action_for_key, key_help, Key, MenuEntry};
 use super::overlay::{self, Overlay};
+use super::panel::{ViewportPanel, BELOW_LOD_SLIDER};
 use super::save::{save_path, SavePath};
 use super::settle::Settle;
 use super::shot::write_png;
@@ -42,6 +47,8 @@ struct Gpu {
     ui: UiLayer,
     /// Each viewport's scene: its id, generation and look (own colours or heat-mapped).
     scenes: Vec<(u64, (u64, Look), GpuScene)>,
+    /// The viewports as last drawn at rest, drawn back while a job runs.
+    picture: PictureCache<SceneKey>,
     /// Uploaded once per name, shared by every viewport's scenes; dropped before the
     /// pipelines, whose set layout its sets were made with.
     textures: Textures,
@@ -69,6 +76,8 @@ pub struct Viewer {
     popup_at: Option<egui::Pos2>,
     popup_just_opened: bool,
     field: Option<VertexField>,
+    /// The Open… or Save as… dialog, while it is shown.
+    dialog: Option<FileDialog>,
     help_text: String,
     /// The last message of the status line and when it expires.
     message: Option<(String, Instant)>,
@@ -85,6 +94,22 @@ pub struct Viewer {
     /// How long the last frame took to draw, and when it ended.
     last_frame: Duration,
     last_drawn: Instant,
+    /// The last frame drew the kept picture instead of the viewports.
+    drawn_kept: bool,
+}
+
+/// One viewport's id, scene uploaded (generation and look), rectangle, camera, draw modes
+/// and geomorph factor (as bits).
+type ViewKey = (u64, Option<(u64, Look)>, Rect, Camera, DrawOptions, u32);
+
+/// What decides how the viewports look: a kept picture drawn for the same key can stand
+/// for drawing them again.
+#[derive(PartialEq)]
+struct SceneKey {
+    views: Vec<ViewKey>,
+    highlight: Option<usize>,
+    single: bool,
+    samples: vk::SampleCountFlags,
 }
 
 /// Where F2 saves the window's picture.
@@ -129,6 +154,7 @@ impl Viewer {
             popup_at: None,
             popup_just_opened: false,
             field: None,
+            dialog: None,
             help_text: key_help(),
             message: None,
             fields: FieldCache::default(),
@@ -138,6 +164,7 @@ impl Viewer {
             scale_factor: 1.0,
             last_frame: Duration::ZERO,
             last_drawn: Instant::now(),
+            drawn_kept: false,
         }
     }
 
@@ -163,6 +190,12 @@ impl Viewer {
                 self.controller.message = message;
                 Flow::Continue
             }
+            Effect::Dialog(kind) => {
+                let (folder, name) = self.controller.dialog_start(kind);
+                self.dialog = Some(FileDialog::new(kind, &folder, &name));
+                self.popup_at = None;
+                Flow::Continue
+            }
             Effect::Quit => Flow::Quit,
         }
     }
@@ -180,6 +213,9 @@ impl Viewer {
     /// what it showed) or the heat-map's measurement; else closes the help. Never quits.
     fn escape(&mut self) {
         if self.popup_at.take().is_some() || self.field.take().is_some() {
+            return;
+        }
+        if self.dialog.take().is_some() {
             return;
         }
         if self.controller.cancel_job() {
@@ -221,9 +257,12 @@ impl Viewer {
         Ok(())
     }
 
-    /// F2: the viewports and their captions as drawn now, rendered again offscreen and
-    /// written to `window.png` (never over an input; through a temporary file).
+    /// F2: what the window shows — viewports, captions, legends and the status line —
+    /// rendered again offscreen and written to `window.png` (never over an input; through a
+    /// temporary file).
     fn save_picture(&mut self) -> Result<String, AppError> {
+        let status = self.status();
+        let strip = self.controller.status_strip;
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok("no window to picture yet".into());
         };
@@ -256,6 +295,7 @@ impl Viewer {
             let captions = Overlay {
                 captions: &captions,
                 legend,
+                status: Some((&status, strip)),
                 ..Overlay::default()
             };
             overlay::paint(ctx, &captions);
@@ -399,14 +439,21 @@ impl Viewer {
         };
         self.last_frame = now.elapsed();
         self.last_drawn = Instant::now();
+        let kept = if self.drawn_kept {
+            ", kept picture"
+        } else {
+            ""
+        };
         trace(format_args!(
-            "frame in {} ms, {job}, {samples}x samples",
+            "frame in {} ms, {job}, {samples}x samples{kept}",
             self.last_frame.as_millis()
         ));
         // egui asks for a frame after any input it saw; while a job runs that is honoured
         // only when something of egui's is open (popup, field, question) and may animate.
-        let ui_open =
-            self.popup_at.is_some() || self.field.is_some() || self.controller.confirm_quit;
+        let ui_open = self.popup_at.is_some()
+            || self.field.is_some()
+            || self.dialog.is_some()
+            || self.controller.confirm_quit;
         if (ui_result.repaint && (ui_open || !self.busy())) || morphing {
             window.request_redraw();
         }
@@ -432,6 +479,7 @@ impl Viewer {
         };
         let ppp = gpu.ui.pixels_per_point();
         let lods = lod_sliders(&self.controller, &rects, ppp);
+        let panels = viewport_panels(&self.controller, &rects, ppp);
         gpu.ui.run(
             window,
             &gpu.context,
@@ -450,6 +498,8 @@ impl Viewer {
                 },
                 lods: &lods,
                 confirm: confirm.as_deref(),
+                dialog: self.dialog.as_mut(),
+                panels: &panels,
             },
         )
     }
@@ -457,6 +507,7 @@ impl Viewer {
     /// Draws the viewports and the UI into the next swapchain image and presents it; false
     /// when the swapchain is out of date (nothing was drawn or not shown).
     fn present(&mut self, now: Instant, moving: bool) -> Result<bool, AppError> {
+        let busy = self.busy();
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(true);
         };
@@ -470,8 +521,43 @@ impl Viewer {
         let extent = gpu.swapchain.extent;
         let views = viewport_draws(&gpu.scenes, &self.controller, extent, now);
         let highlight = (views.len() > 1).then_some(self.controller.current());
+        let key = SceneKey {
+            views: scene_keys(&gpu.scenes, &self.controller, extent, now),
+            highlight,
+            single,
+            samples: gpu.pipelines.samples,
+        };
         let cmd = gpu.frame_commands.begin()?;
-        record_viewports(gpu, cmd, &frame, &views, highlight, single)?;
+        let device = &gpu.context.device;
+        // While a job runs the viewports change only with the camera or the job's end: the
+        // picture kept of them is drawn back instead of every triangle (a large model drawn
+        // in software takes seconds, taken from the job).
+        // SAFETY: `cmd` is recording, outside any pass; the swapchain image stays alive until
+        // the frame's fence is waited for.
+        self.drawn_kept = busy
+            && gpu.swapchain.restorable
+            && gpu.picture.holds(&key)
+            && unsafe { gpu.picture.restore(device, cmd, frame.image) };
+        if !self.drawn_kept {
+            record_viewports(gpu, cmd, &frame, &views, highlight, single)?;
+            drop(views);
+            if gpu.swapchain.restorable && !single {
+                // SAFETY: as above; the kept picture is remade only after a resize, which
+                // waited for the device.
+                unsafe {
+                    (gpu.picture).capture(
+                        &gpu.context,
+                        cmd,
+                        frame.image,
+                        gpu.swapchain.format,
+                        extent,
+                        key,
+                    )?;
+                }
+            }
+        }
+        // SAFETY: `cmd` is recording outside a pass; the image is a colour attachment now.
+        unsafe { draw::begin_overlay(&gpu.context.device, cmd, frame.view, extent) };
         gpu.ui.draw(cmd, extent)?;
         let to_present = Transition {
             old: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
@@ -502,7 +588,9 @@ impl Viewer {
             || ui_result.close_field
             || ui_result.vertex_count.is_some()
             || ui_result.action.is_some()
-            || ui_result.quit_answer.is_some();
+            || ui_result.quit_answer.is_some()
+            || ui_result.dialog.is_some()
+            || ui_result.panel_action.is_some();
         if let Some((viewport, n)) = ui_result.lod_vertices {
             self.settle.moved(Instant::now());
             self.controller.select(viewport);
@@ -524,9 +612,34 @@ impl Viewer {
                 }
             }
         }
+        if let Some((viewport, action)) = ui_result.panel_action {
+            trace(format_args!(
+                "panel of viewport {}: {action:?}",
+                viewport + 1
+            ));
+            self.controller.select(viewport);
+            let effect = self.controller.dispatch(action);
+            flow = self.run_effect(effect);
+        }
         if let Some(action) = ui_result.action {
             let effect = self.controller.dispatch(action);
             flow = self.run_effect(effect);
+        }
+        if let Some(news) = self.dialog.as_mut().and_then(FileDialog::take_news) {
+            eprintln!("decimate: {news}");
+            self.controller.message = news;
+        }
+        match ui_result.dialog {
+            Some(DialogOutcome::Open(path)) => {
+                self.dialog = None;
+                self.open_file(window, path);
+            }
+            Some(DialogOutcome::Save(path)) => {
+                self.dialog = None;
+                self.controller.save_as(&path);
+            }
+            Some(DialogOutcome::Cancel) => self.dialog = None,
+            None => {}
         }
         match ui_result.quit_answer {
             Some(true) => flow = Flow::Quit,
@@ -570,6 +683,29 @@ fn lod_sliders(controller: &ViewportController, rects: &[Rect], ppp: f32) -> Vec
         .collect()
 }
 
+/// Each viewport's panel, at its top-left corner (below its level-of-detail slider when
+/// that is shown; `rects` in pixels, `ppp` of them to a point).
+fn viewport_panels(
+    controller: &ViewportController,
+    rects: &[Rect],
+    ppp: f32,
+) -> Vec<ViewportPanel> {
+    (rects.iter().zip(controller.viewports()).enumerate())
+        .map(|(i, (rect, vp))| {
+            let lod = vp.lod().is_some();
+            let below = if lod { BELOW_LOD_SLIDER } else { 0.0 };
+            ViewportPanel {
+                viewport: i,
+                id: vp.id,
+                corner: overlay::points(rect, ppp).min + egui::vec2(0.0, below),
+                qem: vp.params.algorithm == decimate_core::decimate::Algorithm::Qem,
+                keep_border: vp.params.keep_border,
+                lod,
+            }
+        })
+        .collect()
+}
+
 /// The rectangles of the viewports drawn heat-mapped (their legend goes in each).
 fn heat_mapped_rects(
     controller: &ViewportController,
@@ -607,9 +743,32 @@ fn viewport_draws<'a>(
         .collect()
 }
 
+/// Each viewport's [`ViewKey`] this frame.
+fn scene_keys(
+    scenes: &[(u64, (u64, Look), GpuScene)],
+    controller: &ViewportController,
+    extent: vk::Extent2D,
+    now: Instant,
+) -> Vec<ViewKey> {
+    let rects = controller.rects_for(extent.width, extent.height);
+    (rects.into_iter().zip(controller.viewports()))
+        .map(|(rect, vp)| {
+            let look = (scenes.iter().find(|(id, _, _)| *id == vp.id)).map(|(_, k, _)| *k);
+            let morph = vp.lod().map_or(1.0, |l| l.morph_factor(now));
+            (
+                vp.id,
+                look,
+                rect,
+                vp.camera.clone(),
+                vp.options,
+                morph.to_bits(),
+            )
+        })
+        .collect()
+}
+
 /// Records the viewports' pass into `cmd` (tiles, highlight of the current one, models),
-/// single-sampled when `single`, then opens the colour-only overlay pass the UI is drawn in;
-/// the caller ends it.
+/// single-sampled when `single`; the image is left a colour attachment.
 fn record_viewports(
     gpu: &Gpu,
     cmd: vk::CommandBuffer,
@@ -646,7 +805,6 @@ fn record_viewports(
         );
         draw::record(device, cmd, pipelines, views);
         device.cmd_end_rendering(cmd);
-        draw::begin_overlay(device, cmd, frame.view, extent);
     }
     Ok(())
 }
@@ -681,6 +839,7 @@ impl Callbacks for Viewer {
         self.gpu = Some(Gpu {
             ui,
             scenes: Vec::new(),
+            picture: PictureCache::default(),
             textures,
             pipelines,
             moving_pipelines,
@@ -714,6 +873,10 @@ impl Callbacks for Viewer {
         }
         if key == Key::Escape {
             self.escape();
+            return Flow::Continue;
+        }
+        if self.dialog.is_some() {
+            // The dialog's name field takes the keys.
             return Flow::Continue;
         }
         // W / S walk in eye control; elsewhere they keep their menu meaning.
@@ -805,25 +968,12 @@ impl Callbacks for Viewer {
         };
         let consumed = gpu.ui.on_event(window, event);
         // While the popup or the field is open, egui owns the pointer and keyboard it uses.
-        let ui_open = self.popup_at.is_some() || self.field.is_some();
+        let ui_open = self.popup_at.is_some() || self.field.is_some() || self.dialog.is_some();
         consumed && (ui_open || gpu.ui.wants_pointer())
     }
 
     fn dropped(&mut self, window: &Window, path: PathBuf) {
-        match decimate_core::io::read_scene(&path) {
-            Ok(outcome) => {
-                let scene = decimate_core::mesh::build::build_scene(outcome.scene, true);
-                self.controller.open(scene, &path);
-                self.field = None;
-                self.popup_at = None;
-                window.set_title(&format!("decimate - {}", path.display()));
-                if let Err(e) = self.reload_textures() {
-                    self.controller.message = format!("{}: textures: {e}", path.display());
-                }
-            }
-            Err(e) => self.controller.message = format!("cannot open {e}"),
-        }
-        eprintln!("decimate: {}", self.controller.message);
+        self.open_file(window, path);
     }
 
     fn wake_at(&self) -> Option<Instant> {
@@ -868,4 +1018,25 @@ fn single_sampled(
         return Ok(None);
     }
     Ok(Some(Pipelines::with_samples(context, format, 1)?))
+}
+
+impl Viewer {
+    /// Shows the model in `path` instead (a file dropped on the window or chosen in Open…);
+    /// a file that cannot be read leaves the model shown, and the status line says why.
+    fn open_file(&mut self, window: &Window, path: PathBuf) {
+        match decimate_core::io::read_scene(&path) {
+            Ok(outcome) => {
+                let scene = decimate_core::mesh::build::build_scene(outcome.scene, true);
+                self.controller.open(scene, &path);
+                self.field = None;
+                self.popup_at = None;
+                window.set_title(&format!("decimate - {}", path.display()));
+                if let Err(e) = self.reload_textures() {
+                    self.controller.message = format!("{}: textures: {e}", path.display());
+                }
+            }
+            Err(e) => self.controller.message = format!("cannot open {e}"),
+        }
+        eprintln!("decimate: {}", self.controller.message);
+    }
 }

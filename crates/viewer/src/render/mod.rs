@@ -13,6 +13,7 @@ pub mod gpu_mesh;
 pub mod image;
 pub mod mesh_data;
 pub mod offscreen;
+pub mod picture_cache;
 pub mod pipeline;
 pub mod shader;
 pub mod swapchain;

@@ -35,6 +35,8 @@ pub struct Swapchain {
     /// One per swapchain image: presentation waits on the one of the image it shows.
     render_finished: Vec<vk::Semaphore>,
     pub in_flight: vk::Fence,
+    /// The images can be copied into (a kept picture drawn back, `picture_cache`).
+    pub restorable: bool,
 }
 
 /// The image acquired for a frame.
@@ -88,6 +90,7 @@ impl Swapchain {
             image_available: vk::Semaphore::null(),
             render_finished: Vec::new(),
             in_flight: vk::Fence::null(),
+            restorable: false,
         };
         // SAFETY: plain queries and creations on live objects.
         unsafe {
@@ -133,6 +136,16 @@ impl Swapchain {
         if caps.max_image_count > 0 {
             count = count.min(caps.max_image_count);
         }
+        // A copy destination too where the surface allows: a kept picture of the viewports
+        // is copied back into it (`picture_cache`).
+        let restorable = caps
+            .supported_usage_flags
+            .contains(vk::ImageUsageFlags::TRANSFER_DST);
+        let mut usage = vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC;
+        if restorable {
+            usage |= vk::ImageUsageFlags::TRANSFER_DST;
+        }
+        self.restorable = restorable;
         let old = self.handle;
         let info = vk::SwapchainCreateInfoKHR::default()
             .surface(self.surface)
@@ -141,7 +154,7 @@ impl Swapchain {
             .image_color_space(format.color_space)
             .image_extent(extent)
             .image_array_layers(1)
-            .image_usage(vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC)
+            .image_usage(usage)
             .image_sharing_mode(vk::SharingMode::EXCLUSIVE)
             .pre_transform(caps.current_transform)
             .composite_alpha(vk::CompositeAlphaFlagsKHR::OPAQUE)

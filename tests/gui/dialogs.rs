@@ -1,0 +1,83 @@
+//! Save as… in a real window: `O` opens the dialog, a new name is typed and Enter writes
+//! the decimated viewport in the format the extension names (a PLY, read back with its exact
+//! counts); the same name again asks before replacing, `n` keeps the file as it was, and
+//! `Esc` closes the dialog with the window still up.
+
+use std::path::Path;
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+use super::xvfb::{
+    display_or_skip, hold_x_connection, quit, read_log, run, scratch, start_traced, write_cube,
+};
+
+/// Waits up to 30 s for `what` in the viewer's log; fails with the log otherwise.
+fn wait_for_log(log: &Path, what: &str) {
+    let start = Instant::now();
+    while !read_log(log).contains(what) {
+        assert!(
+            start.elapsed() < Duration::from_secs(30),
+            "no {what:?} in 30 s; viewer log:\n{}",
+            read_log(log)
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
+/// Opens Save as… in window `wid` and types `name` over the name it suggests, then Enter.
+fn save_as(wid: &str, name: &str) {
+    run("xdotool", &["key", "--window", wid, "O"]);
+    std::thread::sleep(Duration::from_millis(800));
+    run("xdotool", &["key", "--window", wid, "ctrl+a", "BackSpace"]);
+    run("xdotool", &["type", "--window", wid, "--delay", "80", name]);
+    std::thread::sleep(Duration::from_millis(300));
+    run("xdotool", &["key", "--window", wid, "Return"]);
+}
+
+#[test]
+fn save_as_writes_the_format_its_extension_names_and_asks_before_replacing() {
+    if !display_or_skip() {
+        return;
+    }
+    let _window = super::ONE_WINDOW.lock();
+    let _held = hold_x_connection(Duration::from_secs(20));
+    let dir = scratch("gui_dialogs");
+    write_cube(&dir.join("cube.wrl"));
+    let log = dir.join("viewer.log");
+    let (viewer, wid) = start_traced(&dir, &["cube.wrl"], &log);
+    let _ = Command::new("xdotool")
+        .args(["windowfocus", "--sync", &wid])
+        .status();
+    wait_for_log(&log, "frame in");
+    run("xdotool", &["key", "--window", &wid, "9"]);
+    wait_for_log(&log, "removed 90 %");
+
+    save_as(&wid, "saved.ply");
+    let saved = dir.join("saved.ply");
+    wait_for_log(&log, "saved viewport 1 as");
+    let bytes = std::fs::read(&saved).unwrap_or_else(|e| panic!("{}: {e}", saved.display()));
+    assert!(bytes.starts_with(b"ply\n"), "saved.ply is not a PLY file");
+    let scene = decimate_core::io::read_scene(&saved).unwrap_or_else(|e| panic!("{e}"));
+    let model = &scene.scene.models[0];
+    assert_eq!(
+        (model.positions.len(), model.triangles.len()),
+        (60, 116),
+        "the cube's 90 % decimation, as its caption says"
+    );
+
+    // The same name again: the dialog asks, n keeps the file, Esc closes the dialog.
+    save_as(&wid, "saved.ply");
+    wait_for_log(&log, "saved.ply exists: replace it?");
+    run("xdotool", &["key", "--window", &wid, "n"]);
+    wait_for_log(&log, "saved.ply kept");
+    run("xdotool", &["key", "--window", &wid, "Escape"]);
+    std::thread::sleep(Duration::from_millis(500));
+    assert_eq!(
+        std::fs::read(&saved).unwrap_or_default(),
+        bytes,
+        "saved.ply was written over without a yes"
+    );
+    let whole = std::fs::read_to_string(&log).unwrap_or_default();
+    assert_eq!(whole.matches("saved viewport 1 as").count(), 1, "{whole}");
+    quit(viewer, &wid, &log);
+}
