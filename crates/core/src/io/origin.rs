@@ -22,7 +22,8 @@ pub const FAR: f64 = 8192.0;
 /// zero, else all three rounded to integers (a near one too, so that the model's positions
 /// relative to the origin are the same numbers wherever the model stands).
 pub fn origin_for(p: [f64; 3]) -> DVec3 {
-    let finite = p.iter().all(|c| c.is_finite());
+    // Beyond f32's range a point is refused by the reader's finiteness check, as before.
+    let finite = p.iter().all(|&c| (c as f32).is_finite());
     if finite && p.iter().any(|c| c.abs() >= FAR) {
         DVec3::new(p[0].round(), p[1].round(), p[2].round())
     } else {
@@ -141,6 +142,13 @@ mod tests {
             r.relative([300001.0, 2.0, -1.2e7 + 0.125]),
             [1.0, 0.0, 0.125]
         );
+    }
+
+    #[test]
+    fn a_first_point_beyond_f32_keeps_a_zero_origin_and_reads_as_infinite() {
+        let mut r = Recentre::default();
+        assert!(r.relative([1e39, 0.0, 0.0])[0].is_infinite());
+        assert_eq!(r.origin(), DVec3::ZERO);
     }
 
     #[test]
