@@ -287,7 +287,7 @@ mod tests {
         let square = Model {
             positions: vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y],
             triangles: vec![[0, 1, 2], [0, 2, 3]],
-            origin: glam::DVec3::new(3.0e5, 1.2e6, 50.0),
+            origin: DVec3::new(3.0e5, 1.2e6, 50.0),
             ..Model::default()
         };
         let mut lifted = square.clone();
