@@ -92,8 +92,11 @@ class Model:
     uint32 ``faces`` (m, 3), its 4 x 4 ``transform`` to world space (``transform @ [x, y,
     z, 1]``), and what the file gave besides: ``colors`` and ``normals`` (per vertex or per
     face, as ``colors_per`` / ``normals_per`` say), texture coordinates ``uvs``, the
-    ``texture`` image's path, the ``diffuse`` colour, and ``solid`` (closed, back faces
-    may be culled)."""
+    ``texture`` image's path, the ``diffuse`` colour, ``solid`` (closed, back faces
+    may be culled), and ``origin``: three float64 coordinates added after the transform, so
+    a point of the file is ``origin + transform @ [x, y, z, 1]``; zero unless the file's
+    coordinates are far from zero (georeferenced scans), where the float32 vertices are
+    relative to it."""
 
     vertices: np.ndarray
     faces: np.ndarray
@@ -107,6 +110,7 @@ class Model:
     texture: Optional[str] = None
     diffuse: Tuple[float, float, float] = (0.8, 0.8, 0.8)
     solid: bool = False
+    origin: Tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
 class Scene(list):
@@ -402,6 +406,7 @@ def read(path: Union[str, "os.PathLike[str]"]) -> Scene:
 def _model_fields(d: dict) -> dict:
     d = dict(d)
     d["diffuse"] = tuple(d["diffuse"])
+    d["origin"] = tuple(d["origin"])
     return d
 
 
@@ -428,6 +433,7 @@ def _model_dict(m: Any, k: int) -> dict:
             if d[key] is not None:
                 d[key] = np.ascontiguousarray(d[key], dtype=np.float32)
         d["diffuse"] = [float(x) for x in m.diffuse]
+        d["origin"] = [float(x) for x in m.origin]
         return d
     vertices, faces = _unpack(m)
     v = _vertices(vertices, f"model {k} vertices")

@@ -1,7 +1,7 @@
 //! `read` and `write`: scenes as lists of model dictionaries (numpy arrays for positions,
 //! triangles, colours, normals and texture coordinates; a 4 × 4 transform in numpy's row
-//! convention; the texture path, diffuse colour and name), every format the core reads and
-//! writes.
+//! convention; the texture path, diffuse colour and name; the f64 `origin` that far,
+//! georeferenced files' positions are relative to), every format the core reads and writes.
 
 use std::path::{Path, PathBuf};
 
@@ -9,7 +9,7 @@ use decimate_core::api::{Model, Scene};
 use decimate_core::cancel::Cancel;
 use decimate_core::io::{self, ReadError as CoreReadError, ReadOutcome};
 use decimate_core::mesh::Attribute;
-use glam::Mat4;
+use glam::{DVec3, Mat4};
 use numpy::PyReadonlyArray2;
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
 use pyo3::prelude::*;
@@ -77,6 +77,7 @@ fn model_dict<'py>(py: Python<'py>, m: &Model) -> PyResult<Bound<'py, PyDict>> {
         "transform",
         to_numpy(py, m.transform.transpose().to_cols_array_2d().to_vec())?,
     )?;
+    d.set_item("origin", m.origin.to_array().to_vec())?;
     if let Some(c) = &m.colors {
         d.set_item("colors", to_numpy(py, c.values().to_vec())?)?;
         d.set_item("colors_per", binding(c))?;
@@ -153,6 +154,13 @@ fn dict_model(d: &Bound<'_, PyDict>) -> PyResult<Model> {
             .try_into()
             .map_err(|_| PyValueError::new_err("transform: expected a 4 x 4 array"))?;
         m.transform = Mat4::from_cols_array_2d(&r).transpose();
+    }
+    if let Some(o) = get("origin")? {
+        let o: [f64; 3] = o.extract()?;
+        if !o.iter().all(|c| c.is_finite()) {
+            return Err(PyValueError::new_err("origin: not finite"));
+        }
+        m.origin = DVec3::from(o);
     }
     if let Some(c) = get("colors")? {
         let c: PyReadonlyArray2<'_, f32> = c.extract()?;

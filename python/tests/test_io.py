@@ -40,6 +40,18 @@ def test_transform_and_colours_survive_a_vrml_round_trip(tmp_path):
     assert np.allclose(back.colors, [0.25, 0.5, 0.75], atol=1e-2)
 
 
+def test_far_coordinates_come_back_as_an_origin_and_are_written_back_whole(tmp_path):
+    src = tmp_path / "far.obj"
+    src.write_text("v 300000.125 1200000.35 50.5\nv 300000.475 1200000.35 50.5\n"
+                   "v 300000.125 1200000.7 50.25\nf 1 2 3\n")
+    (m,) = decimate.read(src)
+    assert m.origin == (300000.0, 1200000.0, 51.0)
+    assert np.abs(m.vertices).max() < 1.0
+    decimate.write([m], tmp_path / "back.obj")
+    lines = [l for l in (tmp_path / "back.obj").read_text().splitlines() if l.startswith("v ")]
+    assert lines == [l for l in src.read_text().splitlines() if l.startswith("v ")]
+
+
 def test_reads_the_repository_assets():
     scene = decimate.read(REPO / "assets" / "bunny.ply")
     assert scene[0].vertices.dtype == np.float32 and scene[0].faces.dtype == np.uint32

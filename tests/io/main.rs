@@ -1,6 +1,6 @@
 //! Reading and writing files: every format's syntax and geometry node, errors with file and
-//! line, round trips through our writers, real Inventor models and their triangle counts
-//! against Coin's, the primitives' texture coordinates under a texture, VTK reading our VRML
+//! line, round trips through our writers, far (georeferenced) coordinates kept, real
+//! Inventor models and their triangle counts against Coin's, the primitives' texture coordinates under a texture, VTK reading our VRML
 //! output, materials and texture wrapping carried from input to output by the binary, and glTF
 //! read and written (checked by the Khronos validator).
 
@@ -10,6 +10,7 @@ mod support;
 mod coin_counts;
 mod errors;
 mod formats;
+mod georef;
 mod gltf;
 mod gltf_carry;
 mod gltf_rules;

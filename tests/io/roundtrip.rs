@@ -22,6 +22,7 @@ fn scene() -> Scene {
     let triangles = vec![[0, 1, 2], [0, 2, 3]];
     let a = Model {
         name: "Decomposable".into(),
+        origin: glam::DVec3::ZERO,
         transform: Mat4::from_scale_rotation_translation(
             Vec3::new(2.0, 0.5, 1.0),
             Quat::from_axis_angle(Vec3::new(1.0, 1.0, 0.0).normalize(), 0.7),

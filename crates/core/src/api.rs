@@ -42,7 +42,9 @@ pub use crate::mesh::{Model, Scene};
 pub use crate::threads::with_threads;
 
 /// A triangle mesh as plain arrays: positions, and three indices into them per triangle
-/// (counter-clockwise seen from the front).
+/// (counter-clockwise seen from the front). Positions are f32: a mesh far from zero
+/// (georeferenced, coordinates of 1e5 and more) is given relative to a point of its own and
+/// moved back after, or goes through [`simplify_file`] / a [`Model`] with its `origin`.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Mesh {
     /// Vertex positions.

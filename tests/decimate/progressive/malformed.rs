@@ -90,10 +90,10 @@ fn wrong_magic_version_index_count_or_number_is_named_with_its_byte() {
     );
 
     let mut bad = b.clone();
-    bad[8..12].copy_from_slice(&2u32.to_le_bytes());
+    bad[8..12].copy_from_slice(&3u32.to_le_bytes());
     let text = refused(dir.path(), "version.pm", &bad);
     assert!(
-        text.contains("byte 8: format version 2 is not supported"),
+        text.contains("byte 8: format version 3 is not supported"),
         "{text}"
     );
 

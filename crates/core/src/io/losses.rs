@@ -6,8 +6,8 @@
 //! What each writer keeps (see their modules): VRML 2.0 everything; OBJ per-vertex colours
 //! and texture coordinates per model; PLY and OFF hold all models in one vertex list, so
 //! per-vertex colours and texture coordinates only when every model has them (PLY also
-//! names one texture image shared by all); STL geometry only. Per-face colours are VRML's
-//! alone.
+//! names one texture image shared by all); STL geometry only, in 32-bit floats (far
+//! coordinates rounded). Per-face colours are VRML's alone.
 
 use std::path::Path;
 
@@ -71,7 +71,37 @@ pub fn losses(scene: &Scene, format: Option<Format>) -> Vec<String> {
     if keeps.images {
         out.extend(wrap_loss(name, format, &scene.models));
     }
+    if format == Format::Stl {
+        out.extend(far_loss(&scene.models));
+    }
     out
+}
+
+/// Binary STL holds 32-bit coordinates: models far from zero lose digits there.
+fn far_loss(models: &[Model]) -> Option<String> {
+    let far: Vec<&Model> = models
+        .iter()
+        .filter(|m| m.origin != glam::DVec3::ZERO)
+        .collect();
+    let largest = far
+        .iter()
+        .map(|m| m.origin.abs().max_element())
+        .fold(0.0, f64::max);
+    if far.is_empty() {
+        return None;
+    }
+    // f32's step at that magnitude: 2^-23 of the power of two at or below it.
+    let step = (largest.log2().floor() - 23.0).exp2();
+    Some(format!(
+        "binary STL holds 32-bit coordinates: {} far from zero (up to {largest}) {} rounded \
+         to steps of {step} there; PLY, OBJ or OFF keep every digit",
+        if far.len() == 1 {
+            "1 model".to_string()
+        } else {
+            format!("{} models", far.len())
+        },
+        if far.len() == 1 { "is" } else { "are" },
+    ))
 }
 
 /// How many models have each attribute.

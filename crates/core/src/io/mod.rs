@@ -18,7 +18,8 @@
 //! written) and `data_uri` (the `data:` URIs glTF embeds buffers and images in), `source`
 //! (the bytes the PLY and STL parsers read, in memory or streamed, so tiling's `stream`
 //! reads run the same parsers), `warning` (readers' warnings, typed by kind) and
-//! `file_limits` (regular files only, byte limits, references kept in the model's folder).
+//! `file_limits` (regular files only, byte limits, references kept in the model's folder),
+//! `origin` (far coordinates: the f64 origin readers pick, the digits writers print).
 
 pub mod data_uri;
 pub mod file_limits;
@@ -27,6 +28,7 @@ pub mod losses;
 pub(crate) mod mtl;
 pub mod obj;
 pub mod off;
+pub mod origin;
 pub mod ply;
 pub mod progressive_file;
 pub mod replace;

@@ -33,8 +33,11 @@ use glam::Mat4;
 
 use super::mtl::MtlPlan;
 
+use super::origin::Recentre;
 use super::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
-use super::text::{number, parse_int, shown, words, Lines, PResult, ParseError};
+use super::text::{
+    coordinate, number, parse_int, relative_point, shown, words, Lines, PResult, ParseError,
+};
 use super::{ReadOutcome, WriteError};
 use crate::mesh::{Attribute, Model, Scene};
 
@@ -163,14 +166,17 @@ fn resolve(w: &[u8], count: usize, line: usize, what: &str) -> PResult<u32> {
 }
 
 /// The values of a `v` statement (`v x y z [w]` or `v x y z r g b`): the position, and the
-/// colour when it has one. Shared by the ordinary and the streaming reader.
+/// colour when it has one, the position relative to the origin `recentre` picks. Shared by
+/// the ordinary and the streaming reader.
 pub(super) fn vertex_values<'a>(
     mut w: impl Iterator<Item = &'a [u8]>,
     line: usize,
+    recentre: &mut Recentre,
 ) -> PResult<([f32; 3], Option<[f32; 3]>)> {
-    let x = number(w.next(), line, "a vertex's x")?;
-    let y = number(w.next(), line, "a vertex's y")?;
-    let z = number(w.next(), line, "a vertex's z")?;
+    let x = coordinate(w.next(), line, "a vertex's x")?;
+    let y = coordinate(w.next(), line, "a vertex's y")?;
+    let z = coordinate(w.next(), line, "a vertex's z")?;
+    let p = relative_point(recentre, [x, y, z], line)?;
     let rest: [Option<&[u8]>; 5] = std::array::from_fn(|_| w.next());
     let color = match rest {
         [None, ..] | [Some(_), None, ..] => None,
@@ -189,7 +195,7 @@ pub(super) fn vertex_values<'a>(
     if let [Some(wv), None, ..] = rest {
         number(Some(wv), line, "a vertex's w")?;
     }
-    Ok(([x, y, z], color))
+    Ok((p, color))
 }
 
 /// One face corner (`v`, `v/vt`, `v//vn` or `v/vt/vn`) checked against the `counts` of
@@ -228,11 +234,12 @@ pub(super) fn stream_obj(
     let mut positions: Vec<[f32; 3]> = Vec::new();
     let (mut uv_count, mut normal_count) = (0usize, 0usize);
     let mut face: Vec<[f32; 3]> = Vec::new();
+    let mut recentre = Recentre::at_zero();
     for item in super::text::StreamedLines::new(input, true) {
         let (line, text) = item?;
         let mut w = words(&text);
         match w.next() {
-            Some(b"v") => positions.push(vertex_values(w, line)?.0),
+            Some(b"v") => positions.push(vertex_values(w, line, &mut recentre)?.0),
             Some(b"vt") => uv_count += 1,
             Some(b"vn") => normal_count += 1,
             Some(b"f") => {
@@ -314,12 +321,14 @@ struct ObjReader {
     /// has used it.
     material: Option<String>,
     part: Option<usize>,
+    /// The origin, picked from the first vertex; all models of the file share it.
+    recentre: Recentre,
 }
 
 impl ObjReader {
     /// `v x y z [w]` or `v x y z r g b`.
     fn vertex<'a>(&mut self, w: impl Iterator<Item = &'a [u8]>, line: usize) -> PResult<()> {
-        let ([x, y, z], color) = vertex_values(w, line)?;
+        let ([x, y, z], color) = vertex_values(w, line, &mut self.recentre)?;
         self.coords.extend([x, y, z]);
         match color {
             Some(c) => {
@@ -465,6 +474,7 @@ impl ObjReader {
                 &mut warnings,
             )?;
             model.material = g.material;
+            model.origin = self.recentre.origin();
             models.push(model);
         }
         Ok(ReadOutcome {
@@ -573,13 +583,13 @@ fn write_obj_with(
             _ => None,
         };
         for (k, &p) in m.positions.iter().enumerate() {
-            let p = m.transform.transform_point3(p);
+            let [x, y, z] = super::origin::coords(m, m.transform.transform_point3(p));
             match colors {
                 Some(c) => {
                     let [r, g, b] = c[k];
-                    writeln!(w, "v {} {} {} {:?} {:?} {:?}", p.x, p.y, p.z, r, g, b)?
+                    writeln!(w, "v {x} {y} {z} {r:?} {g:?} {b:?}")?
                 }
-                None => writeln!(w, "v {} {} {}", p.x, p.y, p.z)?,
+                None => writeln!(w, "v {x} {y} {z}")?,
             }
         }
         // One `vt` per vertex, in the vertices' order; `vt` numbers run on across models,

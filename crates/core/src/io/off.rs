@@ -20,7 +20,7 @@ use std::path::Path;
 use glam::Mat4;
 
 use super::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
-use super::text::{number, shown, words, Lines};
+use super::text::{coordinate, number, relative_point, shown, words, Lines};
 use super::text::{parse_int, PResult, ParseError};
 use super::WriteError;
 use crate::mesh::{Attribute, Scene};
@@ -133,6 +133,8 @@ struct Header<'a> {
 #[derive(Default)]
 struct Vertices {
     coords: Vec<f32>,
+    /// The origin, picked from the first vertex.
+    recentre: super::origin::Recentre,
     rgb: Vec<f32>,
     st: Vec<f32>,
 }
@@ -257,9 +259,11 @@ fn vertex_line(
 ) -> PResult<()> {
     let kind = header.kind;
     let mut it = ws.iter().copied();
-    out.coords.push(number(it.next(), line, "a vertex's x")?);
-    out.coords.push(number(it.next(), line, "a vertex's y")?);
-    out.coords.push(number(it.next(), line, "a vertex's z")?);
+    let x = coordinate(it.next(), line, "a vertex's x")?;
+    let y = coordinate(it.next(), line, "a vertex's y")?;
+    let z = coordinate(it.next(), line, "a vertex's z")?;
+    let p = relative_point(&mut out.recentre, [x, y, z], line)?;
+    out.coords.extend(p);
     let mut extra = &ws[3..];
     if kind.normal {
         for what in ["a normal's x", "a normal's y", "a normal's z"] {
@@ -415,6 +419,7 @@ fn finish(
     let (nv, nf) = (header.vertices, header.faces);
     let Vertices {
         coords,
+        recentre,
         mut rgb,
         st,
     } = vertices;
@@ -443,7 +448,7 @@ fn finish(
         values: &st,
         index: corners.clone(),
     });
-    let model = build(
+    let mut model = build(
         ShapeSpec {
             name: "off".into(),
             transform: Mat4::IDENTITY,
@@ -462,6 +467,7 @@ fn finish(
         },
         &mut warnings,
     )?;
+    model.origin = recentre.origin();
     Ok((
         Scene {
             models: vec![model],
@@ -502,8 +508,8 @@ pub fn write_off_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         };
         let texcoords = m.texcoords.as_ref().filter(|_| textured);
         for (k, &p) in m.positions.iter().enumerate() {
-            let p = m.transform.transform_point3(p);
-            write!(w, "{} {} {}", p.x, p.y, p.z)?;
+            let [x, y, z] = super::origin::coords(m, m.transform.transform_point3(p));
+            write!(w, "{x} {y} {z}")?;
             if let Some(c) = colors {
                 let [r, g, b] = c[k];
                 write!(w, " {r:?} {g:?} {b:?} 1.0")?;

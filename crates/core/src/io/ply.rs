@@ -22,6 +22,7 @@ use std::path::Path;
 
 use glam::{Mat4, Vec3};
 
+use super::origin::{self, Recentre};
 use super::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
 use super::source::Input;
 use super::text::{PResult, ParseError};
@@ -416,6 +417,8 @@ struct Gathered {
     /// Streaming: positions only (no colours, normals or texture coordinates), and no room
     /// reserved for faces, which are handed on one by one.
     positions_only: bool,
+    /// The model's origin, picked from its first vertex.
+    recentre: Recentre,
 }
 
 /// Called after each face is read, with the positions, the corners and the face ends so far.
@@ -501,6 +504,7 @@ pub(super) fn stream_ply(
     let mut data = Gathered {
         face_line: header.lines,
         positions_only: true,
+        recentre: Recentre::at_zero(),
         ..Gathered::default()
     };
     let mut unused = Vec::new();
@@ -640,7 +644,7 @@ fn read_vertices(
                 vals[k] = body.value(p.ty, "a vertex")?;
             }
         }
-        let (px, py, pz) = (vals[x] as f32, vals[y] as f32, vals[z] as f32);
+        let [px, py, pz] = data.recentre.relative([vals[x], vals[y], vals[z]]);
         if !(px.is_finite() && py.is_finite() && pz.is_finite()) {
             return Err(ParseError::new(
                 body.line,
@@ -850,6 +854,7 @@ fn finish(
         ends,
         face_line,
         positions_only: _,
+        recentre,
     } = data;
     if ends.is_empty() {
         warnings.push(Warning::new(
@@ -893,6 +898,7 @@ fn finish(
         index_field: "vertex_indices",
     };
     let mut model = build(spec, &mut warnings)?;
+    model.origin = recentre.origin();
     // An image means nothing without coordinates to map it.
     model.texture = texture.filter(|_| model.texcoords.is_some());
     Ok((
@@ -936,7 +942,10 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         writeln!(w, "comment TextureFile {image}")?;
     }
     writeln!(w, "element vertex {}", scene.vertex_count())?;
-    writeln!(w, "property float x\nproperty float y\nproperty float z")?;
+    // Far coordinates need doubles: f32 would round them as the input's f32 reading would.
+    let far = origin::any_far(scene);
+    let ty = if far { "double" } else { "float" };
+    writeln!(w, "property {ty} x\nproperty {ty} y\nproperty {ty} z")?;
     if colored {
         writeln!(
             w,
@@ -955,8 +964,14 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         };
         for (i, &p) in m.positions.iter().enumerate() {
             let p: Vec3 = m.transform.transform_point3(p);
-            for v in [p.x, p.y, p.z] {
-                w.write_all(&v.to_le_bytes())?;
+            if far {
+                for c in origin::coords(m, p) {
+                    w.write_all(&c.to_f64().to_le_bytes())?;
+                }
+            } else {
+                for v in [p.x, p.y, p.z] {
+                    w.write_all(&v.to_le_bytes())?;
+                }
             }
             if let Some(c) = colors {
                 let c = c.get(i).copied().unwrap_or(m.diffuse);

@@ -10,7 +10,7 @@
 //! name the file and the byte offset of what is wrong ([`ReadError::Binary`]); no input
 //! panics it or makes it allocate more than the file's length allows.
 //!
-//! # Layout, version 1
+//! # Layout, version 1 (and 2)
 //!
 //! Integers are unsigned little-endian (`u8`, `u32`); reals are little-endian IEEE-754 `f32`
 //! and finite; `vec3` is three reals (x, y, z), `rgb` three reals (red, green, blue, 0..=1),
@@ -25,6 +25,7 @@
 //! | *model:* name length       | u32              | L                                                         |
 //! | name                       | L bytes          | UTF-8                                                     |
 //! | transform                  | 16 × f32         | local to world, column-major (column 0 first)             |
+//! | origin                     | 3 × f64          | version 2 only: added after the transform (`Model::origin`) |
 //! | diffuse                    | rgb              | the material's colour                                     |
 //! | crease flag, crease angle  | flag, f32        | radians; the angle is there (0) when the flag is 0        |
 //! | solid                      | flag             |                                                           |
@@ -74,8 +75,10 @@ use crate::mesh::{Attribute, Model};
 
 /// The first eight bytes of every progressive-mesh file.
 pub const MAGIC: [u8; 8] = *b"DECIMPM\0";
-/// The layout version this build writes and reads.
+/// The layout version this build writes for models near zero, and reads.
 pub const VERSION: u32 = 1;
+/// The layout version with each model's f64 origin: written when a model has a far one.
+pub const VERSION_ORIGIN: u32 = 2;
 
 const VERTEX_COLORS: u8 = 1;
 const FACE_COLORS: u8 = 2;
@@ -103,10 +106,11 @@ pub fn write_progressive_to(w: &mut impl Write, pm: &ProgressiveScene) -> io::Re
         .collect::<io::Result<Vec<_>>>()?;
     let mut out = Out(w);
     out.bytes(&MAGIC)?;
-    out.u32(VERSION)?;
+    let far = pm.models.iter().any(|m| m.base.origin != glam::DVec3::ZERO);
+    out.u32(if far { VERSION_ORIGIN } else { VERSION })?;
     out.len(pm.models.len())?;
     for (m, &a) in pm.models.iter().zip(&attributes) {
-        write_model(&mut out, m, a)?;
+        write_model(&mut out, m, a, far)?;
     }
     Ok(())
 }
@@ -271,8 +275,9 @@ fn write_model<W: Write>(
     out: &mut Out<'_, W>,
     pm: &ProgressiveModel,
     a: Attributes,
+    with_origin: bool,
 ) -> io::Result<()> {
-    write_header(out, &pm.base, a)?;
+    write_header(out, &pm.base, a, with_origin)?;
     write_base(out, &pm.base)?;
     out.len(pm.splits.len())?;
     for s in &pm.splits {
@@ -282,10 +287,20 @@ fn write_model<W: Write>(
     out.u32s(&pm.face_ids)
 }
 
-fn write_header<W: Write>(out: &mut Out<'_, W>, m: &Model, a: Attributes) -> io::Result<()> {
+fn write_header<W: Write>(
+    out: &mut Out<'_, W>,
+    m: &Model,
+    a: Attributes,
+    with_origin: bool,
+) -> io::Result<()> {
     out.len(m.name.len())?;
     out.bytes(m.name.as_bytes())?;
     out.f32s(&m.transform.to_cols_array())?;
+    if with_origin {
+        for v in m.origin.to_array() {
+            out.bytes(&v.to_le_bytes())?;
+        }
+    }
     out.f32s(&m.diffuse)?;
     out.u8(m.crease_angle.is_some() as u8)?;
     out.f32s(&[m.crease_angle.unwrap_or(0.0)])?;
@@ -417,6 +432,16 @@ impl<'a> Cursor<'a> {
         }
     }
 
+    /// A finite f64 (a model's origin).
+    fn f64(&mut self, what: &str) -> Parse<f64> {
+        let v = f64::from_le_bytes(self.array(what)?);
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.bad(self.pos - 8, format!("{what} is not a finite number ({v})")))
+        }
+    }
+
     fn vec3(&mut self, what: &str) -> Parse<Vec3> {
         Ok(Vec3::new(self.f32(what)?, self.f32(what)?, self.f32(what)?))
     }
@@ -507,18 +532,19 @@ fn scene(c: &mut Cursor<'_>) -> Parse<ProgressiveScene> {
     }
     c.pos = MAGIC.len();
     let version = c.u32("the format version")?;
-    if version != VERSION {
+    if version != VERSION && version != VERSION_ORIGIN {
         return Err(c.bad(
             MAGIC.len(),
             format!(
-                "format version {version} is not supported (this decimate reads version {VERSION})"
+                "format version {version} is not supported (this decimate reads versions \
+                 {VERSION} and {VERSION_ORIGIN})"
             ),
         ));
     }
     let n = c.count(MIN_MODEL_SIZE, "the model count")?;
     let mut models = Vec::with_capacity(n);
     for i in 0..n {
-        let m = model(c).map_err(|e| Bad {
+        let m = model(c, version == VERSION_ORIGIN).map_err(|e| Bad {
             message: format!("model {i}: {}", e.message),
             ..e
         })?;
@@ -531,9 +557,9 @@ fn scene(c: &mut Cursor<'_>) -> Parse<ProgressiveScene> {
     }
 }
 
-fn model(c: &mut Cursor<'_>) -> Parse<ProgressiveModel> {
+fn model(c: &mut Cursor<'_>, with_origin: bool) -> Parse<ProgressiveModel> {
     let start = c.pos;
-    let (mut base, a, vertices, faces) = header(c)?;
+    let (mut base, a, vertices, faces) = header(c, with_origin)?;
     read_base(c, &mut base, a, vertices, faces)?;
     let splits = read_splits(c, a, vertices, faces)?;
     let vertex_ids = c.list(vertices + splits.len(), 4, "vertex ids", |c| {
@@ -552,7 +578,7 @@ fn model(c: &mut Cursor<'_>) -> Parse<ProgressiveModel> {
 }
 
 /// The model's name, transform and material, its attribute flags and base counts.
-fn header(c: &mut Cursor<'_>) -> Parse<(Model, Attributes, usize, usize)> {
+fn header(c: &mut Cursor<'_>, with_origin: bool) -> Parse<(Model, Attributes, usize, usize)> {
     let name_len = c.count(1, "the name length")?;
     let at = c.pos;
     let name = std::str::from_utf8(c.take(name_len, "the name")?)
@@ -561,6 +587,12 @@ fn header(c: &mut Cursor<'_>) -> Parse<(Model, Attributes, usize, usize)> {
     let mut transform = [0f32; 16];
     for v in &mut transform {
         *v = c.f32("the transform")?;
+    }
+    let mut origin = [0f64; 3];
+    if with_origin {
+        for v in &mut origin {
+            *v = c.f64("the origin")?;
+        }
     }
     let diffuse = c.rgb("the diffuse colour")?;
     let creased = c.flag("the crease flag")?;
@@ -593,6 +625,7 @@ fn header(c: &mut Cursor<'_>) -> Parse<(Model, Attributes, usize, usize)> {
     let model = Model {
         name,
         transform: Mat4::from_cols_array(&transform),
+        origin: glam::DVec3::from(origin),
         diffuse,
         crease_angle: creased.then_some(crease),
         solid,
@@ -754,6 +787,22 @@ mod tests {
         assert_eq!(pm.models.len(), 2);
         let b = bytes(&pm);
         assert_eq!(&b[..8], b"DECIMPM\0");
+        assert_eq!(parse(&b).unwrap_or_else(|e| panic!("{e}")), pm);
+    }
+
+    #[test]
+    fn a_far_origin_is_written_in_version_2_and_read_back_whole() {
+        let near = progressive(vec![shapes::uv_sphere(8, 12)]);
+        assert_eq!(bytes(&near)[8..12], VERSION.to_le_bytes());
+        let mut far = shapes::uv_sphere(8, 12);
+        far.origin = glam::DVec3::new(300000.0, 1200000.0, 51.0);
+        let pm = progressive(vec![far]);
+        assert_eq!(
+            pm.models[0].base.origin,
+            glam::DVec3::new(300000.0, 1200000.0, 51.0)
+        );
+        let b = bytes(&pm);
+        assert_eq!(b[8..12], VERSION_ORIGIN.to_le_bytes());
         assert_eq!(parse(&b).unwrap_or_else(|e| panic!("{e}")), pm);
     }
 

@@ -215,6 +215,7 @@ pub fn build(spec: ShapeSpec<'_>, warnings: &mut Vec<Warning>) -> PResult<Model>
     Ok(Model {
         name,
         transform,
+        origin: glam::DVec3::ZERO,
         positions: vertices.positions,
         triangles,
         colors,

@@ -15,6 +15,8 @@ use std::path::Path;
 
 use glam::{Mat4, Vec3};
 
+use super::origin::Recentre;
+
 use super::shape_to_model::{build, Bind, ShapeSpec};
 use super::source::Input;
 use super::text::shown;
@@ -315,11 +317,26 @@ impl<I: Input> Words<I> {
         let r = self.next()?;
         super::text::number(r.map(|r| &self.input.bytes()[r]), self.line, what)
     }
+
+    /// A vertex coordinate, in f64 (far coordinates keep their digits) but within f32's range.
+    fn coordinate(&mut self, what: &str) -> Result<f64, ParseError> {
+        let r = self.next()?;
+        let word = r.map(|r| &self.input.bytes()[r]);
+        let v = super::text::coordinate(word, self.line, what)?;
+        if (v as f32).is_finite() {
+            Ok(v)
+        } else {
+            Err(ParseError::new(
+                self.line,
+                format!("{what} ({v}) is too large for 32-bit floats"),
+            ))
+        }
+    }
 }
 
 /// Where an ASCII STL's facets go: the ordinary read's models, or tiling's callback.
 trait Solids {
-    fn facet(&mut self, corners: [f32; 9]);
+    fn facet(&mut self, corners: [f64; 9]);
     /// The end of a solid with facets, named `name`, starting on `line`.
     fn end_solid(
         &mut self,
@@ -334,11 +351,15 @@ trait Solids {
 struct Models {
     coords: Vec<f32>,
     models: Vec<Model>,
+    /// The origin, picked from the file's first vertex; all solids share it.
+    recentre: Recentre,
 }
 
 impl Solids for Models {
-    fn facet(&mut self, corners: [f32; 9]) {
-        self.coords.extend(corners);
+    fn facet(&mut self, c: [f64; 9]) {
+        for p in [[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]] {
+            self.coords.extend(self.recentre.relative(p));
+        }
     }
 
     fn end_solid(
@@ -348,7 +369,9 @@ impl Solids for Models {
         warnings: &mut Vec<Warning>,
     ) -> Result<(), ParseError> {
         let coords = std::mem::take(&mut self.coords);
-        self.models.push(model(name, coords, line, warnings)?);
+        let mut m = model(name, coords, line, warnings)?;
+        m.origin = self.recentre.origin();
+        self.models.push(m);
         Ok(())
     }
 }
@@ -357,7 +380,8 @@ impl Solids for Models {
 struct Streamed<'a>(&'a mut dyn FnMut([[f32; 3]; 3]));
 
 impl Solids for Streamed<'_> {
-    fn facet(&mut self, c: [f32; 9]) {
+    fn facet(&mut self, c: [f64; 9]) {
+        let c = c.map(|v| v as f32);
         (self.0)([[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]]);
     }
 
@@ -438,7 +462,7 @@ fn parse_ascii<I: Input>(
 
 /// One facet after its `facet` keyword: normal, `outer loop`, three vertices, `endloop`,
 /// `endfacet`.
-fn read_facet<I: Input>(w: &mut Words<I>) -> Result<[f32; 9], ParseError> {
+fn read_facet<I: Input>(w: &mut Words<I>) -> Result<[f64; 9], ParseError> {
     w.expect("normal")?;
     for what in [
         "the facet normal's x",
@@ -451,13 +475,13 @@ fn read_facet<I: Input>(w: &mut Words<I>) -> Result<[f32; 9], ParseError> {
     w.expect("loop")?;
     let facet_line = w.line;
     let mut corners = 0;
-    let mut out = [0f32; 9];
+    let mut out = [0f64; 9];
     loop {
         match w.next()? {
             Some(v) if w.is(&v, b"vertex") => {
                 for k in 0..3 {
                     let what = ["a vertex's x", "a vertex's y", "a vertex's z"][k];
-                    let value = w.number(what)?;
+                    let value = w.coordinate(what)?;
                     if let Some(o) = out.get_mut(3 * corners + k) {
                         *o = value;
                     }
@@ -509,14 +533,27 @@ pub fn write_stl_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
     w.write_all(&count.to_le_bytes())?;
     let mut rec = [0u8; 50];
     for m in &scene.models {
+        // Binary STL holds f32 only: a far model is written in the file's frame all the
+        // same, rounded as f32 rounds (`losses` says so before writing); its normals come
+        // from the positions relative to its origin, which f32 holds well.
         let world: Vec<Vec3> = m
             .positions
             .iter()
             .map(|&p| m.transform.transform_point3(p))
             .collect();
+        let far = m.origin != glam::DVec3::ZERO;
+        let file_frame = |p: Vec3| {
+            let [x, y, z] = super::origin::coords(m, p).map(|c| c.to_f64() as f32);
+            Vec3::new(x, y, z)
+        };
         for [a, b, c] in super::outward_triangles(m) {
             let [a, b, c] = [a, b, c].map(|i| world.get(i as usize).copied().unwrap_or(Vec3::ZERO));
             let n = (b - a).cross(c - a).normalize_or_zero();
+            let [a, b, c] = if far {
+                [a, b, c].map(file_frame)
+            } else {
+                [a, b, c]
+            };
             for (k, v) in [n, a, b, c].iter().flat_map(|v| v.to_array()).enumerate() {
                 rec[k * 4..k * 4 + 4].copy_from_slice(&v.to_le_bytes());
             }

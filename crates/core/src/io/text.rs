@@ -32,6 +32,15 @@ pub fn parse_f32(bytes: &[u8]) -> Option<f32> {
     s.parse::<f32>().ok()
 }
 
+/// As [`parse_f32`], to an f64: coordinates, which may be far from zero (see `io::origin`).
+pub fn parse_f64(bytes: &[u8]) -> Option<f64> {
+    let s = std::str::from_utf8(bytes).ok()?;
+    if bytes.len() > 2 && bytes[0] == b'0' && matches!(bytes[1], b'x' | b'X') {
+        return parse_int(bytes).map(|v| v as f64);
+    }
+    s.parse::<f64>().ok()
+}
+
 /// Parses an integer token's bytes (decimal with sign, or `0x` hexadecimal); `None` when
 /// malformed or beyond 64 bits.
 pub fn parse_int(bytes: &[u8]) -> Option<i64> {
@@ -232,9 +241,45 @@ pub(crate) fn shown(w: &[u8]) -> String {
 
 /// Parses a finite number or fails naming what it was for.
 pub(crate) fn number(w: Option<&[u8]>, line: usize, what: &str) -> PResult<f32> {
+    finite(w, line, what, parse_f32, f32::is_finite)
+}
+
+/// As [`number`], to an f64: a coordinate, which may be far from zero.
+pub(crate) fn coordinate(w: Option<&[u8]>, line: usize, what: &str) -> PResult<f64> {
+    finite(w, line, what, parse_f64, f64::is_finite)
+}
+
+/// Three coordinates as positions relative to the origin `recentre` picks; one too large for
+/// an f32 even relative to it is an error like any number that is not finite.
+pub(crate) fn relative_point(
+    recentre: &mut super::origin::Recentre,
+    p: [f64; 3],
+    line: usize,
+) -> PResult<[f32; 3]> {
+    let r = recentre.relative(p);
+    if r.iter().all(|c| c.is_finite()) {
+        Ok(r)
+    } else {
+        Err(ParseError::new(
+            line,
+            format!(
+                "a vertex ({} {} {}) is too large for 32-bit floats",
+                p[0], p[1], p[2]
+            ),
+        ))
+    }
+}
+
+fn finite<T: Copy>(
+    w: Option<&[u8]>,
+    line: usize,
+    what: &str,
+    parse: fn(&[u8]) -> Option<T>,
+    is_finite: fn(T) -> bool,
+) -> PResult<T> {
     let w = w.ok_or_else(|| ParseError::new(line, format!("missing {what}")))?;
-    match parse_f32(w) {
-        Some(v) if v.is_finite() => Ok(v),
+    match parse(w) {
+        Some(v) if is_finite(v) => Ok(v),
         Some(_) => Err(ParseError::new(
             line,
             format!("{what} is not a finite number ('{}')", shown(w)),

@@ -118,6 +118,7 @@ impl ProgressiveModel {
         let mut model = Model {
             name: fine.name.clone(),
             transform: fine.transform,
+            origin: fine.origin,
             positions: vec![Vec3::ZERO; n],
             triangles: vec![[0; 3]; fine.triangles.len()],
             colors: None,

@@ -9,7 +9,7 @@
 
 use std::sync::Arc;
 
-use glam::{Mat4, Quat, Vec3};
+use glam::{DVec3, Mat4, Quat, Vec3};
 
 /// A per-vertex or per-face attribute array (colours, normals).
 #[derive(Debug, Clone, PartialEq)]
@@ -50,6 +50,11 @@ pub struct Model {
     pub name: String,
     /// Local-to-world transform accumulated through the scene graph.
     pub transform: Mat4,
+    /// Where the model's frame stands in the file's coordinates, in full precision: a point's
+    /// file coordinates are `origin + transform * position`. Zero unless the file's
+    /// coordinates are far from zero (georeferenced scans, GIS, BIM), where f32 positions
+    /// relative to it keep the precision that f32 file coordinates would lose.
+    pub origin: DVec3,
     /// Vertex positions in the model's local frame.
     pub positions: Vec<Vec3>,
     /// Triangles, counter-clockwise when seen from the front.
@@ -88,6 +93,7 @@ impl Default for Model {
         Self {
             name: String::new(),
             transform: Mat4::IDENTITY,
+            origin: DVec3::ZERO,
             positions: Vec::new(),
             triangles: Vec::new(),
             colors: None,

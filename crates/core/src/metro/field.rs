@@ -106,8 +106,10 @@ impl Soup {
             let first = soup.positions.len() as u32;
             soup.offsets.push(first as usize);
             let m = model.transform.as_dmat4();
+            // In the file's frame, as `Surface::from_scene` puts the original.
+            let o = model.origin;
             (soup.positions)
-                .extend((model.positions.iter()).map(|p| m.transform_point3(p.as_dvec3())));
+                .extend((model.positions.iter()).map(|p| m.transform_point3(p.as_dvec3()) + o));
             let count = model.positions.len() as u32;
             soup.triangles.extend(
                 (model.triangles.iter())
@@ -277,5 +279,20 @@ mod tests {
         let d = &field.distances[0];
         assert!((f64::from(d[1]) - 0.4).abs() < 1e-6, "corner 1: {d:?}");
         assert!(d[3] < 0.2, "the far corner: {d:?}");
+    }
+
+    #[test]
+    fn a_far_model_is_measured_in_its_own_frame() {
+        // Both scenes stand at one far origin: the field is the one at zero.
+        let square = Model {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            origin: DVec3::new(3.0e5, 1.2e6, 50.0),
+            ..Model::default()
+        };
+        let mut lifted = square.clone();
+        lifted.positions.iter_mut().for_each(|p| p.z = 0.25);
+        let field = error_field(&scene(square), &scene(lifted));
+        assert!((field.max - 0.25).abs() < 1e-6, "max {}", field.max);
     }
 }

@@ -57,8 +57,9 @@ pub struct Surface {
 }
 
 impl Surface {
-    /// Flattens every model of `scene` into world space (each model's transform applied, in
-    /// `f64`) and concatenates them.
+    /// Flattens every model of `scene` into world space (each model's transform applied and
+    /// its origin added, in `f64`: the file's own frame, so that two files whose readers
+    /// picked different origins are compared where they stand) and concatenates them.
     pub fn from_scene(scene: &Scene) -> Self {
         let mut positions = Vec::with_capacity(scene.vertex_count());
         let mut triangles = Vec::with_capacity(scene.triangle_count());
@@ -70,7 +71,7 @@ impl Surface {
                 .positions
                 .iter()
                 .map(|p| {
-                    let w = m.transform_point3(p.as_dvec3());
+                    let w = m.transform_point3(p.as_dvec3()) + model.origin;
                     w.is_finite().then(|| weld_id(&mut weld, &mut positions, w))
                 })
                 .collect();

@@ -345,6 +345,15 @@ impl<'s> Builder<'s> {
         if m.transform != Mat4::IDENTITY {
             node["matrix"] = json!(m.transform.to_cols_array().map(f64::from));
         }
+        if m.origin != glam::DVec3::ZERO {
+            // A far model's origin goes in a parent node's translation, which JSON holds in
+            // full; the accessor keeps the f32 positions relative to it (as exporters do).
+            self.nodes.push(node);
+            node = json!({
+                "translation": m.origin.to_array(),
+                "children": [self.nodes.len() - 1],
+            });
+        }
         self.roots.push(self.nodes.len());
         self.nodes.push(node);
     }

@@ -88,7 +88,17 @@ pub fn write_vrml2_to(w: &mut impl Write, scene: &Scene) -> io::Result<()> {
     writeln!(w, "# written by decimate {}", env!("CARGO_PKG_VERSION"))?;
     let mut names = HashSet::new();
     for model in &scene.models {
+        // A far model stands in a Transform that moves it to its origin, written in full.
+        let far = model.origin != glam::DVec3::ZERO;
+        if far {
+            let o = model.origin;
+            writeln!(w, "\nTransform {{\n  translation {} {} {}", o.x, o.y, o.z)?;
+            writeln!(w, "  children [")?;
+        }
         write_model(w, model, &mut names)?;
+        if far {
+            writeln!(w, "  ]\n}}")?;
+        }
     }
     w.flush()
 }
