@@ -10,6 +10,7 @@
 mod collapse_passes;
 mod collapse_plan;
 mod collapser;
+mod distance;
 mod edge_costs;
 mod features;
 mod junction_collapse;
@@ -23,6 +24,7 @@ mod texture_quadrics;
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::distance_bound::DistanceBound;
 use super::layout;
 use super::{Limits, Outcome};
 use crate::mesh::progressive::{ProgressiveModel, Recorder};
@@ -131,7 +133,10 @@ fn run(
         scale_folds: limits.scale_folds,
         seam: &seam,
     };
+    let distance = (limits.max_error.is_finite())
+        .then(|| DistanceBound::new(&positions, &triangles, limits.max_error));
     let mut d = Collapser::new(positions, triangles, colors, normals, constraints);
+    d.distance = distance;
     if let Some(prune) = prune.filter(|_| d.kinds.contains(&Kind::Complex)) {
         if released {
             d.restore(model, order, faces);
