@@ -38,7 +38,10 @@ fn diagonal(m: &Model) -> f64 {
 /// distance within the bound and at least `removed_share` of the vertices gone.
 fn check(what: &str, model: &Model, fraction: f64, removed_share: [f64; 2]) {
     let bound = fraction * diagonal(model);
-    for (algorithm, share) in [Algorithm::Schroeder, Algorithm::Qem].into_iter().zip(removed_share) {
+    for (algorithm, share) in [Algorithm::Schroeder, Algorithm::Qem]
+        .into_iter()
+        .zip(removed_share)
+    {
         let after = bounded(model, algorithm, bound);
         let c = compare_models(model, &after);
         let hausdorff = c.a_to_b.max.max(c.b_to_a.max);

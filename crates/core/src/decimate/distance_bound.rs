@@ -20,8 +20,9 @@ const NONE: u32 = u32::MAX;
 /// between samples (at most a fifth of the bound apart, see [`grid_steps`]).
 const SAMPLE_SHARE: f64 = 0.9;
 
-/// How many times an input triangle across an edge of the surface is cut in four to find
-/// each piece within the bound of one triangle.
+/// An input triangle across an edge of the surface is cut in four until each piece lies
+/// within the bound of one triangle, at most this many times; a piece still across an edge
+/// then needs its corners within `SAMPLE_SHARE` of the bound of some triangle.
 const PIECE_DEPTH: u32 = 3;
 
 /// Most grid steps along a new triangle's longest edge.
@@ -74,8 +75,12 @@ pub(crate) struct DistanceBound {
     gathered: Vec<u32>,
     near: Vec<(u32, [DVec3; 3])>,
     near_input: Vec<u32>,
-    /// Where the change being checked starts in `old`.
+    /// Where the change being checked starts in `old` and in `moves`.
     checking: usize,
+    moves_from: usize,
+    own: Vec<(u32, u32)>,
+    candidates: Vec<[DVec3; 3]>,
+    sorted: Vec<u32>,
 }
 
 impl DistanceBound {
@@ -95,6 +100,10 @@ impl DistanceBound {
             near: Vec::new(),
             near_input: Vec::new(),
             checking: 0,
+            moves_from: 0,
+            own: Vec::new(),
+            candidates: Vec::new(),
+            sorted: Vec::new(),
         }
     }
 
@@ -112,11 +121,16 @@ impl DistanceBound {
         let mut near = near;
         let mut near_read = false;
         let (old_from, moves_from) = (self.old.len(), self.moves.len());
-        self.old.extend_from_slice(old);
-        self.old[old_from..].sort_unstable();
-        let kept = dedup_in_place(&mut self.old[old_from..]);
-        self.old.truncate(old_from + kept);
+        // Each slot once, sorted (near slots are looked up in it).
+        let mut sorted = std::mem::take(&mut self.sorted);
+        sorted.clear();
+        sorted.extend_from_slice(old);
+        sorted.sort_unstable();
+        sorted.dedup();
+        self.old.extend_from_slice(&sorted);
+        self.sorted = sorted;
         self.checking = old_from;
+        self.moves_from = moves_from;
         self.gather(old_from);
         let placed = self.place_gathered(new, &mut near, &mut near_read)
             && self.samples_covered(new, &mut near, &mut near_read);
@@ -252,7 +266,7 @@ impl DistanceBound {
             }
             // Across an edge of the surface: each piece within the bound of one triangle,
             // and the whole listed where its middle is nearest.
-            if !self.covered_in_pieces(&corners, new, PIECE_DEPTH) {
+            if !self.covered_by_pieces(&corners, new) {
                 return false;
             }
             let middle = (corners[0] + corners[1] + corners[2]) / 3.0;
@@ -268,25 +282,23 @@ impl DistanceBound {
         true
     }
 
-    /// Whether every piece of the triangle `corners`, cut in four `depth` times at most,
-    /// lies within the bound of one new or near triangle (at its corners: the distance to
-    /// one triangle is convex).
-    fn covered_in_pieces(&self, corners: &[DVec3; 3], new: &[NewTriangle], depth: u32) -> bool {
-        let bound2 = self.bound * self.bound;
-        let within = |tri: &[DVec3; 3]| {
-            (corners.iter()).all(|&c| point_triangle_distance2(c, tri) <= bound2)
+    /// Whether every piece of the triangle `corners` is covered ([`covered_in_pieces`]) by
+    /// the new and near triangles that come within the bound of its bounding box.
+    fn covered_by_pieces(&mut self, corners: &[DVec3; 3], new: &[NewTriangle]) -> bool {
+        let reach = DVec3::splat(self.bound);
+        let lo = corners[0].min(corners[1]).min(corners[2]) - reach;
+        let hi = corners[0].max(corners[1]).max(corners[2]) + reach;
+        let meets = |t: &[DVec3; 3]| {
+            let (tlo, thi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+            tlo.cmple(hi).all() && thi.cmpge(lo).all()
         };
-        if new.iter().any(|n| within(&n.corners)) || self.near.iter().any(|(_, t)| within(t)) {
-            return true;
-        }
-        if depth == 0 {
-            return false;
-        }
-        let [a, b, c] = *corners;
-        let (ab, bc, ca) = ((a + b) / 2.0, (b + c) / 2.0, (c + a) / 2.0);
-        [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
-            .iter()
-            .all(|piece| self.covered_in_pieces(piece, new, depth - 1))
+        let mut candidates = std::mem::take(&mut self.candidates);
+        candidates.clear();
+        candidates.extend(new.iter().map(|n| n.corners).filter(|t| meets(t)));
+        candidates.extend(self.near.iter().map(|n| n.1).filter(|t| meets(t)));
+        let covered = covered_in_pieces(corners, &candidates, self.bound, PIECE_DEPTH);
+        self.candidates = candidates;
+        covered
     }
 
     /// Output → input: every sample of the new triangles' fresh parts within
@@ -299,8 +311,21 @@ impl DistanceBound {
     ) -> bool {
         let limit = SAMPLE_SHARE * self.bound;
         let limit2 = limit * limit;
+        // The input each new triangle took (this change's moves), looked at first: near it.
+        let mut own = std::mem::take(&mut self.own);
+        own.clear();
+        let moves = &self.moves[self.moves_from..];
+        own.extend(moves.iter().filter_map(|&(t, target)| match target {
+            Target::New(id) => Some((id, t)),
+            Target::Slot(_) => None,
+        }));
+        own.sort_unstable();
         let mut last = NONE;
-        for n in new {
+        let mut covered = true;
+        'triangles: for n in new {
+            let from = own.partition_point(|&(id, _)| id < n.id);
+            let to = own.partition_point(|&(id, _)| id <= n.id);
+            let mine = &own[from..to];
             let steps = grid_steps(&n.corners, self.bound);
             for (i, j) in grid(steps) {
                 let Some(p) = sample(n, steps, i, j) else {
@@ -310,7 +335,9 @@ impl DistanceBound {
                 if last != NONE && within(last) {
                     continue;
                 }
-                let found = self.gathered.iter().copied().find(|&t| within(t));
+                let found = (mine.iter().map(|&(_, t)| t))
+                    .chain(self.gathered.iter().copied())
+                    .find(|&t| within(t));
                 let found = match found {
                     Some(t) => Some(t),
                     None => {
@@ -321,24 +348,44 @@ impl DistanceBound {
                 };
                 match found {
                     Some(t) => last = t,
-                    None => return false,
+                    None => {
+                        covered = false;
+                        break 'triangles;
+                    }
                 }
             }
         }
-        true
+        self.own = own;
+        covered
     }
 }
 
-/// Sorted `list` with repeats moved past the returned count.
-fn dedup_in_place(list: &mut [u32]) -> usize {
-    let mut kept = 0;
-    for i in 0..list.len() {
-        if kept == 0 || list[i] != list[kept - 1] {
-            list[kept] = list[i];
-            kept += 1;
-        }
+/// Whether every piece of the triangle `corners`, cut in four `depth` times at most, lies
+/// within `bound` of one of `triangles` (at its corners: the distance to one triangle is
+/// convex), or, the last cut's pieces, has each corner within `SAMPLE_SHARE` of `bound` of
+/// some triangle.
+fn covered_in_pieces(
+    corners: &[DVec3; 3],
+    triangles: &[[DVec3; 3]],
+    bound: f64,
+    depth: u32,
+) -> bool {
+    let bound2 = bound * bound;
+    let within =
+        |tri: &[DVec3; 3]| (corners.iter()).all(|&c| point_triangle_distance2(c, tri) <= bound2);
+    if triangles.iter().any(within) {
+        return true;
     }
-    kept
+    if depth == 0 {
+        let limit2 = (SAMPLE_SHARE * bound).powi(2);
+        return (corners.iter())
+            .all(|&c| (triangles.iter()).any(|t| point_triangle_distance2(c, t) <= limit2));
+    }
+    let [a, b, c] = *corners;
+    let (ab, bc, ca) = ((a + b) / 2.0, (b + c) / 2.0, (c + a) / 2.0);
+    [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
+        .iter()
+        .all(|piece| covered_in_pieces(piece, triangles, bound, depth - 1))
 }
 
 /// Grid steps along the longest edge of `corners`: samples at most a fifth of `bound`
