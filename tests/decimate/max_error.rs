@@ -66,22 +66,35 @@ fn check(what: &str, model: &Model, fraction: f64, removed_share: [f64; 2]) {
     }
 }
 
+/// The report shapes at a bound of 2 % of the diagonal: the share of vertices each
+/// algorithm removes at least (Schroeder, qem), a little under what it removed.
+const REPORT_SHAPES: [(&str, [f64; 2]); 8] = [
+    ("test001", [0.2, 0.2]),
+    ("test002", [0.6, 0.6]),
+    ("test003", [0.9, 0.9]),
+    ("test004", [0.9, 0.9]),
+    ("test005", [0.5, 0.85]),
+    ("test006", [0.9, 0.9]),
+    ("test007", [0.9, 0.9]),
+    ("test008", [0.9, 0.9]),
+];
+
 #[test]
 fn every_report_shape_stays_within_the_bound() {
-    for model in shapes::all() {
-        let name = model.name.clone();
-        for fraction in [0.002, 0.02] {
-            check(&name, &model, fraction, [0.0, 0.0]);
-        }
+    for (model, (name, share)) in shapes::all().into_iter().zip(REPORT_SHAPES) {
+        assert_eq!(model.name, name);
+        check(name, &model, 0.02, share);
     }
+    // A bound far under the grid's spacing still lets a flat grid go.
+    check("test003", &shapes::test003(), 0.002, [0.9, 0.9]);
 }
 
 #[test]
 fn noisy_grids_and_spheres_stay_within_the_bound() {
-    let mut rng = Rng(0x5eed_0f_e770_u64);
-    for case in 0..8 {
+    let mut rng = Rng(0x5eed_0fe7_70);
+    for case in 0..4 {
         let roughness = [0.001, 0.01][case % 2];
-        let mut model = if case / 2 % 2 == 0 {
+        let mut model = if case / 2 == 0 {
             shapes::test003()
         } else {
             shapes::uv_sphere(10 + rng.below(10) as u32, 12 + rng.below(16) as u32)
@@ -89,17 +102,14 @@ fn noisy_grids_and_spheres_stay_within_the_bound() {
         for p in &mut model.positions {
             *p += Vec3::new(rng.signed(), rng.signed(), rng.signed()) * roughness;
         }
-        let fraction = [0.005, 0.02][case / 4];
-        check(&format!("case {case}"), &model, fraction, [0.0, 0.0]);
+        check(&format!("case {case}"), &model, 0.02, [0.3, 0.7]);
     }
 }
 
 #[test]
 fn a_bumpy_sphere_stays_within_the_bound() {
     let model = shapes::bumpy_sphere(40, 60);
-    for fraction in [0.001, 0.005, 0.02] {
-        check("bumpy sphere", &model, fraction, [0.0, 0.0]);
-    }
+    check("bumpy sphere", &model, 0.005, [0.6, 0.9]);
 }
 
 #[test]
@@ -107,7 +117,6 @@ fn the_bunny_scan_stays_within_the_bound() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/bunny.ply");
     let mut scene = read_scene(&path).expect("assets/bunny.ply").scene;
     let model = scene.models.remove(0);
-    for fraction in [0.0005, 0.002, 0.01] {
-        check("bunny", &model, fraction, [0.0, 0.0]);
-    }
+    check("bunny", &model, 0.002, [0.2, 0.45]);
+    check("bunny", &model, 0.01, [0.6, 0.9]);
 }
