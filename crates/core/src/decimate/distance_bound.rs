@@ -28,6 +28,9 @@ const PIECE_DEPTH: u32 = 3;
 /// Most grid steps along a new triangle's longest edge.
 const MAX_STEPS: usize = 10;
 
+/// Fills in the unchanged slots around a change, each with its corners.
+pub(crate) type Near<'a> = &'a mut dyn FnMut(&mut Vec<(u32, [DVec3; 3])>);
+
 /// A triangle of the surface after a change.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct NewTriangle {
@@ -112,12 +115,7 @@ impl DistanceBound {
     /// corners), asked only when the new triangles alone do not do; a change whose slots
     /// may be taken by another change checked before the commit passes `None`. When true,
     /// the change waits for [`Self::commit`]; when false, nothing is kept.
-    pub fn check(
-        &mut self,
-        old: &[u32],
-        new: &[NewTriangle],
-        near: Option<&mut dyn FnMut(&mut Vec<(u32, [DVec3; 3])>)>,
-    ) -> bool {
+    pub fn check(&mut self, old: &[u32], new: &[NewTriangle], near: Option<Near<'_>>) -> bool {
         let mut near = near;
         let mut near_read = false;
         let (old_from, moves_from) = (self.old.len(), self.moves.len());
@@ -214,11 +212,7 @@ impl DistanceBound {
     }
 
     /// Reads the slots near the change once, with their input triangles.
-    fn read_near(
-        &mut self,
-        near: &mut Option<&mut dyn FnMut(&mut Vec<(u32, [DVec3; 3])>)>,
-        read: &mut bool,
-    ) {
+    fn read_near(&mut self, near: &mut Option<Near<'_>>, read: &mut bool) {
         if *read {
             return;
         }
@@ -247,7 +241,7 @@ impl DistanceBound {
     fn place_gathered(
         &mut self,
         new: &[NewTriangle],
-        near: &mut Option<&mut dyn FnMut(&mut Vec<(u32, [DVec3; 3])>)>,
+        near: &mut Option<Near<'_>>,
         near_read: &mut bool,
     ) -> bool {
         for g in 0..self.gathered.len() {
@@ -306,7 +300,7 @@ impl DistanceBound {
     fn samples_covered(
         &mut self,
         new: &[NewTriangle],
-        near: &mut Option<&mut dyn FnMut(&mut Vec<(u32, [DVec3; 3])>)>,
+        near: &mut Option<Near<'_>>,
         near_read: &mut bool,
     ) -> bool {
         let limit = SAMPLE_SHARE * self.bound;

@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use super::collapse_plan::Plan;
 use super::part::Part;
-use crate::decimate::distance_bound::NewTriangle;
+use crate::decimate::distance_bound::{Near, NewTriangle};
 
 /// A fan triangle after the collapse: its moved corner (0) and the two edges there are new;
 /// the edge between its other corners stays.
@@ -88,8 +88,7 @@ impl Part<'_> {
                 }
             }
         };
-        let near: Option<&mut dyn FnMut(&mut Vec<(u32, [DVec3; 3])>)> =
-            if near { Some(&mut around) } else { None };
+        let near: Option<Near<'_>> = if near { Some(&mut around) } else { None };
         bound.check(&old, &new, near)
     }
 }

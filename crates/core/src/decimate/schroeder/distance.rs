@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use super::{Decimator, Removal};
-use crate::decimate::distance_bound::NewTriangle;
+use crate::decimate::distance_bound::{Near, NewTriangle};
 
 /// Rings longer than this mark every fill edge new rather than look each one up.
 const LOOKED_UP: usize = 64;
@@ -17,7 +17,7 @@ impl Decimator {
     /// a seam's first side: the second's may take them). When true, the next `apply`
     /// records it.
     pub(super) fn within_distance(&mut self, removal: Removal<'_>, near: bool) -> bool {
-        let Decimator {
+        let Self {
             distance,
             positions,
             conn,
@@ -62,8 +62,7 @@ impl Decimator {
                 }
             }
         };
-        let near: Option<&mut dyn FnMut(&mut Vec<(u32, [DVec3; 3])>)> =
-            if near { Some(&mut around) } else { None };
+        let near: Option<Near<'_>> = if near { Some(&mut around) } else { None };
         let within = bound.check(removal.triangles, &new, near);
         if !within {
             bound.discard();
