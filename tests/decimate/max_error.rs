@@ -91,7 +91,7 @@ fn every_report_shape_stays_within_the_bound() {
 
 #[test]
 fn noisy_grids_and_spheres_stay_within_the_bound() {
-    let mut rng = Rng(0x5eed_0fe7);
+    let mut rng = Rng(0x5e_ed0f_e770);
     for case in 0..4 {
         let roughness = [0.001, 0.01][case % 2];
         let mut model = if case / 2 == 0 {
