@@ -320,8 +320,9 @@ static OPTIONS: &[OptionSpec] = &[
         names: &["--max-error"],
         shown: Some("--max-error E[%]"),
         help: &[
-            "never remove a vertex whose error exceeds E model units",
-            "(or E percent of the model's bounding-box diagonal)",
+            "keep the output within E model units of the input (or E percent of",
+            "the bounding-box diagonal): metro's Hausdorff distance, the larger of",
+            "input->output and output->input, stays at most E (both algorithms)",
         ],
         section: Section::NoGui,
         apply: Apply::Value(|p, _, v| {

@@ -12,6 +12,7 @@ mod closed_shapes;
 mod creases;
 mod features;
 mod folds;
+mod max_error;
 mod nonmanifold;
 mod null_edges;
 mod open_borders;

@@ -5,6 +5,7 @@
 
 mod candidates;
 pub(crate) mod closed;
+mod distance_bound;
 pub(crate) mod hanging_sheets;
 pub(crate) mod layout;
 pub mod levels;

@@ -244,7 +244,7 @@ fn collapse_pass(
     limit: Limit,
     tally: &mut Tally,
 ) -> bool {
-    let in_regions = regions[0].count() > 1 && d.recorder.is_none();
+    let in_regions = regions[0].count() > 1 && d.recorder.is_none() && d.distance.is_none();
     let mut rest = candidates;
     while in_regions && !rest.is_empty() {
         let over = d.conn.triangle_count().saturating_sub(limit.keep_triangles);
@@ -424,7 +424,8 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
     let fits = plan.is_some() && room >= removes && !(drops && d.recorder.is_some());
     let legal =
         fits && welded && plan.is_some_and(|p| d.is_collapse_legal(&p) && twin_is_legal(d, &p));
-    let Some(plan) = plan.filter(|p| legal && p.error2 <= bounds.bound2) else {
+    let Some(plan) = plan.filter(|p| legal && p.error2 <= bounds.bound2 && d.within_distance(p))
+    else {
         // The cost weighs area and colour, not just the error: an edge over the bound is
         // skipped like an illegal one, until its neighbourhood changes.
         block(d, v, w, plan.and_then(|p| p.twin));
@@ -435,6 +436,7 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
         };
     };
     collapse_with_sides(d, &plan);
+    d.commit_distance();
     Attempt::Collapsed(removes, plan.error2)
 }
 

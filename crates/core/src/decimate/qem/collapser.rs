@@ -14,6 +14,7 @@ use super::planes::{self, Constraints};
 use super::quadric::Quadric;
 use super::texture_quadrics::{texture_quadrics, TextureQuadrics};
 use crate::decimate::closed::{ClosedView, ClosedVolumes};
+use crate::decimate::distance_bound::DistanceBound;
 use crate::decimate::layout::{compact, Compacted};
 use crate::mesh::progressive::Recorder;
 use crate::mesh::topology::{split_mut, Connectivity};
@@ -67,6 +68,9 @@ pub(super) struct Collapser {
     features: Vec<u32>,
     /// The cosine of the feature angle.
     cos_feature: f64,
+    /// Under `--max-error`, the input each slot stands for: collapses then run on the
+    /// whole mesh only (`decimate::distance_bound`).
+    pub distance: Option<DistanceBound>,
 }
 
 impl Collapser {
@@ -129,6 +133,7 @@ impl Collapser {
             input_surface,
             features: Vec::new(),
             cos_feature,
+            distance: None,
         }
     }
 
@@ -231,6 +236,7 @@ impl Collapser {
             features: &self.features,
             cos_feature: self.cos_feature,
             closed: ClosedView::Whole(&mut self.closed),
+            distance: self.distance.as_mut(),
             scratch: CollapseLists::default(),
         }
     }
@@ -290,6 +296,7 @@ impl Collapser {
                     features,
                     cos_feature,
                     closed: ClosedView::Part(closed, Default::default()),
+                    distance: None,
                     scratch: CollapseLists::default(),
                 })
             })

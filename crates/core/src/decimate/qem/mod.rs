@@ -10,6 +10,7 @@
 mod collapse_passes;
 mod collapse_plan;
 mod collapser;
+mod distance;
 mod edge_costs;
 mod features;
 mod junction_collapse;
@@ -23,6 +24,7 @@ mod texture_quadrics;
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::distance_bound::DistanceBound;
 use super::layout;
 use super::{Limits, Outcome};
 use crate::mesh::progressive::{ProgressiveModel, Recorder};
@@ -132,6 +134,9 @@ fn run(
         scale_folds: limits.scale_folds,
         seam: &seam,
     };
+    // The distance tracker reads the input's triangles before the connectivity takes them.
+    let distance = (limits.max_error.is_finite())
+        .then(|| DistanceBound::new(&positions, &triangles, limits.max_error));
     // Kinds first: a mesh that gets pruned starts again, and would throw the rest of the
     // setup (closed volumes, input surface, cost cache) away.
     let conn = Connectivity::from_triangles(positions.len(), triangles);
@@ -141,7 +146,7 @@ fn run(
             layout::restore(model, &positions, &conn, order, faces);
         }
         if let Some(unused) = prune(model) {
-            drop((conn, start));
+            drop((conn, start, distance));
             let limits = Limits {
                 remove: limits.remove.saturating_sub(unused),
                 ..limits.clone()
@@ -151,6 +156,7 @@ fn run(
         released = layout::release(model, &loaded);
     }
     let mut d = Collapser::connected(positions, conn, start, colors, normals, cos_feature);
+    d.distance = distance;
     d.texcoords = model
         .texcoords
         .as_ref()

@@ -14,6 +14,7 @@ use super::edge_costs::EdgeCosts;
 use super::features;
 use super::quadric::{Quadric, TextureQuadric};
 use crate::decimate::closed::ClosedView;
+use crate::decimate::distance_bound::DistanceBound;
 use crate::mesh::progressive::{CollapseRecord, Recorder};
 use crate::mesh::topology::{Adjacency, ConnectivityPart, FanTriangle, Ring, RingShape};
 
@@ -112,6 +113,9 @@ pub(super) struct Part<'a> {
     pub cos_feature: f64,
     /// Closed components' volumes (see `decimate::closed`).
     pub closed: ClosedView<'a>,
+    /// Under `--max-error`, the input each slot stands for (`decimate::distance_bound`;
+    /// the whole only: a run with it collapses on the whole mesh).
+    pub distance: Option<&'a mut DistanceBound>,
     pub scratch: CollapseLists,
 }
 

@@ -39,6 +39,7 @@
 //! loop's splitting more, bounded by the valence cap of `mesh::topology`), a pass O(n) to
 //! select its candidates, and a scan takes a dozen or so passes.
 
+mod distance;
 mod input_surface;
 pub(crate) mod loop_split;
 mod loosen;
@@ -53,6 +54,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::closed::{tet6, ClosedVolumes};
+use super::distance_bound::DistanceBound;
 use super::layout::{self, compact, Compacted};
 use super::{Limits, Outcome, MIN_VERTICES};
 use crate::mesh::classify::VertexClass;
@@ -108,7 +110,10 @@ pub fn decimate_model(
     let seamed_closed = (!twins.is_empty() || !copies.is_empty())
         .then(|| ClosedVolumes::with_seams(&positions, &triangles, &twins, &copies));
     let facing = crate::mesh::seams::junction_normals(&positions, &triangles, &copies);
+    let distance = (limits.max_error.is_finite())
+        .then(|| DistanceBound::new(&positions, &triangles, limits.max_error));
     let mut d = Decimator::new(positions, triangles, limits.feature_angle_deg);
+    d.distance = distance;
     d.unfold = sheets::any_non_manifold_edge(&d.conn, d.positions.len());
     d.facing = facing;
     if let Some(closed) = seamed_closed {
@@ -259,6 +264,11 @@ struct Decimator {
     batch: u32,
     /// Closed components' volumes: no removal turns one inside out or flattens it.
     closed: ClosedVolumes,
+    /// Under `--max-error`, the input each slot stands for (`decimate::distance_bound`):
+    /// removals then run on the whole mesh only.
+    distance: Option<DistanceBound>,
+    /// The slots the last removal's fill took.
+    added: Vec<u32>,
     /// The pass ends one triangle over a triangle count, so that the next can take only
     /// border vertices (`removal_passes`).
     end_one_over: bool,
@@ -302,6 +312,8 @@ impl Decimator {
             touched_in: vec![0; n],
             batch: 1,
             end_one_over: false,
+            distance: None,
+            added: Vec::new(),
         }
     }
 
@@ -479,13 +491,19 @@ impl Decimator {
             self.conn.remove_triangle(t);
         }
         debug_assert_eq!(removal.fill.len(), removal.fill_input.len());
+        let mut added = std::mem::take(&mut self.added);
+        added.clear();
         for (&tri, &input) in removal.fill.iter().zip(removal.fill_input) {
-            let t = self.conn.add_triangle(tri) as usize;
+            let t = self.conn.add_triangle(tri);
+            added.push(t);
+            let t = t as usize;
             if t >= self.input.len() {
                 self.input.resize(t + 1, Vec3::ZERO);
             }
             self.input[t] = input;
         }
+        self.commit_distance(&added);
+        self.added = added;
         self.mark_changed(v);
         for &u in removal.ring {
             let acc = &mut self.accumulated[u as usize];
@@ -534,7 +552,8 @@ impl Decimator {
     fn try_remove(&mut self, v: u32, key: f64) -> bool {
         let mut planning = std::mem::take(&mut self.planning);
         let planned = self.surface().plan_removal(v, &mut planning).is_some()
-            && self.keeps_closed_volume(v, removal_of(&planning));
+            && self.keeps_closed_volume(v, removal_of(&planning))
+            && self.within_distance(removal_of(&planning), true);
         if planned {
             self.apply(v, removal_of(&planning), key);
         }
@@ -551,7 +570,12 @@ impl Decimator {
         let mut second = std::mem::take(&mut self.twin_planning);
         let key = self
             .plan_twins(v, w, &mut first, &mut second)
-            .map(|(key_v, key_w)| key.max(key_v).max(key_w));
+            .map(|(key_v, key_w)| key.max(key_v).max(key_w))
+            .filter(|_| {
+                // In the order `apply` makes them; neither side's input may go near it.
+                self.within_distance(removal_of(&second), false)
+                    && self.within_distance(removal_of(&first), false)
+            });
         if let Some(key) = key {
             self.apply(w, removal_of(&second), key);
             self.apply(v, removal_of(&first), key);

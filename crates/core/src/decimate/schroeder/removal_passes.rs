@@ -216,7 +216,7 @@ fn remove_pass(
     outcome: &mut Outcome,
     progress: &mut dyn FnMut(usize),
 ) -> bool {
-    let in_regions = regions[0].count() > 1;
+    let in_regions = regions[0].count() > 1 && d.distance.is_none();
     let mut rest = candidates;
     while in_regions && !rest.is_empty() {
         let size = round_size(
@@ -356,7 +356,10 @@ fn remove_planned(
                 let stale = removal.ring.iter().any(|&u| d.touched_now(u));
                 if stale {
                     d.try_remove(v, key)
-                } else if fills && d.keeps_closed_volume(v, removal) {
+                } else if fills
+                    && d.keeps_closed_volume(v, removal)
+                    && d.within_distance(removal, true)
+                {
                     d.apply(v, removal, key);
                     true
                 } else {
