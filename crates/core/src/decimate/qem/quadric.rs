@@ -152,11 +152,12 @@ impl<const N: usize> AttributeQuadric<N> {
         let inverse = gram.inverse();
         let mut q = Self::default();
         q.maps.area = area;
-        for j in 0..N {
+        let [s0, s1, s2] = s;
+        for (j, ((x0, x1), x2)) in s0.into_iter().zip(s1).zip(s2).enumerate() {
             // g in the triangle's plane with g·e1 = ds1, g·e2 = ds2.
-            let ab = inverse * DVec2::new(s[1][j] - s[0][j], s[2][j] - s[0][j]);
+            let ab = inverse * DVec2::new(x1 - x0, x2 - x0);
             let g = ab.x * e1 + ab.y * e2;
-            let d = s[0][j] - g.dot(p[0]);
+            let d = x0 - g.dot(p[0]);
             let n = g.length();
             if n > 0.0 {
                 // The map's square as a plane's: area·|g|²·(ĝ·p + d/|g|)².
