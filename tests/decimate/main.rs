@@ -9,6 +9,7 @@ mod support;
 
 mod cancel;
 mod closed_shapes;
+mod colours;
 mod creases;
 mod features;
 mod folds;

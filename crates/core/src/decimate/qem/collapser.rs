@@ -12,7 +12,7 @@ use super::part::{CollapseLists, Part};
 #[cfg(test)]
 use super::planes::{self, Constraints};
 use super::quadric::Quadric;
-use super::texture_quadrics::{texture_quadrics, TextureQuadrics};
+use super::texture_quadrics::{colour_quadrics, texture_quadrics, ColourQuadrics, TextureQuadrics};
 use crate::decimate::closed::{ClosedView, ClosedVolumes};
 use crate::decimate::distance_bound::DistanceBound;
 use crate::decimate::layout::{compact, Compacted};
@@ -35,6 +35,9 @@ pub(super) struct Collapser {
     /// The texture's part of every vertex's error, with the texture coordinates' scale to
     /// model units (see [`Self::weigh_texture`]).
     texture: Option<TextureQuadrics>,
+    /// The colours' part of every vertex's error, with the colours' scale to model units
+    /// (see [`Self::weigh_texture`]).
+    colour: Option<ColourQuadrics>,
     /// Planned cost of every edge, per half-edge slot.
     costs: EdgeCosts,
     /// Each vertex's cheapest unblocked edge: the other end (`u32::MAX`: none) and its cost.
@@ -121,6 +124,7 @@ impl Collapser {
             normals,
             texcoords: None,
             texture: None,
+            colour: None,
             best: vec![u32::MAX; n],
             best_cost: vec![f32::INFINITY; n],
             has_blocked: vec![false; n],
@@ -165,13 +169,18 @@ impl Collapser {
         Self::new(positions, loaded.triangles(model), None, None, constraints)
     }
 
-    /// Weighs the texture into every collapse's cost and placement (Hoppe's quadric, see
-    /// `TextureQuadric`), when there are texture coordinates with an area in the texture.
+    /// Weighs the texture and the colours into every collapse's cost and placement (Hoppe's
+    /// quadric, see `AttributeQuadric`), when there are texture coordinates with an area in
+    /// the texture, or per-vertex colours.
     pub fn weigh_texture(&mut self) {
         self.texture = self
             .texcoords
             .as_deref()
             .and_then(|t| texture_quadrics(&self.conn, &self.positions, t, &self.kinds));
+        self.colour = self
+            .colors
+            .as_deref()
+            .and_then(|c| colour_quadrics(&self.conn, &self.positions, c, &self.kinds));
     }
 
     /// Anchors the flagged vertices: they never move nor go, but may take in neighbours
@@ -211,6 +220,7 @@ impl Collapser {
     /// Everything, as one part (it records collapses when there is a recorder).
     pub fn whole(&mut self) -> Part<'_> {
         let texture_scale = self.texture.as_ref().map_or(1.0, |t| t.scale);
+        let colour_scale = self.colour.as_ref().map_or(1.0, |c| c.scale);
         Part {
             v0: 0,
             whole: true,
@@ -223,6 +233,8 @@ impl Collapser {
             texcoords: self.texcoords.as_deref_mut(),
             texture_quadrics: self.texture.as_mut().map(|t| &mut t.quadrics[..]),
             texture_scale,
+            colour_quadrics: self.colour.as_mut().map(|c| &mut c.quadrics[..]),
+            colour_scale,
             costs: &self.costs,
             best: &mut self.best,
             best_cost: &mut self.best_cost,
@@ -252,6 +264,9 @@ impl Collapser {
         let texture_scale = self.texture.as_ref().map_or(1.0, |t| t.scale);
         let texture_quadrics = self.texture.as_mut().map(|t| &mut t.quadrics[..]);
         let mut texture_quadrics = split_attribute(texture_quadrics, &vs).into_iter();
+        let colour_scale = self.colour.as_ref().map_or(1.0, |c| c.scale);
+        let colour_quadrics = self.colour.as_mut().map(|c| &mut c.quadrics[..]);
+        let mut colour_quadrics = split_attribute(colour_quadrics, &vs).into_iter();
         let mut positions = split_mut(&mut self.positions, &vs).into_iter();
         let mut kinds = split_mut(&mut self.kinds, &vs).into_iter();
         let mut quadrics = split_mut(&mut self.quadrics, &vs).into_iter();
@@ -283,6 +298,8 @@ impl Collapser {
                     texcoords: texcoords.next()?,
                     texture_quadrics: texture_quadrics.next()?,
                     texture_scale,
+                    colour_quadrics: colour_quadrics.next()?,
+                    colour_scale,
                     costs,
                     best: best.next()?,
                     best_cost: best_cost.next()?,

@@ -12,7 +12,7 @@ use glam::{DVec2, DVec3, Vec3};
 use super::collapse_plan::{others, Kind, Plan};
 use super::edge_costs::EdgeCosts;
 use super::features;
-use super::quadric::{Quadric, TextureQuadric};
+use super::quadric::{ColourQuadric, Quadric, TextureQuadric};
 use crate::decimate::closed::ClosedView;
 use crate::decimate::distance_bound::DistanceBound;
 use crate::mesh::progressive::{CollapseRecord, Recorder};
@@ -29,6 +29,10 @@ const NORMAL_WEIGHT: f64 = 0.001;
 /// Weight of the texture's error (the area × squared distance the image slides over the
 /// surface, `TextureQuadric`) against the geometric error's 1 (docs/design.md#qem-texture-weight).
 const TEXTURE_WEIGHT: f64 = 0.1;
+
+/// Weight of the colours' error (the area × squared colour step, scaled to model units by
+/// `texture_quadrics`) against the geometric error's 1 (docs/design.md#qem-colour-weight).
+const COLOUR_WEIGHT: f64 = 0.03;
 
 /// Lists a collapse and its checks fill, kept from one collapse to the next.
 #[derive(Debug, Default)]
@@ -87,6 +91,10 @@ pub(super) struct Part<'a> {
     /// coordinates' scale to the model units it is in.
     pub texture_quadrics: Option<&'a mut [TextureQuadric]>,
     pub texture_scale: f64,
+    /// The colours' part of each vertex's error (per-vertex colours), and the colours'
+    /// scale to the model units it is in.
+    pub colour_quadrics: Option<&'a mut [ColourQuadric]>,
+    pub colour_scale: f64,
     /// Planned cost of every edge, per half-edge slot (the whole mesh's: entries are
     /// atomics, and a part writes only its own slots).
     pub costs: &'a EdgeCosts,
@@ -222,6 +230,9 @@ impl Part<'_> {
             if let Some(t) = self.texture_quadrics.as_deref() {
                 crate::mesh::prefetch_all(&t[i]);
             }
+            if let Some(c) = self.colour_quadrics.as_deref() {
+                crate::mesh::prefetch_all(&c[i]);
+            }
             crate::mesh::prefetch(&self.positions[i]);
             crate::mesh::prefetch(&self.best[i]);
             crate::mesh::prefetch(&self.kinds[i]);
@@ -348,10 +359,22 @@ impl Part<'_> {
                 placed.add(&other.at_best_coordinates(TEXTURE_WEIGHT));
             }
         }
+        // Colours too (each side's on a seam), at their best at the placement.
+        let colour = self.colour_quadrics.as_deref().map(|c| {
+            let side = |r: u32, k: u32| c[self.at(r)].sum(&c[self.at(k)]);
+            (side(remove, keep), twin.map(|[r2, k2]| side(r2, k2)))
+        });
+        let mut placing = placed;
+        if let Some((side, other)) = &colour {
+            placing.add(&side.at_best_coordinates(COLOUR_WEIGHT));
+            if let Some(other) = other {
+                placing.add(&other.at_best_coordinates(COLOUR_WEIGHT));
+            }
+        }
         let position = if on_crease {
-            along_crease(&placed, pr, pk)
+            along_crease(&placing, pr, pk)
         } else if free {
-            self.place(&placed, pr, pk)
+            self.place(&placing, pr, pk)
         } else {
             pk
         };
@@ -366,11 +389,17 @@ impl Part<'_> {
             // geometric error alone).
             cost = cost.max(placed.eval(position));
             if ka == Kind::Interior && kb == Kind::Interior {
-                let best = side.best_coordinates(position) / self.texture_scale;
+                let best = DVec2::from(side.best_coordinates(position)) / self.texture_scale;
                 texcoords = Some(best.as_vec2().to_array());
             } else {
                 let ends = ([remove, keep], twin, pr, pk);
                 self.add_outline_texture_cost(&mut cost, position, ends, side, other.as_ref());
+            }
+        }
+        if let Some((side, other)) = &colour {
+            cost += COLOUR_WEIGHT * self.colour_error(side, [remove, keep], position);
+            if let (Some(other), Some(ends)) = (other, twin) {
+                cost += COLOUR_WEIGHT * self.colour_error(other, ends, position);
             }
         }
         cost += self.attribute_cost([remove, keep], twin, q.area, (pk - pr).length_squared());
@@ -431,7 +460,7 @@ impl Part<'_> {
         let s = f64::from(fraction(position, pr, pk));
         let along = |r: u32, k: u32| {
             let [r, k] = [r, k].map(|v| DVec2::from(t[self.at(v)].map(f64::from)));
-            (k + s * (r - k)) * self.texture_scale
+            ((k + s * (r - k)) * self.texture_scale).to_array()
         };
         *cost += TEXTURE_WEIGHT * side.excess(position, along(remove, keep));
         if let (Some(other), Some([r2, k2])) = (other, twin) {
@@ -439,8 +468,40 @@ impl Part<'_> {
         }
     }
 
+    /// The colour the kept vertex of the collapse `[remove, keep]` takes at `position`, in
+    /// colour units (`side`: the two ends' colour quadrics summed): its own where it stays,
+    /// otherwise the best of the input surface it stands for there, within the range of the
+    /// channel (0 to 1, or wider where an end's colour is).
+    fn colour_at(
+        &self,
+        side: &ColourQuadric,
+        [remove, keep]: [u32; 2],
+        position: DVec3,
+    ) -> [f32; 3] {
+        let Some(c) = self.colors.as_deref() else {
+            return [0.0; 3];
+        };
+        let (r, k) = (c[self.at(remove)], c[self.at(keep)]);
+        if position == self.position(keep) {
+            return k;
+        }
+        let best = side.best_coordinates(position);
+        std::array::from_fn(|j| {
+            let (lo, hi) = (r[j].min(k[j]).min(0.0), r[j].max(k[j]).max(1.0));
+            ((best[j] / self.colour_scale) as f32).clamp(lo, hi)
+        })
+    }
+
+    /// The colours' error of the collapse `ends` with the kept vertex at `position` and the
+    /// colour [`Self::colour_at`] gives it: `E(p, s)` of its quadric `side`.
+    fn colour_error(&self, side: &ColourQuadric, ends: [u32; 2], position: DVec3) -> f64 {
+        let colour = self.colour_at(side, ends, position);
+        let scaled = colour.map(|x| f64::from(x) * self.colour_scale);
+        side.at_best_coordinates(1.0).eval(position) + side.excess(position, scaled)
+    }
+
     /// What the attribute steps along a collapse's edge (and its seam twin's) add to its
-    /// cost: a colour step costs as if it moved the surface by that fraction of the edge
+    /// cost, where no quadric prices them: a colour step costs as if it moved the surface by that fraction of the edge
     /// (of the quadric's `area`, the edge `edge2` long squared; see the module doc), a
     /// normal step the same, weighted. 0 without colours or normals.
     #[inline(always)]
@@ -451,7 +512,8 @@ impl Part<'_> {
         area: f64,
         edge2: f64,
     ) -> f64 {
-        let (colors, normals) = (self.colors.as_deref(), self.normals.as_deref());
+        let colors = (self.colors.as_deref()).filter(|_| self.colour_quadrics.is_none());
+        let normals = self.normals.as_deref();
         if colors.is_none() && normals.is_none() {
             return 0.0;
         }
@@ -724,8 +786,12 @@ impl Part<'_> {
         let colors_before = self.colors.as_deref().map(|c| (c[k], c[r]));
         let normals_before = self.normals.as_deref().map(|n| (n[k], n[r]));
         let texcoords_before = self.texcoords.as_deref().map(|t| (t[k], t[r]));
+        let colour = (self.colour_quadrics.as_deref()).map(|q| {
+            let side = q[r].sum(&q[k]);
+            self.colour_at(&side, [plan.remove, plan.keep], plan.position)
+        });
         if let Some(c) = self.colors.as_deref_mut() {
-            c[k] = lerp(c[r], c[k]);
+            c[k] = colour.unwrap_or_else(|| lerp(c[r], c[k]));
         }
         if let Some(n) = self.normals.as_deref_mut() {
             n[k] = Vec3::from_array(lerp(n[r], n[k]))
@@ -779,6 +845,10 @@ impl Part<'_> {
         if let Some(t) = self.texture_quadrics.as_deref_mut() {
             let q = t[r];
             t[k].add(&q);
+        }
+        if let Some(c) = self.colour_quadrics.as_deref_mut() {
+            let q = c[r];
+            c[k].add(&q);
         }
         self.kinds[r] = Kind::Fixed;
         self.settle_complex(plan);

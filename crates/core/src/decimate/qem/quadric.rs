@@ -103,28 +103,44 @@ impl Quadric {
     }
 }
 
-/// The texture's part of a vertex's error (H. Hoppe, "New Quadric Metric for Simplifying
-/// Meshes with Appearance Attributes", IEEE Visualization 1999): each triangle's texture
-/// coordinates define an affine map `s(p) = g·p + d` over its plane (one per channel, u and
-/// v). A vertex at `p` with coordinates `s` is off the maps of the triangles it stands for by
-/// `E(p, s) = Σ area·|g·p + d − s|²`; the sums kept here give `E` for any `p` and `s`, and
-/// the best `s` at `p` (the area-weighted mean of the maps). The coordinates are in model
-/// units (scaled by the caller), so that `E` is the area × squared distance the texture
-/// slides over the surface, in the units of the geometric quadric. 152 bytes a vertex, on
-/// textured models only.
-#[derive(Debug, Clone, Copy, Default)]
-pub(super) struct TextureQuadric {
-    /// `Σ area·|g·p + d|²` over both channels, as a quadric in `p`, with `Σ area`.
+/// The attributes' part of a vertex's error (H. Hoppe, "New Quadric Metric for Simplifying
+/// Meshes with Appearance Attributes", IEEE Visualization 1999), for `N` channels: texture
+/// coordinates (u, v) or a colour (r, g, b). Each triangle's values define an affine map
+/// `s(p) = g·p + d` over its plane, one per channel. A vertex at `p` with values `s` is off
+/// the maps of the triangles it stands for by `E(p, s) = Σ area·|g·p + d − s|²`; the sums
+/// kept here give `E` for any `p` and `s`, and the best `s` at `p` (the area-weighted mean
+/// of the maps). The values are in model units (scaled by the caller), so that `E` is in the
+/// units of the geometric quadric. 88 + 32·N bytes a vertex, on models with the attribute
+/// only.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct AttributeQuadric<const N: usize> {
+    /// `Σ area·|g·p + d|²` over the channels, as a quadric in `p`, with `Σ area`.
     maps: Quadric,
     /// `Σ area·g` and `Σ area·d`, per channel.
-    g: [DVec3; 2],
-    d: [f64; 2],
+    g: [DVec3; N],
+    d: [f64; N],
 }
 
-impl TextureQuadric {
-    /// The maps of the triangle `p` with coordinates `s` (model units), weighted by its
-    /// area; `None` when the triangle has no area.
-    pub fn face(p: [DVec3; 3], s: [DVec2; 3]) -> Option<Self> {
+/// Texture coordinates' quadric: u and v.
+pub(super) type TextureQuadric = AttributeQuadric<2>;
+
+/// A colour's quadric: r, g and b.
+pub(super) type ColourQuadric = AttributeQuadric<3>;
+
+impl<const N: usize> Default for AttributeQuadric<N> {
+    fn default() -> Self {
+        Self {
+            maps: Quadric::default(),
+            g: [DVec3::ZERO; N],
+            d: [0.0; N],
+        }
+    }
+}
+
+impl<const N: usize> AttributeQuadric<N> {
+    /// The maps of the triangle `p` with values `s` (model units), weighted by its area;
+    /// `None` when the triangle has no area.
+    pub fn face(p: [DVec3; 3], s: [[f64; N]; 3]) -> Option<Self> {
         let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
         let gram = DMat2::from_cols_array(&[e1.dot(e1), e1.dot(e2), e1.dot(e2), e2.dot(e2)]);
         let det = gram.determinant();
@@ -134,14 +150,14 @@ impl TextureQuadric {
         }
         let area = 0.5 * det.sqrt();
         let inverse = gram.inverse();
-        let (ds1, ds2) = (s[1] - s[0], s[2] - s[0]);
         let mut q = Self::default();
         q.maps.area = area;
-        for (j, (x1, x2)) in [(ds1.x, ds2.x), (ds1.y, ds2.y)].into_iter().enumerate() {
+        let [s0, s1, s2] = s;
+        for (j, ((x0, x1), x2)) in s0.into_iter().zip(s1).zip(s2).enumerate() {
             // g in the triangle's plane with g·e1 = ds1, g·e2 = ds2.
-            let ab = inverse * DVec2::new(x1, x2);
+            let ab = inverse * DVec2::new(x1 - x0, x2 - x0);
             let g = ab.x * e1 + ab.y * e2;
-            let d = s[0][j] - g.dot(p[0]);
+            let d = x0 - g.dot(p[0]);
             let n = g.length();
             if n > 0.0 {
                 // The map's square as a plane's: area·|g|²·(ĝ·p + d/|g|)².
@@ -165,7 +181,7 @@ impl TextureQuadric {
     #[inline]
     pub fn add(&mut self, o: &Self) {
         self.maps.add(&o.maps);
-        for j in 0..2 {
+        for j in 0..N {
             self.g[j] += o.g[j];
             self.d[j] += o.d[j];
         }
@@ -187,32 +203,39 @@ impl TextureQuadric {
             return q;
         }
         let w = 1.0 / m.area;
-        let [g0, g1] = self.g;
-        let outer = |i: usize, k: usize| g0[i] * g0[k] + g1[i] * g1[k];
+        let (g, d) = (&self.g, &self.d);
+        let outer = |i: usize, k: usize| g.iter().map(|g| g[i] * g[k]).sum::<f64>();
         let pairs = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
         for (a, (i, k)) in q.a.iter_mut().zip(pairs) {
             *a = weight * (m.a[a_index(i, k)] - w * outer(i, k));
         }
         for (i, b) in q.b.iter_mut().enumerate() {
-            *b = weight * (m.b[i] - w * (g0[i] * self.d[0] + g1[i] * self.d[1]));
+            let gd = g.iter().zip(d).map(|(g, d)| g[i] * d).sum::<f64>();
+            *b = weight * (m.b[i] - w * gd);
         }
-        q.c = weight * (m.c - w * (self.d[0] * self.d[0] + self.d[1] * self.d[1]));
+        q.c = weight * (m.c - w * d.iter().map(|d| d * d).sum::<f64>());
         q
     }
 
-    /// The best coordinates at `p`: the area-weighted mean of the triangles' maps there.
-    pub fn best_coordinates(&self, p: DVec3) -> DVec2 {
+    /// The best values at `p`: the area-weighted mean of the triangles' maps there.
+    pub fn best_coordinates(&self, p: DVec3) -> [f64; N] {
         let w = 1.0 / self.maps.area.max(f64::MIN_POSITIVE);
-        DVec2::new(self.g[0].dot(p) + self.d[0], self.g[1].dot(p) + self.d[1]) * w
+        std::array::from_fn(|j| (self.g[j].dot(p) + self.d[j]) * w)
     }
 
-    /// How much `E(p, s)` exceeds `E` at the best coordinates (see
-    /// [`Self::at_best_coordinates`]), for the coordinates `s`.
-    pub fn excess(&self, p: DVec3, s: DVec2) -> f64 {
+    /// How much `E(p, s)` exceeds `E` at the best values (see
+    /// [`Self::at_best_coordinates`]), for the values `s`.
+    pub fn excess(&self, p: DVec3, s: [f64; N]) -> f64 {
         if self.maps.area <= 0.0 {
             return 0.0;
         }
-        (self.best_coordinates(p) - s).length_squared() * self.maps.area
+        let best = self.best_coordinates(p);
+        let d2 = best
+            .iter()
+            .zip(&s)
+            .map(|(b, s)| (b - s) * (b - s))
+            .sum::<f64>();
+        d2 * self.maps.area
     }
 }
 
@@ -265,7 +288,7 @@ mod tests {
         for i in 0..ring.len() {
             let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
             let p = [centre, lift(a.0, a.1), lift(b.0, b.1)];
-            if let Some(f) = TextureQuadric::face(p, p.map(map)) {
+            if let Some(f) = TextureQuadric::face(p, p.map(|q| map(q).to_array())) {
                 t.add(&f);
             }
         }
@@ -273,10 +296,10 @@ mod tests {
         let q = t.at_best_coordinates(1.0);
         for p in [lift(0.5, -0.4), lift(-3.0, 2.0)] {
             assert!(q.eval(p) < 1e-9, "{}", q.eval(p));
-            assert!((t.best_coordinates(p) - map(p)).length() < 1e-9);
+            assert!((DVec2::from(t.best_coordinates(p)) - map(p)).length() < 1e-9);
             // Other coordinates cost area × distance².
             let off = map(p) + DVec2::new(0.1, 0.0);
-            assert!((t.excess(p, off) - 0.01 * t.maps.area).abs() < 1e-9);
+            assert!((t.excess(p, off.to_array()) - 0.01 * t.maps.area).abs() < 1e-9);
         }
         // Off the plane the map still holds: a texture alone does not hold the surface.
         assert!(q.eval(centre + DVec3::Z) >= 0.0);
@@ -291,7 +314,7 @@ mod tests {
         let right = [p(0.0, 0.0), p(0.0, 1.0), p(1.0, 0.5)];
         let mut t = TextureQuadric::default();
         for tri in [left, right] {
-            let s = tri.map(|q| uv(q.x, q.y));
+            let s = tri.map(|q| uv(q.x, q.y).to_array());
             if let Some(f) = TextureQuadric::face(tri, s) {
                 t.add(&f);
             }
@@ -302,6 +325,6 @@ mod tests {
         let off = q.eval(p(1.0, 0.3));
         // Best u = 1.5 (equal areas), each map 0.5 off: 0.5 × (0.25 + 0.25).
         assert!((off - 0.25).abs() < 1e-9, "{off}");
-        assert!((t.best_coordinates(p(1.0, 0.3)).x - 1.5).abs() < 1e-12);
+        assert!((t.best_coordinates(p(1.0, 0.3))[0] - 1.5).abs() < 1e-12);
     }
 }
