@@ -7,8 +7,8 @@
 //! another); spheres cut into random texture charts stay closed and manifold once welded.
 
 use decimate_core::decimate::{simplify_scene, Algorithm, Params, Target};
-use decimate_core::mesh::{measure, shapes, Model, Scene};
-use glam::Vec3;
+use decimate_core::mesh::{measure, shapes, Attribute, Model, Scene};
+use glam::{Mat4, Vec3};
 
 use crate::support::check;
 use crate::support::plain_files::{round_trip, Format};
@@ -35,24 +35,18 @@ struct Tally {
 
 impl Tally {
     /// Every check of one decimated model: indices, the geometry against the input, and
-    /// the model written as OBJ and PLY and read back by the tests' own reader.
-    /// Folds are not counted on a `crumpled` input.
+    /// the model written as OBJ and PLY and read back by the tests' own reader. Folds are
+    /// not counted on a `crumpled` input.
     fn model(&mut self, what: &str, before: &Model, after: &Model, crumpled: bool) {
+        self.geometry(what, before, after, crumpled);
         let written = Scene {
             models: vec![after.clone()],
         };
-        self.scene(what, before, after, &written, crumpled);
+        self.written(what, &written);
     }
 
-    /// As `model`, writing `written` (a scene holding `after`) for the round trip.
-    fn scene(
-        &mut self,
-        what: &str,
-        before: &Model,
-        after: &Model,
-        written: &Scene,
-        crumpled: bool,
-    ) {
+    /// Indices and the geometry of `after` against `before`.
+    fn geometry(&mut self, what: &str, before: &Model, after: &Model, crumpled: bool) {
         if let Err(e) = check::index_range(after) {
             panic!("{what}: {e}");
         }
@@ -64,6 +58,7 @@ impl Tally {
                 found.folds, 0,
                 "{what}: triangles turned from the input: {found:?}"
             );
+            self.triangles += found.triangles_checked;
         }
         assert_eq!(
             found.inverted, 0,
@@ -73,17 +68,18 @@ impl Tally {
             found.farthest <= FARTHEST,
             "{what}: a vertex moved off: {found:?}"
         );
+        self.cases += 1;
+        self.closed += found.closed_checked;
+    }
+
+    /// `scene` written as OBJ and as PLY and read back by the tests' own reader.
+    fn written(&mut self, what: &str, scene: &Scene) {
         for format in [Format::Obj, Format::Ply] {
-            if let Err(e) = round_trip(written, format) {
+            if let Err(e) = round_trip(scene, format) {
                 panic!("{what}: {e}");
             }
             self.round_trips += 1;
         }
-        self.cases += 1;
-        if !crumpled {
-            self.triangles += found.triangles_checked;
-        }
-        self.closed += found.closed_checked;
     }
 }
 
@@ -184,6 +180,7 @@ fn noisy_grids_and_spheres_keep_every_invariant() {
 #[test]
 fn random_triangle_soups_never_panic_or_get_worse() {
     let mut rng = Rng(0x0123_4567_89ab_cdef);
+    let mut tally = Tally::default();
     for case in 0..2000 {
         let n = 4 + rng.below(40) as usize;
         // Few distinct positions (on a coarse lattice): coincident and collinear points.
@@ -205,6 +202,7 @@ fn random_triangle_soups_never_panic_or_get_worse() {
             ..Model::default()
         };
         let before = measure::edge_counts(&model);
+        let input = model.clone();
         let target = random_target(&mut rng, n);
         let algorithm = ALGORITHMS[case % 2];
         let after = run(model, target, 30.0, algorithm);
@@ -222,7 +220,103 @@ fn random_triangle_soups_never_panic_or_get_worse() {
             e.non_manifold + e.misoriented <= before.non_manifold + before.misoriented,
             "{what}: {e:?} vs {before:?}"
         );
+        // qem's optimum on a soup's crossing parts may lie well off the input, never
+        // beyond the model's size.
+        let found = check::geometry(&input, &after);
+        assert!(
+            found.farthest <= 1.0,
+            "{what}: a vertex moved off: {found:?}"
+        );
+        let written = Scene {
+            models: vec![after],
+        };
+        tally.written(&what, &written);
     }
+    assert_eq!(tally.round_trips, 4000);
+}
+
+/// A placement of a model: none, moved, mirrored, or turned, scaled and moved.
+fn placement(case: usize) -> Mat4 {
+    match case % 4 {
+        0 => Mat4::IDENTITY,
+        1 => Mat4::from_translation(Vec3::new(3.0, -1.0, 0.5)),
+        2 => Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0)),
+        _ => Mat4::from_scale_rotation_translation(
+            Vec3::splat(2.5),
+            glam::Quat::from_rotation_y(0.7),
+            Vec3::new(0.0, 4.0, 0.0),
+        ),
+    }
+}
+
+/// Cases of the test below where qem, led by the colours, turns a sphere's triangle inward
+/// (`qem_with_colours_turns_no_triangle_of_a_sphere_inward`, ignored until fixed): folds
+/// are not counted there.
+const KNOWN_COLOUR_FOLDS: [usize; 1] = [71];
+
+/// Case `case`'s two models: a sphere and a grid, each placed, coloured in most cases
+/// (some colours past 1, which a PLY clamps), the sphere alone in the others (a PLY then has
+/// none); and the share of vertices to remove.
+fn two_placed_models(rng: &mut Rng, case: usize) -> (Vec<Model>, Target) {
+    let sphere = shapes::uv_sphere(6 + rng.below(8) as u32, 8 + rng.below(12) as u32);
+    let mut models = vec![sphere, shapes::test003()];
+    for (k, m) in models.iter_mut().enumerate() {
+        m.transform = placement(case + k);
+        if case % 3 != 0 || k == 0 {
+            let colors = (0..m.positions.len())
+                .map(|_| [0; 3].map(|_| 0.6 + 0.6 * rng.signed()))
+                .collect();
+            m.colors = Some(Attribute::PerVertex(colors));
+        }
+    }
+    (models, Target::RemovePercent(rng.below(91) as f64))
+}
+
+/// The seed of the test below.
+const TWO_MODELS: u64 = 0x7a3c_11f0_5eed_0042;
+
+#[test]
+fn random_scenes_of_two_placed_models_read_back_point_for_point() {
+    let mut rng = Rng(TWO_MODELS);
+    let mut tally = Tally::default();
+    for case in 0..80 {
+        let (models, target) = two_placed_models(&mut rng, case);
+        let before = models.clone();
+        let mut scene = Scene { models };
+        let algorithm = ALGORITHMS[case % 2];
+        let params = Params {
+            target,
+            algorithm,
+            ..Params::default()
+        };
+        simplify_scene(&mut scene, &params, &mut |_| {});
+        let what = format!("case {case}: {algorithm:?}, {target:?}");
+        assert_eq!(scene.models.len(), 2, "{what}: a model dropped");
+        for (b, a) in before.iter().zip(&scene.models) {
+            tally.geometry(&what, b, a, KNOWN_COLOUR_FOLDS.contains(&case));
+        }
+        tally.written(&what, &scene);
+    }
+    assert_eq!(
+        (tally.cases, tally.round_trips, tally.closed),
+        (160, 160, 80),
+        "{tally:?}"
+    );
+    assert!(tally.triangles > 5_000, "{tally:?}");
+}
+
+#[test]
+#[ignore = "qem turns one triangle of this coloured sphere inward: found by the test above"]
+fn qem_with_colours_turns_no_triangle_of_a_sphere_inward() {
+    let mut rng = Rng(TWO_MODELS);
+    let case = KNOWN_COLOUR_FOLDS[0];
+    for earlier in 0..case {
+        two_placed_models(&mut rng, earlier);
+    }
+    let (mut models, target) = two_placed_models(&mut rng, case);
+    let sphere = models.swap_remove(0);
+    let after = run(sphere.clone(), target, 30.0, Algorithm::Qem);
+    assert_eq!(check::geometry(&sphere, &after).folds, 0);
 }
 
 /// A bumpy sphere cut into texture charts by two random planes through it (up to four

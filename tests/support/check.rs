@@ -60,6 +60,12 @@ pub fn geometry(before: &Model, after: &Model) -> Findings {
             .map(|n| n.dot(cross.normalize()))
             .fold(f64::NEG_INFINITY, f64::max);
         if facing < -1e-9 {
+            if std::env::var("CHECK_DEBUG").is_ok() {
+                eprintln!(
+                    "fold {t:?} {a} {b} {c} facing {facing} normal {}",
+                    cross.normalize()
+                );
+            }
             found.folds += 1;
         }
     }
@@ -284,6 +290,19 @@ impl TriangleGrid {
 /// plane: corner, edge or inside).
 pub fn point_triangle_distance(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
     let (ab, ac, ap) = (b - a, c - a, p - a);
+    if ab.cross(ac).length_squared() <= f64::EPSILON * ab.length_squared() * ac.length_squared() {
+        // Degenerate (a segment or a point): the nearest of its sides.
+        let side = |x: DVec3, y: DVec3| {
+            let d = y - x;
+            let t = if d.length_squared() > 0.0 {
+                ((p - x).dot(d) / d.length_squared()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (p - (x + t * d)).length()
+        };
+        return side(a, b).min(side(b, c)).min(side(c, a));
+    }
     let (d1, d2) = (ab.dot(ap), ac.dot(ap));
     if d1 <= 0.0 && d2 <= 0.0 {
         return ap.length();
@@ -314,10 +333,6 @@ pub fn point_triangle_distance(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
         return (p - (b + w * (c - b))).length();
     }
     let sum = va + vb + vc;
-    if sum == 0.0 || !sum.is_finite() {
-        // Degenerate: the nearest of its corners.
-        return ap.length().min(bp.length()).min(cp.length());
-    }
     let (v, w) = (vb / sum, vc / sum);
     (p - (a + ab * v + ac * w)).length()
 }
