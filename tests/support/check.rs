@@ -26,6 +26,12 @@ pub struct Findings {
     pub farthest: f64,
 }
 
+/// Triangle `t`'s unit normal (none for a degenerate one).
+fn normal(m: &Model, t: u32) -> Option<DVec3> {
+    let [a, b, c] = m.triangles[t as usize].map(|v| m.positions[v as usize].as_dvec3());
+    (b - a).cross(c - a).try_normalize()
+}
+
 /// Output triangles referring to a point that does not exist, as a message (none: `Ok`).
 pub fn index_range(m: &Model) -> Result<(), String> {
     let n = m.positions.len();
@@ -54,18 +60,17 @@ pub fn geometry(before: &Model, after: &Model) -> Findings {
             continue;
         }
         found.triangles_checked += 1;
-        let facing = grid
-            .nearest(before, (a + b + c) / 3.0, 1e-3 * diag)
+        // The input surface the triangle stands for: the input triangles nearest its
+        // centre and nearest each of its corners (where a shape cut down to a few vertices
+        // has triangles far inside, the centre's alone would say little).
+        let unit = cross.normalize();
+        let facing = [(a + b + c) / 3.0, a, b, c]
             .into_iter()
-            .map(|n| n.dot(cross.normalize()))
+            .flat_map(|p| grid.near(before, p, 1e-3 * diag))
+            .filter_map(|(_, i)| normal(before, i))
+            .map(|n| n.dot(unit))
             .fold(f64::NEG_INFINITY, f64::max);
         if facing < -1e-9 {
-            if std::env::var("CHECK_DEBUG").is_ok() {
-                eprintln!(
-                    "fold {t:?} {a} {b} {c} facing {facing} normal {}",
-                    cross.normalize()
-                );
-            }
             found.folds += 1;
         }
     }
@@ -266,18 +271,6 @@ impl TriangleGrid {
         let best = found.iter().map(|f| f.0).fold(f64::INFINITY, f64::min);
         found.retain(|f| f.0 <= best + slack);
         found
-    }
-
-    /// The unit normals of the input triangles within `slack` of the nearest to `p`
-    /// (degenerate ones left out).
-    fn nearest(&self, m: &Model, p: DVec3, slack: f64) -> Vec<DVec3> {
-        self.near(m, p, slack)
-            .into_iter()
-            .filter_map(|(_, t)| {
-                let [a, b, c] = m.triangles[t as usize].map(|v| m.positions[v as usize].as_dvec3());
-                (b - a).cross(c - a).try_normalize()
-            })
-            .collect()
     }
 
     /// The distance from `p` to the input surface.

@@ -234,7 +234,10 @@ pub fn compare(read: &Plain, want: &Plain) -> Result<(), String> {
             want.points.len()
         ));
     }
-    if let Some(i) = (0..want.points.len()).find(|&i| read.points[i] != want.points[i]) {
+    let same = |a: &[f32; 3], b: &[f32; 3]| {
+        (0..3).all(|k| a[k] == b[k] || (a[k].is_nan() && b[k].is_nan()))
+    };
+    if let Some(i) = (0..want.points.len()).find(|&i| !same(&read.points[i], &want.points[i])) {
         return Err(format!(
             "point {i}: {:?}, not {:?}",
             read.points[i], want.points[i]
