@@ -32,7 +32,7 @@ use crate::support::plain_files::{round_trip, Format};
 use crate::support::rng::Rng;
 
 /// Mutants per seed file in the default run.
-const MUTANTS: usize = 40;
+const MUTANTS: usize = 16;
 
 /// Tokens a damaged or hostile file might hold where a number or keyword was.
 const TOKENS: &[&str] = &[
