@@ -319,6 +319,48 @@ fn qem_with_colours_turns_no_triangle_of_a_sphere_inward() {
     assert_eq!(check::geometry(&sphere, &after).folds, 0);
 }
 
+/// Output triangles of a height field's decimation that face down: seen from above, each
+/// covers ground another one covers too (the sheet folded over).
+fn facing_down(m: &Model) -> usize {
+    let p = |v: u32| m.positions[v as usize];
+    m.triangles
+        .iter()
+        .filter(|t| (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0])).z < 0.0)
+        .count()
+}
+
+#[test]
+fn height_fields_stay_height_fields() {
+    // Gentle hills under noise: every input triangle faces up, and a decimation that
+    // follows the surface keeps them all facing up — one that faces down has turned over.
+    let mut rng = Rng(0x4e1d_f1e1_d5ee_d000);
+    let mut tally = Tally::default();
+    for case in 0..60 {
+        let n = 8 + rng.below(16) as u32;
+        let noise = [0.0, 0.05, 0.1][case % 3];
+        let (kx, ky) = (
+            0.1 + 0.3 * rng.signed().abs(),
+            0.1 + 0.3 * rng.signed().abs(),
+        );
+        let heights: Vec<f32> = (0..(n + 1) * (n + 1))
+            .map(|i| {
+                let (x, y) = ((i % (n + 1)) as f32, (i / (n + 1)) as f32);
+                (kx * x).sin() + (ky * y).cos() + noise * rng.signed()
+            })
+            .collect();
+        let before = shapes::height_grid(n, |x, y| heights[(y * (n + 1) + x) as usize]);
+        assert_eq!(facing_down(&before), 0);
+        let target = random_target(&mut rng, before.positions.len());
+        let algorithm = ALGORITHMS[case % 2];
+        let after = run(before.clone(), target, 30.0, algorithm);
+        let what = format!("case {case}: {algorithm:?}, noise {noise}, {target:?}");
+        assert_eq!(facing_down(&after), 0, "{what}: a triangle faces down");
+        tally.model(&what, &before, &after, false);
+    }
+    assert_eq!(tally.cases, 60, "{tally:?}");
+    assert!(tally.triangles > 5_000, "{tally:?}");
+}
+
 /// A bumpy sphere cut into texture charts by two random planes through it (up to four
 /// charts; where three or four meet, a junction), as an OBJ whose corners take their
 /// chart's coordinates: the reader splits every vertex on a chart border into one per side.

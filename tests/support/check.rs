@@ -200,7 +200,9 @@ impl TriangleGrid {
         if !diag.is_finite() || diag <= 0.0 {
             return None;
         }
-        let per_axis = (m.triangles.len() as f64).cbrt().clamp(1.0, 32.0);
+        // A surface fills about the square of the cells along an axis: a few triangles
+        // a cell.
+        let per_axis = (m.triangles.len() as f64).sqrt().clamp(1.0, 48.0);
         let cell = diag / per_axis;
         let dims = ((hi - lo) / cell)
             .ceil()
@@ -242,9 +244,10 @@ impl TriangleGrid {
         let mut seen = std::collections::HashSet::new();
         let reach = self.dims.iter().max().copied().unwrap_or(1);
         for r in 0..=reach {
-            for x in centre[0] - r..=centre[0] + r {
-                for y in centre[1] - r..=centre[1] + r {
-                    for z in centre[2] - r..=centre[2] + r {
+            let span = |k: usize| (centre[k] - r).max(0)..=(centre[k] + r).min(self.dims[k] - 1);
+            for x in span(0) {
+                for y in span(1) {
+                    for z in span(2) {
                         let shell = [x - centre[0], y - centre[1], z - centre[2]]
                             .iter()
                             .any(|d| d.abs() == r);
