@@ -262,7 +262,7 @@ fn two_placed_models(rng: &mut Rng, case: usize) -> (Vec<Model>, Target) {
     let mut models = vec![sphere, shapes::test003()];
     for (k, m) in models.iter_mut().enumerate() {
         m.transform = placement(case + k);
-        if case % 3 != 0 || k == 0 {
+        if !case.is_multiple_of(3) || k == 0 {
             let colors = (0..m.positions.len())
                 .map(|_| [0; 3].map(|_| 0.6 + 0.6 * rng.signed()))
                 .collect();

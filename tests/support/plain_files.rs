@@ -78,28 +78,7 @@ pub fn read_ply(bytes: &[u8]) -> Result<Plain, String> {
         .ok_or("no end_header")?;
     let header = std::str::from_utf8(&bytes[..at]).map_err(|e| e.to_string())?;
     let mut body = &bytes[at + end.len()..];
-    let (mut vertices, mut faces) = (0usize, 0usize);
-    let mut properties: Vec<String> = Vec::new();
-    let mut element = "";
-    for line in header.lines() {
-        let words: Vec<&str> = line.split_whitespace().collect();
-        match words[..] {
-            ["element", "vertex", n] => {
-                vertices = n.parse().map_err(|_| format!("count {n}"))?;
-                element = "vertex";
-            }
-            ["element", "face", n] => {
-                faces = n.parse().map_err(|_| format!("count {n}"))?;
-                element = "face";
-            }
-            ["property", kind, name] if element == "vertex" => {
-                properties.push(format!("{kind} {name}"));
-            }
-            ["property", "list", "uchar", "int", "vertex_indices"] if element == "face" => {}
-            ["ply"] | ["format", "binary_little_endian", "1.0"] | ["comment", ..] => {}
-            _ => return Err(format!("header line {line:?}")),
-        }
-    }
+    let (vertices, faces, properties) = ply_header(header)?;
     let mut take = |n: usize| -> Result<&[u8], String> {
         if body.len() < n {
             return Err("the file ends early".into());
@@ -164,6 +143,33 @@ pub fn read_ply(bytes: &[u8]) -> Result<Plain, String> {
 pub enum Format {
     Obj,
     Ply,
+}
+
+/// A PLY header's vertex and face counts and vertex properties ("float x", ...).
+fn ply_header(header: &str) -> Result<(usize, usize, Vec<String>), String> {
+    let (mut vertices, mut faces) = (0usize, 0usize);
+    let mut properties: Vec<String> = Vec::new();
+    let mut element = "";
+    for line in header.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words[..] {
+            ["element", "vertex", n] => {
+                vertices = n.parse().map_err(|_| format!("count {n}"))?;
+                element = "vertex";
+            }
+            ["element", "face", n] => {
+                faces = n.parse().map_err(|_| format!("count {n}"))?;
+                element = "face";
+            }
+            ["property", kind, name] if element == "vertex" => {
+                properties.push(format!("{kind} {name}"));
+            }
+            ["property", "list", "uchar", "int", "vertex_indices"] if element == "face" => {}
+            ["ply"] | ["format", "binary_little_endian", "1.0"] | ["comment", ..] => {}
+            _ => return Err(format!("header line {line:?}")),
+        }
+    }
+    Ok((vertices, faces, properties))
 }
 
 /// What a writer should have written for `scene`: the points with each model's transform
