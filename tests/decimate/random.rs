@@ -361,6 +361,32 @@ fn height_fields_stay_height_fields() {
     assert!(tally.triangles > 5_000, "{tally:?}");
 }
 
+#[test]
+fn boxes_keep_every_triangle_facing_their_surface() {
+    // At a box's corners and edges the input surface under a collapse faces several ways
+    // at once: there the flip tests alone keep triangles from turning over.
+    let mut rng = Rng(0xb0c5_b0c5_1234_abcd);
+    let mut tally = Tally::default();
+    for case in 0..60 {
+        let mut before = shapes::cube(2 + rng.below(6) as u32, 1.0);
+        let scale = Vec3::new(1.0, 0.2 + rng.signed().abs(), 0.05 + rng.signed().abs());
+        for p in &mut before.positions {
+            *p = *p * scale + Vec3::new(rng.signed(), rng.signed(), rng.signed()) * 0.002;
+        }
+        let target = random_target(&mut rng, before.positions.len());
+        let angle = [30.0, 180.0][case % 2];
+        let algorithm = ALGORITHMS[case / 2 % 2];
+        let after = run(before.clone(), target, angle, algorithm);
+        let what = format!("case {case}: {algorithm:?}, {target:?}, angle {angle}");
+        if after.triangles.is_empty() {
+            continue;
+        }
+        tally.model(&what, &before, &after, false);
+    }
+    assert!(tally.cases > 50 && tally.closed > 50, "{tally:?}");
+    assert!(tally.triangles > 1_000, "{tally:?}");
+}
+
 /// A bumpy sphere cut into texture charts by two random planes through it (up to four
 /// charts; where three or four meet, a junction), as an OBJ whose corners take their
 /// chart's coordinates: the reader splits every vertex on a chart border into one per side.
