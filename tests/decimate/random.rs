@@ -1,10 +1,15 @@
 //! Decimation of many random meshes by both algorithms, deterministic by seed (a fuzz
-//! target in test form): noisy grids and spheres at every roughness keep every invariant at
-//! any target; random triangle soups — duplicated, degenerate, non-manifold, inconsistently
-//! oriented — never panic and never get worse: no more defective (non-manifold or
-//! misoriented) edges than before, no index out of range (a three-triangle edge that loses
-//! one triangle may become a two-triangle edge of one direction: one defect traded for
-//! another); spheres cut into random texture charts stay closed and manifold once welded.
+//! target in test form): noisy grids and spheres, boxes, height fields and scenes of two
+//! placed, coloured models keep every invariant at any target — indices in range, no
+//! triangle turned from the input surface, closed parts keeping their volume's sign,
+//! vertices near the input (`support::check`), counts never past the target and exactly on
+//! it where reachable — and read back point for point through the tests' own OBJ and PLY
+//! reader (`support::plain_files`); random triangle soups — duplicated, degenerate,
+//! non-manifold, inconsistently oriented — never panic and never get worse: no more
+//! defective (non-manifold or misoriented) edges than before (a three-triangle edge that
+//! loses one triangle may become a two-triangle edge of one direction: one defect traded
+//! for another); spheres cut into random texture charts stay closed and manifold once
+//! welded. Each test counts the cases it really checked.
 
 use decimate_core::decimate::{simplify_scene, Algorithm, Params, Target};
 use decimate_core::mesh::{measure, shapes, Attribute, Model, Scene};
