@@ -2,22 +2,11 @@
 //! q with a decimated viewport unsaved asks first (y answers); F3 twice writes two files,
 //! the second numbered, never over the first; the start prints one line, not the usage.
 
-use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
-use super::xvfb::{display_or_skip, hold_x_connection, read_log, run, scratch, start_traced};
-
-/// Waits up to `timeout` for `what` in the viewer's log.
-fn logged(log: &Path, what: &str, timeout: Duration) -> bool {
-    let start = Instant::now();
-    while start.elapsed() < timeout {
-        if std::fs::read_to_string(log).is_ok_and(|t| t.contains(what)) {
-            return true;
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    }
-    false
-}
+use super::xvfb::{
+    display_or_skip, hold_x_connection, logged, read_log, run, scratch, start_traced,
+};
 
 fn still_running(viewer: &mut super::xvfb::Viewer) -> bool {
     matches!(viewer.0.try_wait(), Ok(None))

@@ -2,22 +2,11 @@
 //! there (not in viewport 1's corner, where it used to be), and F3 saves viewport 2 at the
 //! level it was dragged to.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use super::xvfb::{
-    display_or_skip, drag_with, hold_x_connection, read_log, run, scratch, start_traced,
+    display_or_skip, drag_with, hold_x_connection, logged, read_log, run, scratch, start_traced,
 };
-
-fn logged(log: &std::path::Path, what: &str, timeout: Duration) -> bool {
-    let start = Instant::now();
-    while start.elapsed() < timeout {
-        if std::fs::read_to_string(log).is_ok_and(|t| t.contains(what)) {
-            return true;
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    }
-    false
-}
 
 #[test]
 fn the_slider_of_viewport_2_is_dragged_inside_viewport_2() {

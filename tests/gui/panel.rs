@@ -4,20 +4,11 @@
 //! cube's 90 % count. Positions: the window is 1024 wide, viewport 2 starts at x 513, and
 //! the panel's rows are 21 px apart from y 22 (text at its unscaled size at 720 px high).
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
-use super::xvfb::{display_or_skip, hold_x_connection, read_log, run, scratch, start_traced};
-
-fn logged(log: &std::path::Path, what: &str, timeout: Duration) -> bool {
-    let start = Instant::now();
-    while start.elapsed() < timeout {
-        if std::fs::read_to_string(log).is_ok_and(|t| t.contains(what)) {
-            return true;
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    }
-    false
-}
+use super::xvfb::{
+    display_or_skip, hold_x_connection, logged, read_log, run, scratch, start_traced,
+};
 
 #[test]
 fn the_panel_of_viewport_2_decimates_viewport_2_with_the_algorithm_picked() {

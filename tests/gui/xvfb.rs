@@ -299,6 +299,18 @@ fn spawn_viewer(dir: &Path, args: &[&str], trace: bool, log: &Path) -> Viewer {
 
 /// Starts the viewer as `decimate ARGS` in `dir` with its trace going to `log` (see
 /// [`spawn_viewer`]), and waits up to 60 s for its window: the viewer and the window's id.
+/// Waits up to `timeout` for `what` in the viewer's log.
+pub(crate) fn logged(log: &Path, what: &str, timeout: Duration) -> bool {
+    let start = Instant::now();
+    while start.elapsed() < timeout {
+        if std::fs::read_to_string(log).is_ok_and(|t| t.contains(what)) {
+            return true;
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    false
+}
+
 pub(crate) fn start_traced(dir: &Path, args: &[&str], log: &Path) -> (Viewer, String) {
     let mut viewer = spawn_viewer(dir, args, true, log);
     let wid = window_of(&mut viewer, log, Duration::from_secs(60))

@@ -359,22 +359,16 @@ impl Part<'_> {
                 placed.add(&other.at_best_coordinates(TEXTURE_WEIGHT));
             }
         }
-        // Colours too (each side's on a seam), at their best at the placement.
+        // Colours price the collapse but do not move the point: pulled by a colour field, a
+        // coarse sphere's vertex left its surface and turned a triangle over.
         let colour = self.colour_quadrics.as_deref().map(|c| {
             let side = |r: u32, k: u32| c[self.at(r)].sum(&c[self.at(k)]);
             (side(remove, keep), twin.map(|[r2, k2]| side(r2, k2)))
         });
-        let mut placing = placed;
-        if let Some((side, other)) = &colour {
-            placing.add(&side.at_best_coordinates(COLOUR_WEIGHT));
-            if let Some(other) = other {
-                placing.add(&other.at_best_coordinates(COLOUR_WEIGHT));
-            }
-        }
         let position = if on_crease {
-            along_crease(&placing, pr, pk)
+            along_crease(&placed, pr, pk)
         } else if free {
-            self.place(&placing, pr, pk)
+            self.place(&placed, pr, pk)
         } else {
             pk
         };
