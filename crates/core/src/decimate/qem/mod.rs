@@ -7,10 +7,10 @@
 //! collapse in passes (`collapse_passes`; `legality` checks, `part` performs) → compact back
 //! into the model. Error, attributes, seams and pins: docs/design.md#qem.
 
+mod collapse_distance;
 mod collapse_passes;
 mod collapse_plan;
 mod collapser;
-mod distance;
 mod edge_costs;
 mod features;
 mod junction_collapse;

@@ -39,12 +39,12 @@
 //! loop's splitting more, bounded by the valence cap of `mesh::topology`), a pass O(n) to
 //! select its candidates, and a scan takes a dozen or so passes.
 
-mod distance;
 mod input_surface;
 pub(crate) mod loop_split;
 mod loosen;
 mod plan;
 mod region_removal;
+mod removal_distance;
 mod removal_passes;
 mod sheets;
 
