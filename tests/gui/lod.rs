@@ -4,9 +4,7 @@
 
 use std::time::Duration;
 
-use super::xvfb::{
-    display_or_skip, drag_with, hold_x_connection, logged, read_log, run, scratch, start_traced,
-};
+use super::xvfb::{display_or_skip, drag_with, hold_x_connection, logged, read_log, run};
 
 #[test]
 fn the_slider_of_viewport_2_is_dragged_inside_viewport_2() {
@@ -15,14 +13,7 @@ fn the_slider_of_viewport_2_is_dragged_inside_viewport_2() {
     }
     let _window = super::ONE_WINDOW.lock();
     let _held = hold_x_connection(Duration::from_secs(20));
-    let dir = scratch("gui_lod");
-    super::xvfb::write_cube(&dir.join("cube.wrl"));
-    let log = dir.join("viewer.log");
-    let (viewer, wid) = start_traced(&dir, &["cube.wrl"], &log);
-    std::thread::sleep(Duration::from_secs(2));
-    let _ = std::process::Command::new("xdotool")
-        .args(["windowfocus", "--sync", &wid])
-        .status();
+    let (dir, log, viewer, wid) = super::xvfb::start_cube_focused("gui_lod");
     let key = |k: &str| run("xdotool", &["key", "--window", &wid, k]);
     // a: viewport 2 (the right half, from x 513), current; L: its slider.
     key("a");

@@ -6,9 +6,7 @@
 
 use std::time::Duration;
 
-use super::xvfb::{
-    display_or_skip, hold_x_connection, logged, read_log, run, scratch, start_traced,
-};
+use super::xvfb::{display_or_skip, hold_x_connection, logged, read_log, run};
 
 #[test]
 fn the_panel_of_viewport_2_decimates_viewport_2_with_the_algorithm_picked() {
@@ -17,14 +15,7 @@ fn the_panel_of_viewport_2_decimates_viewport_2_with_the_algorithm_picked() {
     }
     let _window = super::ONE_WINDOW.lock();
     let _held = hold_x_connection(Duration::from_secs(20));
-    let dir = scratch("gui_panel");
-    super::xvfb::write_cube(&dir.join("cube.wrl"));
-    let log = dir.join("viewer.log");
-    let (viewer, wid) = start_traced(&dir, &["cube.wrl"], &log);
-    std::thread::sleep(Duration::from_secs(2));
-    let _ = std::process::Command::new("xdotool")
-        .args(["windowfocus", "--sync", &wid])
-        .status();
+    let (dir, log, viewer, wid) = super::xvfb::start_cube_focused("gui_panel");
     let key = |k: &str| run("xdotool", &["key", "--window", &wid, k]);
     let click = |x: u32, y: u32| {
         let (x, y) = (x.to_string(), y.to_string());

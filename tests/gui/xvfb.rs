@@ -311,6 +311,20 @@ pub(crate) fn logged(log: &Path, what: &str, timeout: Duration) -> bool {
     false
 }
 
+/// The viewer started on a 10×10 cube in a new scratch folder `name`, traced to
+/// `viewer.log` there, its window given the keyboard: (folder, log, viewer, window id).
+pub(crate) fn start_cube_focused(name: &str) -> (PathBuf, PathBuf, Viewer, String) {
+    let dir = scratch(name);
+    write_cube(&dir.join("cube.wrl"));
+    let log = dir.join("viewer.log");
+    let (viewer, wid) = start_traced(&dir, &["cube.wrl"], &log);
+    std::thread::sleep(Duration::from_secs(2));
+    let _ = std::process::Command::new("xdotool")
+        .args(["windowfocus", "--sync", &wid])
+        .status();
+    (dir, log, viewer, wid)
+}
+
 pub(crate) fn start_traced(dir: &Path, args: &[&str], log: &Path) -> (Viewer, String) {
     let mut viewer = spawn_viewer(dir, args, true, log);
     let wid = window_of(&mut viewer, log, Duration::from_secs(60))

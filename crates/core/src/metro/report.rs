@@ -160,45 +160,71 @@ fn volume_text(info: &SurfaceInfo) -> String {
 pub fn json(c: &Comparison, names: [&str; 2]) -> String {
     let mut s = String::from("{\n");
     for (key, name, info) in [("a", names[0], &c.a), ("b", names[1], &c.b)] {
-        let _ = writeln!(
-            s,
-            "  \"{key}\": {{\"file\": {}, \"triangles\": {}, \"vertices\": {}, \"area\": {}, \
-             \"volume\": {}, \"closed\": {}, \"boundary_edges\": {}, \"nonmanifold_edges\": {}, \
-             \"components\": {}, \"skipped_triangles\": {}, \"bbox_min\": {}, \"bbox_max\": {}}},",
-            string(name),
-            info.triangles,
-            info.vertices,
-            float(info.area),
-            info.volume.map_or("null".to_string(), float),
-            info.volume.is_some(),
-            info.boundary_edges,
-            info.nonmanifold_edges,
-            info.components,
-            info.skipped_triangles,
-            vec3(info.bbox_min.to_array()),
-            vec3(info.bbox_max.to_array()),
-        );
+        json_surface(&mut s, key, name, info);
     }
     let _ = writeln!(s, "  \"diagonal\": {},", float(c.diagonal));
     let _ = writeln!(s, "  \"seed\": {},", c.seed);
     for (key, d) in [("a_to_b", &c.a_to_b), ("b_to_a", &c.b_to_a)] {
-        let _ = writeln!(
-            s,
-            "  \"{key}\": {{\"face_samples\": {}, \"edge_samples\": {}, \"vertex_samples\": {}, \
-             \"max\": {}, \"mean\": {}, \"rms\": {}, \"max_relative\": {}, \"mean_relative\": {}, \
-             \"rms_relative\": {}, \"max_at\": {}}},",
-            d.face_samples,
-            d.edge_samples,
-            d.vertex_samples,
-            float(d.max),
-            float(d.mean),
-            float(d.rms),
-            float(c.relative(d.max)),
-            float(c.relative(d.mean)),
-            float(c.relative(d.rms)),
-            vec3(d.max_at.to_array()),
-        );
+        json_direction(&mut s, c, key, d);
     }
+    json_symmetric(&mut s, c);
+    if let Some(f) = &c.folds {
+        json_folds(&mut s, f);
+    }
+    let _ = writeln!(s, "  \"hausdorff\": {},", float(c.hausdorff()));
+    let _ = writeln!(
+        s,
+        "  \"hausdorff_relative\": {}",
+        float(c.relative(c.hausdorff()))
+    );
+    s.push_str("}\n");
+    s
+}
+
+/// One surface's member of [`json`]: its file and what was counted on it.
+fn json_surface(s: &mut String, key: &str, name: &str, info: &SurfaceInfo) {
+    let _ = writeln!(
+        s,
+        "  \"{key}\": {{\"file\": {}, \"triangles\": {}, \"vertices\": {}, \"area\": {}, \
+         \"volume\": {}, \"closed\": {}, \"boundary_edges\": {}, \"nonmanifold_edges\": {}, \
+         \"components\": {}, \"skipped_triangles\": {}, \"bbox_min\": {}, \"bbox_max\": {}}},",
+        string(name),
+        info.triangles,
+        info.vertices,
+        float(info.area),
+        info.volume.map_or("null".to_string(), float),
+        info.volume.is_some(),
+        info.boundary_edges,
+        info.nonmanifold_edges,
+        info.components,
+        info.skipped_triangles,
+        vec3(info.bbox_min.to_array()),
+        vec3(info.bbox_max.to_array()),
+    );
+}
+
+/// One direction's member of [`json`]: its samples and distances.
+fn json_direction(s: &mut String, c: &Comparison, key: &str, d: &DirectionStats) {
+    let _ = writeln!(
+        s,
+        "  \"{key}\": {{\"face_samples\": {}, \"edge_samples\": {}, \"vertex_samples\": {}, \
+         \"max\": {}, \"mean\": {}, \"rms\": {}, \"max_relative\": {}, \"mean_relative\": {}, \
+         \"rms_relative\": {}, \"max_at\": {}}},",
+        d.face_samples,
+        d.edge_samples,
+        d.vertex_samples,
+        float(d.max),
+        float(d.mean),
+        float(d.rms),
+        float(c.relative(d.max)),
+        float(c.relative(d.mean)),
+        float(c.relative(d.rms)),
+        vec3(d.max_at.to_array()),
+    );
+}
+
+/// The symmetric distances' member of [`json`].
+fn json_symmetric(s: &mut String, c: &Comparison) {
     let sym = c.symmetric();
     let _ = writeln!(
         s,
@@ -211,29 +237,23 @@ pub fn json(c: &Comparison, names: [&str; 2]) -> String {
         float(c.relative(sym.mean)),
         float(c.relative(sym.rms)),
     );
-    if let Some(f) = &c.folds {
-        let _ = writeln!(
-            s,
-            "  \"folded\": {{\"triangles\": {}, \"area\": {}, \"area_fraction\": {}, \
-             \"degenerate\": {}, \"checked\": {}, \"samples\": {}, \"largest_at\": {}}},",
-            f.triangles,
-            float(f.area),
-            float(f.area_fraction),
-            f.degenerate,
-            f.checked,
-            f.samples,
-            f.largest_at
-                .map_or("null".to_string(), |p| vec3(p.to_array())),
-        );
-    }
-    let _ = writeln!(s, "  \"hausdorff\": {},", float(c.hausdorff()));
+}
+
+/// The folded triangles' member of [`json`] (`metro --folds`).
+fn json_folds(s: &mut String, f: &super::folds::Folds) {
     let _ = writeln!(
         s,
-        "  \"hausdorff_relative\": {}",
-        float(c.relative(c.hausdorff()))
+        "  \"folded\": {{\"triangles\": {}, \"area\": {}, \"area_fraction\": {}, \
+         \"degenerate\": {}, \"checked\": {}, \"samples\": {}, \"largest_at\": {}}},",
+        f.triangles,
+        float(f.area),
+        float(f.area_fraction),
+        f.degenerate,
+        f.checked,
+        f.samples,
+        f.largest_at
+            .map_or("null".to_string(), |p| vec3(p.to_array())),
     );
-    s.push_str("}\n");
-    s
 }
 
 /// A JSON number (shortest round-trip form) or `null` when not finite.
