@@ -120,15 +120,7 @@ fn run(
     // 2. connect, 3. quadrics (one pass over the vertices' rings)
     let cos_feature = limits.feature_angle_deg.to_radians().cos();
     let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
-    // On a seam: one of two sides (twinned) or where more meet (pinned; shared borders are
-    // pinned too, but never collapse either).
-    let seam: Vec<bool> = if pairs.is_empty() {
-        Vec::new()
-    } else {
-        (order.iter().zip(&pairs))
-            .map(|(&v, &w)| w != u32::MAX || pinned(v))
-            .collect()
-    };
+    let seam = seam_flags(order, &pairs, pins);
     let constraints = planes::Constraints {
         cos_feature,
         scale_folds: limits.scale_folds,
@@ -157,19 +149,13 @@ fn run(
     }
     let mut d = Collapser::connected(positions, conn, start, colors, normals, cos_feature);
     d.distance = distance;
-    d.texcoords = model
-        .texcoords
-        .as_ref()
-        .filter(|t| t.len() == n as usize)
-        .map(|t| order.iter().map(|&v| t[v as usize]).collect());
-    d.weigh_texture();
-    let mut anchored: Vec<bool> = order.iter().map(|&v| pinned(v)).collect();
-    if limits.keep_features {
-        for (a, corner) in anchored.iter_mut().zip(d.keep_features()) {
-            *a |= corner;
-        }
-    }
-    d.pin(&anchored);
+    texture_and_pins(
+        &mut d,
+        (model, n as usize),
+        order,
+        pins,
+        limits.keep_features,
+    );
     d.set_twins(pairs);
     d.recorder = recorder;
 
@@ -192,6 +178,45 @@ fn run(
         d.restore(model, order, faces);
     }
     (outcome, None)
+}
+
+/// Per internal vertex, whether it is on a texture seam: one of two sides (twinned) or where
+/// more meet (pinned; shared borders are pinned too, but never collapse either). Empty
+/// where there are no twins.
+fn seam_flags(order: &[u32], pairs: &[u32], pins: &[bool]) -> Vec<bool> {
+    if pairs.is_empty() {
+        return Vec::new();
+    }
+    let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
+    (order.iter().zip(pairs))
+        .map(|(&v, &w)| w != u32::MAX || pinned(v))
+        .collect()
+}
+
+/// Gives `d` the texture coordinates of `model`, which had `n` vertices when loaded (its
+/// positions may be released since), in the internal `order`, and its pins: the vertices
+/// `pins` flags and, with `keep_features`, every feature corner.
+fn texture_and_pins(
+    d: &mut Collapser,
+    (model, n): (&Model, usize),
+    order: &[u32],
+    pins: &[bool],
+    keep_features: bool,
+) {
+    d.texcoords = model
+        .texcoords
+        .as_ref()
+        .filter(|t| t.len() == n)
+        .map(|t| order.iter().map(|&v| t[v as usize]).collect());
+    d.weigh_texture();
+    let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
+    let mut anchored: Vec<bool> = order.iter().map(|&v| pinned(v)).collect();
+    if keep_features {
+        for (a, corner) in anchored.iter_mut().zip(d.keep_features()) {
+            *a |= corner;
+        }
+    }
+    d.pin(&anchored);
 }
 
 /// A per-vertex attribute in the internal order, when the model has it per vertex.
