@@ -186,32 +186,24 @@ fn layout<'a>(a: &Accessor<'_>, buffers: &'a Buffers) -> AccessorResult<Layout<'
 fn allowed_types(semantic: &str, quantized: bool) -> Option<&'static [(DataType, bool)]> {
     use DataType::{F32, I16, I8, U16, U8};
     let core_uv: &[(DataType, bool)] = &[(F32, false), (U8, true), (U16, true)];
+    // KHR_mesh_quantization lets positions and texture coordinates take any of these.
+    let any_quantized: &[(DataType, bool)] = &[
+        (F32, false),
+        (I8, false),
+        (I8, true),
+        (U8, false),
+        (U8, true),
+        (I16, false),
+        (I16, true),
+        (U16, false),
+        (U16, true),
+    ];
     Some(match (semantic, quantized) {
         ("POSITION", false) | ("NORMAL", false) => &[(F32, false)],
-        ("POSITION", true) => &[
-            (F32, false),
-            (I8, false),
-            (I8, true),
-            (U8, false),
-            (U8, true),
-            (I16, false),
-            (I16, true),
-            (U16, false),
-            (U16, true),
-        ],
+        ("POSITION", true) => any_quantized,
         ("NORMAL", true) => &[(F32, false), (I8, true), (I16, true)],
         (s, false) if s.starts_with("TEXCOORD_") => core_uv,
-        (s, true) if s.starts_with("TEXCOORD_") => &[
-            (F32, false),
-            (I8, false),
-            (I8, true),
-            (U8, false),
-            (U8, true),
-            (I16, false),
-            (I16, true),
-            (U16, false),
-            (U16, true),
-        ],
+        (s, true) if s.starts_with("TEXCOORD_") => any_quantized,
         (s, _) if s.starts_with("COLOR_") => core_uv,
         _ => return None,
     })
