@@ -9,6 +9,7 @@ mod support;
 
 mod cancel;
 mod closed_shapes;
+mod colour_seams;
 mod colours;
 mod creases;
 mod features;

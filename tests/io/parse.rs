@@ -271,7 +271,8 @@ Separator {{
         base("PER_FACE_INDEXED", "materialIndex [ 2, 0 ]").colors,
         Some(Attribute::PerFace(vec![b, b, r, r]))
     );
-    // Per corner: the value at a vertex's first use wins (vertex 1 is first used as red).
+    // Per corner: a point given two colours (1 and 2: red or green in the first face, blue
+    // in the second) becomes two vertices, one per colour, the two sides of a colour seam.
     let m = base(
         "PER_VERTEX_INDEXED",
         "materialIndex [ 0 0 1 1 -1, 2 2 2 2 -1 ]",
@@ -279,9 +280,30 @@ Separator {{
     let Some(Attribute::PerVertex(c)) = &m.colors else {
         panic!("{:?}", m.colors)
     };
-    assert_eq!(c.len(), 6);
-    assert_eq!(c[index_of(&m, Vec3::X)], r);
-    assert_eq!(c[index_of(&m, Vec3::new(2.0, 1.0, 0.0))], b);
+    assert_eq!(c.len(), 8);
+    let colours_at = |p: Vec3| {
+        let mut at: Vec<[f32; 3]> = (0..m.positions.len())
+            .filter(|&v| m.positions[v] == p)
+            .map(|v| c[v])
+            .collect();
+        at.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        at
+    };
+    assert_eq!(colours_at(Vec3::X), vec![b, r]);
+    assert_eq!(colours_at(Vec3::new(1.0, 1.0, 0.0)), vec![b, g]);
+    assert_eq!(colours_at(Vec3::new(2.0, 1.0, 0.0)), vec![b]);
+    // Each face's triangles use its own copies.
+    for (t, want) in m
+        .triangles
+        .iter()
+        .zip([[r, r, g], [r, g, g], [b; 3], [b; 3]])
+    {
+        let mut got = t.map(|v| c[v as usize]);
+        let mut want = want;
+        got.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        want.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        assert_eq!(got, want, "triangle {t:?}");
+    }
     // OVERALL: no colour array, the first diffuse colour.
     let m = base("OVERALL", "");
     assert_eq!(m.colors, None);

@@ -468,9 +468,9 @@ fn model_report(
     sheets: hanging_sheets::RemovedSheets,
 ) -> ModelReport {
     let seam_copies_after = point_counts::seam_copies(model);
-    // Counted where the model has texture seams (a seam's sides go as one position);
+    // Counted where the model may have seams (a seam's sides go as one position);
     // otherwise what was removed, as the algorithms count it.
-    let vertices_after = if model.texcoords.is_some() {
+    let vertices_after = if model.has_seam_attributes() {
         model.used_vertex_count() - seam_copies_after
     } else {
         (model.positions.len())

@@ -1,5 +1,5 @@
 //! What decimation counts as a model's vertices: its used positions, the copies a texture
-//! seam makes of one point (a vertex per side, `mesh::seams`) counted once, as MeshLab,
+//! or colour seam makes of one point (a vertex per side, `mesh::seams`) counted once, as MeshLab,
 //! Blender and pmp count them. The copies themselves are counted apart.
 
 use std::collections::HashSet;
@@ -7,11 +7,11 @@ use std::collections::HashSet;
 use crate::mesh::seams::position_key;
 use crate::mesh::Model;
 
-/// The used vertices beyond the first at each position of a model with texture
-/// coordinates (its seams' copies); 0 without texture coordinates, whose coincident
-/// vertices are not seams (`mesh::seams::find`).
+/// The used vertices beyond the first at each position of a model with seam attributes
+/// (its seams' copies); 0 without them, whose coincident vertices are not seams
+/// (`mesh::seams::find`).
 pub(crate) fn seam_copies(model: &Model) -> usize {
-    if model.texcoords.is_none() {
+    if !model.has_seam_attributes() {
         return 0;
     }
     let mut used = vec![false; model.positions.len()];

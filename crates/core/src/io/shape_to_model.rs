@@ -127,15 +127,16 @@ fn check_bind<'a>(
 /// shapes over a big shared array (so many small shapes stay linear overall).
 enum Remap {
     Dense(Vec<u32>),
-    Sparse(HashMap<u64, u32>),
+    Sparse(HashMap<(u64, [u32; 3]), u32>),
 }
 
 impl Remap {
-    /// `old`: a point index, or a point index and a texture coordinate index (sparse only).
-    fn get_or_insert(&mut self, old: u64, next: u32) -> (u32, bool) {
+    /// `old`: a point index, or a point index and a texture coordinate index and the
+    /// corner's colour bits (sparse only).
+    fn get_or_insert(&mut self, old: (u64, [u32; 3]), next: u32) -> (u32, bool) {
         match self {
             Self::Dense(v) => {
-                let slot = &mut v[old as usize];
+                let slot = &mut v[old.0 as usize];
                 if *slot == u32::MAX {
                     *slot = next;
                     (next, true)
@@ -270,8 +271,9 @@ struct Vertices {
     texcoords: Vec<[f32; 2]>,
 }
 
-/// One vertex per distinct point (per point and texture coordinate pair when there are
-/// texture coordinates); each corner's point index in `local` becomes its vertex's.
+/// One vertex per distinct point (per point, texture coordinate pair and colour when there
+/// are texture coordinates or per-corner colours: the sides of a seam, `mesh::seams`); each
+/// corner's point index in `local` becomes its vertex's.
 fn make_vertices(
     local: &mut [u32],
     coords: &[f32],
@@ -282,7 +284,11 @@ fn make_vertices(
     let npoints = coords.len() / 3;
     let (colors, normals, texcoords, diffuse) =
         (binds.colors, binds.normals, binds.texcoords, binds.diffuse);
-    let mut remap = if texcoords.is_some() || local.len() * 4 < npoints {
+    let corner_colors = match colors {
+        Bind::PerCorner { values, index } => Some((*values, index.as_slice())),
+        _ => None,
+    };
+    let mut remap = if texcoords.is_some() || corner_colors.is_some() || local.len() * 4 < npoints {
         Remap::Sparse(HashMap::with_capacity(local.len()))
     } else {
         Remap::Dense(vec![u32::MAX; npoints])
@@ -293,11 +299,20 @@ fn make_vertices(
     let mut vtexcoords: Vec<[f32; 2]> = Vec::new();
     for (k, corner) in local.iter_mut().enumerate() {
         let c = *corner;
-        // With texture coordinates a vertex is a (point, coordinate pair) pair.
-        let key = match texcoords {
+        // With texture coordinates a vertex is a (point, coordinate pair) pair; with
+        // per-corner colours, also a colour.
+        let point = match texcoords {
             Some(t) => u64::from(c) | u64::from(t.index[k]) << 32,
             None => u64::from(c),
         };
+        let colour = corner_colors.map_or([0; 3], |(values, index)| {
+            let rgb = index
+                .get(k)
+                .and_then(|&i| value3(values, i))
+                .unwrap_or(diffuse);
+            rgb.map(|x| (x + 0.0).to_bits())
+        });
+        let key = (point, colour);
         let (v, fresh) = remap.get_or_insert(key, positions.len() as u32);
         if fresh {
             let i = c as usize * 3;

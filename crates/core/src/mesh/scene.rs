@@ -114,6 +114,12 @@ impl Model {
     /// The diffuse colour of a shape whose file gives no material (VRML's default).
     pub const DEFAULT_DIFFUSE: [f32; 3] = [0.8, 0.8, 0.8];
 
+    /// Whether coincident vertices may be the sides of a seam: the model has per-vertex
+    /// attributes that the weld keeps apart (texture coordinates, per-vertex colours).
+    pub fn has_seam_attributes(&self) -> bool {
+        self.texcoords.is_some() || matches!(self.colors, Some(Attribute::PerVertex(_)))
+    }
+
     /// Number of vertices that at least one triangle uses.
     pub fn used_vertex_count(&self) -> usize {
         let mut used = vec![false; self.positions.len()];

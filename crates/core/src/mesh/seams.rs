@@ -1,6 +1,6 @@
-//! Texture seams: where a model's texture coordinates jump, its file gives one point two or
-//! more coordinate pairs, and the model holds one vertex per side, at the same position (see
-//! `Model::texcoords`). The surface is cut there. Were the sides simplified on their own,
+//! Seams: where a model's texture coordinates or per-vertex colours jump, its file gives one
+//! point two or more coordinate pairs or colours, and the model holds one vertex per side,
+//! at the same position (see `Model::texcoords`, `mesh::weld`). The surface is cut there. Were the sides simplified on their own,
 //! their outlines would part and open a crack: decimation takes a seam's two sides away
 //! together (vertex removal removes both, edge collapse collapses both edges to one point),
 //! and pins the junctions where three or more sides meet; a vertex between two copies of a
@@ -26,15 +26,15 @@ pub struct Seams {
     pub twin: Vec<u32>,
 }
 
-/// The seams of `model`; none without texture coordinates (an unwelded model's duplicates
-/// are not seams).
+/// The seams of `model`; none without seam attributes (`Model::has_seam_attributes`: an
+/// unwelded model's duplicates are not seams).
 pub fn find(model: &Model) -> Seams {
     let n = model.positions.len();
     let mut seams = Seams {
         on_seam: vec![false; n],
         twin: vec![u32::MAX; n],
     };
-    if model.texcoords.is_none() {
+    if !model.has_seam_attributes() {
         return seams;
     }
     let used = used_vertices(model);

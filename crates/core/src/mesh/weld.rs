@@ -6,7 +6,8 @@
 //! size and looking at the 27 cells around each vertex (expected linear time). The first
 //! vertex of a group is kept (with its per-vertex attributes); triangles are remapped, and
 //! those that collapse are dropped along with their per-face attributes. Vertices with
-//! different texture coordinates never merge: they are the two sides of a texture seam.
+//! different texture coordinates or per-vertex colours never merge: they are the two sides
+//! of a seam (`mesh::seams`).
 
 use std::collections::HashMap;
 
@@ -24,11 +25,44 @@ fn key_exact(p: Vec3) -> [u32; 3] {
     ]
 }
 
-/// The texture coordinates' bits (zero without them), as `key_exact`.
-fn uv_key(texcoords: Option<&[[f32; 2]]>, i: usize) -> [u32; 2] {
-    texcoords
-        .and_then(|t| t.get(i))
-        .map_or([0; 2], |uv| uv.map(|x| (x + 0.0).to_bits()))
+/// What keeps coincident vertices apart: their texture coordinates' and per-vertex
+/// colours' bits (as `key_exact`), where the model has them.
+#[derive(Clone, Copy)]
+struct Sides<'a> {
+    texcoords: Option<&'a [[f32; 2]]>,
+    colors: Option<&'a [[f32; 3]]>,
+}
+
+impl<'a> Sides<'a> {
+    fn of(model: &'a Model) -> Self {
+        let colors = match &model.colors {
+            Some(Attribute::PerVertex(c)) => Some(c.as_slice()),
+            _ => None,
+        };
+        Self {
+            texcoords: model.texcoords.as_deref(),
+            colors,
+        }
+    }
+
+    const NONE: Sides<'static> = Sides {
+        texcoords: None,
+        colors: None,
+    };
+
+    /// Vertex `i`'s side key: texture coordinates, then colour (zero where absent).
+    fn key(&self, i: usize) -> [u32; 5] {
+        let bits = |x: f32| (x + 0.0).to_bits();
+        let uv = self
+            .texcoords
+            .and_then(|t| t.get(i))
+            .map_or([0; 2], |t| t.map(bits));
+        let rgb = self
+            .colors
+            .and_then(|c| c.get(i))
+            .map_or([0; 3], |c| c.map(bits));
+        [uv[0], uv[1], rgb[0], rgb[1], rgb[2]]
+    }
 }
 
 fn cell(p: Vec3, inv: f32) -> [i64; 3] {
@@ -36,15 +70,33 @@ fn cell(p: Vec3, inv: f32) -> [i64; 3] {
     [c.x as i64, c.y as i64, c.z as i64]
 }
 
-/// Groups bit-equal vertices (position and texture coordinates, as `key_exact`): returns
-/// each vertex's group, numbered in the order of the groups' first vertices, and those first
+/// Groups bit-equal vertices (position and side key, as `key_exact`): returns each
+/// vertex's group, numbered in the order of the groups' first vertices, and those first
 /// vertices. The keys are sorted with their indices on all cores, so that each run of equal
 /// keys starts at its group's first vertex: faster than a hash map (docs/design.md#weld).
-fn exact_groups(positions: &[Vec3], texcoords: Option<&[[f32; 2]]>) -> (Vec<u32>, Vec<u32>) {
-    let mut keyed: Vec<([u32; 3], [u32; 2], u32)> = positions
+fn exact_groups(positions: &[Vec3], sides: Sides<'_>) -> (Vec<u32>, Vec<u32>) {
+    // The smallest key that tells the model's vertices apart: sorting moves less memory.
+    if sides.colors.is_some() {
+        exact_groups_by(positions, |i| sides.key(i))
+    } else if let Some(t) = sides.texcoords {
+        exact_groups_by(positions, |i| {
+            t.get(i)
+                .map_or([0; 2], |uv| uv.map(|x| (x + 0.0).to_bits()))
+        })
+    } else {
+        exact_groups_by(positions, |_| ())
+    }
+}
+
+/// `exact_groups` with the side key `side` of each vertex.
+fn exact_groups_by<K: Ord + Copy + Send>(
+    positions: &[Vec3],
+    side: impl Fn(usize) -> K + Sync,
+) -> (Vec<u32>, Vec<u32>) {
+    let mut keyed: Vec<([u32; 3], K, u32)> = positions
         .par_iter()
         .enumerate()
-        .map(|(i, &p)| (key_exact(p), uv_key(texcoords, i), i as u32))
+        .map(|(i, &p)| (key_exact(p), side(i), i as u32))
         .collect();
     keyed.par_sort_unstable();
     // Each vertex's group's first vertex.
@@ -74,16 +126,12 @@ fn exact_groups(positions: &[Vec3], texcoords: Option<&[[f32; 2]]>) -> (Vec<u32>
 /// Each vertex's point: vertices at the same position, bit for bit (`-0` as `0`), share
 /// one number, numbered in the order of their first vertices.
 pub fn point_ids(positions: &[Vec3]) -> Vec<u32> {
-    exact_groups(positions, None).0
+    exact_groups(positions, Sides::NONE).0
 }
 
-/// Groups vertices within `tolerance` of a group's first vertex (and with its texture
-/// coordinates), in input order, as [`exact_groups`] returns them.
-fn near_groups(
-    positions: &[Vec3],
-    texcoords: Option<&[[f32; 2]]>,
-    tolerance: f32,
-) -> (Vec<u32>, Vec<u32>) {
+/// Groups vertices within `tolerance` of a group's first vertex (and with its side key),
+/// in input order, as [`exact_groups`] returns them.
+fn near_groups(positions: &[Vec3], sides: Sides<'_>, tolerance: f32) -> (Vec<u32>, Vec<u32>) {
     let n = positions.len();
     let mut map = vec![0u32; n];
     let mut kept: Vec<u32> = Vec::with_capacity(n);
@@ -108,9 +156,7 @@ fn near_groups(
                     while let Some(j) = at {
                         let other = kept[j as usize] as usize;
                         let q = positions[other];
-                        if p.distance_squared(q) <= tol2
-                            && uv_key(texcoords, i) == uv_key(texcoords, other)
-                        {
+                        if p.distance_squared(q) <= tol2 && sides.key(i) == sides.key(other) {
                             found = Some(j);
                             break 'search;
                         }
@@ -139,12 +185,12 @@ fn near_groups(
 /// the triangles that became degenerate; returns how many vertices were merged away.
 pub fn weld(model: &mut Model, tolerance: f32) -> usize {
     let n = model.positions.len();
-    let texcoords = model.texcoords.as_deref();
+    let sides = Sides::of(model);
     // old vertex -> new vertex; `kept` lists the old indices that survive, in order.
     let (map, kept) = if tolerance > 0.0 && tolerance.is_finite() {
-        near_groups(&model.positions, texcoords, tolerance)
+        near_groups(&model.positions, sides, tolerance)
     } else {
-        exact_groups(&model.positions, texcoords)
+        exact_groups(&model.positions, sides)
     };
     let merged = n - kept.len();
     if merged == 0 {
@@ -193,7 +239,8 @@ pub fn weld(model: &mut Model, tolerance: f32) -> usize {
 mod tests {
     use super::*;
 
-    /// A unit cube whose six faces each have their own four corners (24 vertices).
+    /// A unit cube whose six faces each have their own four corners (24 vertices), coloured
+    /// by point (copies of a point share a colour).
     fn split_cube() -> Model {
         let corner =
             |i: u32| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32);
@@ -204,9 +251,8 @@ mod tests {
             m.triangles.push([b, b + 1, b + 2]);
             m.triangles.push([b, b + 2, b + 3]);
         }
-        m.colors = Some(Attribute::PerVertex(
-            (0..24).map(|i| [i as f32, 0.0, 0.0]).collect(),
-        ));
+        let colors = m.positions.iter().map(|p| p.to_array()).collect();
+        m.colors = Some(Attribute::PerVertex(colors));
         m
     }
 
@@ -217,13 +263,36 @@ mod tests {
         assert_eq!(m.positions.len(), 8);
         assert_eq!(m.triangles.len(), 12);
         assert_eq!(m.used_vertex_count(), 8);
-        // The first copy's attributes are kept: vertex 0 of the first face is old vertex 0.
+        // Each point keeps its colour.
         let Some(Attribute::PerVertex(c)) = &m.colors else {
             panic!()
         };
         assert_eq!(c.len(), 8);
-        assert_eq!(c[0], [0.0, 0.0, 0.0]);
+        for (p, c) in m.positions.iter().zip(c) {
+            assert_eq!(p.to_array(), *c);
+        }
         assert_eq!(weld(&mut m, 0.0), 0);
+    }
+
+    #[test]
+    fn vertices_on_a_colour_seam_stay_apart() {
+        // Every face its own colour: a colour jump along every edge, nothing merges.
+        let mut m = split_cube();
+        m.colors = Some(Attribute::PerVertex(
+            (0..24).map(|i| [(i / 4) as f32, 0.0, 0.0]).collect(),
+        ));
+        assert_eq!(weld(&mut m.clone(), 0.0), 0);
+        assert_eq!(weld(&mut m, 1e-3), 0);
+        // Face 0 red, the rest white: the other five faces' 20 corners close up into the
+        // cube's 8 points; face 0's 4 corners stay apart, the seam's red side.
+        let mut lid = split_cube();
+        lid.colors = Some(Attribute::PerVertex(
+            (0..24)
+                .map(|i| if i < 4 { [1.0, 0.0, 0.0] } else { [1.0; 3] })
+                .collect(),
+        ));
+        assert_eq!(weld(&mut lid, 0.0), 12);
+        assert_eq!(lid.used_vertex_count(), 12);
     }
 
     #[test]
@@ -286,23 +355,35 @@ mod tests {
             .map(|_| Vec3::new(points[next(5) as usize], points[next(3) as usize], 7.0))
             .collect();
         let uvs: Vec<[f32; 2]> = (0..n).map(|_| [next(2) as f32, 0.0]).collect();
-        for texcoords in [None, Some(uvs.as_slice())] {
+        let rgbs: Vec<[f32; 3]> = (0..n).map(|_| [0.5, next(2) as f32, 0.0]).collect();
+        let sides = [
+            Sides::NONE,
+            Sides {
+                texcoords: Some(uvs.as_slice()),
+                colors: None,
+            },
+            Sides {
+                texcoords: Some(uvs.as_slice()),
+                colors: Some(rgbs.as_slice()),
+            },
+        ];
+        for sides in sides {
             let mut first_of = HashMap::new();
             let (mut want_map, mut want_kept) = (Vec::new(), Vec::new());
             for (i, &p) in positions.iter().enumerate() {
                 let group = *first_of
-                    .entry((key_exact(p), uv_key(texcoords, i)))
+                    .entry((key_exact(p), sides.key(i)))
                     .or_insert_with(|| {
                         want_kept.push(i as u32);
                         want_kept.len() as u32 - 1
                     });
                 want_map.push(group);
             }
-            let (map, kept) = exact_groups(&positions, texcoords);
+            let (map, kept) = exact_groups(&positions, sides);
             assert_eq!(kept, want_kept);
             assert_eq!(map, want_map);
             // -0 and +0 are one value: x takes 4 (NaN, with its bits, is one), y 2.
-            if texcoords.is_none() {
+            if sides.texcoords.is_none() {
                 assert_eq!(kept.len(), 8);
             }
         }
