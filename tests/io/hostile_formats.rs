@@ -270,14 +270,13 @@ fn hostile_and_odd_ply_files() {
     use Expect::*;
     let quad = format!("{}{QUAD}3 0 1 2\n3 0 2 3\n", ply_header("ascii", 4, 2));
     // 255 corners a face, 2,000 faces, all of them the same four points over and over.
-    let mut list255 = binary_ply(false, (4, 2000), &SQUARE, &[]);
-    let corners: Vec<i32> = (0..255).map(|i| i % 4).collect();
-    for _ in 0..2000 {
-        list255.push(255);
-        corners
-            .iter()
-            .for_each(|&i| list255.extend(i.to_le_bytes()));
-    }
+    let mut face = vec![255u8];
+    (0..255).for_each(|i: i32| face.extend((i % 4).to_le_bytes()));
+    let list255 = [
+        binary_ply(false, (4, 2000), &SQUARE, &[]),
+        face.repeat(2000),
+    ]
+    .concat();
     let extra = format!(
         "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 4\n{PLY_VERTEX}\
          property float nx\nproperty uchar flag\nelement face 2\n{FACE_LIST}property int tag\n\
