@@ -68,11 +68,16 @@ fn peak_memory(pid: u32) -> u64 {
         .map_or(0, |kb| kb * 1024)
 }
 
-/// Runs `decimate FILE nogui -p 0 -a ALGORITHM` in `dir`, killed past the time or memory
-/// limit; the peak memory is sampled every few milliseconds.
+/// Runs `decimate FILE nogui -p 0 -a ALGORITHM -o out.ply` in `dir` (see [`watched_to`]).
 fn watched(dir: &Path, file: &str, algorithm: &str) -> Run {
+    watched_to(dir, file, algorithm, "out.ply")
+}
+
+/// Runs `decimate FILE nogui -p 0 -a ALGORITHM -o OUT` in `dir`, killed past the time or
+/// memory limit; the peak memory is sampled every few milliseconds.
+fn watched_to(dir: &Path, file: &str, algorithm: &str, out: &str) -> Run {
     let mut child = Command::new(env!("CARGO_BIN_EXE_decimate"))
-        .args([file, "nogui", "-p", "0", "-a", algorithm, "-o", "out.ply"])
+        .args([file, "nogui", "-p", "0", "-a", algorithm, "-o", out])
         .env_remove("DECIMATE_ALLOW_OUTSIDE")
         .env_remove("DECIMATE_MAX_FILE_BYTES")
         .env_remove("DECIMATE_MAX_TRIANGLES")
@@ -799,4 +804,29 @@ fn folders_and_devices_named_like_models_are_refused() {
         }
     }
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+/// A texture image that is a FIFO, which a glTF output would embed: never opened (it would
+/// block forever), the model written without it, the image named in a warning.
+#[cfg(unix)]
+#[test]
+fn a_fifo_named_as_a_texture_is_never_opened() {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let made = Command::new("mkfifo")
+        .arg(dir.path().join("tex.png"))
+        .status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo failed");
+    let wrl = "#VRML V2.0 utf8\nShape { appearance Appearance { texture ImageTexture { \
+               url \"tex.png\" } } geometry IndexedFaceSet { coord Coordinate { point [ 0 0 0, \
+               1 0 0, 0 1 0 ] } coordIndex [ 0 1 2 -1 ] texCoord TextureCoordinate { \
+               point [ 0 0, 1 0, 0 1 ] } } }\n";
+    std::fs::write(dir.path().join("t.wrl"), wrl).expect("the model");
+    let run = watched_to(dir.path(), "t.wrl", "qem", "out.glb");
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("tex.png") && run.stderr.contains("not a regular file (a FIFO)"),
+        "{}",
+        run.stderr
+    );
+    assert_eq!(counts_in(&run.stderr), Some((3, 1)), "{}", run.stderr);
 }
