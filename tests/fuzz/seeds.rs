@@ -333,7 +333,6 @@ DEF Root Transform {
     Switch { whichChoice 0 choice [ Shape { geometry Box { size 1 2 3 } } ] }
     LOD { range [ 10 ] level [ Billboard { children USE Piece } Group { } ] }
     Anchor { children Collision { children [ USE Piece ] } }
-    Shape { geometry Sphere { radius 0.5 } }
     Shape { geometry Cone { side FALSE } }
     Shape { geometry Cylinder { top FALSE height 3 } }
     Shape { geometry ElevationGrid { xDimension 3 zDimension 2 height [ 0 1 2 0 1 2 ]
@@ -343,6 +342,7 @@ DEF Root Transform {
   ]
 }
 Transform { children USE Root }
+Shape { geometry Sphere { radius 0.5 } }
 ";
 
 const ASCII_PLY: &str = "ply

@@ -17,6 +17,7 @@ mod gltf_rules;
 mod gltf_tree;
 mod gltf_write;
 mod hostile;
+mod hostile_formats;
 mod inventor_data;
 mod nodes;
 mod obj_materials;

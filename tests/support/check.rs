@@ -50,7 +50,17 @@ pub fn geometry(before: &Model, after: &Model) -> Findings {
     };
     let mut found = Findings::default();
     let diag = grid.diag;
+    let slack = 1e-3 * diag;
     let point = |m: &Model, v: u32| m.positions[v as usize].as_dvec3();
+    let normals: Vec<Option<DVec3>> = (0..before.triangles.len() as u32)
+        .map(|i| normal(before, i))
+        .collect();
+    // Each used output vertex's nearest input triangles, looked up once: for every
+    // triangle at it and for its distance to the input.
+    let mut at_vertex: Vec<Vec<(f64, u32)>> = vec![Vec::new(); after.positions.len()];
+    for v in used_points(after) {
+        at_vertex[v as usize] = grid.near(before, point(after, v), slack);
+    }
     for t in &after.triangles {
         let [a, b, c] = t.map(|v| point(after, v));
         let cross = (b - a).cross(c - a);
@@ -64,21 +74,21 @@ pub fn geometry(before: &Model, after: &Model) -> Findings {
         // centre and nearest each of its corners (where a shape cut down to a few vertices
         // has triangles far inside, the centre's alone would say little).
         let unit = cross.normalize();
-        let facing = [(a + b + c) / 3.0, a, b, c]
-            .into_iter()
-            .flat_map(|p| grid.near(before, p, 1e-3 * diag))
-            .filter_map(|(_, i)| normal(before, i))
+        let centre = grid.near(before, (a + b + c) / 3.0, slack);
+        let facing = centre
+            .iter()
+            .chain(t.iter().flat_map(|&v| &at_vertex[v as usize]))
+            .filter_map(|&(_, i)| normals[i as usize])
             .map(|n| n.dot(unit))
             .fold(f64::NEG_INFINITY, f64::max);
         if facing < -1e-9 {
             found.folds += 1;
         }
     }
-    let used = used_points(after);
-    for v in used {
-        let p = point(after, v);
-        let d = grid.distance(before, p);
-        found.farthest = found.farthest.max(d / diag);
+    for list in &at_vertex {
+        if let Some(d) = list.iter().map(|f| f.0).reduce(f64::min) {
+            found.farthest = found.farthest.max(d / diag);
+        }
     }
     let (checked, inverted) = volume_signs(before, after, diag);
     found.closed_checked = checked;
@@ -274,11 +284,6 @@ impl TriangleGrid {
         let best = found.iter().map(|f| f.0).fold(f64::INFINITY, f64::min);
         found.retain(|f| f.0 <= best + slack);
         found
-    }
-
-    /// The distance from `p` to the input surface.
-    fn distance(&self, m: &Model, p: DVec3) -> f64 {
-        self.near(m, p, 0.0).first().map_or(f64::INFINITY, |f| f.0)
     }
 }
 

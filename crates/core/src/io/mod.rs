@@ -37,6 +37,7 @@ mod source;
 pub mod stl;
 pub(crate) mod stream;
 mod text;
+mod text_encoding;
 pub mod texture_image;
 pub mod texture_path;
 pub(crate) mod triangulate;
@@ -262,12 +263,18 @@ fn parse_any(
             material_libraries: Vec::new(),
         });
     }
+    let glb = gltf::is_glb(&bytes);
+    let binary_stl = stl::is_binary(&bytes);
+    let bytes = text_encoding::drop_byte_order_mark(bytes, glb || binary_stl)
+        .map_err(|message| syntax(path, ParseError::new(1, message)))?;
     let gltf_by_name = matches!(by_name, Some(Format::Gltf | Format::Glb));
-    if gltf::is_glb(&bytes) || gltf_by_name {
+    if glb || gltf_by_name {
         return gltf::read_gltf(&bytes, path);
     }
     let ply_by_name = by_name == Some(Format::Ply);
-    if bytes.starts_with(b"ply") && matches!(bytes.get(3), Some(b'\n' | b'\r')) || ply_by_name {
+    let ply = bytes.starts_with(b"ply") && matches!(bytes.get(3), Some(b'\n' | b'\r'));
+    let bytes = text_encoding::mac_line_ends(bytes, ply || ply_by_name, binary_stl);
+    if ply || ply_by_name {
         let (scene, warnings) = ply::read_ply(&bytes).map_err(|e| syntax(path, e))?;
         return Ok(outcome(scene, warnings));
     }

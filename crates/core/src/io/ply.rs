@@ -127,6 +127,7 @@ impl<I: Input> Body<I> {
     /// Starts reading element `el`'s records.
     fn start(&mut self, el: &Element) {
         self.element.clone_from(&el.name);
+        self.record = 0;
         self.records = el.count;
     }
 

@@ -117,7 +117,7 @@ pub fn write_progressive_to(w: &mut impl Write, pm: &ProgressiveScene) -> io::Re
 
 /// Reads a progressive-mesh file written by [`write_progressive`].
 pub fn read_progressive(path: &Path) -> Result<ProgressiveScene, ReadError> {
-    let bytes = std::fs::read(path).map_err(|source| ReadError::Io {
+    let bytes = super::file_limits::read_regular(path).map_err(|source| ReadError::Io {
         file: path.to_path_buf(),
         source,
     })?;

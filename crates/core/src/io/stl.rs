@@ -69,9 +69,43 @@ pub(crate) fn read_stl(bytes: &[u8]) -> Result<(Scene, Vec<Warning>), StlError> 
     if is_binary(bytes) {
         return read_binary(bytes);
     }
-    if starts_with_solid(bytes) && !bytes.contains(&0) {
-        return read_ascii(bytes).map_err(StlError::Line);
+    if starts_with_solid(bytes) {
+        let Some(at) = bytes.iter().position(|&b| b == 0) else {
+            return read_ascii(bytes).map_err(StlError::Line);
+        };
+        // Facets before the NUL: ASCII with a stray NUL (or a binary STL whose header
+        // says "facet" and whose count does not fit: the message says both). Otherwise a
+        // binary STL with a "solid" header, told below what is wrong with its count.
+        if bytes[..at]
+            .windows(5)
+            .any(|w| w.eq_ignore_ascii_case(b"facet"))
+        {
+            return Err(ascii_with_nul(bytes, at));
+        }
     }
+    binary_count_error(bytes)
+}
+
+/// A file starting with `solid` and facets that holds a NUL byte at `at`.
+fn ascii_with_nul(bytes: &[u8], at: usize) -> StlError {
+    let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
+    let binary = binary_count(bytes).map_or(String::new(), |n| {
+        format!(" ({n} triangles, {} bytes)", 84 + 50 * n as u64)
+    });
+    StlError::Line(ParseError::new(
+        line,
+        format!(
+            "the file starts with 'solid' and facets like an ASCII STL but holds a NUL byte \
+             (byte {at}), and its size ({} bytes) is not the one a binary STL's count \
+             gives{binary}",
+            bytes.len()
+        ),
+    ))
+}
+
+/// What is wrong with a file that is neither ASCII nor a binary STL of the size its count
+/// gives.
+fn binary_count_error(bytes: &[u8]) -> Result<(Scene, Vec<Warning>), StlError> {
     let Some(n) = binary_count(bytes) else {
         return Err(StlError::Header(format!(
             "not an STL file: {} bytes is too short for a binary STL header and it does not start with 'solid'",

@@ -37,7 +37,8 @@ pub fn read(name: &str, folder: &Path) -> Result<RgbaImage, String> {
         return decode(&embedded?.bytes);
     }
     let path = resolve(name, folder)?;
-    let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let bytes = crate::io::file_limits::read_regular(&path)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     decode(&bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 

@@ -856,6 +856,58 @@ mod tests {
         assert!((area - 0.1875).abs() < 1e-6, "{area}");
     }
 
+    /// Vertex 0 just above the centre of a flat regular hexagon (z = 0), its six triangles
+    /// facing up.
+    fn raised_hexagon() -> (Vec<Vec3>, Connectivity) {
+        let mut positions = vec![Vec3::new(0.0, 0.0, 0.05)];
+        positions.extend((0..6).map(|i| {
+            let a = std::f32::consts::TAU * i as f32 / 6.0;
+            Vec3::new(a.cos(), a.sin(), 0.0)
+        }));
+        let tris: Vec<[u32; 3]> = (1..=6).map(|i| [0, i, i % 6 + 1]).collect();
+        (positions, Connectivity::new(7, &tris))
+    }
+
+    /// Plans vertex 0's removal from `raised_hexagon` where its triangle slots stand for
+    /// the input `slots` and its vertices' input triangles face as `corners`.
+    fn plan_on_hexagon(slots: &[Vec3], corners: Vec<Vec3>) -> Option<(VertexClass, f64)> {
+        let (positions, conn) = raised_hexagon();
+        let corners = InputCorners::new(positions.len(), conn.triangles(), corners);
+        let surface = Surface {
+            conn: &conn,
+            positions: &positions,
+            texcoords: None,
+            cos_feature: -1.0,
+            unfold: false,
+            seams: None,
+            input: InputSurface {
+                t0: 0,
+                vectors: slots,
+            },
+            corners: &corners,
+        };
+        surface.plan_removal(0, &mut Planning::default())
+    }
+
+    #[test]
+    fn a_fill_facing_its_old_triangles_but_away_from_their_input_is_refused() {
+        // Earlier fills may have turned the current triangles: here each stands for input
+        // turned 100° about the x axis, so the flat fill faces like the current triangles
+        // but away from what they stand for, and must be refused; it would drift on.
+        let (positions, conn) = raised_hexagon();
+        let areas = area_vectors(&positions, conn.triangles());
+        let turned: Vec<Vec3> = areas
+            .iter()
+            .map(|&a| glam::Quat::from_rotation_x(100f32.to_radians()) * a)
+            .collect();
+        assert!(plan_on_hexagon(&areas, areas.clone()).is_some(), "control");
+        // Away from the input the region stands for, though facing some input at a corner.
+        assert_eq!(plan_on_hexagon(&turned, areas.clone()), None);
+        // Facing the region's input as a whole, but away from every input triangle at
+        // every corner (a thin spike's side).
+        assert_eq!(plan_on_hexagon(&areas, turned), None);
+    }
+
     #[test]
     fn a_ring_folded_in_two_halves_is_split_along_its_sharpest_turns() {
         let geometry = |zs: &[f64]| RingGeometry {

@@ -722,7 +722,8 @@ fn load_image(name: &str, folder: &Path) -> Result<(Vec<u8>, &'static str, bool)
         Some(d) => (d?.bytes, true),
         None => {
             let file = image_file(name, folder).ok_or("it is not a file glTF can embed")?;
-            let bytes = std::fs::read(&file).map_err(|e| format!("{}: {e}", file.display()))?;
+            let bytes = crate::io::file_limits::read_regular(&file)
+                .map_err(|e| format!("{}: {e}", file.display()))?;
             (bytes, false)
         }
     };
