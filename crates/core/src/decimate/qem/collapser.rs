@@ -477,6 +477,26 @@ mod tests {
     }
 
     #[test]
+    fn a_collapse_leaving_triangles_turned_from_the_input_surface_is_refused() {
+        // Interior vertex 4 into the outline's 1 on the flat grid: legal over the grid's own
+        // input surface. Were that surface (what the current triangles stand for) facing
+        // the other way, as after a run of small turns, the same collapse is refused: each
+        // step's turn is judged against the input, not only against the step before.
+        let mut d = grid();
+        let mut part = d.whole();
+        let plan = part.plan(1, 4).expect("interior into boundary");
+        assert!(part.gather(plan.remove, plan.keep));
+        assert!(part.is_collapse_legal(&plan));
+        for s in &mut d.input_surface {
+            *s = (-s.truncate()).extend(s.w);
+        }
+        let mut part = d.whole();
+        let plan = part.plan(1, 4).expect("interior into boundary");
+        assert!(part.gather(plan.remove, plan.keep));
+        assert!(!part.is_collapse_legal(&plan));
+    }
+
+    #[test]
     fn under_keep_features_a_crease_vertex_goes_only_along_its_crease() {
         // Folded 90° along x = 1: vertex 4 is on the crease (two feature edges), 1 and 7
         // end it on the border (one each: corners).
