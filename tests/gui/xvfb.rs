@@ -1,9 +1,9 @@
 //! The interactive viewer end to end in a real X window (Xvfb), driven the way a user drives
 //! it: key `9` decimates the current viewport by 90 %, F3 saves it as `out.wrl` in the working
-//! directory — or, the input being `out.wrl` there, as `out-1.wrl` — the vertex-count field
-//! takes a number and Enter, the right mouse button opens the popup menu. Run under
-//! `xvfb-run -a -s "-screen 0 1024x768x24 -noreset" cargo test`. Without `DISPLAY` the test is skipped
-//! with a notice, except when `CI` is set: there it fails.
+//! directory — or, the input being `out.wrl` there, as `out-1.wrl`, and again as `out-2.wrl`
+//! — the vertex-count field takes a number and Enter, the right mouse button opens the popup
+//! menu. Run under `xvfb-run -a -s "-screen 0 1024x768x24 -noreset" cargo test`. Without
+//! `DISPLAY` the test is skipped with a notice, except when `CI` is set: there it fails.
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -430,6 +430,23 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
         read_log(&log_path).contains("out.wrl is the input file"),
         "the viewer did not say why it saved as out-1.wrl:\n{}",
         read_log(&log_path)
+    );
+    // F3 twice, two files: the second save goes to out-2.wrl, out-1.wrl kept as it was.
+    let first = std::fs::read(&out).unwrap_or_else(|e| panic!("{e}"));
+    run("xdotool", &["key", "--window", &wid, "F3"]);
+    let second = dir.join("out-2.wrl");
+    wait_for("out-2.wrl", Duration::from_secs(30), &log_path, || {
+        second.exists()
+    });
+    assert_eq!(
+        saved_vertices(&second),
+        60,
+        "out-2.wrl is not the same result"
+    );
+    assert_eq!(
+        std::fs::read(&out).unwrap_or_default(),
+        first,
+        "the second F3 wrote over out-1.wrl"
     );
 
     // F2: a picture of the window as window.png: the window's size, the model on it.

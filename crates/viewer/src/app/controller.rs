@@ -674,6 +674,11 @@ impl ViewportController {
         })
     }
 
+    /// The file F3 writes next: `save_path`, or its first free numbered sibling.
+    pub fn next_save(&self) -> Option<PathBuf> {
+        save_path(&self.save_path, &self.inputs).map(|p| p.path().to_path_buf())
+    }
+
     /// F3: the current viewport's scene as VRML 2.0, its texture names rebased for the
     /// folder it is saved in; written through a temporary file and a rename, and never over
     /// an input file (then to `out-1.wrl`…, said in the message).
@@ -1415,8 +1420,11 @@ mod tests {
     fn f3_saves_the_current_viewport() {
         let dir = std::env::temp_dir().join(format!("decimate-f3-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        let _ = std::fs::remove_file(dir.join("out.wrl"));
+        let _ = std::fs::remove_file(dir.join("out-1.wrl"));
         let mut c = controller();
         c.save_path = dir.join("out.wrl");
+        assert_eq!(c.next_save(), Some(dir.join("out.wrl")));
         key(&mut c, Key::Char('9'));
         key(&mut c, Key::F3);
         let saved = decimate_core::io::read_scene(&c.save_path).unwrap_or_else(|e| panic!("{e}"));
@@ -1424,6 +1432,8 @@ mod tests {
             saved.scene.models[0].used_vertex_count(),
             c.current_viewport().vertex_count()
         );
+        // What the menu's Save entry names next: the numbered sibling, not the save just made.
+        assert_eq!(c.next_save(), Some(dir.join("out-1.wrl")));
         let _ = std::fs::remove_dir_all(&dir);
     }
 

@@ -8,6 +8,8 @@ use std::path::{Path, PathBuf};
 
 use decimate_core::io::Format;
 
+use super::modal::{confirm_or_cancel, modal, refusal, text_line};
+
 /// Which dialog.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DialogKind {
@@ -129,8 +131,17 @@ impl FileDialog {
 
     /// The name typed is submitted (Enter or the button): a folder is entered; Open takes a
     /// file that exists; Save as takes a name whose extension names a format it writes, and
-    /// first asks when the file exists. `None` while the dialog stays (refused, or asking).
+    /// first asks when the file exists. `None` while the dialog stays (refused, or asking);
+    /// a refusal is said in the status line too.
     pub fn submit(&mut self) -> Option<DialogOutcome> {
+        let outcome = self.check();
+        if let (Some(error), None) = (&self.error, &self.news) {
+            self.news = Some(error.clone());
+        }
+        outcome
+    }
+
+    fn check(&mut self) -> Option<DialogOutcome> {
         self.error = None;
         if self.name.trim().is_empty() {
             self.error = Some("type a file name, or pick one above".into());
@@ -208,48 +219,26 @@ fn readable_model(name: &Path) -> bool {
 /// submits the name, Esc cancels (or, while asking, answers no).
 pub fn show(ctx: &egui::Context, dialog: &mut FileDialog) -> Option<DialogOutcome> {
     let mut outcome = None;
-    egui::Window::new(dialog.title())
-        .order(egui::Order::Foreground)
-        .collapsible(false)
-        .resizable(false)
-        .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
-        .show(ctx, |ui| {
-            let (entered, escaped) = ui.input(|i| {
-                (
-                    i.key_pressed(egui::Key::Enter),
-                    i.key_pressed(egui::Key::Escape),
-                )
-            });
-            if dialog.replacing.is_some() {
-                outcome = replace_question(ui, dialog, escaped);
-                return;
-            }
-            ui.label(format!("Folder: {}", dialog.folder.display()));
-            listing(ui, dialog);
-            let edit = egui::TextEdit::singleline(&mut dialog.name)
-                .hint_text("file name (the extension names the format)")
-                .desired_width(360.0);
-            let edit = ui.add(edit);
-            if !entered && !escaped {
-                // Typing goes to the name, never to the viewer's keys.
-                edit.request_focus();
-            }
-            if let Some(error) = &dialog.error {
-                ui.colored_label(egui::Color32::from_rgb(255, 140, 110), error);
-            }
-            ui.horizontal(|ui| {
-                let verb = match dialog.kind {
-                    DialogKind::Open => "Open",
-                    DialogKind::SaveAs => "Save",
-                };
-                if ui.button(verb).clicked() || entered {
-                    outcome = dialog.submit();
-                }
-                if ui.button("Cancel").clicked() || escaped {
-                    outcome = Some(DialogOutcome::Cancel);
-                }
-            });
-        });
+    modal(ctx, dialog.title(), |ui, keys| {
+        if dialog.replacing.is_some() {
+            outcome = replace_question(ui, dialog, keys.escaped);
+            return;
+        }
+        ui.label(format!("Folder: {}", dialog.folder.display()));
+        listing(ui, dialog);
+        let hint = "file name (the extension names the format)";
+        text_line(ui, &mut dialog.name, hint, Some(360.0), keys);
+        refusal(ui, dialog.error.as_deref());
+        let verb = match dialog.kind {
+            DialogKind::Open => "Open",
+            DialogKind::SaveAs => "Save",
+        };
+        outcome = match confirm_or_cancel(ui, verb, keys) {
+            Some(true) => dialog.submit(),
+            Some(false) => Some(DialogOutcome::Cancel),
+            None => None,
+        };
+    });
     outcome
 }
 
@@ -341,6 +330,8 @@ mod tests {
             .error
             .as_deref()
             .is_some_and(|e| e.ends_with("does not exist")));
+        let news = d.take_news().unwrap_or_default();
+        assert!(news.ends_with("missing.ply does not exist"), "{news}");
         d.name = "sub".into();
         assert_eq!(d.submit(), None);
         assert_eq!(d.folder, dir.join("sub"));

@@ -134,84 +134,10 @@ fn percent(p: f64) -> Action {
 
 /// The popup menu: every action of the viewer.
 pub fn menu() -> Vec<MenuEntry> {
-    let mut decimate: Vec<_> = PERCENT_KEYS
-        .iter()
-        .map(|&(_, key, p)| {
-            let label = if p >= 100.0 {
-                "Remove 100 % (as far as possible)".to_string()
-            } else {
-                format!("Remove {p:.0} % of the vertices")
-            };
-            entry(&label, Some(key), percent(p))
-        })
-        .collect();
-    decimate.push(entry(
-        "Decimate to N vertices…",
-        Some("v"),
-        Action::AskVertexCount,
-    ));
-    decimate.push(entry(
-        "Quadric edge collapse (unchecked: vertex removal)",
-        Some("A"),
-        Action::ToggleAlgorithm,
-    ));
-    decimate.push(entry(
-        "Keep the open border / let it go",
-        Some("b"),
-        Action::ToggleKeepBorder,
-    ));
-    decimate.push(entry(
-        "Level-of-detail slider (qem, geomorph)",
-        Some("L"),
-        Action::ToggleLod,
-    ));
-    decimate.push(entry(
-        "Measure the distance to the original (metro)",
-        Some("d"),
-        Action::MeasureError,
-    ));
     vec![
-        submenu("Decimate", decimate),
-        submenu(
-            "Draw",
-            vec![
-                entry("Triangles", Some("t"), Action::ToggleTriangles),
-                entry("Edges", Some("e"), Action::ToggleEdges),
-                entry("Points", Some("p"), Action::TogglePoints),
-                entry("Face normals", Some("n"), Action::ToggleFaceNormals),
-                entry("Vertex normals", Some("N"), Action::ToggleVertexNormals),
-                entry("Lighting", Some("l"), Action::ToggleLighting),
-                entry("Smooth / flat shading", Some("s"), Action::ToggleSmooth),
-                entry("Texture", Some("T"), Action::ToggleTexture),
-                entry(
-                    "Error heat-map (distance to the original)",
-                    Some("E"),
-                    Action::ToggleErrorMap,
-                ),
-                entry("Anti-aliasing (4× MSAA)", Some("M"), Action::ToggleMsaa),
-                entry(
-                    "Crease angle −15° (sharper)",
-                    Some("["),
-                    Action::CreaseAngle(-15),
-                ),
-                entry(
-                    "Crease angle +15° (smoother)",
-                    Some("]"),
-                    Action::CreaseAngle(15),
-                ),
-            ],
-        ),
-        submenu(
-            "View",
-            vec![
-                entry("Model / eye control", Some("m"), Action::ToggleNavigation),
-                entry("Reset view", Some("r"), Action::ResetView),
-                entry("Linked cameras", Some("c"), Action::ToggleLinkedCameras),
-                entry("Add viewport (original)", Some("a"), Action::AddViewport),
-                entry("Remove viewport", Some("x"), Action::RemoveViewport),
-                entry("Next viewport", Some("Tab"), Action::NextViewport),
-            ],
-        ),
+        submenu("Decimate", decimate_entries()),
+        submenu("Draw", draw_entries()),
+        submenu("View", view_entries()),
     ]
     .into_iter()
     .chain(file_entries())
@@ -222,18 +148,114 @@ pub fn menu() -> Vec<MenuEntry> {
     .collect()
 }
 
+/// The Decimate submenu: the ten percentages, a vertex count, then the settings.
+fn decimate_entries() -> Vec<MenuEntry> {
+    let percentages = PERCENT_KEYS.iter().map(|&(_, key, p)| {
+        let label = if p >= 100.0 {
+            "Remove 100 % (as far as possible)".to_string()
+        } else {
+            format!("Remove {p:.0} % of the vertices")
+        };
+        entry(&label, Some(key), percent(p))
+    });
+    percentages
+        .chain([
+            entry("Decimate to N vertices…", Some("v"), Action::AskVertexCount),
+            entry(
+                "Quadric edge collapse (unchecked: vertex removal)",
+                Some("A"),
+                Action::ToggleAlgorithm,
+            ),
+            entry(
+                "Keep the open border / let it go",
+                Some("b"),
+                Action::ToggleKeepBorder,
+            ),
+            entry(
+                "Level-of-detail slider (qem, geomorph)",
+                Some("L"),
+                Action::ToggleLod,
+            ),
+            entry(
+                "Measure the distance to the original (metro)",
+                Some("d"),
+                Action::MeasureError,
+            ),
+        ])
+        .collect()
+}
+
+/// The Draw submenu: what each viewport draws.
+fn draw_entries() -> Vec<MenuEntry> {
+    vec![
+        entry("Triangles", Some("t"), Action::ToggleTriangles),
+        entry("Edges", Some("e"), Action::ToggleEdges),
+        entry("Points", Some("p"), Action::TogglePoints),
+        entry("Face normals", Some("n"), Action::ToggleFaceNormals),
+        entry("Vertex normals", Some("N"), Action::ToggleVertexNormals),
+        entry("Lighting", Some("l"), Action::ToggleLighting),
+        entry("Smooth / flat shading", Some("s"), Action::ToggleSmooth),
+        entry("Texture", Some("T"), Action::ToggleTexture),
+        entry(
+            "Error heat-map (distance to the original)",
+            Some("E"),
+            Action::ToggleErrorMap,
+        ),
+        entry("Anti-aliasing (4× MSAA)", Some("M"), Action::ToggleMsaa),
+        entry(
+            "Crease angle −15° (sharper)",
+            Some("["),
+            Action::CreaseAngle(-15),
+        ),
+        entry(
+            "Crease angle +15° (smoother)",
+            Some("]"),
+            Action::CreaseAngle(15),
+        ),
+    ]
+}
+
+/// The View submenu: cameras and viewports.
+fn view_entries() -> Vec<MenuEntry> {
+    vec![
+        entry("Model / eye control", Some("m"), Action::ToggleNavigation),
+        entry("Reset view", Some("r"), Action::ResetView),
+        entry("Linked cameras", Some("c"), Action::ToggleLinkedCameras),
+        entry("Add viewport (original)", Some("a"), Action::AddViewport),
+        entry("Remove viewport", Some("x"), Action::RemoveViewport),
+        entry("Next viewport", Some("Tab"), Action::NextViewport),
+    ]
+}
+
 /// The menu's file entries: open, save as, save, picture.
 fn file_entries() -> [MenuEntry; 4] {
     [
         entry("Open…", Some("o"), Action::Open),
         entry("Save as…", Some("O"), Action::SaveAs),
-        entry("Save as out.wrl", Some("F3"), Action::Save),
+        entry(&save_label("out.wrl"), Some("F3"), Action::Save),
         entry(
             "Save a picture as window.png",
             Some("F2"),
             Action::SavePicture,
         ),
     ]
+}
+
+/// The Save entry's label: the name F3 writes next (`out.wrl`, then `out-1.wrl`…), as F3
+/// never writes over a file.
+pub fn save_label(next: &str) -> String {
+    format!("Save as {next} (the next free number)")
+}
+
+/// Sets the Save entry's label to name `next`, the file F3 writes next.
+pub fn name_next_save(entries: &mut [MenuEntry], next: &str) {
+    for e in entries {
+        match &mut e.item {
+            MenuItem::Action(Action::Save) => e.label = save_label(next),
+            MenuItem::Action(_) => {}
+            MenuItem::Submenu(sub) => name_next_save(sub, next),
+        }
+    }
 }
 
 /// The action bound to `key`, if any.
@@ -374,6 +396,21 @@ mod tests {
             Some(Action::ToggleVertexNormals)
         );
         assert_eq!(action_for_key(Key::Char('z')), None);
+    }
+
+    #[test]
+    fn the_save_entry_names_the_file_f3_writes_next() {
+        let labels = |entries: &[MenuEntry]| -> Vec<String> {
+            let file = entries.iter().filter(|e| e.key == Some("F3"));
+            file.map(|e| e.label.clone()).collect()
+        };
+        let mut entries = menu();
+        assert_eq!(labels(&entries), ["Save as out.wrl (the next free number)"]);
+        name_next_save(&mut entries, "out-2.wrl");
+        assert_eq!(
+            labels(&entries),
+            ["Save as out-2.wrl (the next free number)"]
+        );
     }
 
     #[test]

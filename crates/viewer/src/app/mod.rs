@@ -14,6 +14,7 @@ pub mod level_error;
 pub mod lod;
 pub mod menu;
 pub mod menu_layout;
+pub mod modal;
 pub mod overlay;
 pub mod panel;
 pub mod popup;

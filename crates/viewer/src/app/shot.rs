@@ -185,7 +185,6 @@ pub fn render_measured(
     let context = Context::new(&[], false, device)?;
     let commands = Commands::new(&context)?;
     let (pipelines, target) = offscreen(&context, options)?;
-
     let draw = options.modes;
     let mut textures = Textures::new(
         &context,
@@ -198,39 +197,22 @@ pub fn render_measured(
     let measured = measure_each(scene, &made, options.measure || draw.error_map);
     let copies = made.iter().map(|(_, copy, _)| copy.clone()).collect();
     let (neutral, drawn, legend) = heat_mapped(scene, copies, draw.error_map, &measured);
-    let original = GpuScene::upload(
-        &context,
-        &commands,
-        &mut textures,
-        neutral.as_ref().unwrap_or(scene),
-        draw.layers(),
-    )?;
     let uploader = Uploader {
         context: &context,
         commands: &commands,
         layers: draw.layers(),
     };
+    let original = uploader.one(&mut textures, neutral.as_ref().unwrap_or(scene))?;
     let captioned = captioned(made, &measured, options.measure);
     let decimated = uploader.decimated(&mut textures, captioned, &drawn)?;
-    let counts = Counts::of(scene);
-    let original_caption = labels::caption("original", counts.vertices, counts.triangles);
     let camera = Camera::framing(original.bounds);
-    let (views, captions): (Vec<_>, Vec<_>) = (rects.iter().zip(&shown))
-        .map(|(&rect, p)| {
-            let d = p.and_then(|p| decimated.iter().find(|d| d.params == p));
-            let view = ViewportDraw {
-                rect,
-                scene: d.map_or(&original, |d| &d.gpu),
-                camera: &camera,
-                options: draw,
-                morph: 1.0,
-            };
-            (
-                view,
-                (rect, d.map_or(&original_caption, |d| &d.caption).clone()),
-            )
-        })
-        .unzip();
+    let shots = Shots {
+        original: (&original, caption_of_original(scene)),
+        decimated: &decimated,
+        camera: &camera,
+        options: draw,
+    };
+    let (views, captions) = shots.views(&rects, &shown);
     let labelled = options.labels.unwrap_or(rects.len() > 1 || options.measure);
     let heat: Vec<_> = (rects.iter().zip(&shown))
         .filter(|(_, p)| p.is_some())
@@ -244,19 +226,52 @@ pub fn render_measured(
         help: help.as_deref(),
     };
     let painting = labelled || legend.is_some() || strip > 0 || help.is_some();
-    let image = draw_and_read(
-        &context,
-        &commands,
-        &pipelines,
-        &target,
-        &views,
-        painting.then_some(&painted),
-    )?;
-    Ok((
-        image,
-        decimated.into_iter().map(|d| d.report).collect(),
-        measured,
-    ))
+    let overlay = painting.then_some(&painted);
+    let image = draw_and_read(&context, &commands, &pipelines, &target, &views, overlay)?;
+    let reports = decimated.into_iter().map(|d| d.report).collect();
+    Ok((image, reports, measured))
+}
+
+/// The original's caption: its counts.
+fn caption_of_original(scene: &Scene) -> String {
+    let counts = Counts::of(scene);
+    labels::caption("original", counts.vertices, counts.triangles)
+}
+
+/// What a shot's viewports draw from: the original (with its caption), the decimated
+/// copies, one camera and the draw modes.
+struct Shots<'a> {
+    original: (&'a GpuScene, String),
+    decimated: &'a [Decimated],
+    camera: &'a Camera,
+    options: DrawOptions,
+}
+
+impl<'a> Shots<'a> {
+    /// Each viewport's draw and caption: the copy its params made, or the original.
+    fn views(
+        &self,
+        rects: &[crate::render::tiles::Rect],
+        shown: &[Option<Params>],
+    ) -> (
+        Vec<ViewportDraw<'a>>,
+        Vec<(crate::render::tiles::Rect, String)>,
+    ) {
+        (rects.iter().zip(shown))
+            .map(|(&rect, p)| {
+                let d = p.and_then(|p| self.decimated.iter().find(|d| d.params == p));
+                let view = ViewportDraw {
+                    rect,
+                    scene: d.map_or(self.original.0, |d| &d.gpu),
+                    camera: self.camera,
+                    options: self.options,
+                    morph: 1.0,
+                };
+                let caption = d.map_or(&self.original.1, |d| &d.caption).clone();
+                (view, (rect, caption))
+            })
+            .unzip()
+    }
 }
 
 /// Each decimated copy in `made` measured against `scene` when `wanted` (see [`Measured`]).
@@ -305,6 +320,11 @@ struct Uploader<'a> {
 }
 
 impl Uploader<'_> {
+    /// One scene on the GPU.
+    fn one(&self, textures: &mut Textures, scene: &Scene) -> Result<GpuScene, RenderError> {
+        GpuScene::upload(self.context, self.commands, textures, scene, self.layers)
+    }
+
     /// The decimated copies on the GPU, each drawn as `drawn` says (its heat-mapped version,
     /// or itself), with its params, caption and report.
     fn decimated(
@@ -315,13 +335,7 @@ impl Uploader<'_> {
     ) -> Result<Vec<Decimated>, RenderError> {
         let mut decimated = Vec::with_capacity(made.len());
         for ((params, caption, report), shown_copy) in made.into_iter().zip(drawn) {
-            let gpu = GpuScene::upload(
-                self.context,
-                self.commands,
-                textures,
-                shown_copy,
-                self.layers,
-            )?;
+            let gpu = self.one(textures, shown_copy)?;
             decimated.push(Decimated {
                 params,
                 gpu,

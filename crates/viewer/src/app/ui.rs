@@ -16,6 +16,7 @@ use crate::render::context::Context;
 use super::app_error::AppError;
 use super::file_dialog::{self, DialogOutcome, FileDialog};
 use super::menu::{Action, MenuEntry};
+use super::modal::{confirm_or_cancel, modal, refusal, text_line};
 use super::overlay::{self, Overlay};
 use super::panel::{self, ViewportPanel};
 use super::popup;
@@ -274,58 +275,31 @@ fn lod_slider(ctx: &egui::Context, slider: &LodSlider) -> Option<usize> {
 /// The "decimate to N vertices" window: Enter or the button submits the text (the viewer
 /// checks it and either closes the field or shows why not), Escape or Cancel closes it.
 fn vertex_field(ctx: &egui::Context, field: &mut VertexField, result: &mut UiResult) {
-    egui::Window::new("Decimate to N vertices")
-        .order(egui::Order::Foreground)
-        .collapsible(false)
-        .resizable(false)
-        .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
-        .show(ctx, |ui| {
-            // Read before the text edit, which gives up its focus on Enter.
-            let (entered, escaped) = ui.input(|i| {
-                (
-                    i.key_pressed(egui::Key::Enter),
-                    i.key_pressed(egui::Key::Escape),
-                )
-            });
-            let edit = egui::TextEdit::singleline(&mut field.text).hint_text(&field.hint);
-            let edit = ui.add(edit);
-            if !entered && !escaped {
-                // Typing goes to the field, never to the viewer's keys.
-                edit.request_focus();
-            }
-            if let Some(error) = &field.error {
-                ui.colored_label(egui::Color32::from_rgb(255, 140, 110), error);
-            }
-            ui.horizontal(|ui| {
-                if ui.button("Decimate").clicked() || entered {
-                    result.vertex_count = Some(field.text.clone());
-                }
-                if ui.button("Cancel").clicked() || escaped {
-                    result.close_field = true;
-                }
-            });
-        });
+    modal(ctx, "Decimate to N vertices", |ui, keys| {
+        text_line(ui, &mut field.text, &field.hint, None, keys);
+        refusal(ui, field.error.as_deref());
+        match confirm_or_cancel(ui, "Decimate", keys) {
+            Some(true) => result.vertex_count = Some(field.text.clone()),
+            Some(false) => result.close_field = true,
+            None => {}
+        }
+    });
 }
 
 /// The quit question over everything: "Quit" (or q / y) quits, "Stay" (or n / Esc) stays;
 /// the keys reach the viewer, which answers for them.
 fn quit_question(ctx: &egui::Context, question: &str) -> Option<bool> {
     let mut answer = None;
-    egui::Window::new("Quit?")
-        .collapsible(false)
-        .resizable(false)
-        .order(egui::Order::Foreground)
-        .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
-        .show(ctx, |ui| {
-            ui.label(question);
-            ui.horizontal(|ui| {
-                if ui.button("Quit (y)").clicked() {
-                    answer = Some(true);
-                }
-                if ui.button("Stay (n)").clicked() {
-                    answer = Some(false);
-                }
-            });
+    modal(ctx, "Quit?", |ui, _| {
+        ui.label(question);
+        ui.horizontal(|ui| {
+            if ui.button("Quit (y)").clicked() {
+                answer = Some(true);
+            }
+            if ui.button("Stay (n)").clicked() {
+                answer = Some(false);
+            }
         });
+    });
     answer
 }

@@ -925,6 +925,10 @@ impl Callbacks for Viewer {
                 self.controller.pointer_at(x, y);
                 self.popup_at = Some(egui::pos2(x as f32, y as f32));
                 self.popup_just_opened = true;
+                if let Some(next) = self.controller.next_save() {
+                    let name = next.file_name().unwrap_or_default().to_string_lossy();
+                    super::menu::name_next_save(&mut self.menu, &name);
+                }
             }
             (Button::Left, true) => {
                 self.popup_at = None;

@@ -35,7 +35,7 @@ pub enum Poll<T> {
 
 /// Starts `work` on a new thread, which gets a rayon pool of its own (the thread one of its
 /// workers): the parallel steps of a decimation never queue behind the window's, nor the
-/// window's behind them; the pool's threads run `JOB_NICE` nicer than the window. `work`
+/// window's behind them; the pool's threads run at the window's priority. `work`
 /// gets a progress callback (0..=1) and the cancel flag, and returns `None` when it stopped
 /// on that flag.
 pub fn spawn<T, F>(what: String, work: F) -> Job<T>
