@@ -25,27 +25,35 @@ pub(super) struct Mesh {
 
 /// The patch: a 33 x 33 grid with bumps and seeded noise of a few millimetres, 2048 triangles.
 pub(super) fn patch(t: [f64; 3]) -> Mesh {
+    grid_patch(N, t)
+}
+
+/// The patch as a grid of `n` x `n` points over the same square.
+pub(super) fn grid_patch(n: usize, t: [f64; 3]) -> Mesh {
     let mut rng = Rng(53);
     let mut m = Mesh::default();
-    for j in 0..N {
-        for i in 0..N {
-            let (x, y) = (i as f64 * SIZE / 32.0, j as f64 * SIZE / 32.0);
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (
+                i as f64 * SIZE / (n - 1) as f64,
+                j as f64 * SIZE / (n - 1) as f64,
+            );
             let bump = 0.01 * ((x * 40.0).sin() * (y * 30.0).cos());
             let z = bump + 0.002 * f64::from(rng.signed());
             m.points.push([x + t[0], y + t[1], z + t[2]]);
         }
     }
-    for j in 0..N - 1 {
-        for i in 0..N - 1 {
-            let a = j * N + i;
-            m.triangles.push([a, a + 1, a + N + 1]);
-            m.triangles.push([a, a + N + 1, a + N]);
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let a = j * n + i;
+            m.triangles.push([a, a + 1, a + n + 1]);
+            m.triangles.push([a, a + n + 1, a + n]);
         }
     }
     m
 }
 
-fn write_input(m: &Mesh, path: &Path) {
+pub(super) fn write_input(m: &Mesh, path: &Path) {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     let mut out: Vec<u8> = Vec::new();
     let (nv, nf) = (m.points.len(), m.triangles.len());

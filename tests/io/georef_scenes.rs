@@ -9,7 +9,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crate::georef::{dot, hausdorff, patch, read_output, sub, Mesh, FAR};
+use crate::georef::{dot, grid_patch, hausdorff, patch, read_output, sub, write_input, Mesh, FAR};
 use crate::support::binary::decimate;
 
 /// How the patch is written: which format, and whether the translation is in its points or
@@ -228,7 +228,12 @@ fn far_scenes_decimate_as_they_do_at_the_origin_in_vrml_inventor_and_gltf() {
             let near_error = hausdorff(&input, &near);
             for t in FAR {
                 let far = run(dir.path(), form, t, algorithm);
-                assert_eq!(far.triangles, near.triangles, "{what} at {t:?}");
+                assert!(
+                    far.triangles == near.triangles,
+                    "{what} at {t:?}: {} triangles, other than the {} at the origin",
+                    far.triangles.len(),
+                    near.triangles.len()
+                );
                 for (p, q) in far.points.iter().zip(&near.points) {
                     let d = dot(sub(*p, *q), sub(*p, *q)).sqrt();
                     assert!(d < 1e-6, "{what} at {t:?}: {p:?} against {q:?}");
@@ -240,5 +245,62 @@ fn far_scenes_decimate_as_they_do_at_the_origin_in_vrml_inventor_and_gltf() {
                 );
             }
         }
+    }
+}
+
+/// `decimate patch.ply nogui --tiles 4 -p 80 --memory 400K` on a finer patch at `t`: the
+/// output (binary PLY) moved back by `t`, and what the run said.
+fn tiled(dir: &Path, t: [f64; 3]) -> (Mesh, String) {
+    write_input(&grid_patch(65, t), &dir.join("patch.ply"));
+    let out = decimate(
+        dir,
+        &[
+            "patch.ply",
+            "nogui",
+            "--tiles",
+            "4",
+            "-p",
+            "80",
+            "--memory",
+            "400K",
+            "-o",
+            "out.ply",
+        ],
+    );
+    let said = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "at {t:?}: {said}");
+    let mut m = read_output(&dir.join("out.ply"));
+    for p in &mut m.points {
+        *p = sub(*p, t);
+    }
+    (m, said)
+}
+
+#[test]
+fn a_far_patch_tiled_within_a_small_memory_budget_lands_where_the_origin_run_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = grid_patch(65, [0.0; 3]);
+    let (near, said) = tiled(dir.path(), [0.0; 3]);
+    // 8192 triangles to 1638: the welded tiles (twice that) are over 400K and cut again.
+    assert_eq!(near.triangles.len(), 1638);
+    assert!(said.contains("cutting them again"), "{said}");
+    let near_error = hausdorff(&input, &near);
+    for t in FAR {
+        let (far, _) = tiled(dir.path(), t);
+        assert!(
+            far.triangles == near.triangles,
+            "at {t:?}: {} triangles, other than the {} at the origin",
+            far.triangles.len(),
+            near.triangles.len()
+        );
+        for (p, q) in far.points.iter().zip(&near.points) {
+            let d = dot(sub(*p, *q), sub(*p, *q)).sqrt();
+            assert!(d < 1e-6, "at {t:?}: {p:?} against {q:?}");
+        }
+        let far_error = hausdorff(&input, &far);
+        assert!(
+            far_error <= 1.1 * near_error,
+            "at {t:?}: error {far_error} against {near_error} at the origin"
+        );
     }
 }

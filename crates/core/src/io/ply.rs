@@ -497,6 +497,7 @@ fn stream_header(input: &mut impl Input) -> PResult<Header> {
 pub(super) fn stream_ply(
     mut input: impl Input,
     file_len: usize,
+    recentre: &mut Recentre,
     triangle: &mut dyn FnMut([[f32; 3]; 3]),
 ) -> PResult<()> {
     let header = stream_header(&mut input)?;
@@ -504,7 +505,7 @@ pub(super) fn stream_ply(
     let mut data = Gathered {
         face_line: header.lines,
         positions_only: true,
-        recentre: Recentre::at_zero(),
+        recentre: *recentre,
         ..Gathered::default()
     };
     let mut unused = Vec::new();
@@ -521,6 +522,7 @@ pub(super) fn stream_ply(
             _ => skip_element(el, &mut body)?,
         }
     }
+    *recentre = data.recentre;
     Ok(())
 }
 
