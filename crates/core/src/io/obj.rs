@@ -632,7 +632,10 @@ mod stream_tests {
         let read = read_obj(text).unwrap();
         assert_eq!(read.scene.triangle_count(), 3);
         let mut streamed = Vec::new();
-        stream_obj(&text[..], &mut |t| streamed.push(t)).unwrap();
+        stream_obj(&text[..], &mut Recentre::default(), &mut |t| {
+            streamed.push(t)
+        })
+        .unwrap();
         assert_eq!(sorted_bits(streamed), sorted_triangles(&read.scene));
     }
 }

@@ -1075,9 +1075,12 @@ mod tests {
             let (scene, _) = read_ply(&bytes).unwrap();
             assert_eq!(scene.triangle_count(), 72, "{format}");
             let mut streamed = Vec::new();
-            stream_ply(Streamed::new(OneByte(&bytes)), bytes.len(), &mut |t| {
-                streamed.push(t)
-            })
+            stream_ply(
+                Streamed::new(OneByte(&bytes)),
+                bytes.len(),
+                &mut Recentre::default(),
+                &mut |t| streamed.push(t),
+            )
             .unwrap();
             assert_eq!(sorted_bits(streamed), sorted_triangles(&scene), "{format}");
         }
@@ -1087,7 +1090,13 @@ mod tests {
     fn a_stream_cut_short_names_the_element_and_record() {
         let bytes = grid("binary_little_endian", 2);
         let cut = &bytes[..bytes.len() - 40];
-        let e = stream_ply(Streamed::new(OneByte(cut)), cut.len(), &mut |_| {}).unwrap_err();
+        let e = stream_ply(
+            Streamed::new(OneByte(cut)),
+            cut.len(),
+            &mut Recentre::default(),
+            &mut |_| {},
+        )
+        .unwrap_err();
         assert!(
             e.message.contains("ends inside face 5 of 8"),
             "{}",

@@ -610,6 +610,7 @@ mod stream_tests {
             stream_stl(
                 Streamed::new(OneByte(bytes)),
                 bytes.len() as u64,
+                &mut Recentre::default(),
                 &mut |t| streamed.push(t),
             )
             .unwrap();
