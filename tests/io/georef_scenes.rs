@@ -48,7 +48,7 @@ impl Form {
 fn point_list(m: &Mesh, t: [f64; 3]) -> String {
     let mut s = String::new();
     for p in &m.points {
-        let _ = write!(s, "{} {} {},\n", p[0] + t[0], p[1] + t[1], p[2] + t[2]);
+        let _ = writeln!(s, "{} {} {},", p[0] + t[0], p[1] + t[1], p[2] + t[2]);
     }
     s
 }
@@ -56,7 +56,7 @@ fn point_list(m: &Mesh, t: [f64; 3]) -> String {
 fn index_list(m: &Mesh) -> String {
     let mut s = String::new();
     for [a, b, c] in &m.triangles {
-        let _ = write!(s, "{a}, {b}, {c}, -1,\n");
+        let _ = writeln!(s, "{a}, {b}, {c}, -1,");
     }
     s
 }
