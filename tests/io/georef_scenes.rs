@@ -304,3 +304,32 @@ fn a_far_patch_tiled_within_a_small_memory_budget_lands_where_the_origin_run_doe
         );
     }
 }
+
+#[test]
+fn a_far_gltf_written_as_gltf_stays_where_it_stood() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = patch([0.0; 3]);
+    for form in [Form::GltfNode, Form::GltfRtc] {
+        let near = run(dir.path(), form, [0.0; 3], &[]);
+        let near_error = hausdorff(&input, &near);
+        let t = FAR[0];
+        write_scene(form, t, dir.path());
+        for args in [
+            &[form.file(), "nogui", "-p", "80", "-o", "out.gltf"][..],
+            &["out.gltf", "nogui", "-p", "0", "-o", "back.obj"][..],
+        ] {
+            let out = decimate(dir.path(), args);
+            let said = String::from_utf8_lossy(&out.stderr);
+            assert!(out.status.success(), "{form:?} {args:?}: {said}");
+        }
+        let mut back = read_output(&dir.path().join("back.obj"));
+        for p in &mut back.points {
+            *p = sub(*p, t);
+        }
+        let error = hausdorff(&input, &back);
+        assert!(
+            error <= 1.1 * near_error,
+            "{form:?}: error {error} against {near_error} at the origin"
+        );
+    }
+}

@@ -52,8 +52,12 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         .or_else(|| document.scenes().next());
     let copied = copied_meshes(document);
     let root = raw_json(bytes).map_err(fail)?;
+    let exact = Exact::of(&root);
     let mut carried_warnings = Vec::new();
+    // CESIUM_RTC's centre has no place in a node tree written back: such a file's models
+    // are written flat, each under a node at its origin.
     let tree = match &scene {
+        Some(_) if exact.rtc != DMat4::IDENTITY => None,
         Some(scene) => {
             let (tree, w) = node_tree(&root, document, scene, &buffers, &copied).map_err(fail)?;
             carried_warnings = w;
@@ -75,7 +79,7 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         quantized: document
             .extensions_used()
             .any(|e| e == "KHR_mesh_quantization"),
-        exact: Exact::of(&root),
+        exact,
         origin: None,
         // The file and the buffer files it loads (a GLB's own chunk counted once).
         max_triangles: file_limits::max_instanced_triangles(
