@@ -35,6 +35,9 @@ const MAX_NODE_VISITS: usize = MAX_MODELS;
 
 /// Reads a glTF 2.0 file (JSON or binary) held in `bytes`; `path` names it in messages and
 /// is the folder external buffers and images are read from.
+///
+/// A file with a `CESIUM_RTC` centre keeps no node tree (the tree has no place for it):
+/// a glTF output writes its models flat, each under a node at its origin.
 pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
     let fail = |message: String| ReadError::Unsupported {
         file: path.to_path_buf(),
@@ -43,8 +46,8 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
     let gltf = parse_document(bytes, path)?;
     validate(&gltf.document).map_err(fail)?;
     check_hierarchy(&gltf.document).map_err(fail)?;
-    check_image_uris(&gltf.document, texture_path::folder_of(path)).map_err(fail)?;
     let folder = texture_path::folder_of(path);
+    check_image_uris(&gltf.document, folder).map_err(fail)?;
     let buffers = load_buffers(&gltf, folder).map_err(fail)?;
     let document = &gltf.document;
     let scene = document
@@ -53,17 +56,12 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
     let copied = copied_meshes(document);
     let root = raw_json(bytes).map_err(fail)?;
     let exact = Exact::of(&root);
-    let mut carried_warnings = Vec::new();
-    // CESIUM_RTC's centre has no place in a node tree written back: such a file's models
-    // are written flat, each under a node at its origin.
-    let tree = match &scene {
-        Some(_) if exact.rtc != DMat4::IDENTITY => None,
-        Some(scene) => {
+    let (tree, carried_warnings) = match &scene {
+        Some(scene) if exact.rtc == DMat4::IDENTITY => {
             let (tree, w) = node_tree(&root, document, scene, &buffers, &copied).map_err(fail)?;
-            carried_warnings = w;
-            Some(Arc::new(tree))
+            (Some(Arc::new(tree)), w)
         }
-        None => None,
+        _ => (None, Vec::new()),
     };
     let mut reader = Reader {
         buffers: &buffers,
