@@ -141,6 +141,20 @@ class Metro:
 # Checking and converting arrays
 
 
+# Coordinates of this magnitude or more are decimated relative to an origin (the core's
+# `io::origin::FAR`): float32's step there is a thousandth.
+_FAR = 8192.0
+
+
+def _origin(v: np.ndarray) -> np.ndarray:
+    """The origin the core's readers pick: zero unless the first vertex has a coordinate of
+    magnitude `_FAR` or more, else that vertex rounded (float64)."""
+    first = np.asarray(v[0], dtype=np.float64) if len(v) else np.zeros(3)
+    if v.dtype.kind == "f" and np.isfinite(first).all() and (np.abs(first) >= _FAR).any():
+        return np.round(first)
+    return np.zeros(3)
+
+
 def _vertices(a: Any, what: str = "vertices") -> np.ndarray:
     v = np.asarray(a)
     if v.dtype.kind not in "fiu":
@@ -298,7 +312,9 @@ def simplify(
     """Simplify a triangle mesh.
 
     ``vertices`` is an (n, 3) float array and ``faces`` an (m, 3) integer array of vertex
-    indices, counter-clockwise seen from outside. Instead of the two arrays, a trimesh,
+    indices, counter-clockwise seen from outside. Far coordinates (a first vertex with a
+    coordinate of 8192 or more: georeferenced scans) are decimated relative to that vertex
+    rounded and moved back, so float64 vertices keep their precision. Instead of the two arrays, a trimesh,
     PyVista (triangles only) or Open3D mesh may be given alone: the same kind of mesh comes
     back. Otherwise a `SimplifyResult` comes back, with ``vertices`` and ``faces`` in the
     dtypes given, the kept attributes and a `Report`.
@@ -339,7 +355,11 @@ def simplify(
         like = vertices
         vertices, faces = _unpack(vertices)
     v_in, f_in = np.asarray(vertices), np.asarray(faces)
-    v = _vertices(v_in)
+    # Far coordinates (georeferenced) are decimated relative to an origin, in float32 there,
+    # and moved back in float64.
+    origin = _origin(v_in) if v_in.ndim == 2 and v_in.shape[-1:] == (3,) else np.zeros(3)
+    far = bool(origin.any())
+    v = _vertices(np.asarray(v_in, dtype=np.float64) - origin if far else v_in)
     f = _faces(f_in, len(v))
     goal = _goal(ratio, keep_triangles, keep_vertices, max_error)
     _options(algorithm, feature_angle)
@@ -351,7 +371,10 @@ def simplify(
         v, f, goal, algorithm, bool(keep_border), float(feature_angle), c, t, nm, bool(record), bool(weld), cancel
     )
     v_dtype = v_in.dtype if v_in.dtype.kind == "f" else np.dtype(np.float64)
-    out_v = raw["vertices"].astype(v_dtype, copy=False)
+    if far:
+        out_v = (raw["vertices"].astype(np.float64) + origin).astype(v_dtype, copy=False)
+    else:
+        out_v = raw["vertices"].astype(v_dtype, copy=False)
     out_f = raw["faces"].astype(f_in.dtype, copy=False)
     if like is not None and _kind(like) not in ("arrays", "tuple"):
         return _repack(like, out_v, out_f)

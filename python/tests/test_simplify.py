@@ -178,3 +178,25 @@ def test_report_warns_about_repaired_input():
     assert out.report.vertices_before == len(v)  # welded back into one surface
     loose = decimate.simplify(soup_v, soup_f, ratio=0.5, weld=False)
     assert loose.report.vertices_before == len(soup_v)
+
+
+def _bumpy_patch(n: int, t):
+    """A 0.35-unit patch of n x n float64 vertices with bumps, moved by `t`."""
+    v, f = grid(n - 1)
+    xy = v[:, :2].astype(np.float64) * (0.35 / (n - 1))
+    z = 0.01 * np.sin(xy[:, 0] * 40.0) * np.cos(xy[:, 1] * 30.0)
+    return np.column_stack([xy, z]) + np.asarray(t, dtype=np.float64), f
+
+
+@pytest.mark.parametrize("algorithm", ["qem", "schroeder"])
+@pytest.mark.parametrize("t", [(3e5, 1.2e6, 50.0), (1e7, -1e7, 1e7)])
+def test_far_float64_vertices_decimate_as_they_do_at_the_origin(algorithm, t):
+    near_v, f = _bumpy_patch(33, (0.0, 0.0, 0.0))
+    far_v, _ = _bumpy_patch(33, t)
+    near = decimate.simplify(near_v, f, ratio=0.2, algorithm=algorithm)
+    far = decimate.simplify(far_v, f, ratio=0.2, algorithm=algorithm)
+    assert far.vertices.dtype == np.float64
+    assert np.array_equal(far.faces, near.faces)
+    # Moved back, the far result is the origin run's (float32 at 1.2e6 moves points by up
+    # to 0.06, at 1e7 by 0.5).
+    assert np.abs(far.vertices - np.asarray(t) - near.vertices).max() < 1e-6

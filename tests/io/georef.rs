@@ -14,38 +14,46 @@ use crate::support::rng::Rng;
 
 const N: usize = 33;
 const SIZE: f64 = 0.35;
-const FAR: [[f64; 3]; 2] = [[3.0e5, 1.2e6, 50.0], [1.0e7, -1.0e7, 1.0e7]];
+pub(super) const FAR: [[f64; 3]; 2] = [[3.0e5, 1.2e6, 50.0], [1.0e7, -1.0e7, 1.0e7]];
 
 /// A mesh in f64: positions and triangles (0-based).
 #[derive(Debug, Clone, Default)]
-struct Mesh {
-    points: Vec<[f64; 3]>,
-    triangles: Vec<[usize; 3]>,
+pub(super) struct Mesh {
+    pub(super) points: Vec<[f64; 3]>,
+    pub(super) triangles: Vec<[usize; 3]>,
 }
 
 /// The patch: a 33 x 33 grid with bumps and seeded noise of a few millimetres, 2048 triangles.
-fn patch(t: [f64; 3]) -> Mesh {
+pub(super) fn patch(t: [f64; 3]) -> Mesh {
+    grid_patch(N, t)
+}
+
+/// The patch as a grid of `n` x `n` points over the same square.
+pub(super) fn grid_patch(n: usize, t: [f64; 3]) -> Mesh {
     let mut rng = Rng(53);
     let mut m = Mesh::default();
-    for j in 0..N {
-        for i in 0..N {
-            let (x, y) = (i as f64 * SIZE / 32.0, j as f64 * SIZE / 32.0);
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (
+                i as f64 * SIZE / (n - 1) as f64,
+                j as f64 * SIZE / (n - 1) as f64,
+            );
             let bump = 0.01 * ((x * 40.0).sin() * (y * 30.0).cos());
             let z = bump + 0.002 * f64::from(rng.signed());
             m.points.push([x + t[0], y + t[1], z + t[2]]);
         }
     }
-    for j in 0..N - 1 {
-        for i in 0..N - 1 {
-            let a = j * N + i;
-            m.triangles.push([a, a + 1, a + N + 1]);
-            m.triangles.push([a, a + N + 1, a + N]);
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let a = j * n + i;
+            m.triangles.push([a, a + 1, a + n + 1]);
+            m.triangles.push([a, a + n + 1, a + n]);
         }
     }
     m
 }
 
-fn write_input(m: &Mesh, path: &Path) {
+pub(super) fn write_input(m: &Mesh, path: &Path) {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     let mut out: Vec<u8> = Vec::new();
     let (nv, nf) = (m.points.len(), m.triangles.len());
@@ -111,7 +119,7 @@ fn write_ply_input(m: &Mesh, path: &Path, out: &mut Vec<u8>) {
 }
 
 /// Reads our output back with a parser of a few lines per format, in f64.
-fn read_output(path: &Path) -> Mesh {
+pub(super) fn read_output(path: &Path) -> Mesh {
     let bytes = std::fs::read(path).unwrap();
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     if ext == "ply" {
@@ -199,11 +207,11 @@ fn read_binary_ply(bytes: &[u8]) -> Mesh {
     m
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+pub(super) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+pub(super) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
@@ -273,7 +281,7 @@ fn one_sided(from: &Mesh, to: &Mesh) -> f64 {
     samples.into_iter().map(nearest).fold(0.0, f64::max)
 }
 
-fn hausdorff(a: &Mesh, b: &Mesh) -> f64 {
+pub(super) fn hausdorff(a: &Mesh, b: &Mesh) -> f64 {
     one_sided(a, b).max(one_sided(b, a))
 }
 

@@ -11,6 +11,7 @@ mod coin_counts;
 mod errors;
 mod formats;
 mod georef;
+mod georef_scenes;
 mod gltf;
 mod gltf_carry;
 mod gltf_rules;

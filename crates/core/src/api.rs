@@ -1,5 +1,5 @@
 //! The library's entry point for programs: decimate a triangle mesh given as plain arrays
-//! ([`simplify`]), a [`Scene`] already in memory ([`simplify_scene`]), or a file into
+//! ([`simplify`]; [`simplify_f64`] for coordinates far from zero), a [`Scene`] already in memory ([`simplify_scene`]), or a file into
 //! another file in any format the `decimate` program reads and writes ([`simplify_file`]:
 //! VRML 1.0/2.0, Open Inventor, PLY, OBJ, STL, OFF, glTF 2.0). [`with_threads`] runs any of
 //! them on a given number of threads (one: no other thread); the result is the same for
@@ -42,15 +42,28 @@ pub use crate::mesh::{Model, Scene};
 pub use crate::threads::with_threads;
 
 /// A triangle mesh as plain arrays: positions, and three indices into them per triangle
-/// (counter-clockwise seen from the front). Positions are f32: a mesh far from zero
-/// (georeferenced, coordinates of 1e5 and more) is given relative to a point of its own and
-/// moved back after, or goes through [`simplify_file`] / a [`Model`] with its `origin`.
+/// (counter-clockwise seen from the front). Positions are f32, relative to `origin`: a
+/// mesh far from zero (georeferenced, coordinates of 1e5 and more) given to
+/// [`simplify_f64`] comes back with the origin it was moved to (see `io::origin`), and
+/// [`Mesh::points`] gives its coordinates in f64.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Mesh {
-    /// Vertex positions.
+    /// Vertex positions, relative to `origin`.
     pub positions: Vec<[f32; 3]>,
     /// Three indices into `positions` per triangle.
     pub indices: Vec<u32>,
+    /// Where the positions' frame stands: zero unless the mesh was far from zero.
+    pub origin: [f64; 3],
+}
+
+impl Mesh {
+    /// The positions in the input's coordinates, in f64: `origin + position`.
+    pub fn points(&self) -> Vec<[f64; 3]> {
+        let o = self.origin;
+        (self.positions.iter())
+            .map(|p| std::array::from_fn(|k| o[k] + f64::from(p[k])))
+            .collect()
+    }
 }
 
 /// What stops a simplification: a file that cannot be read or written, or arrays that do
@@ -104,8 +117,24 @@ pub fn simplify(
         .map(|m| Mesh {
             positions: m.positions.iter().map(|p| p.to_array()).collect(),
             indices: m.triangles.iter().flatten().copied().collect(),
+            origin: [0.0; 3],
         })
         .unwrap_or_default();
+    Ok((mesh, report))
+}
+
+/// As [`simplify`], for f64 coordinates: when the first position is far from zero, the
+/// mesh is decimated relative to it rounded (`io::origin`, as the file readers do), so it
+/// keeps the shape f32 coordinates would lose, and the result carries that `origin`.
+pub fn simplify_f64(
+    positions: &[[f64; 3]],
+    indices: &[u32],
+    params: &Params,
+) -> Result<(Mesh, Report), Error> {
+    let mut recentre = io::origin::Recentre::default();
+    let relative: Vec<[f32; 3]> = positions.iter().map(|&p| recentre.relative(p)).collect();
+    let (mut mesh, report) = simplify(&relative, indices, params)?;
+    mesh.origin = recentre.origin().to_array();
     Ok((mesh, report))
 }
 
@@ -218,6 +247,35 @@ mod tests {
             .collect();
         all.sort_unstable();
         all
+    }
+
+    #[test]
+    fn a_far_mesh_in_f64_decimates_as_it_does_at_the_origin() {
+        let sphere = crate::mesh::shapes::bumpy_sphere(24, 48);
+        let indices: Vec<u32> = sphere.triangles.iter().flatten().copied().collect();
+        let at = |t: [f64; 3]| -> Vec<[f64; 3]> {
+            (sphere.positions.iter())
+                .map(|p| std::array::from_fn(|k| f64::from(p[k]) + t[k]))
+                .collect()
+        };
+        let params = Params {
+            target: Target::KeepTriangles(500),
+            algorithm: Algorithm::Qem,
+            ..Params::default()
+        };
+        // The far run's frame is its first position rounded: the origin run in that frame
+        // (all numbers exact in f64) is what it must give back, moved by the origin.
+        let o = sphere.positions[0].as_dvec3().round().to_array();
+        let (near, _) = simplify_f64(&at(o.map(|x| -x)), &indices, &params).expect("near");
+        assert_eq!(near.origin, [0.0; 3]);
+        let t = [300000.0, 1200000.0, -10000000.0];
+        let (far, _) = simplify_f64(&at(t), &indices, &params).expect("far");
+        assert_eq!(far.indices, near.indices);
+        assert_eq!(far.origin, std::array::from_fn(|k| o[k] + t[k]));
+        for (p, q) in far.points().iter().zip(near.points()) {
+            let d: f64 = (0..3).map(|k| (p[k] - t[k] - o[k] - q[k]).powi(2)).sum();
+            assert!(d.sqrt() < 1e-9, "{p:?} against {q:?}");
+        }
     }
 
     #[test]

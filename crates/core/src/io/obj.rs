@@ -229,17 +229,17 @@ pub(super) fn face_corner(corner: &[u8], counts: [usize; 3], line: usize) -> PRe
 /// continuations), `v` values and face corners are read by the ordinary reader's code.
 pub(super) fn stream_obj(
     input: impl std::io::BufRead,
+    recentre: &mut Recentre,
     triangle: &mut dyn FnMut([[f32; 3]; 3]),
 ) -> PResult<()> {
     let mut positions: Vec<[f32; 3]> = Vec::new();
     let (mut uv_count, mut normal_count) = (0usize, 0usize);
     let mut face: Vec<[f32; 3]> = Vec::new();
-    let mut recentre = Recentre::at_zero();
     for item in super::text::StreamedLines::new(input, true) {
         let (line, text) = item?;
         let mut w = words(&text);
         match w.next() {
-            Some(b"v") => positions.push(vertex_values(w, line, &mut recentre)?.0),
+            Some(b"v") => positions.push(vertex_values(w, line, recentre)?.0),
             Some(b"vt") => uv_count += 1,
             Some(b"vn") => normal_count += 1,
             Some(b"f") => {
@@ -632,7 +632,10 @@ mod stream_tests {
         let read = read_obj(text).unwrap();
         assert_eq!(read.scene.triangle_count(), 3);
         let mut streamed = Vec::new();
-        stream_obj(&text[..], &mut |t| streamed.push(t)).unwrap();
+        stream_obj(&text[..], &mut Recentre::default(), &mut |t| {
+            streamed.push(t)
+        })
+        .unwrap();
         assert_eq!(sorted_bits(streamed), sorted_triangles(&read.scene));
     }
 }

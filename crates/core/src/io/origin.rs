@@ -10,7 +10,7 @@
 
 use std::fmt;
 
-use glam::{DVec3, Vec3};
+use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use crate::mesh::Model;
 
@@ -63,6 +63,66 @@ impl Recentre {
     pub fn origin(&self) -> DVec3 {
         self.origin.unwrap_or(DVec3::ZERO)
     }
+}
+
+/// A shape of a scene-graph file (VRML, Inventor, glTF) placed in the file by a transform
+/// composed in f64: the f32 transform and positions its model gets, and the model's origin.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Placed {
+    /// The model's transform: `exact`'s linear part, and a translation relative to `origin`.
+    pub transform: Mat4,
+    /// The points relative to their own rounded first point (flat x y z), when the shape's
+    /// points were far; `None` when the f32 points stay as they are.
+    pub points: Option<Vec<f32>>,
+    /// The model's origin.
+    pub origin: DVec3,
+}
+
+/// Places a shape whose file coordinates are `exact * point`: `far_points` are its points
+/// in f64 (flat x y z), given only when some coordinate is far.
+/// `None` when neither the points nor the transform's translation are far: the shape is
+/// read with its f32 transform as it always was. Otherwise the points are taken relative to
+/// their rounded first point `c`, and the model's origin is `shared` (picked now, from
+/// `exact * c` rounded, when no shape had a far one yet), so that the f32 transform's
+/// translation is small.
+pub fn place(
+    exact: &DMat4,
+    far_points: Option<&[f64]>,
+    shared: &mut Option<DVec3>,
+) -> Option<Placed> {
+    let far_translation = exact.w_axis.truncate().abs().max_element() >= FAR;
+    if far_points.is_none() && !far_translation {
+        return None;
+    }
+    let (c, relative) = match far_points {
+        Some(p) if p.len() >= 3 => {
+            let c = DVec3::new(p[0].round(), p[1].round(), p[2].round());
+            let rel = p
+                .chunks_exact(3)
+                .flat_map(|q| [q[0] - c.x, q[1] - c.y, q[2] - c.z].map(|v| v as f32))
+                .collect();
+            (c, Some(rel))
+        }
+        _ => (DVec3::ZERO, None),
+    };
+    let at = exact.transform_point3(c);
+    let origin = match *shared {
+        Some(o) => o,
+        None => {
+            let o = origin_for(at.to_array());
+            if o != DVec3::ZERO {
+                *shared = Some(o);
+            }
+            o
+        }
+    };
+    let mut transform = exact.as_mat4();
+    transform.w_axis = (at - origin).as_vec3().extend(exact.w_axis.w as f32);
+    Some(Placed {
+        transform,
+        points: relative,
+        origin,
+    })
 }
 
 /// One coordinate of a vertex as text writers print it: the f32 as before when the origin

@@ -498,6 +498,7 @@ fn stream_header(input: &mut impl Input) -> PResult<Header> {
 pub(super) fn stream_ply(
     mut input: impl Input,
     file_len: usize,
+    recentre: &mut Recentre,
     triangle: &mut dyn FnMut([[f32; 3]; 3]),
 ) -> PResult<()> {
     let header = stream_header(&mut input)?;
@@ -505,7 +506,7 @@ pub(super) fn stream_ply(
     let mut data = Gathered {
         face_line: header.lines,
         positions_only: true,
-        recentre: Recentre::at_zero(),
+        recentre: *recentre,
         ..Gathered::default()
     };
     let mut unused = Vec::new();
@@ -522,6 +523,7 @@ pub(super) fn stream_ply(
             _ => skip_element(el, &mut body)?,
         }
     }
+    *recentre = data.recentre;
     Ok(())
 }
 
@@ -1074,9 +1076,12 @@ mod tests {
             let (scene, _) = read_ply(&bytes).unwrap();
             assert_eq!(scene.triangle_count(), 72, "{format}");
             let mut streamed = Vec::new();
-            stream_ply(Streamed::new(OneByte(&bytes)), bytes.len(), &mut |t| {
-                streamed.push(t)
-            })
+            stream_ply(
+                Streamed::new(OneByte(&bytes)),
+                bytes.len(),
+                &mut Recentre::default(),
+                &mut |t| streamed.push(t),
+            )
             .unwrap();
             assert_eq!(sorted_bits(streamed), sorted_triangles(&scene), "{format}");
         }
@@ -1086,7 +1091,13 @@ mod tests {
     fn a_stream_cut_short_names_the_element_and_record() {
         let bytes = grid("binary_little_endian", 2);
         let cut = &bytes[..bytes.len() - 40];
-        let e = stream_ply(Streamed::new(OneByte(cut)), cut.len(), &mut |_| {}).unwrap_err();
+        let e = stream_ply(
+            Streamed::new(OneByte(cut)),
+            cut.len(),
+            &mut Recentre::default(),
+            &mut |_| {},
+        )
+        .unwrap_err();
         assert!(
             e.message.contains("ends inside face 5 of 8"),
             "{}",

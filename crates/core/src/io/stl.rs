@@ -203,6 +203,7 @@ fn record_corners(rec: &[u8]) -> Result<[f32; 9], String> {
 pub(super) fn stream_stl(
     mut input: impl Input,
     file_len: u64,
+    recentre: &mut Recentre,
     triangle: &mut dyn FnMut([[f32; 3]; 3]),
 ) -> Result<(), StlError> {
     while input.bytes().len() < 84 {
@@ -220,7 +221,7 @@ pub(super) fn stream_stl(
             ));
         }
         let mut w = Words::new(input);
-        let mut out = Streamed(triangle);
+        let mut out = Streamed(triangle, recentre);
         return parse_ascii(&mut w, &mut out, &mut Vec::new()).map_err(StlError::Line);
     }
     let count = binary_count(head).unwrap_or(0) as usize;
@@ -244,7 +245,11 @@ pub(super) fn stream_stl(
                 record: r + 1,
                 message,
             })?;
-        triangle([[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]]);
+        let c = c.map(f64::from);
+        triangle(
+            [[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]]
+                .map(|p| recentre.relative(p)),
+        );
         pos += 50;
     }
     Ok(())
@@ -410,13 +415,13 @@ impl Solids for Models {
     }
 }
 
-/// Tiling's read: each facet handed on.
-struct Streamed<'a>(&'a mut dyn FnMut([[f32; 3]; 3]));
+/// Tiling's read: each facet handed on, relative to the origin the `Recentre` picks.
+struct Streamed<'a>(&'a mut dyn FnMut([[f32; 3]; 3]), &'a mut Recentre);
 
 impl Solids for Streamed<'_> {
     fn facet(&mut self, c: [f64; 9]) {
-        let c = c.map(|v| v as f32);
-        (self.0)([[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]]);
+        let corners = [[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]];
+        (self.0)(corners.map(|p| self.1.relative(p)));
     }
 
     fn end_solid(&mut self, _: String, _: usize, _: &mut Vec<Warning>) -> Result<(), ParseError> {
@@ -639,6 +644,7 @@ mod stream_tests {
             stream_stl(
                 Streamed::new(OneByte(bytes)),
                 bytes.len() as u64,
+                &mut Recentre::default(),
                 &mut |t| streamed.push(t),
             )
             .unwrap();

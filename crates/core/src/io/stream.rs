@@ -5,12 +5,14 @@
 //!
 //! Memory: STL holds nothing; PLY and OBJ hold the vertex positions only (12 bytes a vertex,
 //! about 6 bytes a triangle on a closed mesh), since their faces index them. Polygons are
-//! fanned into triangles from their first corner. Positions are read as `f32` (doubles are
-//! rounded once), so a position is the same bits wherever it is read again.
+//! fanned into triangles from their first corner. Positions are read as `f32` relative to
+//! the origin a `Recentre` picks (doubles are rounded once), so a position is the same bits
+//! wherever it is read again, and far files (see `io::origin`) keep their precision.
 
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 
+use super::origin::Recentre;
 use super::source::Streamed;
 use super::text::ParseError;
 use super::ReadError;
@@ -22,8 +24,13 @@ pub type Corners = [[f32; 3]; 3];
 const BUFFER: usize = 1 << 20;
 
 /// Calls `triangle` with every triangle of the PLY, STL or OBJ file at `path` (the
-/// extension says which; PLY and STL also by their first bytes), in file order.
-pub fn for_each_triangle(path: &Path, triangle: &mut dyn FnMut(Corners)) -> Result<(), ReadError> {
+/// extension says which; PLY and STL also by their first bytes), in file order, its
+/// positions relative to the origin `recentre` picks (or has picked).
+pub fn for_each_triangle(
+    path: &Path,
+    recentre: &mut Recentre,
+    triangle: &mut dyn FnMut(Corners),
+) -> Result<(), ReadError> {
     let io_error = |source| ReadError::Io {
         file: path.to_path_buf(),
         source,
@@ -56,10 +63,10 @@ pub fn for_each_triangle(path: &Path, triangle: &mut dyn FnMut(Corners)) -> Resu
     let len_usize = usize::try_from(len).unwrap_or(usize::MAX);
     match kind {
         super::Format::Ply => {
-            super::ply::stream_ply(Streamed::new(r), len_usize, triangle).map_err(syntax)
+            super::ply::stream_ply(Streamed::new(r), len_usize, recentre, triangle).map_err(syntax)
         }
-        super::Format::Stl => super::stl::stream_stl(Streamed::new(r), len, triangle)
+        super::Format::Stl => super::stl::stream_stl(Streamed::new(r), len, recentre, triangle)
             .map_err(|e| super::stl_error(path, e)),
-        _ => super::obj::stream_obj(r, triangle).map_err(syntax),
+        _ => super::obj::stream_obj(r, recentre, triangle).map_err(syntax),
     }
 }

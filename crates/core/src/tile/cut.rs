@@ -3,19 +3,22 @@
 //! fixed grid, split k-d style into boxes of nearly equal counts, (3) each triangle appended
 //! to the raw file of the box its centroid falls in. Each raw file is then welded by exact
 //! position into a binary PLY. Positions are copied bit for bit, so a vertex on a tile's
-//! border is the same number in every tile that has it.
+//! border is the same number in every tile that has it. A far input (see `io::origin`) is
+//! read relative to the origin its first vertex gives, which the manifest keeps: the tiles
+//! hold small f32 positions, and `merge` writes the output back in the input's frame.
 
 use std::collections::HashMap;
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use super::manifest::{Manifest, Tile};
 use super::TileCount;
 use super::TileError;
 use crate::decimate::Target;
+use crate::io::origin::Recentre;
 use crate::io::stream::{for_each_triangle, Corners};
 use crate::mesh::{Model, Scene};
 
@@ -44,11 +47,13 @@ pub fn plan(
         target,
         slack: SEAM_SLACK,
         shifted_from: None,
+        origin: None,
     };
     plan_files(&[input.to_path_buf()], input, dir, &cutting, progress)
 }
 
-/// Cuts the decimated tiles of a first plan (`inputs`, bounds `min`..`max`) again, on the
+/// Cuts the decimated tiles of a first plan (`inputs`, bounds `min`..`max`, positions
+/// relative to `origin`) again, on the
 /// first plan's grid shifted by half a cell: every new cut lies half a cell from every old
 /// one, so the old locked seams fall inside the new tiles and are decimated. Each new tile
 /// keeps its exact share of `keep` (no slack: this pass makes the final count).
@@ -58,7 +63,7 @@ pub fn retile(
     dir: &Path,
     count: TileCount,
     keep: usize,
-    bounds: ([f32; 3], [f32; 3]),
+    (origin, bounds): ([f64; 3], ([f32; 3], [f32; 3])),
     progress: &mut dyn FnMut(&str),
 ) -> Result<Manifest, TileError> {
     let cutting = Cutting {
@@ -66,17 +71,20 @@ pub fn retile(
         target: Target::KeepTriangles(keep),
         slack: 1.0,
         shifted_from: Some(bounds),
+        origin: Some(origin),
     };
     plan_files(inputs, first, dir, &cutting, progress)
 }
 
 /// How a plan cuts: into how many tiles, to which final target, how much more than its
-/// share each tile keeps, and (for a re-tiling) the bounds whose grid is shifted.
+/// share each tile keeps, and (for a re-tiling) the bounds whose grid is shifted and the
+/// origin the inputs are already relative to (else the inputs' own is picked).
 struct Cutting {
     count: TileCount,
     target: Target,
     slack: f64,
     shifted_from: Option<([f32; 3], [f32; 3])>,
+    origin: Option<[f64; 3]>,
 }
 
 /// Every triangle of the inputs, in file order, handed to a callback.
@@ -95,10 +103,18 @@ fn plan_files(
 ) -> Result<Manifest, TileError> {
     std::fs::create_dir_all(dir).map_err(|e| TileError::io(dir, e))?;
     remove_old_tiles(dir)?;
+    // Every pass reads the same first vertex, so picks the same origin.
+    let start = match cutting.origin {
+        Some(_) => Recentre::at_zero(),
+        None => Recentre::default(),
+    };
+    let origin = std::cell::Cell::new(DVec3::ZERO);
     let each = |f: &mut dyn FnMut(Corners)| -> Result<(), TileError> {
+        let mut recentre = start;
         for input in inputs {
-            for_each_triangle(input, f)?;
+            for_each_triangle(input, &mut recentre, f)?;
         }
+        origin.set(recentre.origin());
         Ok(())
     };
     let (lo, hi, triangles) = bounds(&each, source)?;
@@ -129,6 +145,7 @@ fn plan_files(
         input: source.to_path_buf(),
         triangles,
         target_triangles,
+        origin: cutting.origin.unwrap_or(origin.get().to_array()),
         min: lo.to_array(),
         max: hi.to_array(),
         tiles,

@@ -1,5 +1,5 @@
-//! `manifest.json` of a tiling work folder: the input, its bounds and counts, the final
-//! target, and per tile its box, triangle count, target share and file names. Written with
+//! `manifest.json` of a tiling work folder: the input, its origin, bounds and counts, the
+//! final target, and per tile its box, triangle count, target share and file names. Written with
 //! serde_json's `json!` and read back with its parser, so a malformed or foreign file is
 //! refused with the JSON error's line and column.
 
@@ -37,6 +37,9 @@ pub struct Manifest {
     pub triangles: usize,
     /// Final triangle count `merge` decimates to, unless it is given another.
     pub target_triangles: usize,
+    /// Where the tiles' frame stands in the input's coordinates (`Model::origin`): zero
+    /// unless the input is far from zero. Bounds, boxes and tile files are relative to it.
+    pub origin: [f64; 3],
     /// The input's bounding box, lower corner.
     pub min: [f32; 3],
     /// The input's bounding box, upper corner.
@@ -80,6 +83,7 @@ impl Manifest {
             "input": self.input.to_string_lossy(),
             "triangles": self.triangles,
             "target_triangles": self.target_triangles,
+            "origin": self.origin,
             "bounds": { "min": self.min, "max": self.max },
             "tiles": tiles,
         });
@@ -145,6 +149,11 @@ impl Manifest {
             input: PathBuf::from(v["input"].as_str().unwrap_or("")),
             triangles: count(&v, "triangles")?,
             target_triangles: count(&v, "target_triangles")?,
+            // Absent from manifests written before far inputs were tiled: zero.
+            origin: match v.get("origin") {
+                Some(_) => triple(&v, "origin")?,
+                None => [0.0; 3],
+            },
             min: f32s(triple(&v["bounds"], "min")?),
             max: f32s(triple(&v["bounds"], "max")?),
             tiles,
@@ -162,6 +171,7 @@ mod tests {
             input: PathBuf::from("in.ply"),
             triangles: 10,
             target_triangles: 4,
+            origin: [300000.0, 1200000.0, -51.0],
             min: [0.0, -1.5, 2.0],
             max: [1.0, 1.0, 3.25],
             tiles: vec![Tile {

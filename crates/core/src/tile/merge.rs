@@ -11,6 +11,8 @@
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
 
+use glam::DVec3;
+
 use super::schedule::{auto_tile_triangles, fits, run_all, BYTES_PER_TRIANGLE};
 use super::{cut, Manifest, TileError};
 use crate::decimate::{simplify_scene, Algorithm, Params, Report, Target};
@@ -50,7 +52,15 @@ pub fn stitch(dir: &Path) -> Result<Scene, TileError> {
         let outcome = crate::io::read_scene(&Manifest::tile_output(dir, i))?;
         for m in outcome.scene.models {
             let base = model.positions.len() as u32;
-            model.positions.extend(m.positions);
+            // A tile output far from the tiles' frame was read relative to an origin of
+            // its own: put back in the frame, where the same vertex has the same bits.
+            let shift = m.origin;
+            model
+                .positions
+                .extend(m.positions.iter().map(|&p| match shift {
+                    DVec3::ZERO => p,
+                    o => (o + p.as_dvec3()).as_vec3(),
+                }));
             model
                 .triangles
                 .extend(m.triangles.iter().map(|t| t.map(|v| v + base)));
@@ -103,7 +113,7 @@ pub fn merge(
             &sub,
             super::TileCount::TrianglesEach(auto_tile_triangles(memory)),
             keep,
-            (manifest.min, manifest.max),
+            (manifest.origin, (manifest.min, manifest.max)),
             &mut |s| progress.say(s),
         )?;
         run_all(&sub, &again, memory, progress, (at(0.0), at(0.5)))?;
@@ -111,6 +121,8 @@ pub fn merge(
     };
     progress.say("merge: welding the tiles and freeing their seams");
     let mut scene = stitch(&last)?;
+    // The tiles are relative to the input's origin: the output goes back to its frame.
+    scene.models[0].origin = DVec3::from_array(manifest.origin);
     let params = Params {
         target: Target::KeepTriangles(keep),
         algorithm: Algorithm::Qem,

@@ -2,10 +2,12 @@
 //! `Scene` (one model per triangle primitive and node, the node tree kept), `write` writes a
 //! `Scene` back (the node tree as read, or one node per model), `accessor` decodes the typed
 //! arrays both read from buffers, `copy_through` carries what a `Scene` does not hold (skins, morph
-//! targets, animations, points and lines, cameras, lights, `extras`) through unchanged.
+//! targets, animations, points and lines, cameras, lights, `extras`) through unchanged,
+//! `exact` reads node transforms in f64 for far (georeferenced) scenes.
 
 mod accessor;
 mod copy_through;
+mod exact;
 mod read;
 mod write;
 

@@ -20,12 +20,13 @@ use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::path::Path;
 use std::sync::Arc;
 
-use glam::{Mat4, Quat, Vec3};
+use glam::{DMat4, DVec3, Mat4, Quat, Vec3};
 use gltf::mesh::Mode;
 use gltf::Semantic;
 
 use super::accessor::{check_attribute, read_floats, read_floats_prefix, read_indices, Buffers};
-use crate::io::{data_uri, file_limits, texture_path, ReadError, ReadOutcome, MAX_MODELS};
+use super::exact::Exact;
+use crate::io::{data_uri, file_limits, origin, texture_path, ReadError, ReadOutcome, MAX_MODELS};
 use crate::mesh::{Attribute, Instance, LocalTransform, Model, Node, NodeTree, Scene};
 
 /// Most node visits one file may take (a node listed as the child of several parents is
@@ -34,6 +35,9 @@ const MAX_NODE_VISITS: usize = MAX_MODELS;
 
 /// Reads a glTF 2.0 file (JSON or binary) held in `bytes`; `path` names it in messages and
 /// is the folder external buffers and images are read from.
+///
+/// A file with a `CESIUM_RTC` centre keeps no node tree (the tree has no place for it):
+/// a glTF output writes its models flat, each under a node at its origin.
 pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
     let fail = |message: String| ReadError::Unsupported {
         file: path.to_path_buf(),
@@ -42,22 +46,22 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
     let gltf = parse_document(bytes, path)?;
     validate(&gltf.document).map_err(fail)?;
     check_hierarchy(&gltf.document).map_err(fail)?;
-    check_image_uris(&gltf.document, texture_path::folder_of(path)).map_err(fail)?;
     let folder = texture_path::folder_of(path);
+    check_image_uris(&gltf.document, folder).map_err(fail)?;
     let buffers = load_buffers(&gltf, folder).map_err(fail)?;
     let document = &gltf.document;
     let scene = document
         .default_scene()
         .or_else(|| document.scenes().next());
     let copied = copied_meshes(document);
-    let mut carried_warnings = Vec::new();
-    let tree = match &scene {
-        Some(scene) => {
-            let (tree, w) = node_tree(bytes, document, scene, &buffers, &copied).map_err(fail)?;
-            carried_warnings = w;
-            Some(Arc::new(tree))
+    let root = raw_json(bytes).map_err(fail)?;
+    let exact = Exact::of(&root);
+    let (tree, carried_warnings) = match &scene {
+        Some(scene) if exact.rtc == DMat4::IDENTITY => {
+            let (tree, w) = node_tree(&root, document, scene, &buffers, &copied).map_err(fail)?;
+            (Some(Arc::new(tree)), w)
         }
-        None => None,
+        _ => (None, Vec::new()),
     };
     let mut reader = Reader {
         buffers: &buffers,
@@ -73,6 +77,8 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         quantized: document
             .extensions_used()
             .any(|e| e == "KHR_mesh_quantization"),
+        exact,
+        origin: None,
         // The file and the buffer files it loads (a GLB's own chunk counted once).
         max_triangles: file_limits::max_instanced_triangles(
             (bytes.len() + buffers.total_len())
@@ -87,8 +93,9 @@ pub fn read_gltf(bytes: &[u8], path: &Path) -> Result<ReadOutcome, ReadError> {
         }
         // No scene: every mesh once, where it stands.
         None => {
+            let at = (Mat4::IDENTITY, reader.exact.rtc);
             for mesh in document.meshes() {
-                reader.mesh(&mesh, Mat4::IDENTITY, None).map_err(fail)?;
+                reader.mesh(&mesh, at, None).map_err(fail)?;
             }
         }
     }
@@ -438,6 +445,10 @@ struct Reader<'b> {
     max_triangles: usize,
     /// The file uses `KHR_mesh_quantization`: attributes may be integers.
     quantized: bool,
+    /// The nodes' transforms in f64, and the origin of the models they place far from zero
+    /// (picked at the first one, shared by the others).
+    exact: Exact,
+    origin: Option<DVec3>,
 }
 
 impl Reader<'_> {
@@ -453,8 +464,8 @@ impl Reader<'_> {
     /// then its children's. Iterative, so a hierarchy 100,000 deep takes no stack; the
     /// hierarchy is a set of trees (`check_hierarchy`), so each node is met once.
     fn node(&mut self, root: &gltf::Node<'_>) -> Result<(), String> {
-        let mut stack = vec![(root.clone(), Mat4::IDENTITY)];
-        while let Some((node, parent)) = stack.pop() {
+        let mut stack = vec![(root.clone(), Mat4::IDENTITY, self.exact.rtc)];
+        while let Some((node, parent, parent_exact)) = stack.pop() {
             self.visits += 1;
             if self.visits > MAX_NODE_VISITS {
                 return Err(format!(
@@ -465,23 +476,30 @@ impl Reader<'_> {
             if !world.is_finite() {
                 return Err(format!("node {}'s transform is not finite", node.index()));
             }
+            let exact = parent_exact * self.exact.local(node.index());
             if let Some(mesh) = node.mesh() {
-                self.mesh(&mesh, world, Some(&node))?;
+                self.mesh(&mesh, (world, exact), Some(&node))?;
             }
             let first = stack.len();
-            stack.extend(node.children().map(|c| (c, world)));
+            stack.extend(node.children().map(|c| (c, world, exact)));
             stack[first..].reverse();
         }
         Ok(())
     }
 
-    /// Places every triangle primitive of `mesh` at `world`, as one model each.
+    /// Places every triangle primitive of `mesh` at `world` (f32, and f64 with CESIUM_RTC's
+    /// centre), as one model each; one placed far from zero gets the scene's origin and a
+    /// transform relative to it.
     fn mesh(
         &mut self,
         mesh: &gltf::Mesh<'_>,
-        world: Mat4,
+        (world, exact): (Mat4, DMat4),
         node: Option<&gltf::Node<'_>>,
     ) -> Result<(), String> {
+        let (world, origin) = match origin::place(&exact, None, &mut self.origin) {
+            Some(placed) => (placed.transform, placed.origin),
+            None => (world, DVec3::ZERO),
+        };
         let node_name = node.and_then(|n| n.name());
         let several = mesh.primitives().len() > 1;
         for primitive in mesh.primitives() {
@@ -525,6 +543,7 @@ impl Reader<'_> {
             let model = Model {
                 name,
                 transform: world,
+                origin,
                 instance,
                 ..local.clone()
             };
@@ -733,10 +752,10 @@ fn read_attributes(
 }
 
 /// `scene`'s roots, and the copy-through fragment (the `copied` meshes and all else a
-/// `Scene` does not hold, read from the file's JSON `bytes`); the warnings for what even a
+/// `Scene` does not hold, read from the file's JSON `root`); the warnings for what even a
 /// glTF output leaves out.
 fn node_tree(
-    bytes: &[u8],
+    root: &serde_json::Value,
     document: &gltf::Document,
     scene: &gltf::Scene<'_>,
     buffers: &Buffers,
@@ -764,9 +783,8 @@ fn node_tree(
             mesh: n.mesh().map(|m| m.index()),
         })
         .collect();
-    let root = raw_json(bytes)?;
     let meshes: BTreeSet<usize> = copied.keys().copied().collect();
-    let gathered = super::copy_through::gather(&root, Some(scene.index()), buffers, &meshes)?;
+    let gathered = super::copy_through::gather(root, Some(scene.index()), buffers, &meshes)?;
     let tree = NodeTree {
         nodes,
         roots: scene.nodes().map(|n| n.index()).collect(),

@@ -6,7 +6,7 @@
 //! Every token carries the 1-based line it starts on. Tokens are spans into the source; numbers
 //! are parsed from their bytes without allocating.
 
-pub use crate::io::text::{parse_f32, parse_int, PResult, ParseError};
+pub use crate::io::text::{parse_f32, parse_f64, parse_int, PResult, ParseError};
 
 /// What a token is; its text is the source span `start..end`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -3,11 +3,13 @@
 //! Inventor's `File` node), `vrml1` (the VRML 1.0 / Inventor state machine), `vrml2` (the
 //! VRML 2.0 tree walk), `primitives` (Sphere, Cone, Cylinder) and `extrusion` (VRML 2.0's
 //! Extrusion) tessellated, `bindings` (their index lists and bindings as `Bind`s) and
-//! `vrml2_writer` (VRML 2.0 output). [`read_tree`] runs a parse on a thread with a big stack.
+//! `vrml2_writer` (VRML 2.0 output); `far` builds shapes far from zero relative to the
+//! scene's origin. [`read_tree`] runs a parse on a thread with a big stack.
 
 mod bindings;
 mod default_texcoords;
 mod extrusion;
+mod far;
 mod fields;
 mod include;
 mod lexer;
@@ -96,11 +98,14 @@ impl Budget {
 }
 
 /// What a scene-graph reader (VRML 1.0/Inventor or VRML 2.0) carries while it walks: the
-/// models made so far, the warnings, and the expansion budget.
+/// models made so far, the warnings, and the expansion budget; the origin of far shapes,
+/// once one is met, and (VRML 2.0) the world transform in f64.
 pub(crate) struct Ctx<'w> {
     pub(crate) models: Vec<crate::mesh::Model>,
     pub(crate) warnings: &'w mut Vec<Warning>,
     pub(crate) budget: Budget,
+    pub(crate) origin: Option<glam::DVec3>,
+    pub(crate) exact: glam::DMat4,
 }
 
 /// Node visits allowed per node parsed, and at least (design.md#vrml-budget).
@@ -120,6 +125,8 @@ impl<'w> Ctx<'w> {
             models: Vec::new(),
             warnings,
             budget,
+            origin: None,
+            exact: glam::DMat4::IDENTITY,
         }
     }
 }

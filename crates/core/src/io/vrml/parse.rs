@@ -14,7 +14,7 @@ use std::rc::Rc;
 
 use super::fields;
 pub use super::fields::Dialect;
-use super::lexer::{parse_f32, parse_int, Lexer, PResult, ParseError, Tok, Token};
+use super::lexer::{parse_f32, parse_f64, parse_int, Lexer, PResult, ParseError, Tok, Token};
 
 /// Deepest nesting of nodes accepted; deeper files are rejected rather than overflowing.
 pub const MAX_DEPTH: usize = 256;
@@ -40,6 +40,9 @@ pub fn used_at(e: ParseError, use_line: usize, name: &str, def_line: usize) -> P
 #[derive(Debug, Clone)]
 pub enum Value {
     Floats(Vec<f32>),
+    /// A coordinate field with a far value (see `io::origin`): its numbers as f32 (what
+    /// [`Node::floats`] gives) and as f64.
+    Far(Vec<f32>, Vec<f64>),
     Ints(Vec<i32>),
     Bool(bool),
     Word(String),
@@ -76,7 +79,22 @@ impl Node {
     }
     pub fn floats(&self, name: &str) -> Option<&[f32]> {
         match &self.field(name)?.value {
-            Value::Floats(v) => Some(v),
+            Value::Floats(v) | Value::Far(v, _) => Some(v),
+            _ => None,
+        }
+    }
+    /// A coordinate field's numbers in f64, when one of them is far from zero.
+    pub fn far(&self, name: &str) -> Option<&[f64]> {
+        match &self.field(name)?.value {
+            Value::Far(_, v) => Some(v),
+            _ => None,
+        }
+    }
+    /// A field's numbers in f64: as read when far, else its f32 values widened.
+    pub fn exact(&self, name: &str) -> Option<Vec<f64>> {
+        match &self.field(name)?.value {
+            Value::Far(_, v) => Some(v.clone()),
+            Value::Floats(v) => Some(v.iter().map(|&x| f64::from(x)).collect()),
             _ => None,
         }
     }
@@ -149,6 +167,9 @@ impl Node {
 pub enum FieldKind {
     /// Any number of floats, bracketed or not (SFFloat, SFVec3f, MFVec3f, SFRotation...).
     Floats,
+    /// Floats that place geometry (points, translations, matrices), also kept in f64 when
+    /// one of them is far from zero.
+    Coords,
     /// Any number of integers, bracketed or not (MFInt32 with -1 separators, SFInt32).
     Ints,
     Bool,
@@ -174,23 +195,21 @@ pub fn field_kind(dialect: Dialect, node: &str, field: &str) -> Option<FieldKind
 fn vrml1_field_kind(node: &str, field: &str) -> Option<FieldKind> {
     use FieldKind::*;
     Some(match (node, field) {
-        ("Coordinate3", "point") => Floats,
+        ("Coordinate3", "point") => Coords,
         ("Normal", "vector") => Floats,
         ("Material", "diffuseColor") => Floats,
         ("BaseColor", "rgb") => Floats,
         ("MaterialBinding" | "NormalBinding" | "TextureCoordinateBinding", "value") => Word,
         ("ShapeHints", "vertexOrdering" | "shapeType" | "faceType" | "hints") => Word,
         ("ShapeHints", "creaseAngle") => Floats,
-        (
-            "Transform",
-            "translation" | "rotation" | "scaleFactor" | "scaleOrientation" | "center",
-        ) => Floats,
-        ("Translation", "translation") => Floats,
+        ("Transform", "translation" | "center") => Coords,
+        ("Transform", "rotation" | "scaleFactor" | "scaleOrientation") => Floats,
+        ("Translation", "translation") => Coords,
         ("Rotation" | "Rotor" | "Pendulum", "rotation") => Floats,
         ("Scale", "scaleFactor") => Floats,
         ("RotationXYZ", "axis") => Word,
         ("RotationXYZ", "angle") => Floats,
-        ("MatrixTransform", "matrix") => Floats,
+        ("MatrixTransform", "matrix") => Coords,
         ("Switch" | "Blinker", "whichChild") => Ints,
         (
             "IndexedFaceSet" | "IndexedTriangleStripSet" | "IndexedTriangleMesh",
@@ -208,7 +227,8 @@ fn vrml1_field_kind(node: &str, field: &str) -> Option<FieldKind> {
             | "QuadMesh",
             "vertexProperty",
         ) => Node,
-        ("VertexProperty", "vertex" | "normal" | "texCoord") => Floats,
+        ("VertexProperty", "vertex") => Coords,
+        ("VertexProperty", "normal" | "texCoord") => Floats,
         ("VertexProperty", "orderedRGBA") => Ints,
         ("VertexProperty", "materialBinding" | "normalBinding") => Word,
         ("Cube", "width" | "height" | "depth") => Floats,
@@ -222,7 +242,7 @@ fn vrml1_field_kind(node: &str, field: &str) -> Option<FieldKind> {
         ("Array", "numElements1" | "numElements2" | "numElements3") => Ints,
         ("Array", "separation1" | "separation2" | "separation3") => Floats,
         ("Array", "origin") => Word,
-        ("MultipleCopy", "matrix") => Floats,
+        ("MultipleCopy", "matrix") => Coords,
         ("Texture2", "filename") => Strings,
         ("Texture2", "wrapS" | "wrapT") => Word,
         ("Texture2Transform", "translation" | "rotation" | "scaleFactor" | "center") => Floats,
@@ -235,9 +255,8 @@ fn vrml1_field_kind(node: &str, field: &str) -> Option<FieldKind> {
 fn vrml2_field_kind(node: &str, field: &str) -> Option<FieldKind> {
     use FieldKind::*;
     Some(match (node, field) {
-        ("Transform", "translation" | "rotation" | "scale" | "scaleOrientation" | "center") => {
-            Floats
-        }
+        ("Transform", "translation" | "center") => Coords,
+        ("Transform", "rotation" | "scale" | "scaleOrientation") => Floats,
         ("Transform" | "Group" | "Collision" | "Anchor" | "Billboard", "children") => Nodes,
         ("Switch", "choice") => Nodes,
         ("Switch", "whichChoice") => Ints,
@@ -254,7 +273,7 @@ fn vrml2_field_kind(node: &str, field: &str) -> Option<FieldKind> {
             Bool
         }
         ("IndexedFaceSet", "creaseAngle") => Floats,
-        ("Coordinate", "point") => Floats,
+        ("Coordinate", "point") => Coords,
         ("Color", "color") => Floats,
         ("Normal", "vector") => Floats,
         ("TextureCoordinate", "point") => Floats,
@@ -814,6 +833,15 @@ impl<'a> Parser<'a> {
             FieldKind::Floats => {
                 Value::Floats(self.parse_numbers(&name, "a number", Self::float_of)?)
             }
+            FieldKind::Coords => {
+                let both = self.parse_numbers(&name, "a number", Self::coordinate_of)?;
+                let floats = both.iter().map(|&(f, _)| f).collect();
+                if both.iter().any(|&(_, d)| d.abs() >= crate::io::origin::FAR) {
+                    Value::Far(floats, both.into_iter().map(|(_, d)| d).collect())
+                } else {
+                    Value::Floats(floats)
+                }
+            }
             FieldKind::Ints => {
                 Value::Ints(self.parse_numbers(&name, "an integer", Self::int_of)?)
             }
@@ -1080,6 +1108,21 @@ impl<'a> Parser<'a> {
         }
     }
 
+    /// A number of a coordinate field, as [`Self::float_of`] reads it and as an f64.
+    fn coordinate_of(&self, t: &Token, name: &str) -> PResult<(f32, f64)> {
+        let bytes = self.lex.bytes(t);
+        match parse_f64(bytes) {
+            Some(d) => {
+                let f = nearest_f32(d, bytes);
+                match f.is_finite() {
+                    true => Ok((f, d)),
+                    false => self.float_of(t, name).map(|f| (f, d)),
+                }
+            }
+            None => self.float_of(t, name).map(|f| (f, f64::from(f))),
+        }
+    }
+
     fn int_of(&self, t: &Token, name: &str) -> PResult<i32> {
         match parse_int(self.lex.bytes(t)) {
             // Hexadecimal values up to 0xffffffff (packed colours) keep their bits.
@@ -1203,5 +1246,49 @@ impl<'a> Parser<'a> {
             }
         }
         Ok(())
+    }
+}
+
+/// The f32 nearest the number `bytes` spell, from its nearest f64 `d`: rounding `d` gives
+/// the same f32 unless `d` lies exactly halfway between two f32s (the number may then be on
+/// either side), or outside f32's normal range; those are parsed again, as f32.
+fn nearest_f32(d: f64, bytes: &[u8]) -> f32 {
+    // f64 keeps 29 more mantissa bits than f32: halfway is 1 followed by 28 zeros.
+    const DROPPED: u64 = (1 << 29) - 1;
+    const HALF: u64 = 1 << 28;
+    let normal = (f64::from(f32::MIN_POSITIVE)..f64::from(f32::MAX)).contains(&d.abs());
+    if d == 0.0 || (normal && d.to_bits() & DROPPED != HALF) {
+        d as f32
+    } else {
+        parse_f32(bytes).unwrap_or(d as f32)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn coordinates_read_through_f64_give_the_f32_a_direct_parse_gives() {
+        // Just above and just below the point halfway between 1 and the next f32, whose
+        // nearest f64 is that halfway point: rounding it alone would give 1 both times.
+        for s in [
+            "1.0000000596046447753906251",
+            "1.0000000596046447753906249",
+            "0.35",
+            "-1200000.35",
+            "1e-40",
+            "3.4028235e38",
+            "0",
+            "-0",
+        ] {
+            let b = s.as_bytes();
+            let d = parse_f64(b).unwrap();
+            assert_eq!(
+                nearest_f32(d, b).to_bits(),
+                parse_f32(b).unwrap().to_bits(),
+                "{s}"
+            );
+        }
     }
 }

@@ -20,18 +20,19 @@ use crate::io::warning::{Warning, WarningKind};
 use std::borrow::Cow;
 use std::rc::Rc;
 
-use glam::{Affine2, Mat4, Quat, Vec3};
+use glam::{Affine2, DMat4, DVec3, Mat4, Quat, Vec3};
 
 use super::bindings::{
     explicit, resolve, split_polygons, strips_to_triangles, texcoords_per_vertex, Binding, Geo,
 };
 use super::default_texcoords;
+use super::far;
 use super::lexer::{PResult, ParseError};
 use super::parse::{is_kit, used_at, Node, Value, USE_KIND};
 use super::primitives::{self, Parts};
 use super::texture_transform;
 use super::Ctx;
-use crate::io::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
+use crate::io::shape_to_model::{Bind, ShapeSpec, TexCoords};
 use crate::mesh::Model;
 
 const DEFAULT_DIFFUSE: [f32; 3] = [0.8, 0.8, 0.8];
@@ -39,6 +40,8 @@ const DEFAULT_DIFFUSE: [f32; 3] = [0.8, 0.8, 0.8];
 #[derive(Clone)]
 struct State {
     transform: Mat4,
+    /// `transform` composed in f64, for far scenes (see `far`).
+    exact: DMat4,
     coords: Option<Rc<Node>>,
     normals: Option<Rc<Node>>,
     texcoords: Option<Rc<Node>>,
@@ -65,6 +68,7 @@ impl Default for State {
     fn default() -> Self {
         Self {
             transform: Mat4::IDENTITY,
+            exact: DMat4::IDENTITY,
             coords: None,
             normals: None,
             texcoords: None,
@@ -149,16 +153,17 @@ fn traverse(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()
         }
         "Array" => {
             for offset in array_offsets(node)? {
-                copy(node, state, Mat4::from_translation(offset), ctx)?;
+                let exact = DMat4::from_translation(offset.as_dvec3());
+                copy(node, state, (Mat4::from_translation(offset), exact), ctx)?;
             }
         }
         "MultipleCopy" => multiple_copy(node, state, ctx)?,
         "TransformSeparator" => {
-            let saved = state.transform;
+            let saved = (state.transform, state.exact);
             for c in &node.children {
                 traverse(c, state, ctx)?;
             }
-            state.transform = saved;
+            (state.transform, state.exact) = saved;
         }
         // A File node's children are the included file's nodes (see `include`).
         "Group" | "File" => {
@@ -199,8 +204,10 @@ fn multiple_copy(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResu
             ),
         ));
     }
-    for one in m.chunks_exact(16) {
-        copy(node, state, Mat4::from_cols_slice(one), ctx)?;
+    let exact = node.exact("matrix").unwrap_or_default();
+    for (one, exact) in m.chunks_exact(16).zip(exact.chunks_exact(16)) {
+        let m = (Mat4::from_cols_slice(one), DMat4::from_cols_slice(exact));
+        copy(node, state, m, ctx)?;
     }
     Ok(())
 }
@@ -229,6 +236,59 @@ fn switch(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()> 
 /// Applies a transformation node (Transform, Translation, Rotation, Scale, RotationXYZ,
 /// MatrixTransform, ResetTransform) to the state; false when `node` is none of them.
 fn apply_transform(node: &Node, state: &mut State) -> PResult<bool> {
+    let applied = apply_f32_transform(node, state)?;
+    if applied {
+        apply_exact_transform(node, state);
+    }
+    Ok(applied)
+}
+
+/// [`apply_transform`] in f64, on `state.exact` (`node` is a transformation node checked by
+/// [`apply_f32_transform`]).
+fn apply_exact_transform(node: &Node, state: &mut State) {
+    let m = match node.kind.as_str() {
+        "Transform" => far::compose(
+            far::dvec3(node, "translation", DVec3::ZERO),
+            far::rotation(node.floats("rotation")),
+            far::scale(node.floats("scaleFactor"), DVec3::ONE),
+            far::rotation(node.floats("scaleOrientation")),
+            far::dvec3(node, "center", DVec3::ZERO),
+        ),
+        "Translation" => DMat4::from_translation(far::dvec3(node, "translation", DVec3::ZERO)),
+        "Rotation" | "Rotor" | "Pendulum" => {
+            DMat4::from_quat(far::rotation(node.floats("rotation")))
+        }
+        "Scale" => DMat4::from_scale(far::scale(node.floats("scaleFactor"), DVec3::ONE)),
+        "MatrixTransform" => match node.exact("matrix") {
+            Some(m) if m.len() == 16 => DMat4::from_cols_slice(&m),
+            _ => DMat4::IDENTITY,
+        },
+        "ResetTransform" => {
+            if node
+                .word("whatToReset")
+                .unwrap_or("TRANSFORM")
+                .contains("TRANSFORM")
+            {
+                state.exact = DMat4::IDENTITY;
+            }
+            DMat4::IDENTITY
+        }
+        // RotationXYZ.
+        _ => {
+            let angle = node.float("angle").unwrap_or(0.0);
+            let axis = match node.word("axis").unwrap_or("X") {
+                "Y" => DVec3::Y,
+                "Z" => DVec3::Z,
+                _ => DVec3::X,
+            };
+            DMat4::from_axis_angle(axis, angle.into())
+        }
+    };
+    state.exact *= m;
+}
+
+/// [`apply_transform`] on the f32 world transform.
+fn apply_f32_transform(node: &Node, state: &mut State) -> PResult<bool> {
     match node.kind.as_str() {
         "Transform" => {
             let m = compose(
@@ -402,10 +462,11 @@ fn kit(node: &Rc<Node>, state: &mut State, ctx: &mut Ctx<'_>) -> PResult<()> {
 }
 
 /// One copy of an Array's or MultipleCopy's children, each copy a separator placed by `m`.
-fn copy(node: &Rc<Node>, state: &State, m: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> {
+fn copy(node: &Rc<Node>, state: &State, m: (Mat4, DMat4), ctx: &mut Ctx<'_>) -> PResult<()> {
     ctx.budget.copy(node.line)?;
     let mut inner = state.clone();
-    inner.transform *= m;
+    inner.transform *= m.0;
+    inner.exact *= m.1;
     for c in &node.children {
         traverse(c, &mut inner, ctx)?;
     }
@@ -532,6 +593,21 @@ fn property_or<'a>(
             .as_ref()
             .and_then(|n| n.floats(field))
             .unwrap_or(&[]),
+    }
+}
+
+/// The f64 points of the shape's coordinates (those [`property_or`] picks), when one of
+/// them is far from zero.
+fn far_points<'a>(node: &'a Node, state: &'a State) -> Option<&'a [f64]> {
+    let vp = node
+        .node("vertexProperty")
+        .filter(|v| !v.skipped && v.kind == "VertexProperty");
+    match vp
+        .and_then(|v| v.floats("vertex"))
+        .filter(|v| !v.is_empty())
+    {
+        Some(_) => vp.and_then(|v| v.far("vertex")),
+        None => state.coords.as_ref().and_then(|n| n.far("point")),
     }
 }
 
@@ -803,7 +879,8 @@ fn shape(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
         },
         index_field,
     };
-    finish(spec, state, node.line, ctx)
+    let far = (!cube).then(|| far_points(node, state)).flatten();
+    finish(spec, state, far, node.line, ctx)
 }
 
 /// The DEF name of a shape node, or its kind and number.
@@ -813,10 +890,16 @@ fn shape_name(node: &Node, ctx: &Ctx<'_>) -> String {
         .unwrap_or_else(|| format!("{}_{}", node.kind, ctx.models.len() + 1))
 }
 
-/// Builds the model, gives it the state's texture (with the default coordinates where the
+/// Builds the model (relative to the scene's origin where it is far), gives it the state's texture (with the default coordinates where the
 /// shape has none) and keeps it unless it is empty.
-fn finish(spec: ShapeSpec<'_>, state: &State, line: usize, ctx: &mut Ctx<'_>) -> PResult<()> {
-    let mut model = build(spec, ctx.warnings)?;
+fn finish(
+    spec: ShapeSpec<'_>,
+    state: &State,
+    far_points: Option<&[f64]>,
+    line: usize,
+    ctx: &mut Ctx<'_>,
+) -> PResult<()> {
+    let mut model = far::build_placed(spec, &state.exact, far_points, ctx)?;
     if state.texture.is_some() && model.texcoords.is_none() {
         default_texcoords::bounding_box(&mut model);
     }
@@ -914,5 +997,5 @@ fn primitive(node: &Rc<Node>, state: &State, ctx: &mut Ctx<'_>) -> PResult<()> {
         [d[0], d[1], d[2]],
         node.line,
     );
-    finish(spec, state, node.line, ctx)
+    finish(spec, state, None, node.line, ctx)
 }

@@ -12,18 +12,19 @@
 
 use std::rc::Rc;
 
-use glam::{Mat4, Vec3};
+use glam::{DVec3, Mat4, Vec3};
 
 use super::bindings::{explicit, resolve, split_polygons, texcoords_per_vertex, Binding, Geo};
 use super::default_texcoords;
 use super::extrusion;
+use super::far;
 use super::lexer::{PResult, ParseError};
 use super::parse::{used_at, Node, USE_KIND};
 use super::primitives::{self, Parts, Tessellation};
 use super::texture_transform;
 use super::vrml1::{compose, rotation, skip_empty, vec3};
 use super::Ctx;
-use crate::io::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
+use crate::io::shape_to_model::{Bind, ShapeSpec, TexCoords};
 use crate::io::warning::Warning;
 use crate::mesh::Model;
 
@@ -54,9 +55,19 @@ fn traverse(node: &Rc<Node>, transform: Mat4, ctx: &mut Ctx<'_>) -> PResult<()> 
                     rotation(node.floats("scaleOrientation")),
                     vec3(node.floats("center"), Vec3::ZERO),
                 );
+            let saved = ctx.exact;
+            ctx.exact = saved
+                * far::compose(
+                    far::dvec3(node, "translation", DVec3::ZERO),
+                    far::rotation(node.floats("rotation")),
+                    far::scale(node.floats("scale"), DVec3::ONE),
+                    far::rotation(node.floats("scaleOrientation")),
+                    far::dvec3(node, "center", DVec3::ZERO),
+                );
             for c in node.nodes("children") {
                 traverse(c, m, ctx)?;
             }
+            ctx.exact = saved;
         }
         "Group" | "Collision" | "Anchor" | "Billboard" => {
             for c in node.nodes("children") {
@@ -185,7 +196,7 @@ fn geometry_model(geometry: &Rc<Node>, look: Look, ctx: &mut Ctx<'_>) -> PResult
                 return Ok(None);
             }
             let spec = grid_spec(geometry, name, transform, diffuse, &points, geo);
-            return build(spec, ctx.warnings).map(Some);
+            return place(spec, None, ctx).map(Some);
         }
         "Extrusion" => {
             return extrusion_model(geometry, name, transform, diffuse, textured, ctx);
@@ -205,7 +216,7 @@ fn geometry_model(geometry: &Rc<Node>, look: Look, ctx: &mut Ctx<'_>) -> PResult
                 diffuse,
                 geometry.line,
             );
-            return build(spec, ctx.warnings).map(Some);
+            return place(spec, None, ctx).map(Some);
         }
         other => {
             ctx.budget.warn_once(
@@ -219,7 +230,14 @@ fn geometry_model(geometry: &Rc<Node>, look: Look, ctx: &mut Ctx<'_>) -> PResult
             return Ok(None);
         }
     };
-    build(spec, ctx.warnings).map(Some)
+    let far = geometry.node("coord").and_then(|c| c.far("point"));
+    place(spec, far, ctx).map(Some)
+}
+
+/// Builds a shape's model at the walk's f64 transform (see `far`).
+fn place(spec: ShapeSpec<'_>, far_points: Option<&[f64]>, ctx: &mut Ctx<'_>) -> PResult<Model> {
+    let exact = ctx.exact;
+    far::build_placed(spec, &exact, far_points, ctx)
 }
 
 /// A Box: six quads, with the specification's texture coordinates under a texture.
@@ -258,7 +276,7 @@ fn box_model(
         line: geometry.line,
         index_field: "Box",
     };
-    build(spec, ctx.warnings)
+    place(spec, None, ctx)
 }
 
 /// An Extrusion swept along its spine; `None` when it sweeps nothing.
@@ -294,7 +312,7 @@ fn extrusion_model(
         line: geometry.line,
         index_field: "spine",
     };
-    build(spec, ctx.warnings).map(Some)
+    place(spec, None, ctx).map(Some)
 }
 
 /// A `Sphere`, `Cone` or `Cylinder` at Coin's default complexity, with the parts its
