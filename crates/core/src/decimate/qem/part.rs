@@ -124,6 +124,8 @@ pub(super) struct Part<'a> {
     /// Under `--max-error`, the input each slot stands for (`decimate::distance_bound`;
     /// the whole only: a run with it collapses on the whole mesh).
     pub distance: Option<&'a mut DistanceBound>,
+    /// `--cost lt`: collapses are priced and placed by `lt_cost` instead of the quadrics.
+    pub lt: bool,
     pub scratch: CollapseLists,
 }
 
@@ -365,7 +367,14 @@ impl Part<'_> {
             let side = |r: u32, k: u32| c[self.at(r)].sum(&c[self.at(k)]);
             (side(remove, keep), twin.map(|[r2, k2]| side(r2, k2)))
         });
-        let position = if on_crease {
+        let lt = if self.lt {
+            Some(self.lt_plan([remove, keep], twin, free, on_crease)?)
+        } else {
+            None
+        };
+        let position = if let Some(lt) = &lt {
+            lt.position
+        } else if on_crease {
             along_crease(&placed, pr, pk)
         } else if free {
             self.place(&placed, pr, pk)
@@ -397,6 +406,11 @@ impl Part<'_> {
             }
         }
         cost += self.attribute_cost([remove, keep], twin, q.area, (pk - pr).length_squared());
+        if let Some(lt) = &lt {
+            // The attributes' terms are area × length²: the edge's length² more makes them
+            // length⁶, as the LT cost is.
+            cost = lt.cost_at(position) + (pk - pr).length_squared() * (cost - geometric);
+        }
         Some(Plan {
             remove,
             keep,
