@@ -269,6 +269,103 @@ fn along_edge(cost: &Form, pr: DVec3) -> DVec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::decimate::qem::collapser::Collapser;
+    use crate::decimate::qem::planes::Constraints;
+    use glam::Vec3;
+
+    /// A closed octahedron-like bipyramid: a square of four around the z axis, an apex at
+    /// `z = top` above and `z = -1` below, with vertex 6 on the square's edge 0–1, pulled out
+    /// by `bulge` (so that collapsing it changes the volume unless the kept end moves).
+    fn bipyramid(top: f32, bulge: f32) -> Collapser {
+        let positions = vec![
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(-1.0, 0.0, 0.0),
+            Vec3::new(0.0, -1.0, 0.0),
+            Vec3::new(0.0, 0.0, top),
+            Vec3::new(0.0, 0.0, -1.0),
+            Vec3::new(0.5 + bulge, 0.5 + bulge, 0.0),
+        ];
+        let triangles = vec![
+            [0, 6, 4],
+            [6, 1, 4],
+            [1, 2, 4],
+            [2, 3, 4],
+            [3, 0, 4],
+            [6, 0, 5],
+            [1, 6, 5],
+            [2, 1, 5],
+            [3, 2, 5],
+            [0, 3, 5],
+        ];
+        let constraints = Constraints {
+            cos_feature: 0.5,
+            scale_folds: false,
+            seam: &[],
+        };
+        let mut d = Collapser::new(positions, triangles, None, None, constraints);
+        d.lt = true;
+        d
+    }
+
+    /// Six times the signed volume enclosed by the closed `triangles` over `p`.
+    fn volume6(p: &[DVec3], triangles: &[[usize; 3]]) -> f64 {
+        (triangles.iter())
+            .map(|t| p[t[0]].dot(p[t[1]].cross(p[t[2]])))
+            .sum()
+    }
+
+    #[test]
+    fn an_lt_collapse_keeps_a_closed_volume_and_costs_what_it_sweeps() {
+        let mut d = bipyramid(1.0, 0.2);
+        let before: Vec<DVec3> = (0..7).map(|v| d.whole().position(v)).collect();
+        let all = [
+            [0, 6, 4],
+            [6, 1, 4],
+            [1, 2, 4],
+            [2, 3, 4],
+            [3, 0, 4],
+            [6, 0, 5],
+            [1, 6, 5],
+            [2, 1, 5],
+            [3, 2, 5],
+            [0, 3, 5],
+        ];
+        let part = d.whole();
+        let plan = part.plan(0, 6).expect("an interior edge");
+        // The triangles left once the removed end is renamed to the kept one.
+        let mut after = before.clone();
+        after[plan.keep as usize] = plan.position;
+        let renamed: Vec<[usize; 3]> = (all.iter())
+            .map(|t| {
+                t.map(|v| {
+                    if v == plan.remove as usize {
+                        plan.keep as usize
+                    } else {
+                        v
+                    }
+                })
+            })
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
+            .collect();
+        let (v0, v1) = (volume6(&before, &all), volume6(&after, &renamed));
+        assert!((v1 - v0).abs() < 1e-6 * v0, "volume ×6: {v0} → {v1}");
+        // Kept exactly, the only cost left is what the placement could not keep: none here
+        // but the change's spread over the triangles, which is small against a bulge's.
+        let at_end = part.lt_plan([plan.remove, plan.keep], None, false, false);
+        let unmoved = at_end.expect("owned").cost_at(before[plan.keep as usize]);
+        assert!(plan.cost < unmoved, "{} ≥ {unmoved} unmoved", plan.cost);
+    }
+
+    #[test]
+    fn a_flat_collapse_costs_nothing_and_stays_in_its_plane() {
+        // The bulge's vertex on the square's edge, not pulled out: 0–6–1 is straight, and
+        // collapsing 6 into 0 or 1 changes neither the volume nor the surface.
+        let mut d = bipyramid(1.0, 0.0);
+        let plan = d.whole().plan(0, 6).expect("an interior edge");
+        assert!(plan.cost.abs() < 1e-12, "{}", plan.cost);
+        assert!(plan.position.z.abs() < 1e-6, "{}", plan.position);
+    }
 
     #[test]
     fn the_forms_price_what_they_stand_for() {
