@@ -94,7 +94,7 @@ fn lt_meets_the_count_on_a_bumpy_sphere_closed_unfolded_and_keeps_its_volume() {
 
 #[test]
 fn lt_has_a_lower_mean_error_than_the_quadric_cost_on_a_torus() {
-    let before = torus(120, 40, 0.3);
+    let before = torus(80, 24, 0.3);
     let keep = before.triangles.len() / 20;
     let mean = |cost| {
         let after = run(before.clone(), &params(cost, keep));

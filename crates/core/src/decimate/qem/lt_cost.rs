@@ -13,6 +13,7 @@
 
 use glam::{DMat3, DVec3};
 
+use super::collapse_plan::Kind;
 use super::lt_placement::Constraints;
 use super::part::Part;
 
@@ -98,8 +99,13 @@ struct Star {
     boundary_edges: usize,
     /// Σ (2A)²: the boundary objective.
     boundary: Form,
-    /// Σ |v − x|² over the star's other corners: the shape objective.
-    shape: Form,
+    /// Σ |v − x|² over the star's other corners (each once per triangle): the shape
+    /// objective, as their count and sum.
+    corners: f64,
+    corner_sum: DVec3,
+    /// Whether an end may be on a border (not both interior): only then are the star's
+    /// edges looked at.
+    border: bool,
 }
 
 /// An LT plan's placement and the cost of collapsing there (a function of the position:
@@ -131,7 +137,11 @@ impl Part<'_> {
     ) -> Option<LtPlan> {
         let origin = self.position(keep);
         let pr = self.position(remove) - origin;
-        let mut star = Star::default();
+        let interior = |v: u32| self.kind(v) == Kind::Interior;
+        let mut star = Star {
+            border: !(interior(remove) && interior(keep)) || twin.is_some(),
+            ..Star::default()
+        };
         self.add_star(&mut star, [remove, keep], origin)?;
         if let Some(ends) = twin {
             self.add_star(&mut star, ends, origin)?;
@@ -190,12 +200,12 @@ impl Part<'_> {
         star.volume.add_plane(n, d);
         for i in 0..3 {
             let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            if !ends.contains(&tri[i]) {
-                star.shape.add_plane(DVec3::X, p[i].x);
-                star.shape.add_plane(DVec3::Y, p[i].y);
-                star.shape.add_plane(DVec3::Z, p[i].z);
+            if !ends.contains(&a) {
+                star.corners += 1.0;
+                star.corner_sum += p[i];
             }
-            if (ends.contains(&a) || ends.contains(&b)) && self.is_border_edge(a, b, ends) {
+            let at_end = ends.contains(&a) || ends.contains(&b);
+            if star.border && at_end && self.is_border_edge(a, b, ends) {
                 let (pa, pb) = (p[i], p[(i + 1) % 3]);
                 let (e, w) = (pb - pa, pa.cross(pb));
                 star.edge_sum += e;
@@ -234,7 +244,10 @@ fn place(star: &Star, cost: &Form, pr: DVec3) -> Option<DVec3> {
         c.add_objective(cost.h, cost.c);
     }
     if !c.full() {
-        c.add_objective(star.shape.h, star.shape.c);
+        c.add_objective(
+            DMat3::from_diagonal(DVec3::splat(star.corners)),
+            star.corner_sum,
+        );
     }
     let p = c.solve()?;
     let margin = DVec3::splat(BOX_MARGIN * pr.length());
@@ -350,10 +363,11 @@ mod tests {
             .collect();
         let (v0, v1) = (volume6(&before, &all), volume6(&after, &renamed));
         assert!((v1 - v0).abs() < 1e-6 * v0, "volume ×6: {v0} → {v1}");
-        // Kept exactly, the only cost left is what the placement could not keep: none here
-        // but the change's spread over the triangles, which is small against a bulge's.
+        // Placed so, it costs less than with the kept end left where it was.
         let at_end = part.lt_plan([plan.remove, plan.keep], None, false, false);
         let unmoved = at_end.expect("owned").cost_at(before[plan.keep as usize]);
+        // (A plan's cost is the cube root, in the same order.)
+        let unmoved = unmoved.cbrt();
         assert!(plan.cost < unmoved, "{} ≥ {unmoved} unmoved", plan.cost);
     }
 
@@ -363,7 +377,7 @@ mod tests {
         // collapsing 6 into 0 or 1 changes neither the volume nor the surface.
         let mut d = bipyramid(1.0, 0.0);
         let plan = d.whole().plan(0, 6).expect("an interior edge");
-        assert!(plan.cost.abs() < 1e-12, "{}", plan.cost);
+        assert!(plan.cost.abs() < 1e-9, "{}", plan.cost);
         assert!(plan.position.z.abs() < 1e-6, "{}", plan.position);
     }
 

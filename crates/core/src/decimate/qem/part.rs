@@ -408,8 +408,10 @@ impl Part<'_> {
         cost += self.attribute_cost([remove, keep], twin, q.area, (pk - pr).length_squared());
         if let Some(lt) = &lt {
             // The attributes' terms are area × length²: the edge's length² more makes them
-            // length⁶, as the LT cost is.
-            cost = lt.cost_at(position) + (pk - pr).length_squared() * (cost - geometric);
+            // length⁶, as the LT cost is; its cube root (the same order) stays in f32's
+            // range on small models.
+            let extra = (pk - pr).length_squared() * (cost - geometric);
+            cost = (lt.cost_at(position) + extra).cbrt();
         }
         Some(Plan {
             remove,
