@@ -21,6 +21,12 @@ use crate::mesh::topology::{Adjacency, ConnectivityPart, FanTriangle, Ring, Ring
 /// A placement may leave the edge's bounding box by at most this many edge lengths.
 const BOX_MARGIN: f64 = 1.0;
 
+/// Under `--cost lt`, weight of the quadrics' squared distance (to the input planes the
+/// kept vertex stands for) added to the LT cost's cube root (both length²): the memoryless
+/// cost alone lets vertices drift from the input, and the max error with them
+/// (docs/benchmarks.md#twelve-cells).
+const LT_QUADRIC_WEIGHT: f64 = 10.0;
+
 /// Weight of a per-vertex normal step in a collapse's cost, against a colour step's 1: light,
 /// since on curved surfaces the quadric already prices the turn, while on flat stretches the
 /// normals alone order the collapses (docs/design.md#qem-normal-weight).
@@ -411,7 +417,7 @@ impl Part<'_> {
             // length⁶, as the LT cost is; its cube root (the same order) stays in f32's
             // range on small models.
             let extra = (pk - pr).length_squared() * (cost - geometric);
-            cost = (lt.cost_at(position) + extra).cbrt();
+            cost = (lt.cost_at(position) + extra).cbrt() + LT_QUADRIC_WEIGHT * error2;
         }
         Some(Plan {
             remove,
