@@ -40,10 +40,6 @@ use crate::mesh::topology::Connectivity;
 /// are faster but cost mean error (docs/design.md#qem-pass-share).
 const PASS_SHARE: usize = 3;
 
-/// The same under the LT cost, whose costs change with every collapse nearby: smaller
-/// passes keep its order closer to greedy.
-const LT_PASS_SHARE: usize = 3;
-
 /// Candidates whose data is requested from memory ahead of their turn.
 const PREFETCH_AHEAD: usize = 4;
 
@@ -172,8 +168,7 @@ pub(super) fn collapse_in_passes(
             end_one_over: border_only && !one_over && limits.keep_triangles > 0,
         };
         let needed = limit.remove.min(limit.removable).min(over.div_ceil(2));
-        let share = if d.lt { LT_PASS_SHARE } else { PASS_SHARE };
-        let take = (candidates.len() / share)
+        let take = (candidates.len() / PASS_SHARE)
             .min(2 * needed)
             .clamp(1, candidates.len());
         cheapest(candidates, take, &mut pass, &mut tied);
