@@ -9,7 +9,7 @@ use super::values::{
     bytes, colour, draw_modes, error_bound, number, numbers, positive, set_target, size, tolerance,
 };
 use super::CliError;
-use decimate_core::decimate::{Algorithm, Params, Target};
+use decimate_core::decimate::{Algorithm, Cost, Params, Target};
 use decimate_core::mesh::repair::Tolerance;
 use decimate_core::tile::Tiles;
 use decimate_viewer::app::shot::ShotOptions;
@@ -195,6 +195,19 @@ fn algorithm(p: &mut Pending, name: &str, value: &str) -> Result<(), CliError> {
     Ok(())
 }
 
+fn cost(p: &mut Pending, name: &str, value: &str) -> Result<(), CliError> {
+    p.params.cost = match value {
+        "quadric" => Cost::Quadric,
+        "lt" => Cost::LindstromTurk,
+        other => {
+            return Err(CliError(format!(
+                "{name}: unknown cost '{other}' (expected quadric or lt)"
+            )))
+        }
+    };
+    Ok(())
+}
+
 fn viewports(p: &mut Pending, name: &str, value: &str) -> Result<(), CliError> {
     let n: u32 = number(name, value)?;
     if !(1..=4).contains(&n) {
@@ -287,6 +300,13 @@ static OPTIONS: &[OptionSpec] = &[
         ],
         section: Section::NoGui,
         apply: Apply::Value(algorithm),
+    },
+    OptionSpec {
+        names: &["--cost"],
+        shown: Some("--cost C"),
+        help: &["qem: quadric (DEFAULT) | lt (Lindström–Turk: volume and boundary kept)"],
+        section: Section::NoGui,
+        apply: Apply::Value(cost),
     },
     OptionSpec {
         names: &["-p", "--percent"],

@@ -14,6 +14,7 @@ mod colours;
 mod creases;
 mod features;
 mod folds;
+mod lt_cost;
 mod max_error;
 mod nonmanifold;
 mod null_edges;

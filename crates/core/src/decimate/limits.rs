@@ -32,8 +32,21 @@ pub struct Limits {
     /// qem: scale fold angles to the mesh's sampling before the feature test
     /// ([`super::Params::scale_folds`]).
     pub scale_folds: bool,
+    /// qem: what a collapse costs and where its kept vertex goes (`--cost`).
+    pub cost: Cost,
     /// Stop early when this is set (checked between passes and batches).
     pub cancel: Cancel,
+}
+
+/// qem's cost and placement of a collapse.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Cost {
+    /// Garland–Heckbert: the accumulated quadrics' error at their optimum.
+    #[default]
+    Quadric,
+    /// Lindström–Turk, memoryless: volume and boundary change against the current mesh
+    /// around the edge, placement by their constraints (`qem::lt_placement`).
+    LindstromTurk,
 }
 
 /// What decimating one model did.

@@ -21,7 +21,7 @@ use std::time::Instant;
 
 use crate::mesh::{seams, stitches, Model, Scene};
 
-pub use limits::{Cancel, Limits, Outcome, MIN_VERTICES};
+pub use limits::{Cancel, Cost, Limits, Outcome, MIN_VERTICES};
 
 use crate::mesh::progressive::{ProgressiveModel, ProgressiveScene};
 
@@ -81,6 +81,8 @@ pub struct Params {
     /// (docs/design.md#qem-fold-scale). Off where the mesh given is not the input at its own
     /// resolution: a tile, the decimated tiles welded for the merge.
     pub scale_folds: bool,
+    /// qem: what a collapse costs and where its kept vertex goes (`--cost`).
+    pub cost: Cost,
 }
 
 impl Default for Params {
@@ -93,6 +95,7 @@ impl Default for Params {
             keep_border: false,
             algorithm: Algorithm::default(),
             scale_folds: true,
+            cost: Cost::default(),
         }
     }
 }
@@ -426,6 +429,7 @@ fn decimate_one(
         relax_features: plan.relax_features && plan.shares.removals[i] > 0,
         keep_features: params.keep_features,
         scale_folds: params.scale_folds,
+        cost: params.cost,
         cancel: cancel.clone(),
     };
     let outcome = match (params.algorithm, record) {

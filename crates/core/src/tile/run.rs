@@ -75,6 +75,7 @@ pub fn run_tile(dir: &Path, index: usize) -> Result<TileRun, TileError> {
             keep_features: false,
             // A tile is a piece of the input: its own folds are not the input's.
             scale_folds: false,
+            cost: Default::default(),
             cancel: Default::default(),
         };
         // No texture seams in a tile (positions only): no twins.

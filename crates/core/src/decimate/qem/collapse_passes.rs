@@ -391,8 +391,10 @@ fn attempt(d: &mut Part<'_>, v: u32, bounds: PassBounds, room: usize) -> Attempt
     // An edge off the outline and off seams is planned from its ends alone: one whose end
     // took a collapse in this pass and now costs over the threshold waits without its fans
     // being read (docs/design.md#qem-mutual-edges).
-    let early = (d.owns(w) && d.twins.is_empty() && plans_without_fans(d.kind(v), d.kind(w)))
-        .then(|| d.plan(v.min(w), v.max(w)));
+    // An LT plan reads the fans: never early.
+    let early =
+        (!d.lt && d.owns(w) && d.twins.is_empty() && plans_without_fans(d.kind(v), d.kind(w)))
+            .then(|| d.plan(v.min(w), v.max(w)));
     if early.is_some_and(|p| p.is_some_and(|p| stored(p.cost) > bounds.threshold)) {
         return Attempt::Skipped;
     }
@@ -637,6 +639,9 @@ fn collapse_and_flag(d: &mut Part<'_>, plan: &Plan) {
         d.closed.apply(c, change);
     }
     d.collapse(plan);
+    if d.lt {
+        flag_lt_neighbourhood(d, plan.keep);
+    }
     // A complex vertex made manifold collapses freely from now on: its edges are re-planned,
     // and its neighbours whose cheapest edge it is look again (that edge's cost changed).
     for j in 0..d.scratch.settled.len() {
@@ -647,6 +652,27 @@ fn collapse_and_flag(d: &mut Part<'_>, plan: &Plan) {
             for w in others(d.conn.triangle(d.conn.incident(x)[k]), x) {
                 if let Some(i) = d.local(w) {
                     d.flags[i] |= RELEASE;
+                }
+            }
+        }
+    }
+}
+
+/// Under the LT cost, which reads the triangles around both ends of an edge: the kept
+/// vertex's neighbours re-plan their edges too (every edge with an end there changed its
+/// star), and their neighbours look again for their cheapest edge.
+fn flag_lt_neighbourhood(d: &mut Part<'_>, keep: u32) {
+    for k in 0..d.conn.incident(keep).len() {
+        let t = d.conn.incident(keep)[k];
+        for x in others(d.costs.corners(t), keep) {
+            let Some(i) = d.local(x) else { continue };
+            d.flags[i] |= REPLAN;
+            for j in 0..d.conn.incident(x).len() {
+                let u = d.conn.incident(x)[j];
+                for y in others(d.costs.corners(u), x) {
+                    if let Some(i) = d.local(y) {
+                        d.flags[i] |= RELEASE;
+                    }
                 }
             }
         }

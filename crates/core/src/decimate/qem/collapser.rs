@@ -74,6 +74,8 @@ pub(super) struct Collapser {
     /// Under `--max-error`, the input each slot stands for: collapses then run on the
     /// whole mesh only (`decimate::distance_bound`).
     pub distance: Option<DistanceBound>,
+    /// `--cost lt`: Lindström–Turk's memoryless cost and placement (`lt_cost`).
+    pub lt: bool,
 }
 
 impl Collapser {
@@ -138,6 +140,7 @@ impl Collapser {
             features: Vec::new(),
             cos_feature,
             distance: None,
+            lt: false,
         }
     }
 
@@ -249,6 +252,7 @@ impl Collapser {
             cos_feature: self.cos_feature,
             closed: ClosedView::Whole(&mut self.closed),
             distance: self.distance.as_mut(),
+            lt: self.lt,
             scratch: CollapseLists::default(),
         }
     }
@@ -280,7 +284,7 @@ impl Collapser {
         let copies = &self.copies;
         let facing = &self.facing;
         let closed = &self.closed;
-        let (features, cos_feature) = (&self.features, self.cos_feature);
+        let (features, cos_feature, lt) = (&self.features, self.cos_feature, self.lt);
         let conns = self.conn.split(vertex_starts, slot_starts);
         conns
             .into_iter()
@@ -314,6 +318,7 @@ impl Collapser {
                     cos_feature,
                     closed: ClosedView::Part(closed, Default::default()),
                     distance: None,
+                    lt,
                     scratch: CollapseLists::default(),
                 })
             })

@@ -15,6 +15,8 @@ mod edge_costs;
 mod features;
 mod junction_collapse;
 mod legality;
+mod lt_cost;
+mod lt_placement;
 mod part;
 mod planes;
 mod quadric;
@@ -149,6 +151,7 @@ fn run(
     }
     let mut d = Collapser::connected(positions, conn, start, colors, normals, cos_feature);
     d.distance = distance;
+    d.lt = limits.cost == super::Cost::LindstromTurk;
     texture_and_pins(
         &mut d,
         (model, n as usize),

@@ -21,6 +21,12 @@ use crate::mesh::topology::{Adjacency, ConnectivityPart, FanTriangle, Ring, Ring
 /// A placement may leave the edge's bounding box by at most this many edge lengths.
 const BOX_MARGIN: f64 = 1.0;
 
+/// Under `--cost lt`, weight of the quadrics' squared distance (to the input planes the
+/// kept vertex stands for) added to the LT cost's cube root (both length²): the memoryless
+/// cost alone lets vertices drift from the input, and the max error with them
+/// (docs/benchmarks.md#twelve-cells).
+const LT_QUADRIC_WEIGHT: f64 = 10.0;
+
 /// Weight of a per-vertex normal step in a collapse's cost, against a colour step's 1: light,
 /// since on curved surfaces the quadric already prices the turn, while on flat stretches the
 /// normals alone order the collapses (docs/design.md#qem-normal-weight).
@@ -124,6 +130,8 @@ pub(super) struct Part<'a> {
     /// Under `--max-error`, the input each slot stands for (`decimate::distance_bound`;
     /// the whole only: a run with it collapses on the whole mesh).
     pub distance: Option<&'a mut DistanceBound>,
+    /// `--cost lt`: collapses are priced and placed by `lt_cost` instead of the quadrics.
+    pub lt: bool,
     pub scratch: CollapseLists,
 }
 
@@ -365,7 +373,14 @@ impl Part<'_> {
             let side = |r: u32, k: u32| c[self.at(r)].sum(&c[self.at(k)]);
             (side(remove, keep), twin.map(|[r2, k2]| side(r2, k2)))
         });
-        let position = if on_crease {
+        let lt = if self.lt {
+            Some(self.lt_plan([remove, keep], twin, free, on_crease)?)
+        } else {
+            None
+        };
+        let position = if let Some(lt) = &lt {
+            lt.position
+        } else if on_crease {
             along_crease(&placed, pr, pk)
         } else if free {
             self.place(&placed, pr, pk)
@@ -397,6 +412,13 @@ impl Part<'_> {
             }
         }
         cost += self.attribute_cost([remove, keep], twin, q.area, (pk - pr).length_squared());
+        if let Some(lt) = &lt {
+            // The attributes' terms are area × length²: the edge's length² more makes them
+            // length⁶, as the LT cost is; its cube root (the same order) stays in f32's
+            // range on small models.
+            let extra = (pk - pr).length_squared() * (cost - geometric);
+            cost = (lt.cost_at(position) + extra).cbrt() + LT_QUADRIC_WEIGHT * error2;
+        }
         Some(Plan {
             remove,
             keep,
