@@ -84,7 +84,7 @@ fn area_of(plain: &Plain, colour: [u8; 3]) -> (f64, usize) {
         if corners.iter().all(|&c| c == colour) {
             let [a, b, c] = t.map(|v| plain.points[v as usize].map(f64::from));
             area += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
-        } else if corners.iter().any(|&c| c == colour) {
+        } else if corners.contains(&colour) {
             mixed += 1;
         }
     }
