@@ -222,16 +222,35 @@ fn remove_reversed_copies(triangles: &[[u32; 3]], reversed: &[u32], keep: &mut [
         let t = triangles[t as usize];
         [0, 1, 2].map(|k| edge_key(t[k], t[(k + 1) % 3]))
     };
-    let mut edges: Vec<u64> = (0..triangles.len() as u32)
-        .filter(|&t| keep[t as usize])
-        .flat_map(edges_of)
-        .collect();
+    // Only the copies' own edges are counted: an edge of a kept triangle is looked up only
+    // where both its ends are corners of a copy.
+    let mut edges: Vec<u64> = reversed.iter().flat_map(|&t| edges_of(t)).collect();
     edges.sort_unstable();
     edges.dedup();
+    let mut corner = vec![
+        false;
+        triangles
+            .iter()
+            .flatten()
+            .max()
+            .map_or(0, |&v| v as usize + 1)
+    ];
+    for &t in reversed {
+        triangles[t as usize]
+            .iter()
+            .for_each(|&v| corner[v as usize] = true);
+    }
     let slot = |e: u64| edges.partition_point(|&x| x < e);
     let mut count = vec![0u32; edges.len()];
-    for t in (0..triangles.len() as u32).filter(|&t| keep[t as usize]) {
-        edges_of(t).into_iter().for_each(|e| count[slot(e)] += 1);
+    for t in (0..triangles.len()).filter(|&t| keep[t]) {
+        let tri = triangles[t];
+        for k in (0..3).filter(|&k| corner[tri[k] as usize] && corner[tri[(k + 1) % 3] as usize]) {
+            let e = edge_key(tri[k], tri[(k + 1) % 3]);
+            let i = slot(e);
+            if edges.get(i) == Some(&e) {
+                count[i] += 1;
+            }
+        }
     }
     let mut removed = 0;
     for group in groups_sharing_edges(reversed, &edges_of) {
@@ -796,6 +815,73 @@ mod tests {
             let again = (turned.iter().zip(&clean)).all(|(&a, &b)| same_way_round(a, b));
             assert!(again, "triangle {t} alone turned, back to the sphere's way");
         }
+    }
+
+    /// Reversed copies removed as first written, every kept edge counted: the reference
+    /// the counting of the copies' edges alone must match.
+    fn remove_reversed_reference(t: &[[u32; 3]], reversed: &[u32], keep: &mut [bool]) -> usize {
+        let edges_of = |i: u32| {
+            let tri = t[i as usize];
+            [0, 1, 2].map(|k| edge_key(tri[k], tri[(k + 1) % 3]))
+        };
+        let kept: Vec<u32> = (0..t.len() as u32).filter(|&i| keep[i as usize]).collect();
+        let mut edges: Vec<u64> = kept.iter().flat_map(|&i| edges_of(i)).collect();
+        edges.sort_unstable();
+        edges.dedup();
+        let slot = |e: u64| edges.partition_point(|&x| x < e);
+        let mut count = vec![0usize; edges.len()];
+        for &i in &kept {
+            edges_of(i).into_iter().for_each(|e| count[slot(e)] += 1);
+        }
+        let mut removed = 0;
+        for group in groups_sharing_edges(reversed, &edges_of) {
+            let mut slots: Vec<usize> = group.iter().flat_map(|&i| edges_of(i).map(slot)).collect();
+            slots.sort_unstable();
+            if slots
+                .chunk_by(|a, b| a == b)
+                .any(|r| count[r[0]] - r.len() == 1)
+            {
+                continue;
+            }
+            slots.iter().for_each(|&i| count[i] -= 1);
+            group.iter().for_each(|&i| keep[i as usize] = false);
+            removed += group.len();
+        }
+        removed
+    }
+
+    #[test]
+    fn reversed_copies_go_as_the_reference_removes_them() {
+        // Random triangles over few vertices, a random share of them named reversed copies:
+        // groups that open an edge and groups that do not.
+        let mut state = 0x1234_5678_9abc_def1u64;
+        let mut next = |n: u32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % u64::from(n)) as u32
+        };
+        let mut removed = 0;
+        for round in 0..300 {
+            let n = 5 + round % 6;
+            let mut triangles: Vec<[u32; 3]> = Vec::new();
+            while triangles.len() < 24 {
+                let t = [next(n), next(n), next(n)];
+                if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                    triangles.push(t);
+                }
+            }
+            let keep: Vec<bool> = (0..24).map(|_| next(5) != 0).collect();
+            let reversed: Vec<u32> = (0..24u32)
+                .filter(|&i| keep[i as usize] && next(3) == 0)
+                .collect();
+            let (mut a, mut b) = (keep.clone(), keep.clone());
+            let got = remove_reversed_copies(&triangles, &reversed, &mut a);
+            let expected = remove_reversed_reference(&triangles, &reversed, &mut b);
+            assert_eq!((got, &a), (expected, &b), "round {round}");
+            removed += got;
+        }
+        assert!(removed > 100, "the soups remove copies ({removed})");
     }
 
     #[test]
