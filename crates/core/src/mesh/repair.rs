@@ -227,24 +227,20 @@ fn remove_reversed_copies(triangles: &[[u32; 3]], reversed: &[u32], keep: &mut [
     let mut edges: Vec<u64> = reversed.iter().flat_map(|&t| edges_of(t)).collect();
     edges.sort_unstable();
     edges.dedup();
-    let mut corner = vec![
-        false;
-        triangles
-            .iter()
-            .flatten()
-            .max()
-            .map_or(0, |&v| v as usize + 1)
-    ];
+    // Sized by the copies' corners alone: a triangle not kept may name any index.
+    let copies = reversed.iter().flat_map(|&t| triangles[t as usize]);
+    let mut corner = vec![false; copies.max().map_or(0, |v| v as usize + 1)];
     for &t in reversed {
         triangles[t as usize]
             .iter()
             .for_each(|&v| corner[v as usize] = true);
     }
+    let is_corner = |v: u32| corner.get(v as usize).copied().unwrap_or(false);
     let slot = |e: u64| edges.partition_point(|&x| x < e);
     let mut count = vec![0u32; edges.len()];
     for t in (0..triangles.len()).filter(|&t| keep[t]) {
         let tri = triangles[t];
-        for k in (0..3).filter(|&k| corner[tri[k] as usize] && corner[tri[(k + 1) % 3] as usize]) {
+        for k in (0..3).filter(|&k| is_corner(tri[k]) && is_corner(tri[(k + 1) % 3])) {
             let e = edge_key(tri[k], tri[(k + 1) % 3]);
             let i = slot(e);
             if edges.get(i) == Some(&e) {
