@@ -145,18 +145,7 @@ fn keep_proper_triangles(model: &Model, r: &mut Repairs) -> Vec<bool> {
         })
         .collect();
     r.degenerate += keep.iter().filter(|&&k| !k).count();
-    let mut keyed: Vec<([u32; 3], u32)> = model
-        .triangles
-        .iter()
-        .enumerate()
-        .filter(|&(i, _)| keep[i])
-        .map(|(i, t)| {
-            let mut k = *t;
-            k.sort_unstable();
-            (k, i as u32)
-        })
-        .collect();
-    keyed.sort_unstable();
+    let keyed = keyed_by_corners(&model.triangles, &keep, model.positions.len());
     // Sorted by index within a run of equal keys: the first in the file stays. A copy the
     // same way round is an error of the file and goes; a reversed one may be the other side
     // of a doubled sheet, and goes only where that opens nothing.
@@ -179,6 +168,42 @@ fn keep_proper_triangles(model: &Model, r: &mut Repairs) -> Vec<bool> {
     keep
 }
 
+/// The kept triangles' corners sorted, each with its triangle's index, in the order of
+/// those keys and then of the index: bucketed by the smallest corner (a counting sort over
+/// the `n` vertices) and each bucket sorted on its own — linear but for the buckets' sorts,
+/// where one sort of all the keys cost a third of the repair.
+fn keyed_by_corners(triangles: &[[u32; 3]], keep: &[bool], n: usize) -> Vec<([u32; 3], u32)> {
+    let key = |t: [u32; 3]| {
+        let mut k = t;
+        k.sort_unstable();
+        k
+    };
+    let kept = || (0..triangles.len()).filter(|&i| keep[i]);
+    let mut start = vec![0u32; n + 1];
+    for i in kept() {
+        start[key(triangles[i])[0] as usize + 1] += 1;
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    let mut keyed = vec![([0u32; 3], 0u32); start[n] as usize];
+    let mut next = start[..n].to_vec();
+    for i in kept() {
+        let k = key(triangles[i]);
+        let slot = &mut next[k[0] as usize];
+        keyed[*slot as usize] = (k, i as u32);
+        *slot += 1;
+    }
+    drop(next);
+    for v in 0..n {
+        let bucket = &mut keyed[start[v] as usize..start[v + 1] as usize];
+        if bucket.len() > 1 {
+            bucket.sort_unstable();
+        }
+    }
+    keyed
+}
+
 /// Whether `b` is `a` rotated (the same corners in the same cyclic order).
 fn same_way_round(a: [u32; 3], b: [u32; 3]) -> bool {
     b == a || b == [a[1], a[2], a[0]] || b == [a[2], a[0], a[1]]
@@ -197,16 +222,31 @@ fn remove_reversed_copies(triangles: &[[u32; 3]], reversed: &[u32], keep: &mut [
         let t = triangles[t as usize];
         [0, 1, 2].map(|k| edge_key(t[k], t[(k + 1) % 3]))
     };
-    let mut edges: Vec<u64> = (0..triangles.len() as u32)
-        .filter(|&t| keep[t as usize])
-        .flat_map(edges_of)
-        .collect();
+    // Only the copies' own edges are counted: an edge of a kept triangle is looked up only
+    // where both its ends are corners of a copy.
+    let mut edges: Vec<u64> = reversed.iter().flat_map(|&t| edges_of(t)).collect();
     edges.sort_unstable();
     edges.dedup();
+    // Sized by the copies' corners alone: a triangle not kept may name any index.
+    let copies = reversed.iter().flat_map(|&t| triangles[t as usize]);
+    let mut corner = vec![false; copies.max().map_or(0, |v| v as usize + 1)];
+    for &t in reversed {
+        triangles[t as usize]
+            .iter()
+            .for_each(|&v| corner[v as usize] = true);
+    }
+    let is_corner = |v: u32| corner.get(v as usize).copied().unwrap_or(false);
     let slot = |e: u64| edges.partition_point(|&x| x < e);
     let mut count = vec![0u32; edges.len()];
-    for t in (0..triangles.len() as u32).filter(|&t| keep[t as usize]) {
-        edges_of(t).into_iter().for_each(|e| count[slot(e)] += 1);
+    for t in (0..triangles.len()).filter(|&t| keep[t]) {
+        let tri = triangles[t];
+        for k in (0..3).filter(|&k| is_corner(tri[k]) && is_corner(tri[(k + 1) % 3])) {
+            let e = edge_key(tri[k], tri[(k + 1) % 3]);
+            let i = slot(e);
+            if edges.get(i) == Some(&e) {
+                count[i] += 1;
+            }
+        }
     }
     let mut removed = 0;
     for group in groups_sharing_edges(reversed, &edges_of) {
@@ -323,6 +363,12 @@ pub fn orient_consistently(triangles: &mut [[u32; 3]]) -> usize {
         return 0;
     }
     let across = manifold_neighbours(triangles);
+    // Where every neighbour already runs its shared edge the other way (a clean surface),
+    // the walk would flip nothing.
+    let opposed = |a: u32| a == NO_NEIGHBOUR || a & SAME_WAY == 0;
+    if across.iter().flatten().all(|&a| opposed(a)) {
+        return 0;
+    }
     // Breadth-first over each connected surface: flip[t] relative to the first triangle,
     // meeting each triangle's neighbours in the order of their shared edges' keys.
     let mut flip: Vec<Option<bool>> = vec![None; triangles.len()];
@@ -397,51 +443,48 @@ fn edge_key(a: u32, b: u32) -> u64 {
 
 /// For each triangle and each of its edges `k` (corner `k` to `k + 1`), the triangle across
 /// it when the edge is manifold (exactly two triangles), with [`SAME_WAY`], else
-/// [`NO_NEIGHBOUR`]. The half-edges are bucketed by their smaller vertex (a counting sort)
-/// and each bucket sorted by the other: 12 bytes a triangle beside the result, linear but
-/// for the buckets' own sorts.
+/// [`NO_NEIGHBOUR`]. The half-edges are bucketed by their smaller vertex (a counting sort),
+/// each with its larger vertex above its id in one `u64`, and each bucket sorted as plain
+/// numbers: 24 bytes a triangle beside the result, linear but for the buckets' own sorts.
 fn manifold_neighbours(triangles: &[[u32; 3]]) -> Vec<[u32; 3]> {
     let n = triangles
         .iter()
         .flatten()
         .max()
         .map_or(0, |&v| v as usize + 1);
-    let low = |h: u32| {
+    let ends = |h: u32| {
         let tri = triangles[h as usize / 3];
         let k = h as usize % 3;
-        tri[k].min(tri[(k + 1) % 3])
-    };
-    let high = |h: u32| {
-        let tri = triangles[h as usize / 3];
-        let k = h as usize % 3;
-        tri[k].max(tri[(k + 1) % 3])
+        (tri[k], tri[(k + 1) % 3])
     };
     let mut start = vec![0u32; n + 1];
     for h in 0..triangles.len() as u32 * 3 {
-        start[low(h) as usize + 1] += 1;
+        let (a, b) = ends(h);
+        start[a.min(b) as usize + 1] += 1;
     }
     for v in 0..n {
         start[v + 1] += start[v];
     }
-    let mut half = vec![0u32; triangles.len() * 3];
-    let mut next = start.clone();
+    let mut half = vec![0u64; triangles.len() * 3];
+    let mut next = start[..n].to_vec();
     for h in 0..triangles.len() as u32 * 3 {
-        let slot = &mut next[low(h) as usize];
-        half[*slot as usize] = h;
+        let (a, b) = ends(h);
+        let slot = &mut next[a.min(b) as usize];
+        half[*slot as usize] = u64::from(a.max(b)) << 32 | u64::from(h);
         *slot += 1;
     }
     drop(next);
     let mut across = vec![[NO_NEIGHBOUR; 3]; triangles.len()];
     let forward = |h: u32| {
-        let tri = triangles[h as usize / 3];
-        let k = h as usize % 3;
-        tri[k] < tri[(k + 1) % 3]
+        let (a, b) = ends(h);
+        a < b
     };
     for v in 0..n {
         let bucket = &mut half[start[v] as usize..start[v + 1] as usize];
-        bucket.sort_unstable_by_key(|&h| high(h));
-        for run in bucket.chunk_by(|&g, &h| high(g) == high(h)) {
+        bucket.sort_unstable();
+        for run in bucket.chunk_by(|&g, &h| g >> 32 == h >> 32) {
             let &[g, h] = run else { continue };
+            let (g, h) = (g as u32, h as u32);
             let (s, t) = (g / 3, h / 3);
             if s != t {
                 let same = if forward(g) == forward(h) {
@@ -750,5 +793,116 @@ mod tests {
             flips += flipped;
         }
         assert!(flips > 1000, "the soups exercise flipping ({flips} flips)");
+    }
+
+    #[test]
+    fn one_turned_triangle_of_a_clean_sphere_is_turned_back_alone() {
+        let clean = crate::mesh::shapes::uv_sphere(8, 16).triangles;
+        let mut same = clean.clone();
+        assert_eq!(orient_consistently(&mut same), 0);
+        assert_eq!(same, clean);
+        for t in [0, clean.len() / 2, clean.len() - 1] {
+            let mut turned = clean.clone();
+            turned[t].swap(0, 1);
+            assert_eq!(orient_consistently(&mut turned), 1, "triangle {t}");
+            let again = (turned.iter().zip(&clean)).all(|(&a, &b)| same_way_round(a, b));
+            assert!(again, "triangle {t} alone turned, back to the sphere's way");
+        }
+    }
+
+    /// Reversed copies removed as first written, every kept edge counted: the reference
+    /// the counting of the copies' edges alone must match.
+    fn remove_reversed_reference(t: &[[u32; 3]], reversed: &[u32], keep: &mut [bool]) -> usize {
+        let edges_of = |i: u32| {
+            let tri = t[i as usize];
+            [0, 1, 2].map(|k| edge_key(tri[k], tri[(k + 1) % 3]))
+        };
+        let kept: Vec<u32> = (0..t.len() as u32).filter(|&i| keep[i as usize]).collect();
+        let mut edges: Vec<u64> = kept.iter().flat_map(|&i| edges_of(i)).collect();
+        edges.sort_unstable();
+        edges.dedup();
+        let slot = |e: u64| edges.partition_point(|&x| x < e);
+        let mut count = vec![0usize; edges.len()];
+        for &i in &kept {
+            edges_of(i).into_iter().for_each(|e| count[slot(e)] += 1);
+        }
+        let mut removed = 0;
+        for group in groups_sharing_edges(reversed, &edges_of) {
+            let mut slots: Vec<usize> = group.iter().flat_map(|&i| edges_of(i).map(slot)).collect();
+            slots.sort_unstable();
+            if slots
+                .chunk_by(|a, b| a == b)
+                .any(|r| count[r[0]] - r.len() == 1)
+            {
+                continue;
+            }
+            slots.iter().for_each(|&i| count[i] -= 1);
+            group.iter().for_each(|&i| keep[i as usize] = false);
+            removed += group.len();
+        }
+        removed
+    }
+
+    #[test]
+    fn reversed_copies_go_as_the_reference_removes_them() {
+        // Random triangles over few vertices, a random share of them named reversed copies:
+        // groups that open an edge and groups that do not.
+        let mut state = 0x1234_5678_9abc_def1u64;
+        let mut next = |n: u32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % u64::from(n)) as u32
+        };
+        let mut removed = 0;
+        for round in 0..300 {
+            let n = 5 + round % 6;
+            let mut triangles: Vec<[u32; 3]> = Vec::new();
+            while triangles.len() < 24 {
+                let t = [next(n), next(n), next(n)];
+                if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                    triangles.push(t);
+                }
+            }
+            let keep: Vec<bool> = (0..24).map(|_| next(5) != 0).collect();
+            let reversed: Vec<u32> = (0..24u32)
+                .filter(|&i| keep[i as usize] && next(3) == 0)
+                .collect();
+            let (mut a, mut b) = (keep.clone(), keep.clone());
+            let got = remove_reversed_copies(&triangles, &reversed, &mut a);
+            let expected = remove_reversed_reference(&triangles, &reversed, &mut b);
+            assert_eq!((got, &a), (expected, &b), "round {round}");
+            removed += got;
+        }
+        assert!(removed > 100, "the soups remove copies ({removed})");
+    }
+
+    #[test]
+    fn bucketed_keys_come_in_the_order_of_one_global_sort() {
+        // Random triangles over few vertices: many repeated corner sets, either way round,
+        // some triangles not kept.
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = |n: u32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % u64::from(n)) as u32
+        };
+        for round in 0..100 {
+            let n = 5 + round % 7;
+            let triangles: Vec<[u32; 3]> = (0..40).map(|_| [0; 3].map(|_| next(n))).collect();
+            let keep: Vec<bool> = (0..40).map(|_| next(4) != 0).collect();
+            let mut expected: Vec<([u32; 3], u32)> = (0..40)
+                .filter(|&i| keep[i])
+                .map(|i| {
+                    let mut k = triangles[i];
+                    k.sort_unstable();
+                    (k, i as u32)
+                })
+                .collect();
+            expected.sort_unstable();
+            let got = keyed_by_corners(&triangles, &keep, n as usize);
+            assert_eq!(got, expected, "round {round}");
+        }
     }
 }
