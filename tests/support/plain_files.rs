@@ -104,6 +104,15 @@ pub fn read_ply(bytes: &[u8]) -> Result<Plain, String> {
                         _ => {}
                     }
                 }
+                // Far coordinates are written as doubles; compared here as f32.
+                "double x" | "double y" | "double z" => {
+                    let b: [u8; 8] = take(8)?.try_into().map_err(|_| "short double")?;
+                    let k = ["double x", "double y", "double z"]
+                        .iter()
+                        .position(|q| q == p)
+                        .unwrap_or(0);
+                    point[k] = f64::from_le_bytes(b) as f32;
+                }
                 "uchar red" | "uchar green" | "uchar blue" => {
                     let k = ["uchar red", "uchar green", "uchar blue"]
                         .iter()
@@ -172,8 +181,20 @@ fn ply_header(header: &str) -> Result<(usize, usize, Vec<String>), String> {
     Ok((vertices, faces, properties))
 }
 
+/// A point relative to a model's origin in the file's frame, as f32: the origin plus the
+/// value each f32 coordinate's shortest decimal stands for (docs/design.md#far-coordinates).
+fn in_file_frame(local: [f32; 3], origin: [f64; 3]) -> [f32; 3] {
+    std::array::from_fn(|k| {
+        if origin[k] == 0.0 {
+            return local[k];
+        }
+        let decimal: f64 = local[k].to_string().parse().unwrap_or(f64::from(local[k]));
+        (origin[k] + decimal) as f32
+    })
+}
+
 /// What a writer should have written for `scene`: the points with each model's transform
-/// applied, triangles numbered on across models and wound the other way under a mirroring
+/// applied and its origin added, triangles numbered on across models and wound the other way under a mirroring
 /// transform, and the per-vertex colours where every model has them (as bytes for PLY,
 /// missing ones the model's diffuse colour; as they are for OBJ, where each model's count
 /// matches its points).
@@ -189,9 +210,8 @@ pub fn expected(scene: &Scene, format: Format) -> Plain {
         let base = plain.points.len() as u32;
         let mirrored = m.transform.determinant() < 0.0;
         for (i, p) in m.positions.iter().enumerate() {
-            plain
-                .points
-                .push(m.transform.transform_point3(*p).to_array());
+            let local = m.transform.transform_point3(*p).to_array();
+            plain.points.push(in_file_frame(local, m.origin.to_array()));
             if let Some(Attribute::PerVertex(c)) = &m.colors {
                 let c = c.get(i).copied().unwrap_or(m.diffuse);
                 colors.push(match format {
