@@ -276,13 +276,20 @@ pub(crate) fn drag_with(
 
 /// Starts the viewer as `decimate ARGS` in `dir` on lavapipe, its stderr going to `log`;
 /// `trace`: with its `DECIMATE_TRACE` lines there.
-fn spawn_viewer(dir: &Path, args: &[&str], trace: bool, log: &Path) -> Viewer {
+fn spawn_viewer(
+    dir: &Path,
+    args: &[&str],
+    trace: bool,
+    log: &Path,
+    env: &[(&str, &str)],
+) -> Viewer {
     let file = std::fs::File::create(log)
         .unwrap_or_else(|e| panic!("cannot create {}: {e}", log.display()));
     let mut command = Command::new(env!("CARGO_BIN_EXE_decimate"));
     if trace {
         command.env("DECIMATE_TRACE", "1");
     }
+    command.envs(env.iter().copied());
     let child = command
         .args(args)
         .current_dir(dir)
@@ -326,7 +333,17 @@ pub(crate) fn start_cube_focused(name: &str) -> (PathBuf, PathBuf, Viewer, Strin
 }
 
 pub(crate) fn start_traced(dir: &Path, args: &[&str], log: &Path) -> (Viewer, String) {
-    let mut viewer = spawn_viewer(dir, args, true, log);
+    start_traced_with(dir, args, log, &[])
+}
+
+/// As [`start_traced`], with environment variables `env` set for the viewer.
+pub(crate) fn start_traced_with(
+    dir: &Path,
+    args: &[&str],
+    log: &Path,
+    env: &[(&str, &str)],
+) -> (Viewer, String) {
+    let mut viewer = spawn_viewer(dir, args, true, log, env);
     let wid = window_of(&mut viewer, log, Duration::from_secs(60))
         .unwrap_or_else(|| panic!("no window in 60 s; viewer log:\n{}", read_log(log)));
     (viewer, wid)
@@ -379,7 +396,7 @@ fn keys_decimate_and_save_and_right_click_opens_the_menu() {
     let mut attempts = Vec::new();
     let (viewer, wid, log_path) = loop {
         let log_path = dir.join(format!("viewer-{}.log", attempts.len() + 1));
-        let mut viewer = spawn_viewer(&dir, &["out.wrl"], false, &log_path);
+        let mut viewer = spawn_viewer(&dir, &["out.wrl"], false, &log_path, &[]);
         if let Some(wid) = window_of(&mut viewer, &log_path, Duration::from_secs(45)) {
             break (viewer, wid, log_path);
         }
