@@ -268,16 +268,7 @@ fn best_of_ends(cost: &Form, pr: DVec3) -> DVec3 {
 /// parabola along it.
 fn along_edge(cost: &Form, pr: DVec3) -> DVec3 {
     let (f0, fh, f1) = (cost.eval(DVec3::ZERO), cost.eval(0.5 * pr), cost.eval(pr));
-    let a = 2.0 * (f1 + f0 - 2.0 * fh);
-    let b = f1 - f0 - a;
-    let t = if a > 0.0 {
-        (-b / (2.0 * a)).clamp(0.0, 1.0)
-    } else if f1 < f0 {
-        1.0
-    } else {
-        0.0
-    };
-    t * pr
+    super::part::parabola_minimum(f0, fh, f1) * pr
 }
 
 #[cfg(test)]

@@ -913,16 +913,21 @@ impl Part<'_> {
 fn along_crease(q: &Quadric, pr: DVec3, pk: DVec3) -> DVec3 {
     let at = |t: f64| pk + t * (pr - pk);
     let (f0, fh, f1) = (q.eval(at(0.0)), q.eval(at(0.5)), q.eval(at(1.0)));
+    at(parabola_minimum(f0, fh, f1))
+}
+
+/// Where in 0..=1 the parabola through `(0, f0)`, `(½, fh)` and `(1, f1)` is least: its
+/// vertex when it opens upwards (clamped), else the lower end.
+pub(super) fn parabola_minimum(f0: f64, fh: f64, f1: f64) -> f64 {
     let a = 2.0 * (f1 + f0 - 2.0 * fh);
     let b = f1 - f0 - a;
-    let t = if a > 0.0 {
+    if a > 0.0 {
         (-b / (2.0 * a)).clamp(0.0, 1.0)
     } else if f1 < f0 {
         1.0
     } else {
         0.0
-    };
-    at(t)
+    }
 }
 
 /// Where `p` projects on the edge from `pk` (0) to `pr` (1), clamped to the edge.
