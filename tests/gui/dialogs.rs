@@ -14,14 +14,18 @@ use super::xvfb::{
     Viewer,
 };
 
-/// Waits up to 30 s for `what` in the viewer's log; fails with the log otherwise.
-fn wait_for_log(log: &Path, what: &str) {
+/// Waits up to 30 s for `what` in the viewer's log and returns the first line holding it;
+/// fails with the log otherwise.
+fn wait_for_log(log: &Path, what: &str) -> String {
     let start = Instant::now();
-    while !read_log(log).contains(what) {
+    loop {
+        let text = read_log(log);
+        if let Some(line) = text.lines().find(|l| l.contains(what)) {
+            return line.to_string();
+        }
         assert!(
             start.elapsed() < Duration::from_secs(30),
-            "no {what:?} in 30 s; viewer log:\n{}",
-            read_log(log)
+            "no {what:?} in 30 s; viewer log:\n{text}"
         );
         std::thread::sleep(Duration::from_millis(100));
     }
@@ -30,6 +34,13 @@ fn wait_for_log(log: &Path, what: &str) {
 /// Opens Save as… in window `wid` and types `name` over the name it suggests, then Enter.
 fn save_as(wid: &str, name: &str) {
     run("xdotool", &["key", "--window", wid, "O"]);
+    std::thread::sleep(Duration::from_millis(800));
+    type_name(wid, name);
+}
+
+/// Opens Open… in window `wid` and types `name`, then Enter.
+fn open_file(wid: &str, name: &str) {
+    run("xdotool", &["key", "--window", wid, "o"]);
     std::thread::sleep(Duration::from_millis(800));
     type_name(wid, name);
 }
@@ -49,14 +60,7 @@ fn save_as_writes_the_format_its_extension_names_and_asks_before_replacing() {
     }
     let _window = super::ONE_WINDOW.lock();
     let _held = hold_x_connection(Duration::from_secs(20));
-    let dir = scratch("gui_dialogs");
-    write_cube(&dir.join("cube.wrl"));
-    let log = dir.join("viewer.log");
-    let (viewer, wid) = start_traced(&dir, &["cube.wrl"], &log);
-    let _ = Command::new("xdotool")
-        .args(["windowfocus", "--sync", &wid])
-        .status();
-    wait_for_log(&log, "frame in");
+    let (dir, log, viewer, wid) = start_on_cube("gui_dialogs");
     run("xdotool", &["key", "--window", &wid, "9"]);
     wait_for_log(&log, "removed 90 %");
 
@@ -125,18 +129,12 @@ fn open_refuses_missing_and_corrupt_files_then_shows_the_ply_picked() {
     .unwrap_or_else(|e| panic!("{e}"));
 
     // A name that is not there: the dialog stays, and the status line says why.
-    run("xdotool", &["key", "--window", &wid, "o"]);
-    std::thread::sleep(Duration::from_millis(800));
-    type_name(&wid, "missing.ply");
+    open_file(&wid, "missing.ply");
     wait_for_log(&log, "missing.ply does not exist");
     // A corrupt PLY: refused with the reader's reason, the window and the cube stay.
     type_name(&wid, "broken.ply");
-    wait_for_log(&log, "cannot open");
+    let refusal = wait_for_log(&log, "cannot open");
     let text = read_log(&log);
-    let refusal = text
-        .lines()
-        .find(|l| l.contains("cannot open"))
-        .unwrap_or_default();
     assert!(
         refusal.contains("broken.ply"),
         "the refusal names no file: {refusal}"
@@ -151,17 +149,10 @@ fn open_refuses_missing_and_corrupt_files_then_shows_the_ply_picked() {
     );
 
     // The PLY picked by name: its exact counts in the status line, and what 9 decimates.
-    run("xdotool", &["key", "--window", &wid, "o"]);
-    std::thread::sleep(Duration::from_millis(800));
-    type_name(&wid, "small.ply");
+    open_file(&wid, "small.ply");
     wait_for_log(&log, "small.ply: 98 vertices, 192 triangles");
     run("xdotool", &["key", "--window", &wid, "9"]);
-    wait_for_log(&log, "removed 90 %");
-    let text = read_log(&log);
-    let done = text
-        .lines()
-        .find(|l| l.contains("removed 90 %"))
-        .unwrap_or_default();
+    let done = wait_for_log(&log, "removed 90 %");
     assert!(
         done.contains("removed 90 %: 10 vertices, 16 triangles"),
         "9 did not decimate the opened 98-vertex cube as nogui -p 90 does (10, 16): {done}"

@@ -285,6 +285,27 @@ pub(super) fn hausdorff(a: &Mesh, b: &Mesh) -> f64 {
     one_sided(a, b).max(one_sided(b, a))
 }
 
+/// Asserts that `far` (a far run's output, moved back to the origin) is `near` (the origin
+/// run's): the same triangles, every point within 1e-6, and its error against `input` at most
+/// 1.1 times the origin run's.
+pub(super) fn assert_lands_like_the_origin_run(what: &str, input: &Mesh, near: &Mesh, far: &Mesh) {
+    assert!(
+        far.triangles == near.triangles,
+        "{what}: {} triangles, other than the {} at the origin",
+        far.triangles.len(),
+        near.triangles.len()
+    );
+    for (p, q) in far.points.iter().zip(&near.points) {
+        let d = dot(sub(*p, *q), sub(*p, *q)).sqrt();
+        assert!(d < 1e-6, "{what}: {p:?} against {q:?}");
+    }
+    let (far_error, near_error) = (hausdorff(input, far), hausdorff(input, near));
+    assert!(
+        far_error <= 1.1 * near_error,
+        "{what}: error {far_error} against {near_error} at the origin"
+    );
+}
+
 /// Runs the binary on the patch at `t` and returns its output moved back by `t`.
 fn run(dir: &Path, file: &str, t: [f64; 3], algorithm: &[&str]) -> Mesh {
     let input = dir.join(file);
@@ -318,19 +339,9 @@ fn a_far_patch_decimates_as_it_does_at_the_origin_in_every_text_and_binary_forma
                 near.triangles.len() > 250 && near.triangles.len() < 500,
                 "{what}"
             );
-            let near_error = hausdorff(&input, &near);
             for t in FAR {
                 let far = run(dir.path(), file, t, algorithm);
-                assert_eq!(far.triangles, near.triangles, "{what} at {t:?}");
-                for (p, q) in far.points.iter().zip(&near.points) {
-                    let d = dot(sub(*p, *q), sub(*p, *q)).sqrt();
-                    assert!(d < 1e-6, "{what} at {t:?}: {p:?} against {q:?}");
-                }
-                let far_error = hausdorff(&input, &far);
-                assert!(
-                    far_error <= 1.1 * near_error,
-                    "{what} at {t:?}: error {far_error} against {near_error} at the origin"
-                );
+                assert_lands_like_the_origin_run(&format!("{what} at {t:?}"), &input, &near, &far);
             }
         }
     }

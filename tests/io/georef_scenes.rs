@@ -9,7 +9,10 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crate::georef::{dot, grid_patch, hausdorff, patch, read_output, sub, write_input, Mesh, FAR};
+use crate::georef::{
+    assert_lands_like_the_origin_run, grid_patch, hausdorff, patch, read_output, sub, write_input,
+    Mesh, FAR,
+};
 use crate::support::binary::decimate;
 
 /// How the patch is written: which format, and whether the translation is in its points or
@@ -225,24 +228,9 @@ fn far_scenes_decimate_as_they_do_at_the_origin_in_vrml_inventor_and_gltf() {
                 "{what}: {} triangles",
                 near.triangles.len()
             );
-            let near_error = hausdorff(&input, &near);
             for t in FAR {
                 let far = run(dir.path(), form, t, algorithm);
-                assert!(
-                    far.triangles == near.triangles,
-                    "{what} at {t:?}: {} triangles, other than the {} at the origin",
-                    far.triangles.len(),
-                    near.triangles.len()
-                );
-                for (p, q) in far.points.iter().zip(&near.points) {
-                    let d = dot(sub(*p, *q), sub(*p, *q)).sqrt();
-                    assert!(d < 1e-6, "{what} at {t:?}: {p:?} against {q:?}");
-                }
-                let far_error = hausdorff(&input, &far);
-                assert!(
-                    far_error <= 1.1 * near_error,
-                    "{what} at {t:?}: error {far_error} against {near_error} at the origin"
-                );
+                assert_lands_like_the_origin_run(&format!("{what} at {t:?}"), &input, &near, &far);
             }
         }
     }
@@ -284,24 +272,9 @@ fn a_far_patch_tiled_within_a_small_memory_budget_lands_where_the_origin_run_doe
     // 8192 triangles to 1638: the welded tiles (twice that) are over 400K and cut again.
     assert_eq!(near.triangles.len(), 1638);
     assert!(said.contains("cutting them again"), "{said}");
-    let near_error = hausdorff(&input, &near);
     for t in FAR {
         let (far, _) = tiled(dir.path(), t);
-        assert!(
-            far.triangles == near.triangles,
-            "at {t:?}: {} triangles, other than the {} at the origin",
-            far.triangles.len(),
-            near.triangles.len()
-        );
-        for (p, q) in far.points.iter().zip(&near.points) {
-            let d = dot(sub(*p, *q), sub(*p, *q)).sqrt();
-            assert!(d < 1e-6, "at {t:?}: {p:?} against {q:?}");
-        }
-        let far_error = hausdorff(&input, &far);
-        assert!(
-            far_error <= 1.1 * near_error,
-            "at {t:?}: error {far_error} against {near_error} at the origin"
-        );
+        assert_lands_like_the_origin_run(&format!("tiled at {t:?}"), &input, &near, &far);
     }
 }
 

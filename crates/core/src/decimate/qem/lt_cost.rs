@@ -278,6 +278,21 @@ mod tests {
     use crate::decimate::qem::planes::Constraints;
     use glam::Vec3;
 
+    /// The bipyramid's triangles: four around the apex 4, four around the apex 5, with the
+    /// square's edge 0–1 split at vertex 6.
+    const BIPYRAMID: [[usize; 3]; 10] = [
+        [0, 6, 4],
+        [6, 1, 4],
+        [1, 2, 4],
+        [2, 3, 4],
+        [3, 0, 4],
+        [6, 0, 5],
+        [1, 6, 5],
+        [2, 1, 5],
+        [3, 2, 5],
+        [0, 3, 5],
+    ];
+
     /// A closed octahedron-like bipyramid: a square of four around the z axis, an apex at
     /// `z = top` above and `z = -1` below, with vertex 6 on the square's edge 0–1, pulled out
     /// by `bulge` (so that collapsing it changes the volume unless the kept end moves).
@@ -291,18 +306,7 @@ mod tests {
             Vec3::new(0.0, 0.0, -1.0),
             Vec3::new(0.5 + bulge, 0.5 + bulge, 0.0),
         ];
-        let triangles = vec![
-            [0, 6, 4],
-            [6, 1, 4],
-            [1, 2, 4],
-            [2, 3, 4],
-            [3, 0, 4],
-            [6, 0, 5],
-            [1, 6, 5],
-            [2, 1, 5],
-            [3, 2, 5],
-            [0, 3, 5],
-        ];
+        let triangles = BIPYRAMID.iter().map(|t| t.map(|v| v as u32)).collect();
         let constraints = Constraints {
             cos_feature: 0.5,
             scale_folds: false,
@@ -324,18 +328,7 @@ mod tests {
     fn an_lt_collapse_keeps_a_closed_volume_and_costs_what_it_sweeps() {
         let mut d = bipyramid(1.0, 0.2);
         let before: Vec<DVec3> = (0..7).map(|v| d.whole().position(v)).collect();
-        let all = [
-            [0, 6, 4],
-            [6, 1, 4],
-            [1, 2, 4],
-            [2, 3, 4],
-            [3, 0, 4],
-            [6, 0, 5],
-            [1, 6, 5],
-            [2, 1, 5],
-            [3, 2, 5],
-            [0, 3, 5],
-        ];
+        let all = BIPYRAMID;
         let part = d.whole();
         let plan = part.plan(0, 6).expect("an interior edge");
         // The triangles left once the removed end is renamed to the kept one.
