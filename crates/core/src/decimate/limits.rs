@@ -67,3 +67,18 @@ pub struct Outcome {
     /// closed-volume guard refuses (`decimate::closed`); 0 otherwise.
     pub closed_kept: usize,
 }
+
+impl Outcome {
+    /// The outcome before any removal, with features from `feature_angle_deg` and `pinned`
+    /// vertices held.
+    pub(crate) fn nothing_removed(feature_angle_deg: f64, pinned: usize) -> Self {
+        Self {
+            removed: 0,
+            max_error: 0.0,
+            exhausted: false,
+            feature_angle_deg,
+            pinned,
+            closed_kept: 0,
+        }
+    }
+}

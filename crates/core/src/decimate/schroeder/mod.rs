@@ -127,14 +127,7 @@ pub fn decimate_model(
     let (floor, floored) = floored_limits(&d, limits);
 
     // 3. classify and rank
-    let mut outcome = Outcome {
-        removed: 0,
-        max_error: 0.0,
-        exhausted: false,
-        feature_angle_deg: limits.feature_angle_deg,
-        pinned: pinned_count,
-        closed_kept: 0,
-    };
+    let mut outcome = Outcome::nothing_removed(limits.feature_angle_deg, pinned_count);
     let live = loosen::live_count(&d);
     d.unfold |= loosen::short_from_start(&d, limits, &outcome, live);
     if limits.relax_features {

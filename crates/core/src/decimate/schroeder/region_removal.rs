@@ -416,14 +416,7 @@ mod tests {
 
     /// An outcome before anything is removed (features from 30°, as [`ranked`] ranks).
     fn nothing_yet() -> Outcome {
-        Outcome {
-            removed: 0,
-            max_error: 0.0,
-            exhausted: false,
-            feature_angle_deg: 30.0,
-            pinned: 0,
-            closed_kept: 0,
-        }
+        Outcome::nothing_removed(30.0, 0)
     }
 
     /// Removes `candidates` in order on the whole mesh, as the passes do there (those whose
