@@ -3,7 +3,8 @@
 //! straight jump through decimation by either algorithm: the sides are never welded into
 //! one vertex, every output triangle keeps one side's colour, the sides' areas stay where
 //! they were, the surface does not crack along the jump, and the count target is met in
-//! positions (a seam's copies counted once).
+//! positions (a seam's copies counted once). A border between per-face colours (OFF, PLY)
+//! is kept the same way, and comes out with one vertex per point and colours on the faces.
 
 use std::fmt::Write as _;
 
@@ -183,4 +184,159 @@ fn a_point_with_two_colours_in_a_vrml_file_keeps_both() {
             assert_eq!(colors[v as usize], want, "triangle {t:?}");
         }
     }
+}
+
+/// The same waved sheet as [`two_colour_sheet_ply`], as OFF with one vertex per point and a
+/// colour on each face line: red for x < 0, blue for x > 0.
+fn face_coloured_sheet_off(n: usize) -> String {
+    let height = |x: f64, y: f64| 0.08 * (2.5 * x).sin() * (3.0 * y).cos();
+    let coordinate = |i: usize| -1.0 + 2.0 * i as f64 / n as f64;
+    let mut text = format!("OFF\n{} {} 0\n", (n + 1) * (n + 1), 2 * n * n);
+    for i in 0..=n {
+        for j in 0..=n {
+            let (x, y) = (coordinate(i), coordinate(j));
+            writeln!(text, "{x} {y} {}", height(x, y)).expect("a String takes text");
+        }
+    }
+    for i in 0..n {
+        let [r, g, b] = if i < n / 2 { RED } else { BLUE };
+        for j in 0..n {
+            let v = |di: usize, dj: usize| (i + di) * (n + 1) + j + dj;
+            let (a, b2, c, d) = (v(0, 0), v(1, 0), v(1, 1), v(0, 1));
+            writeln!(
+                text,
+                "3 {a} {b2} {c} {r} {g} {b}\n3 {a} {c} {d} {r} {g} {b}"
+            )
+            .expect("a String takes text");
+        }
+    }
+    text
+}
+
+/// An OFF file's points, triangles and face colours.
+type FaceColouredOff = (Vec<[f64; 3]>, Vec<[usize; 3]>, Vec<Option<[u8; 3]>>);
+
+/// An OFF file's points, triangles and face colours (bytes; `None` for a face without one),
+/// read by the test itself.
+fn read_face_coloured_off(text: &str) -> FaceColouredOff {
+    let mut lines = (text.lines())
+        .map(|l| l.split('#').next().unwrap_or("").trim())
+        .filter(|l| !l.is_empty());
+    assert_eq!(lines.next(), Some("OFF"), "an OFF header");
+    let counts: Vec<usize> = (lines.next().expect("a counts line").split_whitespace())
+        .map(|w| w.parse().expect("a count"))
+        .collect();
+    let number = |w: &str| w.parse::<f64>().expect("a number");
+    let points = (0..counts[0])
+        .map(|_| {
+            let w: Vec<f64> = lines
+                .next()
+                .expect("a vertex")
+                .split_whitespace()
+                .map(number)
+                .collect();
+            [w[0], w[1], w[2]]
+        })
+        .collect();
+    let (mut triangles, mut colours) = (Vec::new(), Vec::new());
+    for _ in 0..counts[1] {
+        let w: Vec<&str> = lines.next().expect("a face").split_whitespace().collect();
+        assert_eq!(w[0], "3", "a triangle");
+        triangles.push([1, 2, 3].map(|k| w[k].parse().expect("an index")));
+        colours
+            .push((w.len() >= 7).then(|| [4, 5, 6].map(|k| (number(w[k]) * 255.0).round() as u8)));
+    }
+    (points, triangles, colours)
+}
+
+/// [`face_coloured_sheet_off`] as an ASCII PLY with `red`, `green` and `blue` on each face.
+fn face_coloured_sheet_ply(n: usize) -> String {
+    let off = face_coloured_sheet_off(n);
+    let lines = off.lines().skip(2);
+    let (points, faces) = ((n + 1) * (n + 1), 2 * n * n);
+    let mut text = format!(
+        "ply\nformat ascii 1.0\nelement vertex {points}\nproperty float x\nproperty float y\n\
+         property float z\nelement face {faces}\nproperty list uchar int vertex_indices\n\
+         property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n"
+    );
+    for line in lines.take(points + faces) {
+        writeln!(text, "{line}").expect("a String takes text");
+    }
+    text
+}
+
+#[test]
+fn a_border_between_face_colours_stays_sharp_and_straight_with_one_vertex_per_point() {
+    let n = 24;
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    std::fs::write(dir.path().join("in.off"), face_coloured_sheet_off(n)).expect("the input");
+    std::fs::write(dir.path().join("in.ply"), face_coloured_sheet_ply(n)).expect("the input");
+    let points = (n + 1) * (n + 1);
+    let cases = [("in.off", "out.off"), ("in.ply", "out.ply")];
+    for ((input, output), algorithm) in cases
+        .iter()
+        .zip(["schroeder", "qem"])
+        .chain(cases.iter().zip(["qem", "schroeder"]))
+    {
+        for keep in [points / 4, points / 10] {
+            let what =
+                format!("{input} to {output}, {algorithm} keeping {keep} of {points} points");
+            let keep_arg = keep.to_string();
+            let args = [
+                *input,
+                "nogui",
+                "-a",
+                algorithm,
+                "--keep-vertices",
+                &keep_arg,
+            ];
+            let run = binary::decimate(dir.path(), &[&args[..], &["-o", output]].concat());
+            assert!(
+                run.status.success(),
+                "{what}: {}",
+                String::from_utf8_lossy(&run.stderr)
+            );
+            // A PLY is turned into OFF for the test's reader, nothing removed.
+            let back = ["out.ply", "nogui", "-p", "0", "-o", "back.off"];
+            let off = if *output == "out.ply" {
+                let run = binary::decimate(dir.path(), &back);
+                assert!(
+                    run.status.success(),
+                    "{what}: {}",
+                    String::from_utf8_lossy(&run.stderr)
+                );
+                "back.off"
+            } else {
+                "out.off"
+            };
+            let text = std::fs::read_to_string(dir.path().join(off)).expect("the OFF output");
+            check_face_coloured_sheet(&what, &text, keep);
+        }
+    }
+}
+
+/// Checks a decimated [`face_coloured_sheet_off`]: `keep` vertices in the file (one per
+/// point), every face red or blue, each colour's area where it was, no crack.
+fn check_face_coloured_sheet(what: &str, text: &str, keep: usize) {
+    let (p, triangles, colours) = read_face_coloured_off(text);
+    assert_eq!(p.len(), keep, "{what}: vertices in the file");
+    let (mut red, mut blue) = (0.0, 0.0);
+    for (t, colour) in triangles.iter().zip(&colours) {
+        let [a, b, c] = t.map(|v| p[v]);
+        let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+        match colour {
+            Some(RED) => red += area,
+            Some(BLUE) => blue += area,
+            other => panic!("{what}: a face coloured {other:?}"),
+        }
+    }
+    // Each half is 2 × 1 in (x, y): the border stays on x = 0.
+    assert!((red - 2.0).abs() < 1e-3, "{what}: red area {red}");
+    assert!((blue - 2.0).abs() < 1e-3, "{what}: blue area {blue}");
+    let plain = Plain {
+        points: p.iter().map(|q| q.map(|x| x as f32)).collect(),
+        triangles: triangles.iter().map(|t| t.map(|v| v as u32)).collect(),
+        colors: None,
+    };
+    assert_eq!(inner_border_edges(&plain), 0, "{what}: cracks");
 }

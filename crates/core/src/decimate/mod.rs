@@ -19,7 +19,7 @@ pub mod summary;
 
 use std::time::Instant;
 
-use crate::mesh::{seams, stitches, Model, Scene};
+use crate::mesh::{face_colour_seams, seams, stitches, Model, Scene};
 
 pub use limits::{Cancel, Cost, Limits, Outcome, MIN_VERTICES};
 
@@ -514,6 +514,11 @@ fn run(
     mut record: Option<&mut Vec<ProgressiveModel>>,
 ) -> Report {
     let start = Instant::now();
+    // Per-face colour borders go through as seams; the progressive record keeps its
+    // faces' colours as they are.
+    let split: Vec<bool> = (scene.models.iter_mut())
+        .map(|m| record.is_none() && face_colour_seams::split(m))
+        .collect();
     let plan = ScenePlan::new(scene, params, record.is_some());
     // Pinned: texture seams and borders shared with another model (cracks otherwise), and
     // with `keep_border` every open border.
@@ -559,6 +564,9 @@ fn run(
         );
         done += report.vertices_before - report.vertices_after.min(report.vertices_before);
         reports.push(report);
+    }
+    for (m, _) in scene.models.iter_mut().zip(split).filter(|(_, s)| *s) {
+        face_colour_seams::merge(m);
     }
     drop_small_models(scene, &mut reports, record);
     Report {

@@ -129,6 +129,7 @@ impl Counts {
 /// Whether the format keeps each attribute, given how many models have it.
 struct Keeps {
     vertex_colors: bool,
+    face_colors: bool,
     texcoords: bool,
     images: bool,
 }
@@ -140,6 +141,8 @@ impl Keeps {
             Format::Ply | Format::Off => c.vertex_colored == c.all,
             _ => false,
         };
+        // PLY and OFF write colours on their face records when every model has them per face.
+        let face_colors = matches!(format, Format::Ply | Format::Off) && c.face_colored == c.all;
         let texcoords = match format {
             Format::Obj => true,
             Format::Ply | Format::Off => c.textured == c.all,
@@ -153,6 +156,7 @@ impl Keeps {
             };
         Self {
             vertex_colors,
+            face_colors,
             texcoords,
             images,
         }
@@ -186,11 +190,15 @@ fn attribute_losses(name: &str, format: Format, c: &Counts, keeps: &Keeps) -> Ve
             why(c.vertex_colored)
         ));
     }
-    if c.face_colored > 0 {
-        out.push(format!(
-            "{name} output keeps no per-face colours ({}; VRML 2.0 keeps them)",
-            have(c.face_colored)
-        ));
+    if c.face_colored > 0 && !keeps.face_colors {
+        let which = match format {
+            Format::Ply | Format::Off => why(c.face_colored),
+            _ => format!(
+                " ({}; VRML 2.0, PLY and OFF keep them)",
+                have(c.face_colored)
+            ),
+        };
+        out.push(format!("{name} output keeps no per-face colours{which}"));
     }
     if c.textured > 0 && !keeps.texcoords {
         out.push(format!(
@@ -284,7 +292,7 @@ mod tests {
             losses(&scene, Some(Format::Stl)),
             vec![
                 "STL output keeps no per-vertex colours (1 model has them)",
-                "STL output keeps no per-face colours (1 model has them; VRML 2.0 keeps them)",
+                "STL output keeps no per-face colours (1 model has them; VRML 2.0, PLY and OFF keep them)",
                 "STL output keeps no texture coordinates (1 model has them)",
             ]
         );

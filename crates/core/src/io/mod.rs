@@ -47,7 +47,7 @@ pub mod warning;
 use std::path::{Path, PathBuf};
 
 use crate::mesh::progressive::ProgressiveScene;
-use crate::mesh::Scene;
+use crate::mesh::{Attribute, Scene};
 use text::ParseError;
 
 pub use obj::write_obj;
@@ -443,6 +443,15 @@ pub(crate) fn all_textured(scene: &Scene) -> bool {
                 .as_ref()
                 .is_some_and(|t| t.len() == m.positions.len())
         })
+}
+
+/// True when every model of a non-empty `scene` has one colour per triangle (PLY and OFF
+/// write them on the face records then).
+pub(crate) fn all_face_colored(scene: &Scene) -> bool {
+    !scene.models.is_empty()
+        && scene.models.iter().all(
+            |m| matches!(&m.colors, Some(Attribute::PerFace(c)) if c.len() == m.triangles.len()),
+        )
 }
 
 /// `m`'s triangles as they must be written by the formats that store world positions (PLY,

@@ -487,6 +487,7 @@ pub fn write_off_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         && scene.models.iter().all(
             |m| matches!(&m.colors, Some(Attribute::PerVertex(c)) if c.len() == m.positions.len()),
         );
+    let face_colored = !colored && super::all_face_colored(scene);
     let textured = super::all_textured(scene);
     // Prefixes in the order readers expect: [ST][C][N]OFF.
     writeln!(
@@ -523,14 +524,17 @@ pub fn write_off_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
     }
     let mut base = 0u64;
     for m in &scene.models {
-        for [a, b, c] in super::outward_triangles(m) {
-            writeln!(
-                w,
-                "3 {} {} {}",
-                a as u64 + base,
-                b as u64 + base,
-                c as u64 + base
-            )?;
+        let colors = match &m.colors {
+            Some(Attribute::PerFace(c)) if face_colored => &c[..],
+            _ => &[],
+        };
+        for (k, [a, b, c]) in super::outward_triangles(m).enumerate() {
+            let [a, b, c] = [a, b, c].map(|v| v as u64 + base);
+            write!(w, "3 {a} {b} {c}")?;
+            if let Some([r, g, b]) = colors.get(k) {
+                write!(w, " {r:?} {g:?} {b:?}")?;
+            }
+            writeln!(w)?;
         }
         base += m.positions.len() as u64;
     }

@@ -411,6 +411,8 @@ struct Gathered {
     /// MeshLab's per-corner `texcoord` lists, flat (u v); `None` once a face's list does not
     /// match its corners.
     corner_uv: Option<Vec<f32>>,
+    /// Per-face colours, flat (r g b in 0..1), when the face element has them.
+    face_rgb: Vec<f32>,
     corners: Vec<u32>,
     ends: Vec<u32>,
     /// The face element's header line, for errors about its indices.
@@ -718,6 +720,9 @@ fn read_faces(
     if texture.is_some() {
         data.corner_uv = Some(Vec::new());
     }
+    let color = (!data.positions_only)
+        .then(|| face_color_slots(el))
+        .flatten();
     if el.count > file_len {
         return Err(body.eof("all the faces the header announces"));
     }
@@ -726,6 +731,7 @@ fn read_faces(
         corners,
         ends,
         corner_uv,
+        face_rgb,
         positions_only,
         ..
     } = data;
@@ -736,7 +742,8 @@ fn read_faces(
     for f in 0..el.count {
         body.record = f;
         let first = corners.len();
-        let values = read_face(el, body, [Some(list), texture], corners, corner_uv)?;
+        let lists = [Some(list), texture];
+        let values = read_face(el, body, lists, color, corners, corner_uv, face_rgb)?;
         if corner_uv.is_some() && values != 2 * (corners.len() - first) {
             warnings.push(
                 Warning::new(
@@ -758,20 +765,40 @@ fn read_faces(
     Ok(())
 }
 
+/// The face element's red, green and blue properties and the scale that takes them to
+/// 0..1 (bytes are 0..255), when it has all three.
+fn face_color_slots(el: &Element) -> Option<([usize; 3], f32)> {
+    let slot = |n: &str| (el.props.iter()).position(|p| p.name == n && p.list.is_none());
+    let slots = [slot("red")?, slot("green")?, slot("blue")?];
+    let scale = if el.props[slots[0]].ty == Ty::U8 {
+        1.0 / 255.0
+    } else {
+        1.0
+    };
+    Some((slots, scale))
+}
+
 /// One face record: its corners onto `corners`, its texture coordinates onto `corner_uv`
-/// (while kept); the other properties skipped. `lists` are the slots of the corner list and
-/// the `texcoord` list. Returns how many texture coordinate values it had.
+/// (while kept), its colour onto `face_rgb` (when `color` gives its slots); the other
+/// properties skipped. `lists` are the slots of the corner list and the `texcoord` list.
+/// Returns how many texture coordinate values it had.
 fn read_face(
     el: &Element,
     body: &mut Body<impl Input>,
     [list, texture]: [Option<usize>; 2],
+    color: Option<([usize; 3], f32)>,
     corners: &mut Vec<u32>,
     corner_uv: &mut Option<Vec<f32>>,
+    face_rgb: &mut Vec<f32>,
 ) -> PResult<usize> {
     let mut values = 0;
+    let mut rgb = [0f32; 3];
     for (k, p) in el.props.iter().enumerate() {
         let Some(ct) = p.list else {
-            body.skip(p.ty, "a face property")?;
+            match color.and_then(|(slots, _)| slots.iter().position(|&s| s == k)) {
+                Some(c) => rgb[c] = body.value(p.ty, "a face's colour")? as f32,
+                None => body.skip(p.ty, "a face property")?,
+            }
             continue;
         };
         let n = body.index(ct, "a face's corner count")?;
@@ -788,6 +815,13 @@ fn read_face(
                 body.skip(p.ty, "a face list value")?;
             }
         }
+    }
+    if let Some((_, scale)) = color {
+        if let Some(bad) = rgb.iter().find(|c| !c.is_finite()) {
+            let message = format!("a face's colour is not a finite number ({bad})");
+            return Err(ParseError::new(body.line, message));
+        }
+        face_rgb.extend(rgb.map(|c| c * scale));
     }
     Ok(values)
 }
@@ -853,6 +887,7 @@ fn finish(
         nxyz,
         uv,
         corner_uv,
+        face_rgb,
         corners,
         ends,
         face_line,
@@ -866,7 +901,13 @@ fn finish(
         ));
         return Ok((Scene::default(), warnings));
     }
-    let colors = per_corner(&rgb, &corners);
+    let colors = match per_corner(&rgb, &corners) {
+        Bind::None if !face_rgb.is_empty() => Bind::PerFace {
+            values: &face_rgb,
+            index: (0..ends.len() as u32).collect(),
+        },
+        bind => bind,
+    };
     let normals = per_corner(&nxyz, &corners);
     // Per-corner pairs win over per-vertex ones.
     let mut pairs: Vec<f32> = Vec::new();
@@ -936,6 +977,7 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
             .models
             .iter()
             .all(|m| matches!(m.colors, Some(Attribute::PerVertex(_))));
+    let face_colored = !colored && super::all_face_colored(scene);
     let textured = super::all_textured(scene);
     writeln!(
         w,
@@ -959,7 +1001,14 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         writeln!(w, "property float s\nproperty float t")?;
     }
     writeln!(w, "element face {}", scene.triangle_count())?;
-    writeln!(w, "property list uchar int vertex_indices\nend_header")?;
+    writeln!(w, "property list uchar int vertex_indices")?;
+    if face_colored {
+        writeln!(
+            w,
+            "property uchar red\nproperty uchar green\nproperty uchar blue"
+        )?;
+    }
+    writeln!(w, "end_header")?;
     for m in &scene.models {
         let colors = match &m.colors {
             Some(Attribute::PerVertex(c)) if colored => Some(c),
@@ -989,10 +1038,17 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
     }
     let mut base = 0u32;
     for m in &scene.models {
-        for [a, b, c] in super::outward_triangles(m) {
+        let colors = match &m.colors {
+            Some(Attribute::PerFace(c)) if face_colored => &c[..],
+            _ => &[],
+        };
+        for (k, [a, b, c]) in super::outward_triangles(m).enumerate() {
             w.write_all(&[3])?;
             for v in [a, b, c] {
                 w.write_all(&(v + base).to_le_bytes())?;
+            }
+            if let Some(c) = colors.get(k) {
+                w.write_all(&c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))?;
             }
         }
         base += m.positions.len() as u32;

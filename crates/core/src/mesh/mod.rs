@@ -4,6 +4,7 @@
 
 pub mod build;
 pub(crate) mod classify;
+pub(crate) mod face_colour_seams;
 pub mod measure;
 pub mod progressive;
 pub mod repair;

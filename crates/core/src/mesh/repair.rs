@@ -502,7 +502,7 @@ fn manifold_neighbours(triangles: &[[u32; 3]]) -> Vec<[u32; 3]> {
 
 /// Removes the vertices no triangle uses, with their per-vertex attributes; returns how
 /// many.
-fn drop_unused_vertices(model: &mut Model) -> usize {
+pub(crate) fn drop_unused_vertices(model: &mut Model) -> usize {
     let n = model.positions.len();
     let mut used = vec![false; n];
     for t in &model.triangles {
