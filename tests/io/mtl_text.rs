@@ -10,8 +10,9 @@ use std::process::{Command, Output};
 
 use crate::support::shapes::Grid;
 
-/// The library: one material, its colour and image, after a comment.
-const MTL: &str = "# made by hand\nnewmtl skin\nKd 0.9 0.6 0.3\nmap_Kd tex/skin.png\n";
+/// The library: one material, its colour and image (`newmtl` first, where a mark would
+/// hide it).
+const MTL: &str = "newmtl skin\nKd 0.9 0.6 0.3\nmap_Kd tex/skin.png\n# made by hand\n";
 
 /// A textured 6 x 6 grid using `skin` from `scan.mtl`.
 fn grid_obj() -> String {
