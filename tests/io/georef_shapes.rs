@@ -46,7 +46,13 @@ fn extrusion(at: [f64; 3]) -> String {
     for i in 0..24 {
         let a = f64::from(i) * 0.1;
         let p = [0.25 * a.sin(), f64::from(i) / 32.0, 0.25 * (1.0 - a.cos())].map(dyadic);
-        let _ = write!(spine, "{} {} {}, ", at[0] + p[0], at[1] + p[1], at[2] + p[2]);
+        let _ = write!(
+            spine,
+            "{} {} {}, ",
+            at[0] + p[0],
+            at[1] + p[1],
+            at[2] + p[2]
+        );
     }
     let mut section = String::new();
     for k in 0..=12 {
@@ -97,7 +103,10 @@ fn check(what: &str, shape: impl Fn([f64; 3]) -> String, far: [f64; 3], least: u
         );
         for (p, q) in moved.points.iter().zip(&near.points) {
             let d = dot(sub(*p, *q), sub(*p, *q)).sqrt();
-            assert!(d < 1e-6, "{what} {algorithm:?} at {far:?}: {p:?} against {q:?}");
+            assert!(
+                d < 1e-6,
+                "{what} {algorithm:?} at {far:?}: {p:?} against {q:?}"
+            );
         }
     }
 }

@@ -103,7 +103,8 @@ fn far_node_translations_and_matrices_come_back_to_the_digit() {
     let meshes = out["meshes"].as_array().expect("meshes");
     assert_eq!(meshes.len(), 1, "{meshes:?}");
     let primitive = &meshes[0]["primitives"][0];
-    let count = |a: &Value| out["accessors"][a.as_u64().expect("an index") as usize]["count"].clone();
+    let count =
+        |a: &Value| out["accessors"][a.as_u64().expect("an index") as usize]["count"].clone();
     assert_eq!(count(&primitive["attributes"]["POSITION"]), 40);
     let total = said
         .lines()

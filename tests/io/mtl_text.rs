@@ -85,12 +85,16 @@ fn a_material_library_with_a_mark_or_mac_line_ends_still_colours_and_textures_th
 #[test]
 fn a_utf16_material_library_is_a_warning_naming_it() {
     let mut wide = vec![0xFF, 0xFE];
-    MTL.encode_utf16().for_each(|u| wide.extend(u.to_le_bytes()));
+    MTL.encode_utf16()
+        .for_each(|u| wide.extend(u.to_le_bytes()));
     let dir = tempfile::tempdir().unwrap();
     let o = run(dir.path(), &wide);
     let said = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{said}");
-    assert!(said.contains("scan.mtl:1: the file is UTF-16 text"), "{said}");
+    assert!(
+        said.contains("scan.mtl:1: the file is UTF-16 text"),
+        "{said}"
+    );
     let text = std::fs::read_to_string(dir.path().join("out.wrl")).unwrap();
     let (urls, _) = looks(&text);
     assert!(urls.is_empty(), "{urls:?}");

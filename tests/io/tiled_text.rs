@@ -130,7 +130,9 @@ fn grid_stl_binary() -> Vec<u8> {
     b.resize(80, b'\r');
     b.extend((triangles.len() as u32).to_le_bytes());
     for t in &triangles {
-        [0f32, 0., 1.].iter().for_each(|x| b.extend(x.to_le_bytes()));
+        [0f32, 0., 1.]
+            .iter()
+            .for_each(|x| b.extend(x.to_le_bytes()));
         t.iter().flatten().for_each(|x| b.extend(x.to_le_bytes()));
         b.extend([0x0D, 0x0D]);
     }
@@ -146,16 +148,25 @@ fn cr(text: &str) -> String {
 }
 
 fn utf16(text: &str, big: bool) -> Vec<u8> {
-    let mut b = if big { vec![0xFE, 0xFF] } else { vec![0xFF, 0xFE] };
+    let mut b = if big {
+        vec![0xFE, 0xFF]
+    } else {
+        vec![0xFF, 0xFE]
+    };
     for u in text.encode_utf16() {
-        b.extend(if big { u.to_be_bytes() } else { u.to_le_bytes() });
+        b.extend(if big {
+            u.to_be_bytes()
+        } else {
+            u.to_le_bytes()
+        });
     }
     b
 }
 
 fn utf32(text: &str) -> Vec<u8> {
     let mut b = vec![0xFF, 0xFE, 0, 0];
-    text.chars().for_each(|c| b.extend((c as u32).to_le_bytes()));
+    text.chars()
+        .for_each(|c| b.extend((c as u32).to_le_bytes()));
     b
 }
 
@@ -186,7 +197,16 @@ fn check(dir: &Path, name: &str, expect: &Expect) -> Option<String> {
     let tiled = decimate(
         dir,
         &[
-            name, "nogui", "--tiles", "2", "--memory", "1M", "-p", "0", "-o", "tiled.ply",
+            name,
+            "nogui",
+            "--tiles",
+            "2",
+            "--memory",
+            "1M",
+            "-p",
+            "0",
+            "-o",
+            "tiled.ply",
         ],
     );
     match *expect {

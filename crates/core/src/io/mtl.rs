@@ -468,7 +468,8 @@ mod tests {
         assert_eq!(materials.len(), 2);
         assert_eq!(materials[0], expect);
         let mut wide = vec![0xFF, 0xFE];
-        text.encode_utf16().for_each(|u| wide.extend(u.to_le_bytes()));
+        text.encode_utf16()
+            .for_each(|u| wide.extend(u.to_le_bytes()));
         let (materials, warnings) = parse_mtl(&wide, Path::new("m.mtl"));
         assert!(materials.is_empty());
         assert!(warnings[0].message.contains("m.mtl:1: the file is UTF-16"));

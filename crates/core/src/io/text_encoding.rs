@@ -43,7 +43,11 @@ pub(super) fn drop_byte_order_mark(bytes: Vec<u8>, binary: bool) -> Result<Vec<u
 /// A text file that is no model (an OBJ's `.mtl`) taken as a model's text is: the mark
 /// dropped, lone carriage returns turned into line feeds; an error for UTF-16 and UTF-32.
 pub(super) fn plain_text(bytes: Vec<u8>) -> Result<Vec<u8>, String> {
-    Ok(mac_line_ends(drop_byte_order_mark(bytes, false)?, false, false))
+    Ok(mac_line_ends(
+        drop_byte_order_mark(bytes, false)?,
+        false,
+        false,
+    ))
 }
 
 /// The length of the UTF-8 byte-order mark `bytes` start with (0 without one); an error
@@ -136,7 +140,10 @@ fn head_decides(head: &[u8], ply_by_name: bool) -> bool {
         return false;
     }
     let ply = ply_by_name || text.starts_with(b"ply");
-    !ply || !lone_cr_lines(text) || text.windows(PLY_HEADER_END.len()).any(|w| w == PLY_HEADER_END)
+    !ply || !lone_cr_lines(text)
+        || text
+            .windows(PLY_HEADER_END.len())
+            .any(|w| w == PLY_HEADER_END)
 }
 
 /// A streamed file's first bytes: as many as [`streamed_text`] needs to decide (at most
@@ -268,7 +275,9 @@ mod tests {
         let (skip, convert) = streamed_text(&head, ply_by_name, false)?;
         let rest = std::io::BufReader::with_capacity(1, head[skip..].chain(file));
         let mut out = Vec::new();
-        LoneCrToLf::new(rest, convert).read_to_end(&mut out).unwrap();
+        LoneCrToLf::new(rest, convert)
+            .read_to_end(&mut out)
+            .unwrap();
         Ok(out)
     }
 

@@ -767,9 +767,10 @@ fn node_tree(
         .map(|n| Node {
             name: n.name().map(str::to_string),
             // From the JSON, in f64: the gltf crate's transform is f32.
-            local: json_nodes
-                .and_then(|j| j.get(n.index()))
-                .map_or(LocalTransform::Matrix(DMat4::IDENTITY), exact::local_transform),
+            local: json_nodes.and_then(|j| j.get(n.index())).map_or(
+                LocalTransform::Matrix(DMat4::IDENTITY),
+                exact::local_transform,
+            ),
             children: n.children().map(|c| c.index()).collect(),
             mesh: n.mesh().map(|m| m.index()),
         })
