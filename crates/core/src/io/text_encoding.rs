@@ -122,9 +122,9 @@ fn ply_text_end(bytes: &[u8]) -> Option<usize> {
 /// header's limit (`ply::MAX_HEADER`) and some.
 const HEAD_LIMIT: usize = 17 << 20;
 
-/// Whether `head`, a streamed file's first bytes (`ply`: a PLY file by its name), tell how
-/// its text is read: they hold the first line's end and, after a carriage return, the byte
-/// after it; for a PLY file with lone-CR line ends, also its header's end.
+/// Whether `head`, a streamed file's first bytes, tell how its text is read: they hold the
+/// first line's end and, after a carriage return, the byte after it; for a PLY file (by its
+/// name, `ply_by_name`, or its first word) with lone-CR line ends, also its header's end.
 fn head_decides(head: &[u8], ply_by_name: bool) -> bool {
     let text = match mark_length(head) {
         Ok(n) => &head[n..],
