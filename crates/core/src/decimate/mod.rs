@@ -687,7 +687,7 @@ mod tests {
     fn instanced() -> Scene {
         let node = |mesh| Node {
             name: None,
-            local: LocalTransform::Matrix(glam::Mat4::IDENTITY),
+            local: LocalTransform::Matrix(glam::DMat4::IDENTITY),
             children: Vec::new(),
             mesh: Some(mesh),
         };

@@ -48,14 +48,23 @@ pub struct Material {
     pub clamp: bool,
 }
 
-/// Reads an MTL file's materials, in file order; `file` is named in the warnings.
+/// Reads an MTL file's materials, in file order; `file` is named in the warnings. Its text
+/// is taken like an OBJ's (`text_encoding`): a UTF-8 byte-order mark dropped, lone carriage
+/// returns read as line ends; UTF-16 or UTF-32 text is a warning, and no materials.
 pub fn parse_mtl(bytes: &[u8], file: &Path) -> (Vec<Material>, Vec<Warning>) {
     let f = file.display();
+    let bytes = match super::text_encoding::plain_text(bytes.to_vec()) {
+        Ok(b) => b,
+        Err(why) => {
+            let message = format!("{f}:1: {why}; its materials are not applied");
+            return (Vec::new(), vec![lost(file, 1, message)]);
+        }
+    };
     let mut materials: Vec<Material> = Vec::new();
     let mut warnings = Vec::new();
     let mut skipped_maps: Vec<String> = Vec::new();
     let mut outside_warned = false;
-    for (line, text) in Lines::new(bytes, false) {
+    for (line, text) in Lines::new(&bytes, false) {
         let text = String::from_utf8_lossy(&text);
         let mut w = text.split_whitespace();
         let Some(key) = w.next() else { continue };
@@ -443,6 +452,28 @@ pub fn write_mtl_to(w: &mut impl Write, entries: &[MtlEntry]) -> std::io::Result
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_byte_order_mark_and_lone_carriage_returns_are_read_like_an_obj() {
+        let text = "newmtl skin\rKd 0.5 0.25 1\rmap_Kd tex.png\rnewmtl b\r";
+        let expect = Material {
+            name: "skin".into(),
+            diffuse: Some([0.5, 0.25, 1.0]),
+            texture: Some("tex.png".into()),
+            clamp: false,
+        };
+        let bom = [&[0xEF, 0xBB, 0xBF][..], text.as_bytes()].concat();
+        let (materials, warnings) = parse_mtl(&bom, Path::new("m.mtl"));
+        assert!(warnings.is_empty(), "{warnings:?}");
+        assert_eq!(materials.len(), 2);
+        assert_eq!(materials[0], expect);
+        let mut wide = vec![0xFF, 0xFE];
+        text.encode_utf16()
+            .for_each(|u| wide.extend(u.to_le_bytes()));
+        let (materials, warnings) = parse_mtl(&wide, Path::new("m.mtl"));
+        assert!(materials.is_empty());
+        assert!(warnings[0].message.contains("m.mtl:1: the file is UTF-16"));
+    }
 
     #[test]
     fn map_kd_options_are_skipped_and_the_file_name_kept_whole() {

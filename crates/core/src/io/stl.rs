@@ -44,7 +44,13 @@ impl From<ParseError> for StlError {
 
 /// True when `bytes` has the exact size of a binary STL with the count it stores.
 pub(crate) fn is_binary(bytes: &[u8]) -> bool {
-    binary_count(bytes).is_some_and(|n| 84 + 50 * n as u64 == bytes.len() as u64)
+    is_binary_of_size(bytes, bytes.len() as u64)
+}
+
+/// True when a file of `len` bytes that starts with `head` has the exact size of a binary
+/// STL with the count it stores.
+pub(crate) fn is_binary_of_size(head: &[u8], len: u64) -> bool {
+    binary_count(head).is_some_and(|n| 84 + 50 * n as u64 == len)
 }
 
 fn binary_count(bytes: &[u8]) -> Option<u32> {
@@ -212,7 +218,7 @@ pub(super) fn stream_stl(
         }
     }
     let head = input.bytes();
-    let binary = binary_count(head).is_some_and(|n| 84 + 50 * n as u64 == file_len);
+    let binary = is_binary_of_size(head, file_len);
     if !binary {
         if !starts_with_solid(head) {
             return Err(StlError::Header(

@@ -9,12 +9,13 @@
 //! the origin a `Recentre` picks (doubles are rounded once), so a position is the same bits
 //! wherever it is read again, and far files (see `io::origin`) keep their precision.
 
-use std::io::{BufRead, BufReader};
+use std::io::{BufReader, Read};
 use std::path::Path;
 
 use super::origin::Recentre;
 use super::source::Streamed;
 use super::text::ParseError;
+use super::text_encoding::{self, LoneCrToLf};
 use super::ReadError;
 
 /// One triangle: three positions, counter-clockwise seen from the front.
@@ -24,8 +25,10 @@ pub type Corners = [[f32; 3]; 3];
 const BUFFER: usize = 1 << 20;
 
 /// Calls `triangle` with every triangle of the PLY, STL or OBJ file at `path` (the
-/// extension says which; PLY and STL also by their first bytes), in file order, its
-/// positions relative to the origin `recentre` picks (or has picked).
+/// extension says which; PLY also by its first bytes), in file order, its positions
+/// relative to the origin `recentre` picks (or has picked). Text is taken as a file read
+/// whole takes it (`text_encoding`): a UTF-8 byte-order mark dropped, UTF-16 and UTF-32
+/// refused, lone carriage returns read as line ends.
 pub fn for_each_triangle(
     path: &Path,
     recentre: &mut Recentre,
@@ -35,15 +38,24 @@ pub fn for_each_triangle(
         file: path.to_path_buf(),
         source,
     };
+    let syntax = |e: ParseError| ReadError::Syntax {
+        file: path.to_path_buf(),
+        line: e.line,
+        message: e.message,
+    };
     // Only a regular file: a FIFO would block, a device never end. No byte limit: tiling
     // is for files bigger than memory, and streams them.
-    let (file, len) = super::file_limits::open_regular(path).map_err(io_error)?;
-    let mut r = BufReader::with_capacity(BUFFER, file);
-    let head = r.fill_buf().map_err(io_error)?;
-    let kind = if head.starts_with(b"ply") {
+    let (mut file, len) = super::file_limits::open_regular(path).map_err(io_error)?;
+    let by_name = super::Format::from_path(path);
+    let ply_by_name = by_name == Some(super::Format::Ply);
+    let head = text_encoding::read_head(&mut file, ply_by_name).map_err(io_error)?;
+    let binary_stl = super::stl::is_binary_of_size(&head, len);
+    let (skip, convert) = text_encoding::streamed_text(&head, ply_by_name, binary_stl)
+        .map_err(|message| syntax(ParseError::new(1, message)))?;
+    let kind = if head[skip..].starts_with(b"ply") {
         super::Format::Ply
     } else {
-        match super::Format::from_path(path) {
+        match by_name {
             Some(f @ (super::Format::Ply | super::Format::Stl | super::Format::Obj)) => f,
             _ => {
                 return Err(ReadError::Unsupported {
@@ -55,11 +67,10 @@ pub fn for_each_triangle(
             }
         }
     };
-    let syntax = |e: ParseError| ReadError::Syntax {
-        file: path.to_path_buf(),
-        line: e.line,
-        message: e.message,
-    };
+    let mut start = std::io::Cursor::new(head);
+    start.set_position(skip as u64);
+    let r = LoneCrToLf::new(BufReader::with_capacity(BUFFER, start.chain(file)), convert);
+    let len = len.saturating_sub(skip as u64);
     let len_usize = usize::try_from(len).unwrap_or(usize::MAX);
     match kind {
         super::Format::Ply => {
@@ -67,6 +78,7 @@ pub fn for_each_triangle(
         }
         super::Format::Stl => super::stl::stream_stl(Streamed::new(r), len, recentre, triangle)
             .map_err(|e| super::stl_error(path, e)),
-        _ => super::obj::stream_obj(r, recentre, triangle).map_err(syntax),
+        _ => super::obj::stream_obj(BufReader::with_capacity(BUFFER, r), recentre, triangle)
+            .map_err(syntax),
     }
 }

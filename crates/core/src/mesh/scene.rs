@@ -9,7 +9,7 @@
 
 use std::sync::Arc;
 
-use glam::{DVec3, Mat4, Quat, Vec3};
+use glam::{DMat4, DQuat, DVec3, Mat4, Vec3};
 
 /// A per-vertex or per-face attribute array (colours, normals).
 #[derive(Debug, Clone, PartialEq)]
@@ -212,32 +212,33 @@ pub struct Node {
 }
 
 /// A node's transform relative to its parent, as a matrix or as translation, rotation and
-/// scale (glTF 2.0 § 3.5.3): a writer writes back the form that was read.
+/// scale (glTF 2.0 § 3.5.3): a writer writes back the form that was read. In f64, as the
+/// file's numbers are: georeferenced files put far translations here (see `io::origin`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum LocalTransform {
     /// A 4 × 4 matrix.
-    Matrix(Mat4),
+    Matrix(DMat4),
     /// Translation, rotation and scale, applied scale first.
     Trs {
         /// The translation.
-        translation: Vec3,
+        translation: DVec3,
         /// The rotation, a unit quaternion.
-        rotation: Quat,
+        rotation: DQuat,
         /// The scale along each axis.
-        scale: Vec3,
+        scale: DVec3,
     },
 }
 
 impl LocalTransform {
     /// The transform as a matrix.
-    pub fn matrix(&self) -> Mat4 {
+    pub fn matrix(&self) -> DMat4 {
         match *self {
             Self::Matrix(m) => m,
             Self::Trs {
                 translation,
                 rotation,
                 scale,
-            } => Mat4::from_scale_rotation_translation(scale, rotation, translation),
+            } => DMat4::from_scale_rotation_translation(scale, rotation, translation),
         }
     }
 }

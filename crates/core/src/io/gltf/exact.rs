@@ -2,10 +2,13 @@
 //! JSON's node translations and matrices are numbers of any precision, and georeferenced
 //! files put their far coordinates there (or in `CESIUM_RTC`'s centre, added to every
 //! position). Each node's local transform is read here from the JSON in f64, so the walk can
-//! compose world transforms in f64 beside the gltf crate's f32 ones.
+//! compose world transforms in f64 beside the gltf crate's f32 ones, and the node tree
+//! keeps them (`mesh::LocalTransform`) for a glTF output to write back in full.
 
 use glam::{DMat4, DQuat, DVec3};
 use serde_json::Value;
+
+use crate::mesh::LocalTransform;
 
 /// Every node's local transform in f64, by index, and the `CESIUM_RTC` centre as a
 /// translation applied after them (identity when the file has none).
@@ -54,15 +57,22 @@ fn numbers<const N: usize>(v: Option<&Value>) -> Option<[f64; N]> {
     Some(out)
 }
 
-/// A node's local transform: its matrix (column-major), else translation · rotation · scale.
+/// A node's local transform as a matrix.
 fn local(node: &Value) -> DMat4 {
+    local_transform(node).matrix()
+}
+
+/// A node's local transform in the form the file gives it: its matrix (column-major), else
+/// translation, rotation and scale (each its default where absent).
+pub fn local_transform(node: &Value) -> LocalTransform {
     if let Some(m) = numbers::<16>(node.get("matrix")) {
-        return DMat4::from_cols_array(&m);
+        return LocalTransform::Matrix(DMat4::from_cols_array(&m));
     }
-    let t = numbers::<3>(node.get("translation")).map_or(DVec3::ZERO, DVec3::from_array);
-    let r = numbers::<4>(node.get("rotation")).map_or(DQuat::IDENTITY, DQuat::from_array);
-    let s = numbers::<3>(node.get("scale")).map_or(DVec3::ONE, DVec3::from_array);
-    DMat4::from_scale_rotation_translation(s, r, t)
+    LocalTransform::Trs {
+        translation: numbers::<3>(node.get("translation")).map_or(DVec3::ZERO, DVec3::from_array),
+        rotation: numbers::<4>(node.get("rotation")).map_or(DQuat::IDENTITY, DQuat::from_array),
+        scale: numbers::<3>(node.get("scale")).map_or(DVec3::ONE, DVec3::from_array),
+    }
 }
 
 #[cfg(test)]

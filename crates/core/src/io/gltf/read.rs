@@ -20,12 +20,12 @@ use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::path::Path;
 use std::sync::Arc;
 
-use glam::{DMat4, DVec3, Mat4, Quat, Vec3};
+use glam::{DMat4, DVec3, Mat4, Vec3};
 use gltf::mesh::Mode;
 use gltf::Semantic;
 
 use super::accessor::{check_attribute, read_floats, read_floats_prefix, read_indices, Buffers};
-use super::exact::Exact;
+use super::exact::{self, Exact};
 use crate::io::{data_uri, file_limits, origin, texture_path, ReadError, ReadOutcome, MAX_MODELS};
 use crate::mesh::{Attribute, Instance, LocalTransform, Model, Node, NodeTree, Scene};
 
@@ -761,24 +761,16 @@ fn node_tree(
     buffers: &Buffers,
     copied: &BTreeMap<usize, &'static str>,
 ) -> Result<(NodeTree, Vec<Warning>), String> {
+    let json_nodes = root.get("nodes").and_then(serde_json::Value::as_array);
     let nodes = document
         .nodes()
         .map(|n| Node {
             name: n.name().map(str::to_string),
-            local: match n.transform() {
-                gltf::scene::Transform::Matrix { matrix } => {
-                    LocalTransform::Matrix(Mat4::from_cols_array_2d(&matrix))
-                }
-                gltf::scene::Transform::Decomposed {
-                    translation,
-                    rotation,
-                    scale,
-                } => LocalTransform::Trs {
-                    translation: Vec3::from(translation),
-                    rotation: Quat::from_array(rotation),
-                    scale: Vec3::from(scale),
-                },
-            },
+            // From the JSON, in f64: the gltf crate's transform is f32.
+            local: json_nodes.and_then(|j| j.get(n.index())).map_or(
+                LocalTransform::Matrix(DMat4::IDENTITY),
+                exact::local_transform,
+            ),
             children: n.children().map(|c| c.index()).collect(),
             mesh: n.mesh().map(|m| m.index()),
         })

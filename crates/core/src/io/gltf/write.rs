@@ -371,8 +371,8 @@ impl<'s> Builder<'s> {
                 out["name"] = json!(name);
             }
             match node.local {
-                LocalTransform::Matrix(m) if m != Mat4::IDENTITY => {
-                    out["matrix"] = json!(m.to_cols_array().map(f64::from));
+                LocalTransform::Matrix(m) if m != glam::DMat4::IDENTITY => {
+                    out["matrix"] = json!(m.to_cols_array());
                 }
                 LocalTransform::Matrix(_) => {}
                 LocalTransform::Trs {
@@ -380,15 +380,14 @@ impl<'s> Builder<'s> {
                     rotation,
                     scale,
                 } => {
-                    let floats = |v: &[f32]| v.iter().map(|&x| f64::from(x)).collect::<Vec<_>>();
-                    if translation != glam::Vec3::ZERO {
-                        out["translation"] = json!(floats(&translation.to_array()));
+                    if translation != glam::DVec3::ZERO {
+                        out["translation"] = json!(translation.to_array());
                     }
-                    if rotation != glam::Quat::IDENTITY {
-                        out["rotation"] = json!(floats(&rotation.to_array()));
+                    if rotation != glam::DQuat::IDENTITY {
+                        out["rotation"] = json!(rotation.to_array());
                     }
-                    if scale != glam::Vec3::ONE {
-                        out["scale"] = json!(floats(&scale.to_array()));
+                    if scale != glam::DVec3::ONE {
+                        out["scale"] = json!(scale.to_array());
                     }
                 }
             }

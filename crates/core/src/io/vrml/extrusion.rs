@@ -8,7 +8,7 @@
 //! (each by length, 0 to 1), the caps mapping the cross-section's square; its corners then
 //! split where the sides meet the caps and where a closed curve meets itself.
 
-use glam::{Mat3, Quat, Vec2, Vec3};
+use glam::{DVec3, Mat3, Quat, Vec2, Vec3};
 
 use super::lexer::{PResult, ParseError};
 use super::parse::Node;
@@ -16,8 +16,11 @@ use super::vrml1::rotation;
 
 /// An extrusion's points (flat x y z) and polygons (corner lists and ends), with texture
 /// coordinates (flat u v) and each corner's pair when made textured (else both empty).
+/// A far spine's extrusion also has its points in f64 (`far_points`; `points` are then
+/// relative to the spine's first point).
 pub struct Swept {
     pub points: Vec<f32>,
+    pub far_points: Option<Vec<f64>>,
     pub corners: Vec<u32>,
     pub ends: Vec<u32>,
     pub texcoords: Vec<f32>,
@@ -106,7 +109,7 @@ fn planes(spine: &[Vec3], closed: bool) -> Vec<Mat3> {
 pub fn extrude(g: &Node, textured: bool) -> PResult<Swept> {
     let square = [1.0, 1.0, 1.0, -1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0];
     let section = vec2s(g.floats("crossSection").unwrap_or(&square));
-    let spine = vec3s(g.floats("spine").unwrap_or(&[0.0, 0.0, 0.0, 0.0, 1.0, 0.0]));
+    let (spine, far_base) = spine_of(g);
     let scales = vec2s(g.floats("scale").unwrap_or(&[1.0, 1.0]));
     let turns: Vec<Quat> = g
         .floats("orientation")
@@ -126,6 +129,7 @@ pub fn extrude(g: &Node, textured: bool) -> PResult<Swept> {
         ends: Vec::new(),
         texcoords: Vec::new(),
         texcoord_index: Vec::new(),
+        far_points: None,
     };
     if section.len() < 2 || spine.len() < 2 {
         return Ok(out);
@@ -174,7 +178,28 @@ pub fn extrude(g: &Node, textured: bool) -> PResult<Swept> {
     } else {
         out.texcoord_index.clear();
     }
+    out.far_points = far_base.map(|base| {
+        let b = base.to_array();
+        let at = |k: usize| b[k % 3] + f64::from(out.points[k]);
+        (0..out.points.len()).map(at).collect()
+    });
     Ok(out)
+}
+
+/// The spine's points, and where they are far from zero (see `io::origin`), its first point
+/// in f64: the points are then taken relative to it (their differences in f64), so the
+/// sweep is made near zero and moved there in f64 after.
+fn spine_of(g: &Node) -> (Vec<Vec3>, Option<DVec3>) {
+    if let Some(far) = g.far("spine").filter(|p| p.len() >= 3) {
+        let base = DVec3::new(far[0], far[1], far[2]);
+        let points = far
+            .chunks_exact(3)
+            .map(|p| (DVec3::new(p[0], p[1], p[2]) - base).as_vec3())
+            .collect();
+        return (points, Some(base));
+    }
+    let points = vec3s(g.floats("spine").unwrap_or(&[0.0, 0.0, 0.0, 0.0, 1.0, 0.0]));
+    (points, None)
 }
 
 /// VRML 2.0 §6.18's default texture coordinates of an extrusion: the sides' pairs (spine

@@ -195,8 +195,9 @@ fn geometry_model(geometry: &Rc<Node>, look: Look, ctx: &mut Ctx<'_>) -> PResult
                 skip_empty(geometry, ctx);
                 return Ok(None);
             }
+            let far = far_grid_points(geometry);
             let spec = grid_spec(geometry, name, transform, diffuse, &points, geo);
-            return place(spec, None, ctx).map(Some);
+            return place(spec, far.as_deref(), ctx).map(Some);
         }
         "Extrusion" => {
             return extrusion_model(geometry, name, transform, diffuse, textured, ctx);
@@ -312,7 +313,7 @@ fn extrusion_model(
         line: geometry.line,
         index_field: "spine",
     };
-    place(spec, None, ctx).map(Some)
+    place(spec, swept.far_points.as_deref(), ctx).map(Some)
 }
 
 /// A `Sphere`, `Cone` or `Cylinder` at Coin's default complexity, with the parts its
@@ -427,8 +428,7 @@ fn elevation_grid(g: &Node) -> PResult<(Vec<f32>, Geo)> {
         ));
     }
     let (nx, nz) = (nx as u32, nz as u32);
-    let dx = g.float("xSpacing").unwrap_or(1.0);
-    let dz = g.float("zSpacing").unwrap_or(1.0);
+    let (dx, dz) = grid_spacing(g);
     let mut points = Vec::with_capacity(heights.len() * 3);
     for j in 0..nz {
         for i in 0..nx {
@@ -447,6 +447,31 @@ fn elevation_grid(g: &Node) -> PResult<(Vec<f32>, Geo)> {
     let ends = (1..=n).map(|k| k * 4).collect();
     let pos = (0..corners.len()).collect();
     Ok((points, Geo::faces(corners, ends, pos)))
+}
+
+/// An ElevationGrid's `xSpacing` and `zSpacing`.
+fn grid_spacing(g: &Node) -> (f32, f32) {
+    let spacing = |field| g.float(field).unwrap_or(1.0);
+    (spacing("xSpacing"), spacing("zSpacing"))
+}
+
+/// An ElevationGrid's points in f64 (flat x y z, as `elevation_grid` makes them) when its
+/// heights are far from zero (see `io::origin`); `None` otherwise. The grid's x and z are
+/// f32 products, exact in f64, so the points differ from the f32 ones in height only.
+fn far_grid_points(g: &Node) -> Option<Vec<f64>> {
+    let heights = g.far("height")?;
+    let nx = g.int("xDimension").unwrap_or(0).max(0) as usize;
+    let (dx, dz) = grid_spacing(g);
+    let points = heights
+        .iter()
+        .take(nx * g.int("zDimension").unwrap_or(0).max(0) as usize)
+        .enumerate()
+        .flat_map(|(k, &h)| {
+            let (i, j) = (k % nx, k / nx);
+            [f64::from(i as f32 * dx), h, f64::from(j as f32 * dz)]
+        })
+        .collect();
+    Some(points)
 }
 
 /// The shape of an ElevationGrid over `points`: colours and normals per point or per quad
