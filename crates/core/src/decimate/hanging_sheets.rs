@@ -21,9 +21,10 @@ use rayon::prelude::*;
 use crate::mesh::{repair, union_find, weld, Attribute, Model};
 
 /// The sheets removed never add up to more than this share of the model's area: where
-/// small sheets are a real share of a model (cells or voxels sharing edges), they are the
-/// model.
-const MAX_AREA_SHARE: f64 = 0.01;
+/// small sheets are a real share of a model (cells or voxels sharing edges: tens of
+/// percent), they are the model; a scan's debris (doubled fins, pockets) is a few percent
+/// at most (docs/design.md#hanging-sheets).
+const MAX_AREA_SHARE: f64 = 0.05;
 
 /// A sheet goes when its bounding-box diagonal is at most this many times √a, `a` the mean
 /// area a result triangle covers (about 0.26 of their edges): larger bounds moved the
@@ -503,6 +504,15 @@ mod tests {
         }
         let removed = remove_hanging_sheets(&mut m, limit(5), &|_| false);
         assert_eq!((removed.sheets, removed.triangles), (4, 4));
+        assert_eq!(m.triangles.len(), 200);
+    }
+
+    #[test]
+    fn a_pocket_of_a_few_percent_of_the_area_goes() {
+        // Its own vertices half a cell off the diagonal: 2.4 % of the model's area.
+        let mut m = grid_with_pocket(0.5);
+        let removed = remove_hanging_sheets(&mut m, limit(5), &|_| false);
+        assert_eq!((removed.sheets, removed.triangles), (1, 4));
         assert_eq!(m.triangles.len(), 200);
     }
 
