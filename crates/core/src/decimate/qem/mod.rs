@@ -50,7 +50,7 @@ pub fn decimate_model(
     twins: &[u32],
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
-    run(model, limits, pins, twins, progress, None, None).0
+    run(model, limits, pins, twins, progress, Job::Plain).0
 }
 
 /// What [`decimate_model_pruning`] calls on a mesh with non-manifold vertices: removes
@@ -70,7 +70,7 @@ pub fn decimate_model_pruning(
     progress: &mut dyn FnMut(usize),
     prune: &mut Prune<'_>,
 ) -> Outcome {
-    run(model, limits, pins, twins, progress, None, Some(prune)).0
+    run(model, limits, pins, twins, progress, Job::Prune(prune)).0
 }
 
 /// As [`decimate_model`], and records every collapse: the returned progressive model's base
@@ -83,27 +83,46 @@ pub fn decimate_model_progressive(
     progress: &mut dyn FnMut(usize),
 ) -> (Outcome, ProgressiveModel) {
     let recorder = Recorder::new(model);
-    match run(model, limits, pins, twins, progress, Some(recorder), None) {
+    match run(model, limits, pins, twins, progress, Job::Record(recorder)) {
         (outcome, Some(pm)) => (outcome, pm),
         (_, None) => unreachable!("a run given a recorder returns its progressive model"),
     }
 }
 
-/// The pipeline; with a `recorder`, every collapse is recorded and the progressive model
-/// returned (its base is what is written back into `model`); `prune` as in
-/// [`decimate_model_pruning`].
+/// What a [`run`] does besides decimating.
+enum Job<'a, 'b> {
+    Plain,
+    /// Records every collapse: the progressive model is returned (its base is what is
+    /// written back into the model).
+    Record(Recorder),
+    /// As in [`decimate_model_pruning`].
+    Prune(&'a mut Prune<'b>),
+    /// The run again after a pruning, which kept every vertex where it was: the vertices'
+    /// internal order, as the first run loaded them.
+    Pruned(Vec<u32>),
+}
+
+/// The pipeline, doing `job` besides.
 fn run(
     model: &mut Model,
     limits: &Limits,
     pins: &[bool],
     twins: &[u32],
     progress: &mut dyn FnMut(usize),
-    recorder: Option<Recorder>,
-    prune: Option<&mut Prune<'_>>,
+    job: Job<'_, '_>,
 ) -> (Outcome, Option<ProgressiveModel>) {
+    let (recorder, prune, order) = match job {
+        Job::Plain => (None, None, None),
+        Job::Record(recorder) => (Some(recorder), None, None),
+        Job::Prune(prune) => (None, Some(prune), None),
+        Job::Pruned(order) => (None, None, Some(order)),
+    };
     // 1. load, renumbered along a Morton curve for memory locality
     let n = model.positions.len() as u32;
-    let mut loaded = layout::load(model);
+    let mut loaded = match order {
+        Some(order) => layout::load_in(model, order),
+        None => layout::load(model),
+    };
     let positions: Vec<Vec3> = loaded
         .order
         .par_iter()
@@ -145,7 +164,9 @@ fn run(
                 remove: limits.remove.saturating_sub(unused),
                 ..limits.clone()
             };
-            return run(model, &limits, pins, twins, progress, None, None);
+            // Only triangles went: the vertices' order stands.
+            let order = std::mem::take(&mut loaded.order);
+            return run(model, &limits, pins, twins, progress, Job::Pruned(order));
         }
         released = layout::release(model, &loaded);
     }
