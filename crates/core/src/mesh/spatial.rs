@@ -101,7 +101,10 @@ mod tests {
         };
         for shift in [0, 20, 40, 60] {
             let mut keyed: Vec<(u64, u32)> = (0..5000u32).map(|i| (next() >> shift, i)).collect();
-            keyed.extend((5000..6000u32).map(|i| (keyed[(i % 97) as usize].0, i)));
+            let repeats: Vec<(u64, u32)> = (5000..6000u32)
+                .map(|i| (keyed[(i % 97) as usize].0, i))
+                .collect();
+            keyed.extend(repeats);
             let mut expected = keyed.clone();
             expected.sort_unstable();
             radix_sort(&mut keyed);
