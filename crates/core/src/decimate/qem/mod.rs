@@ -263,3 +263,60 @@ fn per_vertex_attributes(model: &Model, n: usize, order: &[u32]) -> (PerVertex, 
     };
     (colors, normals)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::decimate::{Cancel, Cost};
+
+    fn removing(remove: usize) -> Limits {
+        Limits {
+            remove,
+            seam_copies: 0,
+            keep_triangles: 0,
+            max_error: f64::INFINITY,
+            feature_angle_deg: 30.0,
+            relax_features: false,
+            keep_features: false,
+            scale_folds: true,
+            cost: Cost::Quadric,
+            cancel: Cancel::default(),
+        }
+    }
+
+    #[test]
+    fn a_pruned_run_gives_what_a_run_on_the_pruned_mesh_gives() {
+        // A bumpy sphere with a flap hanging on one of its vertices (non-manifold there).
+        let mut model = crate::mesh::shapes::bumpy_sphere(24, 48);
+        let (v, n) = (100u32, model.positions.len() as u32);
+        let p = model.positions[v as usize];
+        model
+            .positions
+            .extend([p + Vec3::X * 0.01, p + Vec3::Y * 0.01]);
+        model.triangles.push([v, n, n + 1]);
+        let mut pruned = model.clone();
+        pruned.triangles.pop();
+        let mut prunings = 0;
+        let mut prune = |m: &mut Model| {
+            prunings += 1;
+            assert_eq!(m.triangles.pop(), Some([v, n, n + 1]), "the flap, last");
+            Some(2)
+        };
+        let ran = decimate_model_pruning(
+            &mut model,
+            &removing(500),
+            &[],
+            &[],
+            &mut |_| {},
+            &mut prune,
+        );
+        // The restart keeps the first run's vertex order: a fresh run on the pruned mesh,
+        // its two unused vertices fewer to remove, must give the same mesh.
+        let fresh = decimate_model(&mut pruned, &removing(498), &[], &[], &mut |_| {});
+        assert_eq!(prunings, 1);
+        assert_eq!(ran.removed, 498);
+        assert_eq!(fresh.removed, 498);
+        assert_eq!(model.triangles, pruned.triangles);
+        assert_eq!(model.positions, pruned.positions);
+    }
+}
