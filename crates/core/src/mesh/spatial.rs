@@ -54,8 +54,8 @@ const DIGIT_BITS: u32 = 11;
 
 /// Sorts `keyed` by code, ties in the order they come: least significant digit first,
 /// each pass a stable counting sort, skipping the digits every code shares (the high bits
-/// of a flat model's). Linear: a comparison sort of the codes cost as much as the rest of
-/// loading a model. Given the ids ascending, the same order as sorting the pairs.
+/// of a flat model's): linear in the vertices. Given the ids ascending, the same order as
+/// sorting the pairs.
 fn radix_sort(keyed: &mut Vec<(u64, u32)>) {
     let digits = u64::BITS.div_ceil(DIGIT_BITS);
     let buckets = 1usize << DIGIT_BITS;

@@ -102,6 +102,24 @@ enum Job<'a, 'b> {
     Pruned(Vec<u32>),
 }
 
+/// A job's recorder, pruning and vertex order, each where it has one.
+type JobParts<'a, 'b> = (
+    Option<Recorder>,
+    Option<&'a mut Prune<'b>>,
+    Option<Vec<u32>>,
+);
+
+impl<'a, 'b> Job<'a, 'b> {
+    fn parts(self) -> JobParts<'a, 'b> {
+        match self {
+            Job::Plain => (None, None, None),
+            Job::Record(recorder) => (Some(recorder), None, None),
+            Job::Prune(prune) => (None, Some(prune), None),
+            Job::Pruned(order) => (None, None, Some(order)),
+        }
+    }
+}
+
 /// The pipeline, doing `job` besides.
 fn run(
     model: &mut Model,
@@ -111,18 +129,10 @@ fn run(
     progress: &mut dyn FnMut(usize),
     job: Job<'_, '_>,
 ) -> (Outcome, Option<ProgressiveModel>) {
-    let (recorder, prune, order) = match job {
-        Job::Plain => (None, None, None),
-        Job::Record(recorder) => (Some(recorder), None, None),
-        Job::Prune(prune) => (None, Some(prune), None),
-        Job::Pruned(order) => (None, None, Some(order)),
-    };
+    let (recorder, prune, order) = job.parts();
     // 1. load, renumbered along a Morton curve for memory locality
     let n = model.positions.len() as u32;
-    let mut loaded = match order {
-        Some(order) => layout::load_in(model, order),
-        None => layout::load(model),
-    };
+    let mut loaded = order.map_or_else(|| layout::load(model), |o| layout::load_in(model, o));
     let positions: Vec<Vec3> = loaded
         .order
         .par_iter()
