@@ -55,8 +55,15 @@ impl Loaded {
 /// their smallest internal vertex: a vertex's fan then lies in a few cache lines, next to
 /// its neighbours' fans.
 pub fn load(model: &Model) -> Loaded {
+    load_in(model, spatial::morton_order(&model.positions))
+}
+
+/// As [`load`], with the vertices in `order`, [`load`]'s order for these positions: a model
+/// that only lost triangles since (hanging sheets pruned) keeps its vertices' order, and
+/// skips the sort.
+pub fn load_in(model: &Model, order: Vec<u32>) -> Loaded {
     let n = model.positions.len() as u32;
-    let order = spatial::morton_order(&model.positions);
+    debug_assert_eq!(order.len(), n as usize);
     let mut internal = vec![0u32; n as usize];
     for (i, &v) in order.iter().enumerate() {
         internal[v as usize] = i as u32;

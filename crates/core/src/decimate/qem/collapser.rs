@@ -195,6 +195,11 @@ impl Collapser {
             }
         }
         self.copies = crate::mesh::seams::copy_cycles(&self.positions, pinned);
+        // No copies, no junction normals: the live triangles are listed only for those.
+        if self.copies.is_empty() {
+            self.facing = Vec::new();
+            return;
+        }
         let live: Vec<[u32; 3]> = (self.conn.alive_ids())
             .map(|t| self.conn.triangle(t))
             .collect();

@@ -50,7 +50,7 @@ pub fn decimate_model(
     twins: &[u32],
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
-    run(model, limits, pins, twins, progress, None, None).0
+    run(model, limits, pins, twins, progress, Job::Plain).0
 }
 
 /// What [`decimate_model_pruning`] calls on a mesh with non-manifold vertices: removes
@@ -70,7 +70,7 @@ pub fn decimate_model_pruning(
     progress: &mut dyn FnMut(usize),
     prune: &mut Prune<'_>,
 ) -> Outcome {
-    run(model, limits, pins, twins, progress, None, Some(prune)).0
+    run(model, limits, pins, twins, progress, Job::Prune(prune)).0
 }
 
 /// As [`decimate_model`], and records every collapse: the returned progressive model's base
@@ -83,27 +83,56 @@ pub fn decimate_model_progressive(
     progress: &mut dyn FnMut(usize),
 ) -> (Outcome, ProgressiveModel) {
     let recorder = Recorder::new(model);
-    match run(model, limits, pins, twins, progress, Some(recorder), None) {
+    match run(model, limits, pins, twins, progress, Job::Record(recorder)) {
         (outcome, Some(pm)) => (outcome, pm),
         (_, None) => unreachable!("a run given a recorder returns its progressive model"),
     }
 }
 
-/// The pipeline; with a `recorder`, every collapse is recorded and the progressive model
-/// returned (its base is what is written back into `model`); `prune` as in
-/// [`decimate_model_pruning`].
+/// What a [`run`] does besides decimating.
+enum Job<'a, 'b> {
+    Plain,
+    /// Records every collapse: the progressive model is returned (its base is what is
+    /// written back into the model).
+    Record(Recorder),
+    /// As in [`decimate_model_pruning`].
+    Prune(&'a mut Prune<'b>),
+    /// The run again after a pruning, which kept every vertex where it was: the vertices'
+    /// internal order, as the first run loaded them.
+    Pruned(Vec<u32>),
+}
+
+/// A job's recorder, pruning and vertex order, each where it has one.
+type JobParts<'a, 'b> = (
+    Option<Recorder>,
+    Option<&'a mut Prune<'b>>,
+    Option<Vec<u32>>,
+);
+
+impl<'a, 'b> Job<'a, 'b> {
+    fn parts(self) -> JobParts<'a, 'b> {
+        match self {
+            Job::Plain => (None, None, None),
+            Job::Record(recorder) => (Some(recorder), None, None),
+            Job::Prune(prune) => (None, Some(prune), None),
+            Job::Pruned(order) => (None, None, Some(order)),
+        }
+    }
+}
+
+/// The pipeline, doing `job` besides.
 fn run(
     model: &mut Model,
     limits: &Limits,
     pins: &[bool],
     twins: &[u32],
     progress: &mut dyn FnMut(usize),
-    recorder: Option<Recorder>,
-    prune: Option<&mut Prune<'_>>,
+    job: Job<'_, '_>,
 ) -> (Outcome, Option<ProgressiveModel>) {
+    let (recorder, prune, order) = job.parts();
     // 1. load, renumbered along a Morton curve for memory locality
     let n = model.positions.len() as u32;
-    let mut loaded = layout::load(model);
+    let mut loaded = order.map_or_else(|| layout::load(model), |o| layout::load_in(model, o));
     let positions: Vec<Vec3> = loaded
         .order
         .par_iter()
@@ -145,7 +174,9 @@ fn run(
                 remove: limits.remove.saturating_sub(unused),
                 ..limits.clone()
             };
-            return run(model, &limits, pins, twins, progress, None, None);
+            // Only triangles went: the vertices' order stands.
+            let order = std::mem::take(&mut loaded.order);
+            return run(model, &limits, pins, twins, progress, Job::Pruned(order));
         }
         released = layout::release(model, &loaded);
     }
@@ -241,4 +272,61 @@ fn per_vertex_attributes(model: &Model, n: usize, order: &[u32]) -> (PerVertex, 
         _ => None,
     };
     (colors, normals)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::decimate::{Cancel, Cost};
+
+    fn removing(remove: usize) -> Limits {
+        Limits {
+            remove,
+            seam_copies: 0,
+            keep_triangles: 0,
+            max_error: f64::INFINITY,
+            feature_angle_deg: 30.0,
+            relax_features: false,
+            keep_features: false,
+            scale_folds: true,
+            cost: Cost::Quadric,
+            cancel: Cancel::default(),
+        }
+    }
+
+    #[test]
+    fn a_pruned_run_gives_what_a_run_on_the_pruned_mesh_gives() {
+        // A bumpy sphere with a flap hanging on one of its vertices (non-manifold there).
+        let mut model = crate::mesh::shapes::bumpy_sphere(24, 48);
+        let (v, n) = (100u32, model.positions.len() as u32);
+        let p = model.positions[v as usize];
+        model
+            .positions
+            .extend([p + Vec3::X * 0.01, p + Vec3::Y * 0.01]);
+        model.triangles.push([v, n, n + 1]);
+        let mut pruned = model.clone();
+        pruned.triangles.pop();
+        let mut prunings = 0;
+        let mut prune = |m: &mut Model| {
+            prunings += 1;
+            assert_eq!(m.triangles.pop(), Some([v, n, n + 1]), "the flap, last");
+            Some(2)
+        };
+        let ran = decimate_model_pruning(
+            &mut model,
+            &removing(500),
+            &[],
+            &[],
+            &mut |_| {},
+            &mut prune,
+        );
+        // The restart keeps the first run's vertex order: a fresh run on the pruned mesh,
+        // its two unused vertices fewer to remove, must give the same mesh.
+        let fresh = decimate_model(&mut pruned, &removing(498), &[], &[], &mut |_| {});
+        assert_eq!(prunings, 1);
+        assert_eq!(ran.removed, 498);
+        assert_eq!(fresh.removed, 498);
+        assert_eq!(model.triangles, pruned.triangles);
+        assert_eq!(model.positions, pruned.positions);
+    }
 }

@@ -264,13 +264,18 @@ impl Part<'_> {
         }
     }
 
-    /// Starts loading the positions and flags of the neighbours of `v` and `w` (each once in
-    /// a closed fan) and the incident lists of the edge `v`–`w`'s apexes, which a collapse edits (a
-    /// hint; the fans' triangles should be loaded by now).
+    /// Starts loading the positions, input surface and flags of the neighbours of `v` and `w`
+    /// (each once in a closed fan), the ends' own input surface and closed component (the
+    /// legality checks read them), and the incident lists of the edge `v`–`w`'s apexes,
+    /// which a collapse edits (a hint; the fans' triangles should be loaded by now).
     pub fn prefetch_neighbourhood(&self, v: u32, w: u32) {
         for (x, y) in [(v, w), (w, v)] {
             if !self.owns(x) {
                 continue;
+            }
+            if let Some(i) = self.local(x) {
+                crate::mesh::prefetch(&self.input_surface[i]);
+                self.closed.prefetch(x);
             }
             for &t in self.conn.incident(x) {
                 if !self.conn.owns_slot(t) {
@@ -279,6 +284,7 @@ impl Part<'_> {
                 let [a, b] = others(self.conn.triangle(t), x);
                 if let Some(i) = self.local(a) {
                     crate::mesh::prefetch(&self.positions[i]);
+                    crate::mesh::prefetch(&self.input_surface[i]);
                     crate::mesh::prefetch(&self.flags[i]);
                 }
                 if a == y {
