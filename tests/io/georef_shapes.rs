@@ -11,7 +11,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crate::georef::{dot, read_output, sub, Mesh};
+use crate::georef::{assert_same_as_the_origin_run, read_output, sub, Mesh};
 use crate::support::binary::decimate;
 use crate::support::rng::Rng;
 
@@ -95,19 +95,7 @@ fn check(what: &str, shape: impl Fn([f64; 3]) -> String, far: [f64; 3], least: u
             near.triangles.len()
         );
         let moved = run(dir.path(), &shape(far), far, algorithm);
-        assert!(
-            moved.triangles == near.triangles,
-            "{what} {algorithm:?} at {far:?}: {} triangles, other than the {} at the origin",
-            moved.triangles.len(),
-            near.triangles.len()
-        );
-        for (p, q) in moved.points.iter().zip(&near.points) {
-            let d = dot(sub(*p, *q), sub(*p, *q)).sqrt();
-            assert!(
-                d < 1e-6,
-                "{what} {algorithm:?} at {far:?}: {p:?} against {q:?}"
-            );
-        }
+        assert_same_as_the_origin_run(&format!("{what} {algorithm:?} at {far:?}"), &near, &moved);
     }
 }
 

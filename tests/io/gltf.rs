@@ -161,6 +161,26 @@ impl Doc {
     }
 }
 
+/// An `n × n` grid of unit squares in x, y with a wave in z of `0.2 sin(0.9 x) cos(fy y)`
+/// (every vertex can be removed): flat x y z positions and triangle indices.
+pub(crate) fn wavy_grid_arrays(n: u32, fy: f32) -> (Vec<f32>, Vec<u32>) {
+    let mut pos = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f32, j as f32);
+            pos.extend_from_slice(&[x, y, 0.2 * (x * 0.9).sin() * (y * fy).cos()]);
+        }
+    }
+    let mut idx = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i;
+            idx.extend_from_slice(&[a, a + 1, a + n + 2, a, a + n + 2, a + n + 1]);
+        }
+    }
+    (pos, idx)
+}
+
 pub(crate) fn read_bytes(bytes: Vec<u8>, name: &str) -> io::ReadOutcome {
     io::parse_bytes(bytes, Path::new(name)).unwrap_or_else(|e| panic!("{e}"))
 }

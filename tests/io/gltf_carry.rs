@@ -10,26 +10,13 @@ use std::path::Path;
 
 use serde_json::{json, Value};
 
-use super::gltf::{assert_valid, red_over_blue_png, scratch, Doc, UINT, USHORT};
+use super::gltf::{assert_valid, red_over_blue_png, scratch, wavy_grid_arrays, Doc, UINT, USHORT};
 use crate::support::binary;
 
 /// An `n × n` grid of unit squares with a wave in z (every vertex can be removed) and
 /// texture coordinates, as a triangle primitive of `d` using material 0.
 fn wavy_grid(d: &mut Doc, n: u32) -> Value {
-    let mut pos = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, y) = (i as f32, j as f32);
-            pos.extend_from_slice(&[x, y, 0.2 * (x * 0.9).sin() * (y * 0.6).cos()]);
-        }
-    }
-    let mut idx = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            idx.extend_from_slice(&[a, a + 1, a + n + 2, a, a + n + 2, a + n + 1]);
-        }
-    }
+    let (pos, idx) = wavy_grid_arrays(n, 0.6);
     let position = d.positions(&pos);
     let uv: Vec<f32> = pos
         .chunks(3)

@@ -8,25 +8,12 @@ use std::process::Command;
 
 use serde_json::{json, Value};
 
-use super::gltf::{assert_valid, scratch, Doc, UINT};
+use super::gltf::{assert_valid, scratch, wavy_grid_arrays, Doc, UINT};
 
 /// A wavy 8 x 8 grid of unit squares as a new mesh of `d` (128 triangles); its index.
 fn grid_mesh(d: &mut Doc) -> usize {
     let n = 8u32;
-    let mut pos = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, y) = (i as f32, j as f32);
-            pos.extend_from_slice(&[x, y, 0.2 * (x * 0.9).sin() * (y * 0.7).cos()]);
-        }
-    }
-    let mut idx = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            idx.extend_from_slice(&[a, a + 1, a + n + 2, a, a + n + 2, a + n + 1]);
-        }
-    }
+    let (pos, idx) = wavy_grid_arrays(n, 0.7);
     let position = d.positions(&pos);
     let bytes: Vec<u8> = idx.iter().flat_map(|i| i.to_le_bytes()).collect();
     let indices = d.accessor(&bytes, UINT, "SCALAR", idx.len(), false);
