@@ -104,22 +104,9 @@ pub(super) fn collapse_in_passes(
     progress: &mut dyn FnMut(usize),
 ) -> Outcome {
     let n = d.vertex_count() as u32;
-    let mut outcome = Outcome {
-        removed: 0,
-        max_error: 0.0,
-        exhausted: false,
-        feature_angle_deg: limits.feature_angle_deg,
-        pinned: 0,
-        closed_kept: 0,
-    };
+    let mut outcome = Outcome::nothing_removed(limits.feature_angle_deg, 0);
     let bound2 = limits.max_error * limits.max_error;
-    // Never fewer than four vertices: a model under four is dropped from the scene, and a
-    // plane's two triangles or a tetrahedron is as far as collapsing should go.
-    let used = (0..n)
-        .into_par_iter()
-        .filter(|&v| !d.conn.incident(v).is_empty())
-        .count();
-    let removable = (used.saturating_sub(limits.seam_copies)).saturating_sub(MIN_VERTICES);
+    let removable = removable_count(d, limits);
     let regions =
         [false, true].map(|shifted| Regions::new(d.vertex_count(), d.conn.triangles(), shifted));
     let mut skipped_for_error = false;
@@ -133,13 +120,7 @@ pub(super) fn collapse_in_passes(
     // Cleared when a pass of border edges only removed nothing: it is not tried again.
     let mut border_only = true;
     while !limits.cancel.requested() {
-        let kinds = &d.kinds;
-        lists::retain(&mut live, |v| kinds[v as usize] != Kind::Fixed);
-        let best_cost = &d.best_cost;
-        let count = lists::filter_map_into(&live, &mut all_candidates, |&v| {
-            let cost = best_cost[v as usize];
-            cost.is_finite().then(|| Candidate::new(cost, v))
-        });
+        let count = gather_candidates(d, &mut live, &mut all_candidates);
         if count == 0 {
             outcome.exhausted = !skipped_for_error;
             break;
@@ -192,6 +173,29 @@ pub(super) fn collapse_in_passes(
     }
     progress(outcome.removed);
     outcome
+}
+
+/// How many vertices the passes may remove: never fewer than four are left (a model under
+/// four is dropped from the scene, and a plane's two triangles or a tetrahedron is as far
+/// as collapsing should go), a seam's copies counted once.
+fn removable_count(d: &Collapser, limits: &Limits) -> usize {
+    let used = (0..d.vertex_count() as u32)
+        .into_par_iter()
+        .filter(|&v| !d.conn.incident(v).is_empty())
+        .count();
+    (used.saturating_sub(limits.seam_copies)).saturating_sub(MIN_VERTICES)
+}
+
+/// Drops the fixed vertices from `live` and lists the others with a finite best cost as
+/// candidates in `all` (kept from pass to pass); returns how many.
+fn gather_candidates(d: &Collapser, live: &mut Vec<u32>, all: &mut Vec<Candidate>) -> usize {
+    let kinds = &d.kinds;
+    lists::retain(live, |v| kinds[v as usize] != Kind::Fixed);
+    let best_cost = &d.best_cost;
+    lists::filter_map_into(live, all, |&v| {
+        let cost = best_cost[v as usize];
+        cost.is_finite().then(|| Candidate::new(cost, v))
+    })
 }
 
 /// Moves the candidates whose best edge lies on an open border (in one triangle: its
