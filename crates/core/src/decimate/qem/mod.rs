@@ -133,9 +133,7 @@ fn run(
     // 1. load, renumbered along a Morton curve for memory locality
     let n = model.positions.len() as u32;
     let mut loaded = order.map_or_else(|| layout::load(model), |o| layout::load_in(model, o));
-    let positions: Vec<Vec3> = loaded
-        .order
-        .par_iter()
+    let positions: Vec<Vec3> = (loaded.order.par_iter())
         .map(|&v| model.positions[v as usize])
         .collect();
     let triangles = loaded.triangles(model);
@@ -150,7 +148,6 @@ fn run(
 
     // 2. connect, 3. quadrics (one pass over the vertices' rings)
     let cos_feature = limits.feature_angle_deg.to_radians().cos();
-    let pinned = |v: u32| pins.get(v as usize).copied().unwrap_or(false);
     let seam = seam_flags(order, &pairs, pins);
     let constraints = planes::Constraints {
         cos_feature,
@@ -183,13 +180,8 @@ fn run(
     let mut d = Collapser::connected(positions, conn, start, colors, normals, cos_feature);
     d.distance = distance;
     d.lt = limits.cost == super::Cost::LindstromTurk;
-    texture_and_pins(
-        &mut d,
-        (model, n as usize),
-        order,
-        pins,
-        limits.keep_features,
-    );
+    let keep_features = limits.keep_features;
+    texture_and_pins(&mut d, (model, n as usize), order, pins, keep_features);
     d.set_twins(pairs);
     d.recorder = recorder;
 
@@ -198,20 +190,33 @@ fn run(
 
     // 5. collapse
     let mut outcome = collapse_passes::collapse_in_passes(&mut d, limits, progress);
-    outcome.pinned = (0..n).filter(|&v| pinned(v)).count();
+    outcome.pinned = pins.iter().take(n as usize).filter(|&&p| p).count();
 
     // 6. compact
+    let pm = write_back(&mut d, model, (order, faces), outcome.removed > 0, released);
+    (outcome, pm)
+}
+
+/// Writes the decimated mesh back into `model` (`order` and `faces` map the internal ids
+/// back), or the model's own arrays when nothing went (`released`: they were freed); the
+/// progressive record when one was kept.
+fn write_back(
+    d: &mut Collapser,
+    model: &mut Model,
+    (order, faces): (&[u32], &[u32]),
+    removed_any: bool,
+    released: bool,
+) -> Option<ProgressiveModel> {
     if let Some(recorder) = d.recorder.take() {
         let kept = d.write_back(model, order, faces);
-        let pm = recorder.finish(model.clone(), &kept, &d.conn, order, faces);
-        return (outcome, Some(pm));
+        return Some(recorder.finish(model.clone(), &kept, &d.conn, order, faces));
     }
-    if outcome.removed > 0 {
+    if removed_any {
         d.write_back(model, order, faces);
     } else if released {
         d.restore(model, order, faces);
     }
-    (outcome, None)
+    None
 }
 
 /// Per internal vertex, whether it is on a texture seam: one of two sides (twinned) or where
