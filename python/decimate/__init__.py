@@ -308,6 +308,7 @@ def simplify(
     record: bool = False,
     weld: bool = True,
     cancel: Optional[Cancel] = None,
+    threads: Optional[int] = None,
 ) -> Any:
     """Simplify a triangle mesh.
 
@@ -341,7 +342,9 @@ def simplify(
     ``decimate`` program does, vertices at exactly the same place (and with the same
     ``uvs``) are merged and triangles with no area or repeated are removed (the report's
     warnings say what changed); ``weld=False`` keeps coincident vertices apart. ``cancel``: a `Cancel` that
-    another thread may request; the run then raises `Cancelled`.
+    another thread may request; the run then raises `Cancelled`. ``threads``: how many
+    threads decimate (this call's own included; 1 uses no other), all cores when None;
+    the result is the same for every count.
 
     Raises ValueError on arrays that are not a mesh (wrong shape or dtype, empty, an index
     out of range, NaN or infinite coordinates). Arrays that are not contiguous or not
@@ -368,7 +371,8 @@ def simplify(
     t = _attribute(uvs, 2, n, "uvs")
     nm = _attribute(normals, 3, n, "normals")
     raw = _decimate.simplify(
-        v, f, goal, algorithm, bool(keep_border), float(feature_angle), c, t, nm, bool(record), bool(weld), cancel
+        v, f, goal, algorithm, bool(keep_border), float(feature_angle), c, t, nm, bool(record), bool(weld), cancel,
+        _threads(threads),
     )
     v_dtype = v_in.dtype if v_in.dtype.kind == "f" else np.dtype(np.float64)
     if far:
@@ -401,6 +405,7 @@ def simplify_file(
     keep_border: bool = False,
     feature_angle: float = 30.0,
     cancel: Optional[Cancel] = None,
+    threads: Optional[int] = None,
 ) -> Report:
     """Read the mesh file ``src``, simplify it and write ``dst``, in the format its
     extension names (.wrl for VRML 2.0, .ply, .obj, .stl, .off, .gltf, .glb), as the ``decimate``
@@ -411,9 +416,19 @@ def simplify_file(
     goal = _goal(ratio, keep_triangles, keep_vertices, max_error)
     _options(algorithm, feature_angle)
     raw = _decimate.simplify_file(
-        str(src), str(dst), goal, algorithm, bool(keep_border), float(feature_angle), cancel
+        str(src), str(dst), goal, algorithm, bool(keep_border), float(feature_angle), cancel,
+        _threads(threads),
     )
     return Report(**raw)
+
+
+def _threads(threads: Any) -> Optional[int]:
+    """``threads`` checked: None, or a whole number of at least 1."""
+    if threads is None:
+        return None
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
+        raise ValueError(f"threads must be a whole number of at least 1, not {threads!r}")
+    return int(threads)
 
 
 def read(path: Union[str, "os.PathLike[str]"]) -> Scene:

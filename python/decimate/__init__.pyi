@@ -99,6 +99,7 @@ def simplify(
     record: bool = ...,
     weld: bool = ...,
     cancel: Optional[Cancel] = ...,
+    threads: Optional[int] = ...,
 ) -> Any:
     """Simplify a triangle mesh (arrays -> SimplifyResult; a mesh object -> the same kind)."""
 
@@ -114,6 +115,7 @@ def simplify_file(
     keep_border: bool = ...,
     feature_angle: float = ...,
     cancel: Optional[Cancel] = ...,
+    threads: Optional[int] = ...,
 ) -> Report:
     """Read src, simplify it and write dst (format from the extension)."""
 

@@ -11,6 +11,15 @@ use decimate_core::cancel::Cancel;
 use pyo3::prelude::*;
 
 /// How long the caller waits between two looks at Python's signals.
+/// Runs `work` on `threads` threads (the calling one included), or on the shared pool
+/// when `None`: the result is the same for every count.
+pub fn on_threads<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + Send) -> T {
+    match threads {
+        Some(n) => decimate_core::api::with_threads(n, work),
+        None => work(),
+    }
+}
+
 const SLICE: Duration = Duration::from_millis(50);
 
 /// Runs `work` off the GIL; `cancel` is requested when a signal handler raises.

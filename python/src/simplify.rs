@@ -16,7 +16,7 @@ use pyo3::types::PyDict;
 
 use crate::arrays::{rows, to_numpy, to_vec3s, vec3s};
 use crate::progressive::Progressive;
-use crate::run::interruptible;
+use crate::run::{interruptible, on_threads};
 use crate::{scene, Cancel, Cancelled};
 
 /// The target keywords, before the triangle count is known.
@@ -202,7 +202,7 @@ fn model(
 /// Decimates one mesh given as arrays (see `decimate.simplify`, which checks and converts
 /// its arguments and calls this).
 #[pyfunction]
-#[pyo3(signature = (vertices, faces, goal, algorithm, keep_border, feature_angle, colors, uvs, normals, record, weld, cancel))]
+#[pyo3(signature = (vertices, faces, goal, algorithm, keep_border, feature_angle, colors, uvs, normals, record, weld, cancel, threads))]
 #[allow(clippy::too_many_arguments)]
 pub fn simplify<'py>(
     py: Python<'py>,
@@ -218,6 +218,7 @@ pub fn simplify<'py>(
     record: bool,
     weld: bool,
     cancel: Option<PyRef<'py, Cancel>>,
+    threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let goal = Goal::from(goal);
     let m = model(
@@ -238,14 +239,9 @@ pub fn simplify<'py>(
     let scene = Scene { models: vec![m] };
     let flag = cancel.clone();
     let (scene, outcome, repairs) = interruptible(py, &cancel, move || {
-        let (mut scene, repairs) = prepare(scene, weld);
-        let outcome = if record {
-            simplify_scene_progressive_cancellable(&mut scene, &params, &mut |_| {}, &flag)
-                .map(|(r, p)| (r, p.models.into_iter().next()))
-        } else {
-            simplify_scene_cancellable(&mut scene, &params, &mut |_| {}, &flag).map(|r| (r, None))
-        };
-        (scene, outcome, repairs)
+        on_threads(threads, || {
+            decimate_prepared(scene, weld, record, &params, &flag)
+        })
     })?;
     let Some((report, progressive)) = outcome else {
         return Err(Cancelled::new_err("simplify was cancelled"));
@@ -268,10 +264,40 @@ pub fn simplify<'py>(
     Ok(out)
 }
 
+/// What one `simplify` call hands back from its worker: the scene, the report with the
+/// progressive record (`None` when cancelled) and the repairs made before decimating.
+type Prepared = (
+    Scene,
+    Option<(
+        Report,
+        Option<decimate_core::mesh::progressive::ProgressiveModel>,
+    )>,
+    Vec<String>,
+);
+
+/// Prepares `scene` as the program does (welded unless `weld` is false) and decimates it,
+/// recording a progressive mesh when `record`.
+fn decimate_prepared(
+    scene: Scene,
+    weld: bool,
+    record: bool,
+    params: &Params,
+    flag: &decimate_core::cancel::Cancel,
+) -> Prepared {
+    let (mut scene, repairs) = prepare(scene, weld);
+    let outcome = if record {
+        simplify_scene_progressive_cancellable(&mut scene, params, &mut |_| {}, flag)
+            .map(|(r, p)| (r, p.models.into_iter().next()))
+    } else {
+        simplify_scene_cancellable(&mut scene, params, &mut |_| {}, flag).map(|r| (r, None))
+    };
+    (scene, outcome, repairs)
+}
+
 /// Reads `src`, decimates it and writes `dst` in the format its extension names (see
 /// `decimate.simplify_file`). Refuses to write over the input.
 #[pyfunction]
-#[pyo3(signature = (src, dst, goal, algorithm, keep_border, feature_angle, cancel))]
+#[pyo3(signature = (src, dst, goal, algorithm, keep_border, feature_angle, cancel, threads))]
 #[allow(clippy::too_many_arguments)]
 pub fn simplify_file<'py>(
     py: Python<'py>,
@@ -282,6 +308,7 @@ pub fn simplify_file<'py>(
     keep_border: bool,
     feature_angle: f64,
     cancel: Option<PyRef<'py, Cancel>>,
+    threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let goal = Goal::from(goal);
     if let (Ok(a), Ok(b)) = (src.canonicalize(), dst.canonicalize()) {
@@ -301,9 +328,11 @@ pub fn simplify_file<'py>(
     )?;
     let flag = cancel.clone();
     let (s, report, repairs) = interruptible(py, &cancel, move || {
-        let (mut s, repairs) = prepare(s, true);
-        let r = simplify_scene_cancellable(&mut s, &params, &mut |_| {}, &flag);
-        (s, r, repairs)
+        on_threads(threads, move || {
+            let (mut s, repairs) = prepare(s, true);
+            let r = simplify_scene_cancellable(&mut s, &params, &mut |_| {}, &flag);
+            (s, r, repairs)
+        })
     })?;
     let Some(report) = report else {
         return Err(Cancelled::new_err("simplify_file was cancelled"));

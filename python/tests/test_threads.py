@@ -114,3 +114,21 @@ def test_ctrl_c_interrupts_within_a_second():
     waited = time.perf_counter() - sent
     assert out.startswith("interrupted"), out
     assert waited < 1.0 + 0.5  # the interpreter's own exit included
+
+
+def test_any_thread_count_gives_the_same_mesh_and_a_bad_count_is_refused(big, tmp_path):
+    v, f = big
+    default = decimate.simplify(v, f, ratio=0.1)
+    for n in (1, 2, 3):
+        got = decimate.simplify(v, f, ratio=0.1, threads=n)
+        assert np.array_equal(got.vertices, default.vertices), n
+        assert np.array_equal(got.faces, default.faces), n
+    src = tmp_path / "in.ply"
+    decimate.write((v, f), src)
+    reports = [decimate.simplify_file(src, tmp_path / f"out{n}.ply", ratio=0.1, threads=n)
+               for n in (1, 2)]
+    assert reports[0].triangles_after == reports[1].triangles_after == len(default.faces)
+    assert (tmp_path / "out1.ply").read_bytes() == (tmp_path / "out2.ply").read_bytes()
+    for bad in (0, -1, 1.5, True, "2"):
+        with pytest.raises(ValueError, match="threads"):
+            decimate.simplify(v, f, ratio=0.1, threads=bad)
