@@ -970,53 +970,84 @@ pub(crate) fn shared_texture(scene: &Scene) -> Option<&str> {
     (same && !first.contains(['\n', '\r'])).then_some(first)
 }
 
+/// The colour properties of a vertex or face element, as bytes.
+const RGB_PROPERTIES: &str = "property uchar red\nproperty uchar green\nproperty uchar blue";
+
+/// A colour in 0..1 as the bytes a PLY colour property holds.
+fn colour_bytes(c: [f32; 3]) -> [u8; 3] {
+    c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
+}
+
+/// Which properties a written PLY has: per-vertex colours, per-face colours, texture
+/// coordinates (each when every model has them), and doubles for far coordinates.
+struct Layout {
+    colored: bool,
+    face_colored: bool,
+    textured: bool,
+    far: bool,
+}
+
+impl Layout {
+    fn of(scene: &Scene) -> Self {
+        let colored = !scene.models.is_empty()
+            && (scene.models.iter()).all(|m| matches!(m.colors, Some(Attribute::PerVertex(_))));
+        Self {
+            colored,
+            face_colored: !colored && super::all_face_colored(scene),
+            textured: super::all_textured(scene),
+            // Far coordinates need doubles: f32 would round them as the input's f32 reading
+            // would.
+            far: origin::any_far(scene),
+        }
+    }
+}
+
 /// Writes the PLY bytes to `w`.
 pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
-    let colored = !scene.models.is_empty()
-        && scene
-            .models
-            .iter()
-            .all(|m| matches!(m.colors, Some(Attribute::PerVertex(_))));
-    let face_colored = !colored && super::all_face_colored(scene);
-    let textured = super::all_textured(scene);
+    let layout = Layout::of(scene);
+    write_header(w, scene, &layout)?;
+    write_vertices(w, scene, &layout)?;
+    write_faces(w, scene, &layout)?;
+    w.flush()
+}
+
+/// The header: the vertex and face elements with the properties `layout` names.
+fn write_header(w: &mut impl Write, scene: &Scene, layout: &Layout) -> std::io::Result<()> {
     writeln!(
         w,
         "ply\nformat binary_little_endian 1.0\ncomment written by decimate"
     )?;
-    if let Some(image) = shared_texture(scene).filter(|_| textured) {
+    if let Some(image) = shared_texture(scene).filter(|_| layout.textured) {
         writeln!(w, "comment TextureFile {image}")?;
     }
     writeln!(w, "element vertex {}", scene.vertex_count())?;
-    // Far coordinates need doubles: f32 would round them as the input's f32 reading would.
-    let far = origin::any_far(scene);
-    let ty = if far { "double" } else { "float" };
+    let ty = if layout.far { "double" } else { "float" };
     writeln!(w, "property {ty} x\nproperty {ty} y\nproperty {ty} z")?;
-    if colored {
-        writeln!(
-            w,
-            "property uchar red\nproperty uchar green\nproperty uchar blue"
-        )?;
+    if layout.colored {
+        writeln!(w, "{RGB_PROPERTIES}")?;
     }
-    if textured {
+    if layout.textured {
         writeln!(w, "property float s\nproperty float t")?;
     }
     writeln!(w, "element face {}", scene.triangle_count())?;
     writeln!(w, "property list uchar int vertex_indices")?;
-    if face_colored {
-        writeln!(
-            w,
-            "property uchar red\nproperty uchar green\nproperty uchar blue"
-        )?;
+    if layout.face_colored {
+        writeln!(w, "{RGB_PROPERTIES}")?;
     }
     writeln!(w, "end_header")?;
+    Ok(())
+}
+
+/// Every model's vertices, transformed, with their colours and texture coordinates.
+fn write_vertices(w: &mut impl Write, scene: &Scene, layout: &Layout) -> std::io::Result<()> {
     for m in &scene.models {
         let colors = match &m.colors {
-            Some(Attribute::PerVertex(c)) if colored => Some(c),
+            Some(Attribute::PerVertex(c)) if layout.colored => Some(c),
             _ => None,
         };
         for (i, &p) in m.positions.iter().enumerate() {
             let p: Vec3 = m.transform.transform_point3(p);
-            if far {
+            if layout.far {
                 for c in origin::coords(m, p) {
                     w.write_all(&c.to_f64().to_le_bytes())?;
                 }
@@ -1026,20 +1057,24 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
                 }
             }
             if let Some(c) = colors {
-                let c = c.get(i).copied().unwrap_or(m.diffuse);
-                w.write_all(&c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))?;
+                w.write_all(&colour_bytes(c.get(i).copied().unwrap_or(m.diffuse)))?;
             }
-            if let Some(t) = m.texcoords.as_ref().filter(|_| textured) {
+            if let Some(t) = m.texcoords.as_ref().filter(|_| layout.textured) {
                 for v in t[i] {
                     w.write_all(&v.to_le_bytes())?;
                 }
             }
         }
     }
+    Ok(())
+}
+
+/// Every model's triangles, numbered on across models, with their colours.
+fn write_faces(w: &mut impl Write, scene: &Scene, layout: &Layout) -> std::io::Result<()> {
     let mut base = 0u32;
     for m in &scene.models {
         let colors = match &m.colors {
-            Some(Attribute::PerFace(c)) if face_colored => &c[..],
+            Some(Attribute::PerFace(c)) if layout.face_colored => &c[..],
             _ => &[],
         };
         for (k, [a, b, c]) in super::outward_triangles(m).enumerate() {
@@ -1047,13 +1082,13 @@ pub fn write_ply_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
             for v in [a, b, c] {
                 w.write_all(&(v + base).to_le_bytes())?;
             }
-            if let Some(c) = colors.get(k) {
-                w.write_all(&c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))?;
+            if let Some(&c) = colors.get(k) {
+                w.write_all(&colour_bytes(c))?;
             }
         }
         base += m.positions.len() as u32;
     }
-    w.flush()
+    Ok(())
 }
 
 #[cfg(test)]
