@@ -1,7 +1,8 @@
 //! glTF 2.0's accessor, buffer view and container rules (issue 56): sparse POSITION
 //! accessors are read; integer POSITION without `KHR_mesh_quantization`, a byteStride that
-//! is not a multiple of 4, `asset.version` 1.0 and a GLB whose header miscounts its length
-//! are refused, naming the file and the JSON path or GLB byte offset at fault.
+//! is not a multiple of 4, `asset.version` 1.0, a GLB whose header miscounts its length and
+//! an image that is neither a uri nor a bufferView with its mimeType are refused, naming the
+//! file and the JSON path or GLB byte offset at fault.
 
 use base64::Engine;
 use serde_json::{json, Value};
@@ -108,4 +109,24 @@ fn a_glb_header_length_that_is_too_small_is_refused_at_byte_8() {
     bytes[8..12].copy_from_slice(&short);
     let e = error(bytes, "len.glb");
     assert!(e.starts_with("len.glb: byte 8: the GLB header says"), "{e}");
+}
+
+#[test]
+fn an_image_that_is_no_uri_or_a_buffer_view_without_a_mime_type_is_refused() {
+    // A bufferView image without its mimeType (the coverage fuzzer's crash: the gltf crate
+    // panicked on it), and an image with neither a uri nor a bufferView.
+    let cases = [
+        (
+            json!({ "bufferView": 0 }),
+            "images[0]: a bufferView image needs a mimeType",
+        ),
+        (
+            json!({ "name": "nothing" }),
+            "images[0]: give either a uri or a bufferView",
+        ),
+    ];
+    for (image, want) in cases {
+        let e = error(triangle(|j| j["images"] = json!([image])), "image.glb");
+        assert!(e.starts_with("image.glb:") && e.contains(want), "{e}");
+    }
 }

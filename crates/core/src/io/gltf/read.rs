@@ -308,10 +308,26 @@ fn validate(document: &gltf::Document) -> Result<(), String> {
     }
 }
 
+/// Refuses an image that is neither a URI nor a bufferView, or a bufferView without the
+/// `mimeType` the spec requires with it: the gltf crate's `Image::source` panics on both.
+fn check_image_sources(document: &gltf::Document) -> Result<(), String> {
+    for (i, image) in document.as_json().images.iter().enumerate() {
+        match (&image.uri, &image.buffer_view, &image.mime_type) {
+            (Some(_), None, _) | (None, Some(_), Some(_)) => {}
+            (None, Some(_), None) => {
+                return Err(format!("images[{i}]: a bufferView image needs a mimeType"))
+            }
+            _ => return Err(format!("images[{i}]: give either a uri or a bufferView")),
+        }
+    }
+    Ok(())
+}
+
 /// Refuses image URIs that name files outside the model's folder (a path from the root,
 /// `..` above it, a `file:` URI): the viewer and a glTF output would read them. `data:` URIs
 /// and other URLs are never read as files.
 fn check_image_uris(document: &gltf::Document, folder: &Path) -> Result<(), String> {
+    check_image_sources(document)?;
     for image in document.images() {
         let gltf::image::Source::Uri { uri, .. } = image.source() else {
             continue;
