@@ -316,8 +316,19 @@ fn run(dir: &Path, file: &str, t: [f64; 3], algorithm: &[&str]) -> Mesh {
     let input = dir.join(file);
     write_input(&patch(t), &input);
     let ext = input.extension().unwrap().to_str().unwrap();
-    let output = format!("out.{ext}");
-    let mut args = vec![file, "nogui", "-p", "80", "-o", &output];
+    decimated_moved_back(dir, file, &format!("out.{ext}"), t, algorithm)
+}
+
+/// `decimate FILE nogui -p 80 -o OUTPUT ALGORITHM` in `dir`, which must succeed, and its
+/// output read back and moved by `-t`.
+pub(super) fn decimated_moved_back(
+    dir: &Path,
+    file: &str,
+    output: &str,
+    t: [f64; 3],
+    algorithm: &[&str],
+) -> Mesh {
+    let mut args = vec![file, "nogui", "-p", "80", "-o", output];
     args.extend_from_slice(algorithm);
     let out = decimate(dir, &args);
     assert!(
@@ -325,7 +336,7 @@ fn run(dir: &Path, file: &str, t: [f64; 3], algorithm: &[&str]) -> Mesh {
         "{file}: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let mut m = read_output(&dir.join(&output));
+    let mut m = read_output(&dir.join(output));
     for p in &mut m.points {
         *p = sub(*p, t);
     }

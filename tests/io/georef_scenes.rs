@@ -10,8 +10,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use crate::georef::{
-    assert_lands_like_the_origin_run, grid_patch, hausdorff, patch, read_output, sub, write_input,
-    Mesh, FAR,
+    assert_lands_like_the_origin_run, decimated_moved_back, grid_patch, hausdorff, patch,
+    read_output, sub, write_input, Mesh, FAR,
 };
 use crate::support::binary::decimate;
 
@@ -191,19 +191,7 @@ fn write_scene(form: Form, t: [f64; 3], dir: &Path) {
 /// Runs the binary on the scene at `t` and returns its OBJ output moved back by `t`.
 fn run(dir: &Path, form: Form, t: [f64; 3], algorithm: &[&str]) -> Mesh {
     write_scene(form, t, dir);
-    let mut args = vec![form.file(), "nogui", "-p", "80", "-o", "out.obj"];
-    args.extend_from_slice(algorithm);
-    let out = decimate(dir, &args);
-    assert!(
-        out.status.success(),
-        "{form:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let mut m = read_output(&dir.join("out.obj"));
-    for p in &mut m.points {
-        *p = sub(*p, t);
-    }
-    m
+    decimated_moved_back(dir, form.file(), "out.obj", t, algorithm)
 }
 
 #[test]

@@ -11,8 +11,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crate::georef::{assert_same_as_the_origin_run, read_output, sub, Mesh};
-use crate::support::binary::decimate;
+use crate::georef::{assert_same_as_the_origin_run, decimated_moved_back, Mesh};
 use crate::support::rng::Rng;
 
 /// `v` rounded to a multiple of 2^-12.
@@ -69,19 +68,7 @@ fn extrusion(at: [f64; 3]) -> String {
 /// Runs the binary on `text` and returns its OBJ output moved back by `t`.
 fn run(dir: &Path, text: &str, t: [f64; 3], algorithm: &[&str]) -> Mesh {
     std::fs::write(dir.join("shape.wrl"), text).unwrap();
-    let mut args = vec!["shape.wrl", "nogui", "-p", "80", "-o", "out.obj"];
-    args.extend_from_slice(algorithm);
-    let out = decimate(dir, &args);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let mut m = read_output(&dir.join("out.obj"));
-    for p in &mut m.points {
-        *p = sub(*p, t);
-    }
-    m
+    decimated_moved_back(dir, "shape.wrl", "out.obj", t, algorithm)
 }
 
 /// The far run of each shape must be the origin run moved: same triangles, same points.
