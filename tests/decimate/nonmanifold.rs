@@ -692,3 +692,37 @@ fn doubled_fins_over_one_percent_of_the_area_go_and_the_sphere_stays_closed() {
         "mean error {error}, the bare sphere's {bare_error}"
     );
 }
+
+// The same sphere kept at 60 %: its doubled fins are far larger than the result's
+// triangles, so they are surface to keep, not debris. Each fin's apex stays where it was
+// and the farthest input point is less than twice as far as on the bare sphere kept at
+// 60 % (a fin's height is eight times that). A fin's two
+// sides are folded flat onto each other; on this coarse sphere every fold used to be scaled
+// down to nothing, so the apex slid to the foot for free and the fins went first, leaving
+// input points a whole fin's height (0.06) from the result.
+#[test]
+fn doubled_fins_larger_than_the_result_triangles_stay_where_they_stand() {
+    let (before, sphere) = sphere_with_doubled_fins();
+    let keep = before.triangles.len() * 6 / 10;
+    let after = assert_keeps(&before, keep);
+    let apexes: Vec<Vec3> = (3..=21)
+        .step_by(2)
+        .flat_map(|r| (0..SEGMENTS).step_by(12).map(move |s| (r, s)))
+        .map(|(r, s)| (on_parallel(&sphere, r, s) + on_parallel(&sphere, r, s + 1)) * 0.5 * 1.06)
+        .collect();
+    assert_eq!(apexes.len(), 40);
+    let kept = apexes
+        .iter()
+        .filter(|a| after.positions.iter().any(|p| p.distance(**a) < 1e-6))
+        .count();
+    assert_eq!(kept, 40, "fin apexes left in place");
+    let farthest = compare_models(&before, &after).a_to_b.max;
+    let bare = assert_keeps(&sphere, sphere.triangles.len() * 6 / 10);
+    let bare_farthest = compare_models(&sphere, &bare).a_to_b.max;
+    assert!(
+        farthest < 2.0 * bare_farthest,
+        "an input point {farthest} from the result, {bare_farthest} on the bare sphere"
+    );
+    let edges = measure::edge_counts(&after);
+    assert_eq!(edges.boundary, 0);
+}

@@ -168,6 +168,7 @@ impl Collapser {
             cos_feature: 0.5,
             scale_folds: true,
             seam: &[],
+            result_triangles: None,
         };
         Self::new(positions, loaded.triangles(model), None, None, constraints)
     }
@@ -442,6 +443,7 @@ mod tests {
             cos_feature: 0.5,
             scale_folds: true,
             seam: &[],
+            result_triangles: None,
         };
         Collapser::new(positions, triangles, None, None, constraints)
     }

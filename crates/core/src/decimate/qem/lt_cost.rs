@@ -311,6 +311,7 @@ mod tests {
             cos_feature: 0.5,
             scale_folds: false,
             seam: &[],
+            result_triangles: None,
         };
         let mut d = Collapser::new(positions, triangles, None, None, constraints);
         d.lt = true;

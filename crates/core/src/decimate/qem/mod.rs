@@ -153,6 +153,7 @@ fn run(
         cos_feature,
         scale_folds: limits.scale_folds,
         seam: &seam,
+        result_triangles: expected_triangles(limits, positions.len(), triangles.len()),
     };
     // The distance tracker reads the input's triangles before the connectivity takes them.
     let distance = (limits.max_error.is_finite())
@@ -195,6 +196,19 @@ fn run(
     // 6. compact
     let pm = write_back(&mut d, model, (order, faces), outcome.removed > 0, released);
     (outcome, pm)
+}
+
+/// How many triangles the result of `limits` on a mesh of `vertices` and `triangles` is
+/// expected to have: the triangle target, or the vertices' share of the triangles; `None`
+/// without a count (an error bound alone).
+fn expected_triangles(limits: &Limits, vertices: usize, triangles: usize) -> Option<usize> {
+    if limits.keep_triangles > 0 {
+        return Some(limits.keep_triangles);
+    }
+    (limits.remove != usize::MAX).then(|| {
+        let kept = vertices.saturating_sub(limits.remove);
+        (triangles as f64 * kept as f64 / vertices.max(1) as f64) as usize
+    })
 }
 
 /// Writes the decimated mesh back into `model` (`order` and `faces` map the internal ids

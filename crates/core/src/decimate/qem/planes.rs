@@ -45,6 +45,22 @@ const FOLD_SCALE_POWER: i32 = 4;
 /// a large mesh).
 const FOLD_SAMPLES: usize = 1 << 14;
 
+/// A fold whose cosine is below this (sharper than about 172°: a triangle folded flat onto
+/// another, the two sides of a zero-thick fin or flake a scan leaves standing on its
+/// surface) is a *flat fold*. No sampling of a smooth surface makes one, so it is never
+/// scaled, and at a complex vertex it is constrained too (docs/design.md#qem-flat-folds).
+const COS_FLAT_FOLD: f64 = -0.99;
+
+/// A flat fold is held only when its edge is at least this many times √a long, `a` the
+/// mean area one of the result's triangles covers: a smaller fin is below the result's
+/// resolution (the size `hanging_sheets` removes) and goes freely
+/// (docs/design.md#qem-flat-folds).
+const FLAT_FOLD_MIN_EDGE: f64 = 0.4;
+
+/// Weight of a flat fold's constraint plane at a complex vertex, times its length² and its
+/// triangle's face weight scale (docs/design.md#qem-flat-folds).
+const FLAT_FOLD_WEIGHT: f64 = 10.0;
+
 /// Vertices per rayon task.
 const PER_TASK: usize = 4096;
 
@@ -59,6 +75,9 @@ pub(super) struct Constraints<'a> {
     /// Vertices on a texture seam (empty when there is none): a boundary edge between two
     /// is constrained by `SEAM_WEIGHT`, any other by `CONSTRAINT_WEIGHT`.
     pub seam: &'a [bool],
+    /// How many triangles the result is expected to have (`None`: no count target): flat
+    /// folds much smaller than one of them are not held (`FLAT_FOLD_MIN_EDGE`).
+    pub result_triangles: Option<usize>,
 }
 
 impl Constraints<'_> {
@@ -80,9 +99,16 @@ pub(super) fn kinds_and_quadrics(
     } else {
         FoldScale(1.0)
     };
+    let folds = Folds {
+        scale: folds,
+        flat: FlatFolds {
+            min_length2: flat_fold_min_length2(&planes, constraints),
+        },
+    };
     let (kinds, mut quadrics) =
         ring_kinds_and_quadrics(conn, positions, &planes, constraints, folds);
     constrain_outlines(conn, positions, &planes, &kinds, &mut quadrics, constraints);
+    constrain_complex_flat_folds(conn, positions, &planes, &kinds, &mut quadrics, folds.flat);
     (kinds, quadrics)
 }
 
@@ -107,7 +133,7 @@ fn ring_kinds_and_quadrics(
     positions: &[Vec3],
     planes: &[FacePlane],
     constraints: Constraints<'_>,
-    folds: FoldScale,
+    folds: Folds,
 ) -> (Vec<Kind>, Vec<Quadric>) {
     (0..positions.len() as u32)
         .into_par_iter()
@@ -225,6 +251,49 @@ fn complex_quadric(conn: &Connectivity, planes: &[FacePlane], v: u32) -> Option<
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct FoldScale(f64);
 
+/// How a vertex's folds are weighed: every fold scaled, flat folds held.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Folds {
+    scale: FoldScale,
+    flat: FlatFolds,
+}
+
+impl Folds {
+    /// [`FoldScale::feature_cos`] of the fold along edge `a`–`b`: a flat fold held keeps its
+    /// full angle, a feature however finely the mesh is sampled.
+    fn feature_cos(self, cos: f64, (a, b): (DVec3, DVec3), cos_feature: f64) -> Option<f64> {
+        let scale = if self.flat.holds(cos, a, b) {
+            FoldScale(1.0)
+        } else {
+            self.scale
+        };
+        scale.feature_cos(cos, cos_feature)
+    }
+}
+
+/// Which flat folds are held: those whose edge is at least this long, squared.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct FlatFolds {
+    min_length2: f64,
+}
+
+impl FlatFolds {
+    /// Whether the edge `a`–`b` between triangles whose normals' cosine is `cos` is a flat
+    /// fold to hold.
+    fn holds(self, cos: f64, a: DVec3, b: DVec3) -> bool {
+        cos < COS_FLAT_FOLD && a.distance_squared(b) >= self.min_length2
+    }
+}
+
+/// The shortest flat fold held, squared: `FLAT_FOLD_MIN_EDGE² a` with `a` the model's area
+/// over the result's triangles; every one without a count target.
+fn flat_fold_min_length2(planes: &[FacePlane], constraints: Constraints<'_>) -> f64 {
+    constraints.result_triangles.map_or(0.0, |kept| {
+        let area: f64 = planes.iter().map(|p| p.area).sum();
+        FLAT_FOLD_MIN_EDGE * FLAT_FOLD_MIN_EDGE * area / kept.max(1) as f64
+    })
+}
+
 impl FoldScale {
     /// The scale for the mesh, from the folds of every n-th vertex's ring (a complex
     /// vertex's fan has no order, so it is passed over).
@@ -336,6 +405,47 @@ fn constrain_outlines(
     }
 }
 
+/// The flat folds at complex vertices, which their rings cannot see: an edge of exactly two
+/// triangles folded flat onto each other (a fin's or a doubled flake's side) gets a
+/// constraint plane from each triangle, half of `FLAT_FOLD_WEIGHT` each, so the fin is not
+/// folded away for nothing (docs/design.md#qem-flat-folds).
+fn constrain_complex_flat_folds(
+    conn: &Connectivity,
+    positions: &[Vec3],
+    planes: &[FacePlane],
+    kinds: &[Kind],
+    quadrics: &mut [Quadric],
+    flat: FlatFolds,
+) {
+    let at = |w: u32| positions[w as usize].as_dvec3();
+    let complex = (0..positions.len() as u32).filter(|&c| kinds[c as usize] == Kind::Complex);
+    for c in complex {
+        for &t in conn.incident(c) {
+            let Some(n) = planes[t as usize].normal() else {
+                continue;
+            };
+            let (_, next, prev) = corner_of(conn.triangle(t), c);
+            for x in [next, prev] {
+                let mut others =
+                    (conn.incident(c).iter()).filter(|&&u| u != t && conn.triangle(u).contains(&x));
+                let (Some(&o), None) = (others.next(), others.next()) else {
+                    continue;
+                };
+                let n2 = planes[o as usize].normal().unwrap_or(DVec3::ZERO);
+                let (pc, px) = (at(c), at(x));
+                if !flat.holds(n.dot(n2), pc, px) {
+                    continue;
+                }
+                let edge = px - pc;
+                let side = edge.cross(n).normalize_or_zero();
+                let weight = 0.5 * FLAT_FOLD_WEIGHT * planes[t as usize].scale;
+                let plane = Quadric::plane(side, -side.dot(pc), weight * edge.length_squared());
+                quadrics[c as usize].add(&plane);
+            }
+        }
+    }
+}
+
 /// How many triangles at `a` have the edge `a`–`b` (a complex or boundary vertex's fan is
 /// at most `MAX_VALENCE` long).
 fn edge_triangles(conn: &Connectivity, a: u32, b: u32) -> usize {
@@ -364,7 +474,7 @@ fn ring_quadric(
     ring: &Ring,
     kind: Kind,
     constraints: Constraints<'_>,
-    folds: FoldScale,
+    folds: Folds,
 ) -> Quadric {
     let at = |w: u32| positions[w as usize].as_dvec3();
     // Ring triangle `i`'s normal, when it has a plane.
@@ -421,7 +531,8 @@ fn ring_quadric(
                     continue;
                 };
                 let n2 = normal(o).unwrap_or(DVec3::ZERO);
-                if let Some(cos) = folds.feature_cos(n.dot(n2), constraints.cos_feature) {
+                let cos = n.dot(n2);
+                if let Some(cos) = folds.feature_cos(cos, (at(v), at(x)), constraints.cos_feature) {
                     let weight = FEATURE_WEIGHT * (1.0 - cos).powi(6);
                     constrain(run(i), n, weight);
                     constrain(run(i), n2, weight);
@@ -451,6 +562,7 @@ mod tests {
                 cos_feature: 60f64.to_radians().cos(),
                 scale_folds,
                 seam: &[],
+                result_triangles: None,
             },
         )
     }
