@@ -135,6 +135,21 @@ pub(super) struct Part<'a> {
     pub scratch: CollapseLists,
 }
 
+/// Which end of an edge goes and how the kept one may move ([`Part::plan`]'s first step).
+#[derive(Debug, Clone, Copy)]
+struct CollapseEnds {
+    remove: u32,
+    keep: u32,
+    /// The kept end moves to the optimum (else it stays put).
+    free: bool,
+    /// The kept end moves along its crease only.
+    on_crease: bool,
+    /// On a texture seam, the other side's edge (its removed end, its kept end).
+    twin: Option<[u32; 2]>,
+    /// Both ends are interior.
+    interior: bool,
+}
+
 impl Part<'_> {
     /// `v`'s index in this part's slices, when it owns `v`.
     #[inline]
@@ -341,19 +356,10 @@ impl Part<'_> {
     /// | complex  | anchored | any       | none: neither may go (a complex end may not move onto a seam) |
     #[inline(always)]
     pub fn plan(&self, a: u32, b: u32) -> Option<Plan> {
-        let (ka, kb) = (self.kind(a), self.kind(b));
-        let (remove, keep, free, along_boundary) = self.roles(a, b, ka, kb)?;
-        let (remove, keep, twin) = if self.twins.is_empty() {
-            (remove, keep, None)
-        } else {
-            self.seam_sides(remove, keep, free, along_boundary)?
-        };
-        let swappable = ka == Kind::Interior && kb == Kind::Interior;
-        let (remove, keep, free, on_crease) = if self.features.is_empty() {
-            (remove, keep, free, false)
-        } else {
-            self.feature_rule(remove, keep, free, swappable, twin.is_some())?
-        };
+        let ends = self.collapse_ends(a, b)?;
+        let CollapseEnds {
+            remove, keep, twin, ..
+        } = ends;
         let mut q = self.quadrics[self.at(a)].sum(&self.quadrics[self.at(b)]);
         if let Some([r2, k2]) = twin {
             q.add(&self.quadrics[self.at(r2)]);
@@ -373,22 +379,16 @@ impl Part<'_> {
                 placed.add(&other.at_best_coordinates(TEXTURE_WEIGHT));
             }
         }
-        // Colours price the collapse but do not move the point: pulled by a colour field, a
-        // coarse sphere's vertex left its surface and turned a triangle over.
-        let colour = self.colour_quadrics.as_deref().map(|c| {
-            let side = |r: u32, k: u32| c[self.at(r)].sum(&c[self.at(k)]);
-            (side(remove, keep), twin.map(|[r2, k2]| side(r2, k2)))
-        });
         let lt = if self.lt {
-            Some(self.lt_plan([remove, keep], twin, free, on_crease)?)
+            Some(self.lt_plan([remove, keep], twin, ends.free, ends.on_crease)?)
         } else {
             None
         };
         let position = if let Some(lt) = &lt {
             lt.position
-        } else if on_crease {
+        } else if ends.on_crease {
             along_crease(&placed, pr, pk)
-        } else if free {
+        } else if ends.free {
             self.place(&placed, pr, pk)
         } else {
             pk
@@ -403,7 +403,7 @@ impl Part<'_> {
             // The texture's error at the best coordinates (rounding aside, never below the
             // geometric error alone).
             cost = cost.max(placed.eval(position));
-            if ka == Kind::Interior && kb == Kind::Interior {
+            if ends.interior {
                 let best = DVec2::from(side.best_coordinates(position)) / self.texture_scale;
                 texcoords = Some(best.as_vec2().to_array());
             } else {
@@ -411,12 +411,7 @@ impl Part<'_> {
                 self.add_outline_texture_cost(&mut cost, position, ends, side, other.as_ref());
             }
         }
-        if let Some((side, other)) = &colour {
-            cost += COLOUR_WEIGHT * self.colour_error(side, [remove, keep], position);
-            if let (Some(other), Some(ends)) = (other, twin) {
-                cost += COLOUR_WEIGHT * self.colour_error(other, ends, position);
-            }
-        }
+        cost += self.colour_cost([remove, keep], twin, position);
         cost += self.attribute_cost([remove, keep], twin, q.area, (pk - pr).length_squared());
         if let Some(lt) = &lt {
             // The attributes' terms are area × length²: the edge's length² more makes them
@@ -435,6 +430,50 @@ impl Part<'_> {
             texcoords,
             junction: None,
         })
+    }
+
+    /// The first step of [`Self::plan`]: which end goes, whether the kept one may move
+    /// (along a crease only, or not at all), and a seam's other side, from the ends' kinds,
+    /// the seams and the features; `None` when they forbid the collapse.
+    #[inline(always)]
+    fn collapse_ends(&self, a: u32, b: u32) -> Option<CollapseEnds> {
+        let (ka, kb) = (self.kind(a), self.kind(b));
+        let (remove, keep, free, along_boundary) = self.roles(a, b, ka, kb)?;
+        let (remove, keep, twin) = if self.twins.is_empty() {
+            (remove, keep, None)
+        } else {
+            self.seam_sides(remove, keep, free, along_boundary)?
+        };
+        let interior = ka == Kind::Interior && kb == Kind::Interior;
+        let (remove, keep, free, on_crease) = if self.features.is_empty() {
+            (remove, keep, free, false)
+        } else {
+            self.feature_rule(remove, keep, free, interior, twin.is_some())?
+        };
+        Some(CollapseEnds {
+            remove,
+            keep,
+            free,
+            on_crease,
+            twin,
+            interior,
+        })
+    }
+
+    /// Colours price a collapse but do not move the point: pulled by a colour field, a
+    /// coarse sphere's vertex left its surface and turned a triangle over. 0 without
+    /// per-vertex colours.
+    #[inline(always)]
+    fn colour_cost(&self, [remove, keep]: [u32; 2], twin: Option<[u32; 2]>, at: DVec3) -> f64 {
+        let Some(c) = self.colour_quadrics.as_deref() else {
+            return 0.0;
+        };
+        let side = |r: u32, k: u32| c[self.at(r)].sum(&c[self.at(k)]);
+        let mut cost = COLOUR_WEIGHT * self.colour_error(&side(remove, keep), [remove, keep], at);
+        if let Some([r2, k2]) = twin {
+            cost += COLOUR_WEIGHT * self.colour_error(&side(r2, k2), [r2, k2], at);
+        }
+        cost
     }
 
     /// Which end of `a`–`b` (of kinds `ka`, `kb`) goes into which, whether the kept end may
