@@ -565,7 +565,7 @@ static OPTIONS: &[OptionSpec] = &[
         help: &[
             "decimate in N spatial tiles (auto: sized by --memory), as many",
             "at once as --memory allows, borders locked, then weld them and",
-            "decimate the seams again; PLY, STL or OBJ, -p or --keep-triangles",
+            "decimate the seams again; PLY, STL, OBJ or OFF, -p or --keep-triangles",
         ],
         section: Section::Tiles,
         apply: Apply::Value(tiles),

@@ -1,6 +1,7 @@
 //! Text encodings through tiling's streamed readers (`--tiles`, which never hold the whole
 //! file) and through the ordinary readers: OBJ, PLY (ASCII, and binary with a CR-only
-//! header) and STL (ASCII, and binary with a header that looks like text) with a UTF-8
+//! header), STL (ASCII, and binary with a header that looks like text) and OFF (of
+//! triangles, of quads) with a UTF-8
 //! byte-order mark, CR-only or CRLF line ends, or in UTF-16 or UTF-32. Both runs must give
 //! the same: the same triangles at `-p 0` (read back from the PLY outputs in f64 and
 //! compared as sets, so a binary body's 0x0D bytes taken for line ends would show), or the
@@ -33,6 +34,32 @@ fn grid_obj(bad: Option<u32>) -> String {
     }
     if let Some(bad) = bad {
         s += &format!("f 1 2 {bad}\n");
+    }
+    s
+}
+
+/// The grid as OFF text: its squares as quads when `quads`, and a last face naming vertex
+/// `bad` when given. (A coloured OFF's whole read keeps its colours, which tiles do not:
+/// `io::off`'s own tests stream one.)
+fn grid_off(quads: bool, bad: Option<u32>) -> String {
+    let (points, triangles) = grid();
+    let faces = triangles.len() / if quads { 2 } else { 1 } + usize::from(bad.is_some());
+    let mut s = format!("OFF\n# a grid\n{} {faces} 0\n", points.len());
+    points
+        .iter()
+        .for_each(|p| s += &format!("{} {} {}\n", p[0], p[1], p[2]));
+    if quads {
+        for t in triangles.chunks(2) {
+            let [a, b, c] = t[0];
+            s += &format!("4 {a} {b} {c} {}\n", t[1][2]);
+        }
+    } else {
+        for t in &triangles {
+            s += &format!("3 {} {} {}\n", t[0], t[1], t[2]);
+        }
+    }
+    if let Some(bad) = bad {
+        s += &format!("3 0 1 {bad}\n");
     }
     s
 }
@@ -250,6 +277,7 @@ fn tiled_and_whole_reads_agree_on_marks_line_ends_and_wide_text() {
     let obj = grid_obj(None);
     let ply = grid_ply_ascii();
     let stl = grid_stl_ascii();
+    let off = grid_off(false, None);
     let bad = cr(&grid_obj(Some(99)));
     // The bad face is the last line: 1 comment, 49 vertices, 72 faces, then it.
     let cases: Vec<(&str, Vec<u8>, Expect)> = vec![
@@ -295,6 +323,22 @@ fn tiled_and_whole_reads_agree_on_marks_line_ends_and_wide_text() {
             "utf16.stl",
             utf16(&stl, false),
             Refused("utf16.stl:1: the file is UTF-16 text"),
+        ),
+        ("plain.off", off.clone().into(), Triangles(72)),
+        ("cr.off", cr(&off).into(), Triangles(72)),
+        ("crlf.off", off.replace('\n', "\r\n").into(), Triangles(72)),
+        ("bom.off", with_bom(&off), Triangles(72)),
+        ("quads.off", grid_off(true, None).into(), Triangles(72)),
+        // 2 header lines, 1 comment, 49 vertices, 72 faces, then the bad one.
+        (
+            "cr_range.off",
+            cr(&grid_off(false, Some(99))).into(),
+            Refused("cr_range.off:125: face 72: vertex index '99' is not in 0..49"),
+        ),
+        (
+            "utf16.off",
+            utf16(&off, false),
+            Refused("utf16.off:1: the file is UTF-16 text"),
         ),
     ];
     let dir = tempfile::tempdir().unwrap();

@@ -23,7 +23,7 @@ fn missing_and_unsupported_inputs_name_the_file() {
     std::fs::write(&wrl, "#VRML V2.0 utf8\n").unwrap();
     let o = decimate(&[s(&wrl), "nogui", "--tiles", "auto", "-p", "90"], &[]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("m.wrl") && stderr(&o).contains("PLY, STL and OBJ"));
+    assert!(stderr(&o).contains("m.wrl") && stderr(&o).contains("PLY, STL, OBJ and OFF"));
 
     let bad = tmp.path().join("bad.ply");
     std::fs::write(

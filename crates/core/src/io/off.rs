@@ -20,10 +20,13 @@ use std::path::Path;
 use glam::Mat4;
 
 use super::shape_to_model::{build, Bind, ShapeSpec, TexCoords};
-use super::text::{coordinate, number, relative_point, shown, words, Lines};
+use super::text::{coordinate, number, relative_point, shown, words, Lines, StreamedLines};
 use super::text::{parse_int, PResult, ParseError};
 use super::WriteError;
 use crate::mesh::{Attribute, Scene};
+
+/// A line with something on it (comments cut off) and its number.
+type Record = (usize, Vec<u8>);
 
 /// True when the first word of the file (after comments) is an OFF header keyword.
 pub(crate) fn looks_like_off(bytes: &[u8]) -> bool {
@@ -120,9 +123,9 @@ fn count(w: Option<&[u8]>, line: usize, what: &str, file_len: usize) -> PResult<
 
 /// What an OFF header says: the kind of vertex lines (its keyword, for messages) and the
 /// counts, with the line they are on.
-struct Header<'a> {
+struct Header {
     kind: Kind,
-    keyword: &'a [u8],
+    keyword: Vec<u8>,
     counts_line: usize,
     vertices: usize,
     faces: usize,
@@ -155,7 +158,8 @@ struct Faces {
 pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<Warning>)> {
     let mut warnings = Vec::new();
     let mut lines = Lines::new(bytes, false);
-    let header = read_header(&mut lines, bytes.len())?;
+    let mut next = || Ok(next_record(&mut lines).map(|(l, t)| (l, t.to_vec())));
+    let header = read_header(&mut next, bytes.len())?;
     let mut last = header.counts_line;
     let vertices = read_vertices(&mut lines, &header, &mut last)?;
     let faces = read_faces(&mut lines, &header, &mut last)?;
@@ -172,11 +176,13 @@ pub fn read_off(bytes: &[u8]) -> PResult<(Scene, Vec<Warning>)> {
 }
 
 /// Reads the header: the `[ST][C][N]OFF` keyword and the vertex and face counts (on its line
-/// or the next).
-fn read_header<'a>(lines: &mut Lines<'a>, file_len: usize) -> PResult<Header<'a>> {
-    let (hline, htext) =
-        next_record(lines).ok_or_else(|| ParseError::new(1, "the OFF file is empty"))?;
-    let mut hw = words(htext);
+/// or the next), from the records `next` hands out (lines with something on them).
+fn read_header(
+    next: &mut impl FnMut() -> PResult<Option<Record>>,
+    file_len: usize,
+) -> PResult<Header> {
+    let (hline, htext) = next()?.ok_or_else(|| ParseError::new(1, "the OFF file is empty"))?;
+    let mut hw = words(&htext);
     let first = hw.next().unwrap_or_default();
     let kind = header_kind(first).ok_or_else(|| {
         ParseError::new(
@@ -197,11 +203,12 @@ fn read_header<'a>(lines: &mut Lines<'a>, file_len: usize) -> PResult<Header<'a>
     {
         return Err(ParseError::new(hline, "binary OFF is not supported"));
     }
+    let counts_record;
     let (counts_line, counts): (usize, Vec<&[u8]>) = if rest.is_empty() {
-        let (l, t) = next_record(lines).ok_or_else(|| {
+        counts_record = next()?.ok_or_else(|| {
             ParseError::new(hline, "unexpected end of file: expected the counts line")
         })?;
-        (l, words(t).collect())
+        (counts_record.0, words(&counts_record.1).collect())
     } else {
         (hline, rest)
     };
@@ -215,7 +222,7 @@ fn read_header<'a>(lines: &mut Lines<'a>, file_len: usize) -> PResult<Header<'a>
     }
     Ok(Header {
         kind,
-        keyword: first,
+        keyword: first.to_vec(),
         counts_line,
         vertices: nv,
         faces: nf,
@@ -223,11 +230,7 @@ fn read_header<'a>(lines: &mut Lines<'a>, file_len: usize) -> PResult<Header<'a>
 }
 
 /// Reads the header's count of vertex lines; `last` follows the line read last.
-fn read_vertices(
-    lines: &mut Lines<'_>,
-    header: &Header<'_>,
-    last: &mut usize,
-) -> PResult<Vertices> {
+fn read_vertices(lines: &mut Lines<'_>, header: &Header, last: &mut usize) -> PResult<Vertices> {
     let nv = header.vertices;
     let mut out = Vertices {
         coords: Vec::with_capacity(nv * 3),
@@ -254,7 +257,7 @@ fn vertex_line(
     ws: &[&[u8]],
     line: usize,
     i: usize,
-    header: &Header<'_>,
+    header: &Header,
     out: &mut Vertices,
 ) -> PResult<()> {
     let kind = header.kind;
@@ -278,7 +281,7 @@ fn vertex_line(
             format!(
                 "expected texture coordinates 's t' at the end of an {} vertex line, \
                  found {} values",
-                shown(header.keyword),
+                shown(&header.keyword),
                 ws.len()
             ),
         ));
@@ -325,7 +328,7 @@ fn vertex_line(
 }
 
 /// Reads the header's count of face lines; `last` follows the line read last.
-fn read_faces(lines: &mut Lines<'_>, header: &Header<'_>, last: &mut usize) -> PResult<Faces> {
+fn read_faces(lines: &mut Lines<'_>, header: &Header, last: &mut usize) -> PResult<Faces> {
     let nf = header.faces;
     let mut out = Faces {
         corners: Vec::with_capacity(nf * 3),
@@ -361,6 +364,29 @@ fn face_line(
     nv: usize,
     out: &mut Faces,
 ) -> PResult<()> {
+    match face_corners(ws, text, (line, f), nv, &mut out.corners)? {
+        Some(rgb) => {
+            if out.rgb.len() < f * 3 {
+                out.rgb.resize(f * 3, 0.8);
+            }
+            out.rgb.extend(rgb);
+        }
+        None if !out.rgb.is_empty() => out.rgb.extend([0.8; 3]),
+        None => {}
+    }
+    out.ends.push(out.corners.len() as u32);
+    Ok(())
+}
+
+/// Face `f`'s corner indices, checked against the `nv` vertices and pushed on `corners`, and
+/// its colour when the line gives one (a colour-map index is read and dropped).
+fn face_corners(
+    ws: &[&[u8]],
+    text: &[u8],
+    (line, f): (usize, usize),
+    nv: usize,
+    corners: &mut Vec<u32>,
+) -> PResult<Option<[f32; 3]>> {
     let n = ws
         .first()
         .and_then(|w| parse_int(w))
@@ -380,30 +406,81 @@ fn face_line(
                     format!("face {f}: vertex index '{}' is not in 0..{nv}", shown(w)),
                 )
             })?;
-        out.corners.push(i as u32);
+        corners.push(i as u32);
     }
-    out.ends.push(out.corners.len() as u32);
     let extra = &ws[n + 1..];
     match extra.len() {
-        0 | 1 => {
-            if let Some(w) = extra.first() {
-                number(Some(w), line, "a colour-map index")?;
-            }
-            if !out.rgb.is_empty() {
-                out.rgb.extend([0.8; 3]);
-            }
+        0 => Ok(None),
+        1 => number(extra.first().copied(), line, "a colour-map index").map(|_| None),
+        3 | 4 => color(extra, line).map(Some),
+        k => Err(ParseError::new(
+            line,
+            format!("face {f}: {k} values after its {n} indices (expected a colour of 3 or 4)"),
+        )),
+    }
+}
+
+/// Tiling's read of an OFF file too big to hold (`io::stream`): each face's triangles (a
+/// polygon fanned from its first corner) handed to `triangle` as its line is read, positions
+/// relative to `recentre`'s origin. Holds what the vertex lines give (positions, and
+/// colours or texture coordinates where they have them), never the faces.
+pub(super) fn stream_off(
+    input: impl std::io::BufRead,
+    file_len: usize,
+    recentre: &mut super::origin::Recentre,
+    triangle: &mut dyn FnMut([[f32; 3]; 3]),
+) -> PResult<()> {
+    let mut lines = StreamedLines::new(input, false);
+    let mut next = || loop {
+        match lines.next().transpose()? {
+            Some((_, t)) if words(&t).next().is_none() => {}
+            record => return Ok(record),
         }
-        3 | 4 => {
-            if out.rgb.len() < f * 3 {
-                out.rgb.resize(f * 3, 0.8);
+    };
+    let header = read_header(&mut next, file_len)?;
+    let mut last = header.counts_line;
+    let mut vertices = Vertices {
+        recentre: *recentre,
+        ..Vertices::default()
+    };
+    for i in 0..header.vertices {
+        let (line, text) = next()?.ok_or_else(|| {
+            let nv = header.vertices;
+            ParseError::new(
+                last,
+                format!("unexpected end of file after {i} of {nv} vertices"),
+            )
+        })?;
+        last = line;
+        let ws: Vec<&[u8]> = words(&text).collect();
+        vertex_line(&ws, line, i, &header, &mut vertices)?;
+    }
+    *recentre = vertices.recentre;
+    let at = |v: u32| {
+        let i = 3 * v as usize;
+        [
+            vertices.coords[i],
+            vertices.coords[i + 1],
+            vertices.coords[i + 2],
+        ]
+    };
+    let mut corners = Vec::new();
+    for f in 0..header.faces {
+        let (line, text) = next()?.ok_or_else(|| {
+            let nf = header.faces;
+            ParseError::new(
+                last,
+                format!("unexpected end of file after {f} of {nf} faces"),
+            )
+        })?;
+        last = line;
+        let ws: Vec<&[u8]> = words(&text).collect();
+        corners.clear();
+        face_corners(&ws, &text, (line, f), header.vertices, &mut corners)?;
+        if let [first, rest @ ..] = corners.as_slice() {
+            for pair in rest.windows(2) {
+                triangle([at(*first), at(pair[0]), at(pair[1])]);
             }
-            out.rgb.extend(color(extra, line)?);
-        }
-        k => {
-            return Err(ParseError::new(
-                line,
-                format!("face {f}: {k} values after its {n} indices (expected a colour of 3 or 4)"),
-            ))
         }
     }
     Ok(())
@@ -411,7 +488,7 @@ fn face_line(
 
 /// The model built from the vertex and face lines: per-vertex colours win over per-face ones.
 fn finish(
-    header: &Header<'_>,
+    header: &Header,
     vertices: Vertices,
     faces: Faces,
     mut warnings: Vec<Warning>,
@@ -539,4 +616,77 @@ pub fn write_off_to(w: &mut impl Write, scene: &Scene) -> std::io::Result<()> {
         base += m.positions.len() as u64;
     }
     w.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every triangle's corners, each listed from its smallest, the list sorted.
+    fn sorted(mut ts: Vec<[[f32; 3]; 3]>) -> Vec<[[u32; 3]; 3]> {
+        let key = |t: [[f32; 3]; 3]| t.map(|p| p.map(f32::to_bits));
+        let mut out: Vec<[[u32; 3]; 3]> = ts
+            .drain(..)
+            .map(|t| {
+                let k = key(t);
+                let first = (0..3).min_by_key(|&i| k[i]).unwrap_or(0);
+                [k[first], k[(first + 1) % 3], k[(first + 2) % 3]]
+            })
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    // A streamed read (tiling's) gives the triangles the whole read gives, with normals,
+    // colours and texture coordinates on the vertex lines and colours on the faces to step
+    // over, a quad fanned, comments and blank lines between records.
+    #[test]
+    fn a_streamed_read_gives_the_whole_reads_triangles() {
+        let text = "STCNOFF # all the extras\n\n5 2 0\n\
+                    0 0 0  0 0 1  1 0 0 1  0 0\n\
+                    1 0 0  0 0 1  0 1 0 1  1 0\n\
+                    1 1 0.5  0 0 1  0 0 1 1  1 1\n\
+                    # a comment between vertices\n\
+                    0 1 0  0 0 1  1 1 1 1  0 1\n\
+                    2 2 1  0 0 1  0.5 0.5 0.5 1  0.5 0.5\n\
+                    4 0 1 2 3  255 0 0\n\
+                    3 1 4 2 0.2 0.4 0.6 1\n";
+        let (scene, _) = read_off(text.as_bytes()).expect("read whole");
+        let m = &scene.models[0];
+        let whole: Vec<[[f32; 3]; 3]> = (m.triangles.iter())
+            .map(|t| t.map(|v| m.positions[v as usize].to_array()))
+            .collect();
+        let mut streamed = Vec::new();
+        let mut recentre = super::super::origin::Recentre::default();
+        stream_off(text.as_bytes(), text.len(), &mut recentre, &mut |t| {
+            streamed.push(t)
+        })
+        .expect("streamed");
+        assert_eq!(streamed.len(), 3);
+        assert_eq!(sorted(streamed), sorted(whole));
+    }
+
+    // A streamed read refuses what the whole read refuses, on the same line.
+    #[test]
+    fn a_streamed_read_refuses_a_bad_index_and_a_short_file_on_their_lines() {
+        let mut recentre = super::super::origin::Recentre::default();
+        let mut stream = |text: &str| {
+            stream_off(text.as_bytes(), text.len(), &mut recentre, &mut |_| {})
+                .map_err(|e| (e.line, e.message))
+        };
+        let bad = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
+        assert_eq!(
+            stream(bad),
+            Err((6, "face 0: vertex index '7' is not in 0..3".to_string()))
+        );
+        let short = "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        assert_eq!(
+            stream(short),
+            Err((6, "unexpected end of file after 1 of 2 faces".to_string()))
+        );
+        assert_eq!(
+            read_off(bad.as_bytes()).map(|_| ()).map_err(|e| e.line),
+            Err(6)
+        );
+    }
 }

@@ -1,10 +1,12 @@
 //! Tiling's reads of meshes too big to hold: PLY (ASCII, binary little and big endian), STL
-//! (binary and ASCII) and OBJ hand each triangle's three positions to a callback as they are
-//! read, through a buffer, never building a `Scene`. The parsing is the ordinary readers'
-//! (`ply::stream_ply`, `stl::stream_stl`, `obj::stream_obj`), fed by `source::Streamed`.
+//! (binary and ASCII), OBJ and OFF hand each triangle's three positions to a callback as they
+//! are read, through a buffer, never building a `Scene`. The parsing is the ordinary readers'
+//! (`ply::stream_ply`, `stl::stream_stl`, `obj::stream_obj`, `off::stream_off`), fed by
+//! `source::Streamed`.
 //!
-//! Memory: STL holds nothing; PLY and OBJ hold the vertex positions only (12 bytes a vertex,
-//! about 6 bytes a triangle on a closed mesh), since their faces index them. Polygons are
+//! Memory: STL holds nothing; PLY, OBJ and OFF hold the vertex positions only (12 bytes a
+//! vertex, about 6 bytes a triangle on a closed mesh), since their faces index them (OFF also
+//! the colours and texture coordinates its vertex lines carry). Polygons are
 //! fanned into triangles from their first corner. Positions are read as `f32` relative to
 //! the origin a `Recentre` picks (doubles are rounded once), so a position is the same bits
 //! wherever it is read again, and far files (see `io::origin`) keep their precision.
@@ -24,7 +26,7 @@ pub type Corners = [[f32; 3]; 3];
 /// Buffer of the OBJ line reader: large enough that reads are a small part of the time.
 const BUFFER: usize = 1 << 20;
 
-/// Calls `triangle` with every triangle of the PLY, STL or OBJ file at `path` (the
+/// Calls `triangle` with every triangle of the PLY, STL, OBJ or OFF file at `path` (the
 /// extension says which; PLY also by its first bytes), in file order, its positions
 /// relative to the origin `recentre` picks (or has picked). Text is taken as a file read
 /// whole takes it (`text_encoding`): a UTF-8 byte-order mark dropped, UTF-16 and UTF-32
@@ -56,11 +58,16 @@ pub fn for_each_triangle(
         super::Format::Ply
     } else {
         match by_name {
-            Some(f @ (super::Format::Ply | super::Format::Stl | super::Format::Obj)) => f,
+            Some(
+                f @ (super::Format::Ply
+                | super::Format::Stl
+                | super::Format::Obj
+                | super::Format::Off),
+            ) => f,
             _ => {
                 return Err(ReadError::Unsupported {
                     file: path.to_path_buf(),
-                    message: "tiling streams PLY, STL and OBJ files only; convert it first \
+                    message: "tiling streams PLY, STL, OBJ and OFF files only; convert it first \
                               (decimate FILE nogui -p 0 -o FILE.ply)"
                         .into(),
                 })
@@ -78,6 +85,10 @@ pub fn for_each_triangle(
         }
         super::Format::Stl => super::stl::stream_stl(Streamed::new(r), len, recentre, triangle)
             .map_err(|e| super::stl_error(path, e)),
+        super::Format::Off => {
+            let input = BufReader::with_capacity(BUFFER, r);
+            super::off::stream_off(input, len_usize, recentre, triangle).map_err(syntax)
+        }
         _ => super::obj::stream_obj(BufReader::with_capacity(BUFFER, r), recentre, triangle)
             .map_err(syntax),
     }
