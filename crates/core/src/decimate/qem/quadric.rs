@@ -1,9 +1,10 @@
 //! The Garland–Heckbert error quadric: the summed squared distance to a set of weighted
 //! planes, `Q(p) = pᵀAp + 2b·p + c`, with the triangle area behind it.
 //!
-//! Kept in f64 in model coordinates, 88 bytes a vertex: in f32, `c` and `2b·p` cancel down
-//! to `weight × error²` and lose it; f32 about each vertex's own position works but was no
-//! faster (docs/design.md#quadric-precision).
+//! Arithmetic is in f64 in model coordinates ([`Quadric`]). Each vertex's quadric is stored
+//! in f32 about the vertex's own position ([`LocalQuadric`], 44 bytes): there its terms are
+//! of the order of the error itself, where in model coordinates `c` and `2b·p` would cancel
+//! down to `weight × error²` and lose it in f32 (docs/design.md#quadric-precision).
 
 use glam::{DMat2, DVec2, DVec3};
 
@@ -36,12 +37,6 @@ impl Quadric {
         }
     }
 
-    /// Asks the CPU to start loading every cache line the quadric spans (a hint).
-    #[inline]
-    pub fn prefetch(&self) {
-        crate::mesh::prefetch_all(self);
-    }
-
     #[inline]
     pub fn add(&mut self, o: &Self) {
         for i in 0..6 {
@@ -61,15 +56,35 @@ impl Quadric {
         s
     }
 
-    /// `Q(p)`, never negative.
+    /// `A·p`.
     #[inline]
-    pub fn eval(&self, p: DVec3) -> f64 {
+    fn a_times(&self, p: DVec3) -> DVec3 {
         let [a00, a01, a02, a11, a12, a22] = self.a;
-        let ap = DVec3::new(
+        DVec3::new(
             a00 * p.x + a01 * p.y + a02 * p.z,
             a01 * p.x + a11 * p.y + a12 * p.z,
             a02 * p.x + a12 * p.y + a22 * p.z,
-        );
+        )
+    }
+
+    /// The same quadric about `s`: `Q(s + d)` as a quadric in `d` (`A` stays, `b` becomes
+    /// `b + A·s`, `c` becomes `Q(s)`).
+    #[inline]
+    fn shifted(&self, s: DVec3) -> Self {
+        let a_s = self.a_times(s);
+        let b = DVec3::from_array(self.b);
+        Self {
+            a: self.a,
+            b: (b + a_s).to_array(),
+            c: s.dot(a_s) + 2.0 * b.dot(s) + self.c,
+            area: self.area,
+        }
+    }
+
+    /// `Q(p)`, never negative.
+    #[inline]
+    pub fn eval(&self, p: DVec3) -> f64 {
+        let ap = self.a_times(p);
         let b = DVec3::from_array(self.b);
         (p.dot(ap) + 2.0 * b.dot(p) + self.c).max(0.0)
     }
@@ -100,6 +115,51 @@ impl Quadric {
         let z = (i02 * b0 + i12 * b1 + i22 * b2) * inv;
         let p = DVec3::new(x, y, z);
         p.is_finite().then_some(p)
+    }
+}
+
+/// A vertex's quadric as stored: `Q(p + d)` as a quadric in `d`, about the vertex's own
+/// position `p`, in f32 (10 coefficients and the area, 44 bytes). About `p` the
+/// coefficients are of the order of the error near the vertex, so f32 keeps what model
+/// coordinates would cancel away; adding and evaluating go through [`Self::at`] in f64.
+/// Whoever moves a vertex stores its quadric again about the new position.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct LocalQuadric {
+    a: [f32; 6],
+    b: [f32; 3],
+    c: f32,
+    area: f32,
+}
+
+impl LocalQuadric {
+    /// `q` (model coordinates) stored about `p`.
+    #[inline]
+    pub fn new(q: &Quadric, p: DVec3) -> Self {
+        let l = q.shifted(p);
+        Self {
+            a: l.a.map(|x| x as f32),
+            b: l.b.map(|x| x as f32),
+            c: l.c as f32,
+            area: l.area as f32,
+        }
+    }
+
+    /// The quadric in model coordinates, for its vertex at `p`.
+    #[inline]
+    pub fn at(&self, p: DVec3) -> Quadric {
+        let local = Quadric {
+            a: self.a.map(f64::from),
+            b: self.b.map(f64::from),
+            c: f64::from(self.c),
+            area: f64::from(self.area),
+        };
+        local.shifted(-p)
+    }
+
+    /// Asks the CPU to start loading every cache line the quadric spans (a hint).
+    #[inline]
+    pub fn prefetch(&self) {
+        crate::mesh::prefetch_all(self);
     }
 }
 
@@ -268,6 +328,43 @@ mod tests {
         assert!(line.minimum().is_none());
         assert_eq!(line.eval(DVec3::new(0.0, 0.0, 5.0)), 0.0);
         assert_eq!(line.eval(DVec3::new(3.0, 4.0, 0.0)), 25.0);
+    }
+
+    #[test]
+    fn a_far_vertex_keeps_its_error_in_f32() {
+        // Planes through points a millimetre around a vertex 200 m from the origin: stored
+        // about the vertex, the quadric's error near it is the f64 one to f32's precision
+        // (in model coordinates f32 would cancel it away: `c` alone is ~1e4 × weight, the
+        // error ~1e-6 × weight).
+        let p = DVec3::new(100.0, -200.0, 50.0);
+        let mut q = Quadric::default();
+        for (i, n) in [
+            DVec3::X,
+            DVec3::new(1.0, 1.0, 0.2),
+            DVec3::new(-0.3, 0.5, 1.0),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let n = n.normalize();
+            let through = p + DVec3::splat(1e-3 * (i as f64 - 1.0));
+            let mut plane = Quadric::plane(n, -n.dot(through), 2.0 + i as f64);
+            plane.area = 0.5;
+            q.add(&plane);
+        }
+        let stored = LocalQuadric::new(&q, p);
+        let back = stored.at(p);
+        assert!((back.area - 1.5).abs() < 1e-6);
+        for d in [
+            DVec3::ZERO,
+            DVec3::new(2e-3, -1e-3, 0.5e-3),
+            DVec3::splat(-3e-3),
+        ] {
+            let (x, y) = (q.eval(p + d), back.eval(p + d));
+            assert!(x > 1e-7 && (x - y).abs() < 1e-4 * x, "{x} vs {y} at {d}");
+        }
+        let (m, n) = (q.minimum(), back.minimum());
+        assert!(m.zip(n).is_some_and(|(m, n)| (m - n).length() < 1e-6));
     }
 
     #[test]
