@@ -5,14 +5,13 @@
 //! `legality`, the cost cache in `ranking`; the loop is in `collapse_passes`.
 
 use glam::{Vec3, Vec4};
-use rayon::prelude::*;
 
 use super::collapse_plan::Kind;
 use super::edge_costs::EdgeCosts;
 use super::part::{CollapseLists, Part};
 #[cfg(test)]
 use super::planes::{self, Constraints};
-use super::quadric::{LocalQuadric, Quadric};
+use super::quadric::LocalQuadric;
 use super::texture_quadrics::{colour_quadrics, texture_quadrics, ColourQuadrics, TextureQuadrics};
 use crate::decimate::closed::{ClosedView, ClosedVolumes};
 use crate::decimate::distance_bound::DistanceBound;
@@ -109,14 +108,12 @@ impl Collapser {
     pub fn connected(
         positions: Vec<Vec3>,
         conn: Connectivity,
-        (kinds, quadrics): (Vec<Kind>, Vec<Quadric>),
+        (kinds, quadrics): (Vec<Kind>, Vec<LocalQuadric>),
         colors: Option<Vec<[f32; 3]>>,
         normals: Option<Vec<[f32; 3]>>,
         cos_feature: f64,
     ) -> Self {
         let n = positions.len();
-        // Stored before the cost cache is allocated: the f64 quadrics are freed here.
-        let quadrics = local_quadrics(quadrics, &positions);
         let closed = ClosedVolumes::connected(&positions, &conn);
         let input_surface = input_surface(&positions, conn.triangles());
         let costs = EdgeCosts::new(conn.triangles());
@@ -391,16 +388,6 @@ impl Collapser {
             .map(|i| i as u32)
             .collect()
     }
-}
-
-/// `quadrics` (model coordinates) stored about their vertices' `positions`, on all cores.
-fn local_quadrics(quadrics: Vec<Quadric>, positions: &[Vec3]) -> Vec<LocalQuadric> {
-    quadrics
-        .par_iter()
-        .zip(positions)
-        .with_min_len(1 << 14)
-        .map(|(q, p)| LocalQuadric::new(q, p.as_dvec3()))
-        .collect()
 }
 
 /// Each vertex's input surface: the sum of its triangles' area vectors (normal, twice the

@@ -156,6 +156,11 @@ impl LocalQuadric {
         local.shifted(-p)
     }
 
+    /// Adds `q` (model coordinates) to the quadric of a vertex at `p`.
+    pub fn add(&mut self, q: &Quadric, p: DVec3) {
+        *self = Self::new(&self.at(p).sum(q), p);
+    }
+
     /// Asks the CPU to start loading every cache line the quadric spans (a hint).
     #[inline]
     pub fn prefetch(&self) {
