@@ -107,7 +107,9 @@ pub(super) fn kinds_and_quadrics(
     };
     let (kinds, mut quadrics) =
         ring_kinds_and_quadrics(conn, positions, &planes, constraints, folds);
-    constrain_outlines(conn, positions, &planes, &kinds, &mut quadrics, constraints);
+    let taken = constrain_outlines(conn, positions, &planes, &kinds, &mut quadrics, constraints);
+    let rings = (positions, planes.as_slice(), constraints, folds);
+    take_back(conn, rings, &mut quadrics, taken);
     constrain_complex_flat_folds(conn, positions, &planes, &kinds, &mut quadrics, folds.flat);
     (kinds, quadrics)
 }
@@ -365,6 +367,7 @@ impl FoldScale {
 /// non-manifold edge) is not constrained, and its boundary vertex takes back the plane it
 /// put there; any other boundary edge of a complex vertex gets its constraint plane, as an
 /// outline does (docs/design.md#qem-non-manifold-weights). A seam's edges keep theirs.
+/// Returns the planes taken back, by boundary vertex, for [`take_back`].
 fn constrain_outlines(
     conn: &Connectivity,
     positions: &[Vec3],
@@ -372,7 +375,8 @@ fn constrain_outlines(
     kinds: &[Kind],
     quadrics: &mut [LocalQuadric],
     constraints: Constraints<'_>,
-) {
+) -> Vec<(u32, Quadric)> {
+    let mut taken = Vec::new();
     let at = |w: u32| positions[w as usize].as_dvec3();
     let is = |v: u32, kind: Kind| kinds[v as usize] == kind;
     for c in (0..positions.len() as u32).filter(|&c| is(c, Kind::Complex)) {
@@ -401,10 +405,45 @@ fn constrain_outlines(
                 if !fin {
                     quadrics[c as usize].add(&plane(weight), pc);
                 } else if is(x, Kind::Boundary) && !seam {
-                    quadrics[x as usize].add(&plane(-weight), px);
+                    taken.push((x, plane(-weight)));
                 }
             }
         }
+    }
+    taken
+}
+
+/// Stores again each boundary vertex's quadric that `taken` takes planes back from (see
+/// [`constrain_outlines`]): its ring's quadric made again in f64, less those planes, so
+/// that a plane cancels against itself and not against the f32 rounding of the stored sum
+/// (the heavy constraint plane's rounding error would be left as a false error, enough to
+/// block a fin's zero-error collapses).
+fn take_back(
+    conn: &Connectivity,
+    (positions, planes, constraints, folds): (&[Vec3], &[FacePlane], Constraints<'_>, Folds),
+    quadrics: &mut [LocalQuadric],
+    mut taken: Vec<(u32, Quadric)>,
+) {
+    taken.sort_by_key(|&(x, _)| x);
+    let mut ring = Ring::default();
+    for group in taken.chunk_by(|a, b| a.0 == b.0) {
+        let x = group[0].0;
+        if conn.ring(x, &mut ring) != RingShape::Open {
+            continue;
+        }
+        let mut q = ring_quadric(
+            positions,
+            planes,
+            x,
+            &ring,
+            Kind::Boundary,
+            constraints,
+            folds,
+        );
+        for (_, plane) in group {
+            q.add(plane);
+        }
+        quadrics[x as usize] = LocalQuadric::new(&q, positions[x as usize].as_dvec3());
     }
 }
 

@@ -119,13 +119,17 @@ impl Quadric {
 }
 
 /// A vertex's quadric as stored: `Q(p + d)` as a quadric in `d`, about the vertex's own
-/// position `p`, in f32 (10 coefficients and the area, 44 bytes). About `p` the
-/// coefficients are of the order of the error near the vertex, so f32 keeps what model
-/// coordinates would cancel away; adding and evaluating go through [`Self::at`] in f64.
-/// Whoever moves a vertex stores its quadric again about the new position.
+/// position `p`, in f32 (10 numbers and the area, 44 bytes). About `p` the coefficients are
+/// of the order of the error near the vertex, so f32 keeps what model coordinates would
+/// cancel away; adding and evaluating go through [`Self::at`] in f64. `A` is kept as its
+/// factors `L·D·Lᵀ`: rounding those keeps a direction that costs nothing (along a flat
+/// sheet, along a border) costing nothing, where rounding `A`'s entries one by one would
+/// price it at f32's precision times the planes' weight. Whoever moves a vertex stores its
+/// quadric again about the new position.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct LocalQuadric {
-    a: [f32; 6],
+    /// `d0 d1 d2 l10 l20 l21`: `A = L·diag(d)·Lᵀ`, `L` unit lower triangular.
+    ldl: [f32; 6],
     b: [f32; 3],
     c: f32,
     area: f32,
@@ -137,7 +141,7 @@ impl LocalQuadric {
     pub fn new(q: &Quadric, p: DVec3) -> Self {
         let l = q.shifted(p);
         Self {
-            a: l.a.map(|x| x as f32),
+            ldl: factors(l.a).map(|x| x as f32),
             b: l.b.map(|x| x as f32),
             c: l.c as f32,
             area: l.area as f32,
@@ -147,8 +151,17 @@ impl LocalQuadric {
     /// The quadric in model coordinates, for its vertex at `p`.
     #[inline]
     pub fn at(&self, p: DVec3) -> Quadric {
+        let [d0, d1, d2, l10, l20, l21] = self.ldl.map(f64::from);
+        let (e10, e20) = (l10 * d0, l20 * d0);
         let local = Quadric {
-            a: self.a.map(f64::from),
+            a: [
+                d0,
+                e10,
+                e20,
+                l10 * e10 + d1,
+                l20 * e10 + l21 * d1,
+                l20 * e20 + l21 * l21 * d1 + d2,
+            ],
             b: self.b.map(f64::from),
             c: f64::from(self.c),
             area: f64::from(self.area),
@@ -166,6 +179,21 @@ impl LocalQuadric {
     pub fn prefetch(&self) {
         crate::mesh::prefetch_all(self);
     }
+}
+
+/// `a00 a01 a02 a11 a12 a22` (symmetric, positive semi-definite up to rounding) as
+/// `d0 d1 d2 l10 l20 l21` of `L·diag(d)·Lᵀ`; a pivot below `1e-20 × trace` (nothing left in
+/// that direction) gets no column below it.
+fn factors(a: [f64; 6]) -> [f64; 6] {
+    let [a00, a01, a02, a11, a12, a22] = a;
+    let tiny = 1e-20 * (a00.abs() + a11.abs() + a22.abs());
+    let below = |x: f64, pivot: f64| if pivot > tiny { x / pivot } else { 0.0 };
+    let d0 = a00;
+    let (l10, l20) = (below(a01, d0), below(a02, d0));
+    let d1 = a11 - l10 * l10 * d0;
+    let l21 = below(a12 - l20 * l10 * d0, d1);
+    let d2 = a22 - l20 * l20 * d0 - l21 * l21 * d1;
+    [d0, d1, d2, l10, l20, l21]
 }
 
 /// The attributes' part of a vertex's error (H. Hoppe, "New Quadric Metric for Simplifying
@@ -370,6 +398,30 @@ mod tests {
         }
         let (m, n) = (q.minimum(), back.minimum());
         assert!(m.zip(n).is_some_and(|(m, n)| (m - n).length() < 1e-6));
+    }
+
+    #[test]
+    fn a_tilted_flat_fan_stays_flat_in_f32() {
+        // Planes of one tilted plane (no axis in it), and a border's constraint plane across
+        // it: moving the vertex along the border costs nothing in f64, and must in f32 too.
+        // Rounding `A`'s entries one by one would leave ~6e-8 × weight in every direction.
+        let n = DVec3::new(0.3, -0.5, 0.8).normalize();
+        let along = n.cross(DVec3::new(1.0, 0.2, 0.1)).normalize();
+        let side = along.cross(n);
+        let p = DVec3::new(0.7, -0.2, 0.4);
+        let mut q = Quadric::plane(n, -n.dot(p), 1.7);
+        q.add(&Quadric::plane(side, -side.dot(p), 30.0));
+        let stored = LocalQuadric::new(&q, p).at(p);
+        for t in [0.25, -1.0, 3.0] {
+            let x = p + t * along;
+            assert!(q.eval(x) < 1e-12, "{}", q.eval(x));
+            assert!(stored.eval(x) < 1e-12, "{} at {t}", stored.eval(x));
+        }
+        // Across the border and off the plane it costs what f64 says, to f32's precision.
+        for d in [0.1 * side, 0.2 * n, 0.3 * (n + side)] {
+            let (x, y) = (q.eval(p + d), stored.eval(p + d));
+            assert!((x - y).abs() < 1e-6 * x, "{x} vs {y} at {d}");
+        }
     }
 
     #[test]
