@@ -11,7 +11,7 @@ use super::edge_costs::EdgeCosts;
 use super::part::{CollapseLists, Part};
 #[cfg(test)]
 use super::planes::{self, Constraints};
-use super::quadric::Quadric;
+use super::quadric::LocalQuadric;
 use super::texture_quadrics::{colour_quadrics, texture_quadrics, ColourQuadrics, TextureQuadrics};
 use crate::decimate::closed::{ClosedView, ClosedVolumes};
 use crate::decimate::distance_bound::DistanceBound;
@@ -26,7 +26,8 @@ pub(super) struct Collapser {
     positions: Vec<Vec3>,
     pub conn: Connectivity,
     pub kinds: Vec<Kind>,
-    quadrics: Vec<Quadric>,
+    /// Each vertex's quadric, about its position.
+    quadrics: Vec<LocalQuadric>,
     colors: Option<Vec<[f32; 3]>>,
     normals: Option<Vec<[f32; 3]>>,
     /// Texture coordinates: placed by the texture's quadrics when there are some,
@@ -107,7 +108,7 @@ impl Collapser {
     pub fn connected(
         positions: Vec<Vec3>,
         conn: Connectivity,
-        (kinds, quadrics): (Vec<Kind>, Vec<Quadric>),
+        (kinds, quadrics): (Vec<Kind>, Vec<LocalQuadric>),
         colors: Option<Vec<[f32; 3]>>,
         normals: Option<Vec<[f32; 3]>>,
         cos_feature: f64,
@@ -475,7 +476,8 @@ mod tests {
         // constraint planes: less than half as far off it as 4 was
         // (docs/design.md#qem-border-placement).
         let mut d = grid_raised(0.5);
-        let q = d.quadrics[1].sum(&d.quadrics[4]);
+        let at = |v: usize| d.quadrics[v].at(d.positions[v].as_dvec3());
+        let q = at(1).sum(&at(4));
         let stay = DVec3::new(1.0, 0.0, 0.0);
         let plan = d.whole().plan(1, 4).expect("interior into boundary");
         assert_eq!((plan.remove, plan.keep), (4, 1));
@@ -486,6 +488,29 @@ mod tests {
         // Flat, staying put is already the best: it does not move.
         let plan = grid().whole().plan(1, 4).expect("interior into boundary");
         assert_eq!((plan.remove, plan.keep, plan.position), (4, 1, stay));
+    }
+
+    #[test]
+    fn a_moved_vertex_keeps_both_ends_quadrics_about_its_new_position() {
+        // The raised interior vertex 4 into the outline's 1, which moves: 1's stored
+        // quadric, read at its new position, is the two ends' from before anywhere near.
+        let mut d = grid_raised(0.5);
+        let at = |d: &Collapser, v: usize| d.quadrics[v].at(d.positions[v].as_dvec3());
+        let before = at(&d, 1).sum(&at(&d, 4));
+        let mut part = d.whole();
+        let plan = part.plan(1, 4).expect("interior into boundary");
+        assert!(part.gather(plan.remove, plan.keep));
+        part.collapse(&plan);
+        assert_ne!(d.positions[1], Vec3::X, "the kept vertex did not move");
+        let after = at(&d, 1);
+        for p in [
+            plan.position,
+            DVec3::new(1.5, 0.5, 0.2),
+            DVec3::new(0.0, 2.0, -1.0),
+        ] {
+            let (x, y) = (before.eval(p), after.eval(p));
+            assert!((x - y).abs() <= 1e-6 * x.max(1e-6), "{x} vs {y} at {p}");
+        }
     }
 
     #[test]

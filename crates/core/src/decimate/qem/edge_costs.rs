@@ -10,11 +10,11 @@ use rayon::prelude::*;
 const BLOCKED: u32 = 1 << 31;
 
 /// One triangle slot's corners and the planned costs of its three edges (cost `i` is the
-/// edge from corner `i` to corner `i + 1`), in one 32-byte record that never straddles a
-/// cache line: a fan walk loads one line per triangle instead of one for the corners and
-/// another for the costs. The corners are a copy of the connectivity's, kept in step by
+/// edge from corner `i` to corner `i + 1`), in one 24-byte record: a fan walk loads one
+/// record per triangle instead of the corners from one array and the costs from another.
+/// The corners are a copy of the connectivity's, kept in step by
 /// [`EdgeCosts::set_corners`] at every collapse (only planning reads them).
-#[repr(C, align(32))]
+#[repr(C)]
 struct Slot {
     corners: [AtomicU32; 3],
     costs: [AtomicU32; 3],
@@ -72,7 +72,7 @@ impl EdgeCosts {
     /// Asks the CPU to start loading slot `t` (a hint).
     pub fn prefetch(&self, t: u32) {
         if let Some(s) = self.slots.get(t as usize) {
-            crate::mesh::prefetch(s);
+            crate::mesh::prefetch_all(s);
         }
     }
 

@@ -12,7 +12,7 @@ use glam::{DVec2, DVec3, Vec3};
 use super::collapse_plan::{others, Kind, Plan};
 use super::edge_costs::EdgeCosts;
 use super::features;
-use super::quadric::{ColourQuadric, Quadric, TextureQuadric};
+use super::quadric::{ColourQuadric, LocalQuadric, Quadric, TextureQuadric};
 use crate::decimate::closed::ClosedView;
 use crate::decimate::distance_bound::DistanceBound;
 use crate::mesh::progressive::{CollapseRecord, Recorder};
@@ -89,7 +89,8 @@ pub(super) struct Part<'a> {
     pub positions: &'a mut [Vec3],
     pub conn: ConnectivityPart<'a>,
     pub kinds: &'a mut [Kind],
-    pub quadrics: &'a mut [Quadric],
+    /// Each vertex's quadric, about its position: moving a vertex stores it again.
+    pub quadrics: &'a mut [LocalQuadric],
     pub colors: Option<&'a mut [[f32; 3]]>,
     pub normals: Option<&'a mut [[f32; 3]]>,
     pub texcoords: Option<&'a mut [[f32; 2]]>,
@@ -325,6 +326,13 @@ impl Part<'_> {
         self.positions[self.at(v)].as_dvec3()
     }
 
+    /// `v`'s quadric, in model coordinates.
+    #[inline]
+    fn quadric(&self, v: u32) -> Quadric {
+        let i = self.at(v);
+        self.quadrics[i].at(self.positions[i].as_dvec3())
+    }
+
     /// How many triangles are on the edge `a`–`b`.
     fn edge_triangles(&self, a: u32, b: u32) -> usize {
         self.conn
@@ -360,10 +368,10 @@ impl Part<'_> {
         let CollapseEnds {
             remove, keep, twin, ..
         } = ends;
-        let mut q = self.quadrics[self.at(a)].sum(&self.quadrics[self.at(b)]);
+        let mut q = self.quadric(a).sum(&self.quadric(b));
         if let Some([r2, k2]) = twin {
-            q.add(&self.quadrics[self.at(r2)]);
-            q.add(&self.quadrics[self.at(k2)]);
+            q.add(&self.quadric(r2));
+            q.add(&self.quadric(k2));
         }
         let (pr, pk) = (self.position(remove), self.position(keep));
         // A textured model's placement minimises the geometric and the texture's error
@@ -602,7 +610,7 @@ impl Part<'_> {
         if self.edge_triangles(a, b) < 3 {
             return None;
         }
-        let q = self.quadrics[self.at(a)].sum(&self.quadrics[self.at(b)]);
+        let q = self.quadric(a).sum(&self.quadric(b));
         Some(if q.eval(self.position(b)) <= q.eval(self.position(a)) {
             (a, b, false, false)
         } else {
@@ -898,11 +906,11 @@ impl Part<'_> {
                 deleted: &self.scratch.deleted,
             });
         }
+        let q = self.quadrics[k].at(pk).sum(&self.quadrics[r].at(pr));
         self.positions[k] = plan.position.as_vec3();
+        self.quadrics[k] = LocalQuadric::new(&q, self.positions[k].as_dvec3());
         let surface = self.input_surface[r];
         self.input_surface[k] += surface;
-        let q = self.quadrics[r];
-        self.quadrics[k].add(&q);
         if let Some(t) = self.texture_quadrics.as_deref_mut() {
             let q = t[r];
             t[k].add(&q);

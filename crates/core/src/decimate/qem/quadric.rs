@@ -1,9 +1,10 @@
 //! The Garland–Heckbert error quadric: the summed squared distance to a set of weighted
 //! planes, `Q(p) = pᵀAp + 2b·p + c`, with the triangle area behind it.
 //!
-//! Kept in f64 in model coordinates, 88 bytes a vertex: in f32, `c` and `2b·p` cancel down
-//! to `weight × error²` and lose it; f32 about each vertex's own position works but was no
-//! faster (docs/design.md#quadric-precision).
+//! Arithmetic is in f64 in model coordinates ([`Quadric`]). Each vertex's quadric is stored
+//! in f32 about the vertex's own position ([`LocalQuadric`], 44 bytes): there its terms are
+//! of the order of the error itself, where in model coordinates `c` and `2b·p` would cancel
+//! down to `weight × error²` and lose it in f32 (docs/design.md#quadric-precision).
 
 use glam::{DMat2, DVec2, DVec3};
 
@@ -36,12 +37,6 @@ impl Quadric {
         }
     }
 
-    /// Asks the CPU to start loading every cache line the quadric spans (a hint).
-    #[inline]
-    pub fn prefetch(&self) {
-        crate::mesh::prefetch_all(self);
-    }
-
     #[inline]
     pub fn add(&mut self, o: &Self) {
         for i in 0..6 {
@@ -61,15 +56,35 @@ impl Quadric {
         s
     }
 
-    /// `Q(p)`, never negative.
+    /// `A·p`.
     #[inline]
-    pub fn eval(&self, p: DVec3) -> f64 {
+    fn a_times(&self, p: DVec3) -> DVec3 {
         let [a00, a01, a02, a11, a12, a22] = self.a;
-        let ap = DVec3::new(
+        DVec3::new(
             a00 * p.x + a01 * p.y + a02 * p.z,
             a01 * p.x + a11 * p.y + a12 * p.z,
             a02 * p.x + a12 * p.y + a22 * p.z,
-        );
+        )
+    }
+
+    /// The same quadric about `s`: `Q(s + d)` as a quadric in `d` (`A` stays, `b` becomes
+    /// `b + A·s`, `c` becomes `Q(s)`).
+    #[inline]
+    fn shifted(&self, s: DVec3) -> Self {
+        let a_s = self.a_times(s);
+        let b = DVec3::from_array(self.b);
+        Self {
+            a: self.a,
+            b: (b + a_s).to_array(),
+            c: s.dot(a_s) + 2.0 * b.dot(s) + self.c,
+            area: self.area,
+        }
+    }
+
+    /// `Q(p)`, never negative.
+    #[inline]
+    pub fn eval(&self, p: DVec3) -> f64 {
+        let ap = self.a_times(p);
         let b = DVec3::from_array(self.b);
         (p.dot(ap) + 2.0 * b.dot(p) + self.c).max(0.0)
     }
@@ -101,6 +116,84 @@ impl Quadric {
         let p = DVec3::new(x, y, z);
         p.is_finite().then_some(p)
     }
+}
+
+/// A vertex's quadric as stored: `Q(p + d)` as a quadric in `d`, about the vertex's own
+/// position `p`, in f32 (10 numbers and the area, 44 bytes). About `p` the coefficients are
+/// of the order of the error near the vertex, so f32 keeps what model coordinates would
+/// cancel away; adding and evaluating go through [`Self::at`] in f64. `A` is kept as its
+/// factors `L·D·Lᵀ`: rounding those keeps a direction that costs nothing (along a flat
+/// sheet, along a border) costing nothing, where rounding `A`'s entries one by one would
+/// price it at f32's precision times the planes' weight. Whoever moves a vertex stores its
+/// quadric again about the new position.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct LocalQuadric {
+    /// `d0 d1 d2 l10 l20 l21`: `A = L·diag(d)·Lᵀ`, `L` unit lower triangular.
+    ldl: [f32; 6],
+    b: [f32; 3],
+    c: f32,
+    area: f32,
+}
+
+impl LocalQuadric {
+    /// `q` (model coordinates) stored about `p`.
+    #[inline]
+    pub fn new(q: &Quadric, p: DVec3) -> Self {
+        let l = q.shifted(p);
+        Self {
+            ldl: factors(l.a).map(|x| x as f32),
+            b: l.b.map(|x| x as f32),
+            c: l.c as f32,
+            area: l.area as f32,
+        }
+    }
+
+    /// The quadric in model coordinates, for its vertex at `p`.
+    #[inline]
+    pub fn at(&self, p: DVec3) -> Quadric {
+        let [d0, d1, d2, l10, l20, l21] = self.ldl.map(f64::from);
+        let (e10, e20) = (l10 * d0, l20 * d0);
+        let local = Quadric {
+            a: [
+                d0,
+                e10,
+                e20,
+                l10 * e10 + d1,
+                l20 * e10 + l21 * d1,
+                l20 * e20 + l21 * l21 * d1 + d2,
+            ],
+            b: self.b.map(f64::from),
+            c: f64::from(self.c),
+            area: f64::from(self.area),
+        };
+        local.shifted(-p)
+    }
+
+    /// Adds `q` (model coordinates) to the quadric of a vertex at `p`.
+    pub fn add(&mut self, q: &Quadric, p: DVec3) {
+        *self = Self::new(&self.at(p).sum(q), p);
+    }
+
+    /// Asks the CPU to start loading every cache line the quadric spans (a hint).
+    #[inline]
+    pub fn prefetch(&self) {
+        crate::mesh::prefetch_all(self);
+    }
+}
+
+/// `a00 a01 a02 a11 a12 a22` (symmetric, positive semi-definite up to rounding) as
+/// `d0 d1 d2 l10 l20 l21` of `L·diag(d)·Lᵀ`; a pivot below `1e-20 × trace` (nothing left in
+/// that direction) gets no column below it.
+fn factors(a: [f64; 6]) -> [f64; 6] {
+    let [a00, a01, a02, a11, a12, a22] = a;
+    let tiny = 1e-20 * (a00.abs() + a11.abs() + a22.abs());
+    let below = |x: f64, pivot: f64| if pivot > tiny { x / pivot } else { 0.0 };
+    let d0 = a00;
+    let (l10, l20) = (below(a01, d0), below(a02, d0));
+    let d1 = a11 - l10 * l10 * d0;
+    let l21 = below(a12 - l20 * l10 * d0, d1);
+    let d2 = a22 - l20 * l20 * d0 - l21 * l21 * d1;
+    [d0, d1, d2, l10, l20, l21]
 }
 
 /// The attributes' part of a vertex's error (H. Hoppe, "New Quadric Metric for Simplifying
@@ -268,6 +361,67 @@ mod tests {
         assert!(line.minimum().is_none());
         assert_eq!(line.eval(DVec3::new(0.0, 0.0, 5.0)), 0.0);
         assert_eq!(line.eval(DVec3::new(3.0, 4.0, 0.0)), 25.0);
+    }
+
+    #[test]
+    fn a_far_vertex_keeps_its_error_in_f32() {
+        // Planes through points a millimetre around a vertex 200 m from the origin: stored
+        // about the vertex, the quadric's error near it is the f64 one to f32's precision
+        // (in model coordinates f32 would cancel it away: `c` alone is ~1e4 × weight, the
+        // error ~1e-6 × weight).
+        let p = DVec3::new(100.0, -200.0, 50.0);
+        let mut q = Quadric::default();
+        for (i, n) in [
+            DVec3::X,
+            DVec3::new(1.0, 1.0, 0.2),
+            DVec3::new(-0.3, 0.5, 1.0),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let n = n.normalize();
+            let through = p + DVec3::splat(1e-3 * (i as f64 - 1.0));
+            let mut plane = Quadric::plane(n, -n.dot(through), 2.0 + i as f64);
+            plane.area = 0.5;
+            q.add(&plane);
+        }
+        let stored = LocalQuadric::new(&q, p);
+        let back = stored.at(p);
+        assert!((back.area - 1.5).abs() < 1e-6);
+        for d in [
+            DVec3::ZERO,
+            DVec3::new(2e-3, -1e-3, 0.5e-3),
+            DVec3::splat(-3e-3),
+        ] {
+            let (x, y) = (q.eval(p + d), back.eval(p + d));
+            assert!(x > 1e-7 && (x - y).abs() < 1e-4 * x, "{x} vs {y} at {d}");
+        }
+        let (m, n) = (q.minimum(), back.minimum());
+        assert!(m.zip(n).is_some_and(|(m, n)| (m - n).length() < 1e-6));
+    }
+
+    #[test]
+    fn a_tilted_flat_fan_stays_flat_in_f32() {
+        // Planes of one tilted plane (no axis in it), and a border's constraint plane across
+        // it: moving the vertex along the border costs nothing in f64, and must in f32 too.
+        // Rounding `A`'s entries one by one would leave ~6e-8 × weight in every direction.
+        let n = DVec3::new(0.3, -0.5, 0.8).normalize();
+        let along = n.cross(DVec3::new(1.0, 0.2, 0.1)).normalize();
+        let side = along.cross(n);
+        let p = DVec3::new(0.7, -0.2, 0.4);
+        let mut q = Quadric::plane(n, -n.dot(p), 1.7);
+        q.add(&Quadric::plane(side, -side.dot(p), 30.0));
+        let stored = LocalQuadric::new(&q, p).at(p);
+        for t in [0.25, -1.0, 3.0] {
+            let x = p + t * along;
+            assert!(q.eval(x) < 1e-12, "{}", q.eval(x));
+            assert!(stored.eval(x) < 1e-12, "{} at {t}", stored.eval(x));
+        }
+        // Across the border and off the plane it costs what f64 says, to f32's precision.
+        for d in [0.1 * side, 0.2 * n, 0.3 * (n + side)] {
+            let (x, y) = (q.eval(p + d), stored.eval(p + d));
+            assert!((x - y).abs() < 1e-6 * x, "{x} vs {y} at {d}");
+        }
     }
 
     #[test]
