@@ -420,6 +420,21 @@ fn face_corners(
     }
 }
 
+/// The next record of a streamed read, the `i`-th of `n` `what`; the end of the file there
+/// is an error on the `last` line read.
+fn expect_record(
+    next: &mut impl FnMut() -> PResult<Option<Record>>,
+    last: usize,
+    (i, n, what): (usize, usize, &str),
+) -> PResult<Record> {
+    next()?.ok_or_else(|| {
+        ParseError::new(
+            last,
+            format!("unexpected end of file after {i} of {n} {what}"),
+        )
+    })
+}
+
 /// Tiling's read of an OFF file too big to hold (`io::stream`): each face's triangles (a
 /// polygon fanned from its first corner) handed to `triangle` as its line is read, positions
 /// relative to `recentre`'s origin. Holds what the vertex lines give (positions, and
@@ -444,13 +459,7 @@ pub(super) fn stream_off(
         ..Vertices::default()
     };
     for i in 0..header.vertices {
-        let (line, text) = next()?.ok_or_else(|| {
-            let nv = header.vertices;
-            ParseError::new(
-                last,
-                format!("unexpected end of file after {i} of {nv} vertices"),
-            )
-        })?;
+        let (line, text) = expect_record(&mut next, last, (i, header.vertices, "vertices"))?;
         last = line;
         let ws: Vec<&[u8]> = words(&text).collect();
         vertex_line(&ws, line, i, &header, &mut vertices)?;
@@ -466,13 +475,7 @@ pub(super) fn stream_off(
     };
     let mut corners = Vec::new();
     for f in 0..header.faces {
-        let (line, text) = next()?.ok_or_else(|| {
-            let nf = header.faces;
-            ParseError::new(
-                last,
-                format!("unexpected end of file after {f} of {nf} faces"),
-            )
-        })?;
+        let (line, text) = expect_record(&mut next, last, (f, header.faces, "faces"))?;
         last = line;
         let ws: Vec<&[u8]> = words(&text).collect();
         corners.clear();
